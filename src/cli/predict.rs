@@ -1,0 +1,224 @@
+//! `smash predict`: launch conditions for a shots file or for one delivery.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context};
+use clap::Args;
+use nalgebra::Vector3;
+
+use crate::data::club_file::read_club;
+use crate::data::predictions::predictions_csv;
+use crate::data::shots::{read_shots, DEFAULT_GROUP};
+use crate::data::write_atomic;
+use crate::physics::{Delivery, LaunchComponent};
+use crate::predict::predict_table;
+use crate::units::{deg, mm, mph};
+
+/// Arguments of `smash predict`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash predict --club configs/clubs/paper_driver.toml --shots shots.csv --out pred.csv\n  \
+                  smash predict --club configs/clubs/paper_driver.toml --speed 100 --loft 12 --impact-z 10"
+)]
+pub struct PredictArgs {
+    /// Club file (TOML): clubhead, ball and optional [[effect]] tables.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV). Writes predictions to --out.
+    #[arg(
+        long,
+        value_name = "SHOTS.csv",
+        requires = "out",
+        conflicts_with = "club_speed_mph"
+    )]
+    pub shots: Option<PathBuf>,
+
+    /// Predictions file to write (CSV: input columns, pred_*, and err_* where measured).
+    #[arg(long, value_name = "PRED.csv")]
+    pub out: Option<PathBuf>,
+
+    /// One-shot form: clubhead CoM speed, mph.
+    #[arg(
+        long = "speed-mph",
+        visible_alias = "speed",
+        value_name = "MPH",
+        help_heading = "One delivery"
+    )]
+    pub club_speed_mph: Option<f64>,
+    /// Dynamic loft at impact, deg.
+    #[arg(
+        long = "loft-deg",
+        visible_alias = "loft",
+        value_name = "DEG",
+        help_heading = "One delivery"
+    )]
+    pub dynamic_loft_deg: Option<f64>,
+    /// Attack angle, deg (+ up).
+    #[arg(
+        long = "attack-deg",
+        visible_alias = "attack",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub attack_angle_deg: f64,
+    /// Club path, deg (+ right of target, in-to-out for a right-hander).
+    #[arg(
+        long = "path-deg",
+        visible_alias = "path",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub club_path_deg: f64,
+    /// Face angle, deg (+ open).
+    #[arg(
+        long = "face-deg",
+        visible_alias = "face",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub face_angle_deg: f64,
+    /// Lie tilt, deg (+ toe up).
+    #[arg(
+        long = "lie-deg",
+        visible_alias = "lie",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub lie_tilt_deg: f64,
+    /// Impact location up the face from the centre, mm.
+    #[arg(
+        long = "impact-y-mm",
+        visible_alias = "impact-y",
+        default_value_t = 0.0,
+        value_name = "MM",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub impact_y_mm: f64,
+    /// Impact location toward the toe from the centre, mm.
+    #[arg(
+        long = "impact-z-mm",
+        visible_alias = "impact-z",
+        default_value_t = 0.0,
+        value_name = "MM",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub impact_z_mm: f64,
+    /// Clubhead angular velocity about ground x, rad/s.
+    #[arg(
+        long = "omega-x-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_x_rad_s: f64,
+    /// Clubhead angular velocity about ground y (up), rad/s.
+    #[arg(
+        long = "omega-y-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_y_rad_s: f64,
+    /// Clubhead angular velocity about ground z, rad/s.
+    #[arg(
+        long = "omega-z-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_z_rad_s: f64,
+    /// Group whose effects apply (one-shot form).
+    #[arg(long, default_value = DEFAULT_GROUP, help_heading = "One delivery")]
+    pub group: String,
+}
+
+/// Run `smash predict`.
+pub fn run(args: PredictArgs) -> anyhow::Result<()> {
+    let club = read_club(&args.club)?;
+    if let Some(shots_path) = &args.shots {
+        let out = args.out.as_ref().expect("clap: --shots requires --out");
+        let table = read_shots(shots_path)?;
+        let outcomes =
+            predict_table(&club, &table).with_context(|| shots_path.display().to_string())?;
+        write_atomic(out, &predictions_csv(&table, &outcomes))?;
+        eprintln!(
+            "predicted {} shot(s) with {} -> {}",
+            outcomes.len(),
+            club.name,
+            out.display()
+        );
+        return Ok(());
+    }
+    let (Some(speed), Some(loft)) = (args.club_speed_mph, args.dynamic_loft_deg) else {
+        bail!("give either --shots SHOTS.csv --out PRED.csv, or a delivery with at least --speed MPH and --loft DEG");
+    };
+    if args.out.is_some() {
+        bail!("--out goes with --shots; the one-shot form prints its table");
+    }
+    let values = [
+        ("--speed", speed),
+        ("--loft", loft),
+        ("--attack", args.attack_angle_deg),
+        ("--path", args.club_path_deg),
+        ("--face", args.face_angle_deg),
+        ("--lie", args.lie_tilt_deg),
+        ("--impact-y", args.impact_y_mm),
+        ("--impact-z", args.impact_z_mm),
+        ("--omega-x-rad-s", args.omega_x_rad_s),
+        ("--omega-y-rad-s", args.omega_y_rad_s),
+        ("--omega-z-rad-s", args.omega_z_rad_s),
+    ];
+    for (flag, v) in values {
+        if !v.is_finite() {
+            bail!("{flag} must be a finite number, got {v}");
+        }
+    }
+    if speed <= 0.0 {
+        bail!("--speed must be > 0 mph, got {speed}");
+    }
+    let delivery = Delivery {
+        club_speed_m_s: mph(speed),
+        attack_angle_rad: deg(args.attack_angle_deg),
+        club_path_rad: deg(args.club_path_deg),
+        dynamic_loft_rad: deg(loft),
+        face_angle_rad: deg(args.face_angle_deg),
+        lie_tilt_rad: deg(args.lie_tilt_deg),
+        club_omega_rad_s: Vector3::new(args.omega_x_rad_s, args.omega_y_rad_s, args.omega_z_rad_s),
+        impact_y_m: mm(args.impact_y_mm),
+        impact_z_m: mm(args.impact_z_mm),
+    };
+    let model = club
+        .model_for_group(&args.group)
+        .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
+    let outcome = model.solve(&delivery)?;
+    let launch = outcome.launch();
+    println!("{} (group {})", club.name, args.group);
+    println!(
+        "delivery: {speed} mph, loft {loft} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
+        args.attack_angle_deg, args.club_path_deg, args.face_angle_deg, args.lie_tilt_deg, args.impact_y_mm, args.impact_z_mm
+    );
+    for c in LaunchComponent::ALL {
+        println!(
+            "{:<14} {:>10.2} {}",
+            c.label(),
+            launch.get_file(c),
+            c.unit()
+        );
+    }
+    println!("{:<14} {:>10.4}", "Smash factor", outcome.smash_factor());
+    Ok(())
+}

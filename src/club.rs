@@ -1,0 +1,101 @@
+//! A club as users describe it: nominal clubhead and ball, plus the effects that calibrate it.
+//!
+//! [`ClubSpec`] is what a club file holds. [`ClubSpec::model_for_group`] composes the nominal
+//! parameters with the effects that apply to one group of shots and validates the result into
+//! an [`ImpactModel`], ready for the inner loop.
+
+use std::collections::BTreeMap;
+
+use crate::effects::Effect;
+use crate::physics::{ImpactModel, ModelParams, ParamError};
+
+/// Clubhead, ball and effects, SI units inside.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ClubSpec {
+    /// Human name of the club.
+    pub name: String,
+    /// Static loft, rad (informational: the delivered dynamic loft drives the model).
+    pub static_loft_rad: Option<f64>,
+    /// Nominal physical parameters (no effect applied).
+    pub nominal: ModelParams,
+    /// Effects, in file order.
+    pub effects: Vec<Effect>,
+}
+
+impl ClubSpec {
+    /// Build a club and check that its nominal parameters and every group's composition are
+    /// physical.
+    pub fn new(
+        name: String,
+        static_loft_rad: Option<f64>,
+        nominal: ModelParams,
+        effects: Vec<Effect>,
+    ) -> Result<Self, ParamError> {
+        let spec = Self {
+            name,
+            static_loft_rad,
+            nominal,
+            effects,
+        };
+        ImpactModel::new(spec.nominal.clone())?;
+        for group in spec.effect_groups() {
+            spec.model_for_group(&group)?;
+        }
+        // Shots of a group no effect names get the global effects only.
+        spec.model_for_group("\u{0}no-group")?;
+        Ok(spec)
+    }
+
+    /// The same club with other effects (validated).
+    pub fn with_effects(&self, effects: Vec<Effect>) -> Result<Self, ParamError> {
+        Self::new(
+            self.name.clone(),
+            self.static_loft_rad,
+            self.nominal.clone(),
+            effects,
+        )
+    }
+
+    /// Groups named by any effect.
+    pub fn effect_groups(&self) -> Vec<String> {
+        let mut groups: Vec<String> = self
+            .effects
+            .iter()
+            .filter_map(|e| e.group().map(str::to_owned))
+            .collect();
+        groups.sort();
+        groups.dedup();
+        groups
+    }
+
+    /// Model parameters for shots of `group`: nominal plus every effect that applies.
+    pub fn params_for_group(&self, group: &str) -> ModelParams {
+        let mut p = self.nominal.clone();
+        for e in self.effects.iter().filter(|e| e.applies_to(group)) {
+            e.apply(&mut p);
+        }
+        p
+    }
+
+    /// Validated impact model for shots of `group`.
+    pub fn model_for_group(&self, group: &str) -> Result<ImpactModel, ParamError> {
+        ImpactModel::new(self.params_for_group(group))
+    }
+
+    /// One model per distinct group.
+    pub fn models_for_groups<'a, I>(
+        &self,
+        groups: I,
+    ) -> Result<BTreeMap<String, ImpactModel>, ParamError>
+    where
+        I: IntoIterator<Item = &'a str>,
+    {
+        let mut out = BTreeMap::new();
+        for g in groups {
+            if !out.contains_key(g) {
+                out.insert(g.to_owned(), self.model_for_group(g)?);
+            }
+        }
+        Ok(out)
+    }
+}

@@ -1,0 +1,316 @@
+//! Club files (TOML): clubhead, ball and optional `[[effect]]` tables.
+//!
+//! ```toml
+//! [club]
+//! name = "Paper driver (Table 1)"
+//! mass_g = 204.0
+//! com_mm = [-42.3, 2.9, 1.0]            # r_C/CoF in F
+//! inertia_gcm2 = [[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]]
+//! cor = 0.83
+//! loft_deg = 9.8                         # static loft (informational)
+//! bulge_mm = 305.0
+//! roll_mm = 305.0
+//!
+//! [ball]
+//! mass_g = 45.9
+//! radius_mm = 21.3
+//! inertia_gcm2 = 83.63                   # isotropic
+//!
+//! [[effect]]
+//! name = "added_mass"
+//! dm_g = 2.54
+//! group = "A"        # optional: applies to that group only
+//! ```
+//!
+//! Unknown keys are errors; so are missing keys, non-finite or unphysical values. Every error
+//! names the file, line and column of the offending key.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use nalgebra::{Matrix3, Vector3};
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::{line_col, read_text, DataError};
+use crate::club::ClubSpec;
+use crate::effects::{Effect, EffectKind};
+use crate::physics::{validate_inertia, ModelParams};
+use crate::units::{deg, g, gcm2, mm};
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    club: RawClub,
+    ball: RawBall,
+    #[serde(default)]
+    effect: Vec<Spanned<toml::Table>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawClub {
+    name: String,
+    mass_g: Spanned<f64>,
+    com_mm: Spanned<[f64; 3]>,
+    inertia_gcm2: Spanned<[[f64; 3]; 3]>,
+    cor: Spanned<f64>,
+    loft_deg: Option<Spanned<f64>>,
+    bulge_mm: Spanned<f64>,
+    roll_mm: Spanned<f64>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawBall {
+    mass_g: Spanned<f64>,
+    radius_mm: Spanned<f64>,
+    inertia_gcm2: Spanned<f64>,
+}
+
+struct Ctx<'a> {
+    path: &'a Path,
+    text: &'a str,
+}
+
+impl Ctx<'_> {
+    fn err(
+        &self,
+        span: std::ops::Range<usize>,
+        key: &str,
+        message: impl Into<String>,
+    ) -> DataError {
+        let (line, col) = line_col(self.text, span.start);
+        DataError::at(
+            self.path,
+            Some(line),
+            Some(format!("column {col}: key {key}")),
+            message,
+        )
+    }
+
+    fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, DataError> {
+        let x = *v.get_ref();
+        if x.is_finite() && x > 0.0 {
+            Ok(x)
+        } else {
+            Err(self.err(
+                v.span(),
+                key,
+                format!("must be a finite number > 0 {unit}, got {x}"),
+            ))
+        }
+    }
+}
+
+/// Read and validate a club file.
+pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
+    let text = read_text(path)?;
+    parse_club(path, &text)
+}
+
+/// Parse and validate club-file text (`path` is used in messages only).
+pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
+    let ctx = Ctx { path, text };
+    let raw: RawFile = toml::from_str(text).map_err(|e| {
+        let (line, place) = match e.span() {
+            Some(span) => {
+                let (line, col) = line_col(text, span.start);
+                (Some(line), Some(format!("column {col}")))
+            }
+            None => (None, None),
+        };
+        DataError::at(
+            path,
+            line,
+            place,
+            format!(
+                "{} (a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and \
+                 optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables)",
+                e.message().trim()
+            ),
+        )
+    })?;
+    let c = &raw.club;
+    let mass_g = ctx.positive(&c.mass_g, "club.mass_g", "g")?;
+    let com = c.com_mm.get_ref();
+    if !com.iter().all(|v| v.is_finite()) {
+        return Err(ctx.err(
+            c.com_mm.span(),
+            "club.com_mm",
+            "every component must be a finite number (mm)",
+        ));
+    }
+    let inertia = Matrix3::from_fn(|i, j| gcm2(c.inertia_gcm2.get_ref()[i][j]));
+    validate_inertia(&inertia, "club.inertia_gcm2")
+        .map_err(|e| ctx.err(c.inertia_gcm2.span(), "club.inertia_gcm2", e.problem))?;
+    let cor = *c.cor.get_ref();
+    if !(cor.is_finite() && cor > 0.0 && cor <= 1.0) {
+        return Err(ctx.err(
+            c.cor.span(),
+            "club.cor",
+            format!("must be in (0, 1], got {cor}"),
+        ));
+    }
+    let loft = match &c.loft_deg {
+        Some(l) if !l.get_ref().is_finite() => {
+            return Err(ctx.err(l.span(), "club.loft_deg", "must be a finite number (deg)"));
+        }
+        Some(l) => Some(deg(*l.get_ref())),
+        None => None,
+    };
+    let bulge_mm = ctx.positive(&c.bulge_mm, "club.bulge_mm", "mm")?;
+    let roll_mm = ctx.positive(&c.roll_mm, "club.roll_mm", "mm")?;
+    let b = &raw.ball;
+    let ball_mass_g = ctx.positive(&b.mass_g, "ball.mass_g", "g")?;
+    let ball_radius_mm = ctx.positive(&b.radius_mm, "ball.radius_mm", "mm")?;
+    let ball_inertia = ctx.positive(&b.inertia_gcm2, "ball.inertia_gcm2", "g·cm²")?;
+
+    let nominal = ModelParams {
+        club_mass_kg: g(mass_g),
+        club_com_m: Vector3::new(mm(com[0]), mm(com[1]), mm(com[2])),
+        club_inertia_kgm2: inertia,
+        cor,
+        bulge_m: mm(bulge_mm),
+        roll_m: mm(roll_mm),
+        ball_mass_kg: g(ball_mass_g),
+        ball_radius_m: mm(ball_radius_mm),
+        ball_inertia_kgm2: gcm2(ball_inertia),
+        ball_offset_y_m: 0.0,
+        ball_offset_z_m: 0.0,
+        tangential_restitution: 0.0,
+        friction_mu: None,
+        cor_speed_k_s_per_m: 0.0,
+        cor_radial_c_per_m2: 0.0,
+        loft_bias_rad: 0.0,
+        face_bias_rad: 0.0,
+    };
+
+    let mut effects = Vec::with_capacity(raw.effect.len());
+    for (i, table) in raw.effect.iter().enumerate() {
+        effects.push(parse_effect(&ctx, i, table)?);
+    }
+    ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
+        DataError::file(
+            path,
+            format!("the club with its effects is not physical: {e}"),
+        )
+    })
+}
+
+fn parse_effect(
+    ctx: &Ctx<'_>,
+    index: usize,
+    table: &Spanned<toml::Table>,
+) -> Result<Effect, DataError> {
+    let span = table.span();
+    let t = table.get_ref();
+    let here = |msg: String| ctx.err(span.clone(), &format!("effect[{index}]"), msg);
+    let name = match t.get("name") {
+        Some(toml::Value::String(s)) => s.as_str(),
+        Some(_) => return Err(here("`name` must be a string".into())),
+        None => {
+            return Err(here(format!(
+                "missing `name`; one of: {}",
+                EffectKind::all_names()
+            )))
+        }
+    };
+    let kind = EffectKind::from_name(name).ok_or_else(|| {
+        here(format!(
+            "unknown effect '{name}'; the library has: {}",
+            EffectKind::all_names()
+        ))
+    })?;
+    let group = match t.get("group") {
+        Some(toml::Value::String(s)) if !s.is_empty() => Some(s.clone()),
+        Some(_) => return Err(here(format!("{name}: `group` must be a non-empty string"))),
+        None => None,
+    };
+    let specs = kind.params();
+    let allowed = || {
+        let mut s = String::from("name, group");
+        for p in specs {
+            let _ = write!(s, ", {}", p.key);
+        }
+        s
+    };
+    for key in t.keys() {
+        if key != "name" && key != "group" && !specs.iter().any(|p| p.key == key) {
+            return Err(here(format!(
+                "{name}: unknown key `{key}`; allowed: {}",
+                allowed()
+            )));
+        }
+    }
+    let mut values = Vec::with_capacity(specs.len());
+    for p in specs {
+        let v = match t.get(p.key) {
+            Some(toml::Value::Float(f)) => *f,
+            Some(toml::Value::Integer(i)) => *i as f64,
+            Some(_) => {
+                return Err(here(format!(
+                    "{name}.{} must be a number ({})",
+                    p.key, p.unit
+                )))
+            }
+            None => {
+                return Err(here(format!(
+                    "{name}: missing `{}` ({}, {})",
+                    p.key, p.unit, p.doc
+                )))
+            }
+        };
+        values.push(v);
+    }
+    Effect::new(kind, &values, group).map_err(|e| here(e.to_string()))
+}
+
+/// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club.
+pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
+    let p = &spec.nominal;
+    let mut s = String::new();
+    for line in comment.lines() {
+        let _ = writeln!(s, "# {line}");
+    }
+    let _ = writeln!(s, "[club]");
+    let _ = writeln!(s, "name = {}", toml::Value::String(spec.name.clone()));
+    let _ = writeln!(s, "mass_g = {:?}", p.club_mass_kg * 1e3);
+    let c = p.club_com_m * 1e3;
+    let _ = writeln!(s, "com_mm = [{:?}, {:?}, {:?}]", c.x, c.y, c.z);
+    let i = p.club_inertia_kgm2 * 1e7;
+    let _ = writeln!(
+        s,
+        "inertia_gcm2 = [[{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}]]",
+        i[(0, 0)],
+        i[(0, 1)],
+        i[(0, 2)],
+        i[(1, 0)],
+        i[(1, 1)],
+        i[(1, 2)],
+        i[(2, 0)],
+        i[(2, 1)],
+        i[(2, 2)]
+    );
+    let _ = writeln!(s, "cor = {:?}", p.cor);
+    if let Some(l) = spec.static_loft_rad {
+        let _ = writeln!(s, "loft_deg = {:?}", l.to_degrees());
+    }
+    let _ = writeln!(s, "bulge_mm = {:?}", p.bulge_m * 1e3);
+    let _ = writeln!(s, "roll_mm = {:?}", p.roll_m * 1e3);
+    let _ = writeln!(s, "\n[ball]");
+    let _ = writeln!(s, "mass_g = {:?}", p.ball_mass_kg * 1e3);
+    let _ = writeln!(s, "radius_mm = {:?}", p.ball_radius_m * 1e3);
+    let _ = writeln!(s, "inertia_gcm2 = {:?}", p.ball_inertia_kgm2 * 1e7);
+    for e in &spec.effects {
+        let _ = writeln!(s, "\n[[effect]]");
+        let _ = writeln!(s, "name = \"{}\"", e.kind().name());
+        for (spec, v) in e.kind().params().iter().zip(e.values()) {
+            let _ = writeln!(s, "{} = {:?}", spec.key, v);
+        }
+        if let Some(g) = e.group() {
+            let _ = writeln!(s, "group = {}", toml::Value::String(g.to_owned()));
+        }
+    }
+    s
+}

@@ -1,0 +1,122 @@
+//! Files: club TOML, shots CSV, predictions CSV, and the one place that writes files.
+//!
+//! Readers return typed values with errors that name the file, line, column or key, what was
+//! wrong and what is allowed. Exporters build bytes; [`write_atomic`] writes them through a
+//! temporary file and a rename, so a failed run never leaves a half-written file behind.
+
+pub mod club_file;
+pub mod predictions;
+pub mod shots;
+
+use std::fmt;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// An error in an input or output file, with as precise a location as is known.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DataError {
+    /// The file.
+    pub path: PathBuf,
+    /// 1-based line, when known.
+    pub line: Option<usize>,
+    /// Where on the line: `column 7`, `column 'club_speed_mph'`, `key club.mass_g`, …
+    pub place: Option<String>,
+    /// What was wrong and what is allowed.
+    pub message: String,
+}
+
+impl DataError {
+    /// An error about a whole file.
+    pub fn file(path: &Path, message: impl Into<String>) -> Self {
+        Self {
+            path: path.to_owned(),
+            line: None,
+            place: None,
+            message: message.into(),
+        }
+    }
+
+    /// An error at a line (and optional place on it).
+    pub fn at(
+        path: &Path,
+        line: Option<usize>,
+        place: Option<String>,
+        message: impl Into<String>,
+    ) -> Self {
+        Self {
+            path: path.to_owned(),
+            line,
+            place,
+            message: message.into(),
+        }
+    }
+}
+
+impl fmt::Display for DataError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.path.display())?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        if let Some(place) = &self.place {
+            write!(f, ": {place}")?;
+        }
+        write!(f, ": {}", self.message)
+    }
+}
+
+impl std::error::Error for DataError {}
+
+/// Read a whole text file, mapping I/O errors to a [`DataError`].
+pub fn read_text(path: &Path) -> Result<String, DataError> {
+    std::fs::read_to_string(path).map_err(|e| DataError::file(path, format!("cannot read: {e}")))
+}
+
+/// Write `bytes` to `path` atomically: a temporary file beside it, flushed, then renamed.
+/// Creates the parent folder if needed.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
+    let parent = match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent).map_err(|e| {
+        DataError::file(
+            path,
+            format!("cannot create folder {}: {e}", parent.display()),
+        )
+    })?;
+    let file_name = path
+        .file_name()
+        .ok_or_else(|| DataError::file(path, "not a file path"))?
+        .to_string_lossy()
+        .into_owned();
+    let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    let result = (|| {
+        let mut f = std::fs::File::create(&tmp)?;
+        f.write_all(bytes)?;
+        f.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    result.map_err(|e| {
+        let _ = std::fs::remove_file(&tmp);
+        DataError::file(path, format!("cannot write: {e}"))
+    })
+}
+
+/// Byte offset to 1-based (line, column).
+pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let offset = offset.min(text.len());
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rfind('\n').map_or(before.chars().count(), |nl| {
+        before[nl + 1..].chars().count()
+    }) + 1;
+    (line, col)
+}
+
+/// Format a float for an output file: shortest representation that reads back to the same value.
+/// Non-finite values are a bug upstream; callers must not pass them.
+pub fn fmt_f64(v: f64) -> String {
+    debug_assert!(v.is_finite(), "non-finite value written to a file");
+    format!("{v}")
+}

@@ -1,0 +1,67 @@
+//! Clubhead delivery at impact and the orientation of the face frame `F` in the ground frame `G`.
+//!
+//! Ground frame `G`: origin at the ball centre at address, `x` toward the target, `y` up,
+//! `z = x × y` (right of the target line seen from behind the ball). The clubhead CoM velocity
+//! is `v_c = S·(cos α cos β, sin α, cos α sin β)` from speed `S`, attack angle `α` (+ up) and
+//! club path `β` (+ right of target). The face frame at impact follows from dynamic loft `δ`,
+//! face angle `φ` (+ open) and lie tilt `λ` (+ toe up):
+//!
+//! ```text
+//! x_F = (cos δ cos φ, sin δ, cos δ sin φ)
+//! z0  = (−sin φ, 0, cos φ)            y0 = z0 × x_F
+//! y_F = cos λ·y0 − sin λ·z0           z_F = sin λ·y0 + cos λ·z0
+//! R_GF = [x_F y_F z_F]                (columns; maps F components to G)
+//! ```
+
+use nalgebra::{Matrix3, Vector3};
+
+/// Clubhead state just before impact and where on the face it meets the ball. SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Delivery {
+    /// Clubhead CoM speed `S`, m/s.
+    pub club_speed_m_s: f64,
+    /// Attack angle `α`, rad (+ up).
+    pub attack_angle_rad: f64,
+    /// Club path `β`, rad (+ right of target, in-to-out for a right-hander).
+    pub club_path_rad: f64,
+    /// Dynamic loft `δ` at impact, rad.
+    pub dynamic_loft_rad: f64,
+    /// Face angle `φ` at impact, rad (+ open, face pointing right of target).
+    pub face_angle_rad: f64,
+    /// Lie tilt `λ` at impact, rad (+ toe up).
+    pub lie_tilt_rad: f64,
+    /// Clubhead angular velocity in `G`, rad/s.
+    pub club_omega_rad_s: Vector3<f64>,
+    /// Impact location up the face from CoF, m (in the CoF tangent plane).
+    pub impact_y_m: f64,
+    /// Impact location toward the toe from CoF, m (in the CoF tangent plane).
+    pub impact_z_m: f64,
+}
+
+impl Delivery {
+    /// Clubhead CoM velocity in `G`, m/s.
+    #[inline]
+    pub fn club_velocity_m_s(&self) -> Vector3<f64> {
+        let (sa, ca) = self.attack_angle_rad.sin_cos();
+        let (sb, cb) = self.club_path_rad.sin_cos();
+        self.club_speed_m_s * Vector3::new(ca * cb, sa, ca * sb)
+    }
+}
+
+/// Rotation `R_GF` whose columns are the face axes `x_F`, `y_F`, `z_F` in ground components.
+#[inline]
+pub fn face_orientation(
+    dynamic_loft_rad: f64,
+    face_angle_rad: f64,
+    lie_tilt_rad: f64,
+) -> Matrix3<f64> {
+    let (sd, cd) = dynamic_loft_rad.sin_cos();
+    let (sp, cp) = face_angle_rad.sin_cos();
+    let (sl, cl) = lie_tilt_rad.sin_cos();
+    let x_f = Vector3::new(cd * cp, sd, cd * sp);
+    let z0 = Vector3::new(-sp, 0.0, cp);
+    let y0 = z0.cross(&x_f);
+    let y_f = cl * y0 - sl * z0;
+    let z_f = sl * y0 + cl * z0;
+    Matrix3::from_columns(&[x_f, y_f, z_f])
+}

@@ -1,0 +1,128 @@
+//! Toroidal clubface with constant bulge (heel–toe) and roll (crown–sole) curvature.
+//!
+//! The face is a torus whose radius of curvature at the centre of face (CoF) is the bulge `B`
+//! heel-to-toe and the roll `Rr` crown-to-sole: tube radius `r = Rr`, major radius `R = B − Rr`,
+//! axis parallel to `y_F` through `(−B, 0, 0)`. For an impact location `(y, z)` measured in the
+//! CoF tangent plane (up the face, toward the toe):
+//!
+//! ```text
+//! s = sqrt(r² − y²)        ρ = R + s        X = sqrt(ρ² − z²)
+//! p   = (X − B, y, z)                                   contact point in F
+//! x_I = (s·X/ρ, y, s·z/ρ) / r                           unit outward normal
+//! z_I = (−z, 0, X) / ρ                                  horizontal (heel–toe) tangent
+//! y_I = z_I × x_I
+//! ```
+//!
+//! This corrects two errata of the paper's Section 2.2.2 (see `CONVENTIONS.md`): taken literally
+//! its Eq. 10 has a heel–toe radius of bulge + roll, and its normal is not of unit length.
+
+use nalgebra::Vector3;
+
+/// Why an impact location cannot be placed on the face.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum FaceError {
+    /// The location is outside the torus (a negative square root in the face equations).
+    #[error(
+        "impact location (y = {y_mm} mm, z = {z_mm} mm) is outside the face torus \
+         (bulge {bulge_mm} mm, roll {roll_mm} mm): |y| must be below the roll radius and \
+         |z| below the heel-toe radius at that height"
+    )]
+    OffFace {
+        /// Vertical location, mm.
+        y_mm: f64,
+        /// Heel–toe location, mm.
+        z_mm: f64,
+        /// Bulge radius, mm.
+        bulge_mm: f64,
+        /// Roll radius, mm.
+        roll_mm: f64,
+    },
+}
+
+/// Face geometry: a torus with given bulge and roll radii at the face centre. Valid by construction.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceGeometry {
+    bulge_m: f64,
+    roll_m: f64,
+    /// Major radius `R = B − Rr`, m.
+    major_m: f64,
+}
+
+/// Contact point and impact frame `I` at one location on the face, all in the face frame `F`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactFrame {
+    /// Contact point relative to the centre of face, m.
+    pub point_m: Vector3<f64>,
+    /// Unit outward face normal `x_I`.
+    pub normal: Vector3<f64>,
+    /// Unit tangent up the face `y_I`.
+    pub tangent_y: Vector3<f64>,
+    /// Unit horizontal heel–toe tangent `z_I`.
+    pub tangent_z: Vector3<f64>,
+}
+
+impl FaceGeometry {
+    /// A face with bulge radius `bulge_m` and roll radius `roll_m` (both m, finite, > 0).
+    pub fn new(bulge_m: f64, roll_m: f64) -> Result<Self, String> {
+        if !(bulge_m.is_finite() && bulge_m > 0.0) {
+            return Err(format!(
+                "bulge must be a finite positive radius, got {bulge_m} m"
+            ));
+        }
+        if !(roll_m.is_finite() && roll_m > 0.0) {
+            return Err(format!(
+                "roll must be a finite positive radius, got {roll_m} m"
+            ));
+        }
+        Ok(Self {
+            bulge_m,
+            roll_m,
+            major_m: bulge_m - roll_m,
+        })
+    }
+
+    /// Bulge (heel–toe radius of curvature at CoF), m.
+    pub fn bulge_m(&self) -> f64 {
+        self.bulge_m
+    }
+
+    /// Roll (crown–sole radius of curvature at CoF), m.
+    pub fn roll_m(&self) -> f64 {
+        self.roll_m
+    }
+
+    /// Contact point and impact frame at `(y_m, z_m)` (m up the face and toward the toe).
+    #[inline]
+    pub fn contact(&self, y_m: f64, z_m: f64) -> Result<ContactFrame, FaceError> {
+        let r = self.roll_m;
+        let big_r = self.major_m;
+        let s2 = r * r - y_m * y_m;
+        let off = || FaceError::OffFace {
+            y_mm: y_m * 1e3,
+            z_mm: z_m * 1e3,
+            bulge_mm: self.bulge_m * 1e3,
+            roll_mm: self.roll_m * 1e3,
+        };
+        // `!(a > 0)` also rejects NaN inputs.
+        if !(s2 > 0.0) {
+            return Err(off());
+        }
+        let s = s2.sqrt();
+        let rho = big_r + s;
+        let x2 = rho * rho - z_m * z_m;
+        if !(rho > 0.0 && x2 > 0.0) {
+            return Err(off());
+        }
+        let x = x2.sqrt();
+        let point_m = Vector3::new(x - self.bulge_m, y_m, z_m);
+        let normal = Vector3::new(s * x / rho, y_m, s * z_m / rho) / r;
+        let tangent_z = Vector3::new(-z_m, 0.0, x) / rho;
+        let tangent_y = tangent_z.cross(&normal);
+        Ok(ContactFrame {
+            point_m,
+            normal,
+            tangent_y,
+            tangent_z,
+        })
+    }
+}

@@ -1,0 +1,397 @@
+//! The impulse–momentum impact between clubhead and ball, reduced to one 3×3 solve.
+//!
+//! With the contact point relative to the clubhead CoM `r_c = p − r_C/CoF`, relative to the ball
+//! CoM `r_b = −radius·x_I + dy·y_I + dz·z_I`, and `[a]×` the cross-product matrix:
+//!
+//! ```text
+//! K   = (1/m_c + 1/m_b)·1 − [r_c]× I_c⁻¹ [r_c]× − [r_b]× I_b⁻¹ [r_b]×
+//! u1  = v_c + ω_c × r_c               contact-point velocity of club minus ball, before
+//! u1n = u1·n > 0                      (the club approaches the ball)
+//! K P = u1 + e·u1n·n + e_t·(u1 − u1n·n)
+//! v_b = P/m_b,  ω_b = I_b⁻¹(r_b × P),  v_c' = v_c − P/m_c,  ω_c' = ω_c − I_c⁻¹(r_c × P)
+//! ```
+//!
+//! This is the paper's Eqs. 1–9 (impulse and momentum for club and ball, restitution along the
+//! normal, no slip along the face when `e_t = 0`). Optional extensions, all off by default:
+//! a tangential restitution `e_t`; Coulomb friction `mu` (gross slip when the no-slip tangential
+//! impulse exceeds `mu·P_n`); a COR falling with normal approach speed,
+//! `e = cor − k·(u1n − 48.77 m/s)`; a COR falling with distance from the face centre,
+//! `e = cor − c·(y² + z²)`; and loft and face-angle biases added to the delivered angles.
+//!
+//! The solve is done in the face frame `F`, where the clubhead inertia is constant, and the
+//! results are rotated to the ground frame `G`.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::delivery::{face_orientation, Delivery};
+use super::face::{FaceError, FaceGeometry};
+use super::launch::Launch;
+
+/// Reference normal approach speed of the `cor_speed` effect, m/s (the CONVENTIONS value).
+pub const COR_SPEED_REFERENCE_M_S: f64 = 48.77;
+
+/// Physical parameters of one impact model, SI units, before validation.
+///
+/// Every field is a plain number; [`ImpactModel::new`] validates them and precomputes what the
+/// inner loop needs. The effect library (`crate::effects`) produces these from a club file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ModelParams {
+    /// Clubhead mass `m_c`, kg (> 0).
+    pub club_mass_kg: f64,
+    /// Clubhead CoM relative to the centre of face, `r_C/CoF`, in F, m.
+    pub club_com_m: Vector3<f64>,
+    /// Clubhead inertia tensor about its CoM, F axes, kg·m² (symmetric positive definite).
+    pub club_inertia_kgm2: Matrix3<f64>,
+    /// Normal coefficient of restitution at the reference speed and face centre, in (0, 1].
+    pub cor: f64,
+    /// Face bulge radius, m (> 0).
+    pub bulge_m: f64,
+    /// Face roll radius, m (> 0).
+    pub roll_m: f64,
+    /// Ball mass `m_b`, kg (> 0).
+    pub ball_mass_kg: f64,
+    /// Ball radius, m (> 0).
+    pub ball_radius_m: f64,
+    /// Ball moment of inertia (isotropic), kg·m² (> 0).
+    pub ball_inertia_kgm2: f64,
+    /// Ball CoM shift `dy` along `y_I` of the contact point relative to the ball CoM, m.
+    pub ball_offset_y_m: f64,
+    /// Ball CoM shift `dz` along `z_I`, m.
+    pub ball_offset_z_m: f64,
+    /// Tangential restitution `e_t`, in [−1, 1]; 0 is the paper's no-slip condition.
+    pub tangential_restitution: f64,
+    /// Coulomb friction coefficient `mu` (> 0), or `None` for unlimited friction.
+    pub friction_mu: Option<f64>,
+    /// COR slope with normal approach speed `k`, s/m.
+    pub cor_speed_k_s_per_m: f64,
+    /// COR falloff with squared distance from CoF `c`, 1/m².
+    pub cor_radial_c_per_m2: f64,
+    /// Added to the delivered dynamic loft, rad.
+    pub loft_bias_rad: f64,
+    /// Added to the delivered face angle, rad.
+    pub face_bias_rad: f64,
+}
+
+/// Why a set of model parameters is not physical.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{quantity}: {problem}")]
+pub struct ParamError {
+    /// The quantity at fault, as named in files (`club.mass_g`, `club.inertia_gcm2`, …).
+    pub quantity: &'static str,
+    /// What is wrong and what is allowed.
+    pub problem: String,
+}
+
+/// Why one impact cannot be computed.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum ImpactError {
+    /// The impact location is not on the face torus.
+    #[error(transparent)]
+    OffFace(#[from] FaceError),
+    /// The clubhead's contact point does not move toward the ball along the face normal.
+    #[error(
+        "the club does not approach the ball: normal approach speed is {normal_speed_m_s} m/s \
+         (must be > 0; check club speed, attack angle, path, loft and face angle)"
+    )]
+    NotApproaching {
+        /// `u1·n`, m/s.
+        normal_speed_m_s: f64,
+    },
+}
+
+/// A validated impact model with precomputed inverse inertias. Cheap to clone.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ImpactModel {
+    params: ModelParams,
+    face: FaceGeometry,
+    club_inv_inertia: Matrix3<f64>,
+    inv_mass_sum: f64,
+}
+
+/// Everything the impact produces, in the ground frame `G`, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactOutcome {
+    /// Ball CoM velocity after impact, m/s.
+    pub ball_velocity_m_s: Vector3<f64>,
+    /// Ball angular velocity after impact, rad/s.
+    pub ball_spin_rad_s: Vector3<f64>,
+    /// Clubhead CoM velocity after impact, m/s.
+    pub club_velocity_after_m_s: Vector3<f64>,
+    /// Clubhead angular velocity after impact, rad/s.
+    pub club_omega_after_rad_s: Vector3<f64>,
+    /// Impulse on the ball, N·s.
+    pub impulse_n_s: Vector3<f64>,
+    /// Contact point relative to the clubhead CoM, m.
+    pub contact_from_club_com_m: Vector3<f64>,
+    /// Contact point relative to the ball CoM, m.
+    pub contact_from_ball_com_m: Vector3<f64>,
+    /// Unit face normal at the contact point.
+    pub normal: Vector3<f64>,
+    /// Normal approach speed `u1·n`, m/s.
+    pub normal_approach_speed_m_s: f64,
+    /// Normal COR used for this impact (after `cor_speed` and `cor_radial`).
+    pub cor_effective: f64,
+    /// Whether friction limited the tangential impulse (gross slip).
+    pub slipped: bool,
+    /// Clubhead CoM speed before impact, m/s.
+    pub club_speed_m_s: f64,
+}
+
+impl ImpactOutcome {
+    /// Launch conditions of the ball.
+    #[inline]
+    pub fn launch(&self) -> Launch {
+        Launch::from_ball_state(&self.ball_velocity_m_s, &self.ball_spin_rad_s)
+    }
+
+    /// Smash factor: ball speed over clubhead speed.
+    #[inline]
+    pub fn smash_factor(&self) -> f64 {
+        self.ball_velocity_m_s.norm() / self.club_speed_m_s
+    }
+}
+
+fn check(
+    ok: bool,
+    quantity: &'static str,
+    problem: impl FnOnce() -> String,
+) -> Result<(), ParamError> {
+    if ok {
+        Ok(())
+    } else {
+        Err(ParamError {
+            quantity,
+            problem: problem(),
+        })
+    }
+}
+
+/// Check that `inertia` is a physical inertia tensor: finite, symmetric, positive definite, and
+/// its principal moments satisfy the triangle inequality (each at most the sum of the others).
+pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Result<(), ParamError> {
+    check(inertia.iter().all(|v| v.is_finite()), quantity, || {
+        "every entry must be a finite number".into()
+    })?;
+    let scale = inertia.amax();
+    check(scale > 0.0, quantity, || "the tensor is zero".into())?;
+    let asym = (inertia - inertia.transpose()).amax();
+    check(asym <= 1e-9 * scale, quantity, || {
+        format!("the tensor must be symmetric (largest |I_ij − I_ji| is {asym:e})")
+    })?;
+    let eig = inertia.symmetric_eigenvalues();
+    let (min, max) = (eig.min(), eig.max());
+    check(min > 0.0, quantity, || {
+        format!(
+            "the tensor must be positive definite (principal moments {:.6e}, {:.6e}, {:.6e})",
+            eig[0], eig[1], eig[2]
+        )
+    })?;
+    let sum = eig.sum();
+    check(max <= sum - max + 1e-9 * sum, quantity, || {
+        format!(
+            "principal moments {:.6e}, {:.6e}, {:.6e} violate the triangle inequality \
+             (the largest must not exceed the sum of the other two)",
+            eig[0], eig[1], eig[2]
+        )
+    })
+}
+
+impl ImpactModel {
+    /// Validate `params` and precompute the inverse inertia.
+    pub fn new(params: ModelParams) -> Result<Self, ParamError> {
+        let p = &params;
+        let pos = |v: f64| v.is_finite() && v > 0.0;
+        check(pos(p.club_mass_kg), "club mass", || {
+            format!("must be finite and > 0, got {} g", p.club_mass_kg * 1e3)
+        })?;
+        check(
+            p.club_com_m.iter().all(|v| v.is_finite()),
+            "club centre of mass",
+            || "every component must be finite".into(),
+        )?;
+        validate_inertia(&p.club_inertia_kgm2, "club inertia tensor")?;
+        check(
+            p.cor.is_finite() && p.cor > 0.0 && p.cor <= 1.0,
+            "club cor",
+            || format!("must be in (0, 1], got {}", p.cor),
+        )?;
+        check(pos(p.ball_mass_kg), "ball mass", || {
+            format!("must be finite and > 0, got {} g", p.ball_mass_kg * 1e3)
+        })?;
+        check(pos(p.ball_radius_m), "ball radius", || {
+            format!("must be finite and > 0, got {} mm", p.ball_radius_m * 1e3)
+        })?;
+        check(pos(p.ball_inertia_kgm2), "ball inertia", || {
+            format!(
+                "must be finite and > 0, got {} g·cm²",
+                p.ball_inertia_kgm2 * 1e7
+            )
+        })?;
+        check(
+            p.ball_offset_y_m.is_finite() && p.ball_offset_z_m.is_finite(),
+            "ball offset",
+            || "must be finite".into(),
+        )?;
+        check(
+            p.ball_offset_y_m.hypot(p.ball_offset_z_m) < p.ball_radius_m,
+            "ball offset",
+            || "must be smaller than the ball radius".into(),
+        )?;
+        check(
+            p.tangential_restitution.is_finite() && p.tangential_restitution.abs() <= 1.0,
+            "tangential restitution",
+            || format!("must be in [-1, 1], got {}", p.tangential_restitution),
+        )?;
+        if let Some(mu) = p.friction_mu {
+            check(pos(mu), "friction mu", || {
+                format!("must be finite and > 0, got {mu}")
+            })?;
+        }
+        for (v, name) in [
+            (p.cor_speed_k_s_per_m, "cor speed slope"),
+            (p.cor_radial_c_per_m2, "cor radial falloff"),
+            (p.loft_bias_rad, "loft bias"),
+            (p.face_bias_rad, "face bias"),
+        ] {
+            check(v.is_finite(), name, || format!("must be finite, got {v}"))?;
+        }
+        let face = FaceGeometry::new(p.bulge_m, p.roll_m).map_err(|problem| ParamError {
+            quantity: "club face",
+            problem,
+        })?;
+        let club_inv_inertia = p
+            .club_inertia_kgm2
+            .try_inverse()
+            .ok_or_else(|| ParamError {
+                quantity: "club inertia tensor",
+                problem: "the tensor is singular".into(),
+            })?;
+        let inv_mass_sum = 1.0 / p.club_mass_kg + 1.0 / p.ball_mass_kg;
+        Ok(Self {
+            params,
+            face,
+            club_inv_inertia,
+            inv_mass_sum,
+        })
+    }
+
+    /// The validated parameters.
+    pub fn params(&self) -> &ModelParams {
+        &self.params
+    }
+
+    /// The face geometry.
+    pub fn face(&self) -> &FaceGeometry {
+        &self.face
+    }
+
+    /// Inverse clubhead inertia in F, 1/(kg·m²).
+    pub fn club_inv_inertia(&self) -> &Matrix3<f64> {
+        &self.club_inv_inertia
+    }
+
+    /// Orientation `R_GF` of the face at impact, with the loft and face biases applied.
+    #[inline]
+    pub fn face_orientation(&self, d: &Delivery) -> Matrix3<f64> {
+        face_orientation(
+            d.dynamic_loft_rad + self.params.loft_bias_rad,
+            d.face_angle_rad + self.params.face_bias_rad,
+            d.lie_tilt_rad,
+        )
+    }
+
+    /// Solve one impact.
+    #[inline]
+    pub fn solve(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
+        let p = &self.params;
+        let r_gf = self.face_orientation(d);
+        let r_fg = r_gf.transpose();
+        let v_c_g = d.club_velocity_m_s();
+        let v_c = r_fg * v_c_g;
+        let w_c = r_fg * d.club_omega_rad_s;
+
+        let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
+        let n = cf.normal;
+        let r_c = cf.point_m - p.club_com_m;
+        let r_b = -p.ball_radius_m * n
+            + p.ball_offset_y_m * cf.tangent_y
+            + p.ball_offset_z_m * cf.tangent_z;
+
+        let u1 = v_c + w_c.cross(&r_c);
+        let u1n = u1.dot(&n);
+        if !(u1n > 0.0) {
+            return Err(ImpactError::NotApproaching {
+                normal_speed_m_s: u1n,
+            });
+        }
+        let e = p.cor
+            - p.cor_speed_k_s_per_m * (u1n - COR_SPEED_REFERENCE_M_S)
+            - p.cor_radial_c_per_m2 * (d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m);
+
+        let k = self.k_matrix(&r_c, &r_b);
+        let u1t = u1 - u1n * n;
+        let rhs = u1 + (e * u1n) * n + p.tangential_restitution * u1t;
+        let mut impulse = solve_spd3(&k, &rhs);
+        let mut slipped = false;
+        if let Some(mu) = p.friction_mu {
+            let pn = impulse.dot(&n);
+            let pt = impulse - pn * n;
+            let u1t_norm = u1t.norm();
+            if pt.norm() > mu * pn && u1t_norm > 0.0 {
+                let dir = n + (mu / u1t_norm) * u1t;
+                let pn_slip = (1.0 + e) * u1n / n.dot(&(k * dir));
+                impulse = pn_slip * dir;
+                slipped = true;
+            }
+        }
+
+        let v_b = impulse / p.ball_mass_kg;
+        let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
+        let v_c_after = v_c - impulse / p.club_mass_kg;
+        let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
+        Ok(ImpactOutcome {
+            ball_velocity_m_s: r_gf * v_b,
+            ball_spin_rad_s: r_gf * w_b,
+            club_velocity_after_m_s: r_gf * v_c_after,
+            club_omega_after_rad_s: r_gf * w_c_after,
+            impulse_n_s: r_gf * impulse,
+            contact_from_club_com_m: r_gf * r_c,
+            contact_from_ball_com_m: r_gf * r_b,
+            normal: r_gf * n,
+            normal_approach_speed_m_s: u1n,
+            cor_effective: e,
+            slipped,
+            club_speed_m_s: d.club_speed_m_s,
+        })
+    }
+
+    /// The collision matrix `K` (any frame in which `r_c`, `r_b` and the inertia agree: F here).
+    #[inline]
+    pub fn k_matrix(&self, r_c: &Vector3<f64>, r_b: &Vector3<f64>) -> Matrix3<f64> {
+        let rc_x = r_c.cross_matrix();
+        let inv_ib = 1.0 / self.params.ball_inertia_kgm2;
+        // −[r_b]× I_b⁻¹ [r_b]× = (|r_b|²·1 − r_b r_bᵀ) / I_b for an isotropic ball.
+        let ball_term = (Matrix3::identity() * r_b.norm_squared() - r_b * r_b.transpose()) * inv_ib;
+        Matrix3::identity() * self.inv_mass_sum - rc_x * self.club_inv_inertia * rc_x + ball_term
+    }
+}
+
+/// Solve `K x = b` for a symmetric positive definite 3×3 `K` by cofactors (no allocation).
+#[inline]
+pub fn solve_spd3(k: &Matrix3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
+    let (a, bb, c) = (k[(0, 0)], k[(0, 1)], k[(0, 2)]);
+    let (d, e) = (k[(1, 1)], k[(1, 2)]);
+    let f = k[(2, 2)];
+    let c00 = d * f - e * e;
+    let c01 = c * e - bb * f;
+    let c02 = bb * e - c * d;
+    let c11 = a * f - c * c;
+    let c12 = bb * c - a * e;
+    let c22 = a * d - bb * bb;
+    let inv_det = 1.0 / (a * c00 + bb * c01 + c * c02);
+    Vector3::new(
+        (c00 * b.x + c01 * b.y + c02 * b.z) * inv_det,
+        (c01 * b.x + c11 * b.y + c12 * b.z) * inv_det,
+        (c02 * b.x + c12 * b.y + c22 * b.z) * inv_det,
+    )
+}

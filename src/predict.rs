@@ -1,0 +1,79 @@
+//! Shots → model → predictions: run a club over every shot of a table.
+//!
+//! Pure: no files, no threads. Each shot uses the model of its group (the club's nominal
+//! parameters plus the effects that apply to that group).
+
+use std::collections::BTreeMap;
+
+use crate::club::ClubSpec;
+use crate::data::shots::{Shot, ShotTable};
+use crate::physics::{ImpactError, ImpactModel, ImpactOutcome, ParamError};
+
+/// Why a set of shots cannot be predicted.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PredictError {
+    /// The club's parameters for some group are not physical.
+    #[error("group '{group}': {source}")]
+    Model {
+        /// Group.
+        group: String,
+        /// Problem.
+        source: ParamError,
+    },
+    /// One shot cannot be computed.
+    #[error("shot '{shot_id}' (row {row}): {source}")]
+    Shot {
+        /// Shot id.
+        shot_id: String,
+        /// 1-based data row (the header is row 0).
+        row: usize,
+        /// Problem.
+        source: ImpactError,
+    },
+}
+
+/// Models for every group of `shots`.
+pub fn group_models(
+    club: &ClubSpec,
+    shots: &[Shot],
+) -> Result<BTreeMap<String, ImpactModel>, PredictError> {
+    let mut out = BTreeMap::new();
+    for s in shots {
+        if !out.contains_key(&s.group) {
+            let m = club
+                .model_for_group(&s.group)
+                .map_err(|source| PredictError::Model {
+                    group: s.group.clone(),
+                    source,
+                })?;
+            out.insert(s.group.clone(), m);
+        }
+    }
+    Ok(out)
+}
+
+/// Predict every shot, in order. Fails on the first shot that cannot be computed.
+pub fn predict_shots(club: &ClubSpec, shots: &[Shot]) -> Result<Vec<ImpactOutcome>, PredictError> {
+    let models = group_models(club, shots)?;
+    shots
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            models[&s.group]
+                .solve(&s.delivery)
+                .map_err(|source| PredictError::Shot {
+                    shot_id: s.id.clone(),
+                    row: i + 1,
+                    source,
+                })
+        })
+        .collect()
+}
+
+/// Predict every shot of a table.
+pub fn predict_table(
+    club: &ClubSpec,
+    table: &ShotTable,
+) -> Result<Vec<ImpactOutcome>, PredictError> {
+    predict_shots(club, &table.shots)
+}
