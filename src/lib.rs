@@ -20,6 +20,7 @@ pub mod data;
 pub mod effects;
 pub mod physics;
 pub mod predict;
+pub mod report;
 pub mod units;
 
 pub use club::ClubSpec;

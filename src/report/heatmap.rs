@@ -1,0 +1,419 @@
+//! Heatmaps over the clubface: SVG pictures and CSV matrices.
+//!
+//! A [`Heatmap`] is a row-major grid of values at cell centres `xs` (columns, e.g. heel–toe
+//! position `z`, mm) × `ys` (rows, e.g. vertical position `y`, mm). Invalid cells (off the face,
+//! no data) are NaN in memory, grey in the picture and empty in the CSV: no NaN reaches a file.
+
+use std::fmt::Write as _;
+
+/// How values map to colours.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scale {
+    /// Perceptually uniform sequential (viridis) from min to max.
+    Sequential,
+    /// Blue–white–red, symmetric about zero (residuals, sensitivities, changes).
+    Diverging,
+}
+
+/// A grid of values to draw or export.
+#[derive(Debug, Clone, Copy)]
+pub struct Heatmap<'a> {
+    /// Title line.
+    pub title: &'a str,
+    /// Horizontal axis label with unit, e.g. `impact z (toward toe), mm`.
+    pub x_label: &'a str,
+    /// Vertical axis label with unit, e.g. `impact y (up), mm`.
+    pub y_label: &'a str,
+    /// Colour-bar label with unit, e.g. `ball speed, mph`.
+    pub value_label: &'a str,
+    /// Column centres, strictly ascending.
+    pub xs: &'a [f64],
+    /// Row centres, strictly ascending.
+    pub ys: &'a [f64],
+    /// `ys.len() × xs.len()` values, row-major (row `i` is `ys[i]`); NaN marks an invalid cell.
+    pub values: &'a [f64],
+    /// A marker (e.g. the face centre) at `(x, y)`, drawn when inside the plotted range.
+    pub marker: Option<(f64, f64)>,
+    /// Colour scale.
+    pub scale: Scale,
+}
+
+impl Heatmap<'_> {
+    fn check(&self) {
+        assert_eq!(
+            self.values.len(),
+            self.xs.len() * self.ys.len(),
+            "heatmap values must be ys × xs"
+        );
+        assert!(
+            !self.xs.is_empty() && !self.ys.is_empty(),
+            "heatmap needs at least one row and column"
+        );
+    }
+
+    /// Finite min and max of the values, if any value is finite.
+    pub fn range(&self) -> Option<(f64, f64)> {
+        let mut it = self.values.iter().copied().filter(|v| v.is_finite());
+        let first = it.next()?;
+        Some(it.fold((first, first), |(lo, hi), v| (lo.min(v), hi.max(v))))
+    }
+}
+
+/// CSV matrix: the first row is `y \ x` then the column centres; each following row is a row
+/// centre then its values. Rows are written top (largest y) to bottom, as on the face seen from
+/// the front. Invalid cells are empty.
+pub fn matrix_csv(map: &Heatmap<'_>) -> Vec<u8> {
+    map.check();
+    let mut s = String::new();
+    s.push_str("y\\x");
+    for x in map.xs {
+        let _ = write!(s, ",{x}");
+    }
+    s.push('\n');
+    let nx = map.xs.len();
+    for (i, y) in map.ys.iter().enumerate().rev() {
+        let _ = write!(s, "{y}");
+        for v in &map.values[i * nx..(i + 1) * nx] {
+            s.push(',');
+            if v.is_finite() {
+                let _ = write!(s, "{v}");
+            }
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+// Viridis, 9 stops.
+const VIRIDIS: [(f64, f64, f64); 9] = [
+    (68.0, 1.0, 84.0),
+    (71.0, 44.0, 122.0),
+    (59.0, 81.0, 139.0),
+    (44.0, 113.0, 142.0),
+    (33.0, 144.0, 141.0),
+    (39.0, 173.0, 129.0),
+    (92.0, 200.0, 99.0),
+    (170.0, 220.0, 50.0),
+    (253.0, 231.0, 37.0),
+];
+// Blue–white–red (ColorBrewer RdBu reversed), 7 stops.
+const DIVERGING: [(f64, f64, f64); 7] = [
+    (33.0, 102.0, 172.0),
+    (103.0, 169.0, 207.0),
+    (209.0, 229.0, 240.0),
+    (247.0, 247.0, 247.0),
+    (253.0, 219.0, 199.0),
+    (239.0, 138.0, 98.0),
+    (178.0, 24.0, 43.0),
+];
+
+fn ramp(stops: &[(f64, f64, f64)], t: f64) -> String {
+    let t = t.clamp(0.0, 1.0) * (stops.len() - 1) as f64;
+    let i = (t.floor() as usize).min(stops.len() - 2);
+    let f = t - i as f64;
+    let (a, b) = (stops[i], stops[i + 1]);
+    let c = |x: f64, y: f64| (x + (y - x) * f).round() as u8;
+    format!("#{:02x}{:02x}{:02x}", c(a.0, b.0), c(a.1, b.1), c(a.2, b.2))
+}
+
+/// Colour-scale limits: (low, high) of the finite values, symmetric about 0 when diverging,
+/// widened when flat.
+fn limits(map: &Heatmap<'_>) -> (f64, f64) {
+    let (lo, hi) = map.range().unwrap_or((0.0, 1.0));
+    let (lo, hi) = match map.scale {
+        Scale::Sequential => (lo, hi),
+        Scale::Diverging => {
+            let m = lo.abs().max(hi.abs());
+            (-m, m)
+        }
+    };
+    if hi > lo {
+        (lo, hi)
+    } else {
+        let pad = if lo == 0.0 { 1.0 } else { lo.abs() * 1e-3 };
+        (lo - pad, hi + pad)
+    }
+}
+
+fn colour(map: &Heatmap<'_>, v: f64, lo: f64, hi: f64) -> String {
+    let t = (v - lo) / (hi - lo);
+    match map.scale {
+        Scale::Sequential => ramp(&VIRIDIS, t),
+        Scale::Diverging => ramp(&DIVERGING, t),
+    }
+}
+
+/// "Nice" tick positions covering [lo, hi].
+pub fn nice_ticks(lo: f64, hi: f64, target: usize) -> Vec<f64> {
+    if !(hi > lo) || !lo.is_finite() || !hi.is_finite() {
+        return vec![lo];
+    }
+    let raw = (hi - lo) / target.max(1) as f64;
+    let mag = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 2.5, 5.0, 10.0]
+        .iter()
+        .map(|m| m * mag)
+        .find(|s| *s >= raw)
+        .unwrap_or(10.0 * mag);
+    let first = (lo / step).ceil() * step;
+    let mut ticks = Vec::new();
+    let mut k = 0;
+    loop {
+        let t = first + k as f64 * step;
+        if t > hi + step * 1e-9 {
+            break;
+        }
+        // Snap tiny round-off to zero so labels read "0", not "-1.7e-16".
+        ticks.push(if t.abs() < step * 1e-9 { 0.0 } else { t });
+        k += 1;
+    }
+    ticks
+}
+
+fn label(v: f64) -> String {
+    if v == 0.0 {
+        return "0".into();
+    }
+    let a = v.abs();
+    if (1e-3..1e5).contains(&a) {
+        let s = format!("{v:.4}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        s.to_string()
+    } else {
+        format!("{v:.2e}")
+    }
+}
+
+fn esc(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Cell edges from centres: midpoints, extended by half a spacing at the ends.
+fn edges(c: &[f64]) -> Vec<f64> {
+    if c.len() == 1 {
+        return vec![c[0] - 0.5, c[0] + 0.5];
+    }
+    let mut e = Vec::with_capacity(c.len() + 1);
+    e.push(c[0] - (c[1] - c[0]) / 2.0);
+    for w in c.windows(2) {
+        e.push((w[0] + w[1]) / 2.0);
+    }
+    let n = c.len();
+    e.push(c[n - 1] + (c[n - 1] - c[n - 2]) / 2.0);
+    e
+}
+
+/// SVG picture of the map: cells, axes with ticks, a colour bar with the value label and unit,
+/// the marker, and the title. Invalid cells are light grey.
+pub fn heatmap_svg(map: &Heatmap<'_>) -> String {
+    map.check();
+    let (plot_w, plot_h) = (560.0, 420.0);
+    let (left, top) = (80.0, 50.0);
+    let bar_x = left + plot_w + 30.0;
+    let width = bar_x + 110.0;
+    let height = top + plot_h + 60.0;
+    let xe = edges(map.xs);
+    let ye = edges(map.ys);
+    let (x0, x1) = (xe[0], xe[xe.len() - 1]);
+    let (y0, y1) = (ye[0], ye[ye.len() - 1]);
+    let px = |x: f64| left + (x - x0) / (x1 - x0) * plot_w;
+    let py = |y: f64| top + plot_h - (y - y0) / (y1 - y0) * plot_h;
+    let (lo, hi) = limits(map);
+
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="Helvetica, Arial, sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="28" font-size="15" text-anchor="middle">{}</text>"#,
+        left + plot_w / 2.0,
+        esc(map.title)
+    );
+    let nx = map.xs.len();
+    let _ = writeln!(s, r#"<g shape-rendering="crispEdges">"#);
+    for i in 0..map.ys.len() {
+        for j in 0..nx {
+            let v = map.values[i * nx + j];
+            let fill = if v.is_finite() {
+                colour(map, v, lo, hi)
+            } else {
+                "#e0e0e0".into()
+            };
+            let (xa, xb) = (px(xe[j]), px(xe[j + 1]));
+            let (ya, yb) = (py(ye[i + 1]), py(ye[i]));
+            let _ = writeln!(
+                s,
+                r#"<rect x="{xa:.2}" y="{ya:.2}" width="{:.2}" height="{:.2}" fill="{fill}"/>"#,
+                (xb - xa) + 0.3,
+                (yb - ya) + 0.3
+            );
+        }
+    }
+    let _ = writeln!(s, "</g>");
+    let _ = writeln!(
+        s,
+        r#"<rect x="{left}" y="{top}" width="{plot_w}" height="{plot_h}" fill="none" stroke="black"/>"#
+    );
+    for t in nice_ticks(x0, x1, 8) {
+        let x = px(t);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{x:.2}" y1="{b}" x2="{x:.2}" y2="{b2}" stroke="black"/><text x="{x:.2}" y="{ty}" text-anchor="middle">{}</text>"#,
+            label(t),
+            b = top + plot_h,
+            b2 = top + plot_h + 5.0,
+            ty = top + plot_h + 19.0
+        );
+    }
+    for t in nice_ticks(y0, y1, 6) {
+        let y = py(t);
+        let _ = writeln!(
+            s,
+            r#"<line x1="{l2}" y1="{y:.2}" x2="{left}" y2="{y:.2}" stroke="black"/><text x="{tx}" y="{:.2}" text-anchor="end">{}</text>"#,
+            y + 4.0,
+            label(t),
+            l2 = left - 5.0,
+            tx = left - 8.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="{}" text-anchor="middle">{}</text>"#,
+        left + plot_w / 2.0,
+        top + plot_h + 42.0,
+        esc(map.x_label)
+    );
+    let _ = writeln!(
+        s,
+        r#"<text x="22" y="{cy}" text-anchor="middle" transform="rotate(-90 22 {cy})">{}</text>"#,
+        esc(map.y_label),
+        cy = top + plot_h / 2.0
+    );
+    if let Some((mx, my)) = map.marker {
+        if (x0..=x1).contains(&mx) && (y0..=y1).contains(&my) {
+            let (cx, cy) = (px(mx), py(my));
+            let _ = writeln!(
+                s,
+                r#"<g stroke="black" stroke-width="1.5" fill="none"><circle cx="{cx:.2}" cy="{cy:.2}" r="6"/><line x1="{:.2}" y1="{cy:.2}" x2="{:.2}" y2="{cy:.2}"/><line x1="{cx:.2}" y1="{:.2}" x2="{cx:.2}" y2="{:.2}"/></g>"#,
+                cx - 10.0,
+                cx + 10.0,
+                cy - 10.0,
+                cy + 10.0
+            );
+        }
+    }
+    // Colour bar.
+    let steps = 64;
+    for k in 0..steps {
+        let t0 = k as f64 / steps as f64;
+        let v = lo + (t0 + 0.5 / steps as f64) * (hi - lo);
+        let y = top + plot_h - (k + 1) as f64 / steps as f64 * plot_h;
+        let _ = writeln!(
+            s,
+            r#"<rect x="{bar_x}" y="{y:.2}" width="18" height="{:.2}" fill="{}" shape-rendering="crispEdges"/>"#,
+            plot_h / steps as f64 + 0.3,
+            colour(map, v, lo, hi)
+        );
+    }
+    let _ = writeln!(
+        s,
+        r#"<rect x="{bar_x}" y="{top}" width="18" height="{plot_h}" fill="none" stroke="black"/>"#
+    );
+    for t in nice_ticks(lo, hi, 6) {
+        let y = top + plot_h - (t - lo) / (hi - lo) * plot_h;
+        let _ = writeln!(
+            s,
+            r#"<line x1="{a}" y1="{y:.2}" x2="{b}" y2="{y:.2}" stroke="black"/><text x="{tx}" y="{:.2}">{}</text>"#,
+            y + 4.0,
+            label(t),
+            a = bar_x + 18.0,
+            b = bar_x + 23.0,
+            tx = bar_x + 26.0
+        );
+    }
+    let _ = writeln!(
+        s,
+        r#"<text x="{cx}" y="{cy}" text-anchor="middle" transform="rotate(90 {cx} {cy})">{}</text>"#,
+        esc(map.value_label),
+        cx = bar_x + 88.0,
+        cy = top + plot_h / 2.0
+    );
+    if map.values.iter().any(|v| !v.is_finite()) {
+        let _ = writeln!(
+            s,
+            r##"<rect x="{left}" y="{y}" width="10" height="10" fill="#e0e0e0" stroke="black"/><text x="{}" y="{}">no value (off the face or no data)</text>"##,
+            left + 14.0,
+            top + plot_h + 58.0 - 4.0 + 0.0,
+            y = top + plot_h + 46.0
+        );
+    }
+    s.push_str("</svg>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample<'a>(xs: &'a [f64], ys: &'a [f64], v: &'a [f64]) -> Heatmap<'a> {
+        Heatmap {
+            title: "t",
+            x_label: "z, mm",
+            y_label: "y, mm",
+            value_label: "ball speed, mph",
+            xs,
+            ys,
+            values: v,
+            marker: Some((0.0, 0.0)),
+            scale: Scale::Sequential,
+        }
+    }
+
+    #[test]
+    fn csv_matrix_has_top_row_first_and_blank_invalid_cells() {
+        let (xs, ys) = ([-1.0, 0.0, 1.0], [-2.0, 2.0]);
+        let v = [1.0, 2.0, 3.0, 4.0, f64::NAN, 6.0];
+        let csv = String::from_utf8(matrix_csv(&sample(&xs, &ys, &v))).unwrap();
+        assert_eq!(csv, "y\\x,-1,0,1\n2,4,,6\n-2,1,2,3\n");
+    }
+
+    #[test]
+    fn svg_has_cells_colour_bar_marker_and_no_nan() {
+        let (xs, ys) = ([-1.0, 0.0, 1.0], [-2.0, 2.0]);
+        let v = [1.0, 2.0, 3.0, 4.0, f64::NAN, 6.0];
+        let svg = heatmap_svg(&sample(&xs, &ys, &v));
+        assert!(svg.starts_with("<svg"));
+        assert!(svg.contains("ball speed, mph"));
+        assert!(svg.contains("<circle"));
+        assert!(svg.contains("#e0e0e0"));
+        assert!(!svg.to_lowercase().contains("nan"));
+        assert!(!svg.contains("inf"));
+    }
+
+    #[test]
+    fn ticks_are_round_and_cover_the_range() {
+        assert_eq!(
+            nice_ticks(-20.0, 20.0, 8),
+            vec![-20.0, -15.0, -10.0, -5.0, 0.0, 5.0, 10.0, 15.0, 20.0]
+        );
+        let t = nice_ticks(0.013, 0.091, 5);
+        assert!(t.first().unwrap() >= &0.013 && t.last().unwrap() <= &0.091);
+    }
+
+    #[test]
+    fn diverging_scale_is_symmetric() {
+        let (xs, ys) = ([0.0, 1.0], [0.0]);
+        let v = [-1.0, 3.0];
+        let m = Heatmap {
+            scale: Scale::Diverging,
+            ..sample(&xs, &ys, &v)
+        };
+        assert_eq!(limits(&m), (-3.0, 3.0));
+    }
+}
