@@ -39,7 +39,10 @@ impl ClubSpec {
         };
         ImpactModel::new(spec.nominal.clone())?;
         for group in spec.effect_groups() {
-            spec.model_for_group(&group)?;
+            spec.model_for_group(&group).map_err(|mut e| {
+                e.problem = format!("{} (with the effects of group '{group}')", e.problem);
+                e
+            })?;
         }
         // Shots of a group no effect names get the global effects only.
         spec.model_for_group("\u{0}no-group")?;

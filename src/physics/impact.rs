@@ -176,7 +176,10 @@ pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Resul
     check(scale > 0.0, quantity, || "the tensor is zero".into())?;
     let asym = (inertia - inertia.transpose()).amax();
     check(asym <= 1e-9 * scale, quantity, || {
-        format!("the tensor must be symmetric (largest |I_ij − I_ji| is {asym:e})")
+        format!(
+            "the tensor must be symmetric (largest |I_ij − I_ji| is {:.3} g·cm²)",
+            asym * 1e7
+        )
     })?;
     let eig = inertia.symmetric_eigenvalues();
     let (min, max) = (eig.min(), eig.max());
