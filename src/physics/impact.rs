@@ -398,3 +398,42 @@ pub fn solve_spd3(k: &Matrix3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
         (c02 * b.x + c12 * b.y + c22 * b.z) * inv_det,
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn cofactor_solve_matches_lu() {
+        let k = Matrix3::new(26.7, 1.3, -0.4, 1.3, 80.2, 2.1, -0.4, 2.1, 77.9);
+        let b = Vector3::new(40.0, -3.0, 1.5);
+        let x = solve_spd3(&k, &b);
+        let lu = k.lu().solve(&b).unwrap();
+        assert_relative_eq!(x, lu, max_relative = 1e-14);
+        assert_relative_eq!(k * x, b, max_relative = 1e-13);
+    }
+
+    #[test]
+    fn inertia_validation_rejects_unphysical_tensors() {
+        let ok = Matrix3::from_diagonal(&Vector3::new(3.0, 4.0, 5.0));
+        assert!(validate_inertia(&ok, "I").is_ok());
+        let triangle = Matrix3::from_diagonal(&Vector3::new(1.0, 1.0, 3.0));
+        assert!(validate_inertia(&triangle, "I")
+            .unwrap_err()
+            .problem
+            .contains("triangle"));
+        let indefinite = Matrix3::new(3.0, 5.0, 0.0, 5.0, 4.0, 0.0, 0.0, 0.0, 5.0);
+        assert!(validate_inertia(&indefinite, "I")
+            .unwrap_err()
+            .problem
+            .contains("positive definite"));
+        let asym = Matrix3::new(3.0, 0.1, 0.0, 0.0, 4.0, 0.0, 0.0, 0.0, 5.0);
+        assert!(validate_inertia(&asym, "I")
+            .unwrap_err()
+            .problem
+            .contains("symmetric"));
+        let nan = Matrix3::new(f64::NAN, 0.0, 0.0, 0.0, 4.0, 0.0, 0.0, 0.0, 5.0);
+        assert!(validate_inertia(&nan, "I").is_err());
+    }
+}
