@@ -214,7 +214,7 @@ pub fn heatmap_svg(map: &Heatmap<'_>) -> String {
     let (left, top) = (80.0, 50.0);
     let bar_x = left + plot_w + 30.0;
     let width = bar_x + 110.0;
-    let height = top + plot_h + 60.0;
+    let height = top + plot_h + 76.0;
     let xe = edges(map.xs);
     let ye = edges(map.ys);
     let (x0, x1) = (xe[0], xe[xe.len() - 1]);
@@ -349,8 +349,8 @@ pub fn heatmap_svg(map: &Heatmap<'_>) -> String {
             s,
             r##"<rect x="{left}" y="{y}" width="10" height="10" fill="#e0e0e0" stroke="black"/><text x="{}" y="{}">no value (off the face or no data)</text>"##,
             left + 14.0,
-            top + plot_h + 58.0 - 4.0 + 0.0,
-            y = top + plot_h + 46.0
+            top + plot_h + 68.0,
+            y = top + plot_h + 59.0
         );
     }
     s.push_str("</svg>\n");
