@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod effects;
 pub mod predict;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
@@ -20,12 +21,15 @@ pub struct Cli {
 pub enum Command {
     /// Predict ball launch for a shots file, or for one delivery given on the command line.
     Predict(predict::PredictArgs),
+    /// List the effect library: names, parameters, units, defaults and physical bounds.
+    Effects(effects::EffectsArgs),
 }
 
 /// Run a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
+        Command::Effects(args) => effects::run(args),
     }
 }
 
