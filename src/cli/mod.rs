@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 pub mod predict;
+pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.
@@ -20,12 +21,15 @@ pub struct Cli {
 pub enum Command {
     /// Predict ball launch for a shots file, or for one delivery given on the command line.
     Predict(predict::PredictArgs),
+    /// Generate a synthetic experiment (shots with measured launch) from a configured world.
+    Synth(synth::SynthArgs),
 }
 
 /// Run a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
+        Command::Synth(args) => synth::run(args),
     }
 }
 
