@@ -21,6 +21,8 @@ pub mod effects;
 pub mod physics;
 pub mod predict;
 pub mod report;
+pub mod stats;
+pub mod synth;
 pub mod units;
 
 pub use club::ClubSpec;

@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 
 pub mod effects;
 pub mod predict;
+pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.
@@ -23,6 +24,8 @@ pub enum Command {
     Predict(predict::PredictArgs),
     /// List the effect library: names, parameters, units, defaults and physical bounds.
     Effects(effects::EffectsArgs),
+    /// Generate a synthetic experiment (shots with measured launch) from a configured world.
+    Synth(synth::SynthArgs),
 }
 
 /// Run a parsed command line.
@@ -30,6 +33,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
         Command::Effects(args) => effects::run(args),
+        Command::Synth(args) => synth::run(args),
     }
 }
 

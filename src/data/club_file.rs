@@ -188,7 +188,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
 
     let mut effects = Vec::with_capacity(raw.effect.len());
     for (i, table) in raw.effect.iter().enumerate() {
-        effects.push(parse_effect(&ctx, i, table)?);
+        effects.push(parse_effect(&ctx, "effect", i, table)?);
     }
     ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
         DataError::file(
@@ -198,14 +198,28 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     })
 }
 
+/// Parse one effect table shaped like a club file's `[[effect]]` (`name`, optional `group`, the
+/// effect's parameter keys), from `text` of the file at `path`. `array` names the table array in
+/// messages (`effect`, `hidden`, …) and `index` the table's position in it.
+pub fn parse_effect_table(
+    path: &Path,
+    text: &str,
+    array: &str,
+    index: usize,
+    table: &Spanned<toml::Table>,
+) -> Result<Effect, DataError> {
+    parse_effect(&Ctx { path, text }, array, index, table)
+}
+
 fn parse_effect(
     ctx: &Ctx<'_>,
+    array: &str,
     index: usize,
     table: &Spanned<toml::Table>,
 ) -> Result<Effect, DataError> {
     let span = table.span();
     let t = table.get_ref();
-    let here = |msg: String| ctx.err(span.clone(), &format!("effect[{index}]"), msg);
+    let here = |msg: String| ctx.err(span.clone(), &format!("{array}[{index}]"), msg);
     let name = match t.get("name") {
         Some(toml::Value::String(s)) => s.as_str(),
         Some(_) => return Err(here("`name` must be a string".into())),

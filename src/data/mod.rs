@@ -7,6 +7,7 @@
 pub mod club_file;
 pub mod predictions;
 pub mod shots;
+pub mod synth_files;
 
 use std::fmt;
 use std::io::Write;

@@ -1,0 +1,340 @@
+//! Synthetic experiments: a configured world of golfers, shafts and hidden physics → shots with
+//! measured launch, for testing the comparison, diagnosis and calibration against a known truth.
+//!
+//! Pure: [`generate`] maps a configuration and a base club to shots; reading the configuration
+//! ([`config`]) and writing files happen at the edge.
+//!
+//! ## The world
+//!
+//! Each golfer `g` has a tendency per delivery variable, `μ_g = mean + between·z_g`, drawn once
+//! and shared across groups (the same golfer hits every shaft); each swing is
+//! `x = μ_g + within·z_s`. Swings whose impact falls outside the face limits, whose delivery
+//! cannot be solved (not approaching the ball) or whose world COR leaves (0, 1] are **redrawn**
+//! from the shot's own random stream and counted in [`SynthRun::redrawn`]; more than
+//! `max_redraws_per_shot` redraws for one shot is an error.
+//!
+//! The true launch is computed with the base club plus the hidden library effects and the
+//! world-only physics ([`WorldPhysics`]), from the clean delivery. The world-only forms are not in
+//! the effect library, so no calibrated club can reproduce them exactly:
+//!
+//! ```text
+//! cor_power     e  = cor·(u1n / 48.77 m/s)^(−p)
+//! face_flex     e −= cy·y² + cz·z²                 (y, z in mm; cy ≠ cz: anisotropic)
+//! offset_speed  dy, dz += k·(u1n − 48.77 m/s)      (ball flattening grows with speed)
+//! loft_gain     δ_true = δ·(1 + gain)
+//! ```
+//!
+//! `u1n` does not depend on the COR or the ball offset, so each shot is solved once to get `u1n`
+//! and once more with its own model. The shots file then carries the delivery as measured
+//! (clean + motion-capture noise) and the launch as measured (true + launch-monitor noise).
+//!
+//! ## Reproducibility
+//!
+//! ChaCha8 streams from the seed: stream 0 draws the golfers' tendencies, stream `k + 1` draws
+//! everything of shot `k` (swing scatter, redraws, noise). Results are bit-for-bit identical for
+//! the same configuration and seed, on any machine and thread count.
+
+pub mod config;
+
+use nalgebra::Vector3;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rand_distr::StandardNormal;
+
+use crate::club::ClubSpec;
+use crate::data::shots::Shot;
+use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
+use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ParamError};
+use crate::units::{deg, mm, mph, rpm};
+
+pub use config::{
+    config_toml, parse_config, read_config, DeliveryVar, GroupSpec, Spread, SynthConfig,
+    WorldPhysics, N_DELIVERY,
+};
+
+/// One synthetic shot, file units throughout (mph, deg, rad/s, mm, rpm).
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthShot {
+    /// Unique id, `<group>-<golfer>-<swing>`.
+    pub id: String,
+    /// Group (shaft).
+    pub group: String,
+    /// Golfer, `G01`, `G02`, …
+    pub golfer: String,
+    /// Shaft mass of the group, g.
+    pub shaft_mass_g: f64,
+    /// Delivery as swung, in [`DeliveryVar::ALL`] order.
+    pub clean_delivery: [f64; N_DELIVERY],
+    /// Delivery as measured (clean + measurement noise): what the shots file holds.
+    pub delivery: [f64; N_DELIVERY],
+    /// True launch, in [`LaunchComponent::ALL`] order.
+    pub true_launch: [f64; 5],
+    /// Launch as measured (true + launch-monitor noise): what the shots file holds.
+    pub launch: [f64; 5],
+    /// Normal COR the world used for this shot.
+    pub cor_effective: f64,
+    /// Normal approach speed `u1n` of this shot in the world, m/s.
+    pub normal_approach_speed_m_s: f64,
+}
+
+impl SynthShot {
+    /// The measured delivery in SI units, converted exactly as `read_shots` converts the file.
+    pub fn measured_delivery(&self) -> Delivery {
+        delivery_from_file_units(&self.delivery)
+    }
+
+    /// The clean delivery in SI units.
+    pub fn true_delivery(&self) -> Delivery {
+        delivery_from_file_units(&self.clean_delivery)
+    }
+
+    /// The shot as the engine sees it after reading the shots file.
+    pub fn to_shot(&self) -> Shot {
+        let l = &self.launch;
+        Shot {
+            id: self.id.clone(),
+            group: self.group.clone(),
+            golfer: Some(self.golfer.clone()),
+            shaft_mass_g: Some(self.shaft_mass_g),
+            delivery: self.measured_delivery(),
+            measured: Some(Launch {
+                ball_speed_m_s: mph(l[0]),
+                launch_angle_rad: deg(l[1]),
+                azimuth_rad: deg(l[2]),
+                backspin_rad_s: rpm(l[3]),
+                sidespin_rad_s: rpm(l[4]),
+            }),
+        }
+    }
+}
+
+/// A generated experiment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SynthRun {
+    /// Shots in file order: group, then golfer, then swing.
+    pub shots: Vec<SynthShot>,
+    /// Swings redrawn because they were off the face or could not be solved.
+    pub redrawn: usize,
+}
+
+/// Why an experiment cannot be generated.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SynthError {
+    /// The base club with the hidden effects is not physical for a group.
+    #[error("the base club with the hidden effects is not physical for group '{group}': {source}")]
+    World {
+        /// Group.
+        group: String,
+        /// Problem.
+        source: ParamError,
+    },
+    /// A shot could not be drawn within the redraw limit.
+    #[error(
+        "shot '{shot_id}': no playable swing in {attempts} draws (last problem: {last}); the \
+         delivery spreads or face limits make most swings unplayable"
+    )]
+    Unplayable {
+        /// Shot id.
+        shot_id: String,
+        /// Draws tried.
+        attempts: usize,
+        /// Last reason a draw was rejected.
+        last: String,
+    },
+}
+
+/// Delivery in SI from file-unit values in [`DeliveryVar::ALL`] order.
+pub fn delivery_from_file_units(v: &[f64; N_DELIVERY]) -> Delivery {
+    Delivery {
+        club_speed_m_s: mph(v[0]),
+        attack_angle_rad: deg(v[1]),
+        club_path_rad: deg(v[2]),
+        dynamic_loft_rad: deg(v[3]),
+        face_angle_rad: deg(v[4]),
+        lie_tilt_rad: deg(v[5]),
+        club_omega_rad_s: Vector3::new(v[6], v[7], v[8]),
+        impact_y_m: mm(v[9]),
+        impact_z_m: mm(v[10]),
+    }
+}
+
+fn normals<const N: usize>(rng: &mut ChaCha8Rng) -> [f64; N] {
+    std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal))
+}
+
+/// The world's impact for one clean delivery: hidden effects (in `model`) plus world physics.
+/// Returns the true outcome's launch, the COR used and `u1n`.
+pub fn world_impact(
+    model: &ImpactModel,
+    world: &WorldPhysics,
+    clean: &Delivery,
+) -> Result<(Launch, f64, f64), String> {
+    let mut d = *clean;
+    if let Some(g) = world.loft_gain {
+        d.dynamic_loft_rad *= 1.0 + g;
+    }
+    let first = model.solve(&d).map_err(|e: ImpactError| e.to_string())?;
+    if !world.is_active() {
+        return Ok((
+            first.launch(),
+            first.cor_effective,
+            first.normal_approach_speed_m_s,
+        ));
+    }
+    let u1n = first.normal_approach_speed_m_s;
+    let mut p = model.params().clone();
+    if let Some(pw) = world.cor_power_p {
+        p.cor *= (u1n / COR_SPEED_REFERENCE_M_S).powf(-pw);
+    }
+    if let Some((cy, cz)) = world.face_flex_per_mm2 {
+        let (y, z) = (d.impact_y_m * 1e3, d.impact_z_m * 1e3);
+        p.cor -= cy * y * y + cz * z * z;
+    }
+    if let Some((ky, kz)) = world.offset_speed_mm_per_m_s {
+        let dv = u1n - COR_SPEED_REFERENCE_M_S;
+        p.ball_offset_y_m += mm(ky * dv);
+        p.ball_offset_z_m += mm(kz * dv);
+    }
+    let shot_model = ImpactModel::new(p).map_err(|e| format!("world model: {e}"))?;
+    let out = shot_model.solve(&d).map_err(|e| e.to_string())?;
+    Ok((
+        out.launch(),
+        out.cor_effective,
+        out.normal_approach_speed_m_s,
+    ))
+}
+
+/// Generate the experiment of `cfg` with `base` as the nominal club (its own effects kept).
+pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthError> {
+    let mut effects = base.effects.clone();
+    effects.extend(cfg.hidden.iter().cloned());
+    let world_club = base
+        .with_effects(effects)
+        .map_err(|source| SynthError::World {
+            group: "all".into(),
+            source,
+        })?;
+    let world_models: Vec<ImpactModel> = cfg
+        .groups
+        .iter()
+        .map(|g| {
+            world_club
+                .model_for_group(&g.name)
+                .map_err(|source| SynthError::World {
+                    group: g.name.clone(),
+                    source,
+                })
+        })
+        .collect::<Result<_, _>>()?;
+    // The engine must be able to solve the measured delivery with the base club, or comparing
+    // would fail on a shot the world played: such draws are redrawn too.
+    let base_models: Vec<ImpactModel> = cfg
+        .groups
+        .iter()
+        .map(|g| {
+            base.model_for_group(&g.name)
+                .map_err(|source| SynthError::World {
+                    group: g.name.clone(),
+                    source,
+                })
+        })
+        .collect::<Result<_, _>>()?;
+
+    let mut golfer_rng = ChaCha8Rng::seed_from_u64(cfg.seed);
+    golfer_rng.set_stream(0);
+    let tendencies: Vec<[f64; N_DELIVERY]> = (0..cfg.golfers)
+        .map(|_| {
+            let z: [f64; N_DELIVERY] = normals(&mut golfer_rng);
+            std::array::from_fn(|i| cfg.delivery[i].mean + cfg.delivery[i].between * z[i])
+        })
+        .collect();
+
+    let width = cfg.golfers.to_string().len().max(2);
+    let swing_width = cfg.swings_per_golfer.to_string().len().max(2);
+    let mut shots = Vec::with_capacity(cfg.n_shots());
+    let mut redrawn = 0;
+    let mut k: u64 = 0;
+    for (gi, group) in cfg.groups.iter().enumerate() {
+        for (golfer, tendency) in tendencies.iter().enumerate() {
+            for swing in 0..cfg.swings_per_golfer {
+                k += 1;
+                let golfer_name = format!("G{:0width$}", golfer + 1);
+                let id = format!("{}-{}-{:0swing_width$}", group.name, golfer_name, swing + 1);
+                let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
+                rng.set_stream(k);
+                let mut attempts = 0;
+                let shot = loop {
+                    attempts += 1;
+                    let z: [f64; N_DELIVERY] = normals(&mut rng);
+                    let clean: [f64; N_DELIVERY] =
+                        std::array::from_fn(|i| tendency[i] + cfg.delivery[i].within * z[i]);
+                    let zd: [f64; N_DELIVERY] = normals(&mut rng);
+                    let zl: [f64; 5] = normals(&mut rng);
+                    let reject = |why: String| Err::<SynthShot, String>(why);
+                    let r = (|| {
+                        if clean[9].abs() > cfg.max_abs_impact_y_mm
+                            || clean[10].abs() > cfg.max_abs_impact_z_mm
+                        {
+                            return reject(format!(
+                                "impact ({:.1}, {:.1}) mm is off the face limits",
+                                clean[9], clean[10]
+                            ));
+                        }
+                        if !(clean[0] > 0.0) {
+                            return reject("club speed ≤ 0".into());
+                        }
+                        let (truth, cor, u1n) = world_impact(
+                            &world_models[gi],
+                            &cfg.world,
+                            &delivery_from_file_units(&clean),
+                        )?;
+                        let measured: [f64; N_DELIVERY] =
+                            std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
+                        if !(measured[0] > 0.0) {
+                            return reject("measured club speed ≤ 0".into());
+                        }
+                        base_models[gi]
+                            .solve(&delivery_from_file_units(&measured))
+                            .map_err(|e| format!("measured delivery: {e}"))?;
+                        let true_launch = truth.to_file_units();
+                        let launch: [f64; 5] =
+                            std::array::from_fn(|i| true_launch[i] + cfg.launch_noise[i] * zl[i]);
+                        Ok(SynthShot {
+                            id: id.clone(),
+                            group: group.name.clone(),
+                            golfer: golfer_name.clone(),
+                            shaft_mass_g: group.shaft_mass_g,
+                            clean_delivery: clean,
+                            delivery: measured,
+                            true_launch,
+                            launch,
+                            cor_effective: cor,
+                            normal_approach_speed_m_s: u1n,
+                        })
+                    })();
+                    match r {
+                        Ok(s) => break s,
+                        Err(why) if attempts > cfg.max_redraws_per_shot => {
+                            return Err(SynthError::Unplayable {
+                                shot_id: id,
+                                attempts,
+                                last: why,
+                            })
+                        }
+                        Err(_) => redrawn += 1,
+                    }
+                };
+                shots.push(shot);
+            }
+        }
+    }
+    Ok(SynthRun { shots, redrawn })
+}
+
+/// Column order of synthetic shots files.
+pub fn csv_header() -> Vec<&'static str> {
+    let mut h = vec!["shot_id", "group", "golfer", "shaft_mass_g"];
+    h.extend(DeliveryVar::ALL.map(|v| v.column()));
+    h.extend(LaunchComponent::ALL.map(|c| c.column()));
+    h
+}
