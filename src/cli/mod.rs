@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod compare;
 pub mod predict;
 pub mod synth;
 
@@ -23,6 +24,9 @@ pub enum Command {
     Predict(predict::PredictArgs),
     /// Generate a synthetic experiment (shots with measured launch) from a configured world.
     Synth(synth::SynthArgs),
+    /// Compare the model with measured launch: Table 2, bias significance, face maps, trends
+    /// and ranked findings with hints at the missing physics.
+    Compare(compare::CompareArgs),
 }
 
 /// Run a parsed command line.
@@ -30,6 +34,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
         Command::Synth(args) => synth::run(args),
+        Command::Compare(args) => compare::run(args),
     }
 }
 
