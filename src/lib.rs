@@ -16,6 +16,7 @@
 
 pub mod cli;
 pub mod club;
+pub mod compare;
 pub mod data;
 pub mod effects;
 pub mod physics;

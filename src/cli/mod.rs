@@ -3,6 +3,7 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod compare;
 pub mod effects;
 pub mod predict;
 pub mod synth;
@@ -26,6 +27,9 @@ pub enum Command {
     Effects(effects::EffectsArgs),
     /// Generate a synthetic experiment (shots with measured launch) from a configured world.
     Synth(synth::SynthArgs),
+    /// Compare the model with measured launch: Table 2, bias significance, face maps, trends
+    /// and ranked findings with hints at the missing physics.
+    Compare(compare::CompareArgs),
 }
 
 /// Run a parsed command line.
@@ -34,6 +38,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Predict(args) => predict::run(args),
         Command::Effects(args) => effects::run(args),
         Command::Synth(args) => synth::run(args),
+        Command::Compare(args) => compare::run(args),
     }
 }
 

@@ -1,0 +1,117 @@
+//! `smash compare`: the model against measurements, as a diagnosis.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context};
+use clap::Args;
+
+use crate::compare::{compare, CompareOptions};
+use crate::data::club_file::read_club;
+use crate::data::shots::read_shots;
+use crate::data::write_atomic;
+use crate::physics::LaunchComponent;
+use crate::predict::predict_table;
+use crate::report::compare::{compare_files, compare_json, compare_text};
+
+/// Arguments of `smash compare`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Example:\n  smash compare --club configs/clubs/paper_driver.toml --shots paper_world.csv --out-dir compare/"
+)]
+pub struct CompareArgs {
+    /// Club file (TOML).
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file with measured launch columns (CSV).
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Folder for the tables, face pictures and JSON (created). Nothing is written without it.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+
+    /// Print one JSON object on stdout instead of the text report (which goes to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Significance level of the flags.
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "P",
+        help_heading = "Statistics"
+    )]
+    pub alpha: f64,
+
+    /// Side of a face bin, mm.
+    #[arg(
+        long,
+        default_value_t = 5.0,
+        value_name = "MM",
+        help_heading = "Statistics"
+    )]
+    pub bin_mm: f64,
+
+    /// Face bins with fewer shots are left empty.
+    #[arg(
+        long,
+        default_value_t = 5,
+        value_name = "N",
+        help_heading = "Statistics"
+    )]
+    pub min_bin_count: usize,
+}
+
+/// Run `smash compare`.
+pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    if !(args.alpha > 0.0 && args.alpha < 1.0) {
+        bail!("--alpha must be in (0, 1), got {}", args.alpha);
+    }
+    if !(args.bin_mm > 0.0 && args.bin_mm.is_finite()) {
+        bail!("--bin-mm must be > 0, got {}", args.bin_mm);
+    }
+    let club = read_club(&args.club)?;
+    let table = read_shots(&args.shots)?;
+    if !table.has_measurements() {
+        let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
+        bail!(
+            "{}: no measured launch columns ({}); compare needs measurements (to predict only, use `smash predict`)",
+            args.shots.display(),
+            cols.join(", ")
+        );
+    }
+    let outcomes =
+        predict_table(&club, &table).with_context(|| args.shots.display().to_string())?;
+    let launches: Vec<_> = outcomes.iter().map(|o| o.launch()).collect();
+    let options = CompareOptions {
+        alpha: args.alpha,
+        face_bin_mm: args.bin_mm,
+        min_bin_count: args.min_bin_count,
+        ..CompareOptions::default()
+    };
+    let report = compare(&table.shots, &launches, &options)?;
+    let title = format!(
+        "{} vs {} ({} groups)",
+        club.name,
+        args.shots.display(),
+        table.groups().len()
+    );
+    let text = compare_text(&report, &title);
+    let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
+    if args.json {
+        eprint!("{text}");
+        println!("{}", compare_json(&report));
+    } else {
+        print!("{text}");
+    }
+    if let (Some(dir), Some(files)) = (&args.out_dir, files) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create output folder {}", dir.display()))?;
+        for (name, bytes) in &files {
+            write_atomic(&dir.join(name), bytes)?;
+        }
+        eprintln!("wrote {} files to {}", files.len(), dir.display());
+    }
+    Ok(())
+}

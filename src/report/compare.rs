@@ -1,0 +1,213 @@
+//! Rendering of a comparison: the printed diagnosis, and the files (CSV tables, face SVGs, JSON).
+//! Builds text and bytes only.
+
+use std::fmt::Write as _;
+
+use crate::compare::{sig3, CompareReport};
+use crate::data::fmt_f64;
+use crate::physics::LaunchComponent;
+use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
+
+fn opt(v: Option<f64>) -> String {
+    v.map(fmt_f64).unwrap_or_default()
+}
+
+fn cell(v: Option<f64>) -> String {
+    v.map(sig3).unwrap_or_else(|| "–".into())
+}
+
+/// The printed diagnosis: Table 2 layout, ranked findings with hints, and the flag count.
+pub fn compare_text(r: &CompareReport, title: &str) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{title}");
+    let _ = writeln!(
+        s,
+        "{} shots; errors are model − measured (the paper's Table 2 layout). * = mean ≠ 0 at {}%",
+        r.n_shots,
+        r.alpha * 100.0
+    );
+    let _ = writeln!(s);
+    let _ = write!(s, "{:<14}{:<5}", "Component", "unit");
+    for b in &r.table2 {
+        let _ = write!(s, "{:>10}{:>8}", format!("{} mean", b.group), "STD");
+    }
+    let _ = writeln!(s, "{:>9}", "t(all)");
+    for c in LaunchComponent::ALL {
+        let _ = write!(s, "{:<14}{:<5}", c.label(), c.unit());
+        for b in &r.table2 {
+            let e = &b.components[c.index()];
+            let mark = if e.significant { "*" } else { " " };
+            let _ = write!(
+                s,
+                "{:>9}{mark}{:>8}",
+                cell(e.summary.mean),
+                cell(e.summary.std)
+            );
+        }
+        let all = &r.table2.last().expect("all").components[c.index()];
+        let _ = writeln!(
+            s,
+            "{:>9}",
+            all.summary.t.map(|t| format!("{t:.1}")).unwrap_or_default()
+        );
+    }
+    let _ = writeln!(s);
+    if r.findings.is_empty() {
+        let _ = writeln!(
+            s,
+            "Findings: none. No bias or strong trend is significant at {}%.",
+            r.alpha * 100.0
+        );
+    } else {
+        let _ = writeln!(s, "Findings, strongest first:");
+        for (i, f) in r.findings.iter().enumerate() {
+            let _ = writeln!(s, "{:>2}. {}", i + 1, f.text);
+            if f.hints.is_empty() {
+                let _ = writeln!(s, "    no library effect has this signature");
+            } else {
+                let _ = writeln!(s, "    try: {}", f.hints.join("; "));
+            }
+        }
+    }
+    let _ = writeln!(
+        s,
+        "\n{} of {} tests flagged at {}% ({:.1} expected by chance if the model were right).",
+        r.flags,
+        r.tests,
+        r.alpha * 100.0,
+        r.expected_false_flags
+    );
+    s
+}
+
+/// `table2.csv`: group, component, unit, n, mean, std, sem, t, p, significant.
+pub fn table2_csv(r: &CompareReport) -> Vec<u8> {
+    let mut s = String::from("group,component,unit,n,mean,std,sem,t,p,significant\n");
+    for b in &r.table2 {
+        for e in &b.components {
+            let m = &e.summary;
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{},{},{},{}",
+                b.group,
+                e.component,
+                e.unit,
+                m.n,
+                opt(m.mean),
+                opt(m.std),
+                opt(m.sem),
+                opt(m.t),
+                opt(m.p),
+                e.significant
+            );
+        }
+    }
+    s.into_bytes()
+}
+
+/// `face_residuals.csv`, long form: one row per non-empty face bin and component;
+/// `mean` and `std` empty for bins with fewer than `min_count` shots.
+pub fn face_csv(r: &CompareReport) -> Vec<u8> {
+    let mut s = String::from("y_mm,z_mm,component,unit,count,mean,std\n");
+    for b in r.face.bins.iter().filter(|b| b.count > 0) {
+        for c in LaunchComponent::ALL {
+            let _ = writeln!(
+                s,
+                "{},{},{},{},{},{},{}",
+                fmt_f64(b.y_mm),
+                fmt_f64(b.z_mm),
+                c.column(),
+                c.unit(),
+                b.count,
+                opt(b.mean[c.index()]),
+                opt(b.std[c.index()])
+            );
+        }
+    }
+    s.into_bytes()
+}
+
+/// Face picture of the mean error of one component (diverging scale, centre marked).
+pub fn face_svg(r: &CompareReport, c: LaunchComponent) -> Vec<u8> {
+    let title = format!(
+        "{} error (model − measured), mean per {} mm bin, ≥ {} shots",
+        c.label(),
+        r.face.bin_mm,
+        r.face.min_count
+    );
+    let value_label = format!("{} error, {}", c.label().to_lowercase(), c.unit());
+    let values = r.face.grid(c);
+    heatmap_svg(&Heatmap {
+        title: &title,
+        x_label: "impact z (toward toe), mm",
+        y_label: "impact y (up), mm",
+        value_label: &value_label,
+        xs: &r.face.zs_mm,
+        ys: &r.face.ys_mm,
+        values: &values,
+        marker: Some((0.0, 0.0)),
+        scale: Scale::Diverging,
+    })
+    .into_bytes()
+}
+
+/// `residuals_by_<variable>.csv`: quantile bins with the mean error per component.
+pub fn binned_csv(r: &CompareReport, index: usize) -> Vec<u8> {
+    let t = &r.binned[index];
+    let mut s = format!("{0}_lo,{0}_hi,count", t.variable);
+    for c in LaunchComponent::ALL {
+        let _ = write!(s, ",mean_err_{}", c.column());
+    }
+    s.push('\n');
+    for row in &t.rows {
+        let _ = write!(s, "{},{},{}", fmt_f64(row.lo), fmt_f64(row.hi), row.count);
+        for m in &row.mean {
+            let _ = write!(s, ",{}", opt(*m));
+        }
+        s.push('\n');
+    }
+    s.into_bytes()
+}
+
+/// `correlations.csv`: component, variable, n, r, t, p, significant, strong.
+pub fn correlations_csv(r: &CompareReport) -> Vec<u8> {
+    let mut s = String::from("component,variable,n,r,t,p,significant,strong\n");
+    for k in &r.correlations {
+        let _ = writeln!(
+            s,
+            "{},{},{},{},{},{},{},{}",
+            k.component,
+            k.variable,
+            k.n,
+            fmt_f64(k.r),
+            fmt_f64(k.t),
+            fmt_f64(k.p),
+            k.significant,
+            k.strong
+        );
+    }
+    s.into_bytes()
+}
+
+/// The whole report as one JSON object.
+pub fn compare_json(r: &CompareReport) -> String {
+    serde_json::to_string_pretty(r).expect("report serializes")
+}
+
+/// Every output file of a comparison: (file name, bytes).
+pub fn compare_files(r: &CompareReport, text: &str) -> Vec<(String, Vec<u8>)> {
+    let mut files = vec![
+        ("table2.csv".to_string(), table2_csv(r)),
+        ("face_residuals.csv".to_string(), face_csv(r)),
+        ("correlations.csv".to_string(), correlations_csv(r)),
+        ("compare.json".to_string(), compare_json(r).into_bytes()),
+        ("findings.txt".to_string(), text.as_bytes().to_vec()),
+    ];
+    for (i, t) in r.binned.iter().enumerate() {
+        files.push((format!("residuals_by_{}.csv", t.variable), binned_csv(r, i)));
+    }
+    for c in LaunchComponent::ALL {
+        files.push((format!("face_{}.svg", c.column()), face_svg(r, c)));
+    }
+    files
+}
