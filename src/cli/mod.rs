@@ -3,7 +3,9 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod merge;
 pub mod predict;
+pub mod run;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.
@@ -20,12 +22,19 @@ pub struct Cli {
 pub enum Command {
     /// Predict ball launch for a shots file, or for one delivery given on the command line.
     Predict(predict::PredictArgs),
+    /// Run a design study: face maps over design variants, summaries, sensitivities,
+    /// optimisation (or one shard of it with --shard k/N).
+    Run(run::RunArgs),
+    /// Merge the shards of a study into exactly the unsharded result.
+    Merge(merge::MergeArgs),
 }
 
 /// Run a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
+        Command::Run(args) => run::run(args),
+        Command::Merge(args) => merge::run(args),
     }
 }
 
