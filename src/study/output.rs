@@ -180,7 +180,7 @@ fn sensitivity_files(p: &Prepared, sens: &[Sensitivity], names: &[String]) -> Fi
         for (rank, (x, change)) in rows.iter().enumerate() {
             let _ = writeln!(
                 t,
-                "{name},{},{},{}/{},{},{},{},{}",
+                "{name},{},{},{} per {},{},{},{},{}",
                 x.var.key(),
                 cell(x.metrics[mi]),
                 metric_unit(name),
