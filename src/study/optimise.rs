@@ -220,8 +220,10 @@ pub fn optimise(p: &Prepared) -> Result<Option<OptimiseResult>, StudyError> {
         .lock()
         .expect("path lock")
         .iter()
-        .map(|(it, cost, u)| PathPoint {
-            iteration: *it,
+        .enumerate()
+        // Row 0 is the initial simplex, row k the state after iteration k.
+        .map(|(k, (_, cost, u))| PathPoint {
+            iteration: k as u64,
             objective: sign * cost,
             design: problem.design(u),
         })
