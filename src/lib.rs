@@ -9,6 +9,10 @@
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
 //! - [`data`]: club TOML, shots CSV, predictions CSV; the one place that writes files.
 //! - [`predict`]: shots → model → predictions.
+//! - [`sweep`]: the face-map kernel: many impacts of one model and swing, fast.
+//! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
+//!   shards.
+//! - [`report`]: output rendering (SVG heatmaps, CSV matrices).
 //! - [`cli`]: the `smash` command line, a thin layer over the library.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
@@ -23,6 +27,8 @@ pub mod physics;
 pub mod predict;
 pub mod report;
 pub mod stats;
+pub mod study;
+pub mod sweep;
 pub mod synth;
 pub mod units;
 

@@ -5,7 +5,9 @@ use clap::{Parser, Subcommand};
 
 pub mod compare;
 pub mod effects;
+pub mod merge;
 pub mod predict;
+pub mod run;
 pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
@@ -30,6 +32,11 @@ pub enum Command {
     /// Compare the model with measured launch: Table 2, bias significance, face maps, trends
     /// and ranked findings with hints at the missing physics.
     Compare(compare::CompareArgs),
+    /// Run a design study: face maps over design variants, summaries, sensitivities,
+    /// optimisation (or one shard of it with --shard k/N).
+    Run(run::RunArgs),
+    /// Merge the shards of a study into exactly the unsharded result.
+    Merge(merge::MergeArgs),
 }
 
 /// Run a parsed command line.
@@ -39,6 +46,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Effects(args) => effects::run(args),
         Command::Synth(args) => synth::run(args),
         Command::Compare(args) => compare::run(args),
+        Command::Run(args) => run::run(args),
+        Command::Merge(args) => merge::run(args),
     }
 }
 

@@ -1,0 +1,91 @@
+//! `smash merge`: combine the shards of a study into exactly the unsharded outputs.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+
+use crate::study::metrics::metric_names;
+use crate::study::optimise::OptimiseResult;
+use crate::study::output::cell;
+use crate::study::shard::merge_shards;
+use crate::study::{finish, Prepared, VariantResult};
+
+/// Arguments of `smash merge`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Example:\n  smash merge shards/0 shards/1 shards/2 --out results/com_sweep"
+)]
+pub struct MergeArgs {
+    /// Shard folders written by `smash run --shard k/N` (all N of them, any order).
+    #[arg(value_name = "SHARD_DIR", required = true)]
+    pub shards: Vec<PathBuf>,
+
+    /// Output folder for the merged result.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+}
+
+/// Run `smash merge`.
+pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    let (prepared, variants) = merge_shards(&args.shards)?;
+    let (files, opt) = finish(&prepared, &variants)?;
+    super::run::write_all(&args.out, &files)?;
+    print_summary(&prepared, &variants, opt.as_ref(), &args.out, files.len());
+    eprintln!("merged {} shard(s)", args.shards.len());
+    Ok(())
+}
+
+/// A short human summary on stdout: speed retention and gear effect of the first variants, and
+/// the optimiser's result.
+pub fn print_summary(
+    p: &Prepared,
+    variants: &[VariantResult],
+    opt: Option<&OptimiseResult>,
+    dir: &Path,
+    n_files: usize,
+) {
+    let names = metric_names(p.study.distribution.is_some());
+    let pick = [
+        "cof_ball_speed_mph",
+        "speed_loss_toe_mph_per_mm",
+        "speed_loss_heel_mph_per_mm",
+        "speed_loss_crown_mph_per_mm",
+        "speed_loss_sole_mph_per_mm",
+        "gear_sidespin_rpm_per_mm",
+        "gear_backspin_rpm_per_mm",
+    ];
+    println!(
+        "study '{}' ({}, group {}): {} variant(s)",
+        p.study.name,
+        p.study.club.name,
+        p.study.group,
+        variants.len()
+    );
+    for (i, (d, r)) in p.variants.iter().zip(variants).enumerate().take(5) {
+        let mut line = format!("  variant {i} ({}):", d.describe());
+        for k in pick {
+            if let Some(j) = names.iter().position(|n| n == k) {
+                line.push_str(&format!(" {k} = {:.4}", r.metrics[j]));
+            }
+        }
+        println!("{line}");
+    }
+    if variants.len() > 5 {
+        println!("  … see variants.csv");
+    }
+    if let Some(o) = opt {
+        let gain = o.best_objective - o.base_objective;
+        println!(
+            "optimum: {} — objective {} -> {} (change {}, {:.3} %), {} iterations, {} evaluations, {}",
+            o.best.describe(),
+            cell(o.base_objective),
+            cell(o.best_objective),
+            cell(gain),
+            100.0 * gain / o.base_objective.abs().max(f64::MIN_POSITIVE),
+            o.path.last().map_or(0, |p| p.iteration),
+            o.evaluations,
+            o.termination
+        );
+    }
+    println!("wrote {n_files} file(s) to {}", dir.display());
+}

@@ -1,0 +1,102 @@
+//! `smash run`: run a design study (or one shard of it) and write its outputs.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::data::write_atomic;
+use crate::study::output::Files;
+use crate::study::shard::{parse_shard_spec, shard_files};
+use crate::study::{finish, read_study, Prepared};
+
+/// Arguments of `smash run`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash run configs/studies/face_map.toml\n  \
+                        smash run configs/studies/com_sweep.toml --out /tmp/com_sweep\n  \
+                        smash run configs/studies/com_sweep.toml --shard 0/4 --out shards/0\n  \
+                        smash merge shards/0 shards/1 shards/2 shards/3 --out results/com_sweep"
+)]
+pub struct RunArgs {
+    /// Study file (TOML): base club, delivery, face grid, design variants, outputs.
+    #[arg(value_name = "STUDY.toml")]
+    pub study: PathBuf,
+
+    /// Output folder [default: the study's output_dir, results/<name>; for a shard,
+    /// <that>/shards/<k>_of_<N>].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+
+    /// Run only shard k of N (0-based k, e.g. $SLURM_ARRAY_TASK_ID/N) and write shard files;
+    /// combine the shards with `smash merge`.
+    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec)]
+    pub shard: Option<(usize, usize)>,
+}
+
+/// Write every file under `dir` (atomically each).
+pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
+    for (rel, bytes) in files {
+        write_atomic(&dir.join(rel), bytes)?;
+    }
+    Ok(())
+}
+
+/// Run `smash run`.
+pub fn run(args: RunArgs) -> anyhow::Result<()> {
+    let study = read_study(&args.study)?;
+    let prepared = Prepared::new(study)?;
+    let (k, n) = args.shard.unwrap_or((0, 1));
+    let items = prepared.shard_range(k, n);
+    let impacts = prepared.impacts_in(items.clone());
+    let bar = if items.len() >= 64 && impacts >= 50_000 {
+        let b =
+            ProgressBar::with_draw_target(Some(items.len() as u64), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} work items, {elapsed} elapsed, ETA {eta}",
+            )
+            .expect("static template"),
+        );
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    let start = Instant::now();
+    let results = prepared.compute(items.clone(), &|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+
+    let s = &prepared.study;
+    let closing = format!(
+        "swept {impacts} impact evaluations ({} variant(s) × {}×{} grid + summary metrics{}) in {seconds:.3} s: {:.0} impacts/s",
+        prepared.variants.len(),
+        prepared.ys_mm.len(),
+        prepared.zs_mm.len(),
+        if args.shard.is_some() { format!(", shard {k} of {n}") } else { String::new() },
+        impacts as f64 / seconds.max(1e-9)
+    );
+    if args.shard.is_some() {
+        let dir = args
+            .out
+            .clone()
+            .unwrap_or_else(|| s.output_dir.join("shards").join(format!("{k}_of_{n}")));
+        write_all(&dir, &shard_files(&prepared, k, n, &results))?;
+        eprintln!(
+            "shard {k} of {n}: work items {}..{} -> {}",
+            items.start,
+            items.end,
+            dir.display()
+        );
+        eprintln!("{closing}");
+        return Ok(());
+    }
+    let variants = prepared.assemble(results)?;
+    let (files, opt) = finish(&prepared, &variants)?;
+    let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
+    write_all(&dir, &files)?;
+    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len());
+    eprintln!("{closing}");
+    Ok(())
+}

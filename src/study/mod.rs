@@ -1,0 +1,80 @@
+//! Design studies: face maps over design variants, summaries, sensitivities and optimisation.
+//!
+//! The flow, one file per step:
+//!
+//! - [`spec`]: the study file → a resolved [`Study`] (strict parsing, defaults in one place).
+//! - [`design`]: design variables (CoM offsets, inertia scalings, principal-moment changes,
+//!   discretionary-mass moves) and how they change the clubhead.
+//! - [`distribution`]: swings and Gaussian impact/swing scatter (quadrature or fixed-seed samples).
+//! - [`metrics`]: outputs and the scalar metrics of a design (centre values, speed retention,
+//!   gear effect, distribution mean and spread).
+//! - [`sweep`]: variants × grid as a flat work list, computed in parallel with the face-map
+//!   kernel (`crate::sweep::kernel`), split into shards.
+//! - [`sensitivity`]: central differences at the base design, maps and a ranked table.
+//! - [`optimise`]: an argmin cost function over bounded design variables (Nelder–Mead).
+//! - [`output`]: the output files as bytes; [`shard`]: shard files and their merge.
+//!
+//! Nothing here writes files or prints: the CLI does.
+
+pub mod design;
+pub mod distribution;
+pub mod metrics;
+pub mod optimise;
+pub mod output;
+pub mod sensitivity;
+pub mod shard;
+pub mod spec;
+pub mod sweep;
+
+pub use spec::{parse_study, read_study, resolved_toml, Study};
+pub use sweep::{Prepared, VariantResult};
+
+use crate::data::DataError;
+
+/// Why a study cannot be run or merged.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StudyError {
+    /// A file problem (study, club or shard file).
+    #[error(transparent)]
+    Data(#[from] DataError),
+    /// A design variant of the sweep is not physical.
+    #[error("design variant {id} ({values}) is not physical: {problem}")]
+    Variant {
+        /// Variant id (0-based, as in the outputs).
+        id: usize,
+        /// The variant's values.
+        values: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// A design (sensitivity step, optimiser point) is not physical.
+    #[error("design ({values}) is not physical: {problem}")]
+    Design {
+        /// The design's values.
+        values: String,
+        /// What is wrong.
+        problem: String,
+    },
+    /// The study's swing does not reach the ball at the face centre.
+    #[error("[delivery]: {problem}")]
+    Swing {
+        /// What is wrong.
+        problem: String,
+    },
+    /// The optimiser failed.
+    #[error("optimiser: {0}")]
+    Optimise(String),
+    /// Shards do not fit together.
+    #[error("merge: {0}")]
+    Merge(String),
+}
+
+/// Everything after the sweep: sensitivities, optimisation and the output files.
+pub fn finish(
+    p: &Prepared,
+    results: &[VariantResult],
+) -> Result<(output::Files, Option<optimise::OptimiseResult>), StudyError> {
+    let sens = sensitivity::sensitivities(p)?;
+    let opt = optimise::optimise(p)?;
+    Ok((output::study_files(p, results, &sens, opt.as_ref()), opt))
+}

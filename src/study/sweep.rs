@@ -1,0 +1,243 @@
+//! The study sweep: design variants × face grid, split into a flat work list.
+//!
+//! The work list has, per variant in order, one *metrics* item (the variant's summary metrics)
+//! then one item per grid row. A shard `k/N` takes the contiguous items
+//! `[k·T/N, (k+1)·T/N)` of the `T` items; every item is computed the same way whichever run
+//! computes it, so merged shards equal the unsharded run bit for bit.
+
+use rayon::prelude::*;
+
+use crate::physics::ImpactModel;
+use crate::sweep::kernel::{FaceMapKernel, LaunchGrid};
+use crate::units::mm;
+
+use super::design::Design;
+use super::distribution::SwingGroup;
+use super::metrics::{evaluate, impacts_per_design};
+use super::spec::Study;
+use super::StudyError;
+
+/// A study ready to run: variants validated into models, grid in metres.
+#[derive(Debug, Clone)]
+pub struct Prepared {
+    /// The resolved study.
+    pub study: Study,
+    /// The variants, in order.
+    pub variants: Vec<Design>,
+    /// One validated model per variant.
+    pub models: Vec<ImpactModel>,
+    /// Grid rows (heights), mm.
+    pub ys_mm: Vec<f64>,
+    /// Grid columns (toward the toe), mm.
+    pub zs_mm: Vec<f64>,
+    /// Distribution impacts (empty without a distribution).
+    pub groups: Vec<SwingGroup>,
+}
+
+/// The model of `design` for the study's club and group.
+pub fn design_model(study: &Study, design: &Design) -> Result<ImpactModel, StudyError> {
+    let nominal = design
+        .apply(
+            &study.club.nominal,
+            study.design.discretionary_mass.as_ref(),
+        )
+        .map_err(|e| StudyError::Design {
+            values: e.values.clone(),
+            problem: e.problem.clone(),
+        })?;
+    let mut club = study.club.clone();
+    club.nominal = nominal;
+    club.model_for_group(&study.group)
+        .map_err(|e| StudyError::Design {
+            values: design.describe(),
+            problem: e.to_string(),
+        })
+}
+
+impl Prepared {
+    /// Validate every variant and the swing. Errors name the first bad variant with its values.
+    pub fn new(study: Study) -> Result<Self, StudyError> {
+        let variants = study.design.variants();
+        let models = variants
+            .par_iter()
+            .enumerate()
+            .map(|(i, d)| {
+                design_model(&study, d).map_err(|e| match e {
+                    StudyError::Design { values, problem } => StudyError::Variant {
+                        id: i,
+                        values,
+                        problem,
+                    },
+                    other => other,
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let delivery = study.swing.delivery(0.0, 0.0);
+        models[0].solve(&delivery).map_err(|e| StudyError::Swing {
+            problem: e.to_string(),
+        })?;
+        let groups = study
+            .distribution
+            .as_ref()
+            .map_or_else(Vec::new, |d| d.groups(&study.swing));
+        Ok(Self {
+            ys_mm: study.grid.y_mm.values(),
+            zs_mm: study.grid.z_mm.values(),
+            groups,
+            variants,
+            models,
+            study,
+        })
+    }
+
+    /// Items per variant: the metrics item and one per row.
+    pub fn items_per_variant(&self) -> usize {
+        self.ys_mm.len() + 1
+    }
+
+    /// Length of the work list.
+    pub fn work_len(&self) -> usize {
+        self.variants.len() * self.items_per_variant()
+    }
+
+    /// Items of shard `k` of `n` (0-based `k`).
+    pub fn shard_range(&self, k: usize, n: usize) -> std::ops::Range<usize> {
+        let t = self.work_len();
+        (k * t / n)..((k + 1) * t / n)
+    }
+
+    /// Impacts computed by `items`.
+    pub fn impacts_in(&self, items: std::ops::Range<usize>) -> usize {
+        let per = impacts_per_design(&self.study, &self.groups);
+        items
+            .map(|i| {
+                if i % self.items_per_variant() == 0 {
+                    per
+                } else {
+                    self.zs_mm.len()
+                }
+            })
+            .sum()
+    }
+
+    /// Compute the work items `items` in parallel; `tick` is called once per finished item.
+    pub fn compute(
+        &self,
+        items: std::ops::Range<usize>,
+        tick: &(dyn Fn() + Sync),
+    ) -> Vec<ItemResult> {
+        let zs_m: Vec<f64> = self.zs_mm.iter().map(|z| mm(*z)).collect();
+        let per = self.items_per_variant();
+        let delivery = self.study.swing.delivery(0.0, 0.0);
+        items
+            .into_par_iter()
+            .map(|i| {
+                let (v, k) = (i / per, i % per);
+                let r = if k == 0 {
+                    ItemResult::Metrics {
+                        variant: v,
+                        values: evaluate(&self.models[v], &self.study, &self.groups),
+                    }
+                } else {
+                    let mut g = LaunchGrid::with_len(zs_m.len());
+                    FaceMapKernel::new(&self.models[v], &delivery).eval_row(
+                        mm(self.ys_mm[k - 1]),
+                        &zs_m,
+                        g.row_out(0, zs_m.len()),
+                    );
+                    ItemResult::Row {
+                        variant: v,
+                        row: k - 1,
+                        grid: g,
+                    }
+                };
+                tick();
+                r
+            })
+            .collect()
+    }
+
+    /// Assemble complete per-variant results from item results covering the whole work list.
+    pub fn assemble(&self, items: Vec<ItemResult>) -> Result<Vec<VariantResult>, StudyError> {
+        let (ny, nz) = (self.ys_mm.len(), self.zs_mm.len());
+        let mut out: Vec<VariantResult> = (0..self.variants.len())
+            .map(|_| VariantResult {
+                grid: LaunchGrid::with_len(ny * nz),
+                metrics: Vec::new(),
+            })
+            .collect();
+        let mut seen = vec![false; self.work_len()];
+        let per = self.items_per_variant();
+        for it in items {
+            let (idx, v) = match &it {
+                ItemResult::Metrics { variant, .. } => (variant * per, *variant),
+                ItemResult::Row { variant, row, .. } => (variant * per + row + 1, *variant),
+            };
+            if v >= self.variants.len() || idx >= seen.len() {
+                return Err(StudyError::Merge(format!(
+                    "work item {idx} is outside the study"
+                )));
+            }
+            if seen[idx] {
+                return Err(StudyError::Merge(format!("work item {idx} appears twice")));
+            }
+            seen[idx] = true;
+            match it {
+                ItemResult::Metrics { values, .. } => out[v].metrics = values,
+                ItemResult::Row { row, grid, .. } => {
+                    if grid.len() != nz {
+                        return Err(StudyError::Merge(format!(
+                            "variant {v} row {row} has {} points, the grid has {nz} columns",
+                            grid.len()
+                        )));
+                    }
+                    let dst = &mut out[v].grid;
+                    let s = row * nz;
+                    dst.ball_speed_m_s[s..s + nz].copy_from_slice(&grid.ball_speed_m_s);
+                    dst.launch_angle_rad[s..s + nz].copy_from_slice(&grid.launch_angle_rad);
+                    dst.azimuth_rad[s..s + nz].copy_from_slice(&grid.azimuth_rad);
+                    dst.backspin_rad_s[s..s + nz].copy_from_slice(&grid.backspin_rad_s);
+                    dst.sidespin_rad_s[s..s + nz].copy_from_slice(&grid.sidespin_rad_s);
+                    dst.valid[s..s + nz].copy_from_slice(&grid.valid);
+                }
+            }
+        }
+        if let Some(missing) = seen.iter().position(|s| !s) {
+            return Err(StudyError::Merge(format!(
+                "work item {missing} (variant {}) is missing: are all shards given?",
+                missing / per
+            )));
+        }
+        Ok(out)
+    }
+}
+
+/// The result of one work item.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ItemResult {
+    /// A variant's summary metrics.
+    Metrics {
+        /// Variant id.
+        variant: usize,
+        /// Values in `metric_names` order.
+        values: Vec<f64>,
+    },
+    /// One grid row of a variant.
+    Row {
+        /// Variant id.
+        variant: usize,
+        /// Row index (ascending y).
+        row: usize,
+        /// The row's points.
+        grid: LaunchGrid,
+    },
+}
+
+/// Everything swept for one variant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct VariantResult {
+    /// The face map, `ys × zs`, row-major.
+    pub grid: LaunchGrid,
+    /// Summary metrics.
+    pub metrics: Vec<f64>,
+}
