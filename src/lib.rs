@@ -9,6 +9,9 @@
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
 //! - [`data`]: club TOML, shots CSV, predictions CSV; the one place that writes files.
 //! - [`predict`]: shots → model → predictions.
+//! - [`stats`]: pure numerics (robust scale, regression, Table-2 error statistics, folds).
+//! - [`fit`]: residual problem, bounded Levenberg–Marquardt through argmin, covariance,
+//!   calibration reports.
 //! - [`cli`]: the `smash` command line, a thin layer over the library.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
@@ -18,8 +21,10 @@ pub mod cli;
 pub mod club;
 pub mod data;
 pub mod effects;
+pub mod fit;
 pub mod physics;
 pub mod predict;
+pub mod stats;
 pub mod units;
 
 pub use club::ClubSpec;
