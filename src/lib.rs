@@ -20,10 +20,12 @@
 pub mod cli;
 pub mod club;
 pub mod data;
+pub mod diagnose;
 pub mod effects;
 pub mod fit;
 pub mod physics;
 pub mod predict;
+pub mod report;
 pub mod stats;
 pub mod units;
 

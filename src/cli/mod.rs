@@ -3,7 +3,10 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod calibrate;
+pub mod diagnose;
 pub mod predict;
+pub mod progress;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.
@@ -20,12 +23,20 @@ pub struct Cli {
 pub enum Command {
     /// Predict ball launch for a shots file, or for one delivery given on the command line.
     Predict(predict::PredictArgs),
+    /// Fit named effects' parameters to measured launch (values ± standard errors,
+    /// correlations, chi2, AIC/BIC, before/after error tables).
+    Calibrate(calibrate::CalibrateArgs),
+    /// Rank the library's effects by how much each explains (cross-validated by golfer) and
+    /// select them forward until the improvement is not significant.
+    Diagnose(diagnose::DiagnoseArgs),
 }
 
 /// Run a parsed command line.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
         Command::Predict(args) => predict::run(args),
+        Command::Calibrate(args) => calibrate::run(args),
+        Command::Diagnose(args) => diagnose::run(args),
     }
 }
 
