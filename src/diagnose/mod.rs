@@ -17,6 +17,10 @@
 //!    insensitive or collinear Jacobian column, see [`crate::fit::covariance`]) with a positive
 //!    margin `gain − penalty` is added; repeat until none qualifies.
 //!
+//! Once a global effect is selected, its per-group form (`added_mass@group`) stays a candidate
+//! as a *refinement* that replaces it (gaining `groups − 1` parameters); other kinds already
+//! selected are not offered again.
+//!
 //! Folds keep each golfer's shots together, so an effect cannot win by fitting one golfer's
 //! habits. Without a golfer column the folds are by shot, with a warning.
 
@@ -225,6 +229,58 @@ fn cv_chi2(
     parts.into_iter().sum()
 }
 
+/// A candidate's layout: the base effects (minus a global effect it refines) plus its own,
+/// the starting point, and how many leading parameters belong to the base.
+struct CandidateLayout {
+    layout: ParamLayout,
+    start: DVector<f64>,
+    kept: usize,
+}
+
+fn candidate_layout(
+    base: &ParamLayout,
+    theta_base: &DVector<f64>,
+    cand: &EffectRequest,
+    groups: &[String],
+) -> Result<CandidateLayout, FitError> {
+    let added = cand.expand(groups)?;
+    // Refinement: a per-group candidate replaces the selected global effect of its kind and
+    // starts every group from the global value.
+    let replaced = match cand {
+        EffectRequest::PerGroup(kind) => base
+            .effects()
+            .iter()
+            .position(|e| e.kind == *kind && e.group.is_none()),
+        _ => None,
+    };
+    let mut effects = Vec::new();
+    let mut start_vals = Vec::new();
+    let mut inherited: Option<Vec<f64>> = None;
+    for (i, e) in base.effects().iter().enumerate() {
+        let vals: Vec<f64> = theta_base.as_slice()[base.range(i)].to_vec();
+        if Some(i) == replaced {
+            inherited = Some(vals);
+        } else {
+            effects.push(e.clone());
+            start_vals.extend(vals);
+        }
+    }
+    let kept = start_vals.len();
+    for e in &added {
+        match &inherited {
+            Some(v) => start_vals.extend(v),
+            None => start_vals.extend(e.kind.params().iter().map(|s| s.default)),
+        }
+    }
+    effects.extend(added);
+    let layout = ParamLayout::new(effects)?;
+    Ok(CandidateLayout {
+        start: DVector::from_vec(start_vals),
+        layout,
+        kept,
+    })
+}
+
 fn rms_per_component(errors: &[[f64; 5]]) -> [f64; 5] {
     std::array::from_fn(|c| stats::rms(&errors.iter().map(|e| e[c]).collect::<Vec<_>>()))
 }
@@ -311,13 +367,22 @@ pub fn diagnose(
     let mut steps = Vec::new();
 
     for step_index in 0..opts.max_steps {
+        // A kind already selected is not offered again, except that a selected global effect
+        // may be refined into one per group (replacing it).
         let open: Vec<&EffectRequest> = candidates
             .iter()
-            .filter(|c| !selected.iter().any(|s| s.kind() == c.kind()))
+            .filter(|c| {
+                !selected.iter().any(|s| {
+                    s.kind() == c.kind()
+                        && !(matches!(s, EffectRequest::Global(_))
+                            && matches!(c, EffectRequest::PerGroup(_)))
+                })
+            })
             .collect();
         if open.is_empty() {
             break;
         }
+        let base_labels: Vec<String> = selected.iter().map(request_label).collect();
         let base_problem = FitProblem::new(club, base.clone(), &data, Weighting::launch(&[1.0; 5]));
         let base_errors = base_problem.launch_errors(theta_base.as_slice())?;
         let sigma = noise_scales(&base_errors);
@@ -329,21 +394,19 @@ pub fn diagnose(
         let base_cv = cv_chi2(club, &base, &folds, w, &theta_base, opts.max_iters, progress)?;
 
         // Phase 1: every candidate on all shots.
-        let layouts: Vec<Result<ParamLayout, FitError>> = open
+        let layouts: Vec<Result<CandidateLayout, FitError>> = open
             .iter()
-            .map(|c| base.extended(&c.expand(&data.groups)?))
+            .map(|c| candidate_layout(&base, &theta_base, c, &data.groups))
             .collect();
-        let full: Vec<Result<(ParamLayout, FitRun), FitError>> = layouts
+        let full: Vec<Result<(ParamLayout, FitRun, usize), FitError>> = layouts
             .into_par_iter()
             .map(|l| {
                 let l = l?;
-                let mut start = l.defaults();
-                start.rows_mut(0, theta_base.len()).copy_from(&theta_base);
-                let run = fit(club, &l, &data, w, &start, opts.max_iters);
+                let run = fit(club, &l.layout, &data, w, &l.start, opts.max_iters);
                 if let Some(p) = progress {
                     p.job_done();
                 }
-                Ok((l, run?))
+                Ok((l.layout, run?, l.kept))
             })
             .collect();
         // Phase 2: cross-validation of every candidate.
@@ -351,10 +414,11 @@ pub fn diagnose(
             .par_iter()
             .zip(full.par_iter())
             .map(|(c, f)| {
-                let k = c
-                    .expand(&data.groups)
-                    .map(|v| v.iter().map(|e| e.kind.params().len()).sum())
-                    .unwrap_or(0);
+                let k = match f {
+                    // Parameters the model gains (a refinement replaces the global one).
+                    Ok((l, _, _)) => l.len() - theta_base.len(),
+                    Err(_) => 0,
+                };
                 let mut res = CandidateResult {
                     label: request_label(c),
                     n_params: k,
@@ -367,8 +431,8 @@ pub fn diagnose(
                     converged: false,
                     failure: None,
                 };
-                let (layout, run) = match f {
-                    Ok(x) => x,
+                let (layout, run, kept) = match f {
+                    Ok((l, r, k)) => (l, r, *k),
                     Err(e) => {
                         res.failure = Some(e.to_string());
                         if let Some(p) = progress {
@@ -393,7 +457,7 @@ pub fn diagnose(
                 res.params = layout
                     .params()
                     .enumerate()
-                    .skip(theta_base.len())
+                    .skip(kept)
                     .map(|(j, (i, s))| ParamEstimate {
                         effect: layout.effects()[i].kind.name(),
                         group: layout.effects()[i].group.clone(),
@@ -442,13 +506,19 @@ pub fn diagnose(
         let after;
         let chosen = match winner {
             Some(i) => {
-                let (layout, run) = full[i].as_ref().expect("eligible means fitted");
+                let (layout, run, _) = full[i].as_ref().expect("eligible means fitted");
                 let errs = FitProblem::new(club, layout.clone(), &data, w)
                     .launch_errors(run.theta.as_slice())?;
                 after = launch_error_table(&groups, &errs);
                 base = layout.clone();
                 theta_base = run.theta.clone();
-                selected.push(open[i].clone());
+                let refined = selected
+                    .iter()
+                    .position(|s| s.kind() == open[i].kind());
+                match refined {
+                    Some(pos) => selected[pos] = open[i].clone(),
+                    None => selected.push(open[i].clone()),
+                }
                 Some(results[i].label.clone())
             }
             None => {
@@ -458,11 +528,7 @@ pub fn diagnose(
         };
         let sorted: Vec<CandidateResult> = order.iter().map(|&i| results[i].clone()).collect();
         steps.push(Step {
-            base: selected
-                .iter()
-                .take(selected.len() - usize::from(chosen.is_some()))
-                .map(request_label)
-                .collect(),
+            base: base_labels,
             noise_scales: sigma,
             base_cv_chi2: base_cv,
             candidates: sorted,
