@@ -19,7 +19,14 @@ const PAPER_TRUTH: [(&str, f64); 5] = [
 fn paper_world_recovers_added_mass_per_shaft_and_ball_offset() {
     let shots = shots(&paper_truth(), &Experiment::default());
     let req = parse_effect_list("added_mass@group,ball_offset").unwrap();
-    let cal = calibrate(&paper_club(), &shots, &req, &CalibrateOptions::default(), None).unwrap();
+    let cal = calibrate(
+        &paper_club(),
+        &shots,
+        &req,
+        &CalibrateOptions::default(),
+        None,
+    )
+    .unwrap();
     for (p, (label, want)) in cal.params.iter().zip(PAPER_TRUTH) {
         assert_eq!(p.label(), label);
         let se = p.stderr.expect("identifiable");
@@ -34,7 +41,13 @@ fn paper_world_recovers_added_mass_per_shaft_and_ball_offset() {
     assert!(cal.params[0].stderr.unwrap() < 0.6 && cal.params[3].stderr.unwrap() < 0.01);
     // Ordered like the shaft masses (74.5 g A > 70.9 g C > 60.3 g B).
     let dm = |i: usize| cal.params[i].value;
-    assert!(dm(0) > dm(2) && dm(2) > dm(1), "A {} C {} B {}", dm(0), dm(2), dm(1));
+    assert!(
+        dm(0) > dm(2) && dm(2) > dm(1),
+        "A {} C {} B {}",
+        dm(0),
+        dm(2),
+        dm(1)
+    );
     let rel = cal.shaft_relation.as_ref().expect("shaft masses known");
     assert_eq!(rel.points.len(), 3);
     assert!(rel.line.slope > 0.0 && rel.line.r > 0.8, "{:?}", rel.line);
@@ -45,7 +58,11 @@ fn paper_world_recovers_added_mass_per_shaft_and_ball_offset() {
     assert!(cal.evaluations > cal.iterations && cal.termination.contains("converged"));
     // The mean backspin error collapses (paper: 741 → ~100 rpm; here the truth is reachable).
     for (b, a) in cal.before.groups.iter().zip(&cal.after.groups) {
-        assert!(b.components[3].mean > 300.0, "nominal backspin error {}", b.components[3].mean);
+        assert!(
+            b.components[3].mean > 300.0,
+            "nominal backspin error {}",
+            b.components[3].mean
+        );
         assert!(a.components[3].mean.abs() < 30.0);
         assert!(a.components[0].mean.abs() < 0.2);
     }
@@ -55,7 +72,14 @@ fn paper_world_recovers_added_mass_per_shaft_and_ball_offset() {
 fn calibrated_club_reads_back_and_predicts_the_same() {
     let shots = shots(&paper_truth(), &Experiment::default());
     let req = parse_effect_list("added_mass@group,ball_offset").unwrap();
-    let cal = calibrate(&paper_club(), &shots, &req, &CalibrateOptions::default(), None).unwrap();
+    let cal = calibrate(
+        &paper_club(),
+        &shots,
+        &req,
+        &CalibrateOptions::default(),
+        None,
+    )
+    .unwrap();
     let text = club_toml(&cal.club, "test");
     let back = parse_club(std::path::Path::new("x.toml"), &text).unwrap();
     assert_eq!(back.effects.len(), 4);
@@ -78,12 +102,22 @@ fn paper_method_assigns_stages_like_the_paper_and_recovers_the_truth() {
     let stages: Vec<Stage> = cal.paper_stages.iter().map(|a| a.stage).collect();
     assert_eq!(
         stages,
-        [Stage::Linear, Stage::Linear, Stage::Linear, Stage::Angular, Stage::Angular]
+        [
+            Stage::Linear,
+            Stage::Linear,
+            Stage::Linear,
+            Stage::Angular,
+            Stage::Angular
+        ]
     );
     for (p, (label, want)) in cal.params.iter().zip(PAPER_TRUTH) {
         let se = p.stderr.unwrap();
         eprintln!("paper method {label} = {:.4} ± {:.4}", p.value, se);
-        assert!((p.value - want).abs() < 4.0 * se, "{label}: {} vs {want}", p.value);
+        assert!(
+            (p.value - want).abs() < 4.0 * se,
+            "{label}: {} vs {want}",
+            p.value
+        );
     }
 }
 
@@ -93,7 +127,13 @@ fn refuses_what_it_cannot_fit() {
     let all = shots(&paper_truth(), &Experiment::default());
     let req = parse_effect_list("com_offset,ball_offset").unwrap();
     let e = calibrate(&club, &all[..5], &req, &CalibrateOptions::default(), None).unwrap_err();
-    assert_eq!(e, FitError::TooFewShots { shots: 5, params: 5 });
+    assert_eq!(
+        e,
+        FitError::TooFewShots {
+            shots: 5,
+            params: 5
+        }
+    );
     let mut one_group = all[..50].to_vec();
     one_group.iter_mut().for_each(|s| s.group = "all".into());
     let req = parse_effect_list("added_mass@group").unwrap();

@@ -66,7 +66,14 @@ fn calibrate_json_and_club_file() {
         assert!(m["mean"].as_f64().is_some() && m["std"].as_f64().is_some());
         assert!(j[key]["A"]["ball_speed_mph"]["mean"].is_number());
     }
-    for key in ["chi2", "reduced_chi2", "aic", "bic", "evaluations", "termination"] {
+    for key in [
+        "chi2",
+        "reduced_chi2",
+        "aic",
+        "bic",
+        "evaluations",
+        "termination",
+    ] {
         assert!(!j[key].is_null(), "{key}");
     }
     assert!(j["shaft_relation"]["slope_g_per_g"].is_number());
@@ -104,7 +111,11 @@ fn calibrate_json_and_club_file() {
 #[test]
 fn diagnose_json() {
     let dir = tempfile::tempdir().unwrap();
-    let shots_path = write(dir.path(), "shots.csv", &shots_csv(&paper_shots(), true, true));
+    let shots_path = write(
+        dir.path(),
+        "shots.csv",
+        &shots_csv(&paper_shots(), true, true),
+    );
     let out = dir.path().join("diag.toml");
     let (ok, stdout, stderr) = smash(&[
         "diagnose",
@@ -135,7 +146,10 @@ fn fails(args: &[&str], out: &Path, expect: &str) {
     let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
     assert_eq!(lines.len(), 1, "one line: {stderr}");
     assert!(lines[0].starts_with("error: "), "{stderr}");
-    assert!(lines[0].contains(expect), "expected '{expect}' in: {stderr}");
+    assert!(
+        lines[0].contains(expect),
+        "expected '{expect}' in: {stderr}"
+    );
     assert!(!out.exists(), "nothing written on failure");
 }
 
@@ -155,19 +169,55 @@ fn bad_input_gets_one_clear_line_and_writes_nothing() {
     let o = out.to_str().unwrap();
     let cal = |shots: &str, effects: &str, extra: &[&str], expect: &str| {
         let mut args = vec![
-            "calibrate", "--club", club, "--shots", shots, "--effects", effects, "--out-club", o,
+            "calibrate",
+            "--club",
+            club,
+            "--shots",
+            shots,
+            "--effects",
+            effects,
+            "--out-club",
+            o,
         ];
         args.extend_from_slice(extra);
         fails(&args, &out, expect);
     };
     cal(&unmeasured, "added_mass", &[], "no measured launch columns");
-    cal(&single, "added_mass@group", &[], "use the global form 'added_mass'");
-    cal(&few, "com_offset,ball_offset", &[], "3 shot(s) cannot determine 5 parameter(s)");
-    cal(&good, "added_mas", &[], "unknown effect 'added_mas'; the library has: added_mass, ball_offset");
-    cal(&good, "ball_offset", &["--max-iters", "1"], "did not converge");
+    cal(
+        &single,
+        "added_mass@group",
+        &[],
+        "use the global form 'added_mass'",
+    );
+    cal(
+        &few,
+        "com_offset,ball_offset",
+        &[],
+        "3 shot(s) cannot determine 5 parameter(s)",
+    );
+    cal(
+        &good,
+        "added_mas",
+        &[],
+        "unknown effect 'added_mas'; the library has: added_mass, ball_offset",
+    );
+    cal(
+        &good,
+        "ball_offset",
+        &["--max-iters", "1"],
+        "did not converge",
+    );
     cal(&good, "added_mass@Z", &[], "no shot is in group 'Z'");
     fails(
-        &["diagnose", "--club", club, "--shots", &unmeasured, "--out-club", o],
+        &[
+            "diagnose",
+            "--club",
+            club,
+            "--shots",
+            &unmeasured,
+            "--out-club",
+            o,
+        ],
         &out,
         "no measured launch columns",
     );

@@ -29,7 +29,10 @@ fn each_hidden_effect_is_named_first_and_alone() {
         ("cor_radial", vec![fx("cor_radial", &[1e-4], None)]),
         ("loft_bias", vec![fx("loft_bias", &[0.5], None)]),
         ("face_bias", vec![fx("face_bias", &[0.5], None)]),
-        ("com_offset", vec![fx("com_offset", &[0.0, 1.5, -2.0], None)]),
+        (
+            "com_offset",
+            vec![fx("com_offset", &[0.0, 1.5, -2.0], None)],
+        ),
         ("inertia_scale", vec![fx("inertia_scale", &[1.3], None)]),
         (
             "tangential_restitution",
@@ -38,7 +41,12 @@ fn each_hidden_effect_is_named_first_and_alone() {
     ];
     for (seed, (name, effects)) in worlds.into_iter().enumerate() {
         let d = run(effects, 10 + seed as u64);
-        assert_eq!(d.selected, [name], "world {name}: selected {:?}", d.selected);
+        assert_eq!(
+            d.selected,
+            [name],
+            "world {name}: selected {:?}",
+            d.selected
+        );
         // The error falls: the selected step's chi2 gain is large and the last step stops.
         let first = &d.steps[0].candidates[0];
         assert_eq!(first.label, name);

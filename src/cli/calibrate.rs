@@ -109,7 +109,8 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
 }
 
 fn opt(v: Option<f64>) -> serde_json::Value {
-    v.filter(|x| x.is_finite()).map_or(serde_json::Value::Null, |x| json!(x))
+    v.filter(|x| x.is_finite())
+        .map_or(serde_json::Value::Null, |x| json!(x))
 }
 
 /// The machine-readable report.
@@ -274,7 +275,14 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
     s.push_str(
         &LaunchComponent::ALL
             .iter()
-            .map(|c| format!("{} {:.3} {}", c.column(), cal.noise_scales[c.index()], c.unit()))
+            .map(|c| {
+                format!(
+                    "{} {:.3} {}",
+                    c.column(),
+                    cal.noise_scales[c.index()],
+                    c.unit()
+                )
+            })
             .collect::<Vec<_>>()
             .join(", "),
     );

@@ -11,7 +11,7 @@ use serde_json::json;
 use crate::data::club_file::{club_toml, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
-use crate::diagnose::{diagnose, Diagnosis, DiagnoseOptions, DiagnoseProgress, FoldBy};
+use crate::diagnose::{diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy};
 use crate::fit::{parse_effect_list, FitError, ParamEstimate};
 use crate::physics::LaunchComponent;
 use crate::report::{error_table_text, error_tables_side_by_side, TextTable};
@@ -41,11 +41,21 @@ pub struct DiagnoseArgs {
     pub json: bool,
 
     /// Cross-validation folds (grouped by golfer).
-    #[arg(long, default_value_t = 5, value_name = "K", help_heading = "Selection")]
+    #[arg(
+        long,
+        default_value_t = 5,
+        value_name = "K",
+        help_heading = "Selection"
+    )]
     pub folds: usize,
 
     /// Most effects to select.
-    #[arg(long, default_value_t = 6, value_name = "N", help_heading = "Selection")]
+    #[arg(
+        long,
+        default_value_t = 6,
+        value_name = "N",
+        help_heading = "Selection"
+    )]
     pub max_steps: usize,
 
     /// Candidates (default: every library effect, plus added_mass@group), same syntax as
@@ -54,7 +64,12 @@ pub struct DiagnoseArgs {
     pub candidates: Option<String>,
 
     /// Iteration limit of each fit.
-    #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Selection")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Selection"
+    )]
     pub max_iters: u64,
 }
 
@@ -230,7 +245,11 @@ pub fn text_report(d: &Diagnosis) -> String {
             "penalty".into(),
             "margin".into(),
         ];
-        header.extend(LaunchComponent::ALL.iter().map(|c| format!("{} rms", c.unit())));
+        header.extend(
+            LaunchComponent::ALL
+                .iter()
+                .map(|c| format!("{} rms", c.unit())),
+        );
         header.extend(["parameters".to_owned(), "note".to_owned()]);
         let mut t = TextTable::new(header);
         for c in &st.candidates {
@@ -241,7 +260,11 @@ pub fn text_report(d: &Diagnosis) -> String {
                 format!("{:.1}", c.penalty),
                 format!("{:.1}", c.margin()),
             ];
-            row.extend(c.rms_reduction.iter().map(|r| format!("{:+.1}%", -100.0 * r)));
+            row.extend(
+                c.rms_reduction
+                    .iter()
+                    .map(|r| format!("{:+.1}%", -100.0 * r)),
+            );
             row.push(fmt_params(&c.params));
             let mut note = Vec::new();
             if let Some(f) = &c.failure {
@@ -261,7 +284,9 @@ pub fn text_report(d: &Diagnosis) -> String {
         s.push_str(&t.render());
         match &st.selected {
             Some(l) => {
-                s.push_str(&format!("-> add {l}; errors (model − measured) after this step:\n"));
+                s.push_str(&format!(
+                    "-> add {l}; errors (model − measured) after this step:\n"
+                ));
                 s.push_str(&error_table_text(&st.after));
             }
             None => s.push_str("-> no candidate beats its penalty: stop\n"),

@@ -35,8 +35,7 @@ use crate::effects::EffectKind;
 use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions, ParamEstimate};
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress,
-    Weighting,
+    run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
 };
 use crate::physics::LaunchComponent;
 use crate::stats::{self, launch_error_table, ErrorTable};
@@ -391,7 +390,15 @@ pub fn diagnose(
         if let Some(p) = progress {
             p.step(step_index + 1, n_folds * (1 + open.len()) + open.len());
         }
-        let base_cv = cv_chi2(club, &base, &folds, w, &theta_base, opts.max_iters, progress)?;
+        let base_cv = cv_chi2(
+            club,
+            &base,
+            &folds,
+            w,
+            &theta_base,
+            opts.max_iters,
+            progress,
+        )?;
 
         // Phase 1: every candidate on all shots.
         let layouts: Vec<Result<CandidateLayout, FitError>> = open
@@ -477,7 +484,15 @@ pub fn diagnose(
                     }
                     Err(e) => res.failure = Some(e.to_string()),
                 }
-                match cv_chi2(club, layout, &folds, w, &run.theta, opts.max_iters, progress) {
+                match cv_chi2(
+                    club,
+                    layout,
+                    &folds,
+                    w,
+                    &run.theta,
+                    opts.max_iters,
+                    progress,
+                ) {
                     Ok(cv) => {
                         res.cv_chi2 = cv;
                         res.gain = base_cv - cv;
@@ -512,9 +527,7 @@ pub fn diagnose(
                 after = launch_error_table(&groups, &errs);
                 base = layout.clone();
                 theta_base = run.theta.clone();
-                let refined = selected
-                    .iter()
-                    .position(|s| s.kind() == open[i].kind());
+                let refined = selected.iter().position(|s| s.kind() == open[i].kind());
                 match refined {
                     Some(pos) => selected[pos] = open[i].clone(),
                     None => selected.push(open[i].clone()),

@@ -432,10 +432,7 @@ fn paper_procedure(
     let mut termination = String::new();
     for round in 1..=PAPER_MAX_ROUNDS {
         let before = theta.clone();
-        for (idx, pr, name) in [
-            (&lin_idx, &linear, "W=inf"),
-            (&ang_idx, &angular, "W=0"),
-        ] {
+        for (idx, pr, name) in [(&lin_idx, &linear, "W=inf"), (&ang_idx, &angular, "W=0")] {
             if idx.is_empty() {
                 continue;
             }

@@ -19,8 +19,8 @@
 //! numerical precision). Running out of iterations is *not* convergence.
 
 use argmin::core::{
-    Error as ArgminError, IterState, Jacobian, Operator, Problem, Solver, State,
-    TerminationReason, TerminationStatus, KV,
+    Error as ArgminError, IterState, Jacobian, Operator, Problem, Solver, State, TerminationReason,
+    TerminationStatus, KV,
 };
 use nalgebra::{DMatrix, DVector};
 
@@ -155,10 +155,7 @@ where
         self.nu = 2.0;
         self.converged = None;
         let cost = norm2(&r);
-        Ok((
-            state.param(theta).residuals(r).jacobian(j).cost(cost),
-            None,
-        ))
+        Ok((state.param(theta).residuals(r).jacobian(j).cost(cost), None))
     }
 
     fn next_iter(
@@ -267,8 +264,8 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
-    use argmin::core::Executor;
     use approx::assert_relative_eq;
+    use argmin::core::Executor;
 
     /// `y = a·exp(−b·t)` sampled without noise: a nonlinear least-squares test problem.
     struct Decay {
@@ -353,6 +350,10 @@ mod tests {
             .run()
             .unwrap();
         assert!(res.solver().converged().is_none());
-        assert!(LevenbergMarquardt::new(DVector::from_vec(vec![1.0]), DVector::from_vec(vec![0.0])).is_err());
+        assert!(LevenbergMarquardt::new(
+            DVector::from_vec(vec![1.0]),
+            DVector::from_vec(vec![0.0])
+        )
+        .is_err());
     }
 }

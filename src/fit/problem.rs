@@ -25,7 +25,9 @@ use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
 use crate::data::shots::Shot;
-use crate::physics::{Delivery, ImpactError, ImpactModel, LaunchComponent, ModelParams, ParamError};
+use crate::physics::{
+    Delivery, ImpactError, ImpactModel, LaunchComponent, ModelParams, ParamError,
+};
 
 /// Relative finite-difference step: `h_j = FD_STEP_OF_RANGE · (upper_j − lower_j)`.
 pub const FD_STEP_OF_RANGE: f64 = 1e-4;
@@ -57,7 +59,10 @@ impl FitData {
     /// Flatten shots that carry measured launch conditions.
     pub fn from_shots(shots: &[Shot]) -> Result<Self, FitError> {
         if shots.is_empty() {
-            return Err(FitError::TooFewShots { shots: 0, params: 0 });
+            return Err(FitError::TooFewShots {
+                shots: 0,
+                params: 0,
+            });
         }
         let mut groups: Vec<String> = shots.iter().map(|s| s.group.clone()).collect();
         groups.sort();
@@ -207,8 +212,11 @@ impl<'a> FitProblem<'a> {
         data: &'a FitData,
         weighting: Weighting,
     ) -> Self {
-        let base_params: Vec<ModelParams> =
-            data.groups.iter().map(|g| club.params_for_group(g)).collect();
+        let base_params: Vec<ModelParams> = data
+            .groups
+            .iter()
+            .map(|g| club.params_for_group(g))
+            .collect();
         let applies = data
             .groups
             .iter()
@@ -273,12 +281,18 @@ impl<'a> FitProblem<'a> {
 
     /// Lower bounds of the active parameters.
     pub fn active_lower(&self) -> DVector<f64> {
-        DVector::from_iterator(self.active.len(), self.active.iter().map(|&j| self.lower[j]))
+        DVector::from_iterator(
+            self.active.len(),
+            self.active.iter().map(|&j| self.lower[j]),
+        )
     }
 
     /// Upper bounds of the active parameters.
     pub fn active_upper(&self) -> DVector<f64> {
-        DVector::from_iterator(self.active.len(), self.active.iter().map(|&j| self.upper[j]))
+        DVector::from_iterator(
+            self.active.len(),
+            self.active.iter().map(|&j| self.upper[j]),
+        )
     }
 
     /// Full `θ` from the active sub-vector.

@@ -93,7 +93,11 @@ pub fn parse_request(text: &str) -> Result<EffectRequest, FitError> {
     })?;
     Ok(match group {
         None => EffectRequest::Global(kind),
-        Some("") => return Err(FitError::BadEffectList(format!("'{text}': empty group after '@'"))),
+        Some("") => {
+            return Err(FitError::BadEffectList(format!(
+                "'{text}': empty group after '@'"
+            )))
+        }
         Some(PER_GROUP) => EffectRequest::PerGroup(kind),
         Some(g) => EffectRequest::OneGroup(kind, g.to_owned()),
     })
@@ -289,7 +293,10 @@ mod tests {
         let e = ParamLayout::from_requests(&r, &["all".into()])
             .unwrap_err()
             .to_string();
-        assert!(e.contains("only one group") && e.contains("'added_mass'"), "{e}");
+        assert!(
+            e.contains("only one group") && e.contains("'added_mass'"),
+            "{e}"
+        );
         let r = parse_effect_list("added_mass@D").unwrap();
         assert!(ParamLayout::from_requests(&r, &groups()).is_err());
         let r = parse_effect_list("ball_offset,ball_offset").unwrap();

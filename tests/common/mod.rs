@@ -31,7 +31,9 @@ pub fn paper_club() -> ClubSpec {
 
 /// The nominal club with hidden effects.
 pub fn truth(effects: Vec<Effect>) -> ClubSpec {
-    paper_club().with_effects(effects).expect("truth is physical")
+    paper_club()
+        .with_effects(effects)
+        .expect("truth is physical")
 }
 
 /// Shorthand for an effect.
