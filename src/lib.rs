@@ -1,18 +1,26 @@
 //! `smash`: golf clubhead–ball impact engine.
 //!
-//! The flow, one room per folder or file:
+//! The flow, one room per folder, in the order data moves through them:
 //!
 //! - [`physics`]: the pure momentum-based impact model (face torus, frames, 3×3 impulse solve,
 //!   launch conditions). No I/O.
 //! - [`effects`]: the named library of physics beyond the nominal model, each with parameters,
 //!   units and bounds.
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
-//! - [`data`]: club TOML, shots CSV, predictions CSV; the one place that writes files.
+//! - [`data`]: club TOML, shots CSV, predictions CSV, synth outputs; the one place that writes
+//!   files.
+//! - [`synth`]: synthetic experiments with hidden effects and world-only physics.
 //! - [`predict`]: shots → model → predictions.
+//! - [`compare`]: model against measurements: Table 2, significance, face maps, findings.
+//! - [`stats`]: pure statistics (summaries, t tests, correlation, robust scale, regression,
+//!   Table-2 error statistics, grouped folds).
+//! - [`fit`]: residual problem, bounded Levenberg–Marquardt through argmin, covariance,
+//!   calibration reports.
+//! - [`diagnose`]: which effect is missing: grouped cross-validation and forward selection.
 //! - [`sweep`]: the face-map kernel: many impacts of one model and swing, fast.
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
-//! - [`report`]: output rendering (SVG heatmaps, CSV matrices).
+//! - [`report`]: output rendering (SVG heatmaps, CSV matrices, text tables).
 //! - [`cli`]: the `smash` command line, a thin layer over the library.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
@@ -22,7 +30,9 @@ pub mod cli;
 pub mod club;
 pub mod compare;
 pub mod data;
+pub mod diagnose;
 pub mod effects;
+pub mod fit;
 pub mod physics;
 pub mod predict;
 pub mod report;

@@ -3,10 +3,13 @@
 
 use clap::{Parser, Subcommand};
 
+pub mod calibrate;
 pub mod compare;
+pub mod diagnose;
 pub mod effects;
 pub mod merge;
 pub mod predict;
+pub mod progress;
 pub mod run;
 pub mod synth;
 
@@ -37,6 +40,12 @@ pub enum Command {
     Run(run::RunArgs),
     /// Merge the shards of a study into exactly the unsharded result.
     Merge(merge::MergeArgs),
+    /// Fit named effects' parameters to measured launch (values ± standard errors,
+    /// correlations, chi2, AIC/BIC, before/after error tables).
+    Calibrate(calibrate::CalibrateArgs),
+    /// Rank the library's effects by how much each explains (cross-validated by golfer) and
+    /// select them forward until the improvement is not significant.
+    Diagnose(diagnose::DiagnoseArgs),
 }
 
 /// Run a parsed command line.
@@ -48,6 +57,8 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Compare(args) => compare::run(args),
         Command::Run(args) => run::run(args),
         Command::Merge(args) => merge::run(args),
+        Command::Calibrate(args) => calibrate::run(args),
+        Command::Diagnose(args) => diagnose::run(args),
     }
 }
 

@@ -1,7 +1,9 @@
-//! Output rendering: builds bytes (SVG pictures, CSV matrices, text tables); never writes files.
-//! Writing is done in one place, [`crate::data::write_atomic`].
+//! Output rendering: builds bytes and strings (SVG pictures, CSV matrices, text tables, JSON);
+//! never writes files. Writing is done in one place, [`crate::data::write_atomic`].
 
 pub mod compare;
 pub mod heatmap;
+pub mod tables;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
+pub use tables::{error_table_text, error_tables_side_by_side, fmt_value, TextTable};

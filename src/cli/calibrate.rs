@@ -1,0 +1,328 @@
+//! `smash calibrate`: fit named effects to measured launch conditions.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use serde_json::json;
+
+use crate::data::club_file::{club_toml, read_club};
+use crate::data::shots::read_shots;
+use crate::data::write_atomic;
+use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
+use crate::physics::LaunchComponent;
+use crate::report::{error_tables_side_by_side, TextTable};
+use crate::stats::t_statistic;
+
+use super::progress::IterationLine;
+
+/// Fitting procedure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Whitened Levenberg-Marquardt on all five launch components (noise scales estimated
+    /// from the data, re-estimated after a first fit).
+    Lm,
+    /// The paper's procedure: cost of its Eq. 11, alternating W = inf (velocity) and W = 0
+    /// (spin) stages, each parameter in the stage where it is more sensitive.
+    Paper,
+}
+
+/// Arguments of `smash calibrate`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    smash calibrate --club configs/clubs/paper_driver.toml --shots shots.csv \\\n      \
+    --effects added_mass@group,ball_offset --out-club calibrated.toml\n  \
+    smash calibrate --club club.toml --shots shots.csv --effects added_mass@A --method paper --json")]
+pub struct CalibrateArgs {
+    /// Club file (TOML); its own [[effect]] tables stay fixed.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV) with measured launch columns.
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Effects to fit, comma-separated: `name` (global), `name@group` (one per group of the
+    /// shots), `name@A` (group A only).
+    #[arg(long, value_name = "LIST")]
+    pub effects: String,
+
+    /// Fitting procedure.
+    #[arg(long, value_enum, default_value = "lm")]
+    pub method: MethodArg,
+
+    /// Write the calibrated club (club TOML with [[effect]] tables), only after success.
+    #[arg(long, value_name = "OUT.toml")]
+    pub out_club: Option<PathBuf>,
+
+    /// Print one JSON object on stdout (progress and prose go to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Iteration limit of each solver run.
+    #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Solver")]
+    pub max_iters: u64,
+}
+
+/// Run `smash calibrate`.
+pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    let club = read_club(&args.club)?;
+    let table = read_shots(&args.shots)?;
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    let requests = parse_effect_list(&args.effects)?;
+    let opts = CalibrateOptions {
+        method: match args.method {
+            MethodArg::Lm => Method::Lm,
+            MethodArg::Paper => Method::Paper,
+        },
+        max_iters: args.max_iters,
+        parallel: true,
+    };
+    let line = Arc::new(IterationLine::new());
+    let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
+    line.finish();
+    let cal = cal?;
+    if let Some(out) = &args.out_club {
+        let comment = format!(
+            "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
+             chi2 = {:.3}, reduced chi2 = {:.4}; {}",
+            args.effects,
+            cal.method.name(),
+            args.shots.display(),
+            table.shots.len(),
+            cal.chi2,
+            cal.reduced_chi2,
+            cal.termination
+        );
+        write_atomic(out, club_toml(&cal.club, &comment).as_bytes())?;
+        eprintln!("calibrated club -> {}", out.display());
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&to_json(&cal))?);
+    } else {
+        print!("{}", text_report(&cal, table.shots.len()));
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>) -> serde_json::Value {
+    v.filter(|x| x.is_finite())
+        .map_or(serde_json::Value::Null, |x| json!(x))
+}
+
+/// The machine-readable report.
+pub fn to_json(cal: &Calibration) -> serde_json::Value {
+    let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
+    let params: Vec<serde_json::Value> = cal
+        .params
+        .iter()
+        .map(|p| {
+            json!({
+                "effect": p.effect,
+                "param": p.param,
+                "group": p.group,
+                "value": p.value,
+                "stderr": opt(p.stderr),
+                "unit": p.unit,
+                "t": opt(p.stderr.map(|s| t_statistic(p.value, s))),
+                "at_bound": p.at_bound,
+            })
+        })
+        .collect();
+    let correlation = cal.correlation.as_ref().map(|c| {
+        let rows: Vec<Vec<f64>> = (0..c.nrows())
+            .map(|i| (0..c.ncols()).map(|j| c[(i, j)]).collect())
+            .collect();
+        json!({"labels": labels, "matrix": rows})
+    });
+    let flagged: Vec<serde_json::Value> = cal
+        .strongly_correlated
+        .iter()
+        .map(|p| json!({"a": labels[p.a], "b": labels[p.b], "r": p.r}))
+        .collect();
+    let unidentified: Vec<&String> = cal
+        .identifiability
+        .unidentified()
+        .into_iter()
+        .map(|j| &labels[j])
+        .collect();
+    let noise: serde_json::Map<String, serde_json::Value> = LaunchComponent::ALL
+        .iter()
+        .map(|c| (c.column().to_owned(), json!(cal.noise_scales[c.index()])))
+        .collect();
+    let shaft = cal.shaft_relation.as_ref().map(|s| {
+        json!({
+            "points": s.points.iter().map(|(g, m, dm, se)| json!({
+                "group": g, "shaft_mass_g": m, "dm_g": dm, "stderr": opt(*se)
+            })).collect::<Vec<_>>(),
+            "slope_g_per_g": s.line.slope,
+            "intercept_g": s.line.intercept,
+            "r": s.line.r,
+        })
+    });
+    let stages: Vec<serde_json::Value> = cal
+        .paper_stages
+        .iter()
+        .map(|a| {
+            json!({
+                "param": labels[a.param],
+                "stage": match a.stage { crate::fit::Stage::Linear => "W=inf", crate::fit::Stage::Angular => "W=0" },
+                "linear_sensitivity": a.linear_sensitivity,
+                "angular_sensitivity": a.angular_sensitivity,
+            })
+        })
+        .collect();
+    json!({
+        "command": "calibrate",
+        "method": cal.method.name(),
+        "params": params,
+        "correlation": correlation,
+        "strongly_correlated": flagged,
+        "unidentifiable": unidentified,
+        "chi2": cal.chi2,
+        "chi2_nominal": cal.chi2_before,
+        "n_residuals": cal.n_residuals,
+        "dof": cal.dof,
+        "reduced_chi2": cal.reduced_chi2,
+        "aic": cal.aic,
+        "bic": cal.bic,
+        "evaluations": cal.evaluations,
+        "iterations": cal.iterations,
+        "termination": cal.termination,
+        "noise_scales": noise,
+        "before": cal.before.to_json(),
+        "after": cal.after.to_json(),
+        "shaft_relation": shaft,
+        "paper_stages": stages,
+    })
+}
+
+/// The human-readable report.
+pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
+    let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
+    let mut s = format!(
+        "Calibration ({}) of {} parameter(s) on {} shots\n\n",
+        cal.method.name(),
+        cal.params.len(),
+        n_shots
+    );
+    let mut t = TextTable::new(["parameter", "value", "± stderr", "t", "unit", "note"]);
+    let unidentified = cal.identifiability.unidentified();
+    for (j, p) in cal.params.iter().enumerate() {
+        let mut note = Vec::new();
+        if p.at_bound {
+            note.push("at bound");
+        }
+        if unidentified.contains(&j) {
+            note.push("not identifiable");
+        }
+        t.row([
+            labels[j].clone(),
+            format!("{:.5}", p.value),
+            p.stderr.map_or("n/a".into(), |e| format!("{e:.5}")),
+            p.stderr
+                .map_or("n/a".into(), |e| format!("{:.1}", t_statistic(p.value, e))),
+            p.unit.to_owned(),
+            note.join(", "),
+        ]);
+    }
+    s.push_str(&t.render());
+    if let Some(c) = &cal.correlation {
+        if c.nrows() > 1 {
+            s.push_str("\nCorrelation of the estimates:\n");
+            let mut header = vec![String::new()];
+            header.extend((0..c.ncols()).map(|j| format!("[{j}]")));
+            let mut t = TextTable::new(header);
+            for i in 0..c.nrows() {
+                let mut row = vec![format!("[{i}] {}", labels[i])];
+                row.extend((0..c.ncols()).map(|j| format!("{:+.3}", c[(i, j)])));
+                t.row(row);
+            }
+            s.push_str(&t.render());
+        }
+    }
+    for p in &cal.strongly_correlated {
+        s.push_str(&format!(
+            "  strongly correlated: {} and {} (r = {:+.3})\n",
+            labels[p.a], labels[p.b], p.r
+        ));
+    }
+    if !unidentified.is_empty() {
+        s.push_str(&format!(
+            "  not identifiable from these shots: {}\n",
+            unidentified
+                .iter()
+                .map(|&j| labels[j].as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    s.push_str(&format!(
+        "\nchi2 = {:.2} (nominal model: {:.2}) over N = {} residuals, p = {}: reduced chi2 = {:.4}, \
+         AIC = {:.2}, BIC = {:.2}\n",
+        cal.chi2,
+        cal.chi2_before,
+        cal.n_residuals,
+        cal.params.len(),
+        cal.reduced_chi2,
+        cal.aic,
+        cal.bic
+    ));
+    s.push_str("noise scales (robust, from the calibrated residuals): ");
+    s.push_str(
+        &LaunchComponent::ALL
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} {:.3} {}",
+                    c.column(),
+                    cal.noise_scales[c.index()],
+                    c.unit()
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    s.push_str(&format!(
+        "\nsolver: {} iteration(s), {} residual evaluations; {}\n",
+        cal.iterations, cal.evaluations, cal.termination
+    ));
+    if !cal.paper_stages.is_empty() {
+        s.push_str("paper stages (relative sensitivity velocity / spin):\n");
+        for a in &cal.paper_stages {
+            s.push_str(&format!(
+                "  {:<28} {:.3e} / {:.3e} -> {}\n",
+                labels[a.param],
+                a.linear_sensitivity,
+                a.angular_sensitivity,
+                match a.stage {
+                    crate::fit::Stage::Linear => "W = inf (velocity)",
+                    crate::fit::Stage::Angular => "W = 0 (spin)",
+                }
+            ));
+        }
+    }
+    if let Some(r) = &cal.shaft_relation {
+        s.push_str("\nAdded mass against shaft mass (the paper's Figure 3):\n");
+        for (g, m, dm, se) in &r.points {
+            s.push_str(&format!(
+                "  group {g}: shaft {m:.1} g, added mass {dm:.3} ± {} g\n",
+                se.map_or("n/a".into(), |e| format!("{e:.3}"))
+            ));
+        }
+        s.push_str(&format!(
+            "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({} groups)\n",
+            r.line.slope, r.line.intercept, r.line.r, r.line.n
+        ));
+    }
+    s.push_str("\nErrors (model − measured), per group:\n");
+    s.push_str(&error_tables_side_by_side(
+        &cal.before,
+        &cal.after,
+        ("before (nominal)", "after (calibrated)"),
+    ));
+    s
+}

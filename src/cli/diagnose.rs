@@ -1,0 +1,313 @@
+//! `smash diagnose`: which effects does the data ask for? Forward selection with grouped
+//! cross-validation (see [`crate::diagnose`]).
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use indicatif::ProgressBar;
+use serde_json::json;
+
+use crate::data::club_file::{club_toml, read_club};
+use crate::data::shots::read_shots;
+use crate::data::write_atomic;
+use crate::diagnose::{diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy};
+use crate::fit::{parse_effect_list, FitError, ParamEstimate};
+use crate::physics::LaunchComponent;
+use crate::report::{error_table_text, error_tables_side_by_side, TextTable};
+
+use super::progress::job_bar;
+
+/// Arguments of `smash diagnose`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    smash diagnose --club configs/clubs/paper_driver.toml --shots shots.csv\n  \
+    smash diagnose --club club.toml --shots shots.csv --json --out-club diagnosed.toml")]
+pub struct DiagnoseArgs {
+    /// Club file (TOML); its own [[effect]] tables stay fixed.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV) with measured launch columns (and a golfer column for grouped folds).
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Write the club with the selected effects, only after success.
+    #[arg(long, value_name = "OUT.toml")]
+    pub out_club: Option<PathBuf>,
+
+    /// Print one JSON object on stdout (progress and prose go to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Cross-validation folds (grouped by golfer).
+    #[arg(
+        long,
+        default_value_t = 5,
+        value_name = "K",
+        help_heading = "Selection"
+    )]
+    pub folds: usize,
+
+    /// Most effects to select.
+    #[arg(
+        long,
+        default_value_t = 6,
+        value_name = "N",
+        help_heading = "Selection"
+    )]
+    pub max_steps: usize,
+
+    /// Candidates (default: every library effect, plus added_mass@group), same syntax as
+    /// calibrate --effects.
+    #[arg(long, value_name = "LIST", help_heading = "Selection")]
+    pub candidates: Option<String>,
+
+    /// Iteration limit of each fit.
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Selection"
+    )]
+    pub max_iters: u64,
+}
+
+struct Bar(ProgressBar);
+
+impl DiagnoseProgress for Bar {
+    fn step(&self, step: usize, jobs: usize) {
+        self.0.set_length(jobs as u64);
+        self.0.set_position(0);
+        self.0.set_message(format!("fits of step {step}"));
+    }
+    fn job_done(&self) {
+        self.0.inc(1);
+    }
+}
+
+/// Run `smash diagnose`.
+pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    let club = read_club(&args.club)?;
+    let table = read_shots(&args.shots)?;
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    if args.folds < 2 {
+        anyhow::bail!("--folds must be at least 2, got {}", args.folds);
+    }
+    let candidates = args
+        .candidates
+        .as_deref()
+        .map(parse_effect_list)
+        .transpose()?;
+    let opts = DiagnoseOptions {
+        folds: args.folds,
+        max_steps: args.max_steps,
+        max_iters: args.max_iters,
+        candidates,
+    };
+    let bar = Bar(job_bar(1, "fits"));
+    let d = diagnose(&club, &table.shots, &opts, Some(&bar));
+    bar.0.finish_and_clear();
+    let d = d?;
+    for w in &d.warnings {
+        eprintln!("warning: {w}");
+    }
+    if let Some(out) = &args.out_club {
+        let comment = format!(
+            "Club with the effects selected by smash diagnose on {} ({} shots): {}",
+            args.shots.display(),
+            d.n_shots,
+            if d.selected.is_empty() {
+                "none".to_owned()
+            } else {
+                d.selected.join(", ")
+            }
+        );
+        write_atomic(out, club_toml(&d.club, &comment).as_bytes())?;
+        eprintln!("club with selected effects -> {}", out.display());
+    }
+    if args.json {
+        println!("{}", serde_json::to_string_pretty(&to_json(&d))?);
+    } else {
+        print!("{}", text_report(&d));
+    }
+    Ok(())
+}
+
+fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
+    ps.iter()
+        .map(|p| {
+            json!({
+                "effect": p.effect, "param": p.param, "group": p.group,
+                "value": p.value, "stderr": p.stderr, "unit": p.unit,
+            })
+        })
+        .collect()
+}
+
+/// The machine-readable report.
+pub fn to_json(d: &Diagnosis) -> serde_json::Value {
+    let comp_map = |v: &[f64; 5]| -> serde_json::Value {
+        LaunchComponent::ALL
+            .iter()
+            .map(|c| (c.column().to_owned(), json!(v[c.index()])))
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let steps: Vec<serde_json::Value> = d
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            json!({
+                "step": i + 1,
+                "base": s.base,
+                "noise_scales": comp_map(&s.noise_scales),
+                "base_cv_chi2": s.base_cv_chi2,
+                "selected": s.selected,
+                "candidates": s.candidates.iter().map(|c| json!({
+                    "effect": c.label,
+                    "n_params": c.n_params,
+                    "cv_chi2": c.cv_chi2,
+                    "gain": c.gain,
+                    "penalty": c.penalty,
+                    "margin": c.margin(),
+                    "eligible": c.eligible(),
+                    "converged": c.converged,
+                    "unidentified": c.unidentified,
+                    "failure": c.failure,
+                    "rms_reduction": comp_map(&c.rms_reduction),
+                    "params": estimates_json(&c.params),
+                })).collect::<Vec<_>>(),
+                "after": s.after.to_json(),
+            })
+        })
+        .collect();
+    json!({
+        "command": "diagnose",
+        "selected": d.selected,
+        "estimates": estimates_json(&d.estimates),
+        "steps": steps,
+        "folds": d.folds,
+        "fold_by": match d.fold_by { FoldBy::Golfer => "golfer", FoldBy::Shot => "shot" },
+        "n_shots": d.n_shots,
+        "warnings": d.warnings,
+        "before": d.before.to_json(),
+        "after": d.after.to_json(),
+    })
+}
+
+fn fmt_params(ps: &[ParamEstimate]) -> String {
+    ps.iter()
+        .map(|p| {
+            let name = match &p.group {
+                Some(g) => format!("{}@{g}", p.param),
+                None => p.param.to_owned(),
+            };
+            match p.stderr {
+                Some(se) => format!("{name} = {:.4} ± {:.4}", p.value, se),
+                None => format!("{name} = {:.4}", p.value),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The human-readable report.
+pub fn text_report(d: &Diagnosis) -> String {
+    let mut s = format!(
+        "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter\n",
+        d.n_shots,
+        d.folds,
+        match d.fold_by {
+            FoldBy::Golfer => "golfer",
+            FoldBy::Shot => "shot",
+        },
+        (d.n_shots as f64).ln()
+    );
+    for (i, st) in d.steps.iter().enumerate() {
+        s.push_str(&format!(
+            "\nStep {}: base = {}; CV chi2 of the base = {:.1}\n",
+            i + 1,
+            if st.base.is_empty() {
+                "nominal".to_owned()
+            } else {
+                st.base.join(" + ")
+            },
+            st.base_cv_chi2
+        ));
+        let mut header = vec![
+            "candidate".to_owned(),
+            "k".into(),
+            "CV gain".into(),
+            "penalty".into(),
+            "margin".into(),
+        ];
+        header.extend(
+            LaunchComponent::ALL
+                .iter()
+                .map(|c| format!("{} rms", c.unit())),
+        );
+        header.extend(["parameters".to_owned(), "note".to_owned()]);
+        let mut t = TextTable::new(header);
+        for c in &st.candidates {
+            let mut row = vec![
+                c.label.clone(),
+                c.n_params.to_string(),
+                format!("{:.1}", c.gain),
+                format!("{:.1}", c.penalty),
+                format!("{:.1}", c.margin()),
+            ];
+            row.extend(
+                c.rms_reduction
+                    .iter()
+                    .map(|r| format!("{:+.1}%", -100.0 * r)),
+            );
+            row.push(fmt_params(&c.params));
+            let mut note = Vec::new();
+            if let Some(f) = &c.failure {
+                note.push(format!("failed: {f}"));
+            } else if !c.converged {
+                note.push("fit did not converge".to_owned());
+            }
+            if !c.unidentified.is_empty() {
+                note.push(format!("not identifiable: {}", c.unidentified.join(", ")));
+            }
+            if st.selected.as_deref() == Some(c.label.as_str()) {
+                note.push("SELECTED".to_owned());
+            }
+            row.push(note.join("; "));
+            t.row(row);
+        }
+        s.push_str(&t.render());
+        match &st.selected {
+            Some(l) => {
+                s.push_str(&format!(
+                    "-> add {l}; errors (model − measured) after this step:\n"
+                ));
+                s.push_str(&error_table_text(&st.after));
+            }
+            None => s.push_str("-> no candidate beats its penalty: stop\n"),
+        }
+    }
+    s.push_str(&format!(
+        "\nSelected (in order): {}\n",
+        if d.selected.is_empty() {
+            "none".to_owned()
+        } else {
+            d.selected.join(", ")
+        }
+    ));
+    if !d.estimates.is_empty() {
+        s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
+    }
+    s.push('\n');
+    s.push_str(&error_tables_side_by_side(
+        &d.before,
+        &d.after,
+        ("before (club as given)", "after (selected effects)"),
+    ));
+    s
+}

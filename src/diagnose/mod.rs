@@ -1,0 +1,586 @@
+//! Diagnosis: which effects of the library does the data ask for?
+//!
+//! Forward selection with cross-validation grouped by golfer:
+//!
+//! 1. Start from the club as given (base model `B`, no free parameters).
+//! 2. Each step, estimate the noise scales `σ_c` from the base model's errors (robust scale,
+//!    so a bias does not inflate them) and whiten the residuals with them.
+//! 3. For every candidate `C` not yet selected (each library effect as one global effect, plus
+//!    `added_mass@group`), fit `B ∪ C` on all shots (to report values, error reductions and
+//!    identifiability) and on each training fold; sum the whitened χ² of each held-out fold:
+//!    `CV(B ∪ C)`. The base `B` is cross-validated the same way.
+//! 4. The gain `CV(B) − CV(B ∪ C)` must beat a BIC-sized penalty `k·ln n` (`k` added
+//!    parameters, `n` shots). Out of sample, a useless parameter *raises* χ² by about one, so
+//!    pure noise practically never clears `ln 600 ≈ 6.4` per parameter, while a real 0.25 mph
+//!    speed bias over 600 shots with 0.8 mph noise gains `600·0.25²/0.8² ≈ 59`.
+//! 5. The best eligible candidate (its fit converged and every parameter is identifiable: no
+//!    insensitive or collinear Jacobian column, see [`crate::fit::covariance`]) with a positive
+//!    margin `gain − penalty` is added; repeat until none qualifies.
+//!
+//! Once a global effect is selected, its per-group form (`added_mass@group`) stays a candidate
+//! as a *refinement* that replaces it (gaining `groups − 1` parameters); other kinds already
+//! selected are not offered again.
+//!
+//! Folds keep each golfer's shots together, so an effect cannot win by fitting one golfer's
+//! habits. Without a golfer column the folds are by shot, with a warning.
+
+use std::sync::Arc;
+
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use crate::club::ClubSpec;
+use crate::data::shots::Shot;
+use crate::effects::EffectKind;
+use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions, ParamEstimate};
+use crate::fit::covariance::covariance;
+use crate::fit::{
+    run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
+};
+use crate::physics::LaunchComponent;
+use crate::stats::{self, launch_error_table, ErrorTable};
+
+/// Options of [`diagnose`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiagnoseOptions {
+    /// Number of cross-validation folds.
+    pub folds: usize,
+    /// Most effects to select.
+    pub max_steps: usize,
+    /// Iteration limit of each fit.
+    pub max_iters: u64,
+    /// Candidates; `None`: every library effect plus `added_mass@group` when there are groups.
+    pub candidates: Option<Vec<EffectRequest>>,
+}
+
+impl Default for DiagnoseOptions {
+    fn default() -> Self {
+        Self {
+            folds: 5,
+            max_steps: 6,
+            max_iters: 100,
+            candidates: None,
+        }
+    }
+}
+
+/// How the folds were formed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FoldBy {
+    /// A golfer's shots are all in one fold.
+    Golfer,
+    /// Shot by shot (no golfer column).
+    Shot,
+}
+
+/// One candidate at one step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CandidateResult {
+    /// `name` or `name@group`.
+    pub label: String,
+    /// Parameters it adds.
+    pub n_params: usize,
+    /// Its parameters fitted on all shots (with the base effects refitted jointly).
+    pub params: Vec<ParamEstimate>,
+    /// Cross-validated χ² of the base plus this candidate.
+    pub cv_chi2: f64,
+    /// `CV(base) − CV(base + candidate)`.
+    pub gain: f64,
+    /// `k·ln n`.
+    pub penalty: f64,
+    /// Relative reduction of the RMS error per launch component on all shots (0.1 = 10 %).
+    pub rms_reduction: [f64; 5],
+    /// Parameters (labels) that cannot be determined: insensitive or collinear columns.
+    pub unidentified: Vec<String>,
+    /// Did the all-shots fit converge?
+    pub converged: bool,
+    /// Why the candidate could not be fitted, if so.
+    pub failure: Option<String>,
+}
+
+impl CandidateResult {
+    /// `gain − penalty`.
+    pub fn margin(&self) -> f64 {
+        self.gain - self.penalty
+    }
+
+    /// May it be selected (fitted, converged, identifiable)?
+    pub fn eligible(&self) -> bool {
+        self.failure.is_none() && self.converged && self.unidentified.is_empty()
+    }
+}
+
+/// One step of forward selection.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// Effects already in the model.
+    pub base: Vec<String>,
+    /// Noise scales used this step, file units.
+    pub noise_scales: [f64; 5],
+    /// Cross-validated χ² of the base model.
+    pub base_cv_chi2: f64,
+    /// Candidates, best margin first.
+    pub candidates: Vec<CandidateResult>,
+    /// The effect added, if any.
+    pub selected: Option<String>,
+    /// Errors on all shots of the model after this step.
+    pub after: ErrorTable,
+}
+
+/// The outcome of a diagnosis.
+#[derive(Debug, Clone)]
+pub struct Diagnosis {
+    /// How folds were formed.
+    pub fold_by: FoldBy,
+    /// Number of folds.
+    pub folds: usize,
+    /// Shots.
+    pub n_shots: usize,
+    /// Steps, in order.
+    pub steps: Vec<Step>,
+    /// Selected effects in the order added (`name` or `name@group`).
+    pub selected: Vec<String>,
+    /// Final estimates of the selected effects (a full calibration).
+    pub estimates: Vec<ParamEstimate>,
+    /// Errors of the club as given.
+    pub before: ErrorTable,
+    /// Errors with the selected effects.
+    pub after: ErrorTable,
+    /// The club with the selected effects.
+    pub club: ClubSpec,
+    /// Warnings (e.g. folds by shot).
+    pub warnings: Vec<String>,
+}
+
+/// Receives diagnose progress (the CLI draws a bar).
+pub trait DiagnoseProgress: Sync {
+    /// A step starts with `jobs` fits to do.
+    fn step(&self, step: usize, jobs: usize);
+    /// One fit finished.
+    fn job_done(&self);
+}
+
+/// Every library effect as a global candidate, plus `added_mass@group` with several groups.
+pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
+    let mut c: Vec<EffectRequest> = EffectKind::ALL
+        .iter()
+        .map(|&k| EffectRequest::Global(k))
+        .collect();
+    if groups.len() > 1 {
+        c.push(EffectRequest::PerGroup(EffectKind::AddedMass));
+    }
+    c
+}
+
+struct Folds {
+    train: Vec<FitData>,
+    test: Vec<FitData>,
+}
+
+fn fit(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    data: &FitData,
+    w: Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
+}
+
+fn chi2_at(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    data: &FitData,
+    w: Weighting,
+    theta: &DVector<f64>,
+) -> Result<f64, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    Ok(pr.residuals(theta.as_slice())?.norm_squared())
+}
+
+/// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ².
+fn cv_chi2(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    folds: &Folds,
+    w: Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> Result<f64, FitError> {
+    let parts: Vec<Result<f64, FitError>> = (0..folds.train.len())
+        .into_par_iter()
+        .map(|f| {
+            let r = if layout.is_empty() {
+                chi2_at(club, layout, &folds.test[f], w, start)
+            } else {
+                fit(club, layout, &folds.train[f], w, start, max_iters)
+                    .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
+            };
+            if let Some(p) = progress {
+                p.job_done();
+            }
+            r
+        })
+        .collect();
+    parts.into_iter().sum()
+}
+
+/// A candidate's layout: the base effects (minus a global effect it refines) plus its own,
+/// the starting point, and how many leading parameters belong to the base.
+struct CandidateLayout {
+    layout: ParamLayout,
+    start: DVector<f64>,
+    kept: usize,
+}
+
+fn candidate_layout(
+    base: &ParamLayout,
+    theta_base: &DVector<f64>,
+    cand: &EffectRequest,
+    groups: &[String],
+) -> Result<CandidateLayout, FitError> {
+    let added = cand.expand(groups)?;
+    // Refinement: a per-group candidate replaces the selected global effect of its kind and
+    // starts every group from the global value.
+    let replaced = match cand {
+        EffectRequest::PerGroup(kind) => base
+            .effects()
+            .iter()
+            .position(|e| e.kind == *kind && e.group.is_none()),
+        _ => None,
+    };
+    let mut effects = Vec::new();
+    let mut start_vals = Vec::new();
+    let mut inherited: Option<Vec<f64>> = None;
+    for (i, e) in base.effects().iter().enumerate() {
+        let vals: Vec<f64> = theta_base.as_slice()[base.range(i)].to_vec();
+        if Some(i) == replaced {
+            inherited = Some(vals);
+        } else {
+            effects.push(e.clone());
+            start_vals.extend(vals);
+        }
+    }
+    let kept = start_vals.len();
+    for e in &added {
+        match &inherited {
+            Some(v) => start_vals.extend(v),
+            None => start_vals.extend(e.kind.params().iter().map(|s| s.default)),
+        }
+    }
+    effects.extend(added);
+    let layout = ParamLayout::new(effects)?;
+    Ok(CandidateLayout {
+        start: DVector::from_vec(start_vals),
+        layout,
+        kept,
+    })
+}
+
+fn rms_per_component(errors: &[[f64; 5]]) -> [f64; 5] {
+    std::array::from_fn(|c| stats::rms(&errors.iter().map(|e| e[c]).collect::<Vec<_>>()))
+}
+
+fn group_names(data: &FitData) -> Vec<&str> {
+    data.group_of
+        .iter()
+        .map(|&g| data.groups[g].as_str())
+        .collect()
+}
+
+fn request_label(r: &EffectRequest) -> String {
+    r.label()
+}
+
+/// Run forward selection on `shots` (with measured launch) over `club`.
+pub fn diagnose(
+    club: &ClubSpec,
+    shots: &[Shot],
+    opts: &DiagnoseOptions,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> Result<Diagnosis, FitError> {
+    let data = FitData::from_shots(shots)?;
+    let n = data.len();
+    let mut warnings = Vec::new();
+    let (fold_of, fold_by) = {
+        let golfers: Vec<&str> = data
+            .golfers
+            .iter()
+            .map(|g| g.as_deref().unwrap_or(""))
+            .collect();
+        let mut distinct = golfers.clone();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if data.has_golfers() && distinct.len() >= 2 {
+            (stats::grouped_folds(&golfers, opts.folds), FoldBy::Golfer)
+        } else {
+            warnings.push(
+                "no golfer column (or a single golfer): cross-validation folds are by shot, so \
+                 a golfer's shots can be in both training and test folds"
+                    .to_owned(),
+            );
+            (stats::item_folds(n, opts.folds), FoldBy::Shot)
+        }
+    };
+    let n_folds = fold_of.iter().max().map_or(1, |m| m + 1);
+    if n_folds < 2 {
+        return Err(FitError::TooFewShots {
+            shots: n,
+            params: 2,
+        });
+    }
+    let folds = Folds {
+        train: (0..n_folds)
+            .map(|f| {
+                let idx: Vec<usize> = (0..n).filter(|&i| fold_of[i] != f).collect();
+                data.subset(&idx)
+            })
+            .collect(),
+        test: (0..n_folds)
+            .map(|f| {
+                let idx: Vec<usize> = (0..n).filter(|&i| fold_of[i] == f).collect();
+                data.subset(&idx)
+            })
+            .collect(),
+    };
+    let candidates = opts
+        .candidates
+        .clone()
+        .unwrap_or_else(|| default_candidates(&data.groups));
+    // Validate the candidates against the groups up front.
+    for c in &candidates {
+        c.expand(&data.groups)?;
+    }
+    let penalty_per_param = (n as f64).ln();
+    let groups = group_names(&data);
+
+    let mut base = ParamLayout::new(Vec::new())?;
+    let mut theta_base = DVector::<f64>::zeros(0);
+    let mut selected: Vec<EffectRequest> = Vec::new();
+    let nominal_errors = FitProblem::new(club, base.clone(), &data, Weighting::launch(&[1.0; 5]))
+        .launch_errors(&[])?;
+    let before = launch_error_table(&groups, &nominal_errors);
+    let mut steps = Vec::new();
+
+    for step_index in 0..opts.max_steps {
+        // A kind already selected is not offered again, except that a selected global effect
+        // may be refined into one per group (replacing it).
+        let open: Vec<&EffectRequest> = candidates
+            .iter()
+            .filter(|c| {
+                !selected.iter().any(|s| {
+                    s.kind() == c.kind()
+                        && !(matches!(s, EffectRequest::Global(_))
+                            && matches!(c, EffectRequest::PerGroup(_)))
+                })
+            })
+            .collect();
+        if open.is_empty() {
+            break;
+        }
+        let base_labels: Vec<String> = selected.iter().map(request_label).collect();
+        let base_problem = FitProblem::new(club, base.clone(), &data, Weighting::launch(&[1.0; 5]));
+        let base_errors = base_problem.launch_errors(theta_base.as_slice())?;
+        let sigma = noise_scales(&base_errors);
+        let w = Weighting::launch(&sigma);
+        let base_rms = rms_per_component(&base_errors);
+        if let Some(p) = progress {
+            p.step(step_index + 1, n_folds * (1 + open.len()) + open.len());
+        }
+        let base_cv = cv_chi2(
+            club,
+            &base,
+            &folds,
+            w,
+            &theta_base,
+            opts.max_iters,
+            progress,
+        )?;
+
+        // Phase 1: every candidate on all shots.
+        let layouts: Vec<Result<CandidateLayout, FitError>> = open
+            .iter()
+            .map(|c| candidate_layout(&base, &theta_base, c, &data.groups))
+            .collect();
+        let full: Vec<Result<(ParamLayout, FitRun, usize), FitError>> = layouts
+            .into_par_iter()
+            .map(|l| {
+                let l = l?;
+                let run = fit(club, &l.layout, &data, w, &l.start, opts.max_iters);
+                if let Some(p) = progress {
+                    p.job_done();
+                }
+                Ok((l.layout, run?, l.kept))
+            })
+            .collect();
+        // Phase 2: cross-validation of every candidate.
+        let results: Vec<CandidateResult> = open
+            .par_iter()
+            .zip(full.par_iter())
+            .map(|(c, f)| {
+                let k = match f {
+                    // Parameters the model gains (a refinement replaces the global one).
+                    Ok((l, _, _)) => l.len() - theta_base.len(),
+                    Err(_) => 0,
+                };
+                let mut res = CandidateResult {
+                    label: request_label(c),
+                    n_params: k,
+                    params: Vec::new(),
+                    cv_chi2: f64::NAN,
+                    gain: f64::NAN,
+                    penalty: k as f64 * penalty_per_param,
+                    rms_reduction: [0.0; 5],
+                    unidentified: Vec::new(),
+                    converged: false,
+                    failure: None,
+                };
+                let (layout, run, kept) = match f {
+                    Ok((l, r, k)) => (l, r, *k),
+                    Err(e) => {
+                        res.failure = Some(e.to_string());
+                        if let Some(p) = progress {
+                            (0..n_folds).for_each(|_| p.job_done());
+                        }
+                        return res;
+                    }
+                };
+                res.converged = run.converged;
+                let p = layout.len();
+                let dof = (run.residuals.len() - p).max(1);
+                let (lo, hi) = (layout.lower(), layout.upper());
+                let ranges: Vec<f64> = (0..p).map(|j| hi[j] - lo[j]).collect();
+                let cov = covariance(&run.jacobian, run.cost / dof as f64, &ranges);
+                let labels = layout.labels();
+                res.unidentified = cov
+                    .identifiability
+                    .unidentified()
+                    .into_iter()
+                    .map(|j| labels[j].clone())
+                    .collect();
+                res.params = layout
+                    .params()
+                    .enumerate()
+                    .skip(kept)
+                    .map(|(j, (i, s))| ParamEstimate {
+                        effect: layout.effects()[i].kind.name(),
+                        group: layout.effects()[i].group.clone(),
+                        param: s.key,
+                        unit: s.unit,
+                        value: run.theta[j],
+                        stderr: cov.stderr[j],
+                        at_bound: false,
+                    })
+                    .collect();
+                let pr = FitProblem::new(club, layout.clone(), &data, w);
+                match pr.launch_errors(run.theta.as_slice()) {
+                    Ok(errs) => {
+                        let rms = rms_per_component(&errs);
+                        res.rms_reduction =
+                            std::array::from_fn(|c| (base_rms[c] - rms[c]) / base_rms[c]);
+                    }
+                    Err(e) => res.failure = Some(e.to_string()),
+                }
+                match cv_chi2(
+                    club,
+                    layout,
+                    &folds,
+                    w,
+                    &run.theta,
+                    opts.max_iters,
+                    progress,
+                ) {
+                    Ok(cv) => {
+                        res.cv_chi2 = cv;
+                        res.gain = base_cv - cv;
+                    }
+                    Err(e) => res.failure = Some(e.to_string()),
+                }
+                res
+            })
+            .collect();
+
+        let mut order: Vec<usize> = (0..results.len()).collect();
+        order.sort_by(|&a, &b| {
+            let key = |r: &CandidateResult| {
+                if r.margin().is_nan() {
+                    f64::NEG_INFINITY
+                } else {
+                    r.margin()
+                }
+            };
+            key(&results[b]).total_cmp(&key(&results[a]))
+        });
+        let winner = order
+            .iter()
+            .copied()
+            .find(|&i| results[i].eligible() && results[i].margin() > 0.0);
+        let after;
+        let chosen = match winner {
+            Some(i) => {
+                let (layout, run, _) = full[i].as_ref().expect("eligible means fitted");
+                let errs = FitProblem::new(club, layout.clone(), &data, w)
+                    .launch_errors(run.theta.as_slice())?;
+                after = launch_error_table(&groups, &errs);
+                base = layout.clone();
+                theta_base = run.theta.clone();
+                let refined = selected.iter().position(|s| s.kind() == open[i].kind());
+                match refined {
+                    Some(pos) => selected[pos] = open[i].clone(),
+                    None => selected.push(open[i].clone()),
+                }
+                Some(results[i].label.clone())
+            }
+            None => {
+                after = launch_error_table(&groups, &base_errors);
+                None
+            }
+        };
+        let sorted: Vec<CandidateResult> = order.iter().map(|&i| results[i].clone()).collect();
+        steps.push(Step {
+            base: base_labels,
+            noise_scales: sigma,
+            base_cv_chi2: base_cv,
+            candidates: sorted,
+            selected: chosen.clone(),
+            after,
+        });
+        if chosen.is_none() {
+            break;
+        }
+    }
+
+    let (estimates, after, out_club) = if base.is_empty() {
+        (Vec::new(), before.clone(), club.clone())
+    } else {
+        let cal = calibrate_data(
+            club,
+            &data,
+            base.clone(),
+            &CalibrateOptions {
+                max_iters: opts.max_iters,
+                ..CalibrateOptions::default()
+            },
+            None,
+        )?;
+        (cal.params, cal.after, cal.club)
+    };
+    Ok(Diagnosis {
+        fold_by,
+        folds: n_folds,
+        n_shots: n,
+        steps,
+        selected: selected.iter().map(request_label).collect(),
+        estimates,
+        before,
+        after,
+        club: out_club,
+        warnings,
+    })
+}
+
+/// Launch components in report order (re-exported for the CLI).
+pub const COMPONENTS: [LaunchComponent; 5] = LaunchComponent::ALL;

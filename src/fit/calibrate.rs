@@ -1,0 +1,497 @@
+//! Calibration: fit the parameters of named effects to measured launch conditions.
+//!
+//! Two methods:
+//!
+//! - [`Method::Lm`] (default): whitened least squares on all five launch components. Noise
+//!   scales `σ_c` are the robust scale (1.4826·MAD) of the nominal model's errors; after a first
+//!   fit they are re-estimated from that fit's errors and the fit is repeated from its solution.
+//! - [`Method::Paper`]: the procedure of Danaei et al. Their cost (Eq. 11) is
+//!   `J = Σ_i [ W·|v_sim,i − v_exp,i|² + |ω_sim,i − ω_exp,i|² ]`; it is minimised in alternating
+//!   stages with `W = ∞` (ball velocity only) and `W = 0` (spin only; the measured axes `ω_y`,
+//!   `ω_z`). Each parameter is assigned, as the paper's sensitivity analysis did, to the stage
+//!   where its relative sensitivity `‖∂r_stage/∂θ_j‖ / ‖r_stage‖` at the nominal model is larger.
+//!   Stages alternate until a round changes no parameter by more than 1e-9 of its range.
+//!
+//! Both report values with standard errors from the whitened launch residuals at the solution
+//! (see [`super::covariance`]), so their results are comparable.
+
+use std::sync::Arc;
+
+use nalgebra::{DMatrix, DVector};
+
+use super::covariance::{covariance, Identifiability};
+use super::problem::{FitData, FitProblem, Weighting};
+use super::run::{run_lm, FitRun, Progress};
+use super::spec::{EffectRequest, ParamLayout};
+use super::FitError;
+use crate::club::ClubSpec;
+use crate::data::shots::Shot;
+use crate::effects::EffectKind;
+use crate::stats::{self, launch_error_table, ErrorTable, LineFit};
+
+/// Correlation magnitude beyond which a pair of estimates is flagged.
+pub const STRONG_CORRELATION: f64 = 0.9;
+
+/// Rounds of the paper's alternating procedure before giving up.
+pub const PAPER_MAX_ROUNDS: usize = 30;
+
+/// Smallest noise scale used for whitening, in file units (guards noiseless data).
+const MIN_NOISE_SCALE: f64 = 1e-12;
+
+/// Which procedure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Method {
+    /// Whitened Levenberg–Marquardt on the five launch components.
+    Lm,
+    /// The paper's alternating `W = ∞` / `W = 0` stages.
+    Paper,
+}
+
+impl Method {
+    /// Name on the command line and in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Lm => "lm",
+            Self::Paper => "paper",
+        }
+    }
+}
+
+/// Options of [`calibrate`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CalibrateOptions {
+    /// Procedure.
+    pub method: Method,
+    /// Iteration limit of each solver run.
+    pub max_iters: u64,
+    /// Compute Jacobian columns in parallel.
+    pub parallel: bool,
+}
+
+impl Default for CalibrateOptions {
+    fn default() -> Self {
+        Self {
+            method: Method::Lm,
+            max_iters: 100,
+            parallel: true,
+        }
+    }
+}
+
+/// One fitted parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParamEstimate {
+    /// Effect name.
+    pub effect: &'static str,
+    /// Group, `None` for a global effect.
+    pub group: Option<String>,
+    /// Parameter key (`dm_g`, …).
+    pub param: &'static str,
+    /// Unit.
+    pub unit: &'static str,
+    /// Fitted value.
+    pub value: f64,
+    /// Standard error (`None` when not identifiable).
+    pub stderr: Option<f64>,
+    /// Did the fit stop on a physical bound?
+    pub at_bound: bool,
+}
+
+impl ParamEstimate {
+    /// `effect@group.param`.
+    pub fn label(&self) -> String {
+        match &self.group {
+            Some(g) => format!("{}@{g}.{}", self.effect, self.param),
+            None => format!("{}.{}", self.effect, self.param),
+        }
+    }
+}
+
+/// A strongly correlated pair of estimates (indices into the parameter list).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CorrelatedPair {
+    /// First parameter.
+    pub a: usize,
+    /// Second parameter.
+    pub b: usize,
+    /// Correlation.
+    pub r: f64,
+}
+
+/// Stage of the paper's procedure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stage {
+    /// `W = ∞`: ball velocity.
+    Linear,
+    /// `W = 0`: ball spin.
+    Angular,
+}
+
+/// How the paper's procedure assigned one parameter.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PaperStageAssignment {
+    /// Parameter index.
+    pub param: usize,
+    /// Relative sensitivity of the ball velocity error, 1/unit.
+    pub linear_sensitivity: f64,
+    /// Relative sensitivity of the spin error, 1/unit.
+    pub angular_sensitivity: f64,
+    /// Stage chosen.
+    pub stage: Stage,
+}
+
+/// Per-group added mass against shaft mass (the paper's Figure 3).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShaftRelation {
+    /// `(group, shaft mass g, added mass g, stderr g)`, by group.
+    pub points: Vec<(String, f64, f64, Option<f64>)>,
+    /// `dm = intercept + slope·shaft_mass`, with the correlation.
+    pub line: LineFit,
+}
+
+/// Everything a calibration produced.
+#[derive(Debug, Clone)]
+pub struct Calibration {
+    /// Procedure used.
+    pub method: Method,
+    /// The free effects.
+    pub layout: ParamLayout,
+    /// Fitted parameters in layout order.
+    pub params: Vec<ParamEstimate>,
+    /// Correlation matrix of the estimates (`None` when not identifiable).
+    pub correlation: Option<DMatrix<f64>>,
+    /// Pairs with |correlation| > [`STRONG_CORRELATION`].
+    pub strongly_correlated: Vec<CorrelatedPair>,
+    /// Identifiability at the solution.
+    pub identifiability: Identifiability,
+    /// χ² of the whitened launch residuals.
+    pub chi2: f64,
+    /// Residual rows `N`.
+    pub n_residuals: usize,
+    /// Degrees of freedom `N − p`.
+    pub dof: usize,
+    /// `χ²/(N − p)`.
+    pub reduced_chi2: f64,
+    /// `χ² + 2p`.
+    pub aic: f64,
+    /// `χ² + p·ln N`.
+    pub bic: f64,
+    /// χ² of the nominal model with the same noise scales.
+    pub chi2_before: f64,
+    /// Residual evaluations, all stages (a Jacobian counts two per parameter).
+    pub evaluations: u64,
+    /// Solver iterations, all stages.
+    pub iterations: u64,
+    /// Why the last stage stopped.
+    pub termination: String,
+    /// Noise scales `σ_c` in file units, launch component order.
+    pub noise_scales: [f64; 5],
+    /// Errors of the nominal model, Table-2 layout.
+    pub before: ErrorTable,
+    /// Errors of the calibrated model.
+    pub after: ErrorTable,
+    /// Per-group added mass against shaft mass, when both are known.
+    pub shaft_relation: Option<ShaftRelation>,
+    /// The paper procedure's stage assignment.
+    pub paper_stages: Vec<PaperStageAssignment>,
+    /// The calibrated club: the input club's effects plus the fitted ones.
+    pub club: ClubSpec,
+}
+
+/// Noise scale of each launch component: the robust scale of the errors (falling back to the
+/// standard deviation when more than half the errors are equal), floored at a tiny positive
+/// value.
+pub fn noise_scales(errors: &[[f64; 5]]) -> [f64; 5] {
+    std::array::from_fn(|c| {
+        let col: Vec<f64> = errors.iter().map(|e| e[c]).collect();
+        let s = stats::robust_scale(&col);
+        let s = if s > 0.0 { s } else { stats::std_dev(&col) };
+        if s.is_finite() {
+            s.max(MIN_NOISE_SCALE)
+        } else {
+            1.0
+        }
+    })
+}
+
+fn group_names(data: &FitData) -> Vec<&str> {
+    data.group_of
+        .iter()
+        .map(|&g| data.groups[g].as_str())
+        .collect()
+}
+
+fn ensure_converged(run: &FitRun, stage: &str) -> Result<(), FitError> {
+    if run.converged {
+        Ok(())
+    } else {
+        Err(FitError::NotConverged {
+            iterations: run.iterations,
+            chi2: run.cost,
+            stage: stage.to_owned(),
+        })
+    }
+}
+
+/// Fit `requests` (expanded over the groups of `shots`) to the measured launch of `shots`,
+/// starting from the effects' defaults, on top of `club` (its own effects stay fixed).
+pub fn calibrate(
+    club: &ClubSpec,
+    shots: &[Shot],
+    requests: &[EffectRequest],
+    opts: &CalibrateOptions,
+    progress: Option<Arc<dyn Progress>>,
+) -> Result<Calibration, FitError> {
+    let data = FitData::from_shots(shots)?;
+    let layout = ParamLayout::from_requests(requests, &data.groups)?;
+    calibrate_data(club, &data, layout, opts, progress)
+}
+
+/// [`calibrate`] on prepared data and layout.
+pub fn calibrate_data(
+    club: &ClubSpec,
+    data: &FitData,
+    layout: ParamLayout,
+    opts: &CalibrateOptions,
+    progress: Option<Arc<dyn Progress>>,
+) -> Result<Calibration, FitError> {
+    let p = layout.len();
+    if data.len() <= p {
+        return Err(FitError::TooFewShots {
+            shots: data.len(),
+            params: p,
+        });
+    }
+    let start = layout.defaults();
+    let problem = FitProblem::new(club, layout.clone(), data, Weighting::launch(&[1.0; 5]))
+        .with_parallel_jacobian(opts.parallel);
+    let errors_before = problem.launch_errors(start.as_slice())?;
+    let before = launch_error_table(&group_names(data), &errors_before);
+    let sink = progress.as_ref();
+
+    let mut iterations = 0;
+    let mut evaluations = 0;
+    let mut paper_stages = Vec::new();
+    let (theta, termination) = match opts.method {
+        Method::Lm => {
+            let sigma0 = noise_scales(&errors_before);
+            let stage = "fit 1/2 (noise from nominal errors)";
+            let run1 = run_lm(
+                problem.clone().with_weighting(Weighting::launch(&sigma0)),
+                &start,
+                opts.max_iters,
+                sink.map(|s| (s, stage)),
+            )?;
+            ensure_converged(&run1, stage)?;
+            let sigma1 = noise_scales(&problem.launch_errors(run1.theta.as_slice())?);
+            let stage = "fit 2/2 (noise re-estimated)";
+            let run2 = run_lm(
+                problem.clone().with_weighting(Weighting::launch(&sigma1)),
+                &run1.theta,
+                opts.max_iters,
+                sink.map(|s| (s, stage)),
+            )?;
+            ensure_converged(&run2, stage)?;
+            iterations += run1.iterations + run2.iterations;
+            evaluations += run1.evaluations + run2.evaluations;
+            (run2.theta, run2.termination)
+        }
+        Method::Paper => {
+            let (theta, its, evals, stages, why) =
+                paper_procedure(&problem, &start, opts.max_iters, sink)?;
+            iterations += its;
+            evaluations += evals;
+            paper_stages = stages;
+            (theta, why)
+        }
+    };
+
+    // Statistics at the solution, with noise scales from its own errors.
+    let errors_after = problem.launch_errors(theta.as_slice())?;
+    let sigma = noise_scales(&errors_after);
+    let whitened = problem.clone().with_weighting(Weighting::launch(&sigma));
+    let residuals = whitened.residuals(theta.as_slice())?;
+    let jac = whitened.jacobian_full(&theta)?;
+    evaluations += 1 + 2 * p as u64;
+    let chi2 = residuals.norm_squared();
+    let chi2_before = whitened.residuals(start.as_slice())?.norm_squared();
+    let n_residuals = residuals.len();
+    let dof = n_residuals - p;
+    let reduced_chi2 = chi2 / dof as f64;
+    let (lower, upper) = (layout.lower(), layout.upper());
+    let ranges: Vec<f64> = (0..p).map(|j| upper[j] - lower[j]).collect();
+    let cov = covariance(&jac, reduced_chi2, &ranges);
+
+    let params: Vec<ParamEstimate> = layout
+        .params()
+        .enumerate()
+        .map(|(j, (i, s))| {
+            let e = &layout.effects()[i];
+            let span = 1e-9 * ranges[j];
+            ParamEstimate {
+                effect: e.kind.name(),
+                group: e.group.clone(),
+                param: s.key,
+                unit: s.unit,
+                value: theta[j],
+                stderr: cov.stderr[j],
+                at_bound: theta[j] <= lower[j] + span || theta[j] >= upper[j] - span,
+            }
+        })
+        .collect();
+    let mut strongly_correlated = Vec::new();
+    if let Some(c) = &cov.correlation {
+        for a in 0..p {
+            for b in a + 1..p {
+                if c[(a, b)].abs() > STRONG_CORRELATION {
+                    strongly_correlated.push(CorrelatedPair { a, b, r: c[(a, b)] });
+                }
+            }
+        }
+    }
+    let shaft_relation = shaft_relation(data, &params);
+    let mut effects = club.effects.clone();
+    effects.extend(
+        layout
+            .to_effects(theta.as_slice())
+            .map_err(|e| FitError::Solver(format!("fitted values out of bounds: {e}")))?,
+    );
+    let calibrated = club
+        .with_effects(effects)
+        .map_err(|e| FitError::Solver(format!("calibrated club is not physical: {e}")))?;
+    Ok(Calibration {
+        method: opts.method,
+        params,
+        correlation: cov.correlation,
+        strongly_correlated,
+        identifiability: cov.identifiability,
+        chi2,
+        n_residuals,
+        dof,
+        reduced_chi2,
+        aic: chi2 + 2.0 * p as f64,
+        bic: chi2 + p as f64 * (n_residuals as f64).ln(),
+        chi2_before,
+        evaluations,
+        iterations,
+        termination,
+        noise_scales: sigma,
+        before,
+        after: launch_error_table(&group_names(data), &errors_after),
+        shaft_relation,
+        paper_stages,
+        club: calibrated,
+        layout,
+    })
+}
+
+type PaperResult = (DVector<f64>, u64, u64, Vec<PaperStageAssignment>, String);
+
+/// The paper's alternating `W = ∞` / `W = 0` procedure (see the module docs).
+fn paper_procedure(
+    problem: &FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+    sink: Option<&Arc<dyn Progress>>,
+) -> Result<PaperResult, FitError> {
+    let p = start.len();
+    let linear = problem.clone().with_weighting(Weighting::PaperLinear);
+    let angular = problem.clone().with_weighting(Weighting::PaperAngular);
+    let sensitivity = |pr: &FitProblem<'_>| -> Result<Vec<f64>, FitError> {
+        let r = pr.residuals(start.as_slice())?.norm();
+        let j = pr.jacobian_full(start)?;
+        Ok((0..p).map(|k| j.column(k).norm() / r).collect())
+    };
+    let s_lin = sensitivity(&linear)?;
+    let s_ang = sensitivity(&angular)?;
+    let mut evaluations = 2 * (1 + 2 * p as u64);
+    let stages: Vec<PaperStageAssignment> = (0..p)
+        .map(|j| PaperStageAssignment {
+            param: j,
+            linear_sensitivity: s_lin[j],
+            angular_sensitivity: s_ang[j],
+            stage: if s_lin[j] >= s_ang[j] {
+                Stage::Linear
+            } else {
+                Stage::Angular
+            },
+        })
+        .collect();
+    let pick = |st: Stage| -> Vec<usize> {
+        stages
+            .iter()
+            .filter(|a| a.stage == st)
+            .map(|a| a.param)
+            .collect()
+    };
+    let (lin_idx, ang_idx) = (pick(Stage::Linear), pick(Stage::Angular));
+    let lower = problem.layout().lower();
+    let upper = problem.layout().upper();
+    let mut theta = start.clone();
+    let mut iterations = 0;
+    let mut termination = String::new();
+    for round in 1..=PAPER_MAX_ROUNDS {
+        let before = theta.clone();
+        for (idx, pr, name) in [(&lin_idx, &linear, "W=inf"), (&ang_idx, &angular, "W=0")] {
+            if idx.is_empty() {
+                continue;
+            }
+            let stage = format!("paper {name} round {round}");
+            let run = run_lm(
+                pr.clone().with_active(idx.clone(), theta.clone()),
+                &theta,
+                max_iters,
+                sink.map(|s| (s, stage.as_str())),
+            )?;
+            ensure_converged(&run, &stage)?;
+            iterations += run.iterations;
+            evaluations += run.evaluations;
+            termination = run.termination;
+            theta = run.theta;
+        }
+        let change = (0..p)
+            .map(|j| (theta[j] - before[j]).abs() / (upper[j] - lower[j]))
+            .fold(0.0, f64::max);
+        if change <= 1e-9 {
+            return Ok((
+                theta,
+                iterations,
+                evaluations,
+                stages,
+                format!("{termination}; stages stable after {round} round(s)"),
+            ));
+        }
+    }
+    Err(FitError::NotConverged {
+        iterations,
+        chi2: f64::NAN,
+        stage: format!("paper: stages still moving after {PAPER_MAX_ROUNDS} rounds"),
+    })
+}
+
+/// Added mass per group against the group's shaft mass, when at least two groups have both.
+fn shaft_relation(data: &FitData, params: &[ParamEstimate]) -> Option<ShaftRelation> {
+    let mut points = Vec::new();
+    for pe in params {
+        let Some(group) = &pe.group else { continue };
+        if pe.effect != EffectKind::AddedMass.name() {
+            continue;
+        }
+        let gi = data.groups.iter().position(|g| g == group)?;
+        let masses: Vec<f64> = data
+            .group_of
+            .iter()
+            .zip(&data.shaft_mass_g)
+            .filter(|(g, _)| **g == gi)
+            .filter_map(|(_, m)| *m)
+            .collect();
+        if masses.is_empty() {
+            continue;
+        }
+        points.push((group.clone(), stats::mean(&masses), pe.value, pe.stderr));
+    }
+    let x: Vec<f64> = points.iter().map(|p| p.1).collect();
+    let y: Vec<f64> = points.iter().map(|p| p.2).collect();
+    let line = stats::linear_regression(&x, &y)?;
+    Some(ShaftRelation { points, line })
+}

@@ -1,0 +1,359 @@
+//! A bounded Levenberg–Marquardt solver implementing argmin's [`Solver`] trait.
+//!
+//! Minimises `χ²(θ) = ‖r(θ)‖²` for an [`Operator`] (residuals `r`) with a [`Jacobian`] `J`.
+//! Each iteration solves the damped normal equations with Marquardt's diagonal scaling,
+//!
+//! ```text
+//! (JᵀJ + λ·diag(JᵀJ)) δ = −Jᵀr,
+//! ```
+//!
+//! projects the trial point onto the box `[lower, upper]` (the physical bounds of the effect
+//! library), and accepts it when `χ²` falls. The gain ratio
+//! `ρ = (χ²(θ) − χ²(θ+δ)) / (χ²(θ) − ‖r + Jδ‖²)` updates `λ` as in Nielsen (1999):
+//! accepted → `λ·max(1/3, 1 − (2ρ − 1)³)`, rejected → `λ·ν`, `ν ← 2ν`.
+//!
+//! It stops, converged, when the gradient is orthogonal to the residual to within `gtol`
+//! (`max_j |J_jᵀ r| / (‖J_j‖‖r‖) ≤ gtol`), when an accepted step changes `χ²` by less than
+//! `ftol` relative (actual and predicted), when a step is below `xtol` of each parameter's
+//! range, or when no step along the damped direction lowers `χ²` (`λ` past 10¹⁶: a minimum to
+//! numerical precision). Running out of iterations is *not* convergence.
+
+use argmin::core::{
+    Error as ArgminError, IterState, Jacobian, Operator, Problem, Solver, State, TerminationReason,
+    TerminationStatus, KV,
+};
+use nalgebra::{DMatrix, DVector};
+
+/// The argmin state this solver works with: parameters, Jacobian and residuals as nalgebra
+/// vectors and matrices.
+pub type LmState = IterState<DVector<f64>, (), DMatrix<f64>, (), DVector<f64>, f64>;
+
+/// Why the solver stopped, when it converged.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Converged {
+    /// Gradient orthogonal to the residuals.
+    Gradient,
+    /// Relative change of χ² below `ftol`.
+    CostChange,
+    /// Step below `xtol` of every parameter's range.
+    Step,
+    /// No step lowers χ² any more (a minimum to numerical precision).
+    NoDescent,
+}
+
+impl Converged {
+    /// Human explanation.
+    pub fn text(self) -> &'static str {
+        match self {
+            Self::Gradient => "converged: gradient orthogonal to the residuals (gtol)",
+            Self::CostChange => "converged: relative change of chi2 below ftol",
+            Self::Step => "converged: step below xtol of every parameter's range",
+            Self::NoDescent => "converged: no step lowers chi2 further (minimum to precision)",
+        }
+    }
+}
+
+/// Bounded Levenberg–Marquardt (see the module docs).
+#[derive(Debug, Clone)]
+pub struct LevenbergMarquardt {
+    lower: DVector<f64>,
+    upper: DVector<f64>,
+    tau: f64,
+    ftol: f64,
+    xtol: f64,
+    gtol: f64,
+    lambda: f64,
+    nu: f64,
+    converged: Option<Converged>,
+}
+
+impl LevenbergMarquardt {
+    /// A solver for parameters within `[lower, upper]` (finite, `lower < upper`).
+    pub fn new(lower: DVector<f64>, upper: DVector<f64>) -> Result<Self, ArgminError> {
+        if lower.len() != upper.len()
+            || lower
+                .iter()
+                .zip(upper.iter())
+                .any(|(l, u)| !(l.is_finite() && u.is_finite() && l < u))
+        {
+            return Err(anyhow::anyhow!(
+                "Levenberg-Marquardt: bounds must be finite with lower < upper"
+            ));
+        }
+        Ok(Self {
+            lower,
+            upper,
+            tau: 1e-3,
+            ftol: 1e-10,
+            xtol: 1e-10,
+            gtol: 1e-10,
+            lambda: 0.0,
+            nu: 2.0,
+            converged: None,
+        })
+    }
+
+    /// Set the relative χ² change at which it stops (default 1e-10).
+    pub fn with_ftol(mut self, ftol: f64) -> Result<Self, ArgminError> {
+        if !(ftol > 0.0) {
+            return Err(anyhow::anyhow!("Levenberg-Marquardt: ftol must be > 0"));
+        }
+        self.ftol = ftol;
+        Ok(self)
+    }
+
+    /// Why it stopped, when it converged (`None` when it ran out of iterations).
+    pub fn converged(&self) -> Option<Converged> {
+        self.converged
+    }
+
+    fn project(&self, x: &mut DVector<f64>) {
+        for ((v, l), u) in x.iter_mut().zip(self.lower.iter()).zip(self.upper.iter()) {
+            *v = v.clamp(*l, *u);
+        }
+    }
+
+    fn stop(&mut self, state: LmState, why: Converged) -> LmState {
+        self.converged = Some(why);
+        state.terminate_with(TerminationReason::SolverExit(why.text().to_owned()))
+    }
+}
+
+fn norm2(r: &DVector<f64>) -> f64 {
+    r.norm_squared()
+}
+
+impl<O> Solver<O, LmState> for LevenbergMarquardt
+where
+    O: Operator<Param = DVector<f64>, Output = DVector<f64>>
+        + Jacobian<Param = DVector<f64>, Jacobian = DMatrix<f64>>,
+{
+    fn name(&self) -> &str {
+        "Levenberg-Marquardt (bounded)"
+    }
+
+    fn init(
+        &mut self,
+        problem: &mut Problem<O>,
+        mut state: LmState,
+    ) -> Result<(LmState, Option<KV>), ArgminError> {
+        let mut theta = state
+            .take_param()
+            .ok_or_else(|| anyhow::anyhow!("Levenberg-Marquardt needs a starting point"))?;
+        if theta.len() != self.lower.len() {
+            return Err(anyhow::anyhow!(
+                "Levenberg-Marquardt: {} parameters but {} bounds",
+                theta.len(),
+                self.lower.len()
+            ));
+        }
+        self.project(&mut theta);
+        let r = problem.apply(&theta)?;
+        let j = problem.jacobian(&theta)?;
+        // With Marquardt's diagonal scaling the damping is dimensionless.
+        self.lambda = self.tau;
+        self.nu = 2.0;
+        self.converged = None;
+        let cost = norm2(&r);
+        Ok((state.param(theta).residuals(r).jacobian(j).cost(cost), None))
+    }
+
+    fn next_iter(
+        &mut self,
+        problem: &mut Problem<O>,
+        mut state: LmState,
+    ) -> Result<(LmState, Option<KV>), ArgminError> {
+        let theta = state.take_param().expect("set in init");
+        let r = state.take_residuals().expect("set in init");
+        let j = state.take_jacobian().expect("set in init");
+        let cost = state.get_cost();
+        let n = theta.len();
+
+        let a = j.tr_mul(&j);
+        let g = j.tr_mul(&r);
+        let r_norm = cost.sqrt();
+        let cosine = (0..n)
+            .map(|k| {
+                let cn = a[(k, k)].sqrt();
+                if cn > 0.0 && r_norm > 0.0 {
+                    g[k].abs() / (cn * r_norm)
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0, f64::max);
+        let keep = |state: LmState, theta, r, j, cost| {
+            state.param(theta).residuals(r).jacobian(j).cost(cost)
+        };
+        if cosine <= self.gtol || cost == 0.0 {
+            let state = keep(state, theta, r, j, cost);
+            return Ok((self.stop(state, Converged::Gradient), None));
+        }
+
+        // Marquardt scaling; a column with no sensitivity gets a unit scale so the step
+        // along it stays zero instead of the system becoming singular.
+        let diag_max = (0..n).map(|k| a[(k, k)]).fold(0.0, f64::max);
+        let scale: Vec<f64> = (0..n)
+            .map(|k| a[(k, k)].max(1e-12 * diag_max).max(f64::MIN_POSITIVE))
+            .collect();
+        let mut damped = a.clone();
+        for (k, s) in scale.iter().enumerate() {
+            damped[(k, k)] += self.lambda * s;
+        }
+        let step_ok = damped.cholesky().map(|ch| ch.solve(&(-&g)));
+        let mut accepted = false;
+        let mut new_state = None;
+        if let Some(delta) = step_ok {
+            let mut trial = &theta + &delta;
+            self.project(&mut trial);
+            let step = &trial - &theta;
+            let step_rel = step
+                .iter()
+                .zip(self.lower.iter().zip(self.upper.iter()))
+                .map(|(s, (l, u))| s.abs() / (u - l))
+                .fold(0.0, f64::max);
+            if step_rel <= self.xtol {
+                let state = keep(state, theta, r, j, cost);
+                return Ok((self.stop(state, Converged::Step), None));
+            }
+            let predicted_r = &r + &j * &step;
+            let predicted = cost - norm2(&predicted_r);
+            // A trial point where the model cannot be evaluated is a rejected step.
+            if let Ok(r_trial) = problem.apply(&trial) {
+                let cost_trial = norm2(&r_trial);
+                let actual = cost - cost_trial;
+                if cost_trial.is_finite() && actual > 0.0 && predicted > 0.0 {
+                    let rho = actual / predicted;
+                    let j_trial = problem.jacobian(&trial)?;
+                    self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
+                    self.nu = 2.0;
+                    accepted = true;
+                    let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
+                    new_state = Some((trial, r_trial, j_trial, cost_trial, small));
+                }
+            }
+        }
+        let kv = argmin::kv!("lambda" => self.lambda; "accepted" => accepted;);
+        match new_state {
+            Some((trial, r_trial, j_trial, cost_trial, small)) => {
+                let state = keep(state, trial, r_trial, j_trial, cost_trial);
+                if small {
+                    Ok((self.stop(state, Converged::CostChange), Some(kv)))
+                } else {
+                    Ok((state, Some(kv)))
+                }
+            }
+            None => {
+                self.lambda *= self.nu;
+                self.nu *= 2.0;
+                let state = keep(state, theta, r, j, cost);
+                if self.lambda > 1e16 {
+                    Ok((self.stop(state, Converged::NoDescent), Some(kv)))
+                } else {
+                    Ok((state, Some(kv)))
+                }
+            }
+        }
+    }
+
+    fn terminate(&mut self, _state: &LmState) -> TerminationStatus {
+        TerminationStatus::NotTerminated
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+    use argmin::core::Executor;
+
+    /// `y = a·exp(−b·t)` sampled without noise: a nonlinear least-squares test problem.
+    struct Decay {
+        t: Vec<f64>,
+        y: Vec<f64>,
+    }
+
+    impl Operator for Decay {
+        type Param = DVector<f64>;
+        type Output = DVector<f64>;
+        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+            Ok(DVector::from_iterator(
+                self.t.len(),
+                self.t
+                    .iter()
+                    .zip(&self.y)
+                    .map(|(t, y)| p[0] * (-p[1] * t).exp() - y),
+            ))
+        }
+    }
+
+    impl Jacobian for Decay {
+        type Param = DVector<f64>;
+        type Jacobian = DMatrix<f64>;
+        fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+            Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
+                let e = (-p[1] * self.t[i]).exp();
+                if k == 0 {
+                    e
+                } else {
+                    -p[0] * self.t[i] * e
+                }
+            }))
+        }
+    }
+
+    fn decay() -> Decay {
+        let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
+        let y = t.iter().map(|t| 3.0 * (-0.7 * t).exp()).collect();
+        Decay { t, y }
+    }
+
+    #[test]
+    fn solves_a_nonlinear_problem_through_the_executor() {
+        let solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap();
+        let res = Executor::new(decay(), solver)
+            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
+            .run()
+            .unwrap();
+        let p = res.state().get_best_param().unwrap();
+        assert_relative_eq!(p[0], 3.0, epsilon = 1e-7);
+        assert_relative_eq!(p[1], 0.7, epsilon = 1e-7);
+        assert!(res.solver().converged().is_some());
+    }
+
+    #[test]
+    fn respects_bounds_and_reports_max_iters() {
+        // The optimum b = 0.7 lies outside [0, 0.5]: the solution sits on the bound.
+        let solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 0.5]),
+        )
+        .unwrap();
+        let res = Executor::new(decay(), solver)
+            .configure(|s| s.param(DVector::from_vec(vec![1.0, 0.1])).max_iters(200))
+            .run()
+            .unwrap();
+        let p = res.state().get_best_param().unwrap();
+        assert!(p[1] <= 0.5 && p[1] > 0.49, "{p}");
+        // One iteration is not enough: no convergence claimed.
+        let solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap();
+        let res = Executor::new(decay(), solver)
+            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(1))
+            .run()
+            .unwrap();
+        assert!(res.solver().converged().is_none());
+        assert!(LevenbergMarquardt::new(
+            DVector::from_vec(vec![1.0]),
+            DVector::from_vec(vec![0.0])
+        )
+        .is_err());
+    }
+}

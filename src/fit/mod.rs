@@ -1,0 +1,108 @@
+//! Fitting effect parameters to measured launch conditions.
+//!
+//! The flow: shots with measurements → [`FitData`]; the effects to free → [`ParamLayout`];
+//! both with a club → [`FitProblem`], an argmin problem (residual [`argmin::core::Operator`]
+//! and finite-difference [`argmin::core::Jacobian`]); handed with the bounded
+//! [`LevenbergMarquardt`] solver to an argmin `Executor` ([`run_lm`]); the solution's
+//! Jacobian → [`covariance`]; everything → a [`Calibration`] report (plain data: the CLI prints
+//! it, `report` formats it).
+//!
+//! Statistics, with `r` the whitened residuals (`(model − measured)/σ_c`, `σ_c` the noise
+//! scale of launch component `c`, estimated from the data as the normal-consistent MAD of the
+//! residuals and re-estimated after a first fit), `N` residual rows and `p` parameters:
+//! `χ² = Σ r²`, reduced `χ²/(N − p)`, `AIC = χ² + 2p`, `BIC = χ² + p·ln N` (the Gaussian
+//! log-likelihood up to a constant), standard errors `√diag((JᵀJ)⁻¹·χ²/(N − p))` from the
+//! undamped Jacobian at the solution.
+
+pub mod calibrate;
+pub mod covariance;
+pub mod lm;
+pub mod problem;
+pub mod run;
+pub mod spec;
+
+pub use calibrate::{
+    calibrate, noise_scales, CalibrateOptions, Calibration, CorrelatedPair, Method,
+    PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
+};
+pub use covariance::{covariance, Covariance, Identifiability};
+pub use lm::{Converged, LevenbergMarquardt, LmState};
+pub use problem::{EvalError, FitData, FitProblem, Weighting, FD_STEP_OF_RANGE};
+pub use run::{run_lm, FitRun, IterInfo, Progress};
+pub use spec::{parse_effect_list, parse_request, EffectRequest, FreeEffect, ParamLayout};
+
+use crate::effects::EffectError;
+use crate::physics::LaunchComponent;
+
+/// Why a fit cannot be done or did not succeed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FitError {
+    /// The shots have no measured launch columns.
+    #[error(
+        "the shots have no measured launch columns ({}); fitting compares the model with \
+         measurements, so the shots file needs them",
+        LaunchComponent::ALL.map(|c| c.column()).join(", ")
+    )]
+    NoMeasurements,
+    /// An effect name is not in the library.
+    #[error(transparent)]
+    Effect(#[from] EffectError),
+    /// The effect list is malformed.
+    #[error("effect list: {0}")]
+    BadEffectList(String),
+    /// `name@group` with a single group of shots.
+    #[error(
+        "'{effect}@group' fits one value per group, but the shots have only one group ('{}'); \
+         use the global form '{effect}'",
+        groups.join("', '")
+    )]
+    PerGroupNeedsGroups {
+        /// Effect name.
+        effect: &'static str,
+        /// The groups present.
+        groups: Vec<String>,
+    },
+    /// `name@A` with no shot in group `A`.
+    #[error(
+        "'{effect}@{group}': no shot is in group '{group}' (groups present: {})",
+        groups.join(", ")
+    )]
+    UnknownGroup {
+        /// Effect name.
+        effect: &'static str,
+        /// The group asked for.
+        group: String,
+        /// The groups present.
+        groups: Vec<String>,
+    },
+    /// Not enough shots for the parameters.
+    #[error(
+        "{shots} shot(s) cannot determine {params} parameter(s): a fit needs more shots than \
+         parameters"
+    )]
+    TooFewShots {
+        /// Shots given.
+        shots: usize,
+        /// Parameters asked for.
+        params: usize,
+    },
+    /// The model cannot be evaluated at the starting values.
+    #[error("cannot evaluate the model at the starting values: {0}")]
+    Start(#[from] EvalError),
+    /// The solver ran out of iterations.
+    #[error(
+        "the fit did not converge within {iterations} iteration(s) (chi2 = {chi2:.6}, stage \
+         '{stage}'); raise --max-iters, fit fewer effects, or check the data"
+    )]
+    NotConverged {
+        /// Iterations done in the failing stage.
+        iterations: u64,
+        /// χ² reached.
+        chi2: f64,
+        /// Which stage of the procedure.
+        stage: String,
+    },
+    /// The solver itself failed.
+    #[error("solver: {0}")]
+    Solver(String),
+}

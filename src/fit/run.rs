@@ -1,0 +1,140 @@
+//! Solver glue: hand a [`FitProblem`] and the [`LevenbergMarquardt`] solver to an argmin
+//! `Executor`, report each iteration to an optional [`Progress`] sink, and collect the result.
+
+use std::sync::Arc;
+
+use argmin::core::observers::{Observe, ObserverMode};
+use argmin::core::{Error as ArgminError, Executor, State, KV};
+use nalgebra::{DMatrix, DVector};
+
+use super::lm::{LevenbergMarquardt, LmState};
+use super::problem::{EvalError, FitProblem};
+use super::FitError;
+
+/// One iteration, as reported to a [`Progress`] sink.
+#[derive(Debug, Clone, Copy)]
+pub struct IterInfo<'a> {
+    /// Stage of the procedure (`fit 1/2`, `paper W=inf round 1`, …).
+    pub stage: &'a str,
+    /// Iteration within the stage (from 1).
+    pub iter: u64,
+    /// χ² (or the paper's cost) after the iteration.
+    pub cost: f64,
+    /// Levenberg–Marquardt damping after the iteration.
+    pub lambda: f64,
+    /// Residual evaluations so far in the stage (Jacobian columns count two each).
+    pub evaluations: u64,
+}
+
+/// Receives one call per solver iteration (the CLI draws a progress line; the library prints
+/// nothing).
+pub trait Progress: Send + Sync {
+    /// Called after each iteration.
+    fn iteration(&self, info: &IterInfo<'_>);
+}
+
+/// Result of one solver run.
+#[derive(Debug, Clone)]
+pub struct FitRun {
+    /// Full parameter vector `θ` at the end (file units).
+    pub theta: DVector<f64>,
+    /// χ² (sum of squared residuals) at `θ`.
+    pub cost: f64,
+    /// Residuals at `θ`.
+    pub residuals: DVector<f64>,
+    /// Jacobian of the residuals in the active parameters at `θ`.
+    pub jacobian: DMatrix<f64>,
+    /// Iterations done.
+    pub iterations: u64,
+    /// Residual evaluations (each Jacobian counts `2 × active parameters`).
+    pub evaluations: u64,
+    /// Why it stopped.
+    pub termination: String,
+    /// Did it converge (rather than run out of iterations)?
+    pub converged: bool,
+}
+
+fn evaluations(state: &LmState, n_active: usize) -> u64 {
+    let counts = state.get_func_counts();
+    let ops = counts.get("operator_count").copied().unwrap_or(0);
+    let jacs = counts.get("jacobian_count").copied().unwrap_or(0);
+    ops + jacs * 2 * n_active as u64
+}
+
+struct Observer {
+    sink: Arc<dyn Progress>,
+    stage: String,
+    n_active: usize,
+}
+
+impl Observe<LmState> for Observer {
+    fn observe_iter(&mut self, state: &LmState, kv: &KV) -> Result<(), ArgminError> {
+        let lambda = kv
+            .get("lambda")
+            .and_then(|v| v.get_float())
+            .unwrap_or(f64::NAN);
+        self.sink.iteration(&IterInfo {
+            stage: &self.stage,
+            iter: state.get_iter() + 1,
+            cost: state.get_cost(),
+            lambda,
+            evaluations: evaluations(state, self.n_active),
+        });
+        Ok(())
+    }
+}
+
+fn map_err(e: ArgminError) -> FitError {
+    match e.downcast::<EvalError>() {
+        Ok(eval) => FitError::Start(eval),
+        Err(other) => FitError::Solver(other.to_string()),
+    }
+}
+
+/// Run Levenberg–Marquardt on `problem` from the full parameter vector `start` (only the
+/// problem's active entries move), for at most `max_iters` iterations.
+pub fn run_lm(
+    problem: FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+    progress: Option<(&Arc<dyn Progress>, &str)>,
+) -> Result<FitRun, FitError> {
+    let n_active = problem.active().len();
+    let solver = LevenbergMarquardt::new(problem.active_lower(), problem.active_upper())
+        .map_err(|e| FitError::Solver(e.to_string()))?;
+    let init = problem.active_part(start);
+    let template = problem.clone();
+    let mut exec = Executor::new(problem, solver)
+        .configure(|s: LmState| s.param(init).max_iters(max_iters).counting(true));
+    if let Some((sink, stage)) = progress {
+        exec = exec.add_observer(
+            Observer {
+                sink: Arc::clone(sink),
+                stage: stage.to_owned(),
+                n_active,
+            },
+            ObserverMode::Always,
+        );
+    }
+    let mut result = exec.run().map_err(map_err)?;
+    let converged = result.solver().converged().is_some();
+    let state = result.state();
+    let iterations = state.get_iter();
+    let evals = evaluations(state, n_active);
+    let termination = state.get_termination_status().to_string();
+    let state = &mut result.state;
+    let cost = state.get_cost();
+    let active = state.take_param().expect("solver keeps its point");
+    let residuals = state.take_residuals().expect("solver keeps residuals");
+    let jacobian = state.take_jacobian().expect("solver keeps the Jacobian");
+    Ok(FitRun {
+        theta: template.full_theta(active.as_slice()),
+        cost,
+        residuals,
+        jacobian,
+        iterations,
+        evaluations: evals,
+        termination,
+        converged,
+    })
+}
