@@ -63,6 +63,10 @@ pub struct CalibrateArgs {
     /// Iteration limit of each solver run.
     #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Solver")]
     pub max_iters: u64,
+
+    /// Measurement noise of the inputs.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
 }
 
 /// Run `smash calibrate`.
@@ -80,6 +84,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         },
         max_iters: args.max_iters,
         parallel: true,
+        impact_noise: args.measurement.impact_noise_mm,
     };
     let line = Arc::new(IterationLine::new());
     let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));

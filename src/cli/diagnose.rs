@@ -71,6 +71,10 @@ pub struct DiagnoseArgs {
         help_heading = "Selection"
     )]
     pub max_iters: u64,
+
+    /// Measurement noise of the inputs.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
 }
 
 struct Bar(ProgressBar);
@@ -106,6 +110,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         max_steps: args.max_steps,
         max_iters: args.max_iters,
         candidates,
+        impact_noise: args.measurement.impact_noise_mm,
     };
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));

@@ -84,3 +84,27 @@ mod tests {
         Cli::command().debug_assert();
     }
 }
+
+/// Measurement-noise options shared by the commands that compare the model with measurements.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MeasurementArgs {
+    /// 1σ noise of the measured impact location, mm, vertical then heel–toe (e.g. `3,2.5`).
+    /// The model is then averaged over where the ball was most likely struck (regression
+    /// calibration), so location noise is not mistaken for physics.
+    #[arg(long, value_name = "SY,SZ", value_parser = parse_impact_noise, help_heading = "Measurement noise")]
+    pub impact_noise_mm: Option<crate::measurement::ImpactNoise>,
+}
+
+fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [y, z] = parts.as_slice() else {
+        return Err(format!(
+            "expected two numbers 'SY,SZ' in mm (e.g. 3,2.5), got '{s}'"
+        ));
+    };
+    let num = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| format!("'{t}' is not a number (mm)"))
+    };
+    crate::measurement::ImpactNoise::from_mm(num(y)?, num(z)?).map_err(|e| e.to_string())
+}

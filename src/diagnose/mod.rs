@@ -51,6 +51,8 @@ pub struct DiagnoseOptions {
     pub max_iters: u64,
     /// Candidates; `None`: every library effect plus `added_mass@group` when there are groups.
     pub candidates: Option<Vec<EffectRequest>>,
+    /// Noise of the measured impact locations, corrected by regression calibration.
+    pub impact_noise: Option<crate::measurement::ImpactNoise>,
 }
 
 impl Default for DiagnoseOptions {
@@ -60,6 +62,7 @@ impl Default for DiagnoseOptions {
             max_steps: 6,
             max_iters: 100,
             candidates: None,
+            impact_noise: None,
         }
     }
 }
@@ -302,7 +305,7 @@ pub fn diagnose(
     opts: &DiagnoseOptions,
     progress: Option<&dyn DiagnoseProgress>,
 ) -> Result<Diagnosis, FitError> {
-    let data = FitData::from_shots(shots)?;
+    let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
     let n = data.len();
     let mut warnings = Vec::new();
     let (fold_of, fold_by) = {

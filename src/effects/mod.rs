@@ -136,17 +136,17 @@ const COR_SPEED: [ParamSpec; 1] = [spec(
     "k_per_m_s",
     "s/m",
     0.0,
-    -0.02,
+    0.0,
     0.02,
-    "COR drop per m/s of normal approach speed above 48.77 m/s",
+    "COR drop per m/s of normal approach speed above 48.77 m/s (a ball's COR falls with speed: k >= 0)",
 )];
 const COR_RADIAL: [ParamSpec; 1] = [spec(
     "c_per_mm2",
     "1/mm²",
     0.0,
-    -2e-3,
+    0.0,
     2e-3,
-    "COR drop per mm² of squared distance from the face centre",
+    "COR drop per mm² of squared distance from the face centre (COR peaks at the centre: c >= 0)",
 )];
 const LOFT_BIAS: [ParamSpec; 1] = [spec(
     "deg",

@@ -66,6 +66,8 @@ pub struct CalibrateOptions {
     pub max_iters: u64,
     /// Compute Jacobian columns in parallel.
     pub parallel: bool,
+    /// Noise of the measured impact locations, corrected by regression calibration.
+    pub impact_noise: Option<crate::measurement::ImpactNoise>,
 }
 
 impl Default for CalibrateOptions {
@@ -74,6 +76,7 @@ impl Default for CalibrateOptions {
             method: Method::Lm,
             max_iters: 100,
             parallel: true,
+            impact_noise: None,
         }
     }
 }
@@ -242,7 +245,7 @@ pub fn calibrate(
     opts: &CalibrateOptions,
     progress: Option<Arc<dyn Progress>>,
 ) -> Result<Calibration, FitError> {
-    let data = FitData::from_shots(shots)?;
+    let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
     let layout = ParamLayout::from_requests(requests, &data.groups)?;
     calibrate_data(club, &data, layout, opts, progress)
 }

@@ -44,6 +44,9 @@ pub enum FitError {
         LaunchComponent::ALL.map(|c| c.column()).join(", ")
     )]
     NoMeasurements,
+    /// The impact-location noise model cannot be applied.
+    #[error(transparent)]
+    Measurement(#[from] crate::measurement::MeasurementError),
     /// An effect name is not in the library.
     #[error(transparent)]
     Effect(#[from] EffectError),

@@ -25,8 +25,9 @@ use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
 use crate::data::shots::Shot;
+use crate::measurement::{ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::physics::{
-    Delivery, ImpactError, ImpactModel, LaunchComponent, ModelParams, ParamError,
+    Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError,
 };
 
 /// Relative finite-difference step: `h_j = FD_STEP_OF_RANGE · (upper_j − lower_j)`.
@@ -53,6 +54,9 @@ pub struct FitData {
     pub measured_velocity_m_s: Vec<Vector3<f64>>,
     /// Measured spin about G's `y` and `z` axes, rad/s (`ω_y = −sidespin`, `ω_z = backspin`).
     pub measured_spin_yz_rad_s: Vec<[f64; 2]>,
+    /// Posterior quadrature nodes of each shot's true impact location when the measured
+    /// locations are noisy (see [`crate::measurement`]); `None`: locations taken as measured.
+    pub impact_nodes: Option<Vec<[LocationNode; NODES_PER_SHOT]>>,
 }
 
 impl FitData {
@@ -77,6 +81,7 @@ impl FitData {
             measured: Vec::with_capacity(shots.len()),
             measured_velocity_m_s: Vec::with_capacity(shots.len()),
             measured_spin_yz_rad_s: Vec::with_capacity(shots.len()),
+            impact_nodes: None,
         };
         for s in shots {
             let m = s.measured.ok_or(FitError::NoMeasurements)?;
@@ -95,6 +100,23 @@ impl FitData {
                 .push([-m.sidespin_rad_s, m.backspin_rad_s]);
         }
         Ok(d)
+    }
+
+    /// Correct for noise in the measured impact locations (`None`: none). The prior of the true
+    /// locations comes from all these shots' measured locations.
+    pub fn with_impact_noise(mut self, noise: Option<ImpactNoise>) -> Result<Self, FitError> {
+        self.impact_nodes = match noise {
+            Some(n) => {
+                let locs: Vec<(f64, f64)> = self
+                    .deliveries
+                    .iter()
+                    .map(|d| (d.impact_y_m, d.impact_z_m))
+                    .collect();
+                Some(n.posterior_nodes(&locs)?)
+            }
+            None => None,
+        };
+        Ok(self)
     }
 
     /// Number of shots.
@@ -122,6 +144,10 @@ impl FitData {
                 .iter()
                 .map(|&i| self.measured_spin_yz_rad_s[i])
                 .collect(),
+            impact_nodes: self
+                .impact_nodes
+                .as_ref()
+                .map(|n| idx.iter().map(|&i| n[i]).collect()),
         }
     }
 
@@ -340,7 +366,7 @@ impl<'a> FitProblem<'a> {
         let models = self.models(theta)?;
         (0..self.data.len())
             .map(|i| {
-                let launch = self.solve(&models, i)?.launch();
+                let (launch, _, _) = self.predict(&models, i)?;
                 let m = &self.data.measured[i];
                 Ok(std::array::from_fn(|c| {
                     launch.get_file(LaunchComponent::ALL[c]) - m[c]
@@ -349,18 +375,48 @@ impl<'a> FitProblem<'a> {
             .collect()
     }
 
+    /// Predicted launch (SI), ball velocity and spin (G) of shot `i`: the model at the measured
+    /// delivery, or its average over the posterior of the true impact location.
     #[inline]
-    fn solve(
+    fn predict(
         &self,
         models: &[ImpactModel],
         i: usize,
-    ) -> Result<crate::physics::ImpactOutcome, EvalError> {
-        models[self.data.group_of[i]]
-            .solve(&self.data.deliveries[i])
-            .map_err(|source| EvalError::Shot {
-                shot_id: self.data.ids[i].clone(),
-                source,
-            })
+    ) -> Result<(Launch, Vector3<f64>, Vector3<f64>), EvalError> {
+        let model = &models[self.data.group_of[i]];
+        let d = &self.data.deliveries[i];
+        let fail = |source| EvalError::Shot {
+            shot_id: self.data.ids[i].clone(),
+            source,
+        };
+        let Some(nodes) = &self.data.impact_nodes else {
+            let o = model.solve(d).map_err(fail)?;
+            return Ok((o.launch(), o.ball_velocity_m_s, o.ball_spin_rad_s));
+        };
+        let mut acc = [0.0; 5];
+        let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
+        for node in &nodes[i] {
+            let at = Delivery {
+                impact_y_m: node.y_m,
+                impact_z_m: node.z_m,
+                ..*d
+            };
+            let o = model.solve(&at).map_err(fail)?;
+            let l = o.launch();
+            for (a, c) in acc.iter_mut().zip(LaunchComponent::ALL) {
+                *a += node.weight * l.get_si(c);
+            }
+            v += node.weight * o.ball_velocity_m_s;
+            w += node.weight * o.ball_spin_rad_s;
+        }
+        let launch = Launch {
+            ball_speed_m_s: acc[0],
+            launch_angle_rad: acc[1],
+            azimuth_rad: acc[2],
+            backspin_rad_s: acc[3],
+            sidespin_rad_s: acc[4],
+        };
+        Ok((launch, v, w))
     }
 
     /// Residuals at full `theta` into `out` (length [`FitProblem::rows`]).
@@ -369,23 +425,22 @@ impl<'a> FitProblem<'a> {
         let rows = self.weighting.rows_per_shot();
         debug_assert_eq!(out.len(), self.rows());
         for (i, r) in out.chunks_exact_mut(rows).enumerate() {
-            let o = self.solve(&models, i)?;
+            let (launch, ball_v, ball_w) = self.predict(&models, i)?;
             match self.weighting {
                 Weighting::Launch { inv_scale } => {
-                    let launch = o.launch();
                     let m = &self.data.measured[i];
                     for c in 0..5 {
                         r[c] = (launch.get_file(LaunchComponent::ALL[c]) - m[c]) * inv_scale[c];
                     }
                 }
                 Weighting::PaperLinear => {
-                    let d = o.ball_velocity_m_s - self.data.measured_velocity_m_s[i];
+                    let d = ball_v - self.data.measured_velocity_m_s[i];
                     r.copy_from_slice(d.as_slice());
                 }
                 Weighting::PaperAngular => {
                     let m = &self.data.measured_spin_yz_rad_s[i];
-                    r[0] = o.ball_spin_rad_s.y - m[0];
-                    r[1] = o.ball_spin_rad_s.z - m[1];
+                    r[0] = ball_w.y - m[0];
+                    r[1] = ball_w.z - m[1];
                 }
             }
         }
