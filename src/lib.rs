@@ -9,6 +9,7 @@
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
 //! - [`data`]: club TOML, shots CSV, predictions CSV; the one place that writes files.
 //! - [`predict`]: shots → model → predictions.
+//! - [`sweep`]: design-study sweeps: the vectorised face-map kernel over impact grids.
 //! - [`cli`]: the `smash` command line, a thin layer over the library.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
@@ -20,6 +21,7 @@ pub mod data;
 pub mod effects;
 pub mod physics;
 pub mod predict;
+pub mod sweep;
 pub mod units;
 
 pub use club::ClubSpec;
