@@ -185,7 +185,8 @@ fn comparison_detects_a_different_model() {
     let closed = ImpactModel::new(base.clone()).unwrap().solve(&d).unwrap();
     let same = solve_fifteen(&ImpactModel::new(base.clone()).unwrap(), &d).unwrap();
     assert!(deviation(&closed, &same) <= 1e-12);
-    let perturbations: [(&str, fn(&mut ModelParams)); 6] = [
+    type Perturbation = (&'static str, fn(&mut ModelParams));
+    let perturbations: [Perturbation; 6] = [
         ("cor", |p| p.cor += 1e-6),
         ("ball offset", |p| p.ball_offset_y_m = 0.0),
         ("tangential restitution", |p| p.tangential_restitution = 0.0),

@@ -30,9 +30,9 @@ use super::lanes::V;
 const T3P8: f64 = 2.414_213_562_373_095;
 
 /// π/4 and π/2 and their double-double tails (`hi + lo` = the constant to ~1e-32).
-const PIO4_HI: f64 = 0.785_398_163_397_448_3;
+const PIO4_HI: f64 = std::f64::consts::FRAC_PI_4;
 const PIO4_LO: f64 = 3.061_616_997_868_383e-17;
-const PIO2_HI: f64 = 1.570_796_326_794_896_6;
+const PIO2_HI: f64 = std::f64::consts::FRAC_PI_2;
 const PIO2_LO: f64 = 6.123_233_995_736_766e-17;
 const PI3O4_HI: f64 = 2.356_194_490_192_345;
 const PI3O4_LO: f64 = 9.184_850_993_605_148e-17;

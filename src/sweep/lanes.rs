@@ -6,6 +6,9 @@
 //! of SSE2 instructions otherwise. Only IEEE-754 correctly rounded operations (`+ − × ÷ √`) and
 //! bit operations are used, and never fused multiply–add, so all code paths give the same bits.
 
+// Fixed-length index loops over several arrays are the clearest form here (and vectorise).
+#![allow(clippy::needless_range_loop)]
+
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
 /// Lanes per vector (one AVX2 register of doubles).

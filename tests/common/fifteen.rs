@@ -68,7 +68,7 @@ pub fn solve_fifteen(model: &ImpactModel, d: &Delivery) -> Option<FifteenSolutio
     let w_c = d.club_omega_rad_s;
     let u1 = v_c + w_c.cross(&r_c);
     let u1n = u1.dot(&n);
-    if !(u1n > 0.0) {
+    if u1n.is_nan() || u1n <= 0.0 {
         return None;
     }
     let e = p.cor
