@@ -59,6 +59,19 @@ fn main() {
         std::hint::black_box(&out);
         best = best.min(t.elapsed().as_secs_f64());
     }
+    let mut best_par = f64::INFINITY;
+    for _ in 0..300 {
+        let t = Instant::now();
+        smash::sweep::face_map_into(&model, &d, &ys, &zs, &mut out);
+        std::hint::black_box(&out);
+        best_par = best_par.min(t.elapsed().as_secs_f64());
+    }
+    println!(
+        "face_map_into on {} rayon threads: best {:.3} ms = {:.1} M impacts/s",
+        rayon::current_num_threads(),
+        best_par * 1e3,
+        (n * n) as f64 / best_par / 1e6
+    );
     println!(
         "{:?}: best {:.3} ms per {n}x{n} grid = {:.1} M impacts/s on one thread ({:.1} ns/impact)",
         smash::sweep::simd_level(),

@@ -335,3 +335,88 @@ fn paper_driver_dense_map_deviation() {
     }
     eprintln!("max relative deviation kernel vs generic (speed, launch, azimuth, backspin, sidespin; |value| > 1e-3): {worst:?}");
 }
+
+/// The next `k`-th double after `x` (toward +∞), for positive or negative finite `x`.
+fn nudge(x: f64, k: i64) -> f64 {
+    let b = x.to_bits() as i64;
+    if x >= 0.0 {
+        f64::from_bits((b + k) as u64)
+    } else {
+        f64::from_bits((b - k) as u64)
+    }
+}
+
+/// Validity agrees exactly even at the rim of the approach region: bisect, to the last bit,
+/// the heel–toe location where the generic solve switches between "approaching" and "not
+/// approaching" (u1·n = 0), then compare the kernel on the doubles around it.
+#[test]
+fn validity_agrees_at_the_approach_boundary_to_the_last_bit() {
+    let mut checked = 0;
+    // (speed, ω_y, lie, loft, rows): spinning slow clubs, where u1·n changes fast along the
+    // row, and a club moving almost along a steep face (loft 85°, no spin), where u1·n is
+    // nearly flat in z near the rim so the sign is decided by the last bits.
+    let cases = [
+        (
+            1.0,
+            60.0,
+            0.0f64,
+            10.0f64,
+            vec![-0.02, -0.01, -0.004, 0.0, 0.006, 0.013, 0.021],
+        ),
+        (2.0, -90.0, 2.0, 10.0, vec![-0.01, 0.0, 0.013]),
+        (0.5, 25.0, -3.0, 10.0, vec![-0.01, 0.0, 0.013]),
+        (40.0, 0.0, 0.0, 85.0, vec![0.0262, 0.0264, 0.0266]),
+        (40.0, 0.0, 1.0, 84.0, vec![0.0290, 0.0295]),
+    ];
+    for (speed, omega_y, lie, loft, rows) in cases {
+        for friction in [None, Some(0.3)] {
+            let mut p = paper_params();
+            p.friction_mu = friction;
+            p.ball_offset_y_m = 0.3e-3;
+            let model = ImpactModel::new(p).unwrap();
+            let d = Delivery {
+                club_speed_m_s: speed,
+                attack_angle_rad: 0.0,
+                club_path_rad: 0.0,
+                dynamic_loft_rad: loft.to_radians(),
+                face_angle_rad: 0.0,
+                lie_tilt_rad: lie.to_radians(),
+                club_omega_rad_s: Vector3::new(0.0, omega_y, 0.0),
+                impact_y_m: 0.0,
+                impact_z_m: 0.0,
+            };
+            let ok = |y: f64, z: f64| {
+                let mut dd = d;
+                dd.impact_y_m = y;
+                dd.impact_z_m = z;
+                model.solve(&dd).is_ok()
+            };
+            let kernel = FaceMapKernel::new(&model, &d);
+            for &y in &rows {
+                let (mut lo, mut hi) = if loft > 45.0 { (0.0, 0.2) } else { (-0.2, 0.2) };
+                if ok(y, lo) == ok(y, hi) {
+                    continue;
+                }
+                for _ in 0..200 {
+                    let mid = 0.5 * (lo + hi);
+                    if mid == lo || mid == hi {
+                        break;
+                    }
+                    if ok(y, mid) == ok(y, lo) {
+                        lo = mid;
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let zs: Vec<f64> = (-400..=400).map(|k| nudge(lo, k)).collect();
+                let mut row = LaunchGrid::with_len(zs.len());
+                kernel.eval_row(y, &zs, row.all_out());
+                for (j, &z) in zs.iter().enumerate() {
+                    assert_eq!(row.valid[j], ok(y, z), "validity at ({y}, {z:e})");
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked >= 200, "only {checked} boundary points found");
+}
