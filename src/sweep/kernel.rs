@@ -14,10 +14,13 @@
 //!
 //! Every effect of the model is handled (ball offset, tangential restitution, friction slip as a
 //! blend of the two branches, `cor_speed`, `cor_radial`, loft/face bias, and whatever
-//! `ModelParams` carries: CoM offset, inertia scale, added mass). The contact geometry, `u1`
-//! and `u1·n` are computed with exactly the operations of the generic path, so a point is
-//! invalid here exactly when [`ImpactModel::solve`] fails for it. The rest is rearranged for
-//! speed and agrees with `solve` + `launch()` to ~1e-15 relative (property-tested at 1e-12).
+//! `ModelParams` carries: CoM offset, inertia scale, added mass). The torus test and `u1` use
+//! exactly the operations of the generic path, and the sign of `u1·n` is taken from a fast
+//! normal unless it is within 1e-13 of rounding, where `n` and `u1·n` are recomputed with the
+//! generic path's operations: a point is invalid here exactly when [`ImpactModel::solve`]
+//! fails for it, to the last bit (tested at the rim of the approach region). The rest is
+//! rearranged for speed and agrees with `solve` + `launch()` to ~1e-15 relative
+//! (property-tested at 1e-12; 1e-9 absolute for angles and spins near zero).
 //!
 //! # Determinism
 //!
@@ -227,6 +230,8 @@ struct Row {
     inv_rho: V,
     /// `n_y = y/r`.
     ny: V,
+    /// `s/(ρ·r)`: `n_x = X·s/(ρ·r)`, `n_z = z·s/(ρ·r)`.
+    n_scale: V,
     /// `r_c,y = y − r_C,y`, m.
     rcy: V,
     /// `ω_z·r_c,y`, m/s.
@@ -471,6 +476,7 @@ impl FaceMapKernel {
             rho2: rho * rho,
             inv_rho: 1.0 / rho,
             ny: y / r,
+            n_scale: s / (rho * r),
             rcy,
             wz_rcy: self.w_c[2] * rcy,
             wx_rcy: self.w_c[0] * rcy,
@@ -485,9 +491,11 @@ impl FaceMapKernel {
         let x2 = row.rho2 - z * z;
         let on_face = row.ok & x2.gt(zero);
         let x = x2.sqrt();
-        let nx = row.s * x / row.rho / self.roll_m;
+        // n = (s·X/ρ, y, s·z/ρ)/r with the row's s/(ρ·r) (the generic path divides twice;
+        // the difference is an ulp or two, and only matters for the sign of u1·n below).
+        let nx = x * row.n_scale;
         let ny = row.ny;
-        let nz = row.s * z / row.rho / self.roll_m;
+        let nz = z * row.n_scale;
         // r_c and u1 = v_c + ω_c × r_c, with the operations of `ImpactModel::solve`.
         let rcx = (x - self.bulge_m) - self.com_m[0];
         let rcy = row.rcy;
@@ -497,8 +505,24 @@ impl FaceMapKernel {
         let u1x = vx + (wy * rcz - row.wz_rcy);
         let u1y = vy + (wz * rcx - wx * rcz);
         let u1z = vz + (row.wx_rcy - wy * rcx);
-        let u1n = u1x * nx + u1y * ny + u1z * nz;
-        let valid = on_face & u1n.gt(zero);
+        let (u1n_x, u1n_y, u1n_z) = (u1x * nx, u1y * ny, u1z * nz);
+        let u1n = u1n_x + u1n_y + u1n_z;
+        // The club approaches the ball if u1·n > 0. The sign of the fast u1·n is certain unless
+        // it is within 1e-13 of the terms' magnitude (its error is ~1e-15 of it); there, redo
+        // n and u1·n with exactly the operations of the generic path, so that validity agrees
+        // with `ImpactModel::solve` to the last bit. (Lanes decide by their own values only.)
+        let unsure = u1n
+            .abs()
+            .le((u1n_x.abs() + u1n_y.abs() + u1n_z.abs()) * 1e-13);
+        let approaching = if unsure.any() {
+            let nx_exact = row.s * x / row.rho / self.roll_m;
+            let nz_exact = row.s * z / row.rho / self.roll_m;
+            let u1n_exact = u1x * nx_exact + u1y * ny + u1z * nz_exact;
+            unsure.select_mask(u1n_exact.gt(zero), u1n.gt(zero))
+        } else {
+            u1n.gt(zero)
+        };
+        let valid = on_face & approaching;
 
         let e = self.cor
             - self.cor_speed_k * (u1n - COR_SPEED_REFERENCE_M_S)

@@ -151,6 +151,22 @@ impl M {
         V::from_bits(r)
     }
 
+    /// Lane-wise `if self { a } else { b }` on masks.
+    #[inline(always)]
+    pub fn select_mask(self, a: M, b: M) -> M {
+        (self & a) | (!self & b)
+    }
+
+    /// Whether any lane is set.
+    #[inline(always)]
+    pub fn any(self) -> bool {
+        let mut r = 0;
+        for i in 0..W {
+            r |= self.0[i];
+        }
+        r != 0
+    }
+
     /// Lane `i` as a `bool`.
     #[inline(always)]
     pub fn get(self, i: usize) -> bool {
