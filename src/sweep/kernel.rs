@@ -41,6 +41,9 @@ use crate::physics::{Delivery, ImpactModel, LaunchComponent};
 /// Points per chunk: the unit the vector code works on.
 pub const LANES: usize = 8;
 
+/// Fewest grid rows a rayon task takes (a row of a few hundred points is only a few µs).
+const ROWS_PER_TASK: usize = 4;
+
 /// Launch outputs over a set of impact points, structure of arrays, SI units, row-major for
 /// grids. Invalid points (off the face torus, or club not approaching the ball) have
 /// `valid = false` and NaN outputs.
@@ -432,6 +435,7 @@ impl FaceMapKernel {
             out.valid.par_chunks_mut(nz),
         )
             .into_par_iter()
+            .with_min_len(ROWS_PER_TASK)
             .for_each(
                 |(
                     &y,
