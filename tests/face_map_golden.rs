@@ -13,7 +13,10 @@ use smash::sweep::{FaceMapKernel, LaunchGrid};
 use smash::units::{deg, mm, mph};
 use smash::{Delivery, ImpactModel, LaunchComponent};
 
-const FILES: [(&str, Option<(&str, &[f64])>); 11] = [
+/// A golden file and the effect (name, parameter values) it switches on.
+type GoldenFile = (&'static str, Option<(&'static str, &'static [f64])>);
+
+const FILES: [GoldenFile; 11] = [
     ("nominal", None),
     ("added_mass", Some(("added_mass", &[2.54]))),
     ("ball_offset", Some(("ball_offset", &[0.48, -0.07]))),
