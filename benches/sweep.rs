@@ -1,14 +1,16 @@
 //! A full design-study variant sweep: 5 clubhead CoM offsets × 5 inertia scales, each a
 //! 101 × 101 face map (±25 mm crown–sole, ±40 mm heel–toe) for the paper's driver, through
-//! `face_map_into` with one reused output grid.
+//! `face_map_into` with one reused output grid (rows in parallel), and for comparison the same
+//! sweep parallel over the variants with each map on one thread.
 
 use std::path::Path;
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use nalgebra::Vector3;
+use rayon::prelude::*;
 use smash::data::club_file::read_club;
 use smash::physics::ModelParams;
-use smash::sweep::{face_map_into, LaunchGrid};
+use smash::sweep::{face_map_into, FaceMapKernel, LaunchGrid};
 use smash::units::{deg, mm, mph};
 use smash::{Delivery, ImpactModel};
 
@@ -66,6 +68,25 @@ fn sweep(c: &mut Criterion) {
                 checksum += grid.ball_speed_m_s[n * n / 2];
             }
             black_box(checksum)
+        })
+    });
+    // For comparison: the same sweep parallel over the variants instead of over rows, each
+    // map on one thread (`FaceMapKernel::eval_grid`), one reused grid per variant.
+    let mut grids: Vec<LaunchGrid> = models.iter().map(|_| LaunchGrid::with_len(n * n)).collect();
+    group.bench_function("par_over_variants_eval_grid", |b| {
+        b.iter(|| {
+            models
+                .par_iter()
+                .zip(grids.par_iter_mut())
+                .map(|(m, g)| {
+                    FaceMapKernel::new(m, black_box(&d)).eval_grid(
+                        black_box(&ys),
+                        black_box(&zs),
+                        g,
+                    );
+                    g.ball_speed_m_s[n * n / 2]
+                })
+                .sum::<f64>()
         })
     });
     group.finish();
