@@ -2,7 +2,7 @@
 //!
 //! `std`'s `f64::atan2` calls libm, which no compiler vectorises, and the face-map kernel needs
 //! two of them per impact. [`atan2`] is written with selects only (no branches, no calls), so a
-//! loop over it compiles to packed AVX2/AVX-512 code, and it uses only `+ − × ÷` and bit
+//! loop over it compiles to packed SIMD code, and it uses only `+ − × ÷` and bit
 //! operations, all correctly rounded in IEEE 754: the scalar and the vector code give the
 //! same bits on every x86-64 machine.
 //!

@@ -6,9 +6,12 @@
 //! inertia, COR and ball terms, the rotation back to `G` scaled by `1/m_b` and `1/I_b`); a row
 //! of a grid (fixed height `y`) additionally fixes the torus quantities `s`, `ρ`, `n_y` and the
 //! `y`-parts of `r_c`. The per-point work is then the model of [`crate::physics::impact`]
-//! written as straight-line, branch-free arithmetic (selects instead of branches, a vectorisable
-//! [`atan2`](super::fastmath::atan2)), evaluated over structure-of-arrays chunks of
-//! [`LANES`] points that the compiler turns into packed AVX2 (or AVX-512) code.
+//! written as straight-line arithmetic (selects instead of branches, a vectorisable
+//! [`atan2`](super::fastmath::atan2); the one branch is a rarely taken exact recheck of the
+//! sign of `u1·n` near zero), evaluated over structure-of-arrays chunks of
+//! [`LANES`] points that the compiler turns into packed AVX2 code (selected at run time, with a
+//! portable fallback). An AVX-512 path would need `target_feature(enable = "avx512f")`, stable
+//! only from Rust 1.89 (the crate's MSRV is 1.85).
 //!
 //! # Same results as [`ImpactModel::solve`]
 //!
@@ -27,8 +30,10 @@
 //! A point's outputs depend only on its own `(y, z)` and the kernel: every point goes through
 //! the same sequence of IEEE-754 operations (`+ − × ÷ √`, no fused multiply–add, no libm
 //! calls), whatever its lane, its chunk, the row length, the thread that runs it, or whether
-//! the AVX2 or the portable path runs. The tail of a row is padded into a full chunk. So
-//! sharded or multi-threaded grids merge bit for bit.
+//! the AVX2 or the portable path runs (the exact `u1·n` recheck is selected per lane from the
+//! lane's own values). The tail of a row is padded into a full chunk. So sharded or
+//! multi-threaded grids merge bit for bit (property-tested: rows vs rotated point lists vs
+//! 1 and 3 threads vs the portable path).
 
 use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
