@@ -1,21 +1,62 @@
-//! Face-map kernel: launch conditions over many impact locations for one model and one swing.
+//! The face-map kernel: launch conditions over many impact points for one (model, delivery).
 //!
-//! This is the simple reference implementation: every point is one call of
-//! [`ImpactModel::solve`], rows in parallel with rayon. It is bit-deterministic per point and
-//! independent of the thread count. Points that cannot be computed (off the face torus, or the
-//! club not approaching the ball there) are marked `valid = false` with NaN values; callers turn
-//! them into empty cells.
+//! Design studies evaluate one delivery at many impact locations, for many model variants.
+//! [`FaceMapKernel::new`] precomputes everything that does not depend on the impact location
+//! (face orientation with loft/face bias, clubhead velocities in the face frame `F`, inverse
+//! inertia, COR and ball terms, the rotation back to `G` scaled by `1/m_b` and `1/I_b`); a row
+//! of a grid (fixed height `y`) additionally fixes the torus quantities `s`, `ρ`, `n_y` and the
+//! `y`-parts of `r_c`. The per-point work is then the model of [`crate::physics::impact`]
+//! written as straight-line arithmetic (selects instead of branches, a vectorisable
+//! [`atan2`](super::fastmath::atan2); the one branch is a rarely taken exact recheck of the
+//! sign of `u1·n` near zero), evaluated over structure-of-arrays chunks of
+//! [`LANES`] points that the compiler turns into packed AVX2 code (selected at run time, with a
+//! portable fallback). An AVX-512 path would need `target_feature(enable = "avx512f")`, stable
+//! only from Rust 1.89 (the crate's MSRV is 1.85).
+//!
+//! # Same results as [`ImpactModel::solve`]
+//!
+//! Every effect of the model is handled (ball offset, tangential restitution, friction slip as a
+//! blend of the two branches, `cor_speed`, `cor_radial`, loft/face bias, and whatever
+//! `ModelParams` carries: CoM offset, inertia scale, added mass). The torus test and `u1` use
+//! exactly the operations of the generic path, and the sign of `u1·n` is taken from a fast
+//! normal unless it is within 1e-13 of rounding, where `n` and `u1·n` are recomputed with the
+//! generic path's operations: a point is invalid here exactly when [`ImpactModel::solve`]
+//! fails for it, to the last bit (tested at the rim of the approach region). The rest is
+//! rearranged for speed and agrees with `solve` + `launch()` to ~1e-15 relative
+//! (property-tested at 1e-12; 1e-9 absolute for angles and spins near zero).
+//!
+//! # Determinism
+//!
+//! A point's outputs depend only on its own `(y, z)` and the kernel: every point goes through
+//! the same sequence of IEEE-754 operations (`+ − × ÷ √`, no fused multiply–add, no libm
+//! calls), whatever its lane, its chunk, the row length, the thread that runs it, or whether
+//! the AVX2 or the portable path runs (the exact `u1·n` recheck is selected per lane from the
+//! lane's own values). The tail of a row is padded into a full chunk. So sharded or
+//! multi-threaded grids merge bit for bit (property-tested: rows vs rotated point lists vs
+//! 1 and 3 threads vs the portable path).
 
+use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
+use super::fastmath::atan2_v;
+use super::lanes::{M, V, W};
+use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
 use crate::physics::{Delivery, ImpactModel, LaunchComponent};
 
-/// Launch conditions over a set of impact locations, structure of arrays, SI units, row-major.
+/// Points per chunk: the unit the vector code works on.
+pub const LANES: usize = 8;
+
+/// Fewest grid rows a rayon task takes (a row of a few hundred points is only a few µs).
+const ROWS_PER_TASK: usize = 4;
+
+/// Launch outputs over a set of impact points, structure of arrays, SI units, row-major for
+/// grids. Invalid points (off the face torus, or club not approaching the ball) have
+/// `valid = false` and NaN outputs.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct LaunchGrid {
     /// Ball speed, m/s.
     pub ball_speed_m_s: Vec<f64>,
-    /// Launch angle, rad.
+    /// Launch angle, rad (+ up).
     pub launch_angle_rad: Vec<f64>,
     /// Azimuth, rad (+ right of target).
     pub azimuth_rad: Vec<f64>,
@@ -23,11 +64,12 @@ pub struct LaunchGrid {
     pub backspin_rad_s: Vec<f64>,
     /// Sidespin, rad/s (+ slice for a right-hander).
     pub sidespin_rad_s: Vec<f64>,
-    /// Whether the point could be computed (on the face, club approaching).
+    /// Whether the impact at this point is physical (on the face, club approaching the ball).
     pub valid: Vec<bool>,
 }
 
-/// Mutable views of a contiguous run of points of a [`LaunchGrid`].
+/// Mutable output slices for one row or point set (same fields as [`LaunchGrid`], equal
+/// lengths).
 #[derive(Debug)]
 pub struct RowOut<'a> {
     /// Ball speed, m/s.
@@ -40,12 +82,37 @@ pub struct RowOut<'a> {
     pub backspin_rad_s: &'a mut [f64],
     /// Sidespin, rad/s.
     pub sidespin_rad_s: &'a mut [f64],
-    /// Validity.
+    /// Validity flags.
     pub valid: &'a mut [bool],
 }
 
+impl RowOut<'_> {
+    /// Number of points (the length of every slice).
+    pub fn len(&self) -> usize {
+        self.valid.len()
+    }
+
+    /// Whether there are no points.
+    pub fn is_empty(&self) -> bool {
+        self.valid.is_empty()
+    }
+
+    fn assert_len(&self, n: usize) {
+        for (name, len) in [
+            ("ball_speed_m_s", self.ball_speed_m_s.len()),
+            ("launch_angle_rad", self.launch_angle_rad.len()),
+            ("azimuth_rad", self.azimuth_rad.len()),
+            ("backspin_rad_s", self.backspin_rad_s.len()),
+            ("sidespin_rad_s", self.sidespin_rad_s.len()),
+            ("valid", self.valid.len()),
+        ] {
+            assert_eq!(len, n, "RowOut.{name} has {len} entries for {n} points");
+        }
+    }
+}
+
 impl LaunchGrid {
-    /// `n` points, all invalid (NaN).
+    /// A grid of `n` points, all NaN and invalid.
     pub fn with_len(n: usize) -> Self {
         Self {
             ball_speed_m_s: vec![f64::NAN; n],
@@ -62,12 +129,12 @@ impl LaunchGrid {
         self.valid.len()
     }
 
-    /// Whether there are no points.
+    /// Whether the grid has no points.
     pub fn is_empty(&self) -> bool {
         self.valid.is_empty()
     }
 
-    /// One component, SI units.
+    /// One launch component, SI units (m/s, rad, rad/s).
     pub fn component(&self, c: LaunchComponent) -> &[f64] {
         match c {
             LaunchComponent::BallSpeed => &self.ball_speed_m_s,
@@ -78,7 +145,10 @@ impl LaunchGrid {
         }
     }
 
-    /// Views of points `start .. start + len`.
+    /// Output slices for the points `start..start + len`.
+    ///
+    /// # Panics
+    /// If the range is outside the grid.
     pub fn row_out(&mut self, start: usize, len: usize) -> RowOut<'_> {
         let r = start..start + len;
         RowOut {
@@ -90,78 +160,660 @@ impl LaunchGrid {
             valid: &mut self.valid[r],
         }
     }
-}
 
-impl RowOut<'_> {
-    fn len(&self) -> usize {
-        self.valid.len()
+    /// Resize to `n` points (allocates only if the capacity is too small).
+    pub fn resize(&mut self, n: usize) {
+        self.ball_speed_m_s.resize(n, f64::NAN);
+        self.launch_angle_rad.resize(n, f64::NAN);
+        self.azimuth_rad.resize(n, f64::NAN);
+        self.backspin_rad_s.resize(n, f64::NAN);
+        self.sidespin_rad_s.resize(n, f64::NAN);
+        self.valid.resize(n, false);
     }
 
-    #[inline]
-    fn set(&mut self, i: usize, model: &ImpactModel, d: &Delivery) {
-        match model.solve(d) {
-            Ok(o) => {
-                let l = o.launch();
-                self.ball_speed_m_s[i] = l.ball_speed_m_s;
-                self.launch_angle_rad[i] = l.launch_angle_rad;
-                self.azimuth_rad[i] = l.azimuth_rad;
-                self.backspin_rad_s[i] = l.backspin_rad_s;
-                self.sidespin_rad_s[i] = l.sidespin_rad_s;
-                self.valid[i] = true;
-            }
-            Err(_) => {
-                self.ball_speed_m_s[i] = f64::NAN;
-                self.launch_angle_rad[i] = f64::NAN;
-                self.azimuth_rad[i] = f64::NAN;
-                self.backspin_rad_s[i] = f64::NAN;
-                self.sidespin_rad_s[i] = f64::NAN;
-                self.valid[i] = false;
-            }
+    /// Output slices for the whole grid.
+    pub fn all_out(&mut self) -> RowOut<'_> {
+        let n = self.len();
+        self.row_out(0, n)
+    }
+}
+
+/// Everything about one (model, delivery) pair that does not depend on the impact location,
+/// precomputed once. Cheap to copy; `Send + Sync`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FaceMapKernel {
+    /// Roll (torus tube radius `r`), m.
+    roll_m: f64,
+    /// Torus major radius `R = B − Rr`, m.
+    major_m: f64,
+    /// Bulge `B`, m.
+    bulge_m: f64,
+    /// Clubhead CoM in F, m.
+    com_m: [f64; 3],
+    /// Clubhead CoM velocity in F, m/s.
+    v_c: [f64; 3],
+    /// Clubhead angular velocity in F, rad/s.
+    w_c: [f64; 3],
+    /// Symmetrised inverse clubhead inertia in F: xx, xy, xz, yy, yz, zz; 1/(kg·m²).
+    j_inv: [f64; 6],
+    /// `1/m_c + 1/m_b`, 1/kg.
+    inv_mass_sum: f64,
+    /// `−ball radius`, m.
+    neg_ball_radius_m: f64,
+    /// Ball offset along `y_I`, `z_I`, m.
+    ball_offset_m: [f64; 2],
+    /// `1/I_b`, 1/(kg·m²).
+    inv_ball_inertia: f64,
+    /// Normal COR at the reference speed and the face centre.
+    cor: f64,
+    /// `cor_speed` slope, s/m.
+    cor_speed_k: f64,
+    /// `cor_radial` falloff, 1/m².
+    cor_radial_c: f64,
+    /// Tangential restitution `e_t`.
+    e_t: f64,
+    /// Friction coefficient, if friction is on.
+    mu: Option<f64>,
+    /// `R_GF / m_b`: ball impulse in F → ball velocity in G.
+    r_v: [[f64; 3]; 3],
+    /// Rows y and z of `R_GF / I_b`: `r_b × P` in F → ball spin components y, z in G.
+    r_w: [[f64; 3]; 2],
+}
+
+/// Quantities fixed along a row (one impact height `y`), per lane (all lanes equal for a row
+/// of a grid; one height per lane for arbitrary points).
+#[derive(Debug, Clone, Copy)]
+struct Row {
+    /// The height is on the torus (`s² > 0`, `ρ > 0`).
+    ok: M,
+    /// `y²`, m².
+    yy: V,
+    /// `s = sqrt(r² − y²)`, m.
+    s: V,
+    /// `ρ = R + s`, m.
+    rho: V,
+    /// `ρ²`, m².
+    rho2: V,
+    /// `1/ρ`, 1/m.
+    inv_rho: V,
+    /// `n_y = y/r`.
+    ny: V,
+    /// `s/(ρ·r)`: `n_x = X·s/(ρ·r)`, `n_z = z·s/(ρ·r)`.
+    n_scale: V,
+    /// `r_c,y = y − r_C,y`, m.
+    rcy: V,
+    /// `ω_z·r_c,y`, m/s.
+    wz_rcy: V,
+    /// `ω_x·r_c,y`, m/s.
+    wx_rcy: V,
+}
+
+/// One vector of points' outputs.
+#[derive(Debug, Clone, Copy)]
+struct Out {
+    speed: V,
+    launch: V,
+    azimuth: V,
+    backspin: V,
+    sidespin: V,
+    valid: M,
+}
+
+/// Fixed-size output chunk.
+struct Chunk<'a> {
+    speed: &'a mut [f64; LANES],
+    launch: &'a mut [f64; LANES],
+    azimuth: &'a mut [f64; LANES],
+    backspin: &'a mut [f64; LANES],
+    sidespin: &'a mut [f64; LANES],
+    valid: &'a mut [bool; LANES],
+}
+
+impl Chunk<'_> {
+    /// Store vector `k` of the chunk.
+    #[inline(always)]
+    fn store(&mut self, k: usize, o: &Out) {
+        let r = k * W..(k + 1) * W;
+        self.speed[r.clone()].copy_from_slice(&o.speed.0);
+        self.launch[r.clone()].copy_from_slice(&o.launch.0);
+        self.azimuth[r.clone()].copy_from_slice(&o.azimuth.0);
+        self.backspin[r.clone()].copy_from_slice(&o.backspin.0);
+        self.sidespin[r.clone()].copy_from_slice(&o.sidespin.0);
+        for (i, v) in self.valid[r].iter_mut().enumerate() {
+            *v = o.valid.get(i);
         }
     }
-}
-
-/// One model and one swing, ready to evaluate many impact locations.
-#[derive(Debug, Clone)]
-pub struct FaceMapKernel {
-    model: ImpactModel,
-    delivery: Delivery,
 }
 
 impl FaceMapKernel {
-    /// Kernel for `model` and the swing of `delivery` (its impact location is ignored).
+    /// Precompute the location-independent part of the impact of `delivery` on `model`.
+    /// `delivery`'s impact location is ignored.
     pub fn new(model: &ImpactModel, delivery: &Delivery) -> Self {
+        let p = model.params();
+        // Exactly the operations of `ImpactModel::solve`, so u1·n has the same bits.
+        let r_gf = model.face_orientation(delivery);
+        let r_fg = r_gf.transpose();
+        let v_c = r_fg * delivery.club_velocity_m_s();
+        let w_c = r_fg * delivery.club_omega_rad_s;
+        let j = model.club_inv_inertia();
+        let sym = |a: usize, b: usize| 0.5 * (j[(a, b)] + j[(b, a)]);
+        let inv_mb = 1.0 / p.ball_mass_kg;
+        let inv_ib = 1.0 / p.ball_inertia_kgm2;
+        let r_v: Matrix3<f64> = r_gf * inv_mb;
+        let r_w: Matrix3<f64> = r_gf * inv_ib;
+        let face = model.face();
+        let arr = |v: Vector3<f64>| [v.x, v.y, v.z];
         Self {
-            model: model.clone(),
-            delivery: *delivery,
+            roll_m: face.roll_m(),
+            major_m: face.bulge_m() - face.roll_m(),
+            bulge_m: face.bulge_m(),
+            com_m: arr(p.club_com_m),
+            v_c: arr(v_c),
+            w_c: arr(w_c),
+            j_inv: [
+                j[(0, 0)],
+                sym(0, 1),
+                sym(0, 2),
+                j[(1, 1)],
+                sym(1, 2),
+                j[(2, 2)],
+            ],
+            inv_mass_sum: 1.0 / p.club_mass_kg + 1.0 / p.ball_mass_kg,
+            neg_ball_radius_m: -p.ball_radius_m,
+            ball_offset_m: [p.ball_offset_y_m, p.ball_offset_z_m],
+            inv_ball_inertia: inv_ib,
+            cor: p.cor,
+            cor_speed_k: p.cor_speed_k_s_per_m,
+            cor_radial_c: p.cor_radial_c_per_m2,
+            e_t: p.tangential_restitution,
+            mu: p.friction_mu,
+            r_v: [
+                [r_v[(0, 0)], r_v[(0, 1)], r_v[(0, 2)]],
+                [r_v[(1, 0)], r_v[(1, 1)], r_v[(1, 2)]],
+                [r_v[(2, 0)], r_v[(2, 1)], r_v[(2, 2)]],
+            ],
+            r_w: [
+                [r_w[(1, 0)], r_w[(1, 1)], r_w[(1, 2)]],
+                [r_w[(2, 0)], r_w[(2, 1)], r_w[(2, 2)]],
+            ],
         }
     }
 
-    /// Points `(y_m, zs_m[j])` into `out` (`out` has `zs_m.len()` points).
-    pub fn eval_row(&self, y_m: f64, zs_m: &[f64], mut out: RowOut<'_>) {
-        assert_eq!(out.len(), zs_m.len(), "eval_row: output length");
-        let mut d = self.delivery;
-        d.impact_y_m = y_m;
-        for (j, &z) in zs_m.iter().enumerate() {
-            d.impact_z_m = z;
-            out.set(j, &self.model, &d);
+    /// Evaluate one row: the points `(y_m, zs_m[j])` into `out` (each slice of `zs_m.len()`).
+    ///
+    /// # Panics
+    /// If an output slice has another length than `zs_m`.
+    pub fn eval_row(&self, y_m: f64, zs_m: &[f64], out: RowOut<'_>) {
+        self.eval_row_on(simd_level(), y_m, zs_m, out)
+    }
+
+    /// [`FaceMapKernel::eval_row`] on a given code path (to check that all paths give the same
+    /// bits). A path this machine does not support falls back to [`SimdLevel::Portable`].
+    ///
+    /// # Panics
+    /// If an output slice has another length than `zs_m`.
+    pub fn eval_row_on(&self, level: SimdLevel, y_m: f64, zs_m: &[f64], out: RowOut<'_>) {
+        out.assert_len(zs_m.len());
+        let row = self.row(V::splat(y_m));
+        let level = if level == SimdLevel::Avx2 {
+            simd_level()
+        } else {
+            level
+        };
+        match (self.mu.is_some(), level) {
+            #[cfg(target_arch = "x86_64")]
+            (false, SimdLevel::Avx2) => unsafe { self.row_avx2::<false>(&row, zs_m, out) },
+            #[cfg(target_arch = "x86_64")]
+            (true, SimdLevel::Avx2) => unsafe { self.row_avx2::<true>(&row, zs_m, out) },
+            (false, _) => self.row_impl::<false>(&row, zs_m, out),
+            (true, _) => self.row_impl::<true>(&row, zs_m, out),
         }
     }
 
-    /// Points `(ys_m[i], zs_m[i])` into `out`.
-    pub fn eval_points(&self, ys_m: &[f64], zs_m: &[f64], mut out: RowOut<'_>) {
-        assert_eq!(ys_m.len(), zs_m.len(), "eval_points: ys and zs lengths");
-        assert_eq!(out.len(), zs_m.len(), "eval_points: output length");
-        let mut d = self.delivery;
-        for (i, (&y, &z)) in ys_m.iter().zip(zs_m).enumerate() {
-            d.impact_y_m = y;
-            d.impact_z_m = z;
-            out.set(i, &self.model, &d);
+    /// Evaluate arbitrary points `(ys_m[i], zs_m[i])` into `out`.
+    ///
+    /// # Panics
+    /// If `ys_m` and `zs_m` differ in length, or an output slice has another length.
+    pub fn eval_points(&self, ys_m: &[f64], zs_m: &[f64], out: RowOut<'_>) {
+        self.eval_points_on(simd_level(), ys_m, zs_m, out)
+    }
+
+    /// [`FaceMapKernel::eval_points`] on a given code path (see
+    /// [`FaceMapKernel::eval_row_on`]).
+    ///
+    /// # Panics
+    /// As [`FaceMapKernel::eval_points`].
+    pub fn eval_points_on(&self, level: SimdLevel, ys_m: &[f64], zs_m: &[f64], out: RowOut<'_>) {
+        assert_eq!(
+            ys_m.len(),
+            zs_m.len(),
+            "eval_points: {} heights for {} heel-toe locations",
+            ys_m.len(),
+            zs_m.len()
+        );
+        out.assert_len(zs_m.len());
+        let level = if level == SimdLevel::Avx2 {
+            simd_level()
+        } else {
+            level
+        };
+        match (self.mu.is_some(), level) {
+            #[cfg(target_arch = "x86_64")]
+            (false, SimdLevel::Avx2) => unsafe { self.points_avx2::<false>(ys_m, zs_m, out) },
+            #[cfg(target_arch = "x86_64")]
+            (true, SimdLevel::Avx2) => unsafe { self.points_avx2::<true>(ys_m, zs_m, out) },
+            (false, _) => self.points_impl::<false>(ys_m, zs_m, out),
+            (true, _) => self.points_impl::<true>(ys_m, zs_m, out),
         }
+    }
+
+    /// Evaluate the grid `ys_m × zs_m` (row-major) on the calling thread.
+    ///
+    /// # Panics
+    /// If `out` does not have `ys_m.len() · zs_m.len()` points.
+    pub fn eval_grid(&self, ys_m: &[f64], zs_m: &[f64], out: &mut LaunchGrid) {
+        let nz = zs_m.len();
+        assert_eq!(out.len(), ys_m.len() * nz, "grid size");
+        for (i, &y) in ys_m.iter().enumerate() {
+            self.eval_row(y, zs_m, out.row_out(i * nz, nz));
+        }
+    }
+
+    /// Evaluate the grid `ys_m × zs_m` (row-major), rows in parallel on the rayon pool.
+    /// Bit-identical to [`FaceMapKernel::eval_grid`] for any number of threads.
+    ///
+    /// # Panics
+    /// If `out` does not have `ys_m.len() · zs_m.len()` points.
+    pub fn par_eval_grid(&self, ys_m: &[f64], zs_m: &[f64], out: &mut LaunchGrid) {
+        let nz = zs_m.len();
+        assert_eq!(out.len(), ys_m.len() * nz, "grid size");
+        if nz == 0 || ys_m.is_empty() {
+            return;
+        }
+        (
+            ys_m.par_iter(),
+            out.ball_speed_m_s.par_chunks_mut(nz),
+            out.launch_angle_rad.par_chunks_mut(nz),
+            out.azimuth_rad.par_chunks_mut(nz),
+            out.backspin_rad_s.par_chunks_mut(nz),
+            out.sidespin_rad_s.par_chunks_mut(nz),
+            out.valid.par_chunks_mut(nz),
+        )
+            .into_par_iter()
+            .with_min_len(ROWS_PER_TASK)
+            .for_each(
+                |(
+                    &y,
+                    ball_speed_m_s,
+                    launch_angle_rad,
+                    azimuth_rad,
+                    backspin_rad_s,
+                    sidespin_rad_s,
+                    valid,
+                )| {
+                    self.eval_row(
+                        y,
+                        zs_m,
+                        RowOut {
+                            ball_speed_m_s,
+                            launch_angle_rad,
+                            azimuth_rad,
+                            backspin_rad_s,
+                            sidespin_rad_s,
+                            valid,
+                        },
+                    )
+                },
+            );
+    }
+
+    /// The row quantities at heights `y`.
+    #[inline(always)]
+    fn row(&self, y: V) -> Row {
+        // Same operations as `FaceGeometry::contact`.
+        let r = self.roll_m;
+        let s2 = r * r - y * y;
+        let s = s2.sqrt();
+        let rho = self.major_m + s;
+        let rcy = y - self.com_m[1];
+        let zero = V::splat(0.0);
+        Row {
+            ok: s2.gt(zero) & rho.gt(zero),
+            yy: y * y,
+            s,
+            rho,
+            rho2: rho * rho,
+            inv_rho: 1.0 / rho,
+            ny: y / r,
+            n_scale: s / (rho * r),
+            rcy,
+            wz_rcy: self.w_c[2] * rcy,
+            wx_rcy: self.w_c[0] * rcy,
+        }
+    }
+
+    /// Impacts at heel–toe locations `z` on `row`: straight-line code, no branches.
+    #[inline(always)]
+    fn point<const FRICTION: bool>(&self, row: &Row, z: V) -> Out {
+        let zero = V::splat(0.0);
+        // Contact point and normal, with the operations of `FaceGeometry::contact`.
+        let x2 = row.rho2 - z * z;
+        let on_face = row.ok & x2.gt(zero);
+        let x = x2.sqrt();
+        // n = (s·X/ρ, y, s·z/ρ)/r with the row's s/(ρ·r) (the generic path divides twice;
+        // the difference is an ulp or two, and only matters for the sign of u1·n below).
+        let nx = x * row.n_scale;
+        let ny = row.ny;
+        let nz = z * row.n_scale;
+        // r_c and u1 = v_c + ω_c × r_c, with the operations of `ImpactModel::solve`.
+        let rcx = (x - self.bulge_m) - self.com_m[0];
+        let rcy = row.rcy;
+        let rcz = z - self.com_m[2];
+        let [vx, vy, vz] = self.v_c;
+        let [wx, wy, wz] = self.w_c;
+        let u1x = vx + (wy * rcz - row.wz_rcy);
+        let u1y = vy + (wz * rcx - wx * rcz);
+        let u1z = vz + (row.wx_rcy - wy * rcx);
+        let (u1n_x, u1n_y, u1n_z) = (u1x * nx, u1y * ny, u1z * nz);
+        let u1n = u1n_x + u1n_y + u1n_z;
+        // The club approaches the ball if u1·n > 0. The sign of the fast u1·n is certain unless
+        // it is within 1e-13 of the terms' magnitude (its error is ~1e-15 of it); there, redo
+        // n and u1·n with exactly the operations of the generic path, so that validity agrees
+        // with `ImpactModel::solve` to the last bit. (Lanes decide by their own values only.)
+        let unsure = u1n
+            .abs()
+            .le((u1n_x.abs() + u1n_y.abs() + u1n_z.abs()) * 1e-13);
+        let approaching = if unsure.any() {
+            let nx_exact = row.s * x / row.rho / self.roll_m;
+            let nz_exact = row.s * z / row.rho / self.roll_m;
+            let u1n_exact = u1x * nx_exact + u1y * ny + u1z * nz_exact;
+            unsure.select_mask(u1n_exact.gt(zero), u1n.gt(zero))
+        } else {
+            u1n.gt(zero)
+        };
+        let valid = on_face & approaching;
+
+        let e = self.cor
+            - self.cor_speed_k * (u1n - COR_SPEED_REFERENCE_M_S)
+            - self.cor_radial_c * (row.yy + z * z);
+
+        // Impact frame tangents and r_b = −radius·n + dy·y_I + dz·z_I.
+        let tzx = -z * row.inv_rho;
+        let tzz = x * row.inv_rho;
+        let tyx = -(tzz * ny);
+        let tyy = tzz * nx - tzx * nz;
+        let tyz = tzx * ny;
+        let [dy, dz] = self.ball_offset_m;
+        let nr = self.neg_ball_radius_m;
+        let rbx = nr * nx + dy * tyx + dz * tzx;
+        let rby = nr * ny + dy * tyy;
+        let rbz = nr * nz + dy * tyz + dz * tzz;
+
+        // K = (1/m_c + 1/m_b)·1 + Cᵀ J C + (|r_b|²·1 − r_b r_bᵀ)/I_b, with C = [r_c]×, whose
+        // columns are c0 = (0, a2, −a1), c1 = (−a2, 0, a0), c2 = (a1, −a0, 0).
+        let (a0, a1, a2) = (rcx, rcy, rcz);
+        let [jxx, jxy, jxz, jyy, jyz, jzz] = self.j_inv;
+        let jc0y = jyy * a2 - jyz * a1;
+        let jc0z = jyz * a2 - jzz * a1;
+        let jc1x = jxz * a0 - jxx * a2;
+        let jc1y = jyz * a0 - jxy * a2;
+        let jc1z = jzz * a0 - jxz * a2;
+        let jc2x = jxx * a1 - jxy * a0;
+        let jc2y = jxy * a1 - jyy * a0;
+        let jc2z = jxz * a1 - jyz * a0;
+        let m00 = a2 * jc0y - a1 * jc0z;
+        let m01 = a2 * jc1y - a1 * jc1z;
+        let m02 = a2 * jc2y - a1 * jc2z;
+        let m11 = a0 * jc1z - a2 * jc1x;
+        let m12 = a0 * jc2z - a2 * jc2x;
+        let m22 = a1 * jc2x - a0 * jc2y;
+        let ib = self.inv_ball_inertia;
+        let rb2 = rbx * rbx + rby * rby + rbz * rbz;
+        let ims = self.inv_mass_sum;
+        let k00 = ims + m00 + (rb2 - rbx * rbx) * ib;
+        let k11 = ims + m11 + (rb2 - rby * rby) * ib;
+        let k22 = ims + m22 + (rb2 - rbz * rbz) * ib;
+        let k01 = m01 - rbx * rby * ib;
+        let k02 = m02 - rbx * rbz * ib;
+        let k12 = m12 - rby * rbz * ib;
+
+        // K P = u1 + e·u1n·n + e_t·(u1 − u1n·n).
+        let u1tx = u1x - u1n * nx;
+        let u1ty = u1y - u1n * ny;
+        let u1tz = u1z - u1n * nz;
+        let eu = e * u1n;
+        let bx = u1x + eu * nx + self.e_t * u1tx;
+        let by = u1y + eu * ny + self.e_t * u1ty;
+        let bz = u1z + eu * nz + self.e_t * u1tz;
+        // Symmetric 3×3 solve by cofactors (as `solve_spd3`).
+        let c00 = k11 * k22 - k12 * k12;
+        let c01 = k02 * k12 - k01 * k22;
+        let c02 = k01 * k12 - k02 * k11;
+        let c11 = k00 * k22 - k02 * k02;
+        let c12 = k01 * k02 - k00 * k12;
+        let c22 = k00 * k11 - k01 * k01;
+        let inv_det = 1.0 / (k00 * c00 + k01 * c01 + k02 * c02);
+        let mut px = (c00 * bx + c01 * by + c02 * bz) * inv_det;
+        let mut py = (c01 * bx + c11 * by + c12 * bz) * inv_det;
+        let mut pz = (c02 * bx + c12 * by + c22 * bz) * inv_det;
+
+        if FRICTION {
+            // Gross slip when |P_t| > mu·P_n: P = P_n·(n + mu·ŝ), ŝ = u1_t/|u1_t|,
+            // P_n = (1 + e)·u1n / (n·K·(n + mu·ŝ)). Both branches computed, then a select.
+            let mu = self.mu.unwrap_or(f64::INFINITY);
+            let pn = px * nx + py * ny + pz * nz;
+            let (ptx, pty, ptz) = (px - pn * nx, py - pn * ny, pz - pn * nz);
+            let pt = (ptx * ptx + pty * pty + ptz * ptz).sqrt();
+            let ut = (u1tx * u1tx + u1ty * u1ty + u1tz * u1tz).sqrt();
+            let slip = pt.gt(mu * pn) & ut.gt(zero);
+            let f = mu / ut;
+            let (dx, dy, dz) = (nx + f * u1tx, ny + f * u1ty, nz + f * u1tz);
+            let kdx = k00 * dx + k01 * dy + k02 * dz;
+            let kdy = k01 * dx + k11 * dy + k12 * dz;
+            let kdz = k02 * dx + k12 * dy + k22 * dz;
+            let pn_slip = (1.0 + e) * u1n / (nx * kdx + ny * kdy + nz * kdz);
+            px = slip.select(pn_slip * dx, px);
+            py = slip.select(pn_slip * dy, py);
+            pz = slip.select(pn_slip * dz, pz);
+        }
+
+        // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
+        let rv = &self.r_v;
+        let vgx = rv[0][0] * px + rv[0][1] * py + rv[0][2] * pz;
+        let vgy = rv[1][0] * px + rv[1][1] * py + rv[1][2] * pz;
+        let vgz = rv[2][0] * px + rv[2][1] * py + rv[2][2] * pz;
+        let wfx = rby * pz - rbz * py;
+        let wfy = rbz * px - rbx * pz;
+        let wfz = rbx * py - rby * px;
+        let rw = &self.r_w;
+        let wgy = rw[0][0] * wfx + rw[0][1] * wfy + rw[0][2] * wfz;
+        let wgz = rw[1][0] * wfx + rw[1][1] * wfy + rw[1][2] * wfz;
+
+        let speed = (vgx * vgx + vgy * vgy + vgz * vgz).sqrt();
+        let horizontal = (vgx * vgx + vgz * vgz).sqrt();
+        let launch = atan2_v(vgy, horizontal);
+        let azimuth = atan2_v(vgz, vgx);
+        let nan = V::splat(f64::NAN);
+        Out {
+            speed: valid.select(speed, nan),
+            launch: valid.select(launch, nan),
+            azimuth: valid.select(azimuth, nan),
+            backspin: valid.select(wgz, nan),
+            sidespin: valid.select(-wgy, nan),
+            valid,
+        }
+    }
+
+    /// One chunk of a row.
+    #[inline(always)]
+    fn row_chunk<const FRICTION: bool>(&self, row: &Row, zs: &[f64; LANES], mut out: Chunk<'_>) {
+        for k in 0..LANES / W {
+            let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
+            let o = self.point::<FRICTION>(row, z);
+            out.store(k, &o);
+        }
+    }
+
+    /// One chunk of arbitrary points.
+    #[inline(always)]
+    fn points_chunk<const FRICTION: bool>(
+        &self,
+        ys: &[f64; LANES],
+        zs: &[f64; LANES],
+        mut out: Chunk<'_>,
+    ) {
+        for k in 0..LANES / W {
+            let y = V(ys[k * W..(k + 1) * W].try_into().unwrap());
+            let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
+            let row = self.row(y);
+            let o = self.point::<FRICTION>(&row, z);
+            out.store(k, &o);
+        }
+    }
+
+    #[inline(always)]
+    fn row_impl<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
+        if !row.ok.get(0) {
+            fill_invalid(out);
+            return;
+        }
+        for_chunks(zs, zs, out, &RowChunks::<FRICTION> { k: self, row });
+    }
+
+    #[inline(always)]
+    fn points_impl<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
+        for_chunks(ys, zs, out, &PointChunks::<FRICTION> { k: self });
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn row_avx2<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
+        self.row_impl::<FRICTION>(row, zs, out)
+    }
+
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn points_avx2<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
+        self.points_impl::<FRICTION>(ys, zs, out)
     }
 }
 
-/// Launch over the grid `ys_m × zs_m` (row `i` is `ys_m[i]`), rows in parallel.
+/// What [`for_chunks`] runs on each chunk (a trait rather than a closure so that it is inlined
+/// into the `target_feature` functions and compiled with their instruction set).
+trait ChunkFn {
+    fn call(&self, a: &[f64; LANES], b: &[f64; LANES], out: Chunk<'_>);
+}
+
+/// Chunks of a row: `b` holds the heel–toe locations (`a` is unused).
+struct RowChunks<'a, const FRICTION: bool> {
+    k: &'a FaceMapKernel,
+    row: &'a Row,
+}
+
+impl<const FRICTION: bool> ChunkFn for RowChunks<'_, FRICTION> {
+    #[inline(always)]
+    fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
+        self.k.row_chunk::<FRICTION>(self.row, zs, out)
+    }
+}
+
+/// Chunks of arbitrary points: `a` holds the heights, `b` the heel–toe locations.
+struct PointChunks<'a, const FRICTION: bool> {
+    k: &'a FaceMapKernel,
+}
+
+impl<const FRICTION: bool> ChunkFn for PointChunks<'_, FRICTION> {
+    #[inline(always)]
+    fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
+        self.k.points_chunk::<FRICTION>(ys, zs, out)
+    }
+}
+
+/// Run `f` over full chunks of `(a, b)`, then over the tail padded to a full chunk (with the
+/// last point repeated), so every point goes through the same code whatever its position.
+#[inline(always)]
+fn for_chunks(a: &[f64], b: &[f64], out: RowOut<'_>, f: &impl ChunkFn) {
+    let n = b.len();
+    let full = n - n % LANES;
+    let mut i = 0;
+    while i < full {
+        let r = i..i + LANES;
+        f.call(
+            a[r.clone()].try_into().unwrap(),
+            b[r.clone()].try_into().unwrap(),
+            Chunk {
+                speed: (&mut out.ball_speed_m_s[r.clone()]).try_into().unwrap(),
+                launch: (&mut out.launch_angle_rad[r.clone()]).try_into().unwrap(),
+                azimuth: (&mut out.azimuth_rad[r.clone()]).try_into().unwrap(),
+                backspin: (&mut out.backspin_rad_s[r.clone()]).try_into().unwrap(),
+                sidespin: (&mut out.sidespin_rad_s[r.clone()]).try_into().unwrap(),
+                valid: (&mut out.valid[r]).try_into().unwrap(),
+            },
+        );
+        i += LANES;
+    }
+    if full < n {
+        let m = n - full;
+        let mut pa = [a[n - 1]; LANES];
+        let mut pb = [b[n - 1]; LANES];
+        pa[..m].copy_from_slice(&a[full..]);
+        pb[..m].copy_from_slice(&b[full..]);
+        let mut o = [[0.0; LANES]; 5];
+        let mut v = [false; LANES];
+        let [o0, o1, o2, o3, o4] = &mut o;
+        f.call(
+            &pa,
+            &pb,
+            Chunk {
+                speed: o0,
+                launch: o1,
+                azimuth: o2,
+                backspin: o3,
+                sidespin: o4,
+                valid: &mut v,
+            },
+        );
+        out.ball_speed_m_s[full..].copy_from_slice(&o[0][..m]);
+        out.launch_angle_rad[full..].copy_from_slice(&o[1][..m]);
+        out.azimuth_rad[full..].copy_from_slice(&o[2][..m]);
+        out.backspin_rad_s[full..].copy_from_slice(&o[3][..m]);
+        out.sidespin_rad_s[full..].copy_from_slice(&o[4][..m]);
+        out.valid[full..].copy_from_slice(&v[..m]);
+    }
+}
+
+fn fill_invalid(out: RowOut<'_>) {
+    out.ball_speed_m_s.fill(f64::NAN);
+    out.launch_angle_rad.fill(f64::NAN);
+    out.azimuth_rad.fill(f64::NAN);
+    out.backspin_rad_s.fill(f64::NAN);
+    out.sidespin_rad_s.fill(f64::NAN);
+    out.valid.fill(false);
+}
+
+/// Which code path the kernel runs on this machine.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SimdLevel {
+    /// Portable code (baseline x86-64 SSE2, or any other architecture).
+    Portable,
+    /// AVX2 + FMA (x86-64), detected at run time. FMA is enabled for the compiler but never
+    /// used to contract operations: results are identical to the portable path.
+    Avx2,
+}
+
+/// The code path [`FaceMapKernel`] uses on this machine (detected once, cached).
+pub fn simd_level() -> SimdLevel {
+    #[cfg(target_arch = "x86_64")]
+    {
+        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
+            return SimdLevel::Avx2;
+        }
+    }
+    SimdLevel::Portable
+}
+
+/// Face map over the grid `ys_m × zs_m` (row-major: row `i` is `ys_m[i]`), rows in parallel
+/// with rayon. Deterministic: the result does not depend on the number of threads.
 pub fn face_map(
     model: &ImpactModel,
     delivery: &Delivery,
@@ -173,7 +825,8 @@ pub fn face_map(
     out
 }
 
-/// As [`face_map`], into an existing grid of `ys_m.len() × zs_m.len()` points.
+/// Same as [`face_map`], into a caller-provided grid, for repeated sweeps. `out` is resized to
+/// `ys_m.len() · zs_m.len()` points if needed (no allocation when it already has that size).
 pub fn face_map_into(
     model: &ImpactModel,
     delivery: &Delivery,
@@ -181,85 +834,6 @@ pub fn face_map_into(
     zs_m: &[f64],
     out: &mut LaunchGrid,
 ) {
-    let nz = zs_m.len();
-    assert_eq!(out.len(), ys_m.len() * nz, "face_map_into: grid size");
-    if nz == 0 {
-        return;
-    }
-    let kernel = FaceMapKernel::new(model, delivery);
-    let rows = out
-        .ball_speed_m_s
-        .par_chunks_mut(nz)
-        .zip(out.launch_angle_rad.par_chunks_mut(nz))
-        .zip(out.azimuth_rad.par_chunks_mut(nz))
-        .zip(out.backspin_rad_s.par_chunks_mut(nz))
-        .zip(out.sidespin_rad_s.par_chunks_mut(nz))
-        .zip(out.valid.par_chunks_mut(nz));
-    rows.zip(ys_m.par_iter())
-        .for_each(|((((((bs, la), az), bk), sd), v), &y)| {
-            kernel.eval_row(
-                y,
-                zs_m,
-                RowOut {
-                    ball_speed_m_s: bs,
-                    launch_angle_rad: la,
-                    azimuth_rad: az,
-                    backspin_rad_s: bk,
-                    sidespin_rad_s: sd,
-                    valid: v,
-                },
-            );
-        });
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::data::club_file::parse_club;
-    use std::path::Path;
-
-    #[test]
-    fn face_map_matches_solve_and_marks_off_face_points() {
-        let club = parse_club(
-            Path::new("club.toml"),
-            include_str!("../../configs/clubs/paper_driver.toml"),
-        )
-        .unwrap();
-        let model = club.model_for_group("all").unwrap();
-        let d = Delivery {
-            club_speed_m_s: 45.0,
-            attack_angle_rad: 0.0,
-            club_path_rad: 0.0,
-            dynamic_loft_rad: 0.2,
-            face_angle_rad: 0.0,
-            lie_tilt_rad: 0.0,
-            club_omega_rad_s: nalgebra::Vector3::zeros(),
-            impact_y_m: 0.0,
-            impact_z_m: 0.0,
-        };
-        let ys = [-0.4, -0.01, 0.0, 0.02];
-        let zs = [-0.03, 0.0, 0.015];
-        let g = face_map(&model, &d, &ys, &zs);
-        for (i, &y) in ys.iter().enumerate() {
-            for (j, &z) in zs.iter().enumerate() {
-                let k = i * zs.len() + j;
-                let r = model.solve(&Delivery {
-                    impact_y_m: y,
-                    impact_z_m: z,
-                    ..d
-                });
-                match r {
-                    Ok(o) => {
-                        assert!(g.valid[k]);
-                        assert_eq!(g.ball_speed_m_s[k], o.launch().ball_speed_m_s);
-                        assert_eq!(g.sidespin_rad_s[k], o.launch().sidespin_rad_s);
-                    }
-                    Err(_) => {
-                        assert!(!g.valid[k] && g.backspin_rad_s[k].is_nan());
-                    }
-                }
-            }
-        }
-        assert!(!g.valid[0], "y = -400 mm is off a 305 mm roll torus");
-    }
+    out.resize(ys_m.len() * zs_m.len());
+    FaceMapKernel::new(model, delivery).par_eval_grid(ys_m, zs_m, out);
 }

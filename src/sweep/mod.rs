@@ -1,9 +1,15 @@
-//! Sweeps over the face: many impacts of one model and one swing, evaluated fast.
+//! Design-study sweeps: launch conditions over impact-location grids and model variants.
 //!
-//! [`kernel`] maps launch conditions over a grid (or a list) of impact locations, one row per
-//! rayon task, into a structure-of-arrays [`kernel::LaunchGrid`]. Studies (`crate::study`) are
-//! written only against this API.
+//! [`kernel`] holds the fast inner loop: a [`FaceMapKernel`] precomputes everything about one
+//! (model, delivery) pair that does not depend on where the ball meets the face, then evaluates
+//! rows or arbitrary point sets of impact locations into structure-of-arrays [`LaunchGrid`]s.
+//! [`face_map`] and [`face_map_into`] run a whole grid, rows in parallel, deterministically.
+//! [`fastmath`] has the branch-free `atan2` the kernel vectorises.
 
+pub mod fastmath;
 pub mod kernel;
+pub mod lanes;
 
-pub use kernel::{face_map, face_map_into, FaceMapKernel, LaunchGrid, RowOut};
+pub use kernel::{
+    face_map, face_map_into, simd_level, FaceMapKernel, LaunchGrid, RowOut, SimdLevel, LANES,
+};

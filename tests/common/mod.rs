@@ -17,6 +17,9 @@ use smash::physics::{Delivery, Launch};
 use smash::units::{deg, mm, mph, rpm};
 use smash::ClubSpec;
 
+/// The paper's 15 equations solved directly (a cross-check of the closed form).
+pub mod fifteen;
+
 /// Launch-monitor noise, file units: mph, deg, deg, rpm, rpm.
 pub const NOISE: [f64; 5] = [0.8, 0.5, 0.5, 150.0, 150.0];
 

@@ -1,0 +1,238 @@
+//! A tiny portable SIMD type: [`W`] doubles processed lane-wise.
+//!
+//! Every operation is a fixed-length loop over a `[f64; W]` (or `[u64; W]` mask), marked
+//! `#[inline(always)]`, which LLVM's SLP vectoriser turns into one packed instruction when the
+//! caller is compiled with AVX2 (`vaddpd ymm`, `vsqrtpd ymm`, `vblendvpd`, …) and into pairs
+//! of SSE2 instructions otherwise. Only IEEE-754 correctly rounded operations (`+ − × ÷ √`) and
+//! bit operations are used, and never fused multiply–add, so all code paths give the same bits.
+
+// Fixed-length index loops over several arrays are the clearest form here (and vectorise).
+#![allow(clippy::needless_range_loop)]
+
+use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Lanes per vector (one AVX2 register of doubles).
+pub const W: usize = 4;
+
+const SIGN: u64 = 1 << 63;
+
+/// `W` doubles.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[repr(transparent)]
+pub struct V(pub [f64; W]);
+
+/// `W` lane masks: all ones (true) or all zeros (false), like the result of `vcmppd`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[repr(transparent)]
+pub struct M(pub [u64; W]);
+
+macro_rules! lanewise {
+    ($a:expr, $b:expr, |$x:ident, $y:ident| $e:expr) => {{
+        let (a, b) = ($a, $b);
+        let mut r = a;
+        for i in 0..W {
+            let ($x, $y) = (a[i], b[i]);
+            r[i] = $e;
+        }
+        r
+    }};
+}
+
+impl V {
+    /// All lanes `v`.
+    #[inline(always)]
+    pub fn splat(v: f64) -> Self {
+        Self([v; W])
+    }
+
+    /// Load from the first `W` entries of `s`.
+    #[inline(always)]
+    pub fn load(s: &[f64; W]) -> Self {
+        Self(*s)
+    }
+
+    /// Lane-wise square root (correctly rounded).
+    #[inline(always)]
+    pub fn sqrt(self) -> Self {
+        let mut r = self.0;
+        for v in &mut r {
+            *v = v.sqrt();
+        }
+        Self(r)
+    }
+
+    /// Raw bits.
+    #[inline(always)]
+    pub fn to_bits(self) -> [u64; W] {
+        let mut r = [0u64; W];
+        for i in 0..W {
+            r[i] = self.0[i].to_bits();
+        }
+        r
+    }
+
+    /// From raw bits.
+    #[inline(always)]
+    pub fn from_bits(b: [u64; W]) -> Self {
+        let mut r = [0.0; W];
+        for i in 0..W {
+            r[i] = f64::from_bits(b[i]);
+        }
+        Self(r)
+    }
+
+    /// Lane-wise `|x|`.
+    #[inline(always)]
+    pub fn abs(self) -> Self {
+        Self::from_bits(lanewise!(self.to_bits(), [0u64; W], |a, _b| a & !SIGN))
+    }
+
+    /// `|self|` with the sign bit of `sign`.
+    #[inline(always)]
+    pub fn copysign(self, sign: Self) -> Self {
+        Self::from_bits(lanewise!(self.to_bits(), sign.to_bits(), |a, b| (a
+            & !SIGN)
+            | (b & SIGN)))
+    }
+
+    /// Lanes whose sign bit is set (including −0 and negative NaNs).
+    #[inline(always)]
+    pub fn sign_bit(self) -> M {
+        M(lanewise!(
+            self.to_bits(),
+            [0u64; W],
+            |a, _b| if a & SIGN != 0 { !0 } else { 0 }
+        ))
+    }
+
+    /// Lane-wise `self < o`.
+    #[inline(always)]
+    pub fn lt(self, o: Self) -> M {
+        M(cmp(self, o, |a, b| a < b))
+    }
+
+    /// Lane-wise `self <= o`.
+    #[inline(always)]
+    pub fn le(self, o: Self) -> M {
+        M(cmp(self, o, |a, b| a <= b))
+    }
+
+    /// Lane-wise `self > o`.
+    #[inline(always)]
+    pub fn gt(self, o: Self) -> M {
+        M(cmp(self, o, |a, b| a > b))
+    }
+
+    /// Lane-wise `self == o`.
+    #[inline(always)]
+    pub fn eq(self, o: Self) -> M {
+        M(cmp(self, o, |a, b| a == b))
+    }
+}
+
+#[inline(always)]
+fn cmp(a: V, b: V, f: impl Fn(f64, f64) -> bool) -> [u64; W] {
+    let mut r = [0u64; W];
+    for i in 0..W {
+        r[i] = if f(a.0[i], b.0[i]) { !0 } else { 0 };
+    }
+    r
+}
+
+impl M {
+    /// Lane-wise `if self { a } else { b }`.
+    #[inline(always)]
+    pub fn select(self, a: V, b: V) -> V {
+        let (a, b) = (a.to_bits(), b.to_bits());
+        let mut r = [0u64; W];
+        for i in 0..W {
+            r[i] = (a[i] & self.0[i]) | (b[i] & !self.0[i]);
+        }
+        V::from_bits(r)
+    }
+
+    /// Lane-wise `if self { a } else { b }` on masks.
+    #[inline(always)]
+    pub fn select_mask(self, a: M, b: M) -> M {
+        (self & a) | (!self & b)
+    }
+
+    /// Whether any lane is set.
+    #[inline(always)]
+    pub fn any(self) -> bool {
+        let mut r = 0;
+        for i in 0..W {
+            r |= self.0[i];
+        }
+        r != 0
+    }
+
+    /// Lane `i` as a `bool`.
+    #[inline(always)]
+    pub fn get(self, i: usize) -> bool {
+        self.0[i] != 0
+    }
+}
+
+impl BitAnd for M {
+    type Output = M;
+    #[inline(always)]
+    fn bitand(self, o: M) -> M {
+        M(lanewise!(self.0, o.0, |a, b| a & b))
+    }
+}
+
+impl BitOr for M {
+    type Output = M;
+    #[inline(always)]
+    fn bitor(self, o: M) -> M {
+        M(lanewise!(self.0, o.0, |a, b| a | b))
+    }
+}
+
+impl Not for M {
+    type Output = M;
+    #[inline(always)]
+    fn not(self) -> M {
+        M(lanewise!(self.0, self.0, |a, _b| !a))
+    }
+}
+
+macro_rules! arith {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl $tr for V {
+            type Output = V;
+            #[inline(always)]
+            fn $f(self, o: V) -> V {
+                V(lanewise!(self.0, o.0, |a, b| a $op b))
+            }
+        }
+        impl $tr<f64> for V {
+            type Output = V;
+            #[inline(always)]
+            fn $f(self, o: f64) -> V {
+                V(lanewise!(self.0, [o; W], |a, b| a $op b))
+            }
+        }
+        impl $tr<V> for f64 {
+            type Output = V;
+            #[inline(always)]
+            fn $f(self, o: V) -> V {
+                V(lanewise!([self; W], o.0, |a, b| a $op b))
+            }
+        }
+    };
+}
+
+arith!(Add, add, +);
+arith!(Sub, sub, -);
+arith!(Mul, mul, *);
+arith!(Div, div, /);
+
+impl Neg for V {
+    type Output = V;
+    #[inline(always)]
+    fn neg(self) -> V {
+        V(lanewise!(self.0, self.0, |a, _b| -a))
+    }
+}
