@@ -126,35 +126,68 @@ impl Prepared {
         items: std::ops::Range<usize>,
         tick: &(dyn Fn() + Sync),
     ) -> Vec<ItemResult> {
-        let zs_m: Vec<f64> = self.zs_mm.iter().map(|z| mm(*z)).collect();
+        let mut out = self.allocate(items);
+        self.compute_into(&mut out, tick);
+        out
+    }
+
+    /// Output slots for the work items `items`, with every grid page written once (so the
+    /// sweep itself does not pay for first-touch page faults).
+    pub fn allocate(&self, items: std::ops::Range<usize>) -> Vec<ItemResult> {
         let per = self.items_per_variant();
-        let delivery = self.study.swing.delivery(0.0, 0.0);
+        let nz = self.zs_mm.len();
         items
-            .into_par_iter()
             .map(|i| {
                 let (v, k) = (i / per, i % per);
-                let r = if k == 0 {
+                if k == 0 {
                     ItemResult::Metrics {
                         variant: v,
-                        values: evaluate(&self.models[v], &self.study, &self.groups),
+                        values: Vec::new(),
                     }
                 } else {
-                    let mut g = LaunchGrid::with_len(zs_m.len());
-                    FaceMapKernel::new(&self.models[v], &delivery).eval_row(
-                        mm(self.ys_mm[k - 1]),
-                        &zs_m,
-                        g.row_out(0, zs_m.len()),
-                    );
+                    let mut grid = LaunchGrid::with_len(nz);
+                    for c in [
+                        &mut grid.ball_speed_m_s,
+                        &mut grid.launch_angle_rad,
+                        &mut grid.azimuth_rad,
+                        &mut grid.backspin_rad_s,
+                        &mut grid.sidespin_rad_s,
+                    ] {
+                        c.fill(f64::NAN);
+                    }
+                    grid.valid.fill(false);
                     ItemResult::Row {
                         variant: v,
                         row: k - 1,
-                        grid: g,
+                        grid,
                     }
-                };
-                tick();
-                r
+                }
             })
             .collect()
+    }
+
+    /// Compute every slot of `slots` (from [`Prepared::allocate`]) in parallel; `tick` is called
+    /// once per finished item.
+    pub fn compute_into(&self, slots: &mut [ItemResult], tick: &(dyn Fn() + Sync)) {
+        let zs_m: Vec<f64> = self.zs_mm.iter().map(|z| mm(*z)).collect();
+        let delivery = self.study.swing.delivery(0.0, 0.0);
+        let kernels: Vec<FaceMapKernel> = self
+            .models
+            .iter()
+            .map(|m| FaceMapKernel::new(m, &delivery))
+            .collect();
+        slots.par_iter_mut().for_each(|slot| {
+            match slot {
+                ItemResult::Metrics { variant, values } => {
+                    *values = evaluate(&self.models[*variant], &self.study, &self.groups);
+                }
+                ItemResult::Row { variant, row, grid } => {
+                    let n = zs_m.len();
+                    kernels[*variant].eval_row(mm(self.ys_mm[*row]), &zs_m, grid.row_out(0, n));
+                }
+            }
+            tick();
+        });
     }
 
     /// Assemble complete per-variant results from item results covering the whole work list.
