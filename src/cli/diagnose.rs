@@ -11,7 +11,10 @@ use serde_json::json;
 use crate::data::club_file::{club_toml, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
-use crate::diagnose::{diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy};
+use crate::diagnose::{
+    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
+    DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
+};
 use crate::fit::{parse_effect_list, FitError, ParamEstimate};
 use crate::physics::LaunchComponent;
 use crate::report::{error_table_text, error_tables_side_by_side, TextTable};
@@ -72,9 +75,18 @@ pub struct DiagnoseArgs {
     )]
     pub max_iters: u64,
 
-    /// Measurement noise of the inputs.
+    /// Measurement noise of the inputs. Without --impact-noise-mm, impact-location noise of
+    /// 1, 1.5, 2 and 3 mm is offered as a candidate beside the effects.
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
+
+    /// Take the measured impact locations as exact (offer no impact-noise candidate).
+    #[arg(
+        long,
+        conflicts_with = "impact_noise_mm",
+        help_heading = "Measurement noise"
+    )]
+    pub exact_impact_locations: bool,
 }
 
 struct Bar(ProgressBar);
@@ -111,6 +123,11 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         max_iters: args.max_iters,
         candidates,
         impact_noise: args.measurement.impact_noise_mm,
+        impact_noise_candidates_mm: if args.exact_impact_locations {
+            Vec::new()
+        } else {
+            DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
+        },
     };
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));
@@ -193,6 +210,11 @@ pub fn to_json(d: &Diagnosis) -> serde_json::Value {
     json!({
         "command": "diagnose",
         "selected": d.selected,
+        "impact_noise_mm": d.impact_noise.map(|n| json!({
+            "y": n.sigma_y_m * 1e3,
+            "z": n.sigma_z_m * 1e3,
+            "estimated": d.impact_noise_estimated,
+        })),
         "estimates": estimates_json(&d.estimates),
         "steps": steps,
         "folds": d.folds,
@@ -307,6 +329,17 @@ pub fn text_report(d: &Diagnosis) -> String {
     ));
     if !d.estimates.is_empty() {
         s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
+    }
+    if let Some(n) = d.impact_noise {
+        s.push_str(&format!(
+            "Measurement model: impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}; \
+             calibrate with --impact-noise-mm {},{}\n",
+            n.sigma_y_m * 1e3,
+            n.sigma_z_m * 1e3,
+            if d.impact_noise_estimated { ", selected from the data" } else { ", as given" },
+            n.sigma_y_m * 1e3,
+            n.sigma_z_m * 1e3
+        ));
     }
     s.push('\n');
     s.push_str(&error_tables_side_by_side(

@@ -37,6 +37,7 @@ use crate::fit::covariance::covariance;
 use crate::fit::{
     run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
 };
+use crate::measurement::ImpactNoise;
 use crate::physics::LaunchComponent;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
@@ -51,9 +52,17 @@ pub struct DiagnoseOptions {
     pub max_iters: u64,
     /// Candidates; `None`: every library effect plus `added_mass@group` when there are groups.
     pub candidates: Option<Vec<EffectRequest>>,
-    /// Noise of the measured impact locations, corrected by regression calibration.
+    /// Noise of the measured impact locations, corrected by regression calibration. `None`:
+    /// unknown, and (with `estimate_impact_noise`) offered as a measurement candidate.
     pub impact_noise: Option<crate::measurement::ImpactNoise>,
+    /// When `impact_noise` is `None`, offer these isotropic impact-location noise levels (mm)
+    /// as candidates beside the effects (see [`diagnose`]); empty: assume exact locations.
+    pub impact_noise_candidates_mm: Vec<f64>,
 }
+
+/// Impact-location noise levels (1σ, mm, both axes) that diagnose tries by default: from a
+/// motion-capture system (about 1 mm) to a launch monitor's face-impact estimate (3 mm).
+pub const DEFAULT_IMPACT_NOISE_CANDIDATES_MM: [f64; 4] = [1.0, 1.5, 2.0, 3.0];
 
 impl Default for DiagnoseOptions {
     fn default() -> Self {
@@ -63,6 +72,7 @@ impl Default for DiagnoseOptions {
             max_iters: 100,
             candidates: None,
             impact_noise: None,
+            impact_noise_candidates_mm: DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec(),
         }
     }
 }
@@ -151,6 +161,11 @@ pub struct Diagnosis {
     pub after: ErrorTable,
     /// The club with the selected effects.
     pub club: ClubSpec,
+    /// Impact-location noise the final model assumes: given by the user, or selected as a
+    /// measurement candidate (`None`: locations taken as measured).
+    pub impact_noise: Option<crate::measurement::ImpactNoise>,
+    /// Was `impact_noise` selected from the data (rather than given)?
+    pub impact_noise_estimated: bool,
     /// Warnings (e.g. folds by shot).
     pub warnings: Vec<String>,
 }
@@ -178,6 +193,17 @@ pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
 struct Folds {
     train: Vec<FitData>,
     test: Vec<FitData>,
+}
+
+fn make_folds(data: &FitData, fold_of: &[usize], n_folds: usize) -> Folds {
+    let pick = |keep: &dyn Fn(usize) -> bool| {
+        let idx: Vec<usize> = (0..data.len()).filter(|&i| keep(fold_of[i])).collect();
+        data.subset(&idx)
+    };
+    Folds {
+        train: (0..n_folds).map(|f| pick(&|g| g != f)).collect(),
+        test: (0..n_folds).map(|f| pick(&|g| g == f)).collect(),
+    }
 }
 
 fn fit(
@@ -287,10 +313,10 @@ fn rms_per_component(errors: &[[f64; 5]]) -> [f64; 5] {
     std::array::from_fn(|c| stats::rms(&errors.iter().map(|e| e[c]).collect::<Vec<_>>()))
 }
 
-fn group_names(data: &FitData) -> Vec<&str> {
+fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
         .iter()
-        .map(|&g| data.groups[g].as_str())
+        .map(|&g| data.groups[g].clone())
         .collect()
 }
 
@@ -307,6 +333,7 @@ pub fn diagnose(
 ) -> Result<Diagnosis, FitError> {
     let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
     let n = data.len();
+    let noise_given = opts.impact_noise.is_some();
     let mut warnings = Vec::new();
     let (fold_of, fold_by) = {
         let golfers: Vec<&str> = data
@@ -335,20 +362,23 @@ pub fn diagnose(
             params: 2,
         });
     }
-    let folds = Folds {
-        train: (0..n_folds)
-            .map(|f| {
-                let idx: Vec<usize> = (0..n).filter(|&i| fold_of[i] != f).collect();
-                data.subset(&idx)
-            })
-            .collect(),
-        test: (0..n_folds)
-            .map(|f| {
-                let idx: Vec<usize> = (0..n).filter(|&i| fold_of[i] == f).collect();
-                data.subset(&idx)
-            })
-            .collect(),
-    };
+    let mut folds = make_folds(&data, &fold_of, n_folds);
+    // Impact-location noise levels offered as measurement candidates, each with its data.
+    let mut noise_options: Vec<(ImpactNoise, FitData, Folds)> = Vec::new();
+    if opts.impact_noise.is_none() {
+        for &s_mm in &opts.impact_noise_candidates_mm {
+            let noise = ImpactNoise::from_mm(s_mm, s_mm)?;
+            match data.clone().with_impact_noise(Some(noise)) {
+                Ok(d) => {
+                    let f = make_folds(&d, &fold_of, n_folds);
+                    noise_options.push((noise, d, f));
+                }
+                Err(e) => warnings.push(format!("impact noise {s_mm} mm not tried: {e}")),
+            }
+        }
+    }
+    let mut chosen_noise: Option<ImpactNoise> = opts.impact_noise;
+    let mut data = data;
     let candidates = opts
         .candidates
         .clone()
@@ -420,7 +450,7 @@ pub fn diagnose(
             })
             .collect();
         // Phase 2: cross-validation of every candidate.
-        let results: Vec<CandidateResult> = open
+        let mut results: Vec<CandidateResult> = open
             .par_iter()
             .zip(full.par_iter())
             .map(|(c, f)| {
@@ -506,6 +536,33 @@ pub fn diagnose(
             })
             .collect();
 
+        // Measurement candidates: the same base model, with the measured impact locations
+        // treated as noisy at each offered level (while no level has been chosen).
+        let n_effects = results.len();
+        let mut noise_fits: Vec<NoiseFit> = Vec::new();
+        if chosen_noise.is_none() {
+            let evaluated: Vec<(CandidateResult, NoiseFit)> = noise_options
+                .par_iter()
+                .enumerate()
+                .map(|(j, (noise, nd, nf))| {
+                    noise_candidate(
+                        club,
+                        &base,
+                        &theta_base,
+                        (j, noise, nd, nf),
+                        (w, base_cv, &base_rms),
+                        penalty_per_param,
+                        opts.max_iters,
+                        progress,
+                    )
+                })
+                .collect();
+            for (r, f) in evaluated {
+                results.push(r);
+                noise_fits.push(f);
+            }
+        }
+
         let mut order: Vec<usize> = (0..results.len()).collect();
         order.sort_by(|&a, &b| {
             let key = |r: &CandidateResult| {
@@ -523,6 +580,21 @@ pub fn diagnose(
             .find(|&i| results[i].eligible() && results[i].margin() > 0.0);
         let after;
         let chosen = match winner {
+            Some(i) if i >= n_effects => {
+                let (j, theta) = noise_fits[i - n_effects]
+                    .clone()
+                    .expect("eligible means fitted");
+                let (noise, nd, nf) = noise_options.swap_remove(j);
+                data = nd;
+                folds = nf;
+                chosen_noise = Some(noise);
+                noise_options.clear();
+                theta_base = theta;
+                let errs = FitProblem::new(club, base.clone(), &data, w)
+                    .launch_errors(theta_base.as_slice())?;
+                after = launch_error_table(&groups, &errs);
+                Some(results[i].label.clone())
+            }
             Some(i) => {
                 let (layout, run, _) = full[i].as_ref().expect("eligible means fitted");
                 let errs = FitProblem::new(club, layout.clone(), &data, w)
@@ -581,8 +653,81 @@ pub fn diagnose(
         before,
         after,
         club: out_club,
+        impact_noise: chosen_noise,
+        impact_noise_estimated: chosen_noise.is_some() && !noise_given,
         warnings,
     })
+}
+
+/// A fitted impact-noise candidate: its index among the noise options and the refitted base
+/// parameters (`None` when the fit failed).
+type NoiseFit = Option<(usize, DVector<f64>)>;
+
+/// Label of the measurement candidate for impact-location noise `noise`.
+pub fn impact_noise_label(noise: &ImpactNoise) -> String {
+    format!(
+        "impact_noise({}, {} mm)",
+        noise.sigma_y_m * 1e3,
+        noise.sigma_z_m * 1e3
+    )
+}
+
+/// One impact-noise level as a candidate: refit the base effects with the locations treated as
+/// noisy, cross-validate, and score it like a one-parameter effect.
+#[allow(clippy::too_many_arguments)]
+fn noise_candidate(
+    club: &ClubSpec,
+    base: &ParamLayout,
+    theta_base: &DVector<f64>,
+    (j, noise, data, folds): (usize, &ImpactNoise, &FitData, &Folds),
+    (w, base_cv, base_rms): (Weighting, f64, &[f64; 5]),
+    penalty_per_param: f64,
+    max_iters: u64,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> (CandidateResult, NoiseFit) {
+    let mut res = CandidateResult {
+        label: impact_noise_label(noise),
+        n_params: 1,
+        params: Vec::new(),
+        cv_chi2: f64::NAN,
+        gain: f64::NAN,
+        penalty: penalty_per_param,
+        rms_reduction: [0.0; 5],
+        unidentified: Vec::new(),
+        converged: true,
+        failure: None,
+    };
+    let outcome = (|| -> Result<(f64, [f64; 5], DVector<f64>), FitError> {
+        let theta = if base.is_empty() {
+            theta_base.clone()
+        } else {
+            let run = fit(club, base, data, w, theta_base, max_iters)?;
+            if !run.converged {
+                return Err(FitError::NotConverged {
+                    iterations: run.iterations,
+                    chi2: run.cost,
+                    stage: "impact-noise candidate".into(),
+                });
+            }
+            run.theta
+        };
+        let errs = FitProblem::new(club, base.clone(), data, w).launch_errors(theta.as_slice())?;
+        let cv = cv_chi2(club, base, folds, w, &theta, max_iters, progress)?;
+        Ok((cv, rms_per_component(&errs), theta))
+    })();
+    match outcome {
+        Ok((cv, rms, theta)) => {
+            res.cv_chi2 = cv;
+            res.gain = base_cv - cv;
+            res.rms_reduction = std::array::from_fn(|c| (base_rms[c] - rms[c]) / base_rms[c]);
+            (res, Some((j, theta)))
+        }
+        Err(e) => {
+            res.converged = false;
+            res.failure = Some(e.to_string());
+            (res, None)
+        }
+    }
 }
 
 /// Launch components in report order (re-exported for the CLI).

@@ -91,8 +91,47 @@ fn map_err(e: ArgminError) -> FitError {
     }
 }
 
+/// Friction coefficients tried before a fit (within the effect's bounds).
+pub const FRICTION_SCAN: [f64; 11] = [0.02, 0.035, 0.05, 0.07, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 1.0];
+
+/// Starting point for the solver. The friction limit is not smooth: where no shot slips, χ² does
+/// not depend on `mu` at all and a gradient method cannot move. So each active friction
+/// coefficient is first set to the best of [`FRICTION_SCAN`] (and the given start) by χ².
+pub fn scan_nonsmooth_starts(problem: &FitProblem<'_>, start: &DVector<f64>) -> DVector<f64> {
+    let layout = problem.layout();
+    let mut theta = start.clone();
+    let friction: Vec<usize> = layout
+        .params()
+        .enumerate()
+        .filter(|(j, (i, _))| {
+            layout.effects()[*i].kind == crate::effects::EffectKind::Friction
+                && problem.active().contains(j)
+        })
+        .map(|(j, _)| j)
+        .collect();
+    let chi2 = |t: &DVector<f64>| {
+        problem
+            .residuals(t.as_slice())
+            .map_or(f64::INFINITY, |r| r.norm_squared())
+    };
+    for j in friction {
+        let (lo, hi) = (layout.lower()[j], layout.upper()[j]);
+        let mut best = (chi2(&theta), theta[j]);
+        for &mu in FRICTION_SCAN.iter().filter(|&&m| (lo..=hi).contains(&m)) {
+            theta[j] = mu;
+            let c = chi2(&theta);
+            if c < best.0 {
+                best = (c, mu);
+            }
+        }
+        theta[j] = best.1;
+    }
+    theta
+}
+
 /// Run Levenberg–Marquardt on `problem` from the full parameter vector `start` (only the
 /// problem's active entries move), for at most `max_iters` iterations.
+/// Active friction coefficients start from the best of [`FRICTION_SCAN`].
 pub fn run_lm(
     problem: FitProblem<'_>,
     start: &DVector<f64>,
@@ -102,7 +141,7 @@ pub fn run_lm(
     let n_active = problem.active().len();
     let solver = LevenbergMarquardt::new(problem.active_lower(), problem.active_upper())
         .map_err(|e| FitError::Solver(e.to_string()))?;
-    let init = problem.active_part(start);
+    let init = problem.active_part(&scan_nonsmooth_starts(&problem, start));
     let template = problem.clone();
     let mut exec = Executor::new(problem, solver)
         .configure(|s: LmState| s.param(init).max_iters(max_iters).counting(true));
