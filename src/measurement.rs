@@ -22,7 +22,9 @@
 //! prior, never the measured launch, so the correction leaks nothing from outcomes into a
 //! cross-validation fold.
 
-use nalgebra::{Matrix2, Vector2};
+use nalgebra::{Matrix2, Vector2, Vector3};
+
+use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent};
 
 /// 1σ measurement noise of the impact location, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -177,6 +179,44 @@ impl ImpactNoise {
             })
             .collect())
     }
+}
+
+/// The model's expected launch (SI), ball velocity and spin (G) for delivery `d`: at the measured
+/// location when `nodes` is `None`, else the weighted average over the location nodes.
+#[inline]
+pub fn expected_outcome(
+    model: &ImpactModel,
+    d: &Delivery,
+    nodes: Option<&[LocationNode; NODES_PER_SHOT]>,
+) -> Result<(Launch, Vector3<f64>, Vector3<f64>), ImpactError> {
+    let Some(nodes) = nodes else {
+        let o = model.solve(d)?;
+        return Ok((o.launch(), o.ball_velocity_m_s, o.ball_spin_rad_s));
+    };
+    let mut acc = [0.0; 5];
+    let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
+    for node in nodes {
+        let at = Delivery {
+            impact_y_m: node.y_m,
+            impact_z_m: node.z_m,
+            ..*d
+        };
+        let o = model.solve(&at)?;
+        let l = o.launch();
+        for (a, c) in acc.iter_mut().zip(LaunchComponent::ALL) {
+            *a += node.weight * l.get_si(c);
+        }
+        v += node.weight * o.ball_velocity_m_s;
+        w += node.weight * o.ball_spin_rad_s;
+    }
+    let launch = Launch {
+        ball_speed_m_s: acc[0],
+        launch_angle_rad: acc[1],
+        azimuth_rad: acc[2],
+        backspin_rad_s: acc[3],
+        sidespin_rad_s: acc[4],
+    };
+    Ok((launch, v, w))
 }
 
 #[cfg(test)]

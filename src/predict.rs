@@ -7,11 +7,15 @@ use std::collections::BTreeMap;
 
 use crate::club::ClubSpec;
 use crate::data::shots::{Shot, ShotTable};
-use crate::physics::{ImpactError, ImpactModel, ImpactOutcome, ParamError};
+use crate::measurement::{expected_outcome, ImpactNoise, MeasurementError};
+use crate::physics::{ImpactError, ImpactModel, ImpactOutcome, Launch, ParamError};
 
 /// Why a set of shots cannot be predicted.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum PredictError {
+    /// The impact-location noise model cannot be applied to these shots.
+    #[error(transparent)]
+    Measurement(#[from] MeasurementError),
     /// The club's parameters for some group are not physical.
     #[error("group '{group}': {source}")]
     Model {
@@ -76,4 +80,42 @@ pub fn predict_table(
     table: &ShotTable,
 ) -> Result<Vec<ImpactOutcome>, PredictError> {
     predict_shots(club, &table.shots)
+}
+
+/// Expected launch of every shot, in order: the model at the measured delivery, or, with
+/// `impact_noise`, averaged over where each ball was most likely struck
+/// (see [`crate::measurement`]).
+pub fn expected_launches(
+    club: &ClubSpec,
+    shots: &[Shot],
+    impact_noise: Option<ImpactNoise>,
+) -> Result<Vec<Launch>, PredictError> {
+    let models = group_models(club, shots)?;
+    let nodes = match impact_noise {
+        Some(n) => {
+            let locs: Vec<(f64, f64)> = shots
+                .iter()
+                .map(|s| (s.delivery.impact_y_m, s.delivery.impact_z_m))
+                .collect();
+            Some(n.posterior_nodes(&locs)?)
+        }
+        None => None,
+    };
+    shots
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            expected_outcome(
+                &models[&s.group],
+                &s.delivery,
+                nodes.as_ref().map(|n| &n[i]),
+            )
+            .map(|(launch, _, _)| launch)
+            .map_err(|source| PredictError::Shot {
+                shot_id: s.id.clone(),
+                row: i + 1,
+                source,
+            })
+        })
+        .collect()
 }

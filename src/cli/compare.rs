@@ -10,7 +10,7 @@ use crate::data::club_file::read_club;
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::physics::LaunchComponent;
-use crate::predict::predict_table;
+use crate::predict::expected_launches;
 use crate::report::compare::{compare_files, compare_json, compare_text};
 
 /// Arguments of `smash compare`.
@@ -61,6 +61,10 @@ pub struct CompareArgs {
         help_heading = "Statistics"
     )]
     pub min_bin_count: usize,
+
+    /// Measurement noise of the inputs.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
 }
 
 /// Run `smash compare`.
@@ -81,9 +85,8 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
             cols.join(", ")
         );
     }
-    let outcomes =
-        predict_table(&club, &table).with_context(|| args.shots.display().to_string())?;
-    let launches: Vec<_> = outcomes.iter().map(|o| o.launch()).collect();
+    let launches = expected_launches(&club, &table.shots, args.measurement.impact_noise_mm)
+        .with_context(|| args.shots.display().to_string())?;
     let options = CompareOptions {
         alpha: args.alpha,
         face_bin_mm: args.bin_mm,

@@ -71,8 +71,9 @@ pub const SIGNATURES: &[Signature] = &[
     sig(
         BallSpeed,
         Trend("impact_r_mm"),
-        &["cor_radial"],
-        "COR falling off-centre",
+        &["cor_radial", "impact_noise"],
+        "COR falling off-centre, or noisy impact locations (falling with r: the model is charged \
+         for strikes measured farther out than they were; try --impact-noise-mm)",
     ),
     sig(
         BallSpeed,

@@ -25,7 +25,7 @@ use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
 use crate::data::shots::Shot;
-use crate::measurement::{ImpactNoise, LocationNode, NODES_PER_SHOT};
+use crate::measurement::{expected_outcome, ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::physics::{
     Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError,
 };
@@ -383,40 +383,16 @@ impl<'a> FitProblem<'a> {
         models: &[ImpactModel],
         i: usize,
     ) -> Result<(Launch, Vector3<f64>, Vector3<f64>), EvalError> {
-        let model = &models[self.data.group_of[i]];
-        let d = &self.data.deliveries[i];
-        let fail = |source| EvalError::Shot {
+        let nodes = self.data.impact_nodes.as_ref().map(|n| &n[i]);
+        expected_outcome(
+            &models[self.data.group_of[i]],
+            &self.data.deliveries[i],
+            nodes,
+        )
+        .map_err(|source| EvalError::Shot {
             shot_id: self.data.ids[i].clone(),
             source,
-        };
-        let Some(nodes) = &self.data.impact_nodes else {
-            let o = model.solve(d).map_err(fail)?;
-            return Ok((o.launch(), o.ball_velocity_m_s, o.ball_spin_rad_s));
-        };
-        let mut acc = [0.0; 5];
-        let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
-        for node in &nodes[i] {
-            let at = Delivery {
-                impact_y_m: node.y_m,
-                impact_z_m: node.z_m,
-                ..*d
-            };
-            let o = model.solve(&at).map_err(fail)?;
-            let l = o.launch();
-            for (a, c) in acc.iter_mut().zip(LaunchComponent::ALL) {
-                *a += node.weight * l.get_si(c);
-            }
-            v += node.weight * o.ball_velocity_m_s;
-            w += node.weight * o.ball_spin_rad_s;
-        }
-        let launch = Launch {
-            ball_speed_m_s: acc[0],
-            launch_angle_rad: acc[1],
-            azimuth_rad: acc[2],
-            backspin_rad_s: acc[3],
-            sidespin_rad_s: acc[4],
-        };
-        Ok((launch, v, w))
+        })
     }
 
     /// Residuals at full `theta` into `out` (length [`FitProblem::rows`]).
