@@ -32,7 +32,7 @@ use nalgebra::{Matrix3, Vector3};
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::{line_col, read_text, DataError};
+use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::club::ClubSpec;
 use crate::effects::{Effect, EffectKind};
 use crate::physics::{validate_inertia, ModelParams};
@@ -80,13 +80,7 @@ impl Ctx<'_> {
         key: &str,
         message: impl Into<String>,
     ) -> DataError {
-        let (line, col) = line_col(self.text, span.start);
-        DataError::at(
-            self.path,
-            Some(line),
-            Some(format!("column {col}: key {key}")),
-            message,
-        )
+        toml_key_error(self.path, self.text, span.start, key, message)
     }
 
     fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, DataError> {
@@ -112,25 +106,7 @@ pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
 /// Parse and validate club-file text (`path` is used in messages only).
 pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawFile = toml::from_str(text).map_err(|e| {
-        let (line, place) = match e.span() {
-            Some(span) => {
-                let (line, col) = line_col(text, span.start);
-                (Some(line), Some(format!("column {col}")))
-            }
-            None => (None, None),
-        };
-        DataError::at(
-            path,
-            line,
-            place,
-            format!(
-                "{} (a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and \
-                 optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables)",
-                e.message().trim()
-            ),
-        )
-    })?;
+    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
     let c = &raw.club;
     let mass_g = ctx.positive(&c.mass_g, "club.mass_g", "g")?;
     let com = c.com_mm.get_ref();

@@ -104,6 +104,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
     })
 }
 
+/// Deserialize TOML `text` (strict types and keys come from `T`'s serde attributes). A syntax or
+/// schema error names the file, line and column; `layout` (what such a file holds) is appended
+/// so the message says what is allowed.
+pub fn parse_toml<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    text: &str,
+    layout: &str,
+) -> Result<T, DataError> {
+    toml::from_str(text).map_err(|e| {
+        let (line, place) = match e.span() {
+            Some(span) => {
+                let (line, col) = line_col(text, span.start);
+                (Some(line), Some(format!("column {col}")))
+            }
+            None => (None, None),
+        };
+        DataError::at(
+            path,
+            line,
+            place,
+            format!("{} ({layout})", e.message().trim()),
+        )
+    })
+}
+
+/// An error about the TOML key `key` whose value sits at byte `offset` of `text`.
+pub fn toml_key_error(
+    path: &Path,
+    text: &str,
+    offset: usize,
+    key: &str,
+    message: impl Into<String>,
+) -> DataError {
+    let (line, col) = line_col(text, offset);
+    DataError::at(
+        path,
+        Some(line),
+        Some(format!("column {col}: key {key}")),
+        message,
+    )
+}
+
 /// Byte offset to 1-based (line, column).
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());

@@ -19,7 +19,7 @@ use super::distribution::{Distribution, Method, SwingSpec};
 use super::metrics::{metric_names, Output};
 use crate::club::ClubSpec;
 use crate::data::club_file::read_club;
-use crate::data::{line_col, read_text, DataError};
+use crate::data::{parse_toml, read_text, toml_key_error, DataError};
 use crate::units::{g, mm};
 
 /// Values of one axis: an explicit list, or `count` evenly spaced values from `from` to `to`.
@@ -283,13 +283,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn err(&self, span: std::ops::Range<usize>, key: &str, msg: impl Into<String>) -> DataError {
-        let (line, col) = line_col(self.text, span.start);
-        DataError::at(
-            self.path,
-            Some(line),
-            Some(format!("column {col}: key {key}")),
-            msg,
-        )
+        toml_key_error(self.path, self.text, span.start, key, msg)
     }
 
     fn finite(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, DataError> {
@@ -482,25 +476,7 @@ pub fn read_study(path: &Path) -> Result<Study, DataError> {
 /// Parse and resolve study text (`path` locates the club and names the file in messages).
 pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawStudy = toml::from_str(text).map_err(|e| {
-        let (line, place) = match e.span() {
-            Some(span) => {
-                let (line, col) = line_col(text, span.start);
-                (Some(line), Some(format!("column {col}")))
-            }
-            None => (None, None),
-        };
-        DataError::at(
-            path,
-            line,
-            place,
-            format!(
-                "{} (a study file has [study], [delivery], [grid] and optional [distribution], \
-                 [design], [sensitivity], [summary], [optimise]; see configs/README.md)",
-                e.message().trim()
-            ),
-        )
-    })?;
+    let raw: RawStudy = parse_toml(path, text, "a study file has [study], [delivery], [grid] and optional [distribution], [design], [sensitivity], [summary], [optimise]; see configs/README.md")?;
 
     // [study]
     let h = &raw.study;

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use toml::Spanned;
 
 use crate::data::club_file::parse_effect_table;
-use crate::data::{line_col, read_text, DataError};
+use crate::data::{parse_toml, read_text, toml_key_error, DataError};
 use crate::effects::Effect;
 use crate::physics::LaunchComponent;
 
@@ -339,13 +339,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     fn err(&self, span: std::ops::Range<usize>, key: &str, msg: impl Into<String>) -> DataError {
-        let (line, col) = line_col(self.text, span.start);
-        DataError::at(
-            self.path,
-            Some(line),
-            Some(format!("column {col}: key {key}")),
-            msg,
-        )
+        toml_key_error(self.path, self.text, span.start, key, msg)
     }
 
     fn count(&self, v: &Spanned<i64>, key: &str, min: i64) -> Result<usize, DataError> {
@@ -392,26 +386,7 @@ pub fn read_config(path: &Path) -> Result<SynthConfig, DataError> {
 /// Parse and validate configuration text (`path` locates the club file and names errors).
 pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawConfig = toml::from_str(text).map_err(|e| {
-        let (line, place) = match e.span() {
-            Some(span) => {
-                let (line, col) = line_col(text, span.start);
-                (Some(line), Some(format!("column {col}")))
-            }
-            None => (None, None),
-        };
-        DataError::at(
-            path,
-            line,
-            place,
-            format!(
-                "{} (a synth config has top-level club, seed and tables [design], [delivery], \
-                 [face], [noise.delivery], [noise.launch], [[hidden]], [world]; see \
-                 configs/synth/README.md)",
-                e.message().trim()
-            ),
-        )
-    })?;
+    let raw: RawConfig = parse_toml(path, text, "a synth config has top-level club, seed and tables [design], [delivery], [face], [noise.delivery], [noise.launch], [[hidden]], [world]; see configs/synth/README.md")?;
     let mut cfg = SynthConfig::default();
     let base = path.parent().unwrap_or(Path::new(""));
     cfg.club = base.join(raw.club.as_deref().unwrap_or("../clubs/paper_driver.toml"));
