@@ -9,28 +9,7 @@ use smash::physics::{Delivery, FaceGeometry, ImpactModel, ModelParams};
 use smash::units::{deg, gcm2, mm, mph};
 
 fn paper_params() -> ModelParams {
-    ModelParams {
-        club_mass_kg: 0.204,
-        club_com_m: Vector3::new(mm(-42.3), mm(2.9), mm(1.0)),
-        club_inertia_kgm2: Matrix3::new(
-            2843.0, -733.0, 530.2, -733.0, 5679.0, 0.5, 530.2, 0.5, 4085.0,
-        )
-        .map(gcm2),
-        cor: 0.83,
-        bulge_m: mm(305.0),
-        roll_m: mm(305.0),
-        ball_mass_kg: 0.0459,
-        ball_radius_m: mm(21.3),
-        ball_inertia_kgm2: gcm2(83.63),
-        ball_offset_y_m: 0.0,
-        ball_offset_z_m: 0.0,
-        tangential_restitution: 0.0,
-        friction_mu: None,
-        cor_speed_k_s_per_m: 0.0,
-        cor_radial_c_per_m2: 0.0,
-        loft_bias_rad: 0.0,
-        face_bias_rad: 0.0,
-    }
+    ModelParams::paper_driver()
 }
 
 /// A random but physical club: mass, CoM, principal moments and axes, COR, face radii.

@@ -348,3 +348,31 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod paper_driver_tests {
+    use super::*;
+
+    #[test]
+    fn shipped_paper_driver_matches_the_code_constant() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/configs/clubs/paper_driver.toml"
+        ));
+        let file = read_club(path).unwrap().nominal;
+        let code = ModelParams::paper_driver();
+        assert!((file.club_inertia_kgm2 - code.club_inertia_kgm2).amax() < 1e-15);
+        assert!((file.club_com_m - code.club_com_m).amax() < 1e-15);
+        for (a, b) in [
+            (file.club_mass_kg, code.club_mass_kg),
+            (file.cor, code.cor),
+            (file.bulge_m, code.bulge_m),
+            (file.roll_m, code.roll_m),
+            (file.ball_mass_kg, code.ball_mass_kg),
+            (file.ball_radius_m, code.ball_radius_m),
+            (file.ball_inertia_kgm2, code.ball_inertia_kgm2),
+        ] {
+            assert!((a - b).abs() <= 1e-12 * b.abs(), "{a} vs {b}");
+        }
+    }
+}
