@@ -62,6 +62,15 @@ pub enum MeasurementError {
         /// Standard deviation of the measured locations, mm.
         spread_mm: f64,
     },
+    /// The measured locations barely spread on an axis: no prior can be formed.
+    #[error(
+        "the measured impact locations do not spread along {axis} (true spread below 1 µm after \
+         removing the noise); the impact-noise correction needs shots spread over the face"
+    )]
+    Degenerate {
+        /// `y` or `z`.
+        axis: char,
+    },
     /// Fewer than three shots: no spread to estimate.
     #[error("at least 3 shots are needed to correct for impact-location noise")]
     TooFewShots,
@@ -134,6 +143,11 @@ impl ImpactNoise {
             }
         }
         let true_cov = cov - noise;
+        for (axis, k) in [('y', 0), ('z', 1)] {
+            if !(true_cov[(k, k)] >= 1e-12) {
+                return Err(MeasurementError::Degenerate { axis });
+            }
+        }
         // A true covariance that is not positive definite (strongly correlated measured y and
         // z with large noise) is repaired by dropping the correlation.
         let true_cov = if true_cov.determinant() > 0.0 {
@@ -141,7 +155,9 @@ impl ImpactNoise {
         } else {
             Matrix2::new(true_cov[(0, 0)], 0.0, 0.0, true_cov[(1, 1)])
         };
-        let prior_prec = true_cov.try_inverse().expect("positive definite");
+        let prior_prec = true_cov
+            .try_inverse()
+            .ok_or(MeasurementError::Degenerate { axis: 'y' })?;
         // Zero noise on an axis: the measurement is the truth on that axis (infinite precision);
         // handled by a tiny floor that leaves the posterior there at the measurement.
         let floor = 1e-24;

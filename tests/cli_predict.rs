@@ -260,3 +260,25 @@ fn missing_files_and_incomplete_command_lines_fail_clearly() {
     assert!(!o.status.success());
     assert!(String::from_utf8_lossy(&o.stderr).contains("--loft"));
 }
+
+#[test]
+fn crlf_shots_files_report_the_right_line() {
+    let case = Case::new();
+    let shots = format!("{SHOTS_HEADER}\r\ns1,A,100,0,0,12,0,0,0\r\ns2,A,100,0,0,12,0,0,x\r\n");
+    let err = case.fails(&paper_club_text(), &shots);
+    assert_has(
+        &err,
+        &["shots.csv:3", "column 'impact_z_mm'", "'x' is not a number"],
+    );
+    let short = format!("{SHOTS_HEADER}\r\ns1,A,100,0,0,12,0,0,0\r\ns2,A,100\r\n");
+    let err = case.fails(&paper_club_text(), &short);
+    assert_has(&err, &["shots.csv:3", "fields"]);
+}
+
+#[test]
+fn unphysically_small_masses_are_rejected_not_turned_into_nan() {
+    let case = Case::new();
+    let club = paper_club_text().replace("mass_g = 204.0", "mass_g = 1e-300");
+    let err = case.fails(&club, &good_shots());
+    assert_has(&err, &["club.mass_g", "physical range"]);
+}

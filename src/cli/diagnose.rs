@@ -272,11 +272,16 @@ pub fn text_report(d: &Diagnosis) -> String {
             "penalty".into(),
             "margin".into(),
         ];
-        header.extend(
-            LaunchComponent::ALL
-                .iter()
-                .map(|c| format!("{} rms", c.unit())),
-        );
+        header.extend(LaunchComponent::ALL.iter().map(|c| {
+            let short = match c {
+                LaunchComponent::BallSpeed => "speed",
+                LaunchComponent::LaunchAngle => "launch",
+                LaunchComponent::Azimuth => "azim",
+                LaunchComponent::Backspin => "back",
+                LaunchComponent::Sidespin => "side",
+            };
+            format!("Δrms {short}")
+        }));
         header.extend(["parameters".to_owned(), "note".to_owned()]);
         let mut t = TextTable::new(header);
         for c in &st.candidates {

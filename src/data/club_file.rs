@@ -83,15 +83,23 @@ impl Ctx<'_> {
         toml_key_error(self.path, self.text, span.start, key, message)
     }
 
-    fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, DataError> {
+    /// A value in the physical range `[lo, hi]` (a sports ball and a club head, not an atom or a
+    /// planet: the ranges keep every derived quantity far from overflow and underflow).
+    fn in_range(
+        &self,
+        v: &Spanned<f64>,
+        key: &str,
+        unit: &str,
+        (lo, hi): (f64, f64),
+    ) -> Result<f64, DataError> {
         let x = *v.get_ref();
-        if x.is_finite() && x > 0.0 {
+        if x.is_finite() && x >= lo && x <= hi {
             Ok(x)
         } else {
             Err(self.err(
                 v.span(),
                 key,
-                format!("must be a finite number > 0 {unit}, got {x}"),
+                format!("must be a finite number > 0 {unit} in the physical range [{lo}, {hi}] {unit}, got {x}"),
             ))
         }
     }
@@ -108,7 +116,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
     let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
     let c = &raw.club;
-    let mass_g = ctx.positive(&c.mass_g, "club.mass_g", "g")?;
+    let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", "g", (1.0, 10_000.0))?;
     let com = c.com_mm.get_ref();
     if !com.iter().all(|v| v.is_finite()) {
         return Err(ctx.err(
@@ -135,12 +143,12 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         Some(l) => Some(deg(*l.get_ref())),
         None => None,
     };
-    let bulge_mm = ctx.positive(&c.bulge_mm, "club.bulge_mm", "mm")?;
-    let roll_mm = ctx.positive(&c.roll_mm, "club.roll_mm", "mm")?;
+    let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", "mm", (20.0, 1e6))?;
+    let roll_mm = ctx.in_range(&c.roll_mm, "club.roll_mm", "mm", (20.0, 1e6))?;
     let b = &raw.ball;
-    let ball_mass_g = ctx.positive(&b.mass_g, "ball.mass_g", "g")?;
-    let ball_radius_mm = ctx.positive(&b.radius_mm, "ball.radius_mm", "mm")?;
-    let ball_inertia = ctx.positive(&b.inertia_gcm2, "ball.inertia_gcm2", "g·cm²")?;
+    let ball_mass_g = ctx.in_range(&b.mass_g, "ball.mass_g", "g", (1.0, 1_000.0))?;
+    let ball_radius_mm = ctx.in_range(&b.radius_mm, "ball.radius_mm", "mm", (1.0, 200.0))?;
+    let ball_inertia = ctx.in_range(&b.inertia_gcm2, "ball.inertia_gcm2", "g·cm²", (0.01, 1e6))?;
 
     let nominal = ModelParams {
         club_mass_kg: g(mass_g),

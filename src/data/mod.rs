@@ -158,8 +158,12 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 }
 
 /// Format a float for an output file: shortest representation that reads back to the same value.
-/// Non-finite values are a bug upstream; callers must not pass them.
+/// A non-finite value (a bug upstream: solvers reject them) becomes an empty cell, never `NaN`.
 pub fn fmt_f64(v: f64) -> String {
     debug_assert!(v.is_finite(), "non-finite value written to a file");
-    format!("{v}")
+    if v.is_finite() {
+        format!("{v}")
+    } else {
+        String::new()
+    }
 }

@@ -103,13 +103,27 @@ pub fn read_shots(path: &Path) -> Result<ShotTable, DataError> {
 }
 
 /// Parse shots from any reader (`path` is used in messages only).
-pub fn parse_shots<R: std::io::Read>(path: &Path, reader: R) -> Result<ShotTable, DataError> {
+pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotTable, DataError> {
+    let mut bytes = Vec::new();
+    reader
+        .read_to_end(&mut bytes)
+        .map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
+    // Lines from byte offsets: the csv crate's own line count is off for CRLF files (as written
+    // by Excel and Python's csv module).
+    let newlines: Vec<usize> = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, &b)| b == b'\n')
+        .map(|(i, _)| i)
+        .collect();
+    // With CRLF the reported byte is the previous line's `\n` itself, hence `<=`.
+    let line_of = |p: &csv::Position| newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1;
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
-        .from_reader(reader);
+        .from_reader(bytes.as_slice());
     let csv_err = |e: csv::Error| {
-        let line = e.position().map(|p| p.line() as usize);
+        let line = e.position().map(line_of);
         let msg = match e.kind() {
             csv::ErrorKind::UnequalLengths {
                 expected_len, len, ..
@@ -208,9 +222,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, reader: R) -> Result<ShotTable
     let mut ids = HashSet::new();
     for rec in rdr.records() {
         let rec = rec.map_err(csv_err)?;
-        let line = rec
-            .position()
-            .map_or(records.len() + 2, |p| p.line() as usize);
+        let line = rec.position().map_or(records.len() + 2, line_of);
         let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
         let num = |i: usize| -> Result<f64, DataError> {
             let s = cells[i].as_str();

@@ -384,8 +384,14 @@ pub fn diagnose(
         .clone()
         .unwrap_or_else(|| default_candidates(&data.groups));
     // Validate the candidates against the groups up front.
-    for c in &candidates {
+    for (i, c) in candidates.iter().enumerate() {
         c.expand(&data.groups)?;
+        if candidates[..i].contains(c) {
+            return Err(FitError::BadEffectList(format!(
+                "candidate '{}' is listed twice",
+                c.label()
+            )));
+        }
     }
     let penalty_per_param = (n as f64).ln();
     let groups = group_names(&data);

@@ -138,12 +138,27 @@ pub fn covariance(jac: &DMatrix<f64>, reduced_chi2: f64, ranges: &[f64]) -> Cova
                 identifiability,
             }
         }
-        None => Covariance {
-            matrix: None,
-            stderr: vec![None; p],
-            correlation: None,
-            identifiability,
-        },
+        None => {
+            // Standard errors of the identifiable parameters, conditional on the others held
+            // at their values; none for the unidentified ones.
+            let bad = identifiability.unidentified();
+            let good: Vec<usize> = (0..p).filter(|j| !bad.contains(j)).collect();
+            let mut stderr = vec![None; p];
+            if !good.is_empty() && good.len() < p {
+                let sub = jac.select_columns(&good);
+                if let Some(inv) = sub.tr_mul(&sub).try_inverse() {
+                    for (a, &j) in good.iter().enumerate() {
+                        stderr[j] = Some((inv[(a, a)] * reduced_chi2).max(0.0).sqrt());
+                    }
+                }
+            }
+            Covariance {
+                matrix: None,
+                stderr,
+                correlation: None,
+                identifiability,
+            }
+        }
     }
 }
 
@@ -151,6 +166,18 @@ pub fn covariance(jac: &DMatrix<f64>, reduced_chi2: f64, ranges: &[f64]) -> Cova
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
+
+    #[test]
+    fn an_unidentified_parameter_does_not_hide_the_others_errors() {
+        let x = [0.0, 1.0, 2.0, 3.0];
+        // Second column: the residuals do not depend on it at all.
+        let j = DMatrix::from_fn(4, 2, |i, k| if k == 0 { x[i] } else { 0.0 });
+        let c = covariance(&j, 1.0, &[10.0, 10.0]);
+        assert!(!c.identifiability.ok());
+        assert_eq!(c.stderr[1], None);
+        let want = 1.0 / x.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert_relative_eq!(c.stderr[0].unwrap(), want, max_relative = 1e-12);
+    }
 
     #[test]
     fn straight_line_covariance_matches_textbook() {

@@ -126,6 +126,9 @@ pub enum ImpactError {
         /// `u1·n`, m/s.
         normal_speed_m_s: f64,
     },
+    /// The solve produced a non-finite number (parameters at the edge of floating point).
+    #[error("the impact solve produced a non-finite result; check the club's masses, inertia and face radii")]
+    NonFinite,
 }
 
 /// A validated impact model with precomputed inverse inertias. Cheap to clone.
@@ -381,6 +384,10 @@ impl ImpactModel {
         let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
         let v_c_after = v_c - impulse / p.club_mass_kg;
         let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
+        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+        if !(finite(&v_b) && finite(&w_b) && finite(&v_c_after) && finite(&w_c_after)) {
+            return Err(ImpactError::NonFinite);
+        }
         Ok(ImpactOutcome {
             ball_velocity_m_s: r_gf * v_b,
             ball_spin_rad_s: r_gf * w_b,

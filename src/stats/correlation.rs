@@ -4,6 +4,7 @@
 
 use serde::Serialize;
 
+use super::summary::effectively_constant;
 use super::tdist::student_t_two_sided_p;
 
 /// A correlation coefficient and its significance.
@@ -40,7 +41,9 @@ pub fn pearson(x: &[f64], y: &[f64]) -> Option<Correlation> {
         sxx += dx * dx;
         syy += dy * dy;
     }
-    if !(sxx > 0.0 && syy > 0.0) {
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+    let sd = |ss: f64| (ss / (n - 1) as f64).sqrt();
+    if effectively_constant(sd(sxx), max_abs(x)) || effectively_constant(sd(syy), max_abs(y)) {
         return None;
     }
     let r = (sxy / (sxx * syy).sqrt()).clamp(-1.0, 1.0);

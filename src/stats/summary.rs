@@ -40,6 +40,15 @@ pub struct Summary {
     pub p: Option<f64>,
 }
 
+/// Spreads at or below this (absolute, in file units: mph, deg, rpm, mm) are rounding, not data.
+pub const ROUNDING_FLOOR: f64 = 1e-9;
+
+/// Is a sample with standard deviation `sd` and largest magnitude `max_abs` effectively
+/// constant (its spread only floating-point rounding)?
+pub fn effectively_constant(sd: f64, max_abs: f64) -> bool {
+    !(sd > ROUNDING_FLOOR && sd > 1e-12 * max_abs)
+}
+
 impl Summary {
     /// Summarise a sample.
     pub fn of(xs: &[f64]) -> Self {
@@ -48,8 +57,9 @@ impl Summary {
         let m = if n > 0 { finite(mean(xs)) } else { None };
         let s = if n > 1 { finite(std_dev(xs)) } else { None };
         let sem = s.map(|s| s / (n as f64).sqrt());
-        let (t, p) = match (m, sem) {
-            (Some(m), Some(se)) if se > 0.0 => {
+        let max_abs = xs.iter().fold(0.0f64, |a, x| a.max(x.abs()));
+        let (t, p) = match (m, s, sem) {
+            (Some(m), Some(sd), Some(se)) if !effectively_constant(sd, max_abs) => {
                 let t = m / se;
                 (Some(t), Some(student_t_two_sided_p(t, (n - 1) as f64)))
             }

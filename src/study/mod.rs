@@ -31,12 +31,31 @@ pub use sweep::{Prepared, VariantResult};
 
 use crate::data::DataError;
 
+/// Most grid points (variants × rows × columns) one run sweeps: each holds six outputs, so
+/// this is about 2 GB of results before any file is written.
+pub const MAX_SWEEP_POINTS: u128 = 50_000_000;
+
 /// Why a study cannot be run or merged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StudyError {
     /// A file problem (study, club or shard file).
     #[error(transparent)]
     Data(#[from] DataError),
+    /// The sweep is larger than one run can hold.
+    #[error(
+        "the study sweeps {points} grid points ({variants} variant(s) × {ny}×{nz} grid); one run holds at \
+         most {MAX_SWEEP_POINTS}: use a coarser [grid] or fewer [design] values"
+    )]
+    TooLarge {
+        /// Variants × rows × columns.
+        points: u128,
+        /// Variants.
+        variants: usize,
+        /// Rows.
+        ny: usize,
+        /// Columns.
+        nz: usize,
+    },
     /// A design variant of the sweep is not physical.
     #[error("design variant {id} ({values}) is not physical: {problem}")]
     Variant {

@@ -132,9 +132,14 @@ impl CostFunction for DesignProblem<'_> {
     type Param = Vec<f64>;
     type Output = f64;
 
+    /// A design that is not physical (an inertia tensor breaking the triangle inequality, say)
+    /// or cannot be evaluated is infeasible: its cost is +∞, so the simplex moves away from it
+    /// instead of the run stopping.
     fn cost(&self, u: &Self::Param) -> Result<f64, argmin::core::Error> {
-        let (obj, _) = self.objective(&self.design(u))?;
-        Ok(self.sign() * obj)
+        Ok(match self.objective(&self.design(u)) {
+            Ok((obj, _)) if obj.is_finite() => self.sign() * obj,
+            _ => f64::INFINITY,
+        })
     }
 }
 

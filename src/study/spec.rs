@@ -446,9 +446,26 @@ impl Ctx<'_> {
                                 ),
                             ));
                         }
+                        if n.round() + 1.0 > 100_000.0 {
+                            return Err(self.err(
+                                span,
+                                &format!("{key}.step"),
+                                format!(
+                                    "{step} gives {} points; at most 100000 points an axis",
+                                    n.round() + 1.0
+                                ),
+                            ));
+                        }
                         n.round() as usize + 1
                     }
                 };
+                if count == 1 && to != from {
+                    return Err(self.err(
+                        span,
+                        &format!("{key}.count"),
+                        format!("count = 1 needs from = to (got from = {from}, to = {to})"),
+                    ));
+                }
                 if count > 1 && !(to > from) {
                     return Err(self.err(
                         span,

@@ -58,6 +58,19 @@ impl Prepared {
     /// Validate every variant and the swing. Errors name the first bad variant with its values.
     pub fn new(study: Study) -> Result<Self, StudyError> {
         let variants = study.design.variants();
+        let (ny, nz) = (
+            study.grid.y_mm.values().len(),
+            study.grid.z_mm.values().len(),
+        );
+        let points = variants.len() as u128 * ny as u128 * nz as u128;
+        if points > super::MAX_SWEEP_POINTS {
+            return Err(StudyError::TooLarge {
+                points,
+                variants: variants.len(),
+                ny,
+                nz,
+            });
+        }
         let models = variants
             .par_iter()
             .enumerate()

@@ -342,15 +342,16 @@ impl Ctx<'_> {
         toml_key_error(self.path, self.text, span.start, key, msg)
     }
 
+    /// An integer from `min` to 1,000,000 (no experiment, real or synthetic, is larger).
     fn count(&self, v: &Spanned<i64>, key: &str, min: i64) -> Result<usize, DataError> {
         let x = *v.get_ref();
-        if x >= min {
+        if x >= min && x <= 1_000_000 {
             Ok(x as usize)
         } else {
             Err(self.err(
                 v.span(),
                 key,
-                format!("must be an integer ≥ {min}, got {x}"),
+                format!("must be an integer from {min} to 1000000, got {x}"),
             ))
         }
     }
@@ -405,6 +406,19 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
         }
         if let Some(v) = &d.max_redraws_per_shot {
             cfg.max_redraws_per_shot = ctx.count(v, "design.max_redraws_per_shot", 0)?;
+        }
+        let shots = cfg.golfers * cfg.swings_per_golfer;
+        if shots > 10_000_000 {
+            let span = d
+                .golfers
+                .as_ref()
+                .or(d.swings_per_golfer.as_ref())
+                .map_or(0..0, |v| v.span());
+            return Err(ctx.err(
+                span,
+                "design",
+                format!("golfers × swings_per_golfer = {shots} per group; at most 10000000"),
+            ));
         }
         if let Some(g) = &d.groups {
             let key = "design.groups";
