@@ -8,7 +8,7 @@ use clap::Args;
 use crate::compare::{compare, CompareOptions};
 use crate::data::club_file::read_club;
 use crate::data::shots::read_shots;
-use crate::data::write_atomic;
+use crate::data::write_folder_atomic;
 use crate::physics::LaunchComponent;
 use crate::predict::expected_launches;
 use crate::report::compare::{compare_files, compare_json, compare_text};
@@ -109,11 +109,11 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         print!("{text}");
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
-        std::fs::create_dir_all(dir)
-            .with_context(|| format!("cannot create output folder {}", dir.display()))?;
-        for (name, bytes) in &files {
-            write_atomic(&dir.join(name), bytes)?;
-        }
+        let files: Vec<(PathBuf, Vec<u8>)> = files
+            .into_iter()
+            .map(|(n, b)| (PathBuf::from(n), b))
+            .collect();
+        write_folder_atomic(dir, &files, "compare.json")?;
         eprintln!("wrote {} files to {}", files.len(), dir.display());
     }
     Ok(())

@@ -27,6 +27,13 @@ pub struct MergeArgs {
 
 /// Run `smash merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    let canon = |p: &std::path::Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_owned());
+    if args.shards.iter().any(|s| canon(s) == canon(&args.out)) {
+        anyhow::bail!(
+            "--out {} is one of the shard folders; write the merged result to another folder",
+            args.out.display()
+        );
+    }
     let (prepared, variants) = merge_shards(&args.shards)?;
     let (files, opt) = finish(&prepared, &variants)?;
     super::run::write_all(&args.out, &files)?;

@@ -6,7 +6,7 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::data::write_atomic;
+use crate::data::write_folder_atomic;
 use crate::study::output::Files;
 use crate::study::shard::{parse_shard_spec, shard_files};
 use crate::study::{finish, read_study, Prepared};
@@ -35,11 +35,10 @@ pub struct RunArgs {
     pub shard: Option<(usize, usize)>,
 }
 
-/// Write every file under `dir` (atomically each).
+/// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
+/// [`write_folder_atomic`]; every study output folder holds `study.toml`).
 pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
-    for (rel, bytes) in files {
-        write_atomic(&dir.join(rel), bytes)?;
-    }
+    write_folder_atomic(dir, files, "study.toml")?;
     Ok(())
 }
 

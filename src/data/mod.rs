@@ -146,6 +146,76 @@ pub fn toml_key_error(
     )
 }
 
+/// Write a whole folder of outputs as one unit: every file goes into a temporary sibling folder,
+/// which then replaces `dir`. A failure leaves `dir` as it was; a success leaves exactly `files`
+/// (no stale files of an earlier run). An existing non-empty `dir` is replaced only if it holds
+/// `marker` (a file every such output folder has), so a folder of other files is never removed.
+pub fn write_folder_atomic(
+    dir: &Path,
+    files: &[(PathBuf, Vec<u8>)],
+    marker: &str,
+) -> Result<(), DataError> {
+    let err = |m: String| DataError::file(dir, m);
+    if dir.exists() {
+        let mut entries =
+            std::fs::read_dir(dir).map_err(|e| err(format!("cannot read folder: {e}")))?;
+        if entries.next().is_some() && !dir.join(marker).is_file() {
+            return Err(err(format!(
+                "the folder exists and holds files that are not an earlier output of this command \
+                 (no {marker}); choose a new or empty folder"
+            )));
+        }
+    }
+    let name = dir
+        .file_name()
+        .ok_or_else(|| err("not a folder path".into()))?
+        .to_string_lossy()
+        .into_owned();
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
+    };
+    std::fs::create_dir_all(&parent)
+        .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
+    let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+    let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&tmp);
+    let written = (|| -> std::io::Result<()> {
+        for (rel, bytes) in files {
+            let path = tmp.join(rel);
+            if let Some(p) = path.parent() {
+                std::fs::create_dir_all(p)?;
+            }
+            let mut f = std::fs::File::create(&path)?;
+            f.write_all(bytes)?;
+            f.sync_all()?;
+        }
+        std::fs::create_dir_all(&tmp)
+    })();
+    if let Err(e) = written {
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(err(format!("cannot write: {e}")));
+    }
+    let swapped = (|| -> std::io::Result<()> {
+        if dir.exists() {
+            std::fs::rename(dir, &old)?;
+        }
+        if let Err(e) = std::fs::rename(&tmp, dir) {
+            if old.exists() {
+                let _ = std::fs::rename(&old, dir);
+            }
+            return Err(e);
+        }
+        Ok(())
+    })();
+    if let Err(e) = swapped {
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(err(format!("cannot replace the folder: {e}")));
+    }
+    let _ = std::fs::remove_dir_all(&old);
+    Ok(())
+}
+
 /// Byte offset to 1-based (line, column).
 pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
     let offset = offset.min(text.len());
