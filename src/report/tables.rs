@@ -62,6 +62,10 @@ impl TextTable {
 
 /// A launch-component value with the precision its unit deserves (rpm: integer).
 pub fn fmt_value(c: LaunchComponent, v: f64) -> String {
+    if !v.is_finite() {
+        // Undefined (the spread of a single shot): shown as a dash, `null` in JSON.
+        return "–".to_owned();
+    }
     match c {
         LaunchComponent::Backspin | LaunchComponent::Sidespin => format!("{v:.0}"),
         _ => format!("{v:.2}"),

@@ -12,7 +12,8 @@ use crate::physics::LaunchComponent;
 pub struct MeanStd {
     /// Mean error (model − measured).
     pub mean: f64,
-    /// Sample standard deviation of the error.
+    /// Sample standard deviation of the error (NaN, shown as "–" and written as `null`, for a
+    /// group of one shot).
     pub std: f64,
 }
 
@@ -66,11 +67,7 @@ pub fn launch_error_table<S: AsRef<str>>(groups: &[S], errors: &[[f64; 5]]) -> E
                 let col: Vec<f64> = idx.iter().map(|&i| errors[i][c]).collect();
                 MeanStd {
                     mean: super::mean(&col),
-                    std: if col.len() < 2 {
-                        0.0
-                    } else {
-                        super::std_dev(&col)
-                    },
+                    std: super::std_dev(&col),
                 }
             });
             GroupErrors {
@@ -99,5 +96,15 @@ mod tests {
         assert!((t.groups[1].components[0].std - 2f64.sqrt()).abs() < 1e-12);
         let j = t.to_json();
         assert_eq!(j["B"]["ball_speed_mph"]["mean"], 2.0);
+    }
+
+    #[test]
+    fn a_single_shot_group_has_no_spread_and_json_says_null() {
+        let t = launch_error_table(&["A", "A", "B"], &[[1.0; 5], [3.0; 5], [2.0; 5]]);
+        assert!(t.groups[1].components[0].std.is_nan());
+        let j = t.to_json();
+        assert!(j["B"]["ball_speed_mph"]["std"].is_null());
+        assert_eq!(j["B"]["ball_speed_mph"]["mean"], 2.0);
+        assert!(crate::report::fmt_value(LaunchComponent::BallSpeed, f64::NAN) == "–");
     }
 }

@@ -819,6 +819,24 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                             ctx.err(k.span(), &key, "not one of the sensitivity variables")
                         })?;
                     slot.1 = ctx.positive(v, &key, slot.0.unit())?;
+                    let is_scale = matches!(
+                        slot.0,
+                        DesignVar::InertiaScale
+                            | DesignVar::IxxScale
+                            | DesignVar::IyyScale
+                            | DesignVar::IzzScale
+                    );
+                    if is_scale && slot.1 >= 0.5 {
+                        return Err(ctx.err(
+                            v.span(),
+                            &key,
+                            format!(
+                                "a scale's central difference evaluates 1 ± step; the step must be \
+                                 below 0.5 (typically 0.01), got {}",
+                                slot.1
+                            ),
+                        ));
+                    }
                 }
             }
             if discretionary_mass.is_none() {
