@@ -528,12 +528,12 @@ pub fn compare(
                 ce.summary.p.unwrap_or(1.0),
             );
             let mut text = format!(
-                "{} is {} {} too {} (t = {:.1}, {})",
+                "{} is {} {} too {} (t = {}, {})",
                 c.label(),
                 sig3(m.abs()),
                 c.unit(),
                 if m > 0.0 { "high" } else { "low" },
-                t,
+                fmt_t(t),
                 fmt_p(p)
             );
             if let Some(k) = trends.first() {
@@ -559,11 +559,11 @@ pub fn compare(
                 pattern,
                 strength: k.t.abs(),
                 text: format!(
-                    "{} error {} (r = {:.2}, t = {:.1}, {})",
+                    "{} error {} (r = {:.2}, t = {}, {})",
                     c.label(),
                     direction(k.variable, k.r),
                     k.r,
-                    k.t,
+                    fmt_t(k.t),
                     fmt_p(k.p)
                 ),
                 hints: hints_for(c, &pattern),
@@ -597,11 +597,11 @@ pub fn compare(
                             pattern: Pattern::GroupBias,
                             strength: t.abs(),
                             text: format!(
-                                "{} error differs between groups: {} {} (Welch t = {:.1} for {hi} vs {lo}, {})",
+                                "{} error differs between groups: {} {} (Welch t = {} for {hi} vs {lo}, {})",
                                 c.label(),
                                 list.join(", "),
                                 c.unit(),
-                                t,
+                                fmt_t(t),
                                 fmt_p(p)
                             ),
                             hints: hints_for(c, &Pattern::GroupBias),
@@ -641,10 +641,21 @@ pub fn compare(
     })
 }
 
-/// Three significant digits, without exponent for everyday magnitudes.
+/// A t statistic for prose: one decimal, or scientific notation when huge.
+pub fn fmt_t(t: f64) -> String {
+    if t.abs() >= 1e6 {
+        format!("{t:.2e}")
+    } else {
+        format!("{t:.1}")
+    }
+}
+
+/// Three significant figures (scientific notation from a million up).
 pub fn sig3(v: f64) -> String {
     let a = v.abs();
-    if a >= 100.0 {
+    if a >= 1e6 {
+        format!("{v:.2e}")
+    } else if a >= 100.0 {
         format!("{v:.0}")
     } else if a >= 10.0 {
         format!("{v:.1}")
