@@ -3,7 +3,7 @@
 
 use std::time::Instant;
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::Vector3;
 use smash::physics::ModelParams;
 use smash::sweep::{FaceMapKernel, LaunchGrid};
 use smash::units::{deg, mm, mph};
@@ -11,25 +11,8 @@ use smash::{Delivery, ImpactModel};
 
 fn main() {
     let p = ModelParams {
-        club_mass_kg: 0.204,
-        club_com_m: Vector3::new(-0.0423, 0.0029, 0.001),
-        club_inertia_kgm2: Matrix3::new(
-            2843.0, -733.0, 530.2, -733.0, 5679.0, 0.5, 530.2, 0.5, 4085.0,
-        ) * 1e-7,
-        cor: 0.83,
-        bulge_m: 0.305,
-        roll_m: 0.305,
-        ball_mass_kg: 0.0459,
-        ball_radius_m: 0.0213,
-        ball_inertia_kgm2: 83.63e-7,
-        ball_offset_y_m: 0.0,
-        ball_offset_z_m: 0.0,
-        tangential_restitution: 0.0,
         friction_mu: std::env::args().nth(1).map(|s| s.parse().unwrap()),
-        cor_speed_k_s_per_m: 0.0,
-        cor_radial_c_per_m2: 0.0,
-        loft_bias_rad: 0.0,
-        face_bias_rad: 0.0,
+        ..ModelParams::paper_driver()
     };
     let model = ImpactModel::new(p).unwrap();
     let d = Delivery {

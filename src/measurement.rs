@@ -113,6 +113,18 @@ impl ImpactNoise {
         })
     }
 
+    /// Posterior quadrature nodes of the true impact location of every delivery.
+    pub fn nodes_for<'a>(
+        &self,
+        deliveries: impl IntoIterator<Item = &'a Delivery>,
+    ) -> Result<Vec<[LocationNode; NODES_PER_SHOT]>, MeasurementError> {
+        let locs: Vec<(f64, f64)> = deliveries
+            .into_iter()
+            .map(|d| (d.impact_y_m, d.impact_z_m))
+            .collect();
+        self.posterior_nodes(&locs)
+    }
+
     /// Posterior quadrature nodes of the true location for every measured `(y_m, z_m)`.
     pub fn posterior_nodes(
         &self,

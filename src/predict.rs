@@ -91,16 +91,9 @@ pub fn expected_launches(
     impact_noise: Option<ImpactNoise>,
 ) -> Result<Vec<Launch>, PredictError> {
     let models = group_models(club, shots)?;
-    let nodes = match impact_noise {
-        Some(n) => {
-            let locs: Vec<(f64, f64)> = shots
-                .iter()
-                .map(|s| (s.delivery.impact_y_m, s.delivery.impact_z_m))
-                .collect();
-            Some(n.posterior_nodes(&locs)?)
-        }
-        None => None,
-    };
+    let nodes = impact_noise
+        .map(|n| n.nodes_for(shots.iter().map(|s| &s.delivery)))
+        .transpose()?;
     shots
         .iter()
         .enumerate()

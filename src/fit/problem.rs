@@ -105,17 +105,7 @@ impl FitData {
     /// Correct for noise in the measured impact locations (`None`: none). The prior of the true
     /// locations comes from all these shots' measured locations.
     pub fn with_impact_noise(mut self, noise: Option<ImpactNoise>) -> Result<Self, FitError> {
-        self.impact_nodes = match noise {
-            Some(n) => {
-                let locs: Vec<(f64, f64)> = self
-                    .deliveries
-                    .iter()
-                    .map(|d| (d.impact_y_m, d.impact_z_m))
-                    .collect();
-                Some(n.posterior_nodes(&locs)?)
-            }
-            None => None,
-        };
+        self.impact_nodes = noise.map(|n| n.nodes_for(&self.deliveries)).transpose()?;
         Ok(self)
     }
 
