@@ -43,6 +43,10 @@ pub struct ParamSpec {
     pub lower: f64,
     /// Largest physical value (inclusive).
     pub upper: f64,
+    /// Range of values a real driver impact plausibly shows (inside `[lower, upper]`): a fitted
+    /// value outside it is a stand-in for some other physics, not a finding. Sources and
+    /// reasons: `docs/plausible-ranges.md`.
+    pub plausible: (f64, f64),
     /// What the parameter means.
     pub doc: &'static str,
 }
@@ -78,6 +82,7 @@ const fn spec(
     default: f64,
     lower: f64,
     upper: f64,
+    plausible: (f64, f64),
     doc: &'static str,
 ) -> ParamSpec {
     ParamSpec {
@@ -86,6 +91,7 @@ const fn spec(
         default,
         lower,
         upper,
+        plausible,
         doc,
     }
 }
@@ -96,6 +102,7 @@ const ADDED_MASS: [ParamSpec; 1] = [spec(
     0.0,
     -100.0,
     200.0,
+    (0.0, 10.0),
     "mass added to the clubhead",
 )];
 const BALL_OFFSET: [ParamSpec; 2] = [
@@ -105,6 +112,7 @@ const BALL_OFFSET: [ParamSpec; 2] = [
         0.0,
         -10.0,
         10.0,
+        (-2.0, 2.0),
         "contact point relative to ball CoM, along y_I",
     ),
     spec(
@@ -113,6 +121,7 @@ const BALL_OFFSET: [ParamSpec; 2] = [
         0.0,
         -10.0,
         10.0,
+        (-2.0, 2.0),
         "contact point relative to ball CoM, along z_I",
     ),
 ];
@@ -122,6 +131,7 @@ const TANGENTIAL_RESTITUTION: [ParamSpec; 1] = [spec(
     0.0,
     -1.0,
     1.0,
+    (-0.3, 0.3),
     "tangential restitution (0 = no slip, the paper's model)",
 )];
 const FRICTION: [ParamSpec; 1] = [spec(
@@ -130,6 +140,7 @@ const FRICTION: [ParamSpec; 1] = [spec(
     0.4,
     1e-3,
     2.0,
+    (0.1, 0.6),
     "Coulomb friction coefficient face-ball",
 )];
 const COR_SPEED: [ParamSpec; 1] = [spec(
@@ -137,7 +148,7 @@ const COR_SPEED: [ParamSpec; 1] = [spec(
     "s/m",
     0.0,
     0.0,
-    0.02,
+    0.02, (0.0, 0.005),
     "COR drop per m/s of normal approach speed above 48.77 m/s (a ball's COR falls with speed: k >= 0)",
 )];
 const COR_RADIAL: [ParamSpec; 1] = [spec(
@@ -146,6 +157,7 @@ const COR_RADIAL: [ParamSpec; 1] = [spec(
     0.0,
     0.0,
     2e-3,
+    (0.0, 3e-4),
     "COR drop per mm² of squared distance from the face centre (COR peaks at the centre: c >= 0)",
 )];
 const LOFT_BIAS: [ParamSpec; 1] = [spec(
@@ -154,6 +166,7 @@ const LOFT_BIAS: [ParamSpec; 1] = [spec(
     0.0,
     -15.0,
     15.0,
+    (-3.0, 3.0),
     "added to the delivered dynamic loft",
 )];
 const FACE_BIAS: [ParamSpec; 1] = [spec(
@@ -162,6 +175,7 @@ const FACE_BIAS: [ParamSpec; 1] = [spec(
     0.0,
     -15.0,
     15.0,
+    (-3.0, 3.0),
     "added to the delivered face angle",
 )];
 const COM_OFFSET: [ParamSpec; 3] = [
@@ -171,6 +185,7 @@ const COM_OFFSET: [ParamSpec; 3] = [
         0.0,
         -30.0,
         30.0,
+        (-3.0, 3.0),
         "clubhead CoM shift along x_F (face normal)",
     ),
     spec(
@@ -179,6 +194,7 @@ const COM_OFFSET: [ParamSpec; 3] = [
         0.0,
         -30.0,
         30.0,
+        (-3.0, 3.0),
         "clubhead CoM shift along y_F (up)",
     ),
     spec(
@@ -187,6 +203,7 @@ const COM_OFFSET: [ParamSpec; 3] = [
         0.0,
         -30.0,
         30.0,
+        (-3.0, 3.0),
         "clubhead CoM shift along z_F (toe)",
     ),
 ];
@@ -196,6 +213,7 @@ const INERTIA_SCALE: [ParamSpec; 1] = [spec(
     1.0,
     0.1,
     10.0,
+    (0.85, 1.15),
     "factor on the clubhead inertia tensor",
 )];
 
