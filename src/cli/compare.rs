@@ -69,6 +69,14 @@ pub struct CompareArgs {
 
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    if let Some(dir) = &args.out_dir {
+        crate::data::safe_write::refuse_inputs(
+            &[("--out-dir", dir, true)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+        crate::data::safe_write::clean_stale_temporaries(dir);
+        crate::data::safe_write::check_replaceable(dir)?;
+    }
     if !(args.alpha > 0.0 && args.alpha < 1.0) {
         bail!("--alpha must be in (0, 1), got {}", args.alpha);
     }
@@ -104,9 +112,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");
-        println!("{}", compare_json(&report));
+        crate::cli::stdout::println(compare_json(&report))?;
     } else {
-        print!("{text}");
+        crate::cli::stdout::print(&text)?;
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
         let files: Vec<(PathBuf, Vec<u8>)> = files

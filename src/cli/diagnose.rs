@@ -104,6 +104,12 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    if let Some(out) = &args.out_club {
+        crate::data::safe_write::refuse_inputs(
+            &[("--out-club", out, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
     let club = read_club(&args.club)?;
     let table = read_shots(&args.shots)?;
     if !table.has_measurements() {
@@ -151,9 +157,9 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         eprintln!("club with selected effects -> {}", out.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&d))?);
+        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&d))?)?;
     } else {
-        print!("{}", text_report(&d));
+        crate::cli::stdout::print(text_report(&d))?;
     }
     Ok(())
 }

@@ -11,6 +11,7 @@ pub mod merge;
 pub mod predict;
 pub mod progress;
 pub mod run;
+pub mod stdout;
 pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the

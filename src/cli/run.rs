@@ -45,8 +45,24 @@ pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
 /// Run `smash run`.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let study = read_study(&args.study)?;
-    let prepared = Prepared::new(study)?;
     let (k, n) = args.shard.unwrap_or((0, 1));
+    let dir = match (&args.out, args.shard) {
+        (Some(d), _) => d.clone(),
+        (None, Some(_)) => study.output_dir.join("shards").join(format!("{k}_of_{n}")),
+        (None, None) => study.output_dir.clone(),
+    };
+    // Refuse before the sweep, not after it: the output folder may not hold the inputs or
+    // files smash did not write.
+    crate::data::safe_write::refuse_inputs(
+        &[("--out", &dir, true)],
+        &[
+            ("STUDY.toml", &args.study),
+            ("the study's club", &study.club_path),
+        ],
+    )?;
+    crate::data::safe_write::clean_stale_temporaries(&dir);
+    crate::data::safe_write::check_replaceable(&dir)?;
+    let prepared = Prepared::new(study)?;
     let items = prepared.shard_range(k, n);
     let impacts = prepared.impacts_in(items.clone());
     let bar = if items.len() >= 64 && impacts >= 50_000 {
@@ -72,7 +88,6 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
-    let s = &prepared.study;
     let closing = format!(
         "swept {impacts} impact evaluations ({} variant(s) × {}×{} grid + summary metrics{}) in {seconds:.3} s: {:.0} impacts/s",
         prepared.variants.len(),
@@ -82,10 +97,6 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         impacts as f64 / seconds.max(1e-9)
     );
     if args.shard.is_some() {
-        let dir = args
-            .out
-            .clone()
-            .unwrap_or_else(|| s.output_dir.join("shards").join(format!("{k}_of_{n}")));
         write_all(&dir, &shard_files(&prepared, k, n, &results))?;
         eprintln!(
             "shard {k} of {n}: work items {}..{} -> {}",
@@ -98,9 +109,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     }
     let variants = prepared.assemble(results)?;
     let (files, opt) = finish(&prepared, &variants)?;
-    let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
     write_all(&dir, &files)?;
-    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len());
+    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len())?;
     eprintln!("{closing}");
     Ok(())
 }
