@@ -308,3 +308,272 @@ fn stale_temporaries_of_dead_runs_are_removed_and_live_ones_kept() {
     assert!(running.exists(), "a live run's temporary was removed");
     assert!(not_ours.exists(), "another output's temporary was removed");
 }
+
+// ---- 6. shards prove they belong together ------------------------------------------------------
+
+/// A study on its own copy of the club, and its two shards.
+fn sharded(dir: &Path) -> (PathBuf, PathBuf, Vec<PathBuf>) {
+    let club_copy = dir.join("club.toml");
+    std::fs::copy(club(), &club_copy).unwrap();
+    let study = dir.join("study.toml");
+    std::fs::write(
+        &study,
+        "[study]\nname = \"t\"\nclub = \"club.toml\"\n\n[delivery]\nclub_speed_mph = 100.0\n\
+         dynamic_loft_deg = 12.0\n\n[grid]\ny_mm = { from = -10.0, to = 10.0, count = 4 }\n\
+         z_mm = { from = -10.0, to = 10.0, count = 3 }\n",
+    )
+    .unwrap();
+    let shards: Vec<PathBuf> = (0..2).map(|k| dir.join(format!("sh{k}"))).collect();
+    for (k, d) in shards.iter().enumerate() {
+        run_shard(&study, k, d);
+    }
+    (study, club_copy, shards)
+}
+
+fn run_shard(study: &Path, k: usize, out: &Path) {
+    let o = smash(&[
+        "run",
+        s(study),
+        "--shard",
+        &format!("{k}/2"),
+        "--out",
+        s(out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
+fn merge(shards: &[PathBuf], out: &Path) -> Output {
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|p| s(p)));
+    args.extend(["--out", s(out)]);
+    smash(&args)
+}
+
+fn edit(path: &Path, from: &str, to: &str) {
+    let text = std::fs::read_to_string(path).unwrap();
+    assert!(text.contains(from), "{from:?} not in {}", path.display());
+    std::fs::write(path, text.replacen(from, to, 1)).unwrap();
+}
+
+#[test]
+fn shards_of_different_clubs_are_not_merged() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (study, club_copy, shards) = sharded(tmp.path());
+    let out = tmp.path().join("merged");
+    let o = merge(&shards, &out);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The club changes between the shards: refused, naming both.
+    edit(&club_copy, "cor = 0.83", "cor = 0.80");
+    run_shard(&study, 1, &shards[1]);
+    let o = merge(&shards, &tmp.path().join("m2"));
+    assert_one_line_error(&o, "different club files");
+    let err = stderr(&o);
+    assert!(err.contains("sh0") && err.contains("sh1"), "{err}");
+    assert!(!tmp.path().join("m2").exists());
+    // Both shards of the new club, but the club changed again before the merge.
+    run_shard(&study, 0, &shards[0]);
+    edit(&club_copy, "cor = 0.80", "cor = 0.81");
+    let o = merge(&shards, &tmp.path().join("m3"));
+    assert_one_line_error(&o, "changed since the shards were computed");
+}
+
+#[test]
+fn every_field_read_back_from_a_shard_is_checked() {
+    let tmp = tempfile::tempdir().unwrap();
+    let (_, _, shards) = sharded(tmp.path());
+    let rows = shards[1].join("rows.csv");
+    let original = std::fs::read_to_string(&rows).unwrap();
+    let first = original.lines().nth(1).unwrap().to_owned();
+    let fields: Vec<&str> = first.split(',').collect();
+    let with = |i: usize, v: &str| {
+        let mut f = fields.clone();
+        f[i] = v;
+        original.replacen(&first, &f.join(","), 1)
+    };
+    let cases = [
+        (with(1, "18446744073709551615"), "rows.csv:2: column row"),
+        (with(0, "7"), "rows.csv:2: column variant"),
+        (with(2, "99"), "rows.csv:2: column col"),
+        (with(3, "2"), "rows.csv:2: column valid"),
+        (with(4, "1e999"), "rows.csv:2: column ball_speed_m_s"),
+        (
+            original.replacen(&first, &format!("{first},9"), 1),
+            "rows.csv:2",
+        ),
+        (with(0, "\u{1b}[2J"), "\\u{1b}[2J"),
+    ];
+    for (k, (text, want)) in cases.iter().enumerate() {
+        std::fs::write(&rows, text).unwrap();
+        let o = merge(&shards, &tmp.path().join(format!("m{k}")));
+        assert_one_line_error(&o, want);
+        assert!(!stderr(&o).contains('\u{1b}'), "raw ESC echoed");
+    }
+    std::fs::write(&rows, &original).unwrap();
+
+    let meta = shards[1].join("shard.toml");
+    let text = std::fs::read_to_string(&meta).unwrap();
+    for (from, to, want) in [
+        ("shards = 2", "shards = 0", "at least 1 shard"),
+        ("shard = 1", "shard = 5", "shards are numbered 0 to 1"),
+        (
+            "first_item = ",
+            "first_item = 1",
+            "are not those of shard 1 of 2",
+        ),
+    ] {
+        std::fs::write(&meta, text.replacen(from, to, 1)).unwrap();
+        let o = merge(&shards, &tmp.path().join("mm"));
+        assert_one_line_error(&o, want);
+        assert!(!stderr(&o).contains("shard 0 of 0"), "{}", stderr(&o));
+    }
+    // A shard without the hashes (an older smash) is refused with what to do.
+    let no_hash: String = text
+        .lines()
+        .filter(|l| !l.starts_with("club_sha256"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    std::fs::write(&meta, no_hash).unwrap();
+    let o = merge(&shards, &tmp.path().join("mm"));
+    assert_one_line_error(&o, "run the shards again");
+}
+
+// ---- 8. messages --------------------------------------------------------------------------------
+
+const SHOTS_HEADER: &str = "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,\
+                            dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm\n";
+
+#[test]
+fn control_characters_from_input_are_escaped() {
+    let tmp = tempfile::tempdir().unwrap();
+    let shots = tmp.path().join("s.csv");
+    // ESC in a number cell, CR inside a quoted id cell.
+    for (body, want) in [
+        ("s1,1\u{1b}[2J00,0,0,12,0,0,0\n", "1\\u{1b}[2J00"),
+        ("\"s\r1\",100,0,0,12,0,500,0\n", "s\\r1"),
+    ] {
+        std::fs::write(&shots, format!("{SHOTS_HEADER}{body}")).unwrap();
+        let o = smash(&[
+            "predict",
+            "--club",
+            &club(),
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&tmp.path().join("p.csv")),
+        ]);
+        assert_one_line_error(&o, want);
+        let err = stderr(&o);
+        assert!(!err.contains('\u{1b}') && !err.contains('\r'), "{err:?}");
+    }
+}
+
+#[test]
+fn negative_numbers_are_values_not_flags() {
+    let o = smash(&[
+        "predict",
+        "--club",
+        &club(),
+        "--speed",
+        "-5",
+        "--loft",
+        "12",
+    ]);
+    assert_one_line_error(&o, "--speed must be > 0 mph, got -5");
+    let o = smash(&[
+        "predict",
+        "--club",
+        &club(),
+        "--speed",
+        "100",
+        "--loft",
+        "-2",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = smash(&[
+        "predict",
+        "--club",
+        &club(),
+        "--speed",
+        "-1e300",
+        "--loft",
+        "12",
+    ]);
+    assert_one_line_error(&o, "got -1e300");
+}
+
+#[test]
+fn huge_values_are_shown_in_scientific_notation() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = tmp.path().join("neg.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "[study]\nname = \"t\"\nclub = {:?}\n\n[delivery]\nclub_speed_mph = -1e300\n\
+             dynamic_loft_deg = 12.0\n\n[grid]\ny_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n\
+             z_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n",
+            club()
+        ),
+    )
+    .unwrap();
+    let o = smash(&["run", s(&study), "--out", s(&tmp.path().join("o"))]);
+    assert_one_line_error(&o, "got -1e300");
+    assert!(stderr(&o).len() < 200, "{}", stderr(&o));
+}
+
+#[test]
+fn a_study_whose_club_misses_the_ball_names_the_file_and_line() {
+    let tmp = tempfile::tempdir().unwrap();
+    let study = tmp.path().join("away.toml");
+    std::fs::write(
+        &study,
+        format!(
+            "[study]\nname = \"t\"\nclub = {:?}\n\n[delivery]\nclub_speed_mph = 100.0\n\
+             dynamic_loft_deg = 12.0\nattack_angle_deg = -95.0\n\n[grid]\n\
+             y_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n\
+             z_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n",
+            club()
+        ),
+    )
+    .unwrap();
+    let o = smash(&["run", s(&study), "--out", s(&tmp.path().join("o"))]);
+    assert_one_line_error(
+        &o,
+        "away.toml:5: table [delivery]: the club does not approach",
+    );
+}
+
+#[test]
+fn shot_errors_name_file_line_and_columns_like_parse_errors() {
+    let tmp = tempfile::tempdir().unwrap();
+    let shots = tmp.path().join("s.csv");
+    let out = tmp.path().join("p.csv");
+    // Line 3 (the second shot) is off the face; then line 3 swings away from the ball.
+    for (second, want) in [
+        (
+            "s2,100,0,0,12,0,500,0",
+            "s.csv:3: columns impact_y_mm, impact_z_mm: shot 's2'",
+        ),
+        (
+            "s2,100,-95,0,12,0,0,0",
+            "s.csv:3: columns club_speed_mph, attack_angle_deg",
+        ),
+    ] {
+        std::fs::write(
+            &shots,
+            format!("{SHOTS_HEADER}s1,100,0,0,12,0,0,0\n{second}\n"),
+        )
+        .unwrap();
+        let o = smash(&[
+            "predict",
+            "--club",
+            &club(),
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&out),
+        ]);
+        assert_one_line_error(&o, want);
+        assert!(!stderr(&o).contains("row "), "{}", stderr(&o));
+        assert!(!out.exists());
+    }
+}

@@ -61,7 +61,13 @@ pub struct CalibrateArgs {
     pub json: bool,
 
     /// Iteration limit of each solver run.
-    #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Solver")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Solver",
+        allow_negative_numbers = true
+    )]
     pub max_iters: u64,
 
     /// Measurement noise of the inputs.

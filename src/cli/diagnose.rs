@@ -48,7 +48,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 5,
         value_name = "K",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub folds: usize,
 
@@ -57,7 +58,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 6,
         value_name = "N",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub max_steps: usize,
 
@@ -71,7 +73,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 100,
         value_name = "N",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub max_iters: u64,
 
@@ -140,7 +143,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     bar.0.finish_and_clear();
     let d = d?;
     for w in &d.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", crate::data::escape(w));
     }
     if let Some(out) = &args.out_club {
         let comment = format!(

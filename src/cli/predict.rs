@@ -44,7 +44,8 @@ pub struct PredictArgs {
         long = "speed-mph",
         visible_alias = "speed",
         value_name = "MPH",
-        help_heading = "One delivery"
+        help_heading = "One delivery",
+        allow_negative_numbers = true
     )]
     pub club_speed_mph: Option<f64>,
     /// Dynamic loft at impact, deg.
@@ -52,7 +53,8 @@ pub struct PredictArgs {
         long = "loft-deg",
         visible_alias = "loft",
         value_name = "DEG",
-        help_heading = "One delivery"
+        help_heading = "One delivery",
+        allow_negative_numbers = true
     )]
     pub dynamic_loft_deg: Option<f64>,
     /// Attack angle, deg (+ up).
@@ -158,7 +160,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         )?;
         let table = read_shots(shots_path)?;
         let outcomes =
-            predict_table(&club, &table).with_context(|| shots_path.display().to_string())?;
+            predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
         write_atomic(out, &predictions_csv(&table, &outcomes))?;
         eprintln!(
             "predicted {} shot(s) with {} -> {}",
@@ -193,7 +195,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         }
     }
     if speed <= 0.0 {
-        bail!("--speed must be > 0 mph, got {speed}");
+        bail!("--speed must be > 0 mph, got {}", crate::data::Num(speed));
     }
     let delivery = Delivery {
         club_speed_m_s: mph(speed),

@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::data::write_folder_atomic;
 use crate::study::output::Files;
 use crate::study::shard::{parse_shard_spec, shard_files};
-use crate::study::{finish, read_study, Prepared};
+use crate::study::{finish, read_study, Prepared, StudyError};
 
 /// Arguments of `smash run`.
 #[derive(Debug, Args)]
@@ -42,6 +42,26 @@ pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A swing that does not reach the ball is a problem of the study's `[delivery]` table: name the
+/// file and the table's line.
+fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
+    let StudyError::Swing { problem } = &e else {
+        return e.into();
+    };
+    let line = std::fs::read_to_string(study).ok().and_then(|text| {
+        text.lines()
+            .position(|l| l.trim_start().starts_with("[delivery]"))
+            .map(|i| i + 1)
+    });
+    crate::data::DataError::at(
+        study,
+        line,
+        Some("table [delivery]".into()),
+        problem.clone(),
+    )
+    .into()
+}
+
 /// Run `smash run`.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let study = read_study(&args.study)?;
@@ -62,7 +82,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     )?;
     crate::data::safe_write::clean_stale_temporaries(&dir);
     crate::data::safe_write::check_replaceable(&dir)?;
-    let prepared = Prepared::new(study)?;
+    let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
     let items = prepared.shard_range(k, n);
     let impacts = prepared.impacts_in(items.clone());
     let bar = if items.len() >= 64 && impacts >= 50_000 {
@@ -97,7 +117,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         impacts as f64 / seconds.max(1e-9)
     );
     if args.shard.is_some() {
-        write_all(&dir, &shard_files(&prepared, k, n, &results))?;
+        write_all(&dir, &shard_files(&prepared, k, n, &results)?)?;
         eprintln!(
             "shard {k} of {n}: work items {}..{} -> {}",
             items.start,

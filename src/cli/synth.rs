@@ -30,7 +30,7 @@ pub struct SynthArgs {
     pub truth: Option<PathBuf>,
 
     /// Random seed (overrides the configuration's `seed`).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub seed: Option<u64>,
 }
 

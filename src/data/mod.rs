@@ -274,6 +274,8 @@ pub fn write_folder_atomic(
     Ok(())
 }
 
+pub use crate::units::Num;
+
 /// `text` with every control character (ESC, CR, LF, DEL, …) written as a visible escape
 /// (`\u{1b}`, `\r`, …), so that text taken from an input file cannot act on the terminal when a
 /// message repeats it.

@@ -333,7 +333,10 @@ pub enum EffectError {
         name: String,
     },
     /// A parameter value is missing, not finite or outside its physical bounds.
-    #[error("{effect}.{key} = {value} is outside its physical range [{lower}, {upper}] {unit}")]
+    #[error(
+        "{effect}.{key} = {} is outside its physical range [{lower}, {upper}] {unit}",
+        crate::units::Num(*.value)
+    )]
     OutOfBounds {
         /// Effect name.
         effect: &'static str,
