@@ -499,6 +499,22 @@ fn negative_numbers_are_values_not_flags() {
         "12",
     ]);
     assert_one_line_error(&o, "got -1e300");
+    // Values of other forms that start with a minus sign reach their own checks too.
+    let o = smash(&[
+        "compare",
+        "--club",
+        &club(),
+        "--shots",
+        "x.csv",
+        "--impact-noise-mm",
+        "-3,2",
+    ]);
+    let err = stderr(&o);
+    assert!(!o.status.success() && err.contains("-3"), "{err}");
+    assert!(!err.contains("unexpected argument"), "{err}");
+    let o = smash(&["run", "study.toml", "--shard", "-1/4"]);
+    let err = stderr(&o);
+    assert!(err.contains("--shard '-1/4'"), "{err}");
 }
 
 #[test]

@@ -128,7 +128,13 @@ pub struct MeasurementArgs {
     /// 1σ noise of the measured impact location, mm, vertical then heel–toe (e.g. `3,2.5`).
     /// The model is then averaged over where the ball was most likely struck (regression
     /// calibration), so location noise is not mistaken for physics.
-    #[arg(long, value_name = "SY,SZ", value_parser = parse_impact_noise, help_heading = "Measurement noise")]
+    #[arg(
+        long,
+        value_name = "SY,SZ",
+        value_parser = parse_impact_noise,
+        allow_hyphen_values = true,
+        help_heading = "Measurement noise"
+    )]
     pub impact_noise_mm: Option<crate::measurement::ImpactNoise>,
 }
 

@@ -31,7 +31,7 @@ pub struct RunArgs {
 
     /// Run only shard k of N (0-based k, e.g. $SLURM_ARRAY_TASK_ID/N) and write shard files;
     /// combine the shards with `smash merge`.
-    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec)]
+    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec, allow_hyphen_values = true)]
     pub shard: Option<(usize, usize)>,
 }
 
@@ -74,7 +74,15 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     // Refuse before the sweep, not after it: the output folder may not hold the inputs or
     // files smash did not write.
     crate::data::safe_write::refuse_inputs(
-        &[("--out", &dir, true)],
+        &[(
+            if args.out.is_some() {
+                "--out"
+            } else {
+                "the study's output folder"
+            },
+            &dir,
+            true,
+        )],
         &[
             ("STUDY.toml", &args.study),
             ("the study's club", &study.club_path),
