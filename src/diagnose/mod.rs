@@ -15,10 +15,9 @@
 //!    speed bias over 600 shots with 0.8 mph noise gains `600·0.25²/0.8² ≈ 59`.
 //! 5. The best eligible candidate (its fit converged and every parameter is identifiable: no
 //!    insensitive or collinear Jacobian column, see [`crate::fit::covariance`]) with a positive
-//!    margin `gain − penalty` is added; repeat until none qualifies. Among qualifying
-//!    candidates, one whose values all lie in their plausible ranges ([`honest`]) is preferred;
-//!    a *stand-in* (some value implausible) is added only when no plausible candidate
-//!    qualifies, and is reported as a stand-in, not a finding.
+//!    margin `gain − penalty` is added; repeat until none qualifies. Plausibility does not
+//!    change the choice (the evidence does); a selected value outside its plausible range is
+//!    reported as a *stand-in* ([`honest`]), not a finding.
 //! 6. With known instrument noise ([`DiagnoseOptions::noise_floor`]), each step first asks the
 //!    [`noise_floor`] whether the current model's errors still carry structure beyond what the
 //!    instruments explain; when they do not, no physical effect is offered (measurement
@@ -637,16 +636,13 @@ pub fn diagnose(
             };
             key(&results[b]).total_cmp(&key(&results[a]))
         });
-        // A candidate whose values are plausible is preferred; a stand-in (some value outside
-        // its plausible range) is taken only when no plausible candidate beats its penalty, and
-        // is then reported as a stand-in.
-        let qualifies = |i: &usize| results[*i].eligible() && results[*i].margin() > 0.0;
+        // The evidence (margin) decides, not plausibility: preferring a plausible candidate
+        // with less evidence was tried and chains several plausible stand-ins to mimic one real
+        // effect outside its plausible range. Implausible values are reported as stand-ins.
         let winner = order
             .iter()
             .copied()
-            .filter(qualifies)
-            .find(|&i| results[i].plausible())
-            .or_else(|| order.iter().copied().find(qualifies));
+            .find(|&i| results[i].eligible() && results[i].margin() > 0.0);
         let after;
         let chosen = match winner {
             Some(i) if i >= n_effects => {

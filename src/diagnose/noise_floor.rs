@@ -410,4 +410,62 @@ mod tests {
             assert!((a - b).abs() < 1e-9, "{a} vs {b}");
         }
     }
+
+    /// The linearised expected variance agrees with sampling the delivery noise through the
+    /// full model (an independent check of the Jacobian propagation).
+    #[test]
+    fn linearised_variance_matches_sampling() {
+        use rand::{Rng, SeedableRng};
+        use rand_distr::StandardNormal;
+
+        let club = ClubSpec::new(
+            "paper".into(),
+            None,
+            crate::physics::ModelParams::paper_driver(),
+            Vec::new(),
+        )
+        .unwrap();
+        let inst = InstrumentClass::Radar.noise();
+        let clean = [105.0, 1.0, 0.5, 12.0, 0.5, 0.0, 0.0, 0.0, 0.0, 4.0, -6.0];
+        let shot = Shot {
+            id: "s".into(),
+            group: "all".into(),
+            golfer: None,
+            shaft_mass_g: None,
+            delivery: delivery_from_file_units(&clean),
+            measured: None,
+        };
+        let v = expected_variances(&club, std::slice::from_ref(&shot), &inst, None).unwrap()[0];
+        let model = club.model_for_group("all").unwrap();
+        let f0 = model
+            .solve(&shot.delivery)
+            .unwrap()
+            .launch()
+            .to_file_units();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let n = 4000;
+        let mut sum2 = [0.0; 5];
+        for _ in 0..n {
+            let x: [f64; N_DELIVERY] = std::array::from_fn(|j| {
+                clean[j] + inst.delivery_sd[j] * rng.sample::<f64, _>(StandardNormal)
+            });
+            let f = model
+                .solve(&delivery_from_file_units(&x))
+                .unwrap()
+                .launch()
+                .to_file_units();
+            for c in 0..5 {
+                sum2[c] += (f[c] - f0[c]).powi(2);
+            }
+        }
+        for c in 0..5 {
+            let sampled = sum2[c] / n as f64 + inst.launch_sd[c].powi(2);
+            let rel = (v[c] / sampled).sqrt();
+            // Sampling error of an SD from 4000 draws is ~1.1 %; curvature adds a little.
+            assert!(
+                (0.93..1.07).contains(&rel),
+                "component {c}: linearised/sampled SD {rel}"
+            );
+        }
+    }
 }
