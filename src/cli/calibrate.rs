@@ -89,7 +89,21 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let line = Arc::new(IterationLine::new());
     let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
     line.finish();
-    let cal = cal?;
+    let cal = cal.with_context(|| args.shots.display().to_string())?;
+    // Nothing infinite or undefined is reported or written into a club file.
+    let mut numbers: Vec<(String, f64)> = vec![
+        ("chi2".into(), cal.chi2),
+        ("nominal chi2".into(), cal.chi2_before),
+        ("reduced chi2".into(), cal.reduced_chi2),
+    ];
+    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
+    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        anyhow::bail!(
+            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
+             (check the shots' measured launch values)",
+            args.shots.display()
+        );
+    }
     if let Some(out) = &args.out_club {
         let comment = format!(
             "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
@@ -227,9 +241,13 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         t.row([
             labels[j].clone(),
             format!("{:.5}", p.value),
-            p.stderr.map_or("n/a".into(), |e| format!("{e:.5}")),
             p.stderr
-                .map_or("n/a".into(), |e| format!("{:.1}", t_statistic(p.value, e))),
+                .filter(|e| e.is_finite())
+                .map_or("n/a".into(), |e| format!("{e:.5}")),
+            p.stderr
+                .map(|e| t_statistic(p.value, e))
+                .filter(|t| t.is_finite())
+                .map_or("n/a".into(), |t| format!("{t:.1}")),
             p.unit.to_owned(),
             note.join(", "),
         ]);

@@ -132,7 +132,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));
     bar.0.finish_and_clear();
-    let d = d?;
+    let d = d.with_context(|| args.shots.display().to_string())?;
     for w in &d.warnings {
         eprintln!("warning: {w}");
     }

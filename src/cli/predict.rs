@@ -10,6 +10,7 @@ use crate::data::club_file::read_club;
 use crate::data::predictions::predictions_csv;
 use crate::data::shots::{read_shots, DEFAULT_GROUP};
 use crate::data::write_atomic;
+use crate::limits;
 use crate::physics::{Delivery, LaunchComponent};
 use crate::predict::predict_table;
 use crate::units::{deg, mm, mph};
@@ -154,6 +155,17 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         let table = read_shots(shots_path)?;
         let outcomes =
             predict_table(&club, &table).with_context(|| shots_path.display().to_string())?;
+        for (shot, o) in table.shots.iter().zip(&outcomes) {
+            if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
+                bail!(
+                    "{}: shot '{}': the impact has no finite launch; check its delivery and the \
+                     club {}",
+                    shots_path.display(),
+                    shot.id,
+                    args.club.display()
+                );
+            }
+        }
         write_atomic(out, &predictions_csv(&table, &outcomes))?;
         eprintln!(
             "predicted {} shot(s) with {} -> {}",
@@ -169,26 +181,24 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     if args.out.is_some() {
         bail!("--out goes with --shots; the one-shot form prints its table");
     }
+    let angle = limits::DELIVERY_ANGLE_DEG;
+    let omega = limits::CLUB_OMEGA_RAD_S;
+    let location = limits::IMPACT_LOCATION_MM;
     let values = [
-        ("--speed", speed),
-        ("--loft", loft),
-        ("--attack", args.attack_angle_deg),
-        ("--path", args.club_path_deg),
-        ("--face", args.face_angle_deg),
-        ("--lie", args.lie_tilt_deg),
-        ("--impact-y", args.impact_y_mm),
-        ("--impact-z", args.impact_z_mm),
-        ("--omega-x-rad-s", args.omega_x_rad_s),
-        ("--omega-y-rad-s", args.omega_y_rad_s),
-        ("--omega-z-rad-s", args.omega_z_rad_s),
+        ("--speed", speed, limits::CLUB_SPEED_MPH),
+        ("--loft", loft, limits::DYNAMIC_LOFT_DEG),
+        ("--attack", args.attack_angle_deg, angle),
+        ("--path", args.club_path_deg, angle),
+        ("--face", args.face_angle_deg, angle),
+        ("--lie", args.lie_tilt_deg, angle),
+        ("--impact-y", args.impact_y_mm, location),
+        ("--impact-z", args.impact_z_mm, location),
+        ("--omega-x-rad-s", args.omega_x_rad_s, omega),
+        ("--omega-y-rad-s", args.omega_y_rad_s, omega),
+        ("--omega-z-rad-s", args.omega_z_rad_s, omega),
     ];
-    for (flag, v) in values {
-        if !v.is_finite() {
-            bail!("{flag} must be a finite number, got {v}");
-        }
-    }
-    if speed <= 0.0 {
-        bail!("--speed must be > 0 mph, got {speed}");
+    for (flag, v, range) in values {
+        range.check(v).map_err(|m| anyhow::anyhow!("{flag}: {m}"))?;
     }
     let delivery = Delivery {
         club_speed_m_s: mph(speed),
@@ -206,6 +216,13 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
     let outcome = model.solve(&delivery)?;
     let launch = outcome.launch();
+    if !(limits::finite_launch(&launch) && outcome.smash_factor().is_finite()) {
+        bail!(
+            "the impact of this delivery ({speed} mph) with {} has no finite launch; check the \
+             delivery and the club",
+            args.club.display()
+        );
+    }
     println!("{} (group {})", club.name, args.group);
     println!(
         "delivery: {speed} mph, loft {loft} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",

@@ -393,6 +393,22 @@ pub fn diagnose(
             )));
         }
     }
+    // Degenerate data are named, not fitted (see `crate::fit::variation`).
+    let unidentifiable = crate::fit::variation::check_variation(shots, &candidates)?;
+    if opts.candidates.is_some() {
+        if let Some((_, why)) = unidentifiable.first() {
+            return Err(FitError::Degenerate(why.clone()));
+        }
+    }
+    let candidates: Vec<EffectRequest> = candidates
+        .into_iter()
+        .filter(|c| !unidentifiable.iter().any(|(u, _)| u == c))
+        .collect();
+    warnings.extend(
+        unidentifiable
+            .into_iter()
+            .map(|(_, why)| format!("not tried: {why}")),
+    );
     let penalty_per_param = (n as f64).ln();
     let groups = group_names(&data);
 

@@ -247,6 +247,9 @@ pub fn calibrate(
 ) -> Result<Calibration, FitError> {
     let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
     let layout = ParamLayout::from_requests(requests, &data.groups)?;
+    if let Some((_, why)) = super::variation::check_variation(shots, requests)?.first() {
+        return Err(FitError::Degenerate(why.clone()));
+    }
     calibrate_data(club, &data, layout, opts, progress)
 }
 
