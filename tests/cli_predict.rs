@@ -215,7 +215,12 @@ fn bad_shots_files_name_the_row_and_column() {
         ),
         (
             format!("{SHOTS_HEADER}\ns1,A,-100,0,0,12,0,0,0\n"),
-            vec!["club speed must be > 0"],
+            vec![
+                ":2",
+                "club_speed_mph",
+                "-100",
+                "physical range (0, 250] mph",
+            ],
         ),
         (
             format!("{SHOTS_HEADER},ball_speed_mph\ns1,A,100,0,0,12,0,0,0,150\n"),

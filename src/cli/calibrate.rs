@@ -7,7 +7,7 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 
-use crate::data::club_file::{club_toml, read_club};
+use crate::data::club_file::{club_toml_checked, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
@@ -116,7 +116,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             cal.reduced_chi2,
             cal.termination
         );
-        write_atomic(out, club_toml(&cal.club, &comment).as_bytes())?;
+        write_atomic(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
         eprintln!("calibrated club -> {}", out.display());
     }
     if args.json {

@@ -8,7 +8,7 @@ use clap::Args;
 use indicatif::ProgressBar;
 use serde_json::json;
 
-use crate::data::club_file::{club_toml, read_club};
+use crate::data::club_file::{club_toml_checked, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::diagnose::{
@@ -147,7 +147,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
                 d.selected.join(", ")
             }
         );
-        write_atomic(out, club_toml(&d.club, &comment).as_bytes())?;
+        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
         eprintln!("club with selected effects -> {}", out.display());
     }
     if args.json {

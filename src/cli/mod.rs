@@ -71,7 +71,17 @@ pub fn error_chain(e: &anyhow::Error) -> String {
             parts.push(s);
         }
     }
-    parts.join(": ").replace('\n', " ")
+    // One line, and nothing from the input can move the terminal's cursor or change its colours:
+    // line breaks become spaces, other control characters their escapes (`\r`, `\u{1b}`).
+    parts
+        .join(": ")
+        .chars()
+        .map(|c| match c {
+            '\n' => " ".to_owned(),
+            c if c.is_control() => c.escape_default().to_string(),
+            c => c.to_string(),
+        })
+        .collect()
 }
 
 #[cfg(test)]
@@ -106,5 +116,9 @@ fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String
         t.parse::<f64>()
             .map_err(|_| format!("'{t}' is not a number (mm)"))
     };
-    crate::measurement::ImpactNoise::from_mm(num(y)?, num(z)?).map_err(|e| e.to_string())
+    let (sy, sz) = (num(y)?, num(z)?);
+    for v in [sy, sz] {
+        crate::limits::SIGMA_LOCATION_MM.check(v)?;
+    }
+    crate::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
 }

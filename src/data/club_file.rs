@@ -274,6 +274,19 @@ fn parse_effect(
     Effect::new(kind, &values, group).map_err(|e| here(e.to_string()))
 }
 
+/// [`club_toml`], checked to read back as a valid club before it is written to `path`: no
+/// infinite, undefined or unphysical value reaches a club file.
+pub fn club_toml_checked(spec: &ClubSpec, comment: &str, path: &Path) -> Result<String, DataError> {
+    let text = club_toml(spec, comment);
+    parse_club(path, &text).map_err(|e| {
+        DataError::file(
+            path,
+            format!("not written: the club would not read back ({})", e.message),
+        )
+    })?;
+    Ok(text)
+}
+
 /// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club.
 pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     let p = &spec.nominal;

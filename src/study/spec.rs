@@ -1013,8 +1013,8 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             None,
             Some("key summary.half_width_mm".into()),
             format!(
-                "the probe lines reach {} mm from the centre, off the face of {} (bulge {} mm, \
-                 roll {} mm); use a smaller half_width_mm",
+                "the probe lines reach {} mm from the centre, off the face of {} (bulge {:.1} mm, \
+                 roll {:.1} mm); use a smaller half_width_mm",
                 probe.half_width_mm,
                 club_path.display(),
                 club.nominal.bulge_m * 1e3,
