@@ -214,10 +214,8 @@ pub const DESIGN_MOMENT_CHANGE_GCM2: PhysicalRange =
     PhysicalRange::closed("principal-moment change", "g·cm²", -1e5, 1e5);
 
 // ---------------------------------------------------------------------------------------------
-// Caps on counts.
-
-/// The cap on grid points per run (variants × rows × columns) is
-/// [`crate::study::MAX_SWEEP_POINTS`], beside the sweep whose memory it bounds.
+// Caps on counts. The cap on grid points per run (variants × rows × columns) is
+// `crate::study::MAX_SWEEP_POINTS`, beside the sweep whose memory it bounds.
 
 /// Most design variants (the product of the `[design]` axes' counts) one study may list.
 pub const MAX_DESIGN_VARIANTS: usize = 1_000_000;

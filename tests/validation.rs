@@ -262,7 +262,9 @@ fn calibrate_refuses_an_unphysical_measurement_and_writes_no_club() {
 #[test]
 fn study_values_outside_the_physical_ranges_name_their_key() {
     let dir = tempfile::tempdir().unwrap();
-    let cases: Vec<(String, Vec<(&str, &str)>, Vec<&str>)> = vec![
+    // (appended sections, replacements, what the message must name)
+    type Case<'a> = (String, Vec<(&'a str, &'a str)>, Vec<&'a str>);
+    let cases: Vec<Case> = vec![
         (
             String::new(),
             vec![("club_speed_mph = 100.0", "club_speed_mph = 1e200")],
