@@ -487,3 +487,33 @@ fn an_effect_that_needs_a_variable_to_vary_is_refused_when_it_is_constant() {
         refused(&o, &["constant.csv", "cor_speed", "club_speed_mph = 100"]);
     }
 }
+
+#[test]
+fn diagnose_leaves_out_a_default_candidate_the_data_cannot_identify_and_says_so() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shots(dir.path())).unwrap();
+    // 60 shots, every one at the face centre: a COR falloff from the centre cannot be seen.
+    let mut t: String = text.lines().take(61).collect::<Vec<_>>().join("\n") + "\n";
+    for row in 0..60 {
+        t = with_cell(&t, row, "impact_y_mm", "0");
+        t = with_cell(&t, row, "impact_z_mm", "0");
+    }
+    let centre = write(dir.path(), "centre.csv", &t);
+    let o = smash(&[
+        "diagnose",
+        "--club",
+        &club(),
+        "--shots",
+        &centre,
+        "--max-steps",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("not tried: cor_radial") && err.contains("impact_y_mm = 0"),
+        "{err}"
+    );
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(!has_non_finite(&out), "{out}");
+}

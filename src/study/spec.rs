@@ -287,7 +287,7 @@ pub mod defaults {
     /// Optimiser tolerance (objective units).
     pub const TOLERANCE: f64 = 1e-6;
     /// Largest number of impacts per quadrature distribution.
-    pub const MAX_QUADRATURE_POINTS: usize = 200_000;
+    pub const MAX_QUADRATURE_POINTS: usize = crate::limits::MAX_QUADRATURE_POINTS;
 }
 
 struct Ctx<'a> {
@@ -763,13 +763,27 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                     0.0,
                 )?,
             };
-            let n = dist.point_count();
-            if n > defaults::MAX_QUADRATURE_POINTS {
-                return Err(ctx.err(
-                    sd.span(),
-                    "distribution",
-                    format!("{n} quadrature points (nodes^dimensions) is too many (at most {}); use fewer nodes or method = \"samples\"", defaults::MAX_QUADRATURE_POINTS),
-                ));
+            if let Method::Quadrature { nodes } = dist.method {
+                let dims: Vec<(&str, usize)> = [
+                    ("sigma_y_mm", dist.sigma_y_mm),
+                    ("sigma_z_mm", dist.sigma_z_mm),
+                    ("sigma_club_speed_mph", dist.sigma_club_speed_mph),
+                    ("sigma_attack_angle_deg", dist.sigma_attack_angle_deg),
+                    ("sigma_club_path_deg", dist.sigma_club_path_deg),
+                    ("sigma_dynamic_loft_deg", dist.sigma_dynamic_loft_deg),
+                    ("sigma_face_angle_deg", dist.sigma_face_angle_deg),
+                ]
+                .into_iter()
+                .filter(|(_, s)| *s > 0.0)
+                .map(|(k, _)| (k, nodes))
+                .collect();
+                count_product(
+                    "quadrature points (nodes for each σ > 0)",
+                    &dims,
+                    defaults::MAX_QUADRATURE_POINTS,
+                    "use fewer nodes or method = \"samples\"",
+                )
+                .map_err(|e| ctx.err(sd.span(), "distribution", e.to_string()))?;
             }
             Some(dist)
         }
