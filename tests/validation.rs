@@ -517,3 +517,31 @@ fn diagnose_leaves_out_a_default_candidate_the_data_cannot_identify_and_says_so(
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(!has_non_finite(&out), "{out}");
 }
+
+#[test]
+fn diagnose_says_when_one_golfer_makes_golfer_grouped_folds_impossible() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(shots(dir.path())).unwrap();
+    let mut t: String = text.lines().take(61).collect::<Vec<_>>().join("\n") + "\n";
+    for row in 0..60 {
+        t = with_cell(&t, row, "golfer", "G07");
+    }
+    let one = write(dir.path(), "one.csv", &t);
+    let o = smash(&[
+        "diagnose",
+        "--club",
+        &club(),
+        "--shots",
+        &one,
+        "--candidates",
+        "loft_bias",
+        "--max-steps",
+        "1",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("one golfer ('G07')") && err.contains("by shot"),
+        "{err}"
+    );
+}
