@@ -108,10 +108,11 @@ pub fn fmt_value(x: f64) -> String {
     }
 }
 
-/// Clubhead CoM speed at impact, mph. The fastest long-drive swings measured are near 150 mph;
-/// 250 leaves room for any real club while keeping ball speed, spin and energy far from
-/// overflow.
-pub const CLUB_SPEED_MPH: PhysicalRange = PhysicalRange::above("club speed", "mph", 0.0, 250.0);
+/// Clubhead CoM speed at impact, mph. The fastest long-drive swings measured are near 150 mph
+/// and the slowest putts a few mph; 250 leaves room for any real club while keeping ball speed,
+/// spin and energy far from overflow, and below 1 mph the head's rotation would dominate the
+/// contact velocity and ratios such as the smash factor lose their meaning.
+pub const CLUB_SPEED_MPH: PhysicalRange = PhysicalRange::closed("club speed", "mph", 1.0, 250.0);
 
 /// Delivery angles (attack angle, club path, face angle, lie tilt), deg. Beyond ±90° the club
 /// moves away from the target or the face points backwards: no golf stroke.
@@ -124,9 +125,9 @@ pub const DYNAMIC_LOFT_DEG: PhysicalRange =
     PhysicalRange::closed("dynamic loft", "deg", -90.0, 90.0);
 
 /// One component of the clubhead's angular velocity, rad/s. Measured values at impact are a few
-/// tens of rad/s (shaft twist and release); 1000 rad/s is about 10,000 rpm of the head.
+/// tens of rad/s (the face closes at up to about 50 rad/s); 200 leaves a factor of four.
 pub const CLUB_OMEGA_RAD_S: PhysicalRange =
-    PhysicalRange::closed("clubhead angular velocity", "rad/s", -1000.0, 1000.0);
+    PhysicalRange::closed("clubhead angular velocity", "rad/s", -200.0, 200.0);
 
 /// Impact location from the centre of face in either direction, mm (shots, grids, probe lines,
 /// distributions). The largest driver faces span about 60 mm by 110 mm; 100 mm from the centre
@@ -346,9 +347,10 @@ mod tests {
         assert!(CLUB_SPEED_MPH.check(f64::NAN).is_err());
         assert!(CLUB_SPEED_MPH.check(f64::INFINITY).is_err());
         assert!(CLUB_SPEED_MPH.check(0.0).is_err());
+        assert!(CLUB_SPEED_MPH.check(1e-300).is_err());
         assert_eq!(CLUB_SPEED_MPH.check(100.0), Ok(100.0));
         let m = CLUB_SPEED_MPH.check(1e155).unwrap_err();
-        assert!(m.contains("1e155") && m.contains("(0, 250] mph"), "{m}");
+        assert!(m.contains("1e155") && m.contains("[1, 250] mph"), "{m}");
         assert!(DELIVERY_ANGLE_DEG.check(-90.0).is_ok());
     }
 }

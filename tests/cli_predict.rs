@@ -219,7 +219,7 @@ fn bad_shots_files_name_the_row_and_column() {
                 ":2",
                 "club_speed_mph",
                 "-100",
-                "physical range (0, 250] mph",
+                "physical range [1, 250] mph",
             ],
         ),
         (

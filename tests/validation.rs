@@ -189,7 +189,7 @@ fn one_shot_prediction_refuses_a_speed_outside_the_physical_range() {
             "--loft",
             "12",
         ]);
-        refused(&o, &["--speed", speed, "(0, 250] mph"]);
+        refused(&o, &["--speed", speed, "[1, 250] mph"]);
     }
     let o = smash(&[
         "predict",
@@ -210,7 +210,7 @@ fn a_shots_row_outside_the_physical_ranges_is_named_and_nothing_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let text = std::fs::read_to_string(shots(dir.path())).unwrap();
     let cases = [
-        ("club_speed_mph", "1e200", "(0, 250] mph"),
+        ("club_speed_mph", "1e200", "[1, 250] mph"),
         ("impact_z_mm", "1e300", "[-100, 100] mm"),
         ("club_omega_y_rad_s", "-5000", "rad/s"),
         ("dynamic_loft_deg", "400", "[-90, 90] deg"),
@@ -268,7 +268,7 @@ fn study_values_outside_the_physical_ranges_name_their_key() {
         (
             String::new(),
             vec![("club_speed_mph = 100.0", "club_speed_mph = 1e200")],
-            vec!["delivery.club_speed_mph", "1e200", "(0, 250] mph"],
+            vec!["delivery.club_speed_mph", "1e200", "[1, 250] mph"],
         ),
         (
             "[summary]\nhalf_width_mm = 400\n".into(),
@@ -384,7 +384,7 @@ fn synth_refuses_unphysical_delivery_means_instead_of_writing_empty_cells() {
             "fast.toml",
             "delivery.club_speed_mph.mean",
             "1e300",
-            "(0, 250] mph",
+            "[1, 250] mph",
         ],
     );
     assert!(!out.exists());

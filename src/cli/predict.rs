@@ -218,15 +218,23 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     let launch = outcome.launch();
     if !(limits::finite_launch(&launch) && outcome.smash_factor().is_finite()) {
         bail!(
-            "the impact of this delivery ({speed} mph) with {} has no finite launch; check the \
+            "the impact of this delivery ({} mph) with {} has no finite launch; check the \
              delivery and the club",
+            limits::fmt_value(speed),
             args.club.display()
         );
     }
     println!("{} (group {})", club.name, args.group);
     println!(
-        "delivery: {speed} mph, loft {loft} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
-        args.attack_angle_deg, args.club_path_deg, args.face_angle_deg, args.lie_tilt_deg, args.impact_y_mm, args.impact_z_mm
+        "delivery: {} mph, loft {} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
+        limits::fmt_value(speed),
+        limits::fmt_value(loft),
+        limits::fmt_value(args.attack_angle_deg),
+        limits::fmt_value(args.club_path_deg),
+        limits::fmt_value(args.face_angle_deg),
+        limits::fmt_value(args.lie_tilt_deg),
+        limits::fmt_value(args.impact_y_mm),
+        limits::fmt_value(args.impact_z_mm)
     );
     for c in LaunchComponent::ALL {
         println!(
