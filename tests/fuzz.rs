@@ -1,4 +1,4 @@
-//! Mutation fuzz of the file readers: club, study and synth TOML, shots CSV.
+//! Mutation fuzz of the file readers: club, study, synth and instrument-noise TOML, shots CSV.
 //!
 //! Each case takes a valid file (the shipped configs, a generated shots file), applies one to
 //! four random mutations (bytes, lines, numbers and fields replaced by hostile values) and parses
@@ -286,6 +286,15 @@ fn targets() -> Vec<Target> {
             .collect(),
             parse: |p, b| {
                 smash::synth::parse_config(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "noise",
+            csv: false,
+            corpus: vec![read("configs/noise/paper_world.toml")],
+            parse: |p, b| {
+                smash::data::noise_file::parse_noise_file(p, &String::from_utf8_lossy(b))?;
                 Ok(())
             },
         },
