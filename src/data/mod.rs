@@ -5,6 +5,7 @@
 //! temporary file and a rename, so a failed run never leaves a half-written file behind.
 
 pub mod club_file;
+pub mod number;
 pub mod predictions;
 pub mod shots;
 pub mod synth_files;
@@ -231,9 +232,7 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 /// A non-finite value (a bug upstream: solvers reject them) becomes an empty cell, never `NaN`.
 pub fn fmt_f64(v: f64) -> String {
     debug_assert!(v.is_finite(), "non-finite value written to a file");
-    if v.is_finite() {
-        format!("{v}")
-    } else {
-        String::new()
-    }
+    let mut out = Vec::with_capacity(24);
+    number::push_cell(&mut out, v);
+    String::from_utf8(out).expect("digits are ASCII")
 }
