@@ -357,7 +357,7 @@ fn sensitivities_match_independent_finite_differences() {
     let h = 0.05;
     let fd =
         (side(&model_with(h, 1.0), 5.0, 20.0) - side(&model_with(-h, 1.0), 5.0, 20.0)) / (2.0 * h);
-    let got = sens[0].maps[4][iy * nz + iz];
+    let got = sens[0].maps(&p)[4][iy * nz + iz];
     assert!((got - fd).abs() <= 1e-4 * fd.abs(), "{got} vs {fd}");
 }
 

@@ -4,11 +4,12 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
+use crate::data::write_folder_atomic_with;
 use crate::study::metrics::metric_names;
 use crate::study::optimise::OptimiseResult;
-use crate::study::output::cell;
+use crate::study::output::{cell, write_study, HeldGrids};
 use crate::study::shard::merge_shards;
-use crate::study::{finish, Prepared, VariantResult};
+use crate::study::{finish, Prepared};
 
 /// Arguments of `smash merge`.
 #[derive(Debug, Args)]
@@ -35,9 +36,16 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         );
     }
     let (prepared, variants) = merge_shards(&args.shards)?;
-    let (files, opt) = finish(&prepared, &variants)?;
-    super::run::write_all(&args.out, &files)?;
-    print_summary(&prepared, &variants, opt.as_ref(), &args.out, files.len());
+    let (sens, opt) = finish(&prepared)?;
+    let metrics: Vec<Vec<f64>> = variants.iter().map(|v| v.metrics.clone()).collect();
+    let grids = HeldGrids {
+        results: &variants,
+        nz: prepared.zs_mm.len(),
+    };
+    let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
+        write_study(tmp, &prepared, &grids, &metrics, &sens, opt.as_ref())
+    })?;
+    print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files);
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }
@@ -46,7 +54,7 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
 /// the optimiser's result.
 pub fn print_summary(
     p: &Prepared,
-    variants: &[VariantResult],
+    metrics: &[Vec<f64>],
     opt: Option<&OptimiseResult>,
     dir: &Path,
     n_files: usize,
@@ -66,18 +74,18 @@ pub fn print_summary(
         p.study.name,
         p.study.club.name,
         p.study.group,
-        variants.len()
+        metrics.len()
     );
-    for (i, (d, r)) in p.variants.iter().zip(variants).enumerate().take(5) {
+    for (i, (d, m)) in p.variants.iter().zip(metrics).enumerate().take(5) {
         let mut line = format!("  variant {i} ({}):", d.describe());
         for k in pick {
             if let Some(j) = names.iter().position(|n| n == k) {
-                line.push_str(&format!(" {k} = {:.4}", r.metrics[j]));
+                line.push_str(&format!(" {k} = {:.4}", m[j]));
             }
         }
         println!("{line}");
     }
-    if variants.len() > 5 {
+    if metrics.len() > 5 {
         println!("  … see variants.csv");
     }
     if let Some(o) = opt {

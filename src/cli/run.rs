@@ -6,8 +6,8 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::data::write_folder_atomic;
-use crate::study::output::Files;
+use crate::data::{write_folder_atomic, write_folder_atomic_with};
+use crate::study::output::{write_study, Files};
 use crate::study::shard::{parse_shard_spec, shard_files};
 use crate::study::{finish, read_study, Prepared};
 
@@ -66,22 +66,20 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     // the thread pool's start-up.
     // The output slots are allocated (and their pages touched) before the clock too.
     rayon::broadcast(|_| ());
-    let mut results = prepared.allocate(items.clone());
-    let start = Instant::now();
-    prepared.compute_into(&mut results, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-
     let s = &prepared.study;
-    let closing = format!(
-        "swept {impacts} impact evaluations ({} variant(s) × {}×{} grid + summary metrics{}) in {seconds:.3} s: {:.0} impacts/s",
+    let grid = format!(
+        "{} variant(s) × {}×{} grid + summary metrics",
         prepared.variants.len(),
         prepared.ys_mm.len(),
-        prepared.zs_mm.len(),
-        if args.shard.is_some() { format!(", shard {k} of {n}") } else { String::new() },
-        impacts as f64 / seconds.max(1e-9)
+        prepared.zs_mm.len()
     );
     if args.shard.is_some() {
+        // The output slots are allocated (and their pages touched) before the clock too.
+        let mut results = prepared.allocate(items.clone());
+        let start = Instant::now();
+        prepared.compute_into(&mut results, &|| bar.inc(1));
+        let seconds = start.elapsed().as_secs_f64();
+        bar.finish_and_clear();
         let dir = args
             .out
             .clone()
@@ -93,14 +91,31 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             items.end,
             dir.display()
         );
-        eprintln!("{closing}");
+        eprintln!(
+            "swept {impacts} impact evaluations ({grid}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
+            impacts as f64 / seconds.max(1e-9)
+        );
         return Ok(());
     }
-    let variants = prepared.assemble(results)?;
-    let (files, opt) = finish(&prepared, &variants)?;
+    // Unsharded: the maps are computed band by band as they are written (bounded memory).
+    bar.finish_and_clear();
+    let start = Instant::now();
+    let metrics = prepared.all_metrics();
+    let (sens, opt) = finish(&prepared)?;
+    let kernels = prepared.kernels();
     let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
-    write_all(&dir, &files)?;
-    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len());
-    eprintln!("{closing}");
+    let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
+        write_study(tmp, &prepared, &kernels, &metrics, &sens, opt.as_ref())
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files);
+    eprintln!(
+        "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
+         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
+         for the long table and the matrices)",
+        kernels.points(),
+        kernels.seconds(),
+        kernels.points() as f64 / kernels.seconds().max(1e-9)
+    );
     Ok(())
 }

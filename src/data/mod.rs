@@ -156,6 +156,27 @@ pub fn write_folder_atomic(
     files: &[(PathBuf, Vec<u8>)],
     marker: &str,
 ) -> Result<(), DataError> {
+    write_folder_atomic_with(dir, marker, |tmp| {
+        for (rel, bytes) in files {
+            let path = tmp.join(rel);
+            if let Some(p) = path.parent() {
+                std::fs::create_dir_all(p)?;
+            }
+            let mut f = std::fs::File::create(&path)?;
+            f.write_all(bytes)?;
+            f.sync_all()?;
+        }
+        Ok(())
+    })
+}
+
+/// [`write_folder_atomic`] for outputs written as they are made: `write` fills the temporary
+/// folder it is given (and syncs what it writes); then that folder replaces `dir` as a unit.
+pub fn write_folder_atomic_with<T>(
+    dir: &Path,
+    marker: &str,
+    write: impl FnOnce(&Path) -> std::io::Result<T>,
+) -> Result<T, DataError> {
     let err = |m: String| DataError::file(dir, m);
     if dir.exists() {
         let mut entries =
@@ -181,22 +202,14 @@ pub fn write_folder_atomic(
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let old = parent.join(format!(".{name}.old-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
-    let written = (|| -> std::io::Result<()> {
-        for (rel, bytes) in files {
-            let path = tmp.join(rel);
-            if let Some(p) = path.parent() {
-                std::fs::create_dir_all(p)?;
-            }
-            let mut f = std::fs::File::create(&path)?;
-            f.write_all(bytes)?;
-            f.sync_all()?;
+    let written = std::fs::create_dir_all(&tmp).and_then(|()| write(&tmp));
+    let value = match written {
+        Ok(v) => v,
+        Err(e) => {
+            let _ = std::fs::remove_dir_all(&tmp);
+            return Err(err(format!("cannot write: {e}")));
         }
-        std::fs::create_dir_all(&tmp)
-    })();
-    if let Err(e) = written {
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(err(format!("cannot write: {e}")));
-    }
+    };
     let swapped = (|| -> std::io::Result<()> {
         if dir.exists() {
             std::fs::rename(dir, &old)?;
@@ -214,7 +227,7 @@ pub fn write_folder_atomic(
         return Err(err(format!("cannot replace the folder: {e}")));
     }
     let _ = std::fs::remove_dir_all(&old);
-    Ok(())
+    Ok(value)
 }
 
 /// Byte offset to 1-based (line, column).

@@ -61,9 +61,19 @@ fn may_differ_from_display(v: f64, s: &[u8]) -> bool {
         .iter()
         .position(|&b| b == b'e' || b == b'E')
         .map_or(s, |i| &s[..i]);
-    let digits: Vec<u8> = mantissa.iter().copied().filter(u8::is_ascii_digit).collect();
-    let first = digits.iter().position(|&d| d != b'0').unwrap_or(digits.len());
-    let last = digits.iter().rposition(|&d| d != b'0').map_or(first, |i| i + 1);
+    let digits: Vec<u8> = mantissa
+        .iter()
+        .copied()
+        .filter(u8::is_ascii_digit)
+        .collect();
+    let first = digits
+        .iter()
+        .position(|&d| d != b'0')
+        .unwrap_or(digits.len());
+    let last = digits
+        .iter()
+        .rposition(|&d| d != b'0')
+        .map_or(first, |i| i + 1);
     exact_digits == last.saturating_sub(first) + 1
 }
 
@@ -117,7 +127,12 @@ mod tests {
     fn same_as_display(v: f64) {
         let mut out = Vec::new();
         push_f64(&mut out, v);
-        assert_eq!(String::from_utf8(out).unwrap(), format!("{v}"), "bits {:#x}", v.to_bits());
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            format!("{v}"),
+            "bits {:#x}",
+            v.to_bits()
+        );
     }
 
     #[test]

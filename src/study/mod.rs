@@ -31,9 +31,11 @@ pub use sweep::{Prepared, VariantResult};
 
 use crate::data::DataError;
 
-/// Most grid points (variants × rows × columns) one run sweeps: each holds six outputs, so
-/// this is about 2 GB of results before any file is written.
-pub const MAX_SWEEP_POINTS: u128 = 50_000_000;
+/// Most grid points (variants × rows × columns) one run sweeps. Outputs are streamed to disk a
+/// band at a time, so memory does not grow with the sweep; the cap bounds the time and the disk
+/// a run takes (about 70 bytes of CSV per point and output in the long table and matrices: a
+/// 500 M-point run with three outputs writes about 100 GB).
+pub const MAX_SWEEP_POINTS: u128 = 500_000_000;
 
 /// Why a study cannot be run or merged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -88,12 +90,18 @@ pub enum StudyError {
     Merge(String),
 }
 
-/// Everything after the sweep: sensitivities, optimisation and the output files.
+/// Everything besides the face maps: sensitivities and optimisation (written with the maps by
+/// [`output::write_study`]).
 pub fn finish(
     p: &Prepared,
-    results: &[VariantResult],
-) -> Result<(output::Files, Option<optimise::OptimiseResult>), StudyError> {
+) -> Result<
+    (
+        Vec<sensitivity::Sensitivity>,
+        Option<optimise::OptimiseResult>,
+    ),
+    StudyError,
+> {
     let sens = sensitivity::sensitivities(p)?;
     let opt = optimise::optimise(p)?;
-    Ok((output::study_files(p, results, &sens, opt.as_ref()), opt))
+    Ok((sens, opt))
 }
