@@ -238,10 +238,11 @@ pub fn svg_block(ny: usize, nx: usize) -> (usize, usize) {
 }
 
 /// Sums and counts of the finite values of a map's [`svg_block`] blocks, filled a band of rows
-/// at a time (so a map need never be held whole). Within a block the values are added row by
-/// row, left to right, whatever order the bands come in.
+/// at a time, bottom row first (so a map need never be held whole). Within a block the values
+/// are added row by row, left to right, as [`heatmap_svg`] adds them.
 #[derive(Debug, Clone)]
 pub struct BlockMeans {
+    next_row: usize,
     fy: usize,
     fx: usize,
     nx: usize,
@@ -256,6 +257,7 @@ impl BlockMeans {
         let (fy, fx) = svg_block(ny, nx);
         let (by, bx) = (ny.div_ceil(fy), nx.div_ceil(fx));
         Self {
+            next_row: 0,
             fy,
             fx,
             nx,
@@ -265,15 +267,10 @@ impl BlockMeans {
         }
     }
 
-    /// Rows per block.
-    pub fn rows_per_block(&self) -> usize {
-        self.fy
-    }
-
-    /// Add the rows `first..` (`values` row-major, whole rows, starting at a block boundary and
-    /// covering whole blocks, or ending at the last row).
-    pub fn add_rows(&mut self, first: usize, values: &[f64]) {
-        debug_assert_eq!(first % self.fy, 0, "bands start at a block boundary");
+    /// Add the next rows (`values` row-major, whole rows, following those added before).
+    pub fn add_rows(&mut self, values: &[f64]) {
+        let first = self.next_row;
+        self.next_row += values.len() / self.nx;
         for (k, row) in values.chunks_exact(self.nx).enumerate() {
             let b = (first + k) / self.fy;
             for (bj, cells) in row.chunks(self.fx).enumerate() {
@@ -325,7 +322,7 @@ fn blocks_svg(map: &Heatmap<'_>, fy: usize, fx: usize, values: &[f64]) -> String
 pub fn heatmap_svg(map: &Heatmap<'_>) -> String {
     map.check();
     let mut blocks = BlockMeans::new(map.ys.len(), map.xs.len());
-    blocks.add_rows(0, map.values);
+    blocks.add_rows(map.values);
     blocks.svg(map)
 }
 

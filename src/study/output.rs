@@ -8,6 +8,10 @@
 //! accumulated band by band. The long table is written in ascending rows and the matrices top
 //! row first, so each variant's grid is computed twice (the kernel is cheap next to formatting).
 //!
+//! The files are not synced to the disk one by one (`fsync` would hold a large study to the
+//! disk's sustained write rate, a few hundred MB/s here, instead of the page cache's): the folder
+//! swap still makes a failed or interrupted run leave the previous outputs as they were.
+//!
 //! | file | content |
 //! |---|---|
 //! | `study.toml` | the resolved study (every default filled in) |
@@ -119,10 +123,10 @@ fn create(root: &Path, rel: &Path) -> std::io::Result<File> {
     File::create(&path).map_err(|e| io_err(rel, e))
 }
 
-/// Rows per band for a grid of `nz` columns, a multiple of `multiple` rows.
-fn band_rows(nz: usize, multiple: usize) -> usize {
-    let rows = (BAND_POINTS / nz.max(1)).max(1);
-    rows.div_ceil(multiple) * multiple
+/// Rows per band for a grid of `nz` columns (at least one row: an axis has at most 100,000
+/// points, so a band stays a few tens of MB).
+fn band_rows(nz: usize) -> usize {
+    (BAND_POINTS / nz.max(1)).max(1)
 }
 
 /// Produce `bands` items with `make` into two alternating buffers and hand each, in order, to
@@ -193,15 +197,64 @@ pub fn write_study(
     put(root, Path::new("variants.csv"), t.as_bytes())?;
     n_files += 1;
 
-    write_long_table(root, p, grids, &axes)?;
+    // maps_long.csv and the per-variant maps, one variant at a time: its long-table rows
+    // (ascending, which also sums the pictures' block means), then its matrices (top row first).
+    let long_rel = Path::new("maps_long.csv");
+    let mut long = create(root, long_rel)?;
+    let mut head = String::from("variant_id");
+    for v in &axes {
+        let _ = write!(head, ",{}", v.key());
+    }
+    head.push_str(",y_mm,z_mm,valid");
+    for o in &s.outputs {
+        let _ = write!(head, ",{}", o.column());
+    }
+    head.push('\n');
+    long.write_all(head.as_bytes())
+        .map_err(|e| io_err(long_rel, e))?;
     n_files += 1;
-
-    // Per-variant maps.
+    // `,z,` of every column, formatted once.
+    let zs_text: Vec<Vec<u8>> = p
+        .zs_mm
+        .iter()
+        .map(|z| {
+            let mut b = vec![b','];
+            push_cell(&mut b, *z);
+            b.push(b',');
+            b
+        })
+        .collect();
     let club_speed = mph(s.swing.club_speed_mph);
     let w = id_width(p.variants.len());
     let ys_m: Vec<f64> = p.ys_mm.iter().map(|v| mm(*v)).collect();
     let zs_m: Vec<f64> = p.zs_mm.iter().map(|v| mm(*v)).collect();
     for (i, d) in p.variants.iter().enumerate() {
+        let mut prefix = i.to_string();
+        for v in &axes {
+            let _ = write!(prefix, ",{}", cell(d.get(*v)));
+        }
+        prefix.push(',');
+        let fill = |rows: Range<usize>, valid: &mut Vec<bool>, out: &mut [Vec<f64>]| {
+            let mut g = LaunchGrid::default();
+            grids.grid_rows(i, rows, &mut g);
+            for (o, dst) in s.outputs.iter().zip(out.iter_mut()) {
+                dst.clear();
+                dst.par_extend(
+                    (0..g.len())
+                        .into_par_iter()
+                        .map(|k| o.file_value(&g, k, club_speed)),
+                );
+            }
+            std::mem::swap(valid, &mut g.valid);
+        };
+        let blocks = write_long_rows(
+            &mut long,
+            p,
+            s.outputs.len(),
+            (prefix.as_bytes(), &zs_text),
+            &fill,
+        )
+        .map_err(|e| io_err(long_rel, e))?;
         let maps: Vec<MapFile> = s
             .outputs
             .iter()
@@ -216,20 +269,12 @@ pub fn write_study(
                 },
             })
             .collect();
-        let fill = |rows: Range<usize>, out: &mut [Vec<f64>]| {
-            let mut g = LaunchGrid::default();
-            grids.grid_rows(i, rows, &mut g);
-            for (o, dst) in s.outputs.iter().zip(out.iter_mut()) {
-                dst.clear();
-                dst.par_extend(
-                    (0..g.len())
-                        .into_par_iter()
-                        .map(|k| o.file_value(&g, k, club_speed)),
-                );
-            }
+        let fill_values = |rows: Range<usize>, out: &mut [Vec<f64>]| {
+            fill(rows, &mut Vec::new(), out);
         };
-        n_files += write_maps(root, p, &maps, &fill)?;
+        n_files += write_maps(root, p, &maps, &fill_values, &blocks)?;
     }
+    drop(long);
 
     if !sens.is_empty() {
         let mut t = sensitivity_table(sens, &names);
@@ -266,7 +311,8 @@ pub fn write_study(
             let fill = |rows: Range<usize>, out: &mut [Vec<f64>]| {
                 x.map_rows(&ys_m[rows], &zs_m, club_speed, &outputs, out);
             };
-            n_files += write_maps(root, p, &maps, &fill)?;
+            let blocks = block_means(p, maps.len(), &fill);
+            n_files += write_maps(root, p, &maps, &fill, &blocks)?;
         }
     }
     if let Some(o) = opt {
@@ -278,87 +324,95 @@ pub fn write_study(
     Ok(n_files)
 }
 
-/// `maps_long.csv`: one line per variant × grid point, ascending rows.
-fn write_long_table(
-    root: &Path,
+/// Values of a band of rows for [`write_long_rows`]: validity and each output (row-major).
+type LongFill<'a> = dyn Fn(Range<usize>, &mut Vec<bool>, &mut [Vec<f64>]) + Sync + 'a;
+
+/// A band of long-table rows: first row, validity, values per output, text lines.
+#[derive(Default)]
+struct LongBand {
+    valid: Vec<bool>,
+    values: Vec<Vec<f64>>,
+    lines: Vec<Vec<u8>>,
+}
+
+/// One variant's lines of `maps_long.csv` (ascending rows; `prefix` is `id,variables,` and
+/// `zs` holds `,z,` per column) into `f`; returns the block means of each output's picture.
+fn write_long_rows(
+    f: &mut File,
     p: &Prepared,
-    grids: &dyn GridSource,
-    axes: &[DesignVar],
-) -> std::io::Result<()> {
-    let s = &p.study;
-    let rel = Path::new("maps_long.csv");
-    let mut f = create(root, rel)?;
-    let mut head = String::from("variant_id");
-    for v in axes {
-        let _ = write!(head, ",{}", v.key());
-    }
-    head.push_str(",y_mm,z_mm,valid");
-    for o in &s.outputs {
-        let _ = write!(head, ",{}", o.column());
-    }
-    head.push('\n');
-    f.write_all(head.as_bytes()).map_err(|e| io_err(rel, e))?;
+    n_outputs: usize,
+    (prefix, zs): (&[u8], &[Vec<u8>]),
+    fill: &LongFill<'_>,
+) -> std::io::Result<Vec<BlockMeans>> {
     let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
-    let club_speed = mph(s.swing.club_speed_mph);
-    // `,z,` of every column, formatted once.
-    let zs: Vec<Vec<u8>> = p
-        .zs_mm
-        .iter()
-        .map(|z| {
-            let mut b = vec![b','];
-            push_cell(&mut b, *z);
-            b.push(b',');
-            b
-        })
-        .collect();
-    let per = band_rows(nz, 1);
-    let bands_per_variant = ny.div_ceil(per);
-    let bands = p.variants.len() * bands_per_variant;
-    let prefixes: Vec<Vec<u8>> = p
-        .variants
-        .iter()
-        .enumerate()
-        .map(|(i, d)| {
-            let mut t = i.to_string();
-            for v in axes {
-                let _ = write!(t, ",{}", cell(d.get(*v)));
-            }
-            t.push(',');
-            t.into_bytes()
-        })
-        .collect();
-    let make = |b: usize, lines: &mut Vec<Vec<u8>>| {
-        let (v, k) = (b / bands_per_variant, b % bands_per_variant);
-        let rows = k * per..((k + 1) * per).min(ny);
-        let mut g = LaunchGrid::default();
-        grids.grid_rows(v, rows.clone(), &mut g);
-        lines.resize_with(rows.len(), Vec::new);
-        lines.par_iter_mut().enumerate().for_each(|(r, out)| {
+    let per = band_rows(nz);
+    let bands = ny.div_ceil(per);
+    let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, band: &mut LongBand| {
+        let rows = b * per..((b + 1) * per).min(ny);
+        band.values.resize_with(n_outputs, Vec::new);
+        fill(rows.clone(), &mut band.valid, &mut band.values);
+        band.lines.resize_with(rows.len(), Vec::new);
+        let (valid, values) = (&band.valid, &band.values);
+        band.lines.par_iter_mut().enumerate().for_each(|(r, out)| {
             out.clear();
             let mut y = Vec::new();
             push_cell(&mut y, p.ys_mm[rows.start + r]);
             for (iz, z) in zs.iter().enumerate() {
                 let k = r * nz + iz;
-                out.extend_from_slice(&prefixes[v]);
+                out.extend_from_slice(prefix);
                 out.extend_from_slice(&y);
                 out.extend_from_slice(z);
-                out.push(if g.valid[k] { b'1' } else { b'0' });
-                for o in &s.outputs {
+                out.push(if valid[k] { b'1' } else { b'0' });
+                for v in values {
                     out.push(b',');
-                    push_cell(out, o.file_value(&g, k, club_speed));
+                    push_cell(out, v[k]);
                 }
                 out.push(b'\n');
             }
         });
     };
-    let mut consume = |_: usize, lines: &Vec<Vec<u8>>| -> std::io::Result<()> {
-        for l in lines {
-            f.write_all(l).map_err(|e| io_err(rel, e))?;
+    let mut consume = |_: usize, band: &LongBand| -> std::io::Result<()> {
+        for l in &band.lines {
+            f.write_all(l)?;
+        }
+        for (b, v) in blocks.iter_mut().zip(&band.values) {
+            b.add_rows(v);
         }
         Ok(())
     };
-    pipeline(bands, [Vec::new(), Vec::new()], &make, &mut consume)?;
-    f.sync_all().map_err(|e| io_err(rel, e))
+    pipeline(
+        bands,
+        [LongBand::default(), LongBand::default()],
+        &make,
+        &mut consume,
+    )?;
+    Ok(blocks)
+}
+
+/// The block means of the pictures of a map set, from an ascending pass over the rows.
+fn block_means(p: &Prepared, n_maps: usize, fill: &MapFill<'_>) -> Vec<BlockMeans> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let mut blocks: Vec<BlockMeans> = (0..n_maps).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, values: &mut Vec<Vec<f64>>| {
+        values.resize_with(n_maps, Vec::new);
+        fill(b * per..((b + 1) * per).min(ny), values);
+    };
+    let mut consume = |_: usize, values: &Vec<Vec<f64>>| -> std::io::Result<()> {
+        for (b, v) in blocks.iter_mut().zip(values) {
+            b.add_rows(v);
+        }
+        Ok(())
+    };
+    pipeline(
+        ny.div_ceil(per),
+        [Vec::new(), Vec::new()],
+        &make,
+        &mut consume,
+    )
+    .expect("no I/O in this pass");
+    blocks
 }
 
 /// Values of each map of a set on a band of rows: `fill(rows, out)`, row-major.
@@ -372,28 +426,25 @@ struct MapFile {
     scale: Scale,
 }
 
-/// A band of a map set: first row, per map its values (row-major) and its matrix lines (top
-/// row first).
+/// A band of a map set: per map its values (row-major) and its matrix lines (top row first).
 #[derive(Default)]
 struct MapBand {
-    first: usize,
     values: Vec<Vec<f64>>,
     lines: Vec<Vec<Vec<u8>>>,
 }
 
-/// The matrices (`<stem>.csv`, top row first) and pictures (`<stem>.svg`) of maps over the
-/// study grid; `fill(rows, out)` gives each map's values on `rows` (row-major). Returns the
-/// number of files written.
+/// The matrices (`<stem>.csv`, top row first) and pictures (`<stem>.svg`, from `blocks`) of
+/// maps over the study grid; `fill(rows, out)` gives each map's values on `rows` (row-major).
+/// Returns the number of files written.
 fn write_maps(
     root: &Path,
     p: &Prepared,
     maps: &[MapFile],
     fill: &MapFill<'_>,
+    blocks: &[BlockMeans],
 ) -> std::io::Result<usize> {
     let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
-    let mut blocks: Vec<BlockMeans> = maps.iter().map(|_| BlockMeans::new(ny, nz)).collect();
-    let fy = blocks.first().map_or(1, BlockMeans::rows_per_block);
-    let per = band_rows(nz, fy);
+    let per = band_rows(nz);
     let bands = ny.div_ceil(per);
     let header = matrix_csv_header(&p.zs_mm);
     let mut files: Vec<File> = Vec::with_capacity(maps.len());
@@ -410,7 +461,6 @@ fn write_maps(
     };
     let make = |b: usize, band: &mut MapBand| {
         let rows = band_range(b);
-        band.first = rows.start;
         band.values.resize_with(maps.len(), Vec::new);
         fill(rows.clone(), &mut band.values);
         band.lines.resize_with(maps.len(), Vec::new);
@@ -429,7 +479,6 @@ fn write_maps(
             for l in &band.lines[i] {
                 f.write_all(l)?;
             }
-            blocks[i].add_rows(band.first, &band.values[i]);
         }
         Ok(())
     };
@@ -439,8 +488,8 @@ fn write_maps(
         &make,
         &mut consume,
     )?;
-    for (m, (f, b)) in maps.iter().zip(files.iter().zip(&blocks)) {
-        f.sync_all()?;
+    drop(files);
+    for (m, b) in maps.iter().zip(blocks) {
         let map = Heatmap {
             title: &m.title,
             x_label: X_LABEL,
