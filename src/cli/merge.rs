@@ -4,6 +4,7 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
+use super::run::TableFormatArg;
 use crate::data::write_folder_atomic_with;
 use crate::study::metrics::metric_names;
 use crate::study::optimise::OptimiseResult;
@@ -24,6 +25,12 @@ pub struct MergeArgs {
     /// Output folder for the merged result.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
 }
 
 /// Run `smash merge`.
@@ -43,7 +50,15 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         nz: prepared.zs_mm.len(),
     };
     let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
-        write_study(tmp, &prepared, &grids, &metrics, &sens, opt.as_ref())
+        write_study(
+            tmp,
+            &prepared,
+            &grids,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
     })?;
     print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files);
     eprintln!("merged {} shard(s)", args.shards.len());

@@ -7,7 +7,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::data::{write_folder_atomic, write_folder_atomic_with};
-use crate::study::output::{write_study, Files};
+use crate::study::output::{write_study, Files, TableFormat};
 use crate::study::shard::{parse_shard_spec, shard_files};
 use crate::study::{finish, read_study, Prepared};
 
@@ -33,6 +33,30 @@ pub struct RunArgs {
     /// combine the shards with `smash merge`.
     #[arg(long, value_name = "k/N", value_parser = parse_shard_spec)]
     pub shard: Option<(usize, usize)>,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
+}
+
+/// `--format` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TableFormatArg {
+    /// maps_long.csv
+    Csv,
+    /// maps_long.parquet
+    Parquet,
+}
+
+impl From<TableFormatArg> for TableFormat {
+    fn from(f: TableFormatArg) -> Self {
+        match f {
+            TableFormatArg::Csv => TableFormat::Csv,
+            TableFormatArg::Parquet => TableFormat::Parquet,
+        }
+    }
 }
 
 /// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
@@ -105,7 +129,15 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let kernels = prepared.kernels();
     let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
     let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
-        write_study(tmp, &prepared, &kernels, &metrics, &sens, opt.as_ref())
+        write_study(
+            tmp,
+            &prepared,
+            &kernels,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
     })?;
     let seconds = start.elapsed().as_secs_f64();
     super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files);

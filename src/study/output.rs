@@ -30,6 +30,13 @@ use std::io::Write as _;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
+use std::sync::Arc;
+
+use parquet::basic::Compression;
+use parquet::data_type::{BoolType, DoubleType, Int32Type};
+use parquet::file::properties::WriterProperties;
+use parquet::file::writer::SerializedFileWriter;
+use parquet::schema::parser::parse_message_type;
 use rayon::prelude::*;
 
 use crate::data::club_file::club_toml;
@@ -63,6 +70,17 @@ const Y_LABEL: &str = "impact y (up the face), mm";
 
 fn id_width(n: usize) -> usize {
     (n.saturating_sub(1)).to_string().len().max(3)
+}
+
+/// How the long table is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TableFormat {
+    /// `maps_long.csv`: text, for small studies and any tool.
+    #[default]
+    Csv,
+    /// `maps_long.parquet`: columnar, typed and compressed (Snappy); invalid cells are nulls.
+    /// Several times smaller and faster to write and to read (pandas, polars, Arrow) than CSV.
+    Parquet,
 }
 
 /// Grid points per streamed band (about 64 k: a few MB of values and text per band).
@@ -167,6 +185,7 @@ pub fn write_study(
     metrics: &[Vec<f64>],
     sens: &[Sensitivity],
     opt: Option<&OptimiseResult>,
+    format: TableFormat,
 ) -> std::io::Result<usize> {
     let s = &p.study;
     let mut n_files = 0;
@@ -199,19 +218,31 @@ pub fn write_study(
 
     // maps_long.csv and the per-variant maps, one variant at a time: its long-table rows
     // (ascending, which also sums the pictures' block means), then its matrices (top row first).
-    let long_rel = Path::new("maps_long.csv");
-    let mut long = create(root, long_rel)?;
-    let mut head = String::from("variant_id");
-    for v in &axes {
-        let _ = write!(head, ",{}", v.key());
-    }
-    head.push_str(",y_mm,z_mm,valid");
-    for o in &s.outputs {
-        let _ = write!(head, ",{}", o.column());
-    }
-    head.push('\n');
-    long.write_all(head.as_bytes())
-        .map_err(|e| io_err(long_rel, e))?;
+    let long_rel = Path::new(match format {
+        TableFormat::Csv => "maps_long.csv",
+        TableFormat::Parquet => "maps_long.parquet",
+    });
+    let long_file = create(root, long_rel)?;
+    let mut long = match format {
+        TableFormat::Csv => {
+            let mut f = long_file;
+            let mut head = String::from("variant_id");
+            for v in &axes {
+                let _ = write!(head, ",{}", v.key());
+            }
+            head.push_str(",y_mm,z_mm,valid");
+            for o in &s.outputs {
+                let _ = write!(head, ",{}", o.column());
+            }
+            head.push('\n');
+            f.write_all(head.as_bytes())
+                .map_err(|e| io_err(long_rel, e))?;
+            LongWriter::Csv(f)
+        }
+        TableFormat::Parquet => LongWriter::Parquet(
+            parquet_long_writer(long_file, &axes, &s.outputs).map_err(|e| io_err(long_rel, e))?,
+        ),
+    };
     n_files += 1;
     // `,z,` of every column, formatted once.
     let zs_text: Vec<Vec<u8>> = p
@@ -247,13 +278,15 @@ pub fn write_study(
             }
             std::mem::swap(valid, &mut g.valid);
         };
-        let blocks = write_long_rows(
-            &mut long,
-            p,
-            s.outputs.len(),
-            (prefix.as_bytes(), &zs_text),
-            &fill,
-        )
+        let blocks = match &mut long {
+            LongWriter::Csv(f) => {
+                write_long_rows(f, p, s.outputs.len(), (prefix.as_bytes(), &zs_text), &fill)
+            }
+            LongWriter::Parquet(w) => {
+                let design: Vec<f64> = axes.iter().map(|v| d.get(*v)).collect();
+                write_long_parquet(w, p, i, &design, s.outputs.len(), &fill)
+            }
+        }
         .map_err(|e| io_err(long_rel, e))?;
         let maps: Vec<MapFile> = s
             .outputs
@@ -274,7 +307,10 @@ pub fn write_study(
         };
         n_files += write_maps(root, p, &maps, &fill_values, &blocks)?;
     }
-    drop(long);
+    if let LongWriter::Parquet(w) = long {
+        w.close()
+            .map_err(|e| io_err(long_rel, std::io::Error::other(e)))?;
+    }
 
     if !sens.is_empty() {
         let mut t = sensitivity_table(sens, &names);
@@ -376,6 +412,116 @@ fn write_long_rows(
         for l in &band.lines {
             f.write_all(l)?;
         }
+        for (b, v) in blocks.iter_mut().zip(&band.values) {
+            b.add_rows(v);
+        }
+        Ok(())
+    };
+    pipeline(
+        bands,
+        [LongBand::default(), LongBand::default()],
+        &make,
+        &mut consume,
+    )?;
+    Ok(blocks)
+}
+
+/// The long table's file.
+enum LongWriter {
+    Csv(File),
+    Parquet(SerializedFileWriter<File>),
+}
+
+/// A Parquet writer for the long table: `variant_id` (INT32), the design variables, `y_mm`,
+/// `z_mm` (DOUBLE), `valid` (BOOLEAN), then the outputs (DOUBLE, null where invalid).
+fn parquet_long_writer(
+    f: File,
+    axes: &[DesignVar],
+    outputs: &[Output],
+) -> std::io::Result<SerializedFileWriter<File>> {
+    let mut schema = String::from("message maps_long {\n  REQUIRED INT32 variant_id;\n");
+    for v in axes {
+        let _ = writeln!(schema, "  REQUIRED DOUBLE {};", v.key());
+    }
+    schema
+        .push_str("  REQUIRED DOUBLE y_mm;\n  REQUIRED DOUBLE z_mm;\n  REQUIRED BOOLEAN valid;\n");
+    for o in outputs {
+        let _ = writeln!(schema, "  OPTIONAL DOUBLE {};", o.column());
+    }
+    schema.push('}');
+    let schema = parse_message_type(&schema).map_err(std::io::Error::other)?;
+    let props = WriterProperties::builder()
+        .set_compression(Compression::SNAPPY)
+        .set_dictionary_enabled(false)
+        .build();
+    SerializedFileWriter::new(f, Arc::new(schema), Arc::new(props)).map_err(std::io::Error::other)
+}
+
+/// One variant's rows of the long table as Parquet row groups (one a band, ascending rows);
+/// returns the block means of each output's picture.
+fn write_long_parquet(
+    w: &mut SerializedFileWriter<File>,
+    p: &Prepared,
+    variant: usize,
+    design: &[f64],
+    n_outputs: usize,
+    fill: &LongFill<'_>,
+) -> std::io::Result<Vec<BlockMeans>> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let bands = ny.div_ceil(per);
+    let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, band: &mut LongBand| {
+        let rows = b * per..((b + 1) * per).min(ny);
+        band.values.resize_with(n_outputs, Vec::new);
+        fill(rows, &mut band.valid, &mut band.values);
+    };
+    let pq = |e: parquet::errors::ParquetError| std::io::Error::other(e);
+    let mut consume = |b: usize, band: &LongBand| -> std::io::Result<()> {
+        let rows = b * per..((b + 1) * per).min(ny);
+        let n = band.valid.len();
+        let ys: Vec<f64> = rows
+            .flat_map(|r| std::iter::repeat_n(p.ys_mm[r], nz))
+            .collect();
+        let zs: Vec<f64> = p.zs_mm.iter().copied().cycle().take(n).collect();
+        let mut rg = w.next_row_group().map_err(pq)?;
+        let mut column = 0;
+        while let Some(mut col) = rg.next_column().map_err(pq)? {
+            let c = column;
+            column += 1;
+            if c == 0 {
+                let ids = vec![variant as i32; n];
+                col.typed::<Int32Type>()
+                    .write_batch(&ids, None, None)
+                    .map_err(pq)?;
+            } else if c <= design.len() {
+                let x = vec![design[c - 1]; n];
+                col.typed::<DoubleType>()
+                    .write_batch(&x, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 1 {
+                col.typed::<DoubleType>()
+                    .write_batch(&ys, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 2 {
+                col.typed::<DoubleType>()
+                    .write_batch(&zs, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 3 {
+                col.typed::<BoolType>()
+                    .write_batch(&band.valid, None, None)
+                    .map_err(pq)?;
+            } else {
+                let v = &band.values[c - design.len() - 4];
+                let present: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
+                let def: Vec<i16> = v.iter().map(|x| i16::from(x.is_finite())).collect();
+                col.typed::<DoubleType>()
+                    .write_batch(&present, Some(&def), None)
+                    .map_err(pq)?;
+            }
+            col.close().map_err(pq)?;
+        }
+        rg.close().map_err(pq)?;
         for (b, v) in blocks.iter_mut().zip(&band.values) {
             b.add_rows(v);
         }
