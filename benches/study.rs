@@ -45,13 +45,16 @@ fn bench(c: &mut Criterion) {
     g.measurement_time(std::time::Duration::from_secs(20));
     for (name, format) in [("csv", TableFormat::Csv), ("parquet", TableFormat::Parquet)] {
         let dir = base.path().join(name);
-        g.bench_function(format!("smash run, default outputs, {name} long table"), |b| {
-            b.iter(|| {
-                let n = run(black_box(&p), &dir, format);
-                std::fs::remove_dir_all(&dir).unwrap();
-                n
-            })
-        });
+        g.bench_function(
+            format!("smash run, default outputs, {name} long table"),
+            |b| {
+                b.iter(|| {
+                    let n = run(black_box(&p), &dir, format);
+                    std::fs::remove_dir_all(&dir).unwrap();
+                    n
+                })
+            },
+        );
     }
     g.finish();
 }

@@ -697,3 +697,33 @@ fn parquet_long_table_reads_back_to_the_csv_numbers() {
     assert_eq!(n, 4 * 11 * 9);
     assert!(invalid > 0, "rows at ±320 mm lie off the face");
 }
+
+#[test]
+fn a_shard_too_large_to_hold_is_refused_with_the_shard_count_that_fits() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.toml");
+    let text = study_text("")
+        .replace(
+            "y_mm = { from = -10.0, to = 10.0, count = 5 }",
+            "y_mm = { from = -10.0, to = 10.0, count = 3000 }",
+        )
+        .replace(
+            "z_mm = { from = -20.0, to = 20.0, count = 9 }",
+            "z_mm = { from = -20.0, to = 20.0, count = 3000 }",
+        );
+    std::fs::write(&study, text).unwrap();
+    let o = smash()
+        .args([
+            "run".as_ref(),
+            study.as_os_str(),
+            "--shard".as_ref(),
+            "0/1".as_ref(),
+        ])
+        .args(["--out".as_ref(), dir.path().join("shard").as_os_str()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("use at least 2 shards"), "{err}");
+    assert!(!dir.path().join("shard").exists());
+}

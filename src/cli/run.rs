@@ -98,6 +98,19 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         prepared.zs_mm.len()
     );
     if args.shard.is_some() {
+        let nz = prepared.zs_mm.len() as u128;
+        let rows = items.len() as u128; // at most one metrics item per variant besides rows
+        let points = rows * nz;
+        if points > crate::study::MAX_SHARD_POINTS {
+            let total = prepared.work_len() as u128 * nz;
+            return Err(crate::study::StudyError::ShardTooLarge {
+                k,
+                n,
+                points,
+                min_shards: total.div_ceil(crate::study::MAX_SHARD_POINTS),
+            }
+            .into());
+        }
         // The output slots are allocated (and their pages touched) before the clock too.
         let mut results = prepared.allocate(items.clone());
         let start = Instant::now();

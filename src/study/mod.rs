@@ -37,6 +37,11 @@ use crate::data::DataError;
 /// 500 M-point run with three outputs writes about 100 GB).
 pub const MAX_SWEEP_POINTS: u128 = 500_000_000;
 
+/// Most grid points one shard run (`smash run --shard k/N`) computes: a shard is held in memory
+/// and written as one `rows.csv` (about 150 bytes a point in all), so this keeps a shard run
+/// under 1 GB. An unsharded run streams its outputs and is bounded only by [`MAX_SWEEP_POINTS`].
+pub const MAX_SHARD_POINTS: u128 = 6_000_000;
+
 /// Why a study cannot be run or merged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StudyError {
@@ -57,6 +62,22 @@ pub enum StudyError {
         ny: usize,
         /// Columns.
         nz: usize,
+    },
+    /// A shard holds more grid points than one run keeps in memory.
+    #[error(
+        "shard {k} of {n} holds {points} grid points; a shard holds at most {MAX_SHARD_POINTS} \
+         (shards are kept in memory): use at least {min_shards} shards, or run unsharded \
+         (streamed to disk)"
+    )]
+    ShardTooLarge {
+        /// Shard index.
+        k: usize,
+        /// Shards.
+        n: usize,
+        /// Grid points in the shard.
+        points: u128,
+        /// Fewest shards that fit.
+        min_shards: u128,
     },
     /// A design variant of the sweep is not physical.
     #[error("design variant {id} ({values}) is not physical: {problem}")]
