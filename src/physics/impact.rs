@@ -423,9 +423,12 @@ impl ImpactModel {
             u1n,
             d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m,
         );
-        let r_b_arr = laws
-            .ball
-            .lever(&arr(&n), &arr(&cf.tangent_y), &arr(&cf.tangent_z));
+        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
+        let r_b_arr = laws.ball.lever(
+            &arr(&n),
+            &arr(&cf.tangent_y),
+            &[cf.tangent_z.x, cf.tangent_z.z],
+        );
         let r_b = Vector3::from(r_b_arr);
         let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
         let (impulse, slipped) = if laws.tangential.mu.is_some() {

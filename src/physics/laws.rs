@@ -160,10 +160,22 @@ impl Restitution {
     /// `e` for normal approach speed `u1n_m_s` at squared distance `r2_m2` from the face centre.
     #[inline(always)]
     pub fn cor<R: Real>(&self, u1n_m_s: R, r2_m2: R) -> R {
-        let base = if self.power_q == 0.0 {
-            R::splat(self.cor)
+        if self.power_q == 0.0 {
+            self.cor_with::<R, false>(u1n_m_s, r2_m2)
         } else {
+            self.cor_with::<R, true>(u1n_m_s, r2_m2)
+        }
+    }
+
+    /// [`Restitution::cor`] with the power term switched at compile time: `POWER` must be
+    /// `self.power_q != 0.0` (with `q = 0` both give the same bits, since `x^0 = 1` exactly).
+    /// Inner loops use it so that the common case carries no `pow` call.
+    #[inline(always)]
+    pub fn cor_with<R: Real, const POWER: bool>(&self, u1n_m_s: R, r2_m2: R) -> R {
+        let base = if POWER {
             (u1n_m_s / COR_REFERENCE_SPEED_M_S).powf(-self.power_q) * self.cor
+        } else {
+            R::splat(self.cor)
         };
         base - (u1n_m_s - COR_REFERENCE_SPEED_M_S) * self.speed_k_s_per_m
             - r2_m2 * self.radial_c_per_m2
@@ -183,14 +195,16 @@ pub struct BallContact {
 }
 
 impl BallContact {
-    /// `r_b` from the unit normal `n` and the impact-frame tangents `t_y`, `t_z`.
+    /// `r_b` from the unit normal `n`, the impact-frame tangent `t_y` and the horizontal
+    /// tangent `t_z`, given by its x and z components (`z_I = (−z, 0, X)/ρ` has no y component:
+    /// CONVENTIONS, face geometry).
     #[inline(always)]
-    pub fn lever<R: Real>(&self, n: &Vec3<R>, t_y: &Vec3<R>, t_z: &Vec3<R>) -> Vec3<R> {
+    pub fn lever<R: Real>(&self, n: &Vec3<R>, t_y: &Vec3<R>, t_z_xz: &[R; 2]) -> Vec3<R> {
         let (nr, dy, dz) = (-self.radius_m, self.offset_y_m, self.offset_z_m);
         [
-            n[0] * nr + t_y[0] * dy + t_z[0] * dz,
-            n[1] * nr + t_y[1] * dy + t_z[1] * dz,
-            n[2] * nr + t_y[2] * dy + t_z[2] * dz,
+            n[0] * nr + t_y[0] * dy + t_z_xz[0] * dz,
+            n[1] * nr + t_y[1] * dy,
+            n[2] * nr + t_y[2] * dy + t_z_xz[1] * dz,
         ]
     }
 }

@@ -349,14 +349,14 @@ impl FaceMapKernel {
         } else {
             level
         };
-        match (self.laws.tangential.mu.is_some(), level) {
-            #[cfg(target_arch = "x86_64")]
-            (false, SimdLevel::Avx2) => unsafe { self.row_avx2::<false>(&row, zs_m, out) },
-            #[cfg(target_arch = "x86_64")]
-            (true, SimdLevel::Avx2) => unsafe { self.row_avx2::<true>(&row, zs_m, out) },
-            (false, _) => self.row_impl::<false>(&row, zs_m, out),
-            (true, _) => self.row_impl::<true>(&row, zs_m, out),
-        }
+        self.dispatch(
+            level,
+            &RowJob {
+                row: &row,
+                zs: zs_m,
+            },
+            out,
+        );
     }
 
     /// Evaluate arbitrary points `(ys_m[i], zs_m[i])` into `out`.
@@ -386,14 +386,7 @@ impl FaceMapKernel {
         } else {
             level
         };
-        match (self.laws.tangential.mu.is_some(), level) {
-            #[cfg(target_arch = "x86_64")]
-            (false, SimdLevel::Avx2) => unsafe { self.points_avx2::<false>(ys_m, zs_m, out) },
-            #[cfg(target_arch = "x86_64")]
-            (true, SimdLevel::Avx2) => unsafe { self.points_avx2::<true>(ys_m, zs_m, out) },
-            (false, _) => self.points_impl::<false>(ys_m, zs_m, out),
-            (true, _) => self.points_impl::<true>(ys_m, zs_m, out),
-        }
+        self.dispatch(level, &PointsJob { ys: ys_m, zs: zs_m }, out);
     }
 
     /// Evaluate the grid `ys_m × zs_m` (row-major) on the calling thread.
@@ -483,7 +476,7 @@ impl FaceMapKernel {
 
     /// Impacts at heel–toe locations `z` on `row`: straight-line code, no branches.
     #[inline(always)]
-    fn point<const FRICTION: bool>(&self, row: &Row, z: V) -> Out {
+    fn point<const FRICTION: bool, const POWER: bool>(&self, row: &Row, z: V) -> Out {
         let zero = V::splat(0.0);
         // Contact point and normal, with the operations of `FaceGeometry::contact`.
         let x2 = row.rho2 - z * z;
@@ -523,7 +516,7 @@ impl FaceMapKernel {
         let valid = on_face & approaching;
 
         let laws = &self.laws;
-        let e = laws.restitution.cor(u1n, row.yy + z * z);
+        let e = laws.restitution.cor_with::<V, POWER>(u1n, row.yy + z * z);
 
         // Impact frame tangents z_I = (−z, 0, X)/ρ, y_I = z_I × n, and the ball lever arm.
         let tzx = -z * row.inv_rho;
@@ -532,7 +525,7 @@ impl FaceMapKernel {
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
         let n = [nx, ny, nz];
-        let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, zero, tzz]);
+        let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
         let k = laws.collision.matrix(&[rcx, rcy, rcz], &[rbx, rby, rbz]);
         let ([px, py, pz], _slip) =
             laws.tangential
@@ -567,17 +560,22 @@ impl FaceMapKernel {
 
     /// One chunk of a row.
     #[inline(always)]
-    fn row_chunk<const FRICTION: bool>(&self, row: &Row, zs: &[f64; LANES], mut out: Chunk<'_>) {
+    fn row_chunk<const FRICTION: bool, const POWER: bool>(
+        &self,
+        row: &Row,
+        zs: &[f64; LANES],
+        mut out: Chunk<'_>,
+    ) {
         for k in 0..LANES / W {
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
-            let o = self.point::<FRICTION>(row, z);
+            let o = self.point::<FRICTION, POWER>(row, z);
             out.store(k, &o);
         }
     }
 
     /// One chunk of arbitrary points.
     #[inline(always)]
-    fn points_chunk<const FRICTION: bool>(
+    fn points_chunk<const FRICTION: bool, const POWER: bool>(
         &self,
         ys: &[f64; LANES],
         zs: &[f64; LANES],
@@ -587,35 +585,102 @@ impl FaceMapKernel {
             let y = V(ys[k * W..(k + 1) * W].try_into().unwrap());
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
             let row = self.row(y);
-            let o = self.point::<FRICTION>(&row, z);
+            let o = self.point::<FRICTION, POWER>(&row, z);
             out.store(k, &o);
         }
     }
 
     #[inline(always)]
-    fn row_impl<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
+    fn row_impl<const FRICTION: bool, const POWER: bool>(
+        &self,
+        row: &Row,
+        zs: &[f64],
+        out: RowOut<'_>,
+    ) {
         if !row.ok.get(0) {
             fill_invalid(out);
             return;
         }
-        for_chunks(zs, zs, out, &RowChunks::<FRICTION> { k: self, row });
+        for_chunks(zs, zs, out, &RowChunks::<FRICTION, POWER> { k: self, row });
     }
 
     #[inline(always)]
-    fn points_impl<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
-        for_chunks(ys, zs, out, &PointChunks::<FRICTION> { k: self });
+    fn points_impl<const FRICTION: bool, const POWER: bool>(
+        &self,
+        ys: &[f64],
+        zs: &[f64],
+        out: RowOut<'_>,
+    ) {
+        for_chunks(ys, zs, out, &PointChunks::<FRICTION, POWER> { k: self });
+    }
+
+    /// Run `job` with the kernel's constant switches (friction on, `cor_power` exponent set)
+    /// turned into compile-time constants, so that the common case carries neither the slip
+    /// branch nor a `pow` call.
+    fn dispatch(&self, level: SimdLevel, job: &impl Job, out: RowOut<'_>) {
+        let friction = self.laws.tangential.mu.is_some();
+        let power = self.laws.restitution.power_q != 0.0;
+        match (friction, power) {
+            (false, false) => self.on_level::<false, false>(level, job, out),
+            (false, true) => self.on_level::<false, true>(level, job, out),
+            (true, false) => self.on_level::<true, false>(level, job, out),
+            (true, true) => self.on_level::<true, true>(level, job, out),
+        }
+    }
+
+    #[inline(always)]
+    fn on_level<const FRICTION: bool, const POWER: bool>(
+        &self,
+        level: SimdLevel,
+        job: &impl Job,
+        out: RowOut<'_>,
+    ) {
+        match level {
+            #[cfg(target_arch = "x86_64")]
+            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER>(job, out) },
+            _ => job.run::<FRICTION, POWER>(self, out),
+        }
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn row_avx2<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
-        self.row_impl::<FRICTION>(row, zs, out)
+    unsafe fn avx2<const FRICTION: bool, const POWER: bool>(
+        &self,
+        job: &impl Job,
+        out: RowOut<'_>,
+    ) {
+        job.run::<FRICTION, POWER>(self, out)
     }
+}
 
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
-    unsafe fn points_avx2<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
-        self.points_impl::<FRICTION>(ys, zs, out)
+/// A row or a set of points, run by [`FaceMapKernel::dispatch`].
+trait Job {
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>);
+}
+
+/// One grid row: the heights are fixed in `row`.
+struct RowJob<'a> {
+    row: &'a Row,
+    zs: &'a [f64],
+}
+
+impl Job for RowJob<'_> {
+    #[inline(always)]
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+        k.row_impl::<FRICTION, POWER>(self.row, self.zs, out)
+    }
+}
+
+/// Arbitrary points.
+struct PointsJob<'a> {
+    ys: &'a [f64],
+    zs: &'a [f64],
+}
+
+impl Job for PointsJob<'_> {
+    #[inline(always)]
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+        k.points_impl::<FRICTION, POWER>(self.ys, self.zs, out)
     }
 }
 
@@ -626,27 +691,27 @@ trait ChunkFn {
 }
 
 /// Chunks of a row: `b` holds the heel–toe locations (`a` is unused).
-struct RowChunks<'a, const FRICTION: bool> {
+struct RowChunks<'a, const FRICTION: bool, const POWER: bool> {
     k: &'a FaceMapKernel,
     row: &'a Row,
 }
 
-impl<const FRICTION: bool> ChunkFn for RowChunks<'_, FRICTION> {
+impl<const FRICTION: bool, const POWER: bool> ChunkFn for RowChunks<'_, FRICTION, POWER> {
     #[inline(always)]
     fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.row_chunk::<FRICTION>(self.row, zs, out)
+        self.k.row_chunk::<FRICTION, POWER>(self.row, zs, out)
     }
 }
 
 /// Chunks of arbitrary points: `a` holds the heights, `b` the heel–toe locations.
-struct PointChunks<'a, const FRICTION: bool> {
+struct PointChunks<'a, const FRICTION: bool, const POWER: bool> {
     k: &'a FaceMapKernel,
 }
 
-impl<const FRICTION: bool> ChunkFn for PointChunks<'_, FRICTION> {
+impl<const FRICTION: bool, const POWER: bool> ChunkFn for PointChunks<'_, FRICTION, POWER> {
     #[inline(always)]
     fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.points_chunk::<FRICTION>(ys, zs, out)
+        self.k.points_chunk::<FRICTION, POWER>(ys, zs, out)
     }
 }
 
