@@ -144,6 +144,7 @@ library! {
     inertia_scale => InertiaScale,
     cor_level => CorLevel,
     hosel_mass => HoselMass,
+    cor_power => CorPower,
 }
 
 impl EffectKind {
