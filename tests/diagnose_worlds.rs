@@ -103,7 +103,7 @@ fn each_hidden_library_effect_is_named_first() {
 fn worlds_off_the_library_lead_to_the_right_family() {
     let dir = tempfile::tempdir().unwrap();
     for (world, family) in [
-        ("cor_power_world", "cor_speed"),
+        ("cor_power_world", "cor_power"),
         ("face_flex_world", "cor_radial"),
         ("loft_bias_world", "loft_bias"),
         ("paper_world", "ball_offset"),

@@ -79,7 +79,11 @@ pub const SIGNATURES: &[Signature] = &[
     sig(
         BallSpeed,
         Bias,
-        &[Effect(EffectKind::AddedMass)],
+        &[
+            Effect(EffectKind::AddedMass),
+            Effect(EffectKind::CorLevel),
+            Effect(EffectKind::HoselMass),
+        ],
         "effective clubhead mass (shaft taking part) or the club's COR",
     ),
     sig(
@@ -91,7 +95,7 @@ pub const SIGNATURES: &[Signature] = &[
     sig(
         BallSpeed,
         Trend("club_speed_mph"),
-        &[Effect(EffectKind::CorSpeed)],
+        &[Effect(EffectKind::CorSpeed), Effect(EffectKind::CorPower)],
         "COR falling with impact speed",
     ),
     sig(
