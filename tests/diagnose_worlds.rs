@@ -103,7 +103,7 @@ fn each_hidden_library_effect_is_named_first() {
 fn worlds_off_the_library_lead_to_the_right_family() {
     let dir = tempfile::tempdir().unwrap();
     for (world, family) in [
-        ("cor_power_world", "cor_power"),
+        ("cor_power_world", "cor_speed"),
         ("face_flex_world", "cor_radial"),
         ("loft_bias_world", "loft_bias"),
         ("paper_world", "ball_offset"),
@@ -152,5 +152,24 @@ fn null_world_selects_nothing_and_finds_the_location_noise_instead() {
     assert!(
         !selected(&exact).is_empty(),
         "expected a spurious effect when noise is ignored"
+    );
+}
+
+#[test]
+fn opt_in_candidates_name_the_hidden_power_law_cor() {
+    // cor_power is searched only when named: beside its linear cousin cor_speed and the other
+    // ball-speed effects, the shipped world (library cor_power, q = 0.15) must be named as such.
+    let dir = tempfile::tempdir().unwrap();
+    let d = diagnose_world(
+        dir.path(),
+        "cor_power_opt_in",
+        &repo("configs/synth/cor_power_world.toml"),
+        &["--candidates", "cor_power,cor_speed,cor_level,added_mass"],
+    );
+    let sel = selected(&d);
+    assert_eq!(
+        sel.first().map(String::as_str),
+        Some("cor_power"),
+        "selected {sel:?}"
     );
 }
