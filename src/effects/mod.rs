@@ -1,7 +1,7 @@
 //! The effect library: named physics beyond the nominal model.
 //!
 //! Every effect has a name, named parameters with units, defaults and physical bounds, and is off
-//! unless listed. The names, parameter names and forms are fixed by `CONVENTIONS.md` (data and
+//! unless listed. The names, parameter names and forms are fixed by `docs/conventions.md` (data and
 //! configs depend on them). An effect applies to every shot, or only to the shots of one `group`.
 //!
 //! | name | parameters | what it does |
@@ -94,7 +94,7 @@ macro_rules! library {
         }
 
         impl EffectKind {
-            /// Every effect in the library, in registration (CONVENTIONS) order.
+            /// Every effect in the library, in registration order.
             pub const ALL: [EffectKind; [$(stringify!($variant)),*].len()] =
                 [$(EffectKind::$variant),*];
 
@@ -178,7 +178,10 @@ pub enum EffectError {
         name: String,
     },
     /// A parameter value is missing, not finite or outside its physical bounds.
-    #[error("{effect}.{key} = {value} is outside its physical range [{lower}, {upper}] {unit}")]
+    #[error(
+        "{effect}.{key} = {} is outside its physical range [{lower}, {upper}] {unit}",
+        crate::units::Num(*.value)
+    )]
     OutOfBounds {
         /// Effect name.
         effect: &'static str,

@@ -28,7 +28,7 @@ use super::face::{FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
 
-/// Reference normal approach speed of the `cor_speed` effect, m/s (the CONVENTIONS value).
+/// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
 pub const COR_SPEED_REFERENCE_M_S: f64 = super::laws::COR_REFERENCE_SPEED_M_S;
 
 /// Physical parameters of one impact model, SI units, before validation.

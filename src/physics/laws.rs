@@ -24,7 +24,7 @@ use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
 use crate::sweep::lanes::{M, V};
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
-/// reference speed of `CONVENTIONS.md` (`cor_speed`, `cor_power`).
+/// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
 pub const COR_REFERENCE_SPEED_M_S: f64 = 48.77;
 
 /// A number the laws are evaluated on: `f64` (one shot) or [`V`] (a vector of lanes).
@@ -197,7 +197,7 @@ pub struct BallContact {
 impl BallContact {
     /// `r_b` from the unit normal `n`, the impact-frame tangent `t_y` and the horizontal
     /// tangent `t_z`, given by its x and z components (`z_I = (−z, 0, X)/ρ` has no y component:
-    /// CONVENTIONS, face geometry).
+    /// `docs/conventions.md`, face geometry).
     #[inline(always)]
     pub fn lever<R: Real>(&self, n: &Vec3<R>, t_y: &Vec3<R>, t_z_xz: &[R; 2]) -> Vec3<R> {
         let (nr, dy, dz) = (-self.radius_m, self.offset_y_m, self.offset_z_m);

@@ -27,7 +27,7 @@ use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
 use smash::physics::ModelParams;
 use smash::{Delivery, ImpactModel};
 
-/// Reference normal approach speed of the speed-dependent COR laws (CONVENTIONS: 109 mph),
+/// Reference normal approach speed of the speed-dependent COR laws (`docs/conventions.md`: 109 mph),
 /// written here independently of the engine's constant.
 const REFERENCE_SPEED_M_S: f64 = 48.77;
 
@@ -101,7 +101,7 @@ pub fn solve_fifteen(model: &ImpactModel, d: &Delivery) -> Option<FifteenSolutio
     if u1n.is_nan() || u1n <= 0.0 {
         return None;
     }
-    // CONVENTIONS: e = cor·(u1n/48.77 m/s)^(−q) − k·(u1n − 48.77 m/s) − c·(y² + z²).
+    // docs/conventions.md: e = cor·(u1n/48.77 m/s)^(−q) − k·(u1n − 48.77 m/s) − c·(y² + z²).
     let e = p.cor * (u1n / REFERENCE_SPEED_M_S).powf(-p.cor_power_q)
         - p.cor_speed_k_s_per_m * (u1n - REFERENCE_SPEED_M_S)
         - p.cor_radial_c_per_m2 * (d.impact_y_m.powi(2) + d.impact_z_m.powi(2));
