@@ -97,7 +97,7 @@ fn step_size_passes_the_tolerance_test() {
             ..FlightConfig::default()
         };
         let fine = FlightConfig {
-            dt_s: coarse.dt_s / 64.0,
+            dt_s: Some(coarse.dt() / 64.0),
             ..coarse.clone()
         };
         let ls = launch_set();

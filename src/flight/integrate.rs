@@ -1,5 +1,5 @@
 //! The batched flight integrator: classic fourth-order Runge–Kutta with a fixed step over
-//! [`W`] trajectories at once (lanes of `f64`, AVX2 when the machine has it), rayon across
+//! `2·W` trajectories at once (two groups of [`W`]) (lanes of `f64`, AVX2 when the machine has it), rayon across
 //! batches.
 //!
 //! State per trajectory: position and velocity in G and the spin rate. The spin axis is
@@ -28,7 +28,7 @@ use crate::sweep::lanes::{V, W};
 const PER_TASK: usize = 64;
 
 /// Fly every launch; results in input order. Invalid launches give their error, the others are
-/// integrated in batches of [`W`] in parallel.
+/// integrated in batches of `2·W` in parallel.
 pub fn fly(cfg: &FlightConfig, launches: &[FlightLaunch]) -> Vec<Result<Flight, FlightError>> {
     let mut out = vec![
         Err(FlightError::NeverLands {
@@ -147,7 +147,7 @@ impl Consts {
             moment,
             re_per_speed: rho * 2.0 * b.radius_m / cfg.air.viscosity_pa_s,
             radius: b.radius_m,
-            dt: cfg.dt_s,
+            dt: cfg.dt(),
             max_time: cfg.max_time_s,
         }
     }
@@ -234,31 +234,40 @@ fn axpy(s: &St, h: f64, v: &[V; 3], r: &Rate) -> St {
     }
 }
 
+/// Independent lane groups integrated together, so that the out-of-order core overlaps one
+/// group's long dependency chain (square roots, divisions) with the other's.
+const G: usize = 2;
+
+/// Launches per batch.
+const B: usize = G * W;
+
 #[inline(always)]
 fn rk4<C: CoefficientModel, const WIND: bool>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
-    axis: &[V; 3],
-    s: &St,
-) -> St {
+    axis: &[[V; 3]; G],
+    s: &[St; G],
+) -> [St; G] {
     let h = k.dt;
-    let r1 = rate::<C, WIND>(k, cfg, model, axis, s);
-    let s2 = axpy(s, 0.5 * h, &s.v, &r1);
-    let r2 = rate::<C, WIND>(k, cfg, model, axis, &s2);
-    let s3 = axpy(s, 0.5 * h, &s2.v, &r2);
-    let r3 = rate::<C, WIND>(k, cfg, model, axis, &s3);
-    let s4 = axpy(s, h, &s3.v, &r3);
-    let r4 = rate::<C, WIND>(k, cfg, model, axis, &s4);
+    let r1: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s[g]));
+    let s2: [St; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s[g].v, &r1[g]));
+    let r2: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s2[g]));
+    let s3: [St; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s2[g].v, &r2[g]));
+    let r3: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s3[g]));
+    let s4: [St; G] = std::array::from_fn(|g| axpy(&s[g], h, &s3[g].v, &r3[g]));
+    let r4: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s4[g]));
     let h6 = h / 6.0;
     let comb = |a: V, b: V, c: V, d: V| a + 2.0 * (b + c) + d;
-    let mut n = *s;
-    for j in 0..3 {
-        n.p[j] = s.p[j] + h6 * comb(s.v[j], s2.v[j], s3.v[j], s4.v[j]);
-        n.v[j] = s.v[j] + h6 * comb(r1.a[j], r2.a[j], r3.a[j], r4.a[j]);
-    }
-    n.w = s.w + h6 * comb(r1.dw, r2.dw, r3.dw, r4.dw);
-    n
+    std::array::from_fn(|g| {
+        let mut n = s[g];
+        for j in 0..3 {
+            n.p[j] = s[g].p[j] + h6 * comb(s[g].v[j], s2[g].v[j], s3[g].v[j], s4[g].v[j]);
+            n.v[j] = s[g].v[j] + h6 * comb(r1[g].a[j], r2[g].a[j], r3[g].a[j], r4[g].a[j]);
+        }
+        n.w = s[g].w + h6 * comb(r1[g].dw, r2[g].dw, r3[g].dw, r4[g].dw);
+        n
+    })
 }
 
 /// Cubic Hermite interpolant on one step: values `y0, y1`, slopes (per unit θ) `m0, m1`.
@@ -363,7 +372,7 @@ fn batches<C: CoefficientModel, const WIND: bool>(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let mut idx = [0usize; W];
+    let mut idx = [0usize; B];
     let mut n = 0;
     for (i, l) in launches.iter().enumerate() {
         match l.check() {
@@ -371,79 +380,90 @@ fn batches<C: CoefficientModel, const WIND: bool>(
             Ok(()) => {
                 idx[n] = i;
                 n += 1;
-                if n == W {
-                    batch::<C, WIND>(cfg, k, model, launches, &idx, W, out);
+                if n == B {
+                    batch::<C, WIND>(cfg, k, model, launches, &idx, B, out);
                     n = 0;
                 }
             }
         }
     }
     if n > 0 {
-        for j in n..W {
+        for j in n..B {
             idx[j] = idx[n - 1];
         }
         batch::<C, WIND>(cfg, k, model, launches, &idx, n, out);
     }
 }
 
-/// Integrate the launches `idx` (the first `n` are real, the rest padding copies).
+/// Integrate the launches `idx` (the first `n` are real, the rest padding copies). Lane `L` is
+/// lane `L % W` of group `L / W`.
 #[inline(always)]
 fn batch<C: CoefficientModel, const WIND: bool>(
     cfg: &FlightConfig,
     k: &Consts,
     model: &C,
     launches: &[FlightLaunch],
-    idx: &[usize; W],
+    idx: &[usize; B],
     n: usize,
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let mut s = St {
-        p: [V::splat(0.0); 3],
-        v: [V::splat(0.0); 3],
-        w: V::splat(0.0),
-    };
-    let mut axis = [V::splat(0.0); 3];
-    for i in 0..W {
-        let l = &launches[idx[i]];
+    let zero = V::splat(0.0);
+    let mut s = [St {
+        p: [zero; 3],
+        v: [zero; 3],
+        w: zero,
+    }; G];
+    let mut axis = [[zero; 3]; G];
+    for lane in 0..B {
+        let (g, i) = (lane / W, lane % W);
+        let l = &launches[idx[lane]];
         let (sl, cl) = l.launch_angle_rad.sin_cos();
         let (sa, ca) = l.azimuth_rad.sin_cos();
         let sp = l.ball_speed_m_s;
-        s.v[0].0[i] = sp * cl * ca;
-        s.v[1].0[i] = sp * sl;
-        s.v[2].0[i] = sp * cl * sa;
+        s[g].v[0].0[i] = sp * cl * ca;
+        s[g].v[1].0[i] = sp * sl;
+        s[g].v[2].0[i] = sp * cl * sa;
         // ω = (0, −sidespin, backspin) in G.
         let (wy, wz) = (-l.sidespin_rad_s, l.backspin_rad_s);
         let w = wy.hypot(wz);
-        s.w.0[i] = w;
+        s[g].w.0[i] = w;
         if w > 0.0 {
-            axis[1].0[i] = wy / w;
-            axis[2].0[i] = wz / w;
+            axis[g][1].0[i] = wy / w;
+            axis[g][2].0[i] = wz / w;
         } else {
-            axis[2].0[i] = 1.0;
+            axis[g][2].0[i] = 1.0;
         }
     }
     let h = k.dt;
-    let mut apex = [0.0f64; W];
-    let mut done = [false; W];
-    let mut left = W;
+    let mut apex = [zero; G];
+    let mut done = [[false; W]; G];
+    let mut left = B;
     let mut t = 0.0;
     let mut steps = 0u64;
     while left > 0 && t < k.max_time {
         let ns = rk4::<C, WIND>(k, cfg, model, &axis, &s);
-        for i in 0..W {
-            if done[i] {
+        for g in 0..G {
+            let (s, ns) = (&s[g], &ns[g]);
+            apex[g] = ns.p[1].gt(apex[g]).select(ns.p[1], apex[g]);
+            // Lanes that cross the ground or pass the apex this step (done lanes included:
+            // the scalar code below skips them).
+            let event = ns.p[1].lt(zero) | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
+            if !event.any() {
                 continue;
             }
-            let (y0, y1) = (s.p[1].0[i], ns.p[1].0[i]);
-            let (vy0, vy1) = (s.v[1].0[i], ns.v[1].0[i]);
-            if y1 > apex[i] {
-                apex[i] = y1;
-            }
-            if vy0 > 0.0 && vy1 <= 0.0 {
-                apex[i] = apex[i].max(Hermite::new(y0, y1, vy0, vy1, h).max());
-            }
-            if y1 < 0.0 {
+            for i in 0..W {
+                if done[g][i] || !event.get(i) {
+                    continue;
+                }
+                let (y0, y1) = (s.p[1].0[i], ns.p[1].0[i]);
+                let (vy0, vy1) = (s.v[1].0[i], ns.v[1].0[i]);
                 let hy = Hermite::new(y0, y1, vy0, vy1, h);
+                if vy0 > 0.0 && vy1 <= 0.0 {
+                    apex[g].0[i] = apex[g].0[i].max(hy.max());
+                }
+                if y1 >= 0.0 {
+                    continue;
+                }
                 let th = hy.root();
                 let interp = |j: usize| {
                     let hj = Hermite::new(s.p[j].0[i], ns.p[j].0[i], s.v[j].0[i], ns.v[j].0[i], h);
@@ -458,30 +478,30 @@ fn batch<C: CoefficientModel, const WIND: bool>(
                     carry_m: x.hypot(z),
                     offline_m: z,
                     downrange_m: x,
-                    apex_m: apex[i].max(0.0),
+                    apex_m: apex[g].0[i].max(0.0),
                     flight_time_s: t + th * h,
                     land_angle_rad: (-vy).atan2(horiz),
                     land_speed_m_s: (horiz * horiz + vy * vy).sqrt(),
                     land_spin_rad_s: w,
                     total_m: None,
                 };
-                if let Some(g) = &cfg.ground {
+                if let Some(gr) = &cfg.ground {
                     // Backspin component about the horizontal axis across the direction of
-                    // travel: ω·(ĥ × ŷ) with ĥ the unit horizontal velocity.
+                    // travel: ω·(ĥ × ŷ) with ĥ the unit horizontal velocity, ĥ × ŷ = (−uz, 0, ux).
                     let (ux, uz) = if horiz > 0.0 {
                         (vx / horiz, vz / horiz)
                     } else {
                         (1.0, 0.0)
                     };
-                    // ĥ × ŷ = (−uz, 0, ux); ω = w·axis.
-                    let back = w * (axis[0].0[i] * -uz + axis[2].0[i] * ux);
-                    let roll = g.run_m(horiz, -vy, back, k.radius);
+                    let back = w * (axis[g][0].0[i] * -uz + axis[g][2].0[i] * ux);
+                    let roll = gr.run_m(horiz, -vy, back, k.radius);
                     f.total_m = Some((x + roll * ux).hypot(z + roll * uz));
                 }
-                if i < n {
-                    out[idx[i]] = Ok(f);
+                let lane = g * W + i;
+                if lane < n {
+                    out[idx[lane]] = Ok(f);
                 }
-                done[i] = true;
+                done[g][i] = true;
                 left -= 1;
             }
         }
@@ -489,9 +509,9 @@ fn batch<C: CoefficientModel, const WIND: bool>(
         steps += 1;
         t = steps as f64 * h;
     }
-    for i in 0..n {
-        if !done[i] {
-            out[idx[i]] = Err(FlightError::NeverLands {
+    for lane in 0..n {
+        if !done[lane / W][lane % W] {
+            out[idx[lane]] = Err(FlightError::NeverLands {
                 time_limit_s: k.max_time,
             });
         }
