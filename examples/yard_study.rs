@@ -234,6 +234,26 @@ fn main() -> anyhow::Result<()> {
         "mass move at the optimum: dx {:+.2} mm, dy {:+.2} mm, dz {:+.2} mm (face frame F)",
         opt.move_mm[0], opt.move_mm[1], opt.move_mm[2]
     )?;
+    let active: Vec<String> = (0..3)
+        .flat_map(|k| {
+            let b = f.design.bounds_mm[k];
+            let axis = ["dx", "dy", "dz"][k];
+            let v = opt.move_mm[k];
+            [(b[0], "lower"), (b[1], "upper")]
+                .into_iter()
+                .filter(move |(x, _)| (v - x).abs() < 0.1)
+                .map(move |(x, side)| format!("{axis} at its {side} bound {x} mm"))
+        })
+        .collect();
+    writeln!(
+        rep,
+        "bounds active at the optimum (within 0.1 mm): {}",
+        if active.is_empty() {
+            "none".to_string()
+        } else {
+            active.join(", ")
+        }
+    )?;
     writeln!(
         rep,
         "mean carry {:.2} -> {:.2} yd, carry std {:.2} -> {:.2} yd, {:.0} % ellipse {:.1} -> {:.1} yd²",

@@ -112,8 +112,8 @@ fn step_size_passes_the_tolerance_test() {
                 (a.land_angle_deg() - b.land_angle_deg()).abs(),
                 (a.flight_time_s - b.flight_time_s).abs(),
             ];
-            for k in 0..5 {
-                worst[k] = worst[k].max(d[k]);
+            for (w, d) in worst.iter_mut().zip(d) {
+                *w = w.max(d);
             }
         }
         println!(
@@ -377,8 +377,8 @@ fn agrees_with_an_independent_adaptive_integrator() {
                 (f.land_angle_rad - r.3).abs().to_degrees(),
                 (f.flight_time_s - r.4).abs(),
             ];
-            for k in 0..5 {
-                worst[k] = worst[k].max(d[k]);
+            for (w, d) in worst.iter_mut().zip(d) {
+                *w = w.max(d);
             }
         }
         println!(

@@ -81,10 +81,10 @@ pub struct FlightOptions {
     /// Add total_yd with the simple bounce-and-roll model.
     #[arg(long, help_heading = "Ground")]
     pub total: bool,
-    /// Turf coefficient of restitution for --total (default 0.30).
+    /// Turf coefficient of restitution for --total (default 0.20).
     #[arg(long, value_name = "E", requires = "total", help_heading = "Ground")]
     pub ground_restitution: Option<f64>,
-    /// Rolling deceleration for --total, m/s² (default 2.0).
+    /// Effective run-out deceleration for --total, m/s² (default 12, see src/flight/ground.rs).
     #[arg(long, value_name = "M/S2", requires = "total", help_heading = "Ground")]
     pub roll_decel_m_s2: Option<f64>,
     /// Integration time step, s (default 0.2 in still air, 0.1 in wind; chosen by a tolerance

@@ -351,20 +351,15 @@ impl CoefficientModel for TableModel {
 }
 
 /// A coefficient model chosen by name (what files and the command line select).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub enum AeroModel {
     /// [`Fmm2022`] (the default).
+    #[default]
     Fmm2022,
     /// [`NathanLyu`].
     NathanLyu,
     /// A user's [`TableModel`].
     Table(std::sync::Arc<TableModel>),
-}
-
-impl Default for AeroModel {
-    fn default() -> Self {
-        Self::Fmm2022
-    }
 }
 
 /// Names of the built-in models.

@@ -8,27 +8,30 @@
 //!    would send it backwards stops instead (`v_t' ≥ 0`).
 //! 2. Further hops: each lands rolling, so `v_t'` is kept and the normal speed shrinks by `e`
 //!    per hop; the hop lengths `2·v_t'·v_n/g` sum to `2·v_t'·e·v_n/(g·(1 − e))`.
-//! 3. Roll at constant deceleration `a` to rest: `v_t'²/(2a)`.
+//! 3. Run out at constant deceleration `a` to rest: `v_t'²/(2a)`.
 //!
-//! The two parameters are not turf measurements: the defaults are chosen so that the PGA Tour
-//! average drive (TrackMan table, flown by the default model) runs out about 25 yd, the
-//! difference between the Tour's average driving distance (299.9 yd in 2023, PGA Tour
-//! statistics as quoted by Golf Monthly, 5 Dec 2023) and its average carry (275 yd). Greens,
-//! wet or firm fairways need other values; spin-back and slope are not modelled.
+//! The two parameters are effective values, not turf measurements: the defaults (e = 0.2,
+//! a = 12 m/s²) are chosen so that the PGA Tour average drive (TrackMan table, flown by the
+//! default model) runs out 25 yd, the difference between the Tour's average driving distance
+//! (299.9 yd in 2023, PGA Tour statistics as quoted by Golf Monthly, 5 Dec 2023) and its average
+//! carry (275 yd). The rolling limit of step 1 keeps more horizontal speed than a ball plowing
+//! into real turf, so `a` absorbs those losses too and is far above a pure rolling resistance
+//! (about 0.5 m/s² on a green). Greens, wet or firm fairways need other values; spin-back and
+//! slope are not modelled.
 
 use super::G_M_S2;
 
 /// Default turf coefficient of restitution (dimensionless), see the module documentation.
-pub const DEFAULT_RESTITUTION: f64 = 0.30;
+pub const DEFAULT_RESTITUTION: f64 = 0.20;
 /// Default rolling deceleration, m/s², see the module documentation.
-pub const DEFAULT_ROLL_DECEL_M_S2: f64 = 2.0;
+pub const DEFAULT_ROLL_DECEL_M_S2: f64 = 12.0;
 
 /// Turf parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ground {
     /// Normal coefficient of restitution of the turf, in [0, 1).
     pub restitution: f64,
-    /// Rolling deceleration, m/s² (> 0).
+    /// Effective run-out deceleration, m/s² (> 0).
     pub roll_decel_m_s2: f64,
 }
 
@@ -83,7 +86,9 @@ mod tests {
             ..g
         };
         let vt: f64 = 5.0 / 7.0 * 14.0;
-        assert!((dead.run_m(14.0, 10.0, 0.0, 0.02) - vt * vt / 4.0).abs() < 1e-12);
+        assert!(
+            (dead.run_m(14.0, 10.0, 0.0, 0.02) - vt * vt / (2.0 * g.roll_decel_m_s2)).abs() < 1e-12
+        );
         // Enough backspin stops it dead.
         assert_eq!(g.run_m(10.0, 10.0, 5000.0, 0.02), 0.0);
         assert!(g.check().is_ok());
