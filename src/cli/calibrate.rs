@@ -10,6 +10,7 @@ use serde_json::json;
 use crate::data::club_file::{club_toml, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
+use crate::diagnose::honest;
 use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
 use crate::physics::LaunchComponent;
 use crate::report::{error_tables_side_by_side, TextTable};
@@ -61,7 +62,13 @@ pub struct CalibrateArgs {
     pub json: bool,
 
     /// Iteration limit of each solver run.
-    #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Solver")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Solver",
+        allow_negative_numbers = true
+    )]
     pub max_iters: u64,
 
     /// Measurement noise of the inputs.
@@ -71,6 +78,12 @@ pub struct CalibrateArgs {
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    if let Some(out) = &args.out_club {
+        crate::data::safe_write::refuse_inputs(
+            &[("--out-club", out, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
     let club = read_club(&args.club)?;
     let table = read_shots(&args.shots)?;
     if !table.has_measurements() {
@@ -106,9 +119,9 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         eprintln!("calibrated club -> {}", out.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&cal))?);
+        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
     } else {
-        print!("{}", text_report(&cal, table.shots.len()));
+        crate::cli::stdout::print(text_report(&cal, table.shots.len()))?;
     }
     Ok(())
 }
@@ -134,6 +147,9 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
                 "unit": p.unit,
                 "t": opt(p.stderr.map(|s| t_statistic(p.value, s))),
                 "at_bound": p.at_bound,
+                "plausible": honest::is_plausible(p),
+                "plausible_range": honest::spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
+                "stand_in": honest::stand_in(p),
             })
         })
         .collect();
@@ -186,6 +202,7 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         "params": params,
         "correlation": correlation,
         "strongly_correlated": flagged,
+        "aliases": honest::aliases(&cal.params, cal.correlation.as_ref()).iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
         "unidentifiable": unidentified,
         "chi2": cal.chi2,
         "chi2_nominal": cal.chi2_before,
@@ -214,7 +231,15 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         cal.params.len(),
         n_shots
     );
-    let mut t = TextTable::new(["parameter", "value", "± stderr", "t", "unit", "note"]);
+    let mut t = TextTable::new([
+        "parameter",
+        "value",
+        "± stderr",
+        "t",
+        "unit",
+        "plausible",
+        "note",
+    ]);
     let unidentified = cal.identifiability.unidentified();
     for (j, p) in cal.params.iter().enumerate() {
         let mut note = Vec::new();
@@ -224,6 +249,9 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         if unidentified.contains(&j) {
             note.push("not identifiable");
         }
+        if honest::is_plausible(p) == Some(false) {
+            note.push("IMPLAUSIBLE: a stand-in, not a finding");
+        }
         t.row([
             labels[j].clone(),
             format!("{:.5}", p.value),
@@ -231,6 +259,7 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             p.stderr
                 .map_or("n/a".into(), |e| format!("{:.1}", t_statistic(p.value, e))),
             p.unit.to_owned(),
+            honest::plausible_range_text(p),
             note.join(", "),
         ]);
     }
@@ -249,11 +278,20 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             s.push_str(&t.render());
         }
     }
-    for p in &cal.strongly_correlated {
-        s.push_str(&format!(
-            "  strongly correlated: {} and {} (r = {:+.3})\n",
-            labels[p.a], labels[p.b], p.r
-        ));
+    for p in &cal.params {
+        if let Some(w) = honest::stand_in(p) {
+            s.push_str(&format!(
+                "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; it \
+                 behaves like {w}\n",
+                p.label(),
+                p.value,
+                p.unit,
+                honest::plausible_range_text(p)
+            ));
+        }
+    }
+    for a in honest::aliases(&cal.params, cal.correlation.as_ref()) {
+        s.push_str(&format!("  alias: {}\n", a.text()));
     }
     if !unidentified.is_empty() {
         s.push_str(&format!(

@@ -209,6 +209,11 @@ pub struct FlightArgs {
 
 /// Run `smash flight`.
 pub fn run(args: FlightArgs) -> anyhow::Result<()> {
+    let mut inputs = vec![("--shots", args.shots.as_path())];
+    if let Some(a) = &args.flight.atmosphere {
+        inputs.push(("--atmosphere", a.as_path()));
+    }
+    crate::data::safe_write::refuse_inputs(&[("--out", &args.out, false)], &inputs)?;
     let cfg = args.flight.config()?;
     let source = args.launch.as_deref().map(|s| match s {
         "predicted" => LaunchSource::Predicted,
