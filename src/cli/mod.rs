@@ -7,6 +7,7 @@ pub mod calibrate;
 pub mod compare;
 pub mod diagnose;
 pub mod effects;
+pub mod flight;
 pub mod merge;
 pub mod predict;
 pub mod progress;
@@ -41,6 +42,9 @@ pub enum Command {
     Run(run::RunArgs),
     /// Merge the shards of a study into exactly the unsharded result.
     Merge(merge::MergeArgs),
+    /// Fly launch conditions (measured or predicted) to landing: carry, offline, apex, flight
+    /// time, land angle (and total with --total), in a given atmosphere.
+    Flight(flight::FlightArgs),
     /// Fit named effects' parameters to measured launch (values ± standard errors,
     /// correlations, chi2, AIC/BIC, before/after error tables).
     Calibrate(calibrate::CalibrateArgs),
@@ -58,6 +62,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Compare(args) => compare::run(args),
         Command::Run(args) => run::run(args),
         Command::Merge(args) => merge::run(args),
+        Command::Flight(args) => flight::run(args),
         Command::Calibrate(args) => calibrate::run(args),
         Command::Diagnose(args) => diagnose::run(args),
     }

@@ -13,6 +13,9 @@
 //! - [`sensitivity`]: central differences at the base design, maps and a ranked table.
 //! - [`optimise`]: an argmin cost function over bounded design variables (Nelder–Mead).
 //! - [`output`]: the output files as bytes; [`shard`]: shard files and their merge.
+//! - [`yards`]: studies in yards (impact then ball flight): carry maps, robust carry and
+//!   dispersion over a distribution, head constraints (mass, Rules MOI limit, CoM box) and a
+//!   discretionary-mass optimiser for expected carry or dispersion.
 //!
 //! Nothing here writes files or prints: the CLI does.
 
@@ -25,6 +28,7 @@ pub mod sensitivity;
 pub mod shard;
 pub mod spec;
 pub mod sweep;
+pub mod yards;
 
 pub use spec::{parse_study, read_study, resolved_toml, Study};
 pub use sweep::{Prepared, VariantResult};
