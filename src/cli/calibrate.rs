@@ -8,7 +8,6 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use crate::data::club_file::{club_toml, read_club};
-use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
 use crate::physics::LaunchComponent;
@@ -43,6 +42,10 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
 
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
     /// Effects to fit, comma-separated: `name` (global), `name@group` (one per group of the
     /// shots), `name@A` (group A only).
     #[arg(long, value_name = "LIST")]
@@ -72,7 +75,7 @@ pub struct CalibrateArgs {
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
     }

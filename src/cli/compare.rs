@@ -7,7 +7,6 @@ use clap::Args;
 
 use crate::compare::{compare, CompareOptions};
 use crate::data::club_file::read_club;
-use crate::data::shots::read_shots;
 use crate::data::write_folder_atomic;
 use crate::physics::LaunchComponent;
 use crate::predict::expected_launches;
@@ -26,6 +25,10 @@ pub struct CompareArgs {
     /// Shots file with measured launch columns (CSV).
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
 
     /// Folder for the tables, face pictures and JSON (created). Nothing is written without it.
     #[arg(long, value_name = "DIR")]
@@ -76,7 +79,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         bail!("--bin-mm must be from 0.5 to 100 mm (impact locations are measured to about a millimetre), got {}", args.bin_mm);
     }
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(

@@ -9,7 +9,6 @@ use indicatif::ProgressBar;
 use serde_json::json;
 
 use crate::data::club_file::{club_toml, read_club};
-use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::diagnose::{
     diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
@@ -34,6 +33,10 @@ pub struct DiagnoseArgs {
     /// Shots file (CSV) with measured launch columns (and a golfer column for grouped folds).
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
 
     /// Write the club with the selected effects, only after success.
     #[arg(long, value_name = "OUT.toml")]
@@ -105,7 +108,7 @@ impl DiagnoseProgress for Bar {
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
     }

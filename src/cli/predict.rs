@@ -8,7 +8,7 @@ use nalgebra::Vector3;
 
 use crate::data::club_file::read_club;
 use crate::data::predictions::predictions_csv;
-use crate::data::shots::{read_shots, DEFAULT_GROUP};
+use crate::data::shots::DEFAULT_GROUP;
 use crate::data::write_atomic;
 use crate::physics::{Delivery, LaunchComponent};
 use crate::predict::predict_table;
@@ -33,6 +33,10 @@ pub struct PredictArgs {
         conflicts_with = "club_speed_mph"
     )]
     pub shots: Option<PathBuf>,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
 
     /// Predictions file to write (CSV: input columns, pred_*, and err_* where measured).
     #[arg(long, value_name = "PRED.csv")]
@@ -151,7 +155,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     if let Some(shots_path) = &args.shots {
         let out = args.out.as_ref().expect("clap: --shots requires --out");
-        let table = read_shots(shots_path)?;
+        let table = args.shots_format.read(shots_path)?;
         let outcomes =
             predict_table(&club, &table).with_context(|| shots_path.display().to_string())?;
         write_atomic(out, &predictions_csv(&table, &outcomes))?;

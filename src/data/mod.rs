@@ -5,6 +5,7 @@
 //! temporary file and a rename, so a failed run never leaves a half-written file behind.
 
 pub mod club_file;
+pub mod import;
 pub mod predictions;
 pub mod shots;
 pub mod synth_files;
