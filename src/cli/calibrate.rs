@@ -59,6 +59,11 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "OUT.toml")]
     pub out_club: Option<PathBuf>,
 
+    /// Write a self-contained HTML report (errors before and after, estimates with their
+    /// plausible ranges, the calibrated model's trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
     /// Print one JSON object on stdout (progress and prose go to stderr).
     #[arg(long)]
     pub json: bool,
@@ -107,6 +112,30 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         );
         write_atomic(out, club_toml(&cal.club, &comment).as_bytes())?;
         eprintln!("calibrated club -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let launches = crate::predict::expected_launches(
+            &cal.club,
+            &table.shots,
+            args.measurement.impact_noise_mm,
+        )
+        .with_context(|| args.shots.display().to_string())?;
+        let after = crate::compare::compare(
+            &table.shots,
+            &launches,
+            &crate::compare::CompareOptions::default(),
+        )?;
+        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
+        let title = format!(
+            "{} calibrated on {} ({} shots)",
+            club.name,
+            args.shots.display(),
+            table.shots.len()
+        );
+        let html = crate::report::html::calibrate_page(&cal, &after, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&to_json(&cal))?);

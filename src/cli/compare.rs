@@ -34,6 +34,10 @@ pub struct CompareArgs {
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
 
+    /// Write a self-contained HTML report (charts of Table 2, trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
     /// Print one JSON object on stdout instead of the text report (which goes to stderr).
     #[arg(long)]
     pub json: bool,
@@ -110,6 +114,13 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         println!("{}", compare_json(&report));
     } else {
         print!("{text}");
+    }
+    if let Some(path) = &args.report {
+        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
+        let html = crate::report::html::compare_page(&report, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        crate::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
         let files: Vec<(PathBuf, Vec<u8>)> = files

@@ -38,6 +38,11 @@ pub struct DiagnoseArgs {
     #[command(flatten)]
     pub shots_format: super::ShotsFormatArgs,
 
+    /// Write a self-contained HTML report (gains per candidate and step, errors before and after,
+    /// estimates with their plausible ranges).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
     /// Write the club with the selected effects, only after success.
     #[arg(long, value_name = "OUT.toml")]
     pub out_club: Option<PathBuf>,
@@ -152,6 +157,13 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         );
         write_atomic(out, club_toml(&d.club, &comment).as_bytes())?;
         eprintln!("club with selected effects -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let title = format!("{} on {}", club.name, args.shots.display());
+        let html =
+            crate::report::html::diagnose_page(&to_json(&d), &title).map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if args.json {
         println!("{}", serde_json::to_string_pretty(&to_json(&d))?);

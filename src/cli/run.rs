@@ -33,6 +33,10 @@ pub struct RunArgs {
     /// combine the shards with `smash merge`.
     #[arg(long, value_name = "k/N", value_parser = parse_shard_spec)]
     pub shard: Option<(usize, usize)>,
+
+    /// Also write a self-contained HTML report of the study (face maps and tables).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 }
 
 /// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
@@ -100,6 +104,11 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let (files, opt) = finish(&prepared, &variants)?;
     let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
     write_all(&dir, &files)?;
+    if let Some(path) = &args.report {
+        let html = crate::report::html::study_page(&s.name, &files).map_err(anyhow::Error::msg)?;
+        crate::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
     super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len());
     eprintln!("{closing}");
     Ok(())
