@@ -9,6 +9,7 @@ use serde_json::json;
 
 use crate::data::club_file::{club_toml, read_club};
 use crate::data::write_atomic;
+use crate::diagnose::honest;
 use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
 use crate::physics::LaunchComponent;
 use crate::report::{error_tables_side_by_side, TextTable};
@@ -166,6 +167,9 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
                 "unit": p.unit,
                 "t": opt(p.stderr.map(|s| t_statistic(p.value, s))),
                 "at_bound": p.at_bound,
+                "plausible": honest::is_plausible(p),
+                "plausible_range": honest::spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
+                "stand_in": honest::stand_in(p),
             })
         })
         .collect();
@@ -218,6 +222,7 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         "params": params,
         "correlation": correlation,
         "strongly_correlated": flagged,
+        "aliases": honest::aliases(&cal.params, cal.correlation.as_ref()).iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
         "unidentifiable": unidentified,
         "chi2": cal.chi2,
         "chi2_nominal": cal.chi2_before,
@@ -246,7 +251,15 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         cal.params.len(),
         n_shots
     );
-    let mut t = TextTable::new(["parameter", "value", "± stderr", "t", "unit", "note"]);
+    let mut t = TextTable::new([
+        "parameter",
+        "value",
+        "± stderr",
+        "t",
+        "unit",
+        "plausible",
+        "note",
+    ]);
     let unidentified = cal.identifiability.unidentified();
     for (j, p) in cal.params.iter().enumerate() {
         let mut note = Vec::new();
@@ -256,6 +269,9 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         if unidentified.contains(&j) {
             note.push("not identifiable");
         }
+        if honest::is_plausible(p) == Some(false) {
+            note.push("IMPLAUSIBLE: a stand-in, not a finding");
+        }
         t.row([
             labels[j].clone(),
             format!("{:.5}", p.value),
@@ -263,6 +279,7 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             p.stderr
                 .map_or("n/a".into(), |e| format!("{:.1}", t_statistic(p.value, e))),
             p.unit.to_owned(),
+            honest::plausible_range_text(p),
             note.join(", "),
         ]);
     }
@@ -281,11 +298,20 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             s.push_str(&t.render());
         }
     }
-    for p in &cal.strongly_correlated {
-        s.push_str(&format!(
-            "  strongly correlated: {} and {} (r = {:+.3})\n",
-            labels[p.a], labels[p.b], p.r
-        ));
+    for p in &cal.params {
+        if let Some(w) = honest::stand_in(p) {
+            s.push_str(&format!(
+                "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; it \
+                 behaves like {w}\n",
+                p.label(),
+                p.value,
+                p.unit,
+                honest::plausible_range_text(p)
+            ));
+        }
+    }
+    for a in honest::aliases(&cal.params, cal.correlation.as_ref()) {
+        s.push_str(&format!("  alias: {}\n", a.text()));
     }
     if !unidentified.is_empty() {
         s.push_str(&format!(

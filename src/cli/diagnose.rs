@@ -9,7 +9,10 @@ use indicatif::ProgressBar;
 use serde_json::json;
 
 use crate::data::club_file::{club_toml, read_club};
+use crate::data::noise_file::read_noise_file;
 use crate::data::write_atomic;
+use crate::diagnose::honest;
+use crate::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
 use crate::diagnose::{
     diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
@@ -95,6 +98,32 @@ pub struct DiagnoseArgs {
         help_heading = "Measurement noise"
     )]
     pub exact_impact_locations: bool,
+
+    /// Instrument class whose documented noise sets the noise floor (camera: camera launch
+    /// monitor with marker-based delivery capture; radar: Doppler launch monitor).
+    /// Given (or with --noise), selection also stops once the errors are at the noise floor;
+    /// without either, the floor is reported for the camera class and only the penalty stops.
+    #[arg(
+        long,
+        value_name = "CLASS",
+        value_parser = parse_instrument,
+        help_heading = "Noise floor"
+    )]
+    pub instrument: Option<InstrumentClass>,
+
+    /// Instrument noise file ([noise] table: instrument, [noise.delivery], [noise.launch]);
+    /// overrides --instrument.
+    #[arg(long, value_name = "NOISE.toml", help_heading = "Noise floor")]
+    pub noise: Option<PathBuf>,
+}
+
+fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
+    InstrumentClass::from_name(s).ok_or_else(|| {
+        format!(
+            "unknown instrument class '{s}'; allowed: {}",
+            InstrumentClass::ALL.map(|c| c.name()).join(", ")
+        )
+    })
 }
 
 struct Bar(ProgressBar);
@@ -114,6 +143,14 @@ impl DiagnoseProgress for Bar {
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
+    let known_noise = match (&args.noise, args.instrument) {
+        (Some(p), _) => Some(read_noise_file(p)?),
+        (None, Some(c)) => Some(c.noise()),
+        (None, None) => None,
+    };
+    let instrument = known_noise
+        .clone()
+        .unwrap_or_else(|| InstrumentClass::Camera.noise());
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
     }
@@ -136,11 +173,13 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         } else {
             DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
         },
+        noise_floor: known_noise,
     };
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));
     bar.0.finish_and_clear();
     let d = d?;
+    let floor = noise_floor(&d, &table.shots, &instrument)?;
     for w in &d.warnings {
         eprintln!("warning: {w}");
     }
@@ -160,15 +199,15 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.report {
         let title = format!("{} on {}", club.name, args.shots.display());
-        let html =
-            crate::report::html::diagnose_page(&to_json(&d), &title).map_err(anyhow::Error::msg)?;
+        let html = crate::report::html::diagnose_page(&to_json(&d, &floor), &title)
+            .map_err(anyhow::Error::msg)?;
         write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&d))?);
+        println!("{}", serde_json::to_string_pretty(&to_json(&d, &floor))?);
     } else {
-        print!("{}", text_report(&d));
+        print!("{}", text_report(&d, &floor));
     }
     Ok(())
 }
@@ -176,16 +215,22 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
 fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
     ps.iter()
         .map(|p| {
-            json!({
+            let mut v = json!({
                 "effect": p.effect, "param": p.param, "group": p.group,
                 "value": p.value, "stderr": p.stderr, "unit": p.unit,
-            })
+            });
+            if let (Some(o), serde_json::Value::Object(h)) =
+                (v.as_object_mut(), honest::plausibility_json(p))
+            {
+                o.extend(h);
+            }
+            v
         })
         .collect()
 }
 
 /// The machine-readable report.
-pub fn to_json(d: &Diagnosis) -> serde_json::Value {
+pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
     let comp_map = |v: &[f64; 5]| -> serde_json::Value {
         LaunchComponent::ALL
             .iter()
@@ -204,6 +249,7 @@ pub fn to_json(d: &Diagnosis) -> serde_json::Value {
                 "noise_scales": comp_map(&s.noise_scales),
                 "base_cv_chi2": s.base_cv_chi2,
                 "selected": s.selected,
+                "at_noise_floor": s.at_noise_floor,
                 "candidates": s.candidates.iter().map(|c| json!({
                     "effect": c.label,
                     "n_params": c.n_params,
@@ -231,6 +277,14 @@ pub fn to_json(d: &Diagnosis) -> serde_json::Value {
             "estimated": d.impact_noise_estimated,
         })),
         "estimates": estimates_json(&d.estimates),
+        "findings": d.estimates.iter().filter(|p| honest::is_plausible(p) != Some(false)).map(|p| p.label()).collect::<Vec<_>>(),
+        "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
+            "param": p.label(), "value": p.value, "unit": p.unit,
+            "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
+        }))).collect::<Vec<_>>(),
+        "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "noise_floor": floor.to_json(),
+        "conclusion": conclusion(d, floor),
         "steps": steps,
         "folds": d.folds,
         "fold_by": match d.fold_by { FoldBy::Golfer => "golfer", FoldBy::Shot => "shot" },
@@ -248,17 +302,75 @@ fn fmt_params(ps: &[ParamEstimate]) -> String {
                 Some(g) => format!("{}@{g}", p.param),
                 None => p.param.to_owned(),
             };
+            // Small values (COR falloff per mm², say) in scientific notation.
+            let num = |x: f64| {
+                if x != 0.0 && x.abs() < 1e-3 {
+                    format!("{x:.3e}")
+                } else {
+                    format!("{x:.4}")
+                }
+            };
             match p.stderr {
-                Some(se) => format!("{name} = {:.4} ± {:.4}", p.value, se),
-                None => format!("{name} = {:.4}", p.value),
+                Some(se) => format!("{name} = {} ± {}{}", num(p.value), num(se), honest::mark(p)),
+                None => format!("{name} = {}{}", num(p.value), honest::mark(p)),
             }
         })
         .collect::<Vec<_>>()
         .join(", ")
 }
 
+/// What the diagnosis concludes about the structure left in the errors.
+pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    let stand_ins: Vec<String> = d
+        .estimates
+        .iter()
+        .filter(|p| honest::is_plausible(p) == Some(false))
+        .map(|p| p.label())
+        .collect();
+    let stand_in_note = if stand_ins.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; {} stand(s) in for physics the library lacks and is not a finding",
+            stand_ins.join(", ")
+        )
+    };
+    if !floor.structure_remains() {
+        return format!(
+            "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
+        );
+    }
+    let structured: Vec<&str> = floor
+        .components
+        .iter()
+        .filter(|c| c.structure)
+        .map(|c| c.component.column())
+        .collect();
+    let last = d.steps.last();
+    let stopped_by_limit = last.is_none_or(|s| s.selected.is_some());
+    if stopped_by_limit {
+        format!(
+            "unexplained structure remains in {}, and the step limit was reached: raise \
+             --max-steps to keep looking{stand_in_note}",
+            structured.join(", ")
+        )
+    } else {
+        let best = last
+            .and_then(|s| s.candidates.first())
+            .map_or(String::new(), |c| {
+                format!(" (best: {}, margin {:.1})", c.label, c.margin())
+            });
+        format!(
+            "unexplained structure remains in {}; no library candidate reduces it by more than \
+             its penalty{best}: the data contain physics the library lacks (or the instrument \
+             noise given is too small){stand_in_note}",
+            structured.join(", ")
+        )
+    }
+}
+
 /// The human-readable report.
-pub fn text_report(d: &Diagnosis) -> String {
+pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let mut s = format!(
         "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter\n",
         d.n_shots,
@@ -280,6 +392,11 @@ pub fn text_report(d: &Diagnosis) -> String {
             },
             st.base_cv_chi2
         ));
+        if st.at_noise_floor {
+            s.push_str(
+                "  (errors at the instruments' noise floor: only measurement candidates offered)\n",
+            );
+        }
         let mut header = vec![
             "candidate".to_owned(),
             "k".into(),
@@ -336,6 +453,9 @@ pub fn text_report(d: &Diagnosis) -> String {
                 ));
                 s.push_str(&error_table_text(&st.after));
             }
+            None if st.at_noise_floor && st.candidates.is_empty() => s.push_str(
+                "-> the errors are at the instruments' noise floor: no physical effect offered; stop\n",
+            ),
             None => s.push_str("-> no candidate beats its penalty: stop\n"),
         }
     }
@@ -349,6 +469,35 @@ pub fn text_report(d: &Diagnosis) -> String {
     ));
     if !d.estimates.is_empty() {
         s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
+        let findings: Vec<String> = d
+            .estimates
+            .iter()
+            .filter(|p| honest::is_plausible(p) != Some(false))
+            .map(|p| p.label())
+            .collect();
+        s.push_str(&format!(
+            "Findings (values inside their plausible ranges): {}\n",
+            if findings.is_empty() {
+                "none".to_owned()
+            } else {
+                findings.join(", ")
+            }
+        ));
+        for p in &d.estimates {
+            if let Some(w) = honest::stand_in(p) {
+                s.push_str(&format!(
+                    "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; \
+                     it behaves like {w}\n",
+                    p.label(),
+                    p.value,
+                    p.unit,
+                    honest::plausible_range_text(p)
+                ));
+            }
+        }
+    }
+    for a in &d.aliases {
+        s.push_str(&format!("  alias: {}\n", a.text()));
     }
     if let Some(n) = d.impact_noise {
         s.push_str(&format!(
@@ -361,6 +510,34 @@ pub fn text_report(d: &Diagnosis) -> String {
             n.sigma_z_m * 1e3
         ));
     }
+    s.push_str(&format!(
+        "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
+        floor.instrument.name
+    ));
+    let mut t = TextTable::new([
+        "component",
+        "mean",
+        "mean/σ",
+        "expected sd",
+        "observed sd",
+        "ratio",
+        "p",
+        "verdict",
+    ]);
+    for c in &floor.components {
+        t.row([
+            c.component.column().to_owned(),
+            format!("{:+.3}", c.mean),
+            format!("{:+.2}", c.mean_in_sd),
+            format!("{:.3}", c.expected_sd),
+            format!("{:.3}", c.observed_sd),
+            format!("{:.2}", c.ratio),
+            format!("{:.2e}", c.p_value),
+            c.verdict(),
+        ]);
+    }
+    s.push_str(&t.render());
+    s.push_str(&format!("Conclusion: {}\n", conclusion(d, floor)));
     s.push('\n');
     s.push_str(&error_tables_side_by_side(
         &d.before,

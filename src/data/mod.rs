@@ -6,6 +6,7 @@
 
 pub mod club_file;
 pub mod import;
+pub mod noise_file;
 pub mod predictions;
 pub mod shots;
 pub mod synth_files;

@@ -15,7 +15,14 @@
 //!    speed bias over 600 shots with 0.8 mph noise gains `600·0.25²/0.8² ≈ 59`.
 //! 5. The best eligible candidate (its fit converged and every parameter is identifiable: no
 //!    insensitive or collinear Jacobian column, see [`crate::fit::covariance`]) with a positive
-//!    margin `gain − penalty` is added; repeat until none qualifies.
+//!    margin `gain − penalty` is added; repeat until none qualifies. Plausibility does not
+//!    change the choice (the evidence does); a selected value outside its plausible range is
+//!    reported as a *stand-in* ([`honest`]), not a finding.
+//! 6. With known instrument noise ([`DiagnoseOptions::noise_floor`]), each step first asks the
+//!    [`noise_floor`] whether the current model's errors still carry structure beyond what the
+//!    instruments explain; when they do not, no physical effect is offered (measurement
+//!    candidates still are) and the selection stops. This is what keeps false discoveries
+//!    rare in worlds whose delivery is measured with noise (`docs/diagnose-selection.md`).
 //!
 //! Once a global effect is selected, its per-group form (`added_mass@group`) stays a candidate
 //! as a *refinement* that replaces it (gaining `groups − 1` parameters); other kinds already
@@ -23,6 +30,9 @@
 //!
 //! Folds keep each golfer's shots together, so an effect cannot win by fitting one golfer's
 //! habits. Without a golfer column the folds are by shot, with a warning.
+
+pub mod honest;
+pub mod noise_floor;
 
 use std::sync::Arc;
 
@@ -58,6 +68,10 @@ pub struct DiagnoseOptions {
     /// When `impact_noise` is `None`, offer these isotropic impact-location noise levels (mm)
     /// as candidates beside the effects (see [`diagnose`]); empty: assume exact locations.
     pub impact_noise_candidates_mm: Vec<f64>,
+    /// Known instrument noise: physical effects are offered only while the current model's
+    /// errors show structure above this noise floor (see [`noise_floor`]). `None`: the
+    /// penalty alone decides.
+    pub noise_floor: Option<noise_floor::InstrumentNoise>,
 }
 
 /// Impact-location noise levels (1σ, mm, both axes) that diagnose tries by default: from a
@@ -73,6 +87,7 @@ impl Default for DiagnoseOptions {
             candidates: None,
             impact_noise: None,
             impact_noise_candidates_mm: DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec(),
+            noise_floor: None,
         }
     }
 }
@@ -121,6 +136,14 @@ impl CandidateResult {
     pub fn eligible(&self) -> bool {
         self.failure.is_none() && self.converged && self.unidentified.is_empty()
     }
+
+    /// Are all its fitted values inside their plausible ranges (a finding rather than a
+    /// stand-in)? Parameters without a known range count as plausible.
+    pub fn plausible(&self) -> bool {
+        self.params
+            .iter()
+            .all(|p| honest::is_plausible(p).unwrap_or(true))
+    }
 }
 
 /// One step of forward selection.
@@ -138,6 +161,9 @@ pub struct Step {
     pub selected: Option<String>,
     /// Errors on all shots of the model after this step.
     pub after: ErrorTable,
+    /// With a known noise floor: the base model's errors were already at it, so no physical
+    /// effect was offered this step (only measurement candidates).
+    pub at_noise_floor: bool,
 }
 
 /// The outcome of a diagnosis.
@@ -168,6 +194,8 @@ pub struct Diagnosis {
     pub impact_noise_estimated: bool,
     /// Warnings (e.g. folds by shot).
     pub warnings: Vec<String>,
+    /// Pairs of final estimates the data cannot tell apart (|correlation| > 0.9).
+    pub aliases: Vec<honest::Alias>,
 }
 
 /// Receives diagnose progress (the CLI draws a bar).
@@ -405,10 +433,30 @@ pub fn diagnose(
     let mut steps = Vec::new();
 
     for step_index in 0..opts.max_steps {
+        let base_labels: Vec<String> = selected.iter().map(request_label).collect();
+        let base_problem = FitProblem::new(club, base.clone(), &data, Weighting::launch(&[1.0; 5]));
+        let base_errors = base_problem.launch_errors(theta_base.as_slice())?;
+        // With a known noise floor, physics is offered only while structure remains above it.
+        let at_noise_floor = match &opts.noise_floor {
+            Some(inst) => {
+                let mut effects = club.effects.clone();
+                effects.extend(
+                    base.to_effects(theta_base.as_slice())
+                        .map_err(|e| FitError::Solver(format!("base effects: {e}")))?,
+                );
+                let base_club = club
+                    .with_effects(effects)
+                    .map_err(|e| FitError::Solver(format!("base club: {e}")))?;
+                !noise_floor::noise_floor_of(&base_club, shots, &base_errors, inst, chosen_noise)?
+                    .structure_remains()
+            }
+            None => false,
+        };
         // A kind already selected is not offered again, except that a selected global effect
         // may be refined into one per group (replacing it).
         let open: Vec<&EffectRequest> = candidates
             .iter()
+            .filter(|_| !at_noise_floor)
             .filter(|c| {
                 !selected.iter().any(|s| {
                     s.kind() == c.kind()
@@ -417,12 +465,20 @@ pub fn diagnose(
                 })
             })
             .collect();
-        if open.is_empty() {
+        if open.is_empty() && (chosen_noise.is_some() || noise_options.is_empty()) {
+            if at_noise_floor {
+                steps.push(Step {
+                    base: base_labels,
+                    noise_scales: noise_scales(&base_errors),
+                    base_cv_chi2: f64::NAN,
+                    candidates: Vec::new(),
+                    selected: None,
+                    after: launch_error_table(&groups, &base_errors),
+                    at_noise_floor,
+                });
+            }
             break;
         }
-        let base_labels: Vec<String> = selected.iter().map(request_label).collect();
-        let base_problem = FitProblem::new(club, base.clone(), &data, Weighting::launch(&[1.0; 5]));
-        let base_errors = base_problem.launch_errors(theta_base.as_slice())?;
         let sigma = noise_scales(&base_errors);
         let w = Weighting::launch(&sigma);
         let base_rms = rms_per_component(&base_errors);
@@ -580,6 +636,9 @@ pub fn diagnose(
             };
             key(&results[b]).total_cmp(&key(&results[a]))
         });
+        // The evidence (margin) decides, not plausibility: preferring a plausible candidate
+        // with less evidence was tried and chains several plausible stand-ins to mimic one real
+        // effect outside its plausible range. Implausible values are reported as stand-ins.
         let winner = order
             .iter()
             .copied()
@@ -628,14 +687,15 @@ pub fn diagnose(
             candidates: sorted,
             selected: chosen.clone(),
             after,
+            at_noise_floor,
         });
         if chosen.is_none() {
             break;
         }
     }
 
-    let (estimates, after, out_club) = if base.is_empty() {
-        (Vec::new(), before.clone(), club.clone())
+    let (estimates, after, out_club, aliases) = if base.is_empty() {
+        (Vec::new(), before.clone(), club.clone(), Vec::new())
     } else {
         let cal = calibrate_data(
             club,
@@ -647,7 +707,8 @@ pub fn diagnose(
             },
             None,
         )?;
-        (cal.params, cal.after, cal.club)
+        let aliases = honest::aliases(&cal.params, cal.correlation.as_ref());
+        (cal.params, cal.after, cal.club, aliases)
     };
     Ok(Diagnosis {
         fold_by,
@@ -662,6 +723,7 @@ pub fn diagnose(
         impact_noise: chosen_noise,
         impact_noise_estimated: chosen_noise.is_some() && !noise_given,
         warnings,
+        aliases,
     })
 }
 

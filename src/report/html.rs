@@ -586,9 +586,11 @@ fn error_table_from_json(v: &serde_json::Value) -> ErrorTable {
 /// The plausible range of `effect.param`: the JSON's own `plausible` when it has one, else the
 /// library's.
 fn plausible_of(p: &serde_json::Value) -> Option<(f64, f64)> {
-    if let Some([a, b]) = p["plausible"].as_array().map(Vec::as_slice) {
-        if let (Some(a), Some(b)) = (a.as_f64(), b.as_f64()) {
-            return Some((a, b));
+    for key in ["plausible_range", "plausible"] {
+        if let Some([a, b]) = p[key].as_array().map(Vec::as_slice) {
+            if let (Some(a), Some(b)) = (a.as_f64(), b.as_f64()) {
+                return Some((a, b));
+            }
         }
     }
     let kind = crate::effects::EffectKind::from_name(p["effect"].as_str()?)?;
@@ -624,9 +626,16 @@ fn estimates_from_json(params: &[serde_json::Value]) -> Result<(String, Vec<Figu
         let unit = p["unit"].as_str().unwrap_or("").to_owned();
         let label = param_label(p);
         let plausible = plausible_of(p);
+        let stand_in = match p["stand_in"].as_str() {
+            Some(w) => format!(
+                " <small>(implausible: a stand-in; behaves like {})</small>",
+                esc(w)
+            ),
+            None => String::new(),
+        };
         let _ = write!(
             table,
-            "<tr><td class=\"l\">{}</td><td data-key=\"{}\" data-value=\"{value:?}\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            "<tr><td class=\"l\">{}{stand_in}</td><td data-key=\"{}\" data-value=\"{value:?}\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
             esc(&label),
             esc(&label),
             sig3(value),
@@ -725,6 +734,23 @@ pub fn diagnose_page(d: &serde_json::Value, title: &str) -> Result<String, Strin
             .unwrap_or_default(),
     )?;
     let mut warn_html = String::new();
+    if let Some(c) = d["conclusion"].as_str() {
+        let _ = write!(warn_html, "<p><b>Conclusion:</b> {}</p>", esc(c));
+    }
+    for a in d["aliases"]
+        .as_array()
+        .map(Vec::as_slice)
+        .unwrap_or_default()
+    {
+        let _ = write!(
+            warn_html,
+            "<p><b>Alias:</b> {} and {} (r = {}): the data cannot tell them apart; to separate them: {}</p>",
+            esc(a["a"].as_str().unwrap_or("?")),
+            esc(a["b"].as_str().unwrap_or("?")),
+            a["r"].as_f64().map(|r| format!("{r:+.2}")).unwrap_or_default(),
+            esc(a["separate_by"].as_str().unwrap_or(""))
+        );
+    }
     for w in d["warnings"]
         .as_array()
         .map(Vec::as_slice)

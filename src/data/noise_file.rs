@@ -1,0 +1,172 @@
+//! Instrument-noise file (TOML): the noise the diagnosis's noise floor assumes.
+//!
+//! ```toml
+//! [noise]
+//! instrument = "camera"        # optional base class: camera (default) or radar
+//!
+//! [noise.delivery]             # 1σ of the measured delivery, file units; any subset
+//! club_speed_mph = 0.4
+//! impact_y_mm = 2.0
+//!
+//! [noise.launch]               # 1σ of the launch monitor, file units; any subset
+//! backspin_rpm = 100.0
+//! ```
+//!
+//! Keys left out take the base class's value. The `[noise.delivery]` and `[noise.launch]` tables
+//! have the keys and meaning of a synth configuration's, so a world's noise can be copied over.
+//! Unknown keys are errors naming the file, line and key.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use super::{parse_toml, read_text, toml_key_error, DataError};
+use crate::diagnose::noise_floor::{InstrumentClass, InstrumentNoise};
+use crate::physics::LaunchComponent;
+use crate::synth::DeliveryVar;
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    noise: RawNoise,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawNoise {
+    instrument: Option<Spanned<String>>,
+    delivery: Option<BTreeMap<String, Spanned<f64>>>,
+    launch: Option<BTreeMap<String, Spanned<f64>>>,
+}
+
+/// Read an instrument-noise file.
+pub fn read_noise_file(path: &Path) -> Result<InstrumentNoise, DataError> {
+    parse_noise_file(path, &read_text(path)?)
+}
+
+fn class_names() -> String {
+    InstrumentClass::ALL.map(|c| c.name()).join(", ")
+}
+
+/// Parse an instrument-noise file's text (`path` names it in errors).
+pub fn parse_noise_file(path: &Path, text: &str) -> Result<InstrumentNoise, DataError> {
+    let raw: RawFile = parse_toml(
+        path,
+        text,
+        "a noise file has a [noise] table (optional instrument = \"camera\"|\"radar\") with \
+         [noise.delivery] and [noise.launch] standard deviations in file units",
+    )?;
+    let err = |span: std::ops::Range<usize>, key: &str, msg: String| {
+        toml_key_error(path, text, span.start, key, msg)
+    };
+    let mut noise = match &raw.noise.instrument {
+        None => InstrumentClass::Camera.noise(),
+        Some(s) => InstrumentClass::from_name(s.get_ref())
+            .ok_or_else(|| {
+                err(
+                    s.span(),
+                    "noise.instrument",
+                    format!(
+                        "unknown instrument class '{}'; allowed: {}",
+                        s.get_ref(),
+                        class_names()
+                    ),
+                )
+            })?
+            .noise(),
+    };
+    noise.name = format!("{} (base {})", path.display(), noise.name);
+    let sd = |v: &Spanned<f64>, key: &str| -> Result<f64, DataError> {
+        let x = *v.get_ref();
+        if x.is_finite() && (0.0..=1e4).contains(&x) {
+            Ok(x)
+        } else {
+            Err(err(
+                v.span(),
+                key,
+                format!("must be a finite standard deviation in [0, 10000], got {x}"),
+            ))
+        }
+    };
+    for (key, v) in raw.noise.delivery.iter().flatten() {
+        let full = format!("noise.delivery.{key}");
+        let var = DeliveryVar::ALL
+            .into_iter()
+            .find(|d| d.column() == key)
+            .ok_or_else(|| {
+                err(
+                    v.span(),
+                    &full,
+                    format!(
+                        "unknown delivery variable; allowed: {}",
+                        DeliveryVar::ALL.map(|d| d.column()).join(", ")
+                    ),
+                )
+            })?;
+        noise.delivery_sd[var.index()] = sd(v, &full)?;
+    }
+    for (key, v) in raw.noise.launch.iter().flatten() {
+        let full = format!("noise.launch.{key}");
+        let c = LaunchComponent::ALL
+            .into_iter()
+            .find(|c| c.column() == key)
+            .ok_or_else(|| {
+                err(
+                    v.span(),
+                    &full,
+                    format!(
+                        "unknown launch component; allowed: {}",
+                        LaunchComponent::ALL.map(|c| c.column()).join(", ")
+                    ),
+                )
+            })?;
+        noise.launch_sd[c.index()] = sd(v, &full)?;
+    }
+    Ok(noise)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn parse(t: &str) -> Result<InstrumentNoise, DataError> {
+        parse_noise_file(Path::new("noise.toml"), t)
+    }
+
+    #[test]
+    fn keys_override_the_base_class() {
+        let n = parse(
+            "[noise]\ninstrument = \"radar\"\n[noise.delivery]\nimpact_y_mm = 2.0\n\
+             [noise.launch]\nbackspin_rpm = 90.0\n",
+        )
+        .unwrap();
+        let radar = InstrumentClass::Radar.noise();
+        assert_eq!(n.delivery_sd[DeliveryVar::ImpactY.index()], 2.0);
+        assert_eq!(
+            n.delivery_sd[DeliveryVar::ImpactZ.index()],
+            radar.delivery_sd[10]
+        );
+        assert_eq!(n.launch_sd[3], 90.0);
+        assert_eq!(n.launch_sd[0], radar.launch_sd[0]);
+    }
+
+    #[test]
+    fn errors_name_the_key_and_line() {
+        for (text, key, line) in [
+            ("[noise]\ninstrument = \"sonar\"\n", "noise.instrument", 2),
+            ("[noise.delivery]\nspeed = 1.0\n", "noise.delivery.speed", 2),
+            (
+                "[noise.launch]\n\nbackspin_rpm = -3.0\n",
+                "noise.launch.backspin_rpm",
+                3,
+            ),
+        ] {
+            let e = parse(text).unwrap_err().to_string();
+            assert!(e.contains(key), "{e}");
+            assert!(e.contains(&format!("noise.toml:{line}")), "{e}");
+        }
+        assert!(parse("[noise]\nfoo = 1\n").is_err());
+    }
+}

@@ -1,0 +1,264 @@
+//! Honest reading of fitted values: plausibility, stand-ins and aliases.
+//!
+//! A fit always finds *some* value for a parameter. When the data contain physics the library
+//! lacks, the fit bends whatever knobs it has to mimic it, and the values it lands on can be
+//! far from anything a real club shows (a negative shaft mass, a centre of mass moved 5 mm).
+//! This module turns such values into what they are:
+//!
+//! - **plausibility**: every parameter has a plausible range ([`crate::effects::ParamSpec`]
+//!   `plausible`, sources in `docs/plausible-ranges.md`). A value outside it is a **stand-in**:
+//!   the effect reproduces some other physics, and [`stand_in`] says which it behaves like. A
+//!   stand-in is never reported as a finding.
+//! - **aliases**: two parameters whose estimates correlate beyond
+//!   [`crate::fit::calibrate::STRONG_CORRELATION`] cannot be told apart by the data; [`aliases`]
+//!   names them and the measurement that would separate them.
+
+use nalgebra::DMatrix;
+use serde_json::json;
+
+use crate::effects::{EffectKind, ParamSpec};
+use crate::fit::calibrate::STRONG_CORRELATION;
+use crate::fit::ParamEstimate;
+
+/// The library specification of an estimate's parameter (`None` for an effect or key the
+/// library does not know).
+pub fn spec_of(p: &ParamEstimate) -> Option<&'static ParamSpec> {
+    EffectKind::from_name(p.effect)?
+        .params()
+        .iter()
+        .find(|s| s.key == p.param)
+}
+
+/// Is the value inside its plausible range? `None` when the parameter has no known range.
+pub fn is_plausible(p: &ParamEstimate) -> Option<bool> {
+    let (lo, hi) = spec_of(p)?.plausible;
+    Some(p.value >= lo && p.value <= hi)
+}
+
+/// Which physics an implausible value behaves like (`None` when the value is plausible or the
+/// parameter unknown). The reasons are the model's own sensitivities: what else moves the same
+/// launch components the same way.
+pub fn stand_in(p: &ParamEstimate) -> Option<&'static str> {
+    if is_plausible(p)? {
+        return None;
+    }
+    let (lo, _) = spec_of(p)?.plausible;
+    let low = p.value < lo;
+    let kind = EffectKind::from_name(p.effect)?;
+    Some(match (kind, p.param, low) {
+        (EffectKind::AddedMass, _, true) => {
+            "less ball speed and a different spin split than the head's mass gives: behaves like \
+             a lower face COR or energy lost in a compliant contact, not like mass leaving the head"
+        }
+        (EffectKind::AddedMass, _, false) => {
+            "more ball speed than the head gives: behaves like a higher face COR or a heavier \
+             hosel (shaft tip) than the head alone"
+        }
+        (EffectKind::BallOffset, _, _) => {
+            "a spin bias beyond any ball deformation: behaves like tangential compliance (spin \
+             depending on the contact regime) or a loft bias"
+        }
+        (EffectKind::TangentialRestitution, _, _) => {
+            "more or less spin than a rebound of that size allows: behaves like regime-dependent \
+             tangential compliance or a loft bias"
+        }
+        (EffectKind::Friction, _, _) => {
+            "a slip limit outside ball-on-face values: behaves like tangential compliance"
+        }
+        (EffectKind::CorSpeed, _, _) => {
+            "a COR falling with speed faster than balls do: behaves like a COR level or a \
+             power-law COR and energy lost in a compliant contact"
+        }
+        (EffectKind::CorRadial, _, _) => {
+            "a COR falling off-centre faster than faces do: behaves like anisotropic face flex \
+             or head rotation during a finite contact"
+        }
+        (EffectKind::LoftBias, _, _) | (EffectKind::FaceBias, _, _) => {
+            "a delivery bias larger than a calibrated monitor has: behaves like the head \
+             rotating during a finite contact (dynamic loft or face changing while in contact)"
+        }
+        (EffectKind::ComOffset, _, _) => {
+            "a centre of mass moved beyond CAD tolerance: behaves like gear effect changed by a \
+             finite contact (the contact point travels, the head rotates) or tangential compliance"
+        }
+        (EffectKind::InertiaScale, _, _) => {
+            "a head that turns more or less off-centre than its inertia allows: behaves like a \
+             finite contact time, a shaft constraint at the hosel, or tangential compliance"
+        }
+    })
+}
+
+/// What measurement pins a parameter of this effect down independently.
+pub fn separating_measurement(effect: &str) -> &'static str {
+    match EffectKind::from_name(effect) {
+        Some(EffectKind::AddedMass) => {
+            "head speed just after impact (momentum balance) or shafts of different tip mass"
+        }
+        Some(EffectKind::BallOffset) => "spin over a wider range of dynamic loft",
+        Some(EffectKind::TangentialRestitution) | Some(EffectKind::Friction) => {
+            "spin over a wider range of dynamic loft (the tangential regime changes with obliquity)"
+        }
+        Some(EffectKind::CorSpeed) => "shots over a wider range of club speed",
+        Some(EffectKind::CorRadial) => "shots spread wider over the face, centre to edge",
+        Some(EffectKind::LoftBias) => {
+            "an independent dynamic-loft measurement (high-speed video of the face)"
+        }
+        Some(EffectKind::FaceBias) => {
+            "an independent face-angle measurement (high-speed video of the face)"
+        }
+        Some(EffectKind::ComOffset) => {
+            "a measured centre of mass (balance) and shots spread over the face"
+        }
+        Some(EffectKind::InertiaScale) => {
+            "a measured moment of inertia (pendulum or MOI instrument) and off-centre shots"
+        }
+        None => "an independent measurement of this parameter",
+    }
+}
+
+/// Two parameters the data cannot tell apart.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Alias {
+    /// First parameter, `effect[@group].param`.
+    pub a: String,
+    /// Second parameter.
+    pub b: String,
+    /// Correlation of their estimates.
+    pub r: f64,
+    /// What would separate them.
+    pub separate_by: String,
+}
+
+impl Alias {
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({"a": self.a, "b": self.b, "r": self.r, "separate_by": self.separate_by})
+    }
+
+    /// One line of text.
+    pub fn text(&self) -> String {
+        format!(
+            "{} and {} (r = {:+.2}): the data cannot tell them apart; to separate them: {}",
+            self.a, self.b, self.r, self.separate_by
+        )
+    }
+}
+
+/// Pairs of `params` whose estimates correlate beyond [`STRONG_CORRELATION`] in `correlation`
+/// (indexed like `params`). Pairs within one multi-parameter effect are aliases too.
+pub fn aliases(params: &[ParamEstimate], correlation: Option<&DMatrix<f64>>) -> Vec<Alias> {
+    let Some(c) = correlation else {
+        return Vec::new();
+    };
+    let n = params.len().min(c.nrows()).min(c.ncols());
+    let mut out = Vec::new();
+    for i in 0..n {
+        for j in i + 1..n {
+            let r = c[(i, j)];
+            if r.abs() > STRONG_CORRELATION {
+                let (ea, eb) = (params[i].effect, params[j].effect);
+                let separate_by = if ea == eb {
+                    separating_measurement(ea).to_owned()
+                } else {
+                    format!(
+                        "for {ea}: {}; for {eb}: {}",
+                        separating_measurement(ea),
+                        separating_measurement(eb)
+                    )
+                };
+                out.push(Alias {
+                    a: params[i].label(),
+                    b: params[j].label(),
+                    r,
+                    separate_by,
+                });
+            }
+        }
+    }
+    out
+}
+
+/// The plausible range of an estimate as text (`[lo, hi] unit`), or an empty string.
+pub fn plausible_range_text(p: &ParamEstimate) -> String {
+    spec_of(p).map_or_else(String::new, |s| {
+        format!("[{}, {}] {}", s.plausible.0, s.plausible.1, s.unit)
+    })
+}
+
+/// JSON fields for an estimate's plausibility: `plausible` (bool or null), `plausible_range`,
+/// and `stand_in` (what an implausible value behaves like, else null).
+pub fn plausibility_json(p: &ParamEstimate) -> serde_json::Value {
+    json!({
+        "plausible": is_plausible(p),
+        "plausible_range": spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
+        "stand_in": stand_in(p),
+    })
+}
+
+/// The text mark after an estimate: empty when plausible, `⚠ implausible` otherwise.
+pub fn mark(p: &ParamEstimate) -> &'static str {
+    match is_plausible(p) {
+        Some(false) => " [implausible: stand-in]",
+        _ => "",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn est(effect: &'static str, param: &'static str, value: f64) -> ParamEstimate {
+        ParamEstimate {
+            effect,
+            group: None,
+            param,
+            unit: "",
+            value,
+            stderr: Some(0.1),
+            at_bound: false,
+        }
+    }
+
+    #[test]
+    fn a_negative_shaft_mass_is_a_stand_in_and_a_small_positive_one_is_not() {
+        let neg = est("added_mass", "dm_g", -5.2);
+        assert_eq!(is_plausible(&neg), Some(false));
+        assert!(stand_in(&neg).unwrap().contains("lower face COR"));
+        let pos = est("added_mass", "dm_g", 2.3);
+        assert_eq!(is_plausible(&pos), Some(true));
+        assert_eq!(stand_in(&pos), None);
+        assert_eq!(mark(&pos), "");
+        assert!(!mark(&neg).is_empty());
+    }
+
+    #[test]
+    fn every_library_parameter_has_a_plausible_range_inside_its_bounds() {
+        for k in EffectKind::ALL {
+            for s in k.params() {
+                let (lo, hi) = s.plausible;
+                assert!(s.lower <= lo && lo < hi && hi <= s.upper, "{}.{}", k, s.key);
+                // The neutral value is plausible (friction's is a typical value).
+                assert!(lo <= s.default && s.default <= hi, "{}.{}", k, s.key);
+            }
+        }
+    }
+
+    #[test]
+    fn aliases_are_the_pairs_beyond_the_threshold() {
+        let ps = [
+            est("added_mass", "dm_g", -5.0),
+            est("com_offset", "dx_mm", 5.0),
+            est("cor_speed", "k_per_m_s", 0.002),
+        ];
+        let c = DMatrix::from_row_slice(3, 3, &[1.0, -0.95, 0.2, -0.95, 1.0, 0.5, 0.2, 0.5, 1.0]);
+        let a = aliases(&ps, Some(&c));
+        assert_eq!(a.len(), 1);
+        assert_eq!(
+            (a[0].a.as_str(), a[0].b.as_str()),
+            ("added_mass.dm_g", "com_offset.dx_mm")
+        );
+        assert!(a[0].separate_by.contains("head speed just after impact"));
+        assert!(a[0].separate_by.contains("centre of mass"));
+        assert!(aliases(&ps, None).is_empty());
+    }
+}

@@ -1,0 +1,471 @@
+//! The noise floor: how much scatter of model − measured the instruments alone explain.
+//!
+//! If the model were right, the errors would still scatter, for two reasons: the launch monitor's
+//! own noise on the measured launch (SD `σ_c` per component), and the noise on the measured
+//! delivery (SD `s_j` per delivery variable), which the model turns into launch error through its
+//! own sensitivities. Linearised around each shot's measured delivery, the expected variance of
+//! shot `i`'s error in component `c` is
+//!
+//! ```text
+//! v_ic = σ_c² + Σ_j (∂L_c/∂x_j)² · s_j,eff²
+//! ```
+//!
+//! with `∂L_c/∂x_j` the model's own Jacobian (central differences of the final club's launch in
+//! file units). For the impact location, when the model averages over where the ball was most
+//! likely struck (regression calibration with assumed noise `σ_m`, see [`crate::measurement`]),
+//! its error is `t − μ_post = k·(t − μ) − (1 − k)·ε` with `k = σ_m²/(σ_T² + σ_m²)`, so
+//! `s_eff² = k²·σ_T² + (1 − k)²·s²` (`σ_T² = var(measured) − s²`, the true spread); without the
+//! correction (`k = 0`) it is the instrument's `s²`.
+//!
+//! The test: under the model, `S_c = Σ_i (r_ic − r̄_c)² / v_ic` is χ² with `n − 1` degrees of
+//! freedom. The report gives the ratio `√(S_c/(n − 1))` (1 when what remains is noise), the
+//! expected and observed SD, and the upper-tail p-value (Wilson–Hilferty normal approximation
+//! of χ²); beside it, the mean error is tested against its expected standard error
+//! (`z = Σ r_i / √Σ v_i`, two-sided), since a bias barely moves the spread. A component where
+//! either p-value is below `STRUCTURE_ALPHA / 10` ([`STRUCTURE_ALPHA`] = 1 % shared by the ten
+//! tests) carries **unexplained structure**; its standardised errors are then correlated with
+//! every delivery variable to say what the structure trends with.
+//!
+//! The verdict is only as good as the instrument noise given: too small a noise invents
+//! structure, too large a noise hides it. Defaults per instrument class are in
+//! [`InstrumentClass`] and `docs/noise-floor.md`.
+
+use serde_json::json;
+
+use crate::club::ClubSpec;
+use crate::data::shots::Shot;
+use crate::fit::{FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::physics::{Delivery, LaunchComponent};
+use crate::stats::{self, tdist::student_t_cdf};
+use crate::synth::config::default_launch_noise;
+use crate::synth::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
+
+use super::Diagnosis;
+
+/// Family-wise significance of "structure remains", shared by the five components.
+pub const STRUCTURE_ALPHA: f64 = 0.01;
+
+/// A class of instruments with documented default noise.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InstrumentClass {
+    /// A camera-based launch monitor (photometric ball and club data) with marker-based
+    /// delivery capture: `smash synth`'s defaults.
+    Camera,
+    /// A Doppler-radar launch monitor: ball data good, spin axis and club data (face, loft,
+    /// impact location) noisier.
+    Radar,
+}
+
+impl InstrumentClass {
+    /// Every class.
+    pub const ALL: [InstrumentClass; 2] = [Self::Camera, Self::Radar];
+
+    /// Name on the command line and in files.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Camera => "camera",
+            Self::Radar => "radar",
+        }
+    }
+
+    /// Look a class up by name.
+    pub fn from_name(s: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|c| c.name() == s)
+    }
+
+    /// The class's default noise (1σ, file units). Reasons: `docs/noise-floor.md`.
+    pub fn noise(self) -> InstrumentNoise {
+        match self {
+            Self::Camera => InstrumentNoise {
+                name: self.name().to_owned(),
+                launch_sd: LaunchComponent::ALL.map(default_launch_noise),
+                delivery_sd: DeliveryVar::ALL.map(DeliveryVar::default_noise),
+            },
+            Self::Radar => InstrumentNoise {
+                name: self.name().to_owned(),
+                launch_sd: [0.7, 0.4, 0.6, 150.0, 250.0],
+                delivery_sd: DeliveryVar::ALL.map(|v| match v {
+                    DeliveryVar::ClubSpeed => 0.8,
+                    DeliveryVar::AttackAngle | DeliveryVar::ClubPath => 0.6,
+                    DeliveryVar::DynamicLoft | DeliveryVar::FaceAngle => 0.8,
+                    DeliveryVar::LieTilt => 1.0,
+                    DeliveryVar::OmegaX | DeliveryVar::OmegaY | DeliveryVar::OmegaZ => 1.0,
+                    DeliveryVar::ImpactY | DeliveryVar::ImpactZ => 3.0,
+                }),
+            },
+        }
+    }
+}
+
+/// Instrument noise, 1σ in file units.
+#[derive(Debug, Clone, PartialEq)]
+pub struct InstrumentNoise {
+    /// Where the values come from (a class name, or a file).
+    pub name: String,
+    /// Launch monitor, per launch component.
+    pub launch_sd: [f64; 5],
+    /// Delivery measurement, per [`DeliveryVar`] (impact location included).
+    pub delivery_sd: [f64; N_DELIVERY],
+}
+
+/// The noise-floor verdict for one launch component.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ComponentFloor {
+    /// Component.
+    pub component: LaunchComponent,
+    /// Mean error, file units.
+    pub mean: f64,
+    /// Mean error in units of the expected SD.
+    pub mean_in_sd: f64,
+    /// SD of the errors if the model were right (root mean expected variance), file units.
+    pub expected_sd: f64,
+    /// Observed SD of the errors, file units.
+    pub observed_sd: f64,
+    /// `√(S/(n − 1))`: 1 when what remains is noise.
+    pub ratio: f64,
+    /// Upper-tail p-value of `S` under χ²(n − 1).
+    pub p_value: f64,
+    /// Two-sided p-value of the mean error under the expected variances
+    /// (`z = Σ r_i / √Σ v_i`).
+    pub mean_p_value: f64,
+    /// Is there unexplained structure (either p-value below `STRUCTURE_ALPHA / 10`)?
+    pub structure: bool,
+    /// The delivery variable the standardised errors correlate with most, with `r`.
+    pub trend: Option<(DeliveryVar, f64)>,
+}
+
+impl ComponentFloor {
+    /// One line of text: "what remains is noise" or where structure remains.
+    pub fn verdict(&self) -> String {
+        let name = self.component.column();
+        if self.structure && self.p_value >= STRUCTURE_ALPHA / 10.0 {
+            format!(
+                "unexplained bias remains in {name} (mean {:+.2} expected SD, p = {:.1e})",
+                self.mean_in_sd, self.mean_p_value
+            )
+        } else if self.structure {
+            let trend = self.trend.map_or(String::new(), |(v, r)| {
+                format!("; trends with {}, r = {r:.2}", v.column())
+            });
+            format!(
+                "unexplained structure remains in {name} ({:.2}× the expected spread{trend})",
+                self.ratio
+            )
+        } else {
+            format!(
+                "{name}: what remains is noise ({:.2}× the expected spread)",
+                self.ratio
+            )
+        }
+    }
+
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({
+            "component": self.component.column(),
+            "mean": self.mean,
+            "mean_in_expected_sd": self.mean_in_sd,
+            "expected_sd": self.expected_sd,
+            "observed_sd": self.observed_sd,
+            "ratio": self.ratio,
+            "p_value": self.p_value,
+            "mean_p_value": self.mean_p_value,
+            "structure": self.structure,
+            "trend": self.trend.map(|(v, r)| json!({"variable": v.column(), "r": r})),
+            "verdict": self.verdict(),
+        })
+    }
+}
+
+/// The noise floor of a diagnosis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NoiseFloor {
+    /// Instrument noise assumed.
+    pub instrument: InstrumentNoise,
+    /// Per launch component, in [`LaunchComponent::ALL`] order.
+    pub components: Vec<ComponentFloor>,
+}
+
+impl NoiseFloor {
+    /// Does structure remain in any component?
+    pub fn structure_remains(&self) -> bool {
+        self.components.iter().any(|c| c.structure)
+    }
+
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({
+            "instrument": {
+                "name": self.instrument.name,
+                "launch_sd": LaunchComponent::ALL.iter().map(|c| (c.column().to_owned(), json!(self.instrument.launch_sd[c.index()]))).collect::<serde_json::Map<_, _>>(),
+                "delivery_sd": DeliveryVar::ALL.iter().map(|v| (v.column().to_owned(), json!(self.instrument.delivery_sd[v.index()]))).collect::<serde_json::Map<_, _>>(),
+            },
+            "alpha": STRUCTURE_ALPHA,
+            "structure_remains": self.structure_remains(),
+            "components": self.components.iter().map(ComponentFloor::to_json).collect::<Vec<_>>(),
+        })
+    }
+}
+
+/// A delivery in file units, [`DeliveryVar::ALL`] order (inverse of
+/// [`delivery_from_file_units`]).
+pub fn delivery_to_file_units(d: &Delivery) -> [f64; N_DELIVERY] {
+    [
+        d.club_speed_m_s / crate::units::M_S_PER_MPH,
+        d.attack_angle_rad.to_degrees(),
+        d.club_path_rad.to_degrees(),
+        d.dynamic_loft_rad.to_degrees(),
+        d.face_angle_rad.to_degrees(),
+        d.lie_tilt_rad.to_degrees(),
+        d.club_omega_rad_s.x,
+        d.club_omega_rad_s.y,
+        d.club_omega_rad_s.z,
+        d.impact_y_m * 1e3,
+        d.impact_z_m * 1e3,
+    ]
+}
+
+/// Upper-tail probability of χ²(ν) at `s` (Wilson–Hilferty).
+pub fn chi2_upper_tail(s: f64, nu: f64) -> f64 {
+    let a = 2.0 / (9.0 * nu);
+    let z = ((s / nu).cbrt() - (1.0 - a)) / a.sqrt();
+    1.0 - student_t_cdf(z, 1e9)
+}
+
+/// Expected variance of each shot's error per component (see the module docs).
+fn expected_variances(
+    club: &ClubSpec,
+    shots: &[Shot],
+    inst: &InstrumentNoise,
+    location_model: Option<crate::measurement::ImpactNoise>,
+) -> Result<Vec<[f64; 5]>, FitError> {
+    // Effective SD of the location axes (regression-calibrated or not).
+    let mut sd_eff = inst.delivery_sd;
+    for (var, assumed_m) in [
+        (DeliveryVar::ImpactY, location_model.map(|m| m.sigma_y_m)),
+        (DeliveryVar::ImpactZ, location_model.map(|m| m.sigma_z_m)),
+    ] {
+        let j = var.index();
+        let Some(sm) = assumed_m.map(|s| s * 1e3) else {
+            continue;
+        };
+        let x: Vec<f64> = shots
+            .iter()
+            .map(|s| delivery_to_file_units(&s.delivery)[j])
+            .collect();
+        let var_meas = stats::std_dev(&x).powi(2);
+        let s2 = inst.delivery_sd[j].powi(2);
+        let true_var = (var_meas - s2).max(0.0);
+        let k = sm * sm / (true_var + sm * sm).max(f64::MIN_POSITIVE);
+        sd_eff[j] = (k * k * true_var + (1.0 - k).powi(2) * s2).sqrt();
+    }
+    let mut models = std::collections::BTreeMap::new();
+    shots
+        .iter()
+        .map(|s| {
+            if !models.contains_key(&s.group) {
+                let m = club
+                    .model_for_group(&s.group)
+                    .map_err(|e| FitError::Solver(format!("noise floor: {e}")))?;
+                models.insert(s.group.clone(), m);
+            }
+            let model = &models[&s.group];
+            let x0 = delivery_to_file_units(&s.delivery);
+            let launch_at = |x: &[f64; N_DELIVERY]| {
+                model
+                    .solve(&delivery_from_file_units(x))
+                    .ok()
+                    .map(|o| o.launch().to_file_units())
+            };
+            let f0 = launch_at(&x0).ok_or_else(|| {
+                FitError::Solver(format!("noise floor: shot '{}' cannot be solved", s.id))
+            })?;
+            let mut v: [f64; 5] = std::array::from_fn(|c| inst.launch_sd[c].powi(2));
+            for j in 0..N_DELIVERY {
+                let sd = sd_eff[j];
+                if sd <= 0.0 {
+                    continue;
+                }
+                // Central difference over ±sd/2 (one-sided when one side cannot be solved).
+                let h = 0.5 * sd;
+                let mut xp = x0;
+                xp[j] += h;
+                let mut xm = x0;
+                xm[j] -= h;
+                let d: [f64; 5] = match (launch_at(&xp), launch_at(&xm)) {
+                    (Some(p), Some(m)) => std::array::from_fn(|c| (p[c] - m[c]) / (2.0 * h)),
+                    (Some(p), None) => std::array::from_fn(|c| (p[c] - f0[c]) / h),
+                    (None, Some(m)) => std::array::from_fn(|c| (f0[c] - m[c]) / h),
+                    (None, None) => continue,
+                };
+                for c in 0..5 {
+                    v[c] += (d[c] * sd).powi(2);
+                }
+            }
+            Ok(v)
+        })
+        .collect()
+}
+
+/// The noise floor of `errors` (model − measured per shot, file units) of the model `club` on
+/// `shots`, with instrument noise `inst` and the model's location correction `location_model`.
+pub fn noise_floor_of(
+    club: &ClubSpec,
+    shots: &[Shot],
+    errors: &[[f64; 5]],
+    inst: &InstrumentNoise,
+    location_model: Option<crate::measurement::ImpactNoise>,
+) -> Result<NoiseFloor, FitError> {
+    let v = expected_variances(club, shots, inst, location_model)?;
+    let n = errors.len();
+    let nu = (n.max(2) - 1) as f64;
+    let deliveries: Vec<[f64; N_DELIVERY]> = shots
+        .iter()
+        .map(|s| delivery_to_file_units(&s.delivery))
+        .collect();
+    let components = LaunchComponent::ALL
+        .iter()
+        .map(|&comp| {
+            let c = comp.index();
+            let r: Vec<f64> = errors.iter().map(|e| e[c]).collect();
+            let mean = stats::mean(&r);
+            let s: f64 = r
+                .iter()
+                .zip(&v)
+                .map(|(ri, vi)| (ri - mean).powi(2) / vi[c].max(f64::MIN_POSITIVE))
+                .sum();
+            let expected_sd = (v.iter().map(|vi| vi[c]).sum::<f64>() / n as f64).sqrt();
+            let p_value = chi2_upper_tail(s, nu);
+            let z_mean = r.iter().sum::<f64>() / v.iter().map(|vi| vi[c]).sum::<f64>().sqrt();
+            let mean_p_value = 2.0 * (1.0 - student_t_cdf(z_mean.abs(), 1e9));
+            let structure = p_value.min(mean_p_value) < STRUCTURE_ALPHA / 10.0;
+            let z: Vec<f64> = r
+                .iter()
+                .zip(&v)
+                .map(|(ri, vi)| (ri - mean) / vi[c].sqrt())
+                .collect();
+            let trend = DeliveryVar::ALL
+                .iter()
+                .filter_map(|&var| {
+                    let x: Vec<f64> = deliveries.iter().map(|d| d[var.index()]).collect();
+                    stats::pearson(&x, &z).map(|k| (var, k.r))
+                })
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+            ComponentFloor {
+                component: comp,
+                mean,
+                mean_in_sd: mean / expected_sd,
+                expected_sd,
+                observed_sd: stats::std_dev(&r),
+                ratio: (s / nu).sqrt(),
+                p_value,
+                mean_p_value,
+                structure,
+                trend,
+            }
+        })
+        .collect();
+    Ok(NoiseFloor {
+        instrument: inst.clone(),
+        components,
+    })
+}
+
+/// The noise floor of a diagnosis's final model on the shots it was made from.
+pub fn noise_floor(
+    d: &Diagnosis,
+    shots: &[Shot],
+    inst: &InstrumentNoise,
+) -> Result<NoiseFloor, FitError> {
+    let data = FitData::from_shots(shots)?.with_impact_noise(d.impact_noise)?;
+    let errors = FitProblem::new(
+        &d.club,
+        ParamLayout::new(Vec::new())?,
+        &data,
+        Weighting::launch(&[1.0; 5]),
+    )
+    .launch_errors(&[])?;
+    noise_floor_of(&d.club, shots, &errors, inst, d.impact_noise)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn chi2_tail_is_a_half_near_the_mean_and_small_far_above() {
+        let p = chi2_upper_tail(599.0, 599.0);
+        assert!((p - 0.5).abs() < 0.02, "{p}");
+        // 1.2² × ν is far in the tail for ν = 599.
+        assert!(chi2_upper_tail(1.44 * 599.0, 599.0) < 1e-6);
+        // Known value: χ²(10) upper 5 % point is 18.307.
+        assert!((chi2_upper_tail(18.307, 10.0) - 0.05).abs() < 0.003);
+    }
+
+    #[test]
+    fn delivery_file_units_round_trip() {
+        let x = [101.0, 2.0, -1.5, 12.0, 0.7, 1.0, 0.3, -0.4, 0.5, 3.0, -7.0];
+        let back = delivery_to_file_units(&delivery_from_file_units(&x));
+        for (a, b) in x.iter().zip(back) {
+            assert!((a - b).abs() < 1e-9, "{a} vs {b}");
+        }
+    }
+
+    /// The linearised expected variance agrees with sampling the delivery noise through the
+    /// full model (an independent check of the Jacobian propagation).
+    #[test]
+    fn linearised_variance_matches_sampling() {
+        use rand::{Rng, SeedableRng};
+        use rand_distr::StandardNormal;
+
+        let club = ClubSpec::new(
+            "paper".into(),
+            None,
+            crate::physics::ModelParams::paper_driver(),
+            Vec::new(),
+        )
+        .unwrap();
+        let inst = InstrumentClass::Radar.noise();
+        let clean = [105.0, 1.0, 0.5, 12.0, 0.5, 0.0, 0.0, 0.0, 0.0, 4.0, -6.0];
+        let shot = Shot {
+            id: "s".into(),
+            group: "all".into(),
+            golfer: None,
+            shaft_mass_g: None,
+            delivery: delivery_from_file_units(&clean),
+            measured: None,
+        };
+        let v = expected_variances(&club, std::slice::from_ref(&shot), &inst, None).unwrap()[0];
+        let model = club.model_for_group("all").unwrap();
+        let f0 = model
+            .solve(&shot.delivery)
+            .unwrap()
+            .launch()
+            .to_file_units();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let n = 4000;
+        let mut sum2 = [0.0; 5];
+        for _ in 0..n {
+            let x: [f64; N_DELIVERY] = std::array::from_fn(|j| {
+                clean[j] + inst.delivery_sd[j] * rng.sample::<f64, _>(StandardNormal)
+            });
+            let f = model
+                .solve(&delivery_from_file_units(&x))
+                .unwrap()
+                .launch()
+                .to_file_units();
+            for c in 0..5 {
+                sum2[c] += (f[c] - f0[c]).powi(2);
+            }
+        }
+        for c in 0..5 {
+            let sampled = sum2[c] / n as f64 + inst.launch_sd[c].powi(2);
+            let rel = (v[c] / sampled).sqrt();
+            // Sampling error of an SD from 4000 draws is ~1.1 %; curvature adds a little.
+            assert!(
+                (0.93..1.07).contains(&rel),
+                "component {c}: linearised/sampled SD {rel}"
+            );
+        }
+    }
+}
