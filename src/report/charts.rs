@@ -545,7 +545,14 @@ mod tests {
         )
         .unwrap();
         assert!(svg.starts_with("<svg"), "{}", &svg[..50]);
-        for t in ["Ball speed", "error, mph", "before", "after", ">A<", ">B<"] {
+        for t in [
+            "Ball speed",
+            "error, mph",
+            "before",
+            "after",
+            "\nA\n</text>",
+            "\nB\n</text>",
+        ] {
             assert!(svg.contains(t), "missing {t}");
         }
         let pts: Vec<(f64, f64)> = (0..50).map(|i| (i as f64, 2.0 * i as f64 + 1.0)).collect();
