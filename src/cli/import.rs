@@ -37,6 +37,10 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     if format == "shots" {
         anyhow::bail!("--format shots: the file is already a shots file; nothing to import");
     }
+    crate::data::safe_write::refuse_inputs(
+        &[("--out", &args.out, false)],
+        &[("IN.csv", &args.input)],
+    )?;
     let imported = args.format.import(&args.input, format)?;
     // The result must read back as a shots file (ranges, ids, launch columns).
     let table = parse_shots(&args.input, imported.csv.as_slice())?;
