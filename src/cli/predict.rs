@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 use crate::data::club_file::read_club;
 use crate::data::predictions::predictions_csv;
-use crate::data::shots::{read_shots, DEFAULT_GROUP};
+use crate::data::shots::DEFAULT_GROUP;
 use crate::data::write_atomic;
 use crate::limits;
 use crate::physics::{Delivery, LaunchComponent};
@@ -35,6 +35,10 @@ pub struct PredictArgs {
         conflicts_with = "club_speed_mph"
     )]
     pub shots: Option<PathBuf>,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
 
     /// Predictions file to write (CSV: input columns, pred_*, and err_* where measured).
     #[arg(long, value_name = "PRED.csv")]
@@ -168,7 +172,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
             &[("--out", out, false)],
             &[("--shots", shots_path), ("--club", &args.club)],
         )?;
-        let table = read_shots(shots_path)?;
+        let table = args.shots_format.read(shots_path)?;
         let outcomes =
             predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
         for (shot, o) in table.shots.iter().zip(&outcomes) {

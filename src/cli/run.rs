@@ -39,6 +39,9 @@ pub struct RunArgs {
     /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
     #[arg(long, value_enum, default_value = "csv")]
     pub format: TableFormatArg,
+    /// Also write a self-contained HTML report of the study (face maps and tables).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 }
 
 /// `--format` values.
@@ -191,6 +194,12 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         )
     })?;
     let seconds = start.elapsed().as_secs_f64();
+    if let Some(path) = &args.report {
+        let html = crate::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
+            .map_err(anyhow::Error::msg)?;
+        crate::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
     super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
     eprintln!(
         "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
@@ -201,4 +210,35 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         kernels.points() as f64 / kernels.seconds().max(1e-9)
     );
     Ok(())
+}
+
+/// The written outputs a study report shows (the face-map pictures and the small summary,
+/// sensitivity, optimiser and variant tables), read back from the output folder: the maps
+/// themselves were streamed to disk and are not held in memory.
+fn report_inputs(dir: &Path) -> anyhow::Result<Vec<(PathBuf, Vec<u8>)>> {
+    use anyhow::Context;
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).with_context(|| d.display().to_string())? {
+            let path = entry?.path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let rel = path.strip_prefix(dir).unwrap_or(&path).to_path_buf();
+            let name = rel.to_string_lossy();
+            let wanted = name.ends_with(".svg")
+                || (name.ends_with(".csv")
+                    && ["summary", "sensitiv", "optim", "variants"]
+                        .iter()
+                        .any(|k| name.contains(k)));
+            if wanted {
+                let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
+                out.push((rel, bytes));
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
 }

@@ -6,6 +6,7 @@
 
 pub mod club_file;
 pub mod flight_files;
+pub mod import;
 pub mod noise_file;
 pub mod number;
 pub mod predictions;
