@@ -147,6 +147,29 @@ fn grid_points_times_variants_are_capped_before_anything_is_allocated() {
 }
 
 #[test]
+fn sharded_studies_too_large_to_merge_are_refused_before_any_shard_runs() {
+    // 4000 × 6000 = 24 M points: fine unsharded (streamed), but `merge` holds a whole study in
+    // memory, so shards of it could never be merged within the machine.
+    let dir = tempfile::tempdir().unwrap();
+    let p = study(
+        dir.path(),
+        "",
+        &[("count = 5", "count = 6000"), ("count = 3", "count = 4000")],
+    );
+    let out = dir.path().join("shard");
+    let o = smash(&[
+        "run",
+        &p,
+        "--shard",
+        "1/100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    refused(&o, &["sharded study", "24000000", "20000000", "unsharded"]);
+    assert!(!out.exists());
+}
+
+#[test]
 fn summary_probe_lines_of_billions_of_points_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let p = study(

@@ -144,6 +144,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         prepared.zs_mm.len()
     );
     if args.shard.is_some() {
+        // Shards are only useful if they can be merged: refuse before computing any.
+        crate::study::shard::check_mergeable(&prepared)?;
         let nz = prepared.zs_mm.len() as u128;
         let rows = items.len() as u128; // at most one metrics item per variant besides rows
         let points = rows * nz;

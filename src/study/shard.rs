@@ -330,6 +330,7 @@ pub fn merge_shards(
     let mut items = Vec::new();
     let names = metric_names(p.study.distribution.is_some());
     let (nv, ny, nz) = (p.variants.len(), p.ys_mm.len(), p.zs_mm.len());
+    check_mergeable(&p)?;
     for (d, m) in dirs.iter().zip(&metas) {
         let mp = d.join("shard.toml");
         let k = m.shard;
@@ -493,4 +494,21 @@ pub fn merge_shards(
     }
     let results = p.assemble(items)?;
     Ok((p, results))
+}
+
+/// A sharded study must fit in memory when merged ([`super::MAX_MERGE_POINTS`]).
+pub fn check_mergeable(p: &Prepared) -> Result<(), StudyError> {
+    crate::limits::count_product(
+        "grid points of a sharded study",
+        &[
+            ("design variants", p.variants.len()),
+            ("grid rows", p.ys_mm.len()),
+            ("grid columns", p.zs_mm.len()),
+        ],
+        super::MAX_MERGE_POINTS as usize,
+        "sharded studies are merged in memory; run it unsharded (its outputs stream to disk) \
+         or make it smaller",
+    )
+    .map(|_| ())
+    .map_err(|e| StudyError::Merge(e.to_string()))
 }
