@@ -99,13 +99,9 @@ impl fmt::Display for PhysicalRange {
 }
 
 /// A number for a message: short, and in scientific notation when huge or tiny (never 300
-/// digits).
+/// digits); the one rule is [`crate::units::Num`].
 pub fn fmt_value(x: f64) -> String {
-    if x.is_finite() && x != 0.0 && !(1e-4..1e9).contains(&x.abs()) {
-        format!("{x:e}")
-    } else {
-        format!("{x}")
-    }
+    crate::units::Num(x).to_string()
 }
 
 /// Clubhead CoM speed at impact, mph. The fastest long-drive swings measured are near 150 mph

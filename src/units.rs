@@ -56,7 +56,7 @@ pub struct Num(pub f64);
 impl std::fmt::Display for Num {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let v = self.0;
-        if v == 0.0 || !v.is_finite() || (1e-5..1e15).contains(&v.abs()) {
+        if v == 0.0 || !v.is_finite() || (1e-4..1e9).contains(&v.abs()) {
             write!(f, "{v}")
         } else {
             write!(f, "{v:e}")
