@@ -930,6 +930,30 @@ group = "X"
     }
 
     #[test]
+    fn contact_world_round_trips_and_refuses_other_restitution_forms() {
+        let text = "[world]\nloft_gain = { gain = 0.02 }\ncontact = { mu = 0.3, cor_ref = 0.8, \
+                    shaft_tip = { mass_g = 3.0, hosel_mm = [-10.0, 12.0, -40.0] } }\n";
+        let c = parse(text).unwrap();
+        let k = c.world.contact.unwrap();
+        assert_eq!(k.mu, 0.3);
+        assert_eq!(k.cor_ref, Some(0.8));
+        let tip = k.shaft_tip.unwrap();
+        assert_eq!((tip.mass_g, tip.hosel_mm[2]), (3.0, -40.0));
+        assert_eq!(
+            tip.frequency_hz,
+            super::super::contact::DEFAULT_TIP_FREQUENCY_HZ
+        );
+        let back = parse_config(Path::new("t.toml"), &config_toml(&c)).unwrap();
+        assert_eq!(back.world, c.world);
+        let e = parse("[world]\ncor_power = { p = 0.1 }\ncontact = {}\n").unwrap_err();
+        assert!(e.to_string().contains("world.contact"), "{e}");
+        let e = parse("[world]\ncontact = { mu = -1.0 }\n").unwrap_err();
+        assert!(e.to_string().contains("world.contact.mu"), "{e}");
+        let e = parse("[world]\ncontact = { muu = 1.0 }\n").unwrap_err();
+        assert!(e.to_string().contains("muu"), "{e}");
+    }
+
+    #[test]
     fn errors_name_key_and_line() {
         let cases = [
             ("seed = 1\nbogus = 3\n", "bogus", 2),

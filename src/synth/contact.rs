@@ -82,7 +82,29 @@
 //! With a very stiff contact, a no-slip tangential law (very stiff, critically damped spring,
 //! large μ) and no shaft tip, the bodies barely move during the contact and the result should
 //! match [`ImpactModel::solve`] with `e` equal to the Hunt–Crossley COR at that shot's `u1n`
-//! and `e_t = 0`. The tests measure how closely it does over random deliveries.
+//! and `e_t = 0`. The tests (`tests/contact_world.rs`, `k = 1e15`, κ = 50 critically damped,
+//! μ = 100, 2000 steps per contact) measure over 40 random deliveries each:
+//!
+//! * **centre strikes**: ball speed within 0.05 %, spin vector within 0.02 %, COR within 0.11 %
+//!   of the one-body law;
+//! * **off-centre strikes** (|y| ≤ 15 mm, |z| ≤ 25 mm): ball speed within 0.25 % (above the
+//!   0.2 % aimed for), spin within 0.10 %. The difference is in the restitution, not the
+//!   kinematics: the achieved normal COR differs from the one-body Hunt–Crossley value by up to
+//!   0.55 %, and given the COR the contact actually achieved the momentum model's ball speed and
+//!   normal impulse agree to 1e-5 (the spin then to 0.2 %, from the finite tangential spring's
+//!   slightly imperfect grip).
+//!
+//! Why the COR differs off-centre: the Hunt–Crossley COR is independent of the mass only if one
+//! constant effective mass drives the normal motion. Off the centre the collision matrix `K`
+//! couples normal and tangential directions. While the tangential spring is still soft (it
+//! stiffens with `δ^0.5`, so it is soft at first touch) the normal motion sees the effective mass
+//! `1/(n·K·n)`; once the contact grips it sees `1/(K⁻¹)_nn`, and elastic energy moves between
+//! the tangential spring and the normal motion. The effective mass therefore changes during the
+//! impact, and the dissipated fraction differs from the one-body value. At the centre the
+//! coupling terms of `K` nearly vanish (the CoM is almost behind the face centre), and the two
+//! agree. The momentum model's kinematic restitution law, `u2n = −e·u1n` with a COR that
+//! depends on speed only, is therefore itself an approximation of a compliant contact, good to a
+//! few tenths of a per cent off-centre.
 //!
 //! ## Literature
 //!
@@ -404,10 +426,12 @@ impl ContactWorld {
             }
         });
         if let Some(t) = params.shaft_tip {
-            if !(pos(t.mass_g) && pos(t.frequency_hz))
-                || !(t.damping_ratio.is_finite() && t.damping_ratio >= 0.0)
-                || !t.hosel_mm.iter().all(|v| v.is_finite())
-            {
+            let ok = pos(t.mass_g)
+                && pos(t.frequency_hz)
+                && t.damping_ratio.is_finite()
+                && t.damping_ratio >= 0.0
+                && t.hosel_mm.iter().all(|v| v.is_finite());
+            if !ok {
                 return Err(
                     "shaft_tip: mass_g and frequency_hz must be > 0, damping_ratio ≥ 0, \
                             hosel_mm finite"
