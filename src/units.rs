@@ -46,3 +46,20 @@ pub fn g(v_g: f64) -> f64 {
 pub fn gcm2(v_gcm2: f64) -> f64 {
     v_gcm2 * KGM2_PER_GCM2
 }
+
+/// A number as a message shows it: the shortest decimal form that reads back to the same value
+/// when that is short (`-5`, `0.0025`, `305`), scientific notation otherwise (`-1e300`, `2.5e-9`),
+/// so that a huge or tiny input value is not echoed with hundreds of digits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Num(pub f64);
+
+impl std::fmt::Display for Num {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let v = self.0;
+        if v == 0.0 || !v.is_finite() || (1e-5..1e15).contains(&v.abs()) {
+            write!(f, "{v}")
+        } else {
+            write!(f, "{v:e}")
+        }
+    }
+}

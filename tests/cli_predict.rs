@@ -235,7 +235,14 @@ fn an_off_face_impact_and_a_receding_club_name_the_shot() {
     let club = paper_club_text();
     let off = format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,0,0\nfar_toe,A,100,0,0,12,0,0,400\n");
     let err = case.fails(&club, &off);
-    assert_has(&err, &["far_toe", "row 2", "outside the face"]);
+    assert_has(
+        &err,
+        &[
+            ":3: columns impact_y_mm, impact_z_mm",
+            "far_toe",
+            "outside the face",
+        ],
+    );
     let away = format!("{SHOTS_HEADER}\nbackwards,A,100,0,0,12,170,0,0\n");
     let err = case.fails(&club, &away);
     assert_has(&err, &["backwards", "does not approach"]);

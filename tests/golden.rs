@@ -1,6 +1,7 @@
-//! The engine reproduces every reference file in `shared/golden/` to 1e-6 (relative or absolute,
-//! whichever is looser), through the `smash predict` command on the real files, and finds the
-//! friction file's slipping shots where the README says they are.
+//! The engine reproduces every reference file in `tests/data/golden/` to 1e-6 (relative or
+//! absolute, whichever is looser), through the `smash predict` command on the real files, and
+//! finds the friction file's slipping shots where the README says they are. The reference values
+//! come from an independent implementation (`tests/data/golden/generate.py`, see its README).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -27,15 +28,7 @@ const COMPONENTS: [&str; 5] = [
 ];
 
 fn golden_dir() -> PathBuf {
-    let dir = std::env::var_os("SMASH_GOLDEN_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/golden"));
-    assert!(
-        dir.join("nominal.csv").is_file(),
-        "golden files not found at {} (set SMASH_GOLDEN_DIR)",
-        dir.display()
-    );
-    dir
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/golden")
 }
 
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {

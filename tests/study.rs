@@ -365,7 +365,7 @@ fn sensitivities_match_independent_finite_differences() {
 fn gear_effect_hooks_toe_strikes_and_speed_falls_off_centre() {
     // The paper driver's CoM is 42.3 mm behind the face (com_mm x < 0). A toe strike turns the
     // head open about its CoM; the gear effect then spins the ball the other way: hook spin,
-    // which is negative sidespin in CONVENTIONS signs (+ = slice). Heel strikes slice.
+    // which is negative sidespin in the signs of docs/conventions.md (+ = slice). Heel strikes slice.
     let model = base_model();
     assert!(model.params().club_com_m.x < 0.0);
     let toe = model.solve(&delivery(0.0, 20.0)).unwrap().launch();

@@ -62,7 +62,13 @@ pub struct CalibrateArgs {
     pub json: bool,
 
     /// Iteration limit of each solver run.
-    #[arg(long, default_value_t = 100, value_name = "N", help_heading = "Solver")]
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Solver",
+        allow_negative_numbers = true
+    )]
     pub max_iters: u64,
 
     /// Measurement noise of the inputs.
@@ -72,6 +78,12 @@ pub struct CalibrateArgs {
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    if let Some(out) = &args.out_club {
+        crate::data::safe_write::refuse_inputs(
+            &[("--out-club", out, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
     let club = read_club(&args.club)?;
     let table = read_shots(&args.shots)?;
     if !table.has_measurements() {
@@ -107,9 +119,9 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         eprintln!("calibrated club -> {}", out.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&cal))?);
+        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
     } else {
-        print!("{}", text_report(&cal, table.shots.len()));
+        crate::cli::stdout::print(text_report(&cal, table.shots.len()))?;
     }
     Ok(())
 }

@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context};
+use anyhow::bail;
 use clap::Args;
 
 use crate::compare::{compare, CompareOptions};
@@ -40,7 +40,8 @@ pub struct CompareArgs {
         long,
         default_value_t = 0.01,
         value_name = "P",
-        help_heading = "Statistics"
+        help_heading = "Statistics",
+        allow_negative_numbers = true
     )]
     pub alpha: f64,
 
@@ -49,7 +50,8 @@ pub struct CompareArgs {
         long,
         default_value_t = 5.0,
         value_name = "MM",
-        help_heading = "Statistics"
+        help_heading = "Statistics",
+        allow_negative_numbers = true
     )]
     pub bin_mm: f64,
 
@@ -58,7 +60,8 @@ pub struct CompareArgs {
         long,
         default_value_t = 5,
         value_name = "N",
-        help_heading = "Statistics"
+        help_heading = "Statistics",
+        allow_negative_numbers = true
     )]
     pub min_bin_count: usize,
 
@@ -69,6 +72,14 @@ pub struct CompareArgs {
 
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    if let Some(dir) = &args.out_dir {
+        crate::data::safe_write::refuse_inputs(
+            &[("--out-dir", dir, true)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+        crate::data::safe_write::clean_stale_temporaries(dir);
+        crate::data::safe_write::check_replaceable(dir)?;
+    }
     if !(args.alpha > 0.0 && args.alpha < 1.0) {
         bail!("--alpha must be in (0, 1), got {}", args.alpha);
     }
@@ -86,7 +97,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         );
     }
     let launches = expected_launches(&club, &table.shots, args.measurement.impact_noise_mm)
-        .with_context(|| args.shots.display().to_string())?;
+        .map_err(|e| super::locate_shot_error(&table, e))?;
     let options = CompareOptions {
         alpha: args.alpha,
         face_bin_mm: args.bin_mm,
@@ -104,9 +115,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");
-        println!("{}", compare_json(&report));
+        crate::cli::stdout::println(compare_json(&report))?;
     } else {
-        print!("{text}");
+        crate::cli::stdout::print(&text)?;
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
         let files: Vec<(PathBuf, Vec<u8>)> = files

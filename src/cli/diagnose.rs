@@ -51,7 +51,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 5,
         value_name = "K",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub folds: usize,
 
@@ -60,7 +61,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 6,
         value_name = "N",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub max_steps: usize,
 
@@ -74,7 +76,8 @@ pub struct DiagnoseArgs {
         long,
         default_value_t = 100,
         value_name = "N",
-        help_heading = "Selection"
+        help_heading = "Selection",
+        allow_negative_numbers = true
     )]
     pub max_iters: u64,
 
@@ -133,6 +136,13 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    if let Some(out) = &args.out_club {
+        let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
+        if let Some(noise) = &args.noise {
+            inputs.push(("--noise", noise));
+        }
+        crate::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
+    }
     let club = read_club(&args.club)?;
     let table = read_shots(&args.shots)?;
     let known_noise = match (&args.noise, args.instrument) {
@@ -173,7 +183,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let d = d?;
     let floor = noise_floor(&d, &table.shots, &instrument)?;
     for w in &d.warnings {
-        eprintln!("warning: {w}");
+        eprintln!("warning: {}", crate::data::escape(w));
     }
     if let Some(out) = &args.out_club {
         let comment = format!(
@@ -190,9 +200,9 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         eprintln!("club with selected effects -> {}", out.display());
     }
     if args.json {
-        println!("{}", serde_json::to_string_pretty(&to_json(&d, &floor))?);
+        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
     } else {
-        print!("{}", text_report(&d, &floor));
+        crate::cli::stdout::print(text_report(&d, &floor))?;
     }
     Ok(())
 }

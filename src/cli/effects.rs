@@ -2,6 +2,9 @@
 
 use clap::Args;
 
+use std::fmt::Write;
+
+use crate::cli::stdout;
 use crate::effects::EffectKind;
 
 /// Arguments of `smash effects`.
@@ -28,30 +31,36 @@ pub fn run(args: EffectsArgs) -> anyhow::Result<()> {
                 })
             })
             .collect();
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({ "effects": list }))?
-        );
+        stdout::println(serde_json::to_string_pretty(
+            &serde_json::json!({ "effects": list }),
+        )?)?;
         return Ok(());
     }
-    println!(
+    let mut text = String::new();
+    writeln!(
+        text,
         "{:<24} {:<11} {:>7} {:>22}  meaning",
         "effect", "parameter", "default", "physical range"
-    );
+    )?;
     for k in EffectKind::ALL {
         for (i, p) in k.params().iter().enumerate() {
             let name = if i == 0 { k.name() } else { "" };
-            println!(
+            writeln!(
+                text,
                 "{:<24} {:<11} {:>7} {:>22}  {}",
                 name,
                 p.key,
                 p.default,
                 format!("[{}, {}] {}", p.lower, p.upper, p.unit),
                 p.doc
-            );
+            )?;
         }
     }
-    println!("\nIn a club file: [[effect]] name = \"added_mass\", dm_g = 2.54, group = \"A\" (group optional).");
-    println!("On the command line: name for one global value, name@group for one value per group.");
+    writeln!(text, "\nIn a club file: [[effect]] name = \"added_mass\", dm_g = 2.54, group = \"A\" (group optional).")?;
+    writeln!(
+        text,
+        "On the command line: name for one global value, name@group for one value per group."
+    )?;
+    stdout::print(text)?;
     Ok(())
 }

@@ -34,10 +34,18 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
             args.out.display()
         );
     }
+    let inputs: Vec<(&str, &Path)> = args
+        .shards
+        .iter()
+        .map(|s| ("a SHARD_DIR", s.as_path()))
+        .collect();
+    crate::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
+    crate::data::safe_write::clean_stale_temporaries(&args.out);
+    crate::data::safe_write::check_replaceable(&args.out)?;
     let (prepared, variants) = merge_shards(&args.shards)?;
     let (files, opt) = finish(&prepared, &variants)?;
     super::run::write_all(&args.out, &files)?;
-    print_summary(&prepared, &variants, opt.as_ref(), &args.out, files.len());
+    print_summary(&prepared, &variants, opt.as_ref(), &args.out, files.len())?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }
@@ -50,7 +58,9 @@ pub fn print_summary(
     opt: Option<&OptimiseResult>,
     dir: &Path,
     n_files: usize,
-) {
+) -> Result<(), crate::cli::stdout::StdoutError> {
+    use std::fmt::Write;
+    let mut text = String::new();
     let names = metric_names(p.study.distribution.is_some());
     let pick = [
         "cof_ball_speed_mph",
@@ -61,7 +71,9 @@ pub fn print_summary(
         "gear_sidespin_rpm_per_mm",
         "gear_backspin_rpm_per_mm",
     ];
-    println!(
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        text,
         "study '{}' ({}, group {}): {} variant(s)",
         p.study.name,
         p.study.club.name,
@@ -75,14 +87,15 @@ pub fn print_summary(
                 line.push_str(&format!(" {k} = {:.4}", r.metrics[j]));
             }
         }
-        println!("{line}");
+        let _ = writeln!(text, "{line}");
     }
     if variants.len() > 5 {
-        println!("  … see variants.csv");
+        let _ = writeln!(text, "  … see variants.csv");
     }
     if let Some(o) = opt {
         let gain = o.best_objective - o.base_objective;
-        println!(
+        let _ = writeln!(
+            text,
             "optimum: {} — objective {} -> {} (change {}, {:.3} %), {} iterations, {} evaluations, {}",
             o.best.describe(),
             cell(o.base_objective),
@@ -94,5 +107,6 @@ pub fn print_summary(
             o.termination
         );
     }
-    println!("wrote {n_files} file(s) to {}", dir.display());
+    let _ = writeln!(text, "wrote {n_files} file(s) to {}", dir.display());
+    crate::cli::stdout::print(text)
 }

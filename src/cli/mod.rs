@@ -11,6 +11,7 @@ pub mod merge;
 pub mod predict;
 pub mod progress;
 pub mod run;
+pub mod stdout;
 pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
@@ -62,7 +63,43 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
     }
 }
 
-/// One line: the error and its causes, joined by `: `.
+/// A shot that cannot be predicted, located in its file: `FILE:LINE: columns …: shot 'ID': …`,
+/// the same form as the shots reader's own errors.
+pub fn locate_shot_error(
+    table: &crate::data::shots::ShotTable,
+    e: crate::predict::PredictError,
+) -> anyhow::Error {
+    use crate::physics::ImpactError;
+    use crate::predict::PredictError;
+    let PredictError::Shot {
+        shot_id,
+        row,
+        source,
+    } = e
+    else {
+        return anyhow::Error::new(e).context(table.path.display().to_string());
+    };
+    let line = row.checked_sub(1).and_then(|i| table.lines.get(i)).copied();
+    let place = match source {
+        ImpactError::OffFace(_) => Some("columns impact_y_mm, impact_z_mm".to_owned()),
+        ImpactError::NotApproaching { .. } => Some(
+            "columns club_speed_mph, attack_angle_deg, club_path_deg, dynamic_loft_deg, \
+             face_angle_deg, club_omega_*_rad_s"
+                .to_owned(),
+        ),
+        _ => None,
+    };
+    crate::data::DataError::at(
+        &table.path,
+        line,
+        place,
+        format!("shot '{shot_id}': {source}"),
+    )
+    .into()
+}
+
+/// One line: the error and its causes, joined by `: `, with control characters from the input
+/// (ESC, CR, …) escaped so that they cannot act on the terminal.
 pub fn error_chain(e: &anyhow::Error) -> String {
     let mut parts: Vec<String> = Vec::new();
     for cause in e.chain() {
@@ -71,7 +108,7 @@ pub fn error_chain(e: &anyhow::Error) -> String {
             parts.push(s);
         }
     }
-    parts.join(": ").replace('\n', " ")
+    crate::data::escape(&parts.join(": ").replace('\n', " ")).into_owned()
 }
 
 #[cfg(test)]
@@ -91,7 +128,13 @@ pub struct MeasurementArgs {
     /// 1σ noise of the measured impact location, mm, vertical then heel–toe (e.g. `3,2.5`).
     /// The model is then averaged over where the ball was most likely struck (regression
     /// calibration), so location noise is not mistaken for physics.
-    #[arg(long, value_name = "SY,SZ", value_parser = parse_impact_noise, help_heading = "Measurement noise")]
+    #[arg(
+        long,
+        value_name = "SY,SZ",
+        value_parser = parse_impact_noise,
+        allow_hyphen_values = true,
+        help_heading = "Measurement noise"
+    )]
     pub impact_noise_mm: Option<crate::measurement::ImpactNoise>,
 }
 

@@ -1,5 +1,6 @@
 //! `smash predict`: launch conditions for a shots file or for one delivery.
 
+use std::fmt::Write;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context};
@@ -43,7 +44,8 @@ pub struct PredictArgs {
         long = "speed-mph",
         visible_alias = "speed",
         value_name = "MPH",
-        help_heading = "One delivery"
+        help_heading = "One delivery",
+        allow_negative_numbers = true
     )]
     pub club_speed_mph: Option<f64>,
     /// Dynamic loft at impact, deg.
@@ -51,7 +53,8 @@ pub struct PredictArgs {
         long = "loft-deg",
         visible_alias = "loft",
         value_name = "DEG",
-        help_heading = "One delivery"
+        help_heading = "One delivery",
+        allow_negative_numbers = true
     )]
     pub dynamic_loft_deg: Option<f64>,
     /// Attack angle, deg (+ up).
@@ -151,9 +154,13 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     if let Some(shots_path) = &args.shots {
         let out = args.out.as_ref().expect("clap: --shots requires --out");
+        crate::data::safe_write::refuse_inputs(
+            &[("--out", out, false)],
+            &[("--shots", shots_path), ("--club", &args.club)],
+        )?;
         let table = read_shots(shots_path)?;
         let outcomes =
-            predict_table(&club, &table).with_context(|| shots_path.display().to_string())?;
+            predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
         write_atomic(out, &predictions_csv(&table, &outcomes))?;
         eprintln!(
             "predicted {} shot(s) with {} -> {}",
@@ -188,7 +195,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         }
     }
     if speed <= 0.0 {
-        bail!("--speed must be > 0 mph, got {speed}");
+        bail!("--speed must be > 0 mph, got {}", crate::data::Num(speed));
     }
     let delivery = Delivery {
         club_speed_m_s: mph(speed),
@@ -206,19 +213,28 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
     let outcome = model.solve(&delivery)?;
     let launch = outcome.launch();
-    println!("{} (group {})", club.name, args.group);
-    println!(
+    let mut text = format!("{} (group {})\n", club.name, args.group);
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        text,
         "delivery: {speed} mph, loft {loft} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
         args.attack_angle_deg, args.club_path_deg, args.face_angle_deg, args.lie_tilt_deg, args.impact_y_mm, args.impact_z_mm
     );
     for c in LaunchComponent::ALL {
-        println!(
+        let _ = writeln!(
+            text,
             "{:<14} {:>10.2} {}",
             c.label(),
             launch.get_file(c),
             c.unit()
         );
     }
-    println!("{:<14} {:>10.4}", "Smash factor", outcome.smash_factor());
+    let _ = writeln!(
+        text,
+        "{:<14} {:>10.4}",
+        "Smash factor",
+        outcome.smash_factor()
+    );
+    crate::cli::stdout::print(text)?;
     Ok(())
 }

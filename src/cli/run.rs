@@ -9,7 +9,7 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use crate::data::write_folder_atomic;
 use crate::study::output::Files;
 use crate::study::shard::{parse_shard_spec, shard_files};
-use crate::study::{finish, read_study, Prepared};
+use crate::study::{finish, read_study, Prepared, StudyError};
 
 /// Arguments of `smash run`.
 #[derive(Debug, Args)]
@@ -31,7 +31,7 @@ pub struct RunArgs {
 
     /// Run only shard k of N (0-based k, e.g. $SLURM_ARRAY_TASK_ID/N) and write shard files;
     /// combine the shards with `smash merge`.
-    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec)]
+    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec, allow_hyphen_values = true)]
     pub shard: Option<(usize, usize)>,
 }
 
@@ -42,11 +42,55 @@ pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// A swing that does not reach the ball is a problem of the study's `[delivery]` table: name the
+/// file and the table's line.
+fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
+    let StudyError::Swing { problem } = &e else {
+        return e.into();
+    };
+    let line = std::fs::read_to_string(study).ok().and_then(|text| {
+        text.lines()
+            .position(|l| l.trim_start().starts_with("[delivery]"))
+            .map(|i| i + 1)
+    });
+    crate::data::DataError::at(
+        study,
+        line,
+        Some("table [delivery]".into()),
+        problem.clone(),
+    )
+    .into()
+}
+
 /// Run `smash run`.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let study = read_study(&args.study)?;
-    let prepared = Prepared::new(study)?;
     let (k, n) = args.shard.unwrap_or((0, 1));
+    let dir = match (&args.out, args.shard) {
+        (Some(d), _) => d.clone(),
+        (None, Some(_)) => study.output_dir.join("shards").join(format!("{k}_of_{n}")),
+        (None, None) => study.output_dir.clone(),
+    };
+    // Refuse before the sweep, not after it: the output folder may not hold the inputs or
+    // files smash did not write.
+    crate::data::safe_write::refuse_inputs(
+        &[(
+            if args.out.is_some() {
+                "--out"
+            } else {
+                "the study's output folder"
+            },
+            &dir,
+            true,
+        )],
+        &[
+            ("STUDY.toml", &args.study),
+            ("the study's club", &study.club_path),
+        ],
+    )?;
+    crate::data::safe_write::clean_stale_temporaries(&dir);
+    crate::data::safe_write::check_replaceable(&dir)?;
+    let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
     let items = prepared.shard_range(k, n);
     let impacts = prepared.impacts_in(items.clone());
     let bar = if items.len() >= 64 && impacts >= 50_000 {
@@ -72,7 +116,6 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
 
-    let s = &prepared.study;
     let closing = format!(
         "swept {impacts} impact evaluations ({} variant(s) × {}×{} grid + summary metrics{}) in {seconds:.3} s: {:.0} impacts/s",
         prepared.variants.len(),
@@ -82,11 +125,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         impacts as f64 / seconds.max(1e-9)
     );
     if args.shard.is_some() {
-        let dir = args
-            .out
-            .clone()
-            .unwrap_or_else(|| s.output_dir.join("shards").join(format!("{k}_of_{n}")));
-        write_all(&dir, &shard_files(&prepared, k, n, &results))?;
+        write_all(&dir, &shard_files(&prepared, k, n, &results)?)?;
         eprintln!(
             "shard {k} of {n}: work items {}..{} -> {}",
             items.start,
@@ -98,9 +137,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     }
     let variants = prepared.assemble(results)?;
     let (files, opt) = finish(&prepared, &variants)?;
-    let dir = args.out.clone().unwrap_or_else(|| s.output_dir.clone());
     write_all(&dir, &files)?;
-    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len());
+    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len())?;
     eprintln!("{closing}");
     Ok(())
 }

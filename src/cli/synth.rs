@@ -1,13 +1,13 @@
 //! `smash synth`: generate a synthetic experiment from a configuration.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use anyhow::Context;
 use clap::Args;
 
 use crate::data::club_file::read_club;
 use crate::data::synth_files::{synth_shots_csv, truth_toml};
-use crate::data::write_atomic;
+use crate::data::write_files_atomic;
 use crate::synth::{generate, read_config};
 
 /// Arguments of `smash synth`.
@@ -30,28 +30,36 @@ pub struct SynthArgs {
     pub truth: Option<PathBuf>,
 
     /// Random seed (overrides the configuration's `seed`).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub seed: Option<u64>,
 }
 
 /// Run `smash synth`.
 pub fn run(args: SynthArgs) -> anyhow::Result<()> {
+    let mut outputs = vec![("--out", args.out.as_path(), false)];
+    if let Some(t) = &args.truth {
+        outputs.push(("--truth", t.as_path(), false));
+    }
+    crate::data::safe_write::refuse_inputs(&outputs, &[("--config", &args.config)])?;
     let mut cfg = read_config(&args.config)?;
     if let Some(seed) = args.seed {
         cfg.seed = seed;
     }
     let club =
         read_club(&cfg.club).with_context(|| format!("base club of {}", args.config.display()))?;
+    crate::data::safe_write::refuse_inputs(&outputs, &[("the configuration's club", &cfg.club)])?;
     let run = generate(&cfg, &club).with_context(|| args.config.display().to_string())?;
     let csv = synth_shots_csv(&run);
     let truth = args
         .truth
         .as_ref()
         .map(|_| truth_toml(&cfg, &run, &args.config.display().to_string()));
-    write_atomic(&args.out, &csv)?;
-    if let (Some(path), Some(text)) = (&args.truth, truth) {
-        write_atomic(path, text.as_bytes())?;
+    // Both outputs appear together or not at all.
+    let mut files: Vec<(&Path, &[u8])> = vec![(&args.out, &csv)];
+    if let (Some(path), Some(text)) = (&args.truth, &truth) {
+        files.push((path, text.as_bytes()));
     }
+    write_files_atomic(&files)?;
     eprintln!(
         "synth: {} shots ({} groups × {} golfers × {} swings), seed {}, {} swing(s) redrawn, \
          {} hidden effect(s){} -> {}",

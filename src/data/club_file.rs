@@ -99,7 +99,7 @@ impl Ctx<'_> {
             Err(self.err(
                 v.span(),
                 key,
-                format!("must be a finite number > 0 {unit} in the physical range [{lo}, {hi}] {unit}, got {x}"),
+                format!("must be a finite number > 0 {unit} in the physical range [{lo}, {hi}] {unit}, got {}", super::Num(x)),
             ))
         }
     }

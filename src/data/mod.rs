@@ -7,6 +7,7 @@
 pub mod club_file;
 pub mod noise_file;
 pub mod predictions;
+pub mod safe_write;
 pub mod shots;
 pub mod synth_files;
 
@@ -92,6 +93,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
         .ok_or_else(|| DataError::file(path, "not a file path"))?
         .to_string_lossy()
         .into_owned();
+    safe_write::clean_stale_temporaries(path);
     let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
@@ -147,26 +149,80 @@ pub fn toml_key_error(
     )
 }
 
+/// Write several files as one unit: all are written to temporaries first, then renamed into
+/// place; if any step fails, none of the new files is left behind.
+pub fn write_files_atomic(files: &[(&Path, &[u8])]) -> Result<(), DataError> {
+    let mut staged: Vec<(PathBuf, &Path)> = Vec::new();
+    let cleanup = |staged: &[(PathBuf, &Path)]| {
+        for (tmp, _) in staged {
+            let _ = std::fs::remove_file(tmp);
+        }
+    };
+    for (path, bytes) in files {
+        let parent = match path.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+            _ => PathBuf::from("."),
+        };
+        let file_name = match path.file_name() {
+            Some(n) => n.to_string_lossy().into_owned(),
+            None => {
+                cleanup(&staged);
+                return Err(DataError::file(path, "not a file path"));
+            }
+        };
+        safe_write::clean_stale_temporaries(path);
+        let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
+        let written = (|| {
+            std::fs::create_dir_all(&parent)?;
+            let mut f = std::fs::File::create(&tmp)?;
+            f.write_all(bytes)?;
+            f.sync_all()
+        })();
+        if let Err(e) = written {
+            let _ = std::fs::remove_file(&tmp);
+            cleanup(&staged);
+            return Err(DataError::file(path, format!("cannot write: {e}")));
+        }
+        staged.push((tmp, path));
+    }
+    if let Some((_, path)) = staged.iter().find(|(_, p)| p.is_dir()) {
+        cleanup(&staged);
+        return Err(DataError::file(
+            path,
+            "is a folder; give a file path (nothing was written)",
+        ));
+    }
+    for (i, (tmp, path)) in staged.iter().enumerate() {
+        if let Err(e) = std::fs::rename(tmp, path) {
+            // Take back the files already moved in, so that none of this run's outputs remains.
+            for (_, done) in &staged[..i] {
+                let _ = std::fs::remove_file(done);
+            }
+            cleanup(&staged[i..]);
+            return Err(DataError::file(
+                path,
+                format!("cannot write: {e} (no output was written)"),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Write a whole folder of outputs as one unit: every file goes into a temporary sibling folder,
 /// which then replaces `dir`. A failure leaves `dir` as it was; a success leaves exactly `files`
-/// (no stale files of an earlier run). An existing non-empty `dir` is replaced only if it holds
-/// `marker` (a file every such output folder has), so a folder of other files is never removed.
+/// (no stale files of an earlier run) and a manifest of them ([`safe_write::MANIFEST`]). An
+/// existing non-empty `dir` is replaced only if every file in it is listed in its manifest, so a
+/// user's file in it is never removed (`marker`, a file every such output folder has, is kept
+/// for the callers' documentation). Temporaries of killed earlier runs are cleaned up first.
 pub fn write_folder_atomic(
     dir: &Path,
     files: &[(PathBuf, Vec<u8>)],
     marker: &str,
 ) -> Result<(), DataError> {
     let err = |m: String| DataError::file(dir, m);
-    if dir.exists() {
-        let mut entries =
-            std::fs::read_dir(dir).map_err(|e| err(format!("cannot read folder: {e}")))?;
-        if entries.next().is_some() && !dir.join(marker).is_file() {
-            return Err(err(format!(
-                "the folder exists and holds files that are not an earlier output of this command \
-                 (no {marker}); choose a new or empty folder"
-            )));
-        }
-    }
+    debug_assert!(files.iter().any(|(p, _)| p == Path::new(marker)));
+    safe_write::clean_stale_temporaries(dir);
+    safe_write::check_replaceable(dir)?;
     let name = dir
         .file_name()
         .ok_or_else(|| err("not a folder path".into()))?
@@ -191,7 +247,9 @@ pub fn write_folder_atomic(
             f.write_all(bytes)?;
             f.sync_all()?;
         }
-        std::fs::create_dir_all(&tmp)
+        std::fs::create_dir_all(&tmp)?;
+        let manifest = safe_write::manifest_text(files.iter().map(|(p, _)| p.as_path()));
+        std::fs::write(tmp.join(safe_write::MANIFEST), manifest)
     })();
     if let Err(e) = written {
         let _ = std::fs::remove_dir_all(&tmp);
@@ -215,6 +273,26 @@ pub fn write_folder_atomic(
     }
     let _ = std::fs::remove_dir_all(&old);
     Ok(())
+}
+
+pub use crate::units::Num;
+
+/// `text` with every control character (ESC, CR, LF, DEL, …) written as a visible escape
+/// (`\u{1b}`, `\r`, …), so that text taken from an input file cannot act on the terminal when a
+/// message repeats it.
+pub fn escape(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(char::is_control) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 8);
+    for c in text.chars() {
+        if c.is_control() {
+            out.extend(c.escape_debug());
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 /// Byte offset to 1-based (line, column).

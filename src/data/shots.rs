@@ -78,6 +78,8 @@ pub struct ShotTable {
     pub records: Vec<Vec<String>>,
     /// Parsed shots, in file order.
     pub shots: Vec<Shot>,
+    /// 1-based line of the file where each shot's record starts (parallel to `shots`).
+    pub lines: Vec<usize>,
 }
 
 impl ShotTable {
@@ -219,10 +221,12 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
 
     let mut records = Vec::new();
     let mut shots = Vec::new();
+    let mut lines = Vec::new();
     let mut ids = HashSet::new();
     for rec in rdr.records() {
         let rec = rec.map_err(csv_err)?;
         let line = rec.position().map_or(records.len() + 2, line_of);
+        lines.push(line);
         let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
         let num = |i: usize| -> Result<f64, DataError> {
             let s = cells[i].as_str();
@@ -282,7 +286,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
                         path,
                         Some(line),
                         Some("column 'shaft_mass_g'".into()),
-                        format!("shaft mass must be > 0 g, got {m}"),
+                        format!("shaft mass must be > 0 g, got {}", super::Num(m)),
                     ));
                 }
                 Some(m)
@@ -295,7 +299,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
                 path,
                 Some(line),
                 Some("column 'club_speed_mph'".into()),
-                format!("club speed must be > 0 mph, got {speed}"),
+                format!("club speed must be > 0 mph, got {}", super::Num(speed)),
             ));
         }
         let delivery = Delivery {
@@ -349,5 +353,6 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         headers,
         records,
         shots,
+        lines,
     })
 }

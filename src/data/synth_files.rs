@@ -1,4 +1,4 @@
-//! Files of a synthetic experiment: the shots CSV (the shots-file format of CONVENTIONS.md,
+//! Files of a synthetic experiment: the shots CSV (the shots-file format of docs/conventions.md,
 //! readable by [`crate::data::shots::read_shots`]) and the truth TOML. Builds bytes only.
 
 use std::fmt::Write as _;

@@ -1,7 +1,7 @@
 //! The effect library: named physics beyond the nominal model.
 //!
 //! Every effect has a name, named parameters with units, defaults and physical bounds, and is off
-//! unless listed. The names, parameter names and forms are fixed by `CONVENTIONS.md` (data and
+//! unless listed. The names, parameter names and forms are fixed by `docs/conventions.md` (data and
 //! configs depend on them). An effect applies to every shot, or only to the shots of one `group`.
 //!
 //! | name | parameters | what it does |
@@ -218,7 +218,7 @@ const INERTIA_SCALE: [ParamSpec; 1] = [spec(
 )];
 
 impl EffectKind {
-    /// Every effect in the library, in CONVENTIONS order.
+    /// Every effect in the library, in the order of `docs/conventions.md`.
     pub const ALL: [EffectKind; 10] = [
         Self::AddedMass,
         Self::BallOffset,
@@ -333,7 +333,10 @@ pub enum EffectError {
         name: String,
     },
     /// A parameter value is missing, not finite or outside its physical bounds.
-    #[error("{effect}.{key} = {value} is outside its physical range [{lower}, {upper}] {unit}")]
+    #[error(
+        "{effect}.{key} = {} is outside its physical range [{lower}, {upper}] {unit}",
+        crate::units::Num(*.value)
+    )]
     OutOfBounds {
         /// Effect name.
         effect: &'static str,

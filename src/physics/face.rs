@@ -13,7 +13,7 @@
 //! y_I = z_I × x_I
 //! ```
 //!
-//! This corrects two errata of the paper's Section 2.2.2 (see `CONVENTIONS.md`): taken literally
+//! This corrects two errata of the paper's Section 2.2.2 (see `docs/conventions.md`): taken literally
 //! its Eq. 10 has a heel–toe radius of bulge + roll, and its normal is not of unit length.
 
 use nalgebra::Vector3;

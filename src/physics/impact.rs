@@ -27,7 +27,7 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{FaceError, FaceGeometry};
 use super::launch::Launch;
 
-/// Reference normal approach speed of the `cor_speed` effect, m/s (the CONVENTIONS value).
+/// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
 pub const COR_SPEED_REFERENCE_M_S: f64 = 48.77;
 
 /// Physical parameters of one impact model, SI units, before validation.

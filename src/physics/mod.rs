@@ -4,7 +4,7 @@
 //! so [`ImpactModel::solve`] only fails for per-shot reasons (off the face, not approaching).
 //! The model is the paper's (Danaei, McNally, Henrikson, McPhee: *Adjusting a momentum-based
 //! golf clubhead-ball impact model to improve accuracy*), with the conventions of
-//! `shared/CONVENTIONS.md`.
+//! `docs/conventions.md`.
 
 pub mod delivery;
 pub mod face;

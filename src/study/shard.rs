@@ -3,13 +3,15 @@
 //! A shard folder holds `study.toml` (the resolved study, identical for every shard and for the
 //! unsharded run), `shard.toml` (`shard`, `shards`, `first_item`, `end_item`), `rows.csv` (the
 //! shard's grid rows: `variant,row,col,valid` and the five launch components in SI units) and
-//! `metrics.csv` (`variant,metric,value`). Values are written in their shortest round-trip
+//! `metrics.csv` (`variant,metric,value`). `shard.toml` also records the SHA-256 of the resolved
+//! study and of the club file; merge refuses shards that disagree, or that disagree with the
+//! files as they are now, and checks every field it reads back. Values are written in their shortest round-trip
 //! decimal form, so reading them back gives the same bits; invalid values are empty cells.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use crate::data::{read_text, DataError};
+use crate::data::{escape, read_text, DataError};
 use crate::sweep::kernel::LaunchGrid;
 
 use super::metrics::metric_names;
@@ -35,9 +37,36 @@ pub fn parse_shard_spec(s: &str) -> Result<(usize, usize), String> {
     Ok((k, n))
 }
 
-/// Files of shard `k` of `n` holding `items`.
-pub fn shard_files(p: &Prepared, k: usize, n: usize, items: &[ItemResult]) -> Files {
+/// SHA-256 of `bytes`, as 64 lowercase hex digits (what `sha256sum` prints).
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest;
+    sha2::Sha256::digest(bytes)
+        .iter()
+        .fold(String::with_capacity(64), |mut s, b| {
+            let _ = write!(s, "{b:02x}");
+            s
+        })
+}
+
+/// SHA-256 of the study's club file as it is now.
+fn club_sha256(p: &Prepared) -> Result<String, StudyError> {
+    let path = &p.study.club_path;
+    let bytes = std::fs::read(path)
+        .map_err(|e| DataError::file(path, format!("cannot read the study's club file: {e}")))?;
+    Ok(sha256_hex(&bytes))
+}
+
+/// Files of shard `k` of `n` holding `items`. `shard.toml` records the SHA-256 of the resolved
+/// study (`study.toml` as written) and of the club file, so that `smash merge` can prove the
+/// shards belong together.
+pub fn shard_files(
+    p: &Prepared,
+    k: usize,
+    n: usize,
+    items: &[ItemResult],
+) -> Result<Files, StudyError> {
     let range = p.shard_range(k, n);
+    let study = resolved_toml(&p.study);
     let mut meta = String::new();
     let _ = writeln!(
         meta,
@@ -47,6 +76,16 @@ pub fn shard_files(p: &Prepared, k: usize, n: usize, items: &[ItemResult]) -> Fi
         meta,
         "shard = {k}\nshards = {n}\nfirst_item = {}\nend_item = {}",
         range.start, range.end
+    );
+    let _ = writeln!(
+        meta,
+        "# SHA-256 of study.toml and of the club file it names (compare with `sha256sum`)."
+    );
+    let _ = writeln!(
+        meta,
+        "study_sha256 = \"{}\"\nclub_sha256 = \"{}\"",
+        sha256_hex(study.as_bytes()),
+        club_sha256(p)?
     );
     let mut rows = format!("{ROWS_HEADER}\n");
     let mut metrics = String::from("variant,metric,value\n");
@@ -74,27 +113,114 @@ pub fn shard_files(p: &Prepared, k: usize, n: usize, items: &[ItemResult]) -> Fi
             }
         }
     }
-    vec![
-        ("study.toml".into(), resolved_toml(&p.study).into_bytes()),
+    Ok(vec![
+        ("study.toml".into(), study.into_bytes()),
         ("shard.toml".into(), meta.into_bytes()),
         ("rows.csv".into(), rows.into_bytes()),
         ("metrics.csv".into(), metrics.into_bytes()),
-    ]
+    ])
 }
 
-fn meta_value(path: &Path, text: &str, key: &str) -> Result<usize, DataError> {
-    let table: toml::Table = toml::from_str(text)
-        .map_err(|e| DataError::file(path, format!("not a shard.toml: {}", e.message())))?;
-    match table.get(key) {
-        Some(toml::Value::Integer(i)) if *i >= 0 => Ok(*i as usize),
-        _ => Err(DataError::file(
+/// The fields of a `shard.toml`, each checked.
+struct ShardMeta {
+    shard: usize,
+    shards: usize,
+    first_item: usize,
+    end_item: usize,
+    study_sha256: String,
+    club_sha256: String,
+}
+
+fn read_meta(path: &Path) -> Result<ShardMeta, DataError> {
+    let text = read_text(path)?;
+    let table: toml::Table = toml::from_str(&text).map_err(|e| {
+        DataError::file(
             path,
-            format!("missing or bad `{key}` (a non-negative integer)"),
-        )),
+            format!("not a shard.toml: {}", escape(e.message().trim())),
+        )
+    })?;
+    let int = |key: &str| -> Result<usize, DataError> {
+        match table.get(key) {
+            Some(toml::Value::Integer(i)) if *i >= 0 => usize::try_from(*i).map_err(|_| {
+                DataError::file(path, format!("`{key}` = {i} is too large for this machine"))
+            }),
+            _ => Err(DataError::file(
+                path,
+                format!("missing or bad `{key}` (a non-negative integer)"),
+            )),
+        }
+    };
+    let hash = |key: &str| -> Result<String, DataError> {
+        match table.get(key) {
+            Some(toml::Value::String(h))
+                if h.len() == 64 && h.bytes().all(|b| b.is_ascii_hexdigit()) =>
+            {
+                Ok(h.to_ascii_lowercase())
+            }
+            Some(_) => Err(DataError::file(
+                path,
+                format!("`{key}` must be 64 hex digits (a SHA-256)"),
+            )),
+            None => Err(DataError::file(
+                path,
+                format!(
+                    "no `{key}`: the shard was written by an older smash that did not record \
+                     which study and club it belongs to; run the shards again"
+                ),
+            )),
+        }
+    };
+    let meta = ShardMeta {
+        shard: int("shard")?,
+        shards: int("shards")?,
+        first_item: int("first_item")?,
+        end_item: int("end_item")?,
+        study_sha256: hash("study_sha256")?,
+        club_sha256: hash("club_sha256")?,
+    };
+    if meta.shards == 0 {
+        return Err(DataError::file(
+            path,
+            "`shards` = 0: a study is split into at least 1 shard",
+        ));
     }
+    if meta.shard >= meta.shards {
+        return Err(DataError::file(
+            path,
+            format!(
+                "`shard` = {} with `shards` = {}: shards are numbered 0 to {}",
+                meta.shard,
+                meta.shards,
+                meta.shards - 1
+            ),
+        ));
+    }
+    Ok(meta)
 }
 
-fn num(path: &Path, line: usize, col: &str, s: &str) -> Result<f64, DataError> {
+/// `value` of `col` on `line` as an index below `limit` (what it counts is `what`).
+fn index(
+    path: &Path,
+    line: u64,
+    col: &str,
+    s: &str,
+    limit: usize,
+    what: &str,
+) -> Result<usize, DataError> {
+    let at = |m: String| DataError::at(path, Some(line as usize), Some(format!("column {col}")), m);
+    let v = s
+        .parse::<usize>()
+        .map_err(|_| at(format!("not an index: '{}'", escape(s))))?;
+    if v >= limit {
+        return Err(at(format!(
+            "{v} is outside the study: it has {limit} {what} (0 to {})",
+            limit.saturating_sub(1)
+        )));
+    }
+    Ok(v)
+}
+
+fn num(path: &Path, line: u64, col: &str, s: &str) -> Result<f64, DataError> {
     if s.is_empty() {
         return Ok(f64::NAN);
     }
@@ -104,68 +230,115 @@ fn num(path: &Path, line: usize, col: &str, s: &str) -> Result<f64, DataError> {
         .ok_or_else(|| {
             DataError::at(
                 path,
-                Some(line),
+                Some(line as usize),
                 Some(format!("column {col}")),
-                format!("not a finite number: '{s}'"),
+                format!("not a finite number: '{}'", escape(s)),
             )
         })
 }
 
-fn index(path: &Path, line: usize, col: &str, s: &str) -> Result<usize, DataError> {
-    s.parse::<usize>().map_err(|_| {
-        DataError::at(
+/// A CSV reader over `text` whose header must be exactly `header`; records must have as many
+/// fields.
+fn csv_records<'a>(
+    path: &Path,
+    text: &'a str,
+    header: &str,
+) -> Result<csv::Reader<&'a [u8]>, DataError> {
+    let mut r = csv::ReaderBuilder::new()
+        .has_headers(true)
+        .from_reader(text.as_bytes());
+    let h = r
+        .headers()
+        .map_err(|e| DataError::at(path, Some(1), None, format!("cannot read the header: {e}")))?;
+    if h.iter().collect::<Vec<_>>().join(",") != header {
+        return Err(DataError::at(
             path,
-            Some(line),
-            Some(format!("column {col}")),
-            format!("not an index: '{s}'"),
-        )
-    })
+            Some(1),
+            None,
+            format!("header must be {header}"),
+        ));
+    }
+    Ok(r)
 }
 
-/// Read the shard folders and assemble the full study result.
+fn csv_error(path: &Path, e: &csv::Error) -> DataError {
+    let line = e.position().map(|p| p.line() as usize);
+    let msg = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => format!("{len} fields, expected {expected_len}"),
+        _ => escape(&e.to_string()).into_owned(),
+    };
+    DataError::at(path, line, None, msg)
+}
+
+/// Read the shard folders and assemble the full study result. The shards must record the same
+/// study and club hashes, which must also match the study and club files as they are now.
 pub fn merge_shards(
     dirs: &[PathBuf],
 ) -> Result<(Prepared, Vec<super::sweep::VariantResult>), StudyError> {
     let first = dirs
         .first()
         .ok_or_else(|| StudyError::Merge("no shard folders given".into()))?;
+    let metas = dirs
+        .iter()
+        .map(|d| read_meta(&d.join("shard.toml")))
+        .collect::<Result<Vec<_>, _>>()?;
+    for (d, m) in dirs.iter().zip(&metas).skip(1) {
+        for (what, a, b) in [
+            ("studies", &metas[0].study_sha256, &m.study_sha256),
+            ("club files", &metas[0].club_sha256, &m.club_sha256),
+        ] {
+            if a != b {
+                return Err(StudyError::Merge(format!(
+                    "{} and {} were computed with different {what} (SHA-256 {}… and {}… in \
+                     their shard.toml); run all shards again with the same study and club",
+                    first.display(),
+                    d.display(),
+                    &a[..12],
+                    &b[..12]
+                )));
+            }
+        }
+    }
     let study_path = first.join("study.toml");
     let study_text = read_text(&study_path)?;
-    for d in &dirs[1..] {
+    for d in dirs {
         let t = read_text(&d.join("study.toml"))?;
-        if t != study_text {
+        if sha256_hex(t.as_bytes()) != metas[0].study_sha256 {
             return Err(StudyError::Merge(format!(
-                "{} and {} are shards of different studies (their study.toml differ)",
-                first.display(),
+                "{}: study.toml is not the study its shard.toml records (edited after the run?); \
+                 run the shard again",
                 d.display()
             )));
         }
     }
     let study = parse_study(&study_path, &study_text)?;
     let p = Prepared::new(study)?;
-    let mut total = None;
-    let mut seen = Vec::new();
+    let club_now = club_sha256(&p)?;
+    if club_now != metas[0].club_sha256 {
+        return Err(StudyError::Merge(format!(
+            "the club file {} changed since the shards were computed (SHA-256 now {}…, in the \
+             shards {}…); run the shards again",
+            p.study.club_path.display(),
+            &club_now[..12],
+            &metas[0].club_sha256[..12]
+        )));
+    }
+    let n = metas[0].shards;
+    let mut seen: Vec<usize> = Vec::new();
     let mut items = Vec::new();
     let names = metric_names(p.study.distribution.is_some());
-    let nz = p.zs_mm.len();
-    for d in dirs {
+    let (nv, ny, nz) = (p.variants.len(), p.ys_mm.len(), p.zs_mm.len());
+    for (d, m) in dirs.iter().zip(&metas) {
         let mp = d.join("shard.toml");
-        let mt = read_text(&mp)?;
-        let (k, n) = (
-            meta_value(&mp, &mt, "shard")?,
-            meta_value(&mp, &mt, "shards")?,
-        );
-        if k >= n {
+        let k = m.shard;
+        if m.shards != n {
             return Err(StudyError::Merge(format!(
-                "{}: shard {k} of {n}",
-                mp.display()
-            )));
-        }
-        if *total.get_or_insert(n) != n {
-            return Err(StudyError::Merge(format!(
-                "{}: shard of {n}, the others are of {}",
+                "{}: shard of {}, {} is of {n}",
                 mp.display(),
-                total.unwrap_or(0)
+                m.shards,
+                first.display()
             )));
         }
         if seen.contains(&k) {
@@ -175,22 +348,25 @@ pub fn merge_shards(
             )));
         }
         seen.push(k);
+        let t = p.work_len() as u128;
+        let want = (
+            (k as u128 * t / n as u128),
+            ((k as u128 + 1) * t / n as u128),
+        );
+        if (m.first_item as u128, m.end_item as u128) != want {
+            return Err(StudyError::Merge(format!(
+                "{}: work items {}..{} are not those of shard {k} of {n} ({}..{})",
+                mp.display(),
+                m.first_item,
+                m.end_item,
+                want.0,
+                want.1
+            )));
+        }
 
         let rp = d.join("rows.csv");
         let rt = read_text(&rp)?;
-        let mut lines = rt.lines().enumerate();
-        match lines.next() {
-            Some((_, h)) if h == ROWS_HEADER => {}
-            _ => {
-                return Err(DataError::at(
-                    &rp,
-                    Some(1),
-                    None,
-                    format!("header must be {ROWS_HEADER}"),
-                )
-                .into())
-            }
-        }
+        let mut reader = csv_records(&rp, &rt, ROWS_HEADER)?;
         let mut current: Option<(usize, usize, LaunchGrid, usize)> = None;
         let flush = |cur: Option<(usize, usize, LaunchGrid, usize)>,
                      items: &mut Vec<ItemResult>|
@@ -206,56 +382,54 @@ pub fn merge_shards(
             }
             Ok(())
         };
-        for (i, line) in lines {
-            let ln = i + 1;
-            let f: Vec<&str> = line.split(',').collect();
-            if f.len() != 9 {
-                return Err(DataError::at(&rp, Some(ln), None, "expected 9 fields").into());
-            }
+        for rec in reader.records() {
+            let f = rec.map_err(|e| csv_error(&rp, &e))?;
+            let ln = f.position().map_or(0, csv::Position::line);
             let (v, r, c) = (
-                index(&rp, ln, "variant", f[0])?,
-                index(&rp, ln, "row", f[1])?,
-                index(&rp, ln, "col", f[2])?,
+                index(&rp, ln, "variant", &f[0], nv, "variants")?,
+                index(&rp, ln, "row", &f[1], ny, "grid rows")?,
+                index(&rp, ln, "col", &f[2], nz, "grid columns")?,
             );
             if current.as_ref().is_none_or(|x| x.0 != v || x.1 != r) {
                 flush(current.take(), &mut items)?;
                 current = Some((v, r, LaunchGrid::with_len(nz), 0));
             }
             let cur = current.as_mut().expect("set above");
-            if c != cur.3 || c >= nz {
+            if c != cur.3 {
                 return Err(DataError::at(
                     &rp,
-                    Some(ln),
+                    Some(ln as usize),
                     Some("column col".into()),
-                    format!("expected column {} of {nz}", cur.3),
+                    format!("expected column {} of {nz}, got {c}", cur.3),
                 )
                 .into());
             }
             let g = &mut cur.2;
-            g.valid[c] = match f[3] {
+            g.valid[c] = match &f[3] {
                 "1" => true,
                 "0" => false,
                 other => {
                     return Err(DataError::at(
                         &rp,
-                        Some(ln),
+                        Some(ln as usize),
                         Some("column valid".into()),
-                        format!("must be 0 or 1, got '{other}'"),
+                        format!("must be 0 or 1, got '{}'", escape(other)),
                     )
                     .into())
                 }
             };
-            g.ball_speed_m_s[c] = num(&rp, ln, "ball_speed_m_s", f[4])?;
-            g.launch_angle_rad[c] = num(&rp, ln, "launch_angle_rad", f[5])?;
-            g.azimuth_rad[c] = num(&rp, ln, "azimuth_rad", f[6])?;
-            g.backspin_rad_s[c] = num(&rp, ln, "backspin_rad_s", f[7])?;
-            g.sidespin_rad_s[c] = num(&rp, ln, "sidespin_rad_s", f[8])?;
+            g.ball_speed_m_s[c] = num(&rp, ln, "ball_speed_m_s", &f[4])?;
+            g.launch_angle_rad[c] = num(&rp, ln, "launch_angle_rad", &f[5])?;
+            g.azimuth_rad[c] = num(&rp, ln, "azimuth_rad", &f[6])?;
+            g.backspin_rad_s[c] = num(&rp, ln, "backspin_rad_s", &f[7])?;
+            g.sidespin_rad_s[c] = num(&rp, ln, "sidespin_rad_s", &f[8])?;
             cur.3 += 1;
         }
         flush(current.take(), &mut items)?;
 
         let mp = d.join("metrics.csv");
         let mt = read_text(&mp)?;
+        let mut reader = csv_records(&mp, &mt, "variant,metric,value")?;
         let mut cur: Option<(usize, Vec<f64>)> = None;
         let push = |cur: Option<(usize, Vec<f64>)>,
                     items: &mut Vec<ItemResult>|
@@ -273,42 +447,48 @@ pub fn merge_shards(
             }
             Ok(())
         };
-        for (i, line) in mt.lines().enumerate().skip(1) {
-            let ln = i + 1;
-            let f: Vec<&str> = line.split(',').collect();
-            if f.len() != 3 {
-                return Err(
-                    DataError::at(&mp, Some(ln), None, "expected variant,metric,value").into(),
-                );
-            }
-            let v = index(&mp, ln, "variant", f[0])?;
+        for rec in reader.records() {
+            let f = rec.map_err(|e| csv_error(&mp, &e))?;
+            let ln = f.position().map_or(0, csv::Position::line);
+            let v = index(&mp, ln, "variant", &f[0], nv, "variants")?;
             if cur.as_ref().is_none_or(|c| c.0 != v) {
                 push(cur.take(), &mut items)?;
                 cur = Some((v, Vec::new()));
             }
             let c = cur.as_mut().expect("set above");
-            if names.get(c.1.len()).map(String::as_str) != Some(f[1]) {
+            if names.get(c.1.len()).map(String::as_str) != Some(&f[1]) {
                 return Err(DataError::at(
                     &mp,
-                    Some(ln),
+                    Some(ln as usize),
                     Some("column metric".into()),
-                    format!("expected metric {:?}", names.get(c.1.len())),
+                    match names.get(c.1.len()) {
+                        Some(want) => format!("expected metric {want}, got '{}'", escape(&f[1])),
+                        None => format!(
+                            "variant {v} has more than the study's {} metrics",
+                            names.len()
+                        ),
+                    },
                 )
                 .into());
             }
-            c.1.push(num(&mp, ln, "value", f[2])?);
+            c.1.push(num(&mp, ln, "value", &f[2])?);
         }
         push(cur.take(), &mut items)?;
     }
-    let n = total.unwrap_or(0);
     if seen.len() != n {
         let missing: Vec<String> = (0..n)
             .filter(|k| !seen.contains(k))
+            .take(10)
             .map(|k| k.to_string())
             .collect();
         return Err(StudyError::Merge(format!(
-            "shards {} of {n} are missing",
-            missing.join(", ")
+            "shards {}{} of {n} are missing",
+            missing.join(", "),
+            if n - seen.len() > missing.len() {
+                ", …"
+            } else {
+                ""
+            }
         )));
     }
     let results = p.assemble(items)?;

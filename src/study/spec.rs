@@ -19,7 +19,7 @@ use super::distribution::{Distribution, Method, SwingSpec};
 use super::metrics::{metric_names, Output};
 use crate::club::ClubSpec;
 use crate::data::club_file::read_club;
-use crate::data::{parse_toml, read_text, toml_key_error, DataError};
+use crate::data::{parse_toml, read_text, toml_key_error, DataError, Num};
 use crate::units::{g, mm};
 
 /// Values of one axis: an explicit list, or `count` evenly spaced values from `from` to `to`.
@@ -294,7 +294,7 @@ impl Ctx<'_> {
             Err(self.err(
                 v.span(),
                 key,
-                format!("must be a finite number ({unit}), got {x}"),
+                format!("must be a finite number ({unit}), got {}", Num(x)),
             ))
         }
     }
@@ -322,7 +322,10 @@ impl Ctx<'_> {
             Some(s) => Err(self.err(
                 s.span(),
                 key,
-                format!("must be a finite number ≥ 0 ({unit}), got {}", s.get_ref()),
+                format!(
+                    "must be a finite number ≥ 0 ({unit}), got {}",
+                    Num(*s.get_ref())
+                ),
             )),
         }
     }
@@ -335,7 +338,7 @@ impl Ctx<'_> {
             Err(self.err(
                 v.span(),
                 key,
-                format!("must be a finite number > 0 ({unit}), got {x}"),
+                format!("must be a finite number > 0 ({unit}), got {}", Num(x)),
             ))
         }
     }
@@ -373,7 +376,7 @@ impl Ctx<'_> {
         if x.is_finite() {
             Ok(x)
         } else {
-            Err(self.err(span, key, format!("must be finite, got {x}")))
+            Err(self.err(span, key, format!("must be finite, got {}", Num(x))))
         }
     }
 

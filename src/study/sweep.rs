@@ -115,8 +115,9 @@ impl Prepared {
 
     /// Items of shard `k` of `n` (0-based `k`).
     pub fn shard_range(&self, k: usize, n: usize) -> std::ops::Range<usize> {
-        let t = self.work_len();
-        (k * t / n)..((k + 1) * t / n)
+        // In 128 bits: k·t overflows usize for large shard counts.
+        let (k, n, t) = (k as u128, n.max(1) as u128, self.work_len() as u128);
+        ((k * t / n) as usize)..(((k + 1).min(n) * t / n) as usize)
     }
 
     /// Impacts computed by `items`.
@@ -215,11 +216,19 @@ impl Prepared {
         let mut seen = vec![false; self.work_len()];
         let per = self.items_per_variant();
         for it in items {
-            let (idx, v) = match &it {
-                ItemResult::Metrics { variant, .. } => (variant * per, *variant),
-                ItemResult::Row { variant, row, .. } => (variant * per + row + 1, *variant),
+            let (v, row) = match &it {
+                ItemResult::Metrics { variant, .. } => (*variant, None),
+                ItemResult::Row { variant, row, .. } => (*variant, Some(*row)),
             };
-            if v >= self.variants.len() || idx >= seen.len() {
+            if v >= self.variants.len() || row.is_some_and(|r| r >= ny) {
+                return Err(StudyError::Merge(format!(
+                    "variant {v}{} is outside the study ({} variant(s) of {ny} grid rows)",
+                    row.map_or(String::new(), |r| format!(" row {r}")),
+                    self.variants.len()
+                )));
+            }
+            let idx = v * per + row.map_or(0, |r| r + 1);
+            if idx >= seen.len() {
                 return Err(StudyError::Merge(format!(
                     "work item {idx} is outside the study"
                 )));

@@ -398,7 +398,10 @@ impl Ctx<'_> {
             Err(self.err(
                 span,
                 key,
-                format!("must be a finite number in [{lo}, {hi}] {unit}, got {x}"),
+                format!(
+                    "must be a finite number in [{lo}, {hi}] {unit}, got {}",
+                    crate::data::Num(x)
+                ),
             ))
         }
     }

@@ -1,0 +1,239 @@
+//! Guards that keep a user's files safe from the commands' outputs.
+//!
+//! - An output folder records what it holds in a manifest ([`MANIFEST`]); a folder is replaced
+//!   only if every file in it is one the manifest lists, so a user's `notes.md` beside a study's
+//!   outputs is never deleted.
+//! - No output may be one of the command's inputs, or a folder holding one ([`refuse_inputs`]).
+//! - Temporaries of a killed run (`.NAME.tmp-PID`) are removed by the next run, but only ours
+//!   and only when that process is gone ([`clean_stale_temporaries`]).
+
+use std::path::{Path, PathBuf};
+
+use super::DataError;
+
+/// Name of the manifest in every output folder: one relative path per line, the files the
+/// command wrote.
+pub const MANIFEST: &str = ".smash-outputs";
+
+/// Relative paths (with `/`) of every file under `dir` (symbolic links are not followed).
+fn files_under(dir: &Path) -> std::io::Result<Vec<String>> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_owned()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d)? {
+            let entry = entry?;
+            let path = entry.path();
+            if entry.file_type()?.is_dir() {
+                stack.push(path);
+            } else if let Ok(rel) = path.strip_prefix(dir) {
+                let parts: Vec<String> = rel
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                    .collect();
+                out.push(parts.join("/"));
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}
+
+/// The manifest's text for `files` (relative paths).
+pub fn manifest_text<'a>(files: impl IntoIterator<Item = &'a Path>) -> String {
+    let mut lines: Vec<String> = files
+        .into_iter()
+        .map(|p| {
+            p.components()
+                .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                .collect::<Vec<_>>()
+                .join("/")
+        })
+        .collect();
+    lines.sort();
+    let mut s = format!(
+        "# Files written by smash {} into this folder; the next run may replace them.\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    for l in lines {
+        s.push_str(&l);
+        s.push('\n');
+    }
+    s
+}
+
+/// Check that `dir` may be replaced by a command's new outputs: it does not exist, is empty, or
+/// holds only files its manifest lists (an earlier output of a smash command).
+pub fn check_replaceable(dir: &Path) -> Result<(), DataError> {
+    let err = |m: String| DataError::file(dir, m);
+    let meta = match std::fs::symlink_metadata(dir) {
+        Ok(m) => m,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(err(format!("cannot read: {e}"))),
+    };
+    if !meta.is_dir() {
+        return Err(err(
+            "exists and is not a folder; choose a new or empty folder for the outputs".into(),
+        ));
+    }
+    let present = files_under(dir).map_err(|e| err(format!("cannot read folder: {e}")))?;
+    if present.is_empty() {
+        return Ok(());
+    }
+    let listed: Vec<String> = match std::fs::read_to_string(dir.join(MANIFEST)) {
+        Ok(text) => text
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.is_empty())
+            .map(str::to_owned)
+            .collect(),
+        Err(_) => {
+            return Err(err(format!(
+                "the folder holds files smash did not write (e.g. {}; no {MANIFEST} list of \
+                 earlier outputs); choose a new or empty folder, or move those files away",
+                super::escape(&present[0])
+            )))
+        }
+    };
+    if let Some(foreign) = present
+        .iter()
+        .find(|f| f.as_str() != MANIFEST && !listed.contains(f))
+    {
+        return Err(err(format!(
+            "the folder holds {}, which smash did not write; the outputs replace the whole \
+             folder, so choose a new or empty folder, or move that file away",
+            super::escape(foreign)
+        )));
+    }
+    Ok(())
+}
+
+/// Canonical form of a path that may not exist yet: its existing ancestor canonicalised, the
+/// rest appended.
+pub fn canonical(path: &Path) -> PathBuf {
+    if let Ok(c) = std::fs::canonicalize(path) {
+        return c;
+    }
+    let abs = if path.is_absolute() {
+        path.to_owned()
+    } else {
+        std::env::current_dir().unwrap_or_default().join(path)
+    };
+    let mut tail = Vec::new();
+    let mut head = abs.as_path();
+    loop {
+        if let Ok(c) = std::fs::canonicalize(head) {
+            let mut out = c;
+            for t in tail.iter().rev() {
+                out.push(t);
+            }
+            return out;
+        }
+        match (head.file_name(), head.parent()) {
+            (Some(name), Some(parent)) => {
+                tail.push(name.to_owned());
+                head = parent;
+            }
+            _ => return abs,
+        }
+    }
+}
+
+/// Refuse outputs that are inputs. `outputs` and `inputs` are `(flag, path)` pairs (e.g.
+/// `("--out", …)`, `("--shots", …)`); an output folder (`folder = true` in `outputs`) is also
+/// refused when an input lies inside it, since the outputs replace the whole folder. Two
+/// outputs may not be the same path either.
+pub fn refuse_inputs(
+    outputs: &[(&str, &Path, bool)],
+    inputs: &[(&str, &Path)],
+) -> Result<(), DataError> {
+    for (i, (oflag, out, folder)) in outputs.iter().enumerate() {
+        let o = canonical(out);
+        for (iflag, input) in inputs {
+            let c = canonical(input);
+            if c == o {
+                return Err(DataError::file(
+                    out,
+                    format!(
+                        "{oflag} is the same file as {iflag}: writing it would replace the input; \
+                         give {oflag} a new path"
+                    ),
+                ));
+            }
+            if *folder && c.starts_with(&o) {
+                return Err(DataError::file(
+                    out,
+                    format!(
+                        "{oflag} is a folder holding the input {iflag} ({}): writing the outputs \
+                         would replace it; give {oflag} another folder",
+                        input.display()
+                    ),
+                ));
+            }
+        }
+        for (oflag2, out2, _) in &outputs[..i] {
+            if canonical(out2) == o {
+                return Err(DataError::file(
+                    out,
+                    format!("{oflag} and {oflag2} are the same path; give each its own"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Whether process `pid` is certainly gone (Linux `/proc`); `false` where that cannot be known.
+fn process_gone(pid: u32) -> bool {
+    Path::new("/proc/self").exists() && !Path::new("/proc").join(pid.to_string()).exists()
+}
+
+/// Remove the temporaries a killed run of ours left beside `target` (`.NAME.tmp-PID` folders,
+/// `.NAME.PID.tmp` files), only when process PID is gone. A `.NAME.old-PID` folder (a run killed
+/// between moving the previous outputs aside and moving the new ones in) is put back when
+/// `target` is missing, else removed.
+pub fn clean_stale_temporaries(target: &Path) {
+    let (Some(name), parent) = (target.file_name(), target.parent()) else {
+        return;
+    };
+    let name = name.to_string_lossy();
+    let parent = match parent {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    };
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    let me = std::process::id();
+    let folder_tmp = format!(".{name}.tmp-");
+    let folder_old = format!(".{name}.old-");
+    let file_tmp = format!(".{name}.");
+    for entry in entries.flatten() {
+        let file = entry.file_name().to_string_lossy().into_owned();
+        let pid_of = |digits: &str| -> Option<u32> {
+            (!digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()))
+                .then(|| digits.parse().ok())
+                .flatten()
+        };
+        let path = entry.path();
+        if let Some(pid) = file.strip_prefix(&folder_tmp).and_then(pid_of) {
+            if pid != me && process_gone(pid) {
+                let _ = std::fs::remove_dir_all(&path);
+            }
+        } else if let Some(pid) = file.strip_prefix(&folder_old).and_then(pid_of) {
+            if pid != me && process_gone(pid) {
+                if target.exists() {
+                    let _ = std::fs::remove_dir_all(&path);
+                } else {
+                    let _ = std::fs::rename(&path, target);
+                }
+            }
+        } else if let Some(pid) = file
+            .strip_prefix(&file_tmp)
+            .and_then(|rest| rest.strip_suffix(".tmp"))
+            .and_then(pid_of)
+        {
+            if pid != me && process_gone(pid) && path.is_file() {
+                let _ = std::fs::remove_file(&path);
+            }
+        }
+    }
+}
