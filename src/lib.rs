@@ -33,6 +33,7 @@ pub mod data;
 pub mod diagnose;
 pub mod effects;
 pub mod fit;
+pub mod limits;
 pub mod measurement;
 pub mod physics;
 pub mod predict;

@@ -449,7 +449,7 @@ fn control_characters_from_input_are_escaped() {
     // ESC in a number cell, CR inside a quoted id cell.
     for (body, want) in [
         ("s1,1\u{1b}[2J00,0,0,12,0,0,0\n", "1\\u{1b}[2J00"),
-        ("\"s\r1\",100,0,0,12,0,500,0\n", "s\\r1"),
+        ("\"s\r1\",100,0,60,12,-60,0,0\n", "s\\r1"),
     ] {
         std::fs::write(&shots, format!("{SHOTS_HEADER}{body}")).unwrap();
         let o = smash(&[
@@ -478,7 +478,7 @@ fn negative_numbers_are_values_not_flags() {
         "--loft",
         "12",
     ]);
-    assert_one_line_error(&o, "--speed must be > 0 mph, got -5");
+    assert_one_line_error(&o, "--speed: club speed -5 is outside the physical range");
     let o = smash(&[
         "predict",
         "--club",
@@ -498,7 +498,7 @@ fn negative_numbers_are_values_not_flags() {
         "--loft",
         "12",
     ]);
-    assert_one_line_error(&o, "got -1e300");
+    assert_one_line_error(&o, "club speed -1e300 is outside");
     // Values of other forms that start with a minus sign reach their own checks too.
     let o = smash(&[
         "compare",
@@ -532,7 +532,7 @@ fn huge_values_are_shown_in_scientific_notation() {
     )
     .unwrap();
     let o = smash(&["run", s(&study), "--out", s(&tmp.path().join("o"))]);
-    assert_one_line_error(&o, "got -1e300");
+    assert_one_line_error(&o, "club speed -1e300 is outside");
     assert!(stderr(&o).len() < 200, "{}", stderr(&o));
 }
 
@@ -544,7 +544,7 @@ fn a_study_whose_club_misses_the_ball_names_the_file_and_line() {
         &study,
         format!(
             "[study]\nname = \"t\"\nclub = {:?}\n\n[delivery]\nclub_speed_mph = 100.0\n\
-             dynamic_loft_deg = 12.0\nattack_angle_deg = -95.0\n\n[grid]\n\
+             dynamic_loft_deg = 12.0\nclub_path_deg = 60.0\nface_angle_deg = -60.0\n\n[grid]\n\
              y_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n\
              z_mm = {{ from = -10.0, to = 10.0, count = 5 }}\n",
             club()
@@ -563,14 +563,15 @@ fn shot_errors_name_file_line_and_columns_like_parse_errors() {
     let tmp = tempfile::tempdir().unwrap();
     let shots = tmp.path().join("s.csv");
     let out = tmp.path().join("p.csv");
-    // Line 3 (the second shot) is off the face; then line 3 swings away from the ball.
+    // Line 3 (the second shot) is far off the face (refused by its range); then line 3 swings away
+    // from the ball (refused by the impact solve): both name file, line and column.
     for (second, want) in [
         (
             "s2,100,0,0,12,0,500,0",
-            "s.csv:3: columns impact_y_mm, impact_z_mm: shot 's2'",
+            "s.csv:3: column 'impact_y_mm': impact location 500 is outside the physical range",
         ),
         (
-            "s2,100,-95,0,12,0,0,0",
+            "s2,100,0,60,12,-60,0,0",
             "s.csv:3: columns club_speed_mph, attack_angle_deg",
         ),
     ] {

@@ -153,7 +153,7 @@ fn bad_club_files_name_the_key_and_line() {
     let cases: Vec<(String, Vec<&str>)> = vec![
         (club.replace("cor = 0.83", "cor = 0.83\ncolour = \"red\""), vec!["unknown field `colour`", "club.toml:12: column 1"]),
         (club.replace("roll_mm = 305.0\n", ""), vec!["missing field `roll_mm`"]),
-        (club.replace("mass_g = 204.0", "mass_g = -204.0"), vec!["club.mass_g", "> 0", ":"]),
+        (club.replace("mass_g = 204.0", "mass_g = -204.0"), vec!["club.mass_g", "physical range [1, 10000] g", ":"]),
         (club.replace("mass_g = 204.0", "mass_g = \"heavy\""), vec!["mass_g", "invalid type"]),
         (club.replace("cor = 0.83", "cor = 1.3"), vec!["club.cor", "(0, 1]"]),
         (club.replace("[-733.0, 5679.0, 0.5]", "[-700.0, 5679.0, 0.5]"), vec!["club.inertia_gcm2", "symmetric"]),
@@ -165,7 +165,7 @@ fn bad_club_files_name_the_key_and_line() {
             club.replace("[[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]]", "[[2843.0, 5000.0, 0.0], [5000.0, 5679.0, 0.0], [0.0, 0.0, 4085.0]]"),
             vec!["club.inertia_gcm2", "positive definite"],
         ),
-        (club.replace("radius_mm = 21.3", "radius_mm = 0"), vec!["ball.radius_mm", "> 0"]),
+        (club.replace("radius_mm = 21.3", "radius_mm = 0"), vec!["ball.radius_mm", "physical range [1, 200] mm"]),
         (format!("{club}\n[[effect]]\nname = \"shaft_flex\"\n"), vec!["unknown effect 'shaft_flex'", "added_mass", "inertia_scale"]),
         (format!("{club}\n[[effect]]\nname = \"added_mass\"\ndm = 2\n"), vec!["unknown key `dm`", "dm_g"]),
         (format!("{club}\n[[effect]]\nname = \"ball_offset\"\ndy_mm = 0.5\n"), vec!["missing `dz_mm`"]),
@@ -215,7 +215,12 @@ fn bad_shots_files_name_the_row_and_column() {
         ),
         (
             format!("{SHOTS_HEADER}\ns1,A,-100,0,0,12,0,0,0\n"),
-            vec!["club speed must be > 0"],
+            vec![
+                ":2",
+                "club_speed_mph",
+                "-100",
+                "physical range [1, 250] mph",
+            ],
         ),
         (
             format!("{SHOTS_HEADER},ball_speed_mph\ns1,A,100,0,0,12,0,0,0,150\n"),
@@ -232,8 +237,12 @@ fn bad_shots_files_name_the_row_and_column() {
 #[test]
 fn an_off_face_impact_and_a_receding_club_name_the_shot() {
     let case = Case::new();
-    let club = paper_club_text();
-    let off = format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,0,0\nfar_toe,A,100,0,0,12,0,0,400\n");
+    // A small face (40 mm radii): an impact 60 mm toward the toe, inside the physical range of
+    // impact locations, is off it.
+    let club = paper_club_text()
+        .replace("bulge_mm = 305.0", "bulge_mm = 40.0")
+        .replace("roll_mm = 305.0", "roll_mm = 40.0");
+    let off = format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,0,0\nfar_toe,A,100,0,0,12,0,0,60\n");
     let err = case.fails(&club, &off);
     assert_has(
         &err,
@@ -243,7 +252,8 @@ fn an_off_face_impact_and_a_receding_club_name_the_shot() {
             "outside the face",
         ],
     );
-    let away = format!("{SHOTS_HEADER}\nbackwards,A,100,0,0,12,170,0,0\n");
+    // Path 60° right, face 60° closed: the face normal points 120° away from the club's motion.
+    let away = format!("{SHOTS_HEADER}\nbackwards,A,100,0,60,12,-60,0,0\n");
     let err = case.fails(&club, &away);
     assert_has(&err, &["backwards", "does not approach"]);
 }

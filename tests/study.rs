@@ -119,7 +119,7 @@ fn study_parsing_names_the_bad_key() {
         ("[design]\nmass_dx_mm = [1.0]\n", "design.mass_dx_mm", "discretionary_mass"),
         ("[design]\ndiscretionary_mass = { mass_g = 500.0, at_mm = [0.0, 0.0, 0.0] }\n", "mass_g", "below the head mass"),
         ("[distribution]\nmethod = \"monte\"\n", "distribution.method", "quadrature"),
-        ("[distribution]\nsigma_y_mm = -1.0\n", "distribution.sigma_y_mm", "≥ 0"),
+        ("[distribution]\nsigma_y_mm = -1.0\n", "distribution.sigma_y_mm", "physical range [0, 100] mm"),
         ("[distribution]\nnodes = 50\n", "distribution.nodes", "1 to 20"),
         ("[distribution]\nsamples = 10\n", "distribution.samples", "quadrature"),
         ("[distribution]\nsigmaz = 1.0\n", "unknown field `sigmaz`", "sigma_z_mm"),

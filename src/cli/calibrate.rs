@@ -7,7 +7,7 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 
-use crate::data::club_file::{club_toml, read_club};
+use crate::data::club_file::{club_toml_checked, read_club};
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::diagnose::honest;
@@ -102,7 +102,21 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let line = Arc::new(IterationLine::new());
     let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
     line.finish();
-    let cal = cal?;
+    let cal = cal.with_context(|| args.shots.display().to_string())?;
+    // Nothing infinite or undefined is reported or written into a club file.
+    let mut numbers: Vec<(String, f64)> = vec![
+        ("chi2".into(), cal.chi2),
+        ("nominal chi2".into(), cal.chi2_before),
+        ("reduced chi2".into(), cal.reduced_chi2),
+    ];
+    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
+    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        anyhow::bail!(
+            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
+             (check the shots' measured launch values)",
+            args.shots.display()
+        );
+    }
     if let Some(out) = &args.out_club {
         let comment = format!(
             "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
@@ -115,7 +129,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             cal.reduced_chi2,
             cal.termination
         );
-        write_atomic(out, club_toml(&cal.club, &comment).as_bytes())?;
+        write_atomic(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
         eprintln!("calibrated club -> {}", out.display());
     }
     if args.json {
@@ -255,9 +269,13 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         t.row([
             labels[j].clone(),
             format!("{:.5}", p.value),
-            p.stderr.map_or("n/a".into(), |e| format!("{e:.5}")),
             p.stderr
-                .map_or("n/a".into(), |e| format!("{:.1}", t_statistic(p.value, e))),
+                .filter(|e| e.is_finite())
+                .map_or("n/a".into(), |e| format!("{e:.5}")),
+            p.stderr
+                .map(|e| t_statistic(p.value, e))
+                .filter(|t| t.is_finite())
+                .map_or("n/a".into(), |t| format!("{t:.1}")),
             p.unit.to_owned(),
             honest::plausible_range_text(p),
             note.join(", "),

@@ -98,6 +98,20 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
     let launches = expected_launches(&club, &table.shots, args.measurement.impact_noise_mm)
         .map_err(|e| super::locate_shot_error(&table, e))?;
+    if let Some((shot, _)) = table
+        .shots
+        .iter()
+        .zip(&launches)
+        .find(|(_, l)| !crate::limits::finite_launch(l))
+    {
+        bail!(
+            "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
+             the club {}",
+            args.shots.display(),
+            shot.id,
+            args.club.display()
+        );
+    }
     let options = CompareOptions {
         alpha: args.alpha,
         face_bin_mm: args.bin_mm,

@@ -8,7 +8,7 @@ use clap::Args;
 use indicatif::ProgressBar;
 use serde_json::json;
 
-use crate::data::club_file::{club_toml, read_club};
+use crate::data::club_file::{club_toml_checked, read_club};
 use crate::data::noise_file::read_noise_file;
 use crate::data::shots::read_shots;
 use crate::data::write_atomic;
@@ -180,7 +180,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));
     bar.0.finish_and_clear();
-    let d = d?;
+    let d = d.with_context(|| args.shots.display().to_string())?;
     let floor = noise_floor(&d, &table.shots, &instrument)?;
     for w in &d.warnings {
         eprintln!("warning: {}", crate::data::escape(w));
@@ -196,7 +196,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
                 d.selected.join(", ")
             }
         );
-        write_atomic(out, club_toml(&d.club, &comment).as_bytes())?;
+        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
         eprintln!("club with selected effects -> {}", out.display());
     }
     if args.json {

@@ -149,5 +149,9 @@ fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String
         t.parse::<f64>()
             .map_err(|_| format!("'{t}' is not a number (mm)"))
     };
-    crate::measurement::ImpactNoise::from_mm(num(y)?, num(z)?).map_err(|e| e.to_string())
+    let (sy, sz) = (num(y)?, num(z)?);
+    for v in [sy, sz] {
+        crate::limits::SIGMA_LOCATION_MM.check(v)?;
+    }
+    crate::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
 }

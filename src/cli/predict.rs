@@ -11,6 +11,7 @@ use crate::data::club_file::read_club;
 use crate::data::predictions::predictions_csv;
 use crate::data::shots::{read_shots, DEFAULT_GROUP};
 use crate::data::write_atomic;
+use crate::limits;
 use crate::physics::{Delivery, LaunchComponent};
 use crate::predict::predict_table;
 use crate::units::{deg, mm, mph};
@@ -161,6 +162,17 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         let table = read_shots(shots_path)?;
         let outcomes =
             predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
+        for (shot, o) in table.shots.iter().zip(&outcomes) {
+            if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
+                bail!(
+                    "{}: shot '{}': the impact has no finite launch; check its delivery and the \
+                     club {}",
+                    shots_path.display(),
+                    shot.id,
+                    args.club.display()
+                );
+            }
+        }
         write_atomic(out, &predictions_csv(&table, &outcomes))?;
         eprintln!(
             "predicted {} shot(s) with {} -> {}",
@@ -176,26 +188,24 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     if args.out.is_some() {
         bail!("--out goes with --shots; the one-shot form prints its table");
     }
+    let angle = limits::DELIVERY_ANGLE_DEG;
+    let omega = limits::CLUB_OMEGA_RAD_S;
+    let location = limits::IMPACT_LOCATION_MM;
     let values = [
-        ("--speed", speed),
-        ("--loft", loft),
-        ("--attack", args.attack_angle_deg),
-        ("--path", args.club_path_deg),
-        ("--face", args.face_angle_deg),
-        ("--lie", args.lie_tilt_deg),
-        ("--impact-y", args.impact_y_mm),
-        ("--impact-z", args.impact_z_mm),
-        ("--omega-x-rad-s", args.omega_x_rad_s),
-        ("--omega-y-rad-s", args.omega_y_rad_s),
-        ("--omega-z-rad-s", args.omega_z_rad_s),
+        ("--speed", speed, limits::CLUB_SPEED_MPH),
+        ("--loft", loft, limits::DYNAMIC_LOFT_DEG),
+        ("--attack", args.attack_angle_deg, angle),
+        ("--path", args.club_path_deg, angle),
+        ("--face", args.face_angle_deg, angle),
+        ("--lie", args.lie_tilt_deg, angle),
+        ("--impact-y", args.impact_y_mm, location),
+        ("--impact-z", args.impact_z_mm, location),
+        ("--omega-x-rad-s", args.omega_x_rad_s, omega),
+        ("--omega-y-rad-s", args.omega_y_rad_s, omega),
+        ("--omega-z-rad-s", args.omega_z_rad_s, omega),
     ];
-    for (flag, v) in values {
-        if !v.is_finite() {
-            bail!("{flag} must be a finite number, got {v}");
-        }
-    }
-    if speed <= 0.0 {
-        bail!("--speed must be > 0 mph, got {}", crate::data::Num(speed));
+    for (flag, v, range) in values {
+        range.check(v).map_err(|m| anyhow::anyhow!("{flag}: {m}"))?;
     }
     let delivery = Delivery {
         club_speed_m_s: mph(speed),
@@ -213,12 +223,27 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
     let outcome = model.solve(&delivery)?;
     let launch = outcome.launch();
+    if !(limits::finite_launch(&launch) && outcome.smash_factor().is_finite()) {
+        bail!(
+            "the impact of this delivery ({} mph) with {} has no finite launch; check the \
+             delivery and the club",
+            limits::fmt_value(speed),
+            args.club.display()
+        );
+    }
     let mut text = format!("{} (group {})\n", club.name, args.group);
     // Writing to a String cannot fail.
     let _ = writeln!(
         text,
-        "delivery: {speed} mph, loft {loft} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
-        args.attack_angle_deg, args.club_path_deg, args.face_angle_deg, args.lie_tilt_deg, args.impact_y_mm, args.impact_z_mm
+        "delivery: {} mph, loft {} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
+        limits::fmt_value(speed),
+        limits::fmt_value(loft),
+        limits::fmt_value(args.attack_angle_deg),
+        limits::fmt_value(args.club_path_deg),
+        limits::fmt_value(args.face_angle_deg),
+        limits::fmt_value(args.lie_tilt_deg),
+        limits::fmt_value(args.impact_y_mm),
+        limits::fmt_value(args.impact_z_mm)
     );
     for c in LaunchComponent::ALL {
         let _ = writeln!(

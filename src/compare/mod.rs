@@ -297,6 +297,9 @@ pub enum CompareError {
     /// Nothing to compare.
     #[error("no shots to compare")]
     Empty,
+    /// Too many face bins.
+    #[error(transparent)]
+    TooLarge(#[from] crate::limits::CapError),
 }
 
 fn launch_columns() -> String {
@@ -348,13 +351,26 @@ fn group_errors(group: &str, errs: &[&[f64; 5]], alpha: f64) -> GroupErrors {
     }
 }
 
-fn face_residuals(shots: &[Shot], errs: &[[f64; 5]], o: &CompareOptions) -> FaceResiduals {
+fn face_residuals(
+    shots: &[Shot],
+    errs: &[[f64; 5]],
+    o: &CompareOptions,
+) -> Result<FaceResiduals, CompareError> {
     let b = o.face_bin_mm;
     let idx = |v_m: f64| (v_m * 1e3 / b).floor() as i64;
     let iy: Vec<i64> = shots.iter().map(|s| idx(s.delivery.impact_y_m)).collect();
     let iz: Vec<i64> = shots.iter().map(|s| idx(s.delivery.impact_z_m)).collect();
     let range = |v: &[i64]| (*v.iter().min().unwrap(), *v.iter().max().unwrap());
     let ((y0, y1), (z0, z1)) = (range(&iy), range(&iz));
+    let span = |lo: i64, hi: i64| {
+        usize::try_from(hi.saturating_sub(lo)).map_or(usize::MAX, |d| d.saturating_add(1))
+    };
+    crate::limits::count_product(
+        "face bins",
+        &[("rows", span(y0, y1)), ("columns", span(z0, z1))],
+        crate::limits::MAX_FACE_BINS,
+        "use a larger --bin-mm",
+    )?;
     let ys_mm: Vec<f64> = (y0..=y1).map(|i| (i as f64 + 0.5) * b).collect();
     let zs_mm: Vec<f64> = (z0..=z1).map(|i| (i as f64 + 0.5) * b).collect();
     let mut cells: Vec<Vec<usize>> = vec![Vec::new(); ys_mm.len() * zs_mm.len()];
@@ -382,13 +398,13 @@ fn face_residuals(shots: &[Shot], errs: &[[f64; 5]], o: &CompareOptions) -> Face
             }
         })
         .collect();
-    FaceResiduals {
+    Ok(FaceResiduals {
         bin_mm: b,
         min_count: o.min_bin_count,
         ys_mm,
         zs_mm,
         bins,
-    }
+    })
 }
 
 fn binned(v: &Variable, shots: &[Shot], errs: &[[f64; 5]], nbins: usize) -> BinnedTable {
@@ -624,7 +640,7 @@ pub fn compare(
     Ok(CompareReport {
         n_shots: shots.len(),
         alpha: o.alpha,
-        face: face_residuals(shots, &errs, o),
+        face: face_residuals(shots, &errs, o)?,
         binned: ["club_speed_mph", "dynamic_loft_deg"]
             .iter()
             .map(|n| {

@@ -35,6 +35,7 @@ use toml::Spanned;
 use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::club::ClubSpec;
 use crate::effects::{Effect, EffectKind};
+use crate::limits::{self, PhysicalRange};
 use crate::physics::{validate_inertia, ModelParams};
 use crate::units::{deg, g, gcm2, mm};
 
@@ -83,25 +84,16 @@ impl Ctx<'_> {
         toml_key_error(self.path, self.text, span.start, key, message)
     }
 
-    /// A value in the physical range `[lo, hi]` (a sports ball and a club head, not an atom or a
-    /// planet: the ranges keep every derived quantity far from overflow and underflow).
+    /// A value in its physical range (see [`crate::limits`]).
     fn in_range(
         &self,
         v: &Spanned<f64>,
         key: &str,
-        unit: &str,
-        (lo, hi): (f64, f64),
+        range: PhysicalRange,
     ) -> Result<f64, DataError> {
-        let x = *v.get_ref();
-        if x.is_finite() && x >= lo && x <= hi {
-            Ok(x)
-        } else {
-            Err(self.err(
-                v.span(),
-                key,
-                format!("must be a finite number > 0 {unit} in the physical range [{lo}, {hi}] {unit}, got {}", super::Num(x)),
-            ))
-        }
+        range
+            .check(*v.get_ref())
+            .map_err(|m| self.err(v.span(), key, m))
     }
 }
 
@@ -116,14 +108,17 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
     let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
     let c = &raw.club;
-    let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", "g", (1.0, 10_000.0))?;
+    let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = c.com_mm.get_ref();
-    if !com.iter().all(|v| v.is_finite()) {
-        return Err(ctx.err(
-            c.com_mm.span(),
-            "club.com_mm",
-            "every component must be a finite number (mm)",
-        ));
+    for x in com {
+        limits::CLUB_COM_MM
+            .check(*x)
+            .map_err(|m| ctx.err(c.com_mm.span(), "club.com_mm", m))?;
+    }
+    for x in c.inertia_gcm2.get_ref().iter().flatten() {
+        limits::CLUB_INERTIA_GCM2
+            .check(*x)
+            .map_err(|m| ctx.err(c.inertia_gcm2.span(), "club.inertia_gcm2", m))?;
     }
     let inertia = Matrix3::from_fn(|i, j| gcm2(c.inertia_gcm2.get_ref()[i][j]));
     validate_inertia(&inertia, "club.inertia_gcm2")
@@ -143,12 +138,27 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         Some(l) => Some(deg(*l.get_ref())),
         None => None,
     };
-    let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", "mm", (20.0, 1e6))?;
-    let roll_mm = ctx.in_range(&c.roll_mm, "club.roll_mm", "mm", (20.0, 1e6))?;
+    let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
+    let roll_mm = ctx.in_range(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
+    if bulge_mm < roll_mm {
+        return Err(ctx.err(
+            c.bulge_mm.span(),
+            "club.bulge_mm",
+            format!(
+                "{bulge_mm} mm is below roll_mm = {roll_mm} mm; the face is a torus whose \
+                 heel-toe radius (bulge) is at least its crown-sole radius (roll), as on every \
+                 wood"
+            ),
+        ));
+    }
     let b = &raw.ball;
-    let ball_mass_g = ctx.in_range(&b.mass_g, "ball.mass_g", "g", (1.0, 1_000.0))?;
-    let ball_radius_mm = ctx.in_range(&b.radius_mm, "ball.radius_mm", "mm", (1.0, 200.0))?;
-    let ball_inertia = ctx.in_range(&b.inertia_gcm2, "ball.inertia_gcm2", "g·cm²", (0.01, 1e6))?;
+    let ball_mass_g = ctx.in_range(&b.mass_g, "ball.mass_g", limits::BALL_MASS_G)?;
+    let ball_radius_mm = ctx.in_range(&b.radius_mm, "ball.radius_mm", limits::BALL_RADIUS_MM)?;
+    let ball_inertia = ctx.in_range(
+        &b.inertia_gcm2,
+        "ball.inertia_gcm2",
+        limits::BALL_INERTIA_GCM2,
+    )?;
 
     let nominal = ModelParams {
         club_mass_kg: g(mass_g),
@@ -262,6 +272,19 @@ fn parse_effect(
         values.push(v);
     }
     Effect::new(kind, &values, group).map_err(|e| here(e.to_string()))
+}
+
+/// [`club_toml`], checked to read back as a valid club before it is written to `path`: no
+/// infinite, undefined or unphysical value reaches a club file.
+pub fn club_toml_checked(spec: &ClubSpec, comment: &str, path: &Path) -> Result<String, DataError> {
+    let text = club_toml(spec, comment);
+    parse_club(path, &text).map_err(|e| {
+        DataError::file(
+            path,
+            format!("not written: the club would not read back ({})", e.message),
+        )
+    })?;
+    Ok(text)
 }
 
 /// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club.

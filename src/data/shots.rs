@@ -21,6 +21,7 @@ use std::path::{Path, PathBuf};
 use nalgebra::Vector3;
 
 use super::DataError;
+use crate::limits::{self, PhysicalRange};
 use crate::physics::{Delivery, Launch, LaunchComponent};
 use crate::units::{deg, mm, mph, rpm};
 
@@ -94,6 +95,15 @@ impl ShotTable {
         g.sort();
         g.dedup();
         g
+    }
+}
+
+/// The physical range of a measured launch component (file units).
+pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
+    match c {
+        LaunchComponent::BallSpeed => limits::BALL_SPEED_MPH,
+        LaunchComponent::LaunchAngle | LaunchComponent::Azimuth => limits::LAUNCH_DIRECTION_DEG,
+        LaunchComponent::Backspin | LaunchComponent::Sidespin => limits::BALL_SPIN_RPM,
     }
 }
 
@@ -247,7 +257,20 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
                 Err(_) => Err(here(format!("'{s}' is not a number"))),
             }
         };
-        let opt_num = |i: Option<usize>, default: f64| i.map_or(Ok(default), num);
+        // A number in its physical range (see `crate::limits`).
+        let ranged = |i: usize, range: PhysicalRange| -> Result<f64, DataError> {
+            let v = num(i)?;
+            range.check(v).map_err(|m| {
+                DataError::at(
+                    path,
+                    Some(line),
+                    Some(format!("column '{}'", headers[i])),
+                    m,
+                )
+            })
+        };
+        let opt_ranged =
+            |i: Option<usize>, range: PhysicalRange| i.map_or(Ok(0.0), |i| ranged(i, range));
         let id = cells[i_id].clone();
         if id.is_empty() {
             return Err(DataError::at(
@@ -279,48 +302,31 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         };
         let golfer = i_golfer.map(|i| cells[i].clone()).filter(|g| !g.is_empty());
         let shaft_mass_g = match i_shaft {
-            Some(i) => {
-                let m = num(i)?;
-                if m <= 0.0 {
-                    return Err(DataError::at(
-                        path,
-                        Some(line),
-                        Some("column 'shaft_mass_g'".into()),
-                        format!("shaft mass must be > 0 g, got {}", super::Num(m)),
-                    ));
-                }
-                Some(m)
-            }
+            Some(i) => Some(ranged(i, limits::SHAFT_MASS_G)?),
             None => None,
         };
-        let speed = num(i_speed)?;
-        if speed <= 0.0 {
-            return Err(DataError::at(
-                path,
-                Some(line),
-                Some("column 'club_speed_mph'".into()),
-                format!("club speed must be > 0 mph, got {}", super::Num(speed)),
-            ));
-        }
+        let angle = limits::DELIVERY_ANGLE_DEG;
+        let omega = limits::CLUB_OMEGA_RAD_S;
         let delivery = Delivery {
-            club_speed_m_s: mph(speed),
-            attack_angle_rad: deg(num(i_attack)?),
-            club_path_rad: deg(num(i_path)?),
-            dynamic_loft_rad: deg(num(i_loft)?),
-            face_angle_rad: deg(num(i_face)?),
-            lie_tilt_rad: deg(opt_num(i_lie, 0.0)?),
+            club_speed_m_s: mph(ranged(i_speed, limits::CLUB_SPEED_MPH)?),
+            attack_angle_rad: deg(ranged(i_attack, angle)?),
+            club_path_rad: deg(ranged(i_path, angle)?),
+            dynamic_loft_rad: deg(ranged(i_loft, limits::DYNAMIC_LOFT_DEG)?),
+            face_angle_rad: deg(ranged(i_face, angle)?),
+            lie_tilt_rad: deg(opt_ranged(i_lie, angle)?),
             club_omega_rad_s: Vector3::new(
-                opt_num(i_w[0], 0.0)?,
-                opt_num(i_w[1], 0.0)?,
-                opt_num(i_w[2], 0.0)?,
+                opt_ranged(i_w[0], omega)?,
+                opt_ranged(i_w[1], omega)?,
+                opt_ranged(i_w[2], omega)?,
             ),
-            impact_y_m: mm(num(i_y)?),
-            impact_z_m: mm(num(i_z)?),
+            impact_y_m: mm(ranged(i_y, limits::IMPACT_LOCATION_MM)?),
+            impact_z_m: mm(ranged(i_z, limits::IMPACT_LOCATION_MM)?),
         };
         let measured = if n_launch > 0 {
             let v: Vec<f64> = launch_cols
                 .iter()
-                .map(|c| num(c.expect("all present")))
+                .zip(LaunchComponent::ALL)
+                .map(|(c, comp)| ranged(c.expect("all present"), measured_range(comp)))
                 .collect::<Result<_, _>>()?;
             Some(Launch {
                 ball_speed_m_s: mph(v[0]),

@@ -375,11 +375,18 @@ pub fn diagnose(
         if data.has_golfers() && distinct.len() >= 2 {
             (stats::grouped_folds(&golfers, opts.folds), FoldBy::Golfer)
         } else {
-            warnings.push(
-                "no golfer column (or a single golfer): cross-validation folds are by shot, so \
-                 a golfer's shots can be in both training and test folds"
-                    .to_owned(),
-            );
+            warnings.push(if data.has_golfers() {
+                format!(
+                    "every shot is from one golfer ('{}'): cross-validation folds cannot be \
+                     grouped by golfer, so they are by shot, and an effect may win by fitting \
+                     that golfer's habits",
+                    distinct.first().copied().unwrap_or_default()
+                )
+            } else {
+                "no golfer column: cross-validation folds are by shot, so a golfer's shots can \
+                 be in both training and test folds"
+                    .to_owned()
+            });
             (stats::item_folds(n, opts.folds), FoldBy::Shot)
         }
     };
@@ -421,6 +428,22 @@ pub fn diagnose(
             )));
         }
     }
+    // Degenerate data are named, not fitted (see `crate::fit::variation`).
+    let unidentifiable = crate::fit::variation::check_variation(shots, &candidates)?;
+    if opts.candidates.is_some() {
+        if let Some((_, why)) = unidentifiable.first() {
+            return Err(FitError::Degenerate(why.clone()));
+        }
+    }
+    let candidates: Vec<EffectRequest> = candidates
+        .into_iter()
+        .filter(|c| !unidentifiable.iter().any(|(u, _)| u == c))
+        .collect();
+    warnings.extend(
+        unidentifiable
+            .into_iter()
+            .map(|(_, why)| format!("not tried: {why}")),
+    );
     let penalty_per_param = (n as f64).ln();
     let groups = group_names(&data);
 

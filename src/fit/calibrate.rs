@@ -247,6 +247,12 @@ pub fn calibrate(
 ) -> Result<Calibration, FitError> {
     let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
     let layout = ParamLayout::from_requests(requests, &data.groups)?;
+    // Fewer shots than the whole layout's parameters is reported by `calibrate_data`.
+    if data.len() > layout.len() {
+        if let Some((_, why)) = super::variation::check_variation(shots, requests)?.first() {
+            return Err(FitError::Degenerate(why.clone()));
+        }
+    }
     calibrate_data(club, &data, layout, opts, progress)
 }
 

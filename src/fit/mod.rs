@@ -20,6 +20,7 @@ pub mod lm;
 pub mod problem;
 pub mod run;
 pub mod spec;
+pub mod variation;
 
 pub use calibrate::{
     calibrate, noise_scales, CalibrateOptions, Calibration, CorrelatedPair, Method,
@@ -89,6 +90,9 @@ pub enum FitError {
         /// Parameters asked for.
         params: usize,
     },
+    /// The shots cannot tell effects apart (no variation, or too little for the effects).
+    #[error("degenerate data: {0}")]
+    Degenerate(String),
     /// The model cannot be evaluated at the starting values.
     #[error("cannot evaluate the model at the starting values: {0}")]
     Start(#[from] EvalError),

@@ -115,6 +115,15 @@ impl DesignVar {
         }
     }
 
+    /// The physically meaningful values of the variable (see [`crate::limits`]).
+    pub const fn range(self) -> crate::limits::PhysicalRange {
+        match self.unit().as_bytes()[0] {
+            b'm' => crate::limits::DESIGN_OFFSET_MM,
+            b'1' => crate::limits::DESIGN_INERTIA_SCALE,
+            _ => crate::limits::DESIGN_MOMENT_CHANGE_GCM2,
+        }
+    }
+
     /// The value that leaves the club unchanged.
     pub const fn neutral(self) -> f64 {
         match self {

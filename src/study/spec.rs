@@ -20,6 +20,7 @@ use super::metrics::{metric_names, Output};
 use crate::club::ClubSpec;
 use crate::data::club_file::read_club;
 use crate::data::{parse_toml, read_text, toml_key_error, DataError, Num};
+use crate::limits::{self, count_product, PhysicalRange};
 use crate::units::{g, mm};
 
 /// Values of one axis: an explicit list, or `count` evenly spaced values from `from` to `to`.
@@ -59,6 +60,19 @@ impl Axis {
                     .collect()
             }
         }
+    }
+
+    /// Number of values, without building them.
+    pub fn len(&self) -> usize {
+        match self {
+            Axis::List(v) => v.len(),
+            Axis::Range { count, .. } => *count,
+        }
+    }
+
+    /// Whether the axis has no values (never, once parsed).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
     }
 
     fn to_toml(&self) -> String {
@@ -273,7 +287,7 @@ pub mod defaults {
     /// Optimiser tolerance (objective units).
     pub const TOLERANCE: f64 = 1e-6;
     /// Largest number of impacts per quadrature distribution.
-    pub const MAX_QUADRATURE_POINTS: usize = 200_000;
+    pub const MAX_QUADRATURE_POINTS: usize = crate::limits::MAX_QUADRATURE_POINTS;
 }
 
 struct Ctx<'a> {
@@ -299,37 +313,6 @@ impl Ctx<'_> {
         }
     }
 
-    fn opt_finite(
-        &self,
-        v: &Option<Spanned<f64>>,
-        key: &str,
-        unit: &str,
-        default: f64,
-    ) -> Result<f64, DataError> {
-        v.as_ref()
-            .map_or(Ok(default), |v| self.finite(v, key, unit))
-    }
-
-    fn non_negative(
-        &self,
-        v: &Option<Spanned<f64>>,
-        key: &str,
-        unit: &str,
-    ) -> Result<f64, DataError> {
-        match v {
-            None => Ok(0.0),
-            Some(s) if s.get_ref().is_finite() && *s.get_ref() >= 0.0 => Ok(*s.get_ref()),
-            Some(s) => Err(self.err(
-                s.span(),
-                key,
-                format!(
-                    "must be a finite number ≥ 0 ({unit}), got {}",
-                    Num(*s.get_ref())
-                ),
-            )),
-        }
-    }
-
     fn positive(&self, v: &Spanned<f64>, key: &str, unit: &str) -> Result<f64, DataError> {
         let x = *v.get_ref();
         if x.is_finite() && x > 0.0 {
@@ -341,6 +324,24 @@ impl Ctx<'_> {
                 format!("must be a finite number > 0 ({unit}), got {}", Num(x)),
             ))
         }
+    }
+
+    /// A value in its physical range (see [`crate::limits`]).
+    fn ranged(&self, v: &Spanned<f64>, key: &str, range: PhysicalRange) -> Result<f64, DataError> {
+        range
+            .check(*v.get_ref())
+            .map_err(|m| self.err(v.span(), key, m))
+    }
+
+    fn opt_ranged(
+        &self,
+        v: &Option<Spanned<f64>>,
+        key: &str,
+        range: PhysicalRange,
+        default: f64,
+    ) -> Result<f64, DataError> {
+        v.as_ref()
+            .map_or(Ok(default), |v| self.ranged(v, key, range))
     }
 
     fn count(&self, v: &Spanned<i64>, key: &str, lo: i64, hi: i64) -> Result<usize, DataError> {
@@ -381,7 +382,44 @@ impl Ctx<'_> {
     }
 
     /// A number, a list of numbers, or `{ from, to, count }` / `{ from, to, step }`.
-    fn axis(&self, v: &Spanned<toml::Value>, key: &str) -> Result<Axis, DataError> {
+    fn axis(
+        &self,
+        v: &Spanned<toml::Value>,
+        key: &str,
+        range: PhysicalRange,
+    ) -> Result<Axis, DataError> {
+        let axis = self.axis_values(v, key)?;
+        let span = v.span();
+        let (lo, hi) = match &axis {
+            Axis::List(vals) => {
+                if vals.len() > limits::MAX_AXIS_VALUES {
+                    return Err(self.err(
+                        span,
+                        key,
+                        format!(
+                            "{} values; at most {} an axis",
+                            vals.len(),
+                            limits::MAX_AXIS_VALUES
+                        ),
+                    ));
+                }
+                let bad = vals.iter().find(|x| !range.contains(**x));
+                if let Some(x) = bad {
+                    return Err(self.err(span, key, range.refusal(*x)));
+                }
+                return Ok(axis);
+            }
+            Axis::Range { from, to, .. } => (*from, *to),
+        };
+        for (x, k) in [(lo, "from"), (hi, "to")] {
+            if !range.contains(x) {
+                return Err(self.err(span.clone(), &format!("{key}.{k}"), range.refusal(x)));
+            }
+        }
+        Ok(axis)
+    }
+
+    fn axis_values(&self, v: &Spanned<toml::Value>, key: &str) -> Result<Axis, DataError> {
         let span = v.span();
         let allowed =
             "a number, a list of numbers, or a range { from, to, count } or { from, to, step }";
@@ -425,14 +463,19 @@ impl Ctx<'_> {
                             "range: give exactly one of `count` or `step`",
                         ))
                     }
-                    (Some(toml::Value::Integer(c)), None) if *c >= 1 && *c <= 100_000 => {
+                    (Some(toml::Value::Integer(c)), None)
+                        if *c >= 1 && *c <= limits::MAX_AXIS_VALUES as i64 =>
+                    {
                         *c as usize
                     }
                     (Some(c), None) => {
                         return Err(self.err(
                             span,
                             format!("{key}.count").as_str(),
-                            format!("must be an integer from 1 to 100000, got {c}"),
+                            format!(
+                                "must be an integer from 1 to {}, got {c}",
+                                limits::MAX_AXIS_VALUES
+                            ),
                         ))
                     }
                     (None, Some(_)) => {
@@ -449,13 +492,14 @@ impl Ctx<'_> {
                                 ),
                             ));
                         }
-                        if n.round() + 1.0 > 100_000.0 {
+                        if n.round() + 1.0 > limits::MAX_AXIS_VALUES as f64 {
                             return Err(self.err(
                                 span,
                                 &format!("{key}.step"),
                                 format!(
-                                    "{step} gives {} points; at most 100000 points an axis",
-                                    n.round() + 1.0
+                                    "{step} gives {} points; at most {} points an axis",
+                                    n.round() + 1.0,
+                                    limits::MAX_AXIS_VALUES
                                 ),
                             ));
                         }
@@ -586,27 +630,36 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
 
     // [delivery]
     let d = &raw.delivery;
+    let angle = limits::DELIVERY_ANGLE_DEG;
     let swing = SwingSpec {
-        club_speed_mph: ctx.positive(&d.club_speed_mph, "delivery.club_speed_mph", "mph")?,
-        dynamic_loft_deg: ctx.finite(&d.dynamic_loft_deg, "delivery.dynamic_loft_deg", "deg")?,
-        attack_angle_deg: ctx.opt_finite(
+        club_speed_mph: ctx.ranged(
+            &d.club_speed_mph,
+            "delivery.club_speed_mph",
+            limits::CLUB_SPEED_MPH,
+        )?,
+        dynamic_loft_deg: ctx.ranged(
+            &d.dynamic_loft_deg,
+            "delivery.dynamic_loft_deg",
+            limits::DYNAMIC_LOFT_DEG,
+        )?,
+        attack_angle_deg: ctx.opt_ranged(
             &d.attack_angle_deg,
             "delivery.attack_angle_deg",
-            "deg",
+            angle,
             0.0,
         )?,
-        club_path_deg: ctx.opt_finite(&d.club_path_deg, "delivery.club_path_deg", "deg", 0.0)?,
-        face_angle_deg: ctx.opt_finite(&d.face_angle_deg, "delivery.face_angle_deg", "deg", 0.0)?,
-        lie_tilt_deg: ctx.opt_finite(&d.lie_tilt_deg, "delivery.lie_tilt_deg", "deg", 0.0)?,
+        club_path_deg: ctx.opt_ranged(&d.club_path_deg, "delivery.club_path_deg", angle, 0.0)?,
+        face_angle_deg: ctx.opt_ranged(&d.face_angle_deg, "delivery.face_angle_deg", angle, 0.0)?,
+        lie_tilt_deg: ctx.opt_ranged(&d.lie_tilt_deg, "delivery.lie_tilt_deg", angle, 0.0)?,
         club_omega_rad_s: match &d.club_omega_rad_s {
             None => [0.0; 3],
-            Some(w) if w.get_ref().iter().all(|x| x.is_finite()) => *w.get_ref(),
             Some(w) => {
-                return Err(ctx.err(
-                    w.span(),
-                    "delivery.club_omega_rad_s",
-                    "every component must be finite (rad/s)",
-                ))
+                for x in w.get_ref() {
+                    limits::CLUB_OMEGA_RAD_S
+                        .check(*x)
+                        .map_err(|m| ctx.err(w.span(), "delivery.club_omega_rad_s", m))?;
+                }
+                *w.get_ref()
             }
         },
     };
@@ -655,53 +708,82 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             }
             let centre = match &r.impact_centre_mm {
                 None => [0.0, 0.0],
-                Some(c) if c.get_ref().iter().all(|x| x.is_finite()) => *c.get_ref(),
                 Some(c) => {
-                    return Err(ctx.err(
-                        c.span(),
-                        "distribution.impact_centre_mm",
-                        "must be [y, z], finite mm",
-                    ))
+                    for x in c.get_ref() {
+                        limits::IMPACT_LOCATION_MM
+                            .check(*x)
+                            .map_err(|m| ctx.err(c.span(), "distribution.impact_centre_mm", m))?;
+                    }
+                    *c.get_ref()
                 }
             };
             let dist = Distribution {
                 method,
                 impact_centre_mm: centre,
-                sigma_y_mm: ctx.non_negative(&r.sigma_y_mm, "distribution.sigma_y_mm", "mm")?,
-                sigma_z_mm: ctx.non_negative(&r.sigma_z_mm, "distribution.sigma_z_mm", "mm")?,
-                sigma_club_speed_mph: ctx.non_negative(
+                sigma_y_mm: ctx.opt_ranged(
+                    &r.sigma_y_mm,
+                    "distribution.sigma_y_mm",
+                    limits::SIGMA_LOCATION_MM,
+                    0.0,
+                )?,
+                sigma_z_mm: ctx.opt_ranged(
+                    &r.sigma_z_mm,
+                    "distribution.sigma_z_mm",
+                    limits::SIGMA_LOCATION_MM,
+                    0.0,
+                )?,
+                sigma_club_speed_mph: ctx.opt_ranged(
                     &r.sigma_club_speed_mph,
                     "distribution.sigma_club_speed_mph",
-                    "mph",
+                    limits::SIGMA_CLUB_SPEED_MPH,
+                    0.0,
                 )?,
-                sigma_attack_angle_deg: ctx.non_negative(
+                sigma_attack_angle_deg: ctx.opt_ranged(
                     &r.sigma_attack_angle_deg,
                     "distribution.sigma_attack_angle_deg",
-                    "deg",
+                    limits::SIGMA_ANGLE_DEG,
+                    0.0,
                 )?,
-                sigma_club_path_deg: ctx.non_negative(
+                sigma_club_path_deg: ctx.opt_ranged(
                     &r.sigma_club_path_deg,
                     "distribution.sigma_club_path_deg",
-                    "deg",
+                    limits::SIGMA_ANGLE_DEG,
+                    0.0,
                 )?,
-                sigma_dynamic_loft_deg: ctx.non_negative(
+                sigma_dynamic_loft_deg: ctx.opt_ranged(
                     &r.sigma_dynamic_loft_deg,
                     "distribution.sigma_dynamic_loft_deg",
-                    "deg",
+                    limits::SIGMA_ANGLE_DEG,
+                    0.0,
                 )?,
-                sigma_face_angle_deg: ctx.non_negative(
+                sigma_face_angle_deg: ctx.opt_ranged(
                     &r.sigma_face_angle_deg,
                     "distribution.sigma_face_angle_deg",
-                    "deg",
+                    limits::SIGMA_ANGLE_DEG,
+                    0.0,
                 )?,
             };
-            let n = dist.point_count();
-            if n > defaults::MAX_QUADRATURE_POINTS {
-                return Err(ctx.err(
-                    sd.span(),
-                    "distribution",
-                    format!("{n} quadrature points (nodes^dimensions) is too many (at most {}); use fewer nodes or method = \"samples\"", defaults::MAX_QUADRATURE_POINTS),
-                ));
+            if let Method::Quadrature { nodes } = dist.method {
+                let dims: Vec<(&str, usize)> = [
+                    ("sigma_y_mm", dist.sigma_y_mm),
+                    ("sigma_z_mm", dist.sigma_z_mm),
+                    ("sigma_club_speed_mph", dist.sigma_club_speed_mph),
+                    ("sigma_attack_angle_deg", dist.sigma_attack_angle_deg),
+                    ("sigma_club_path_deg", dist.sigma_club_path_deg),
+                    ("sigma_dynamic_loft_deg", dist.sigma_dynamic_loft_deg),
+                    ("sigma_face_angle_deg", dist.sigma_face_angle_deg),
+                ]
+                .into_iter()
+                .filter(|(_, s)| *s > 0.0)
+                .map(|(k, _)| (k, nodes))
+                .collect();
+                count_product(
+                    "quadrature points (nodes for each σ > 0)",
+                    &dims,
+                    defaults::MAX_QUADRATURE_POINTS,
+                    "use fewer nodes or method = \"samples\"",
+                )
+                .map_err(|e| ctx.err(sd.span(), "distribution", e.to_string()))?;
             }
             Some(dist)
         }
@@ -709,8 +791,8 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
 
     // [grid]
     let grid = Grid {
-        y_mm: ctx.axis(&raw.grid.y_mm, "grid.y_mm")?,
-        z_mm: ctx.axis(&raw.grid.z_mm, "grid.z_mm")?,
+        y_mm: ctx.axis(&raw.grid.y_mm, "grid.y_mm", limits::GRID_LOCATION_MM)?,
+        z_mm: ctx.axis(&raw.grid.z_mm, "grid.z_mm", limits::GRID_LOCATION_MM)?,
     };
     for (axis, v, key) in [
         (&grid.y_mm, &raw.grid.y_mm, "grid.y_mm"),
@@ -742,7 +824,7 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                     ),
                 )
             })?;
-            axes.push((var, ctx.axis(v, &format!("design.{key}"))?));
+            axes.push((var, ctx.axis(v, &format!("design.{key}"), var.range())?));
         }
     }
     axes.sort_by_key(|(v, _)| *v);
@@ -764,15 +846,32 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             ));
         }
     }
-    let n_variants: usize = design.axes.iter().map(|(_, a)| a.values().len()).product();
-    if n_variants > 1_000_000 {
-        return Err(DataError::at(
-            path,
-            None,
-            Some("key design".into()),
-            format!("{n_variants} variants is too many (at most 1000000)"),
-        ));
-    }
+    let whole = |key: &str, e: limits::CapError| {
+        DataError::at(path, None, Some(format!("key {key}")), e.to_string())
+    };
+    let axis_counts: Vec<(&str, usize)> = design
+        .axes
+        .iter()
+        .map(|(v, a)| (v.key(), a.len()))
+        .collect();
+    let n_variants = count_product(
+        "design variants",
+        &axis_counts,
+        limits::MAX_DESIGN_VARIANTS,
+        "use fewer [design] values",
+    )
+    .map_err(|e| whole("design", e))?;
+    let n_points = count_product(
+        "grid points",
+        &[
+            ("design variants", n_variants),
+            ("grid.y_mm values", grid.y_mm.len()),
+            ("grid.z_mm values", grid.z_mm.len()),
+        ],
+        super::MAX_SWEEP_POINTS as usize,
+        "one run holds its results in memory; use a coarser [grid] or fewer [design] values",
+    )
+    .map_err(|e| whole("grid", e))?;
 
     // [sensitivity]
     let sensitivity = match &raw.sensitivity {
@@ -822,6 +921,19 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                             ctx.err(k.span(), &key, "not one of the sensitivity variables")
                         })?;
                     slot.1 = ctx.positive(v, &key, slot.0.unit())?;
+                    let r = slot.0.range();
+                    let n = slot.0.neutral();
+                    if !(r.contains(n - slot.1) && r.contains(n + slot.1)) {
+                        return Err(ctx.err(
+                            v.span(),
+                            &key,
+                            format!(
+                                "the central difference evaluates {n} ± {}, outside the physical \
+                                 range {r}",
+                                limits::fmt_value(slot.1)
+                            ),
+                        ));
+                    }
                     let is_scale = matches!(
                         slot.0,
                         DesignVar::InertiaScale
@@ -866,7 +978,7 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                 .half_width_mm
                 .as_ref()
                 .map_or(Ok(defaults::HALF_WIDTH_MM), |v| {
-                    ctx.positive(v, "summary.half_width_mm", "mm")
+                    ctx.ranged(v, "summary.half_width_mm", limits::PROBE_HALF_WIDTH_MM)
                 })?;
             let step_mm = match &s.step_mm {
                 None => defaults::STEP_MM.min(half_width_mm),
@@ -879,6 +991,19 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                             format!("must not exceed half_width_mm ({half_width_mm})"),
                         ));
                     }
+                    let points = (half_width_mm / st).floor() + 1.0;
+                    if points > limits::MAX_PROBE_POINTS as f64 {
+                        return Err(ctx.err(
+                            v.span(),
+                            "summary.step_mm",
+                            format!(
+                                "half_width_mm / step_mm gives {} points a probe line, more than \
+                                 the limit of {}; use a larger step",
+                                limits::fmt_value(points),
+                                limits::MAX_PROBE_POINTS
+                            ),
+                        ));
+                    }
                     st
                 }
             };
@@ -888,6 +1013,54 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             }
         }
     };
+    // The probe lines must lie on the face, or the speed-retention and gear-effect summaries
+    // cannot be computed.
+    let face = crate::physics::FaceGeometry::new(club.nominal.bulge_m, club.nominal.roll_m)
+        .map_err(|m| DataError::file(&club_path, m))?;
+    let hw = mm(probe.half_width_mm);
+    if [(hw, 0.0), (-hw, 0.0), (0.0, hw), (0.0, -hw)]
+        .iter()
+        .any(|&(y, z)| face.contact(y, z).is_err())
+    {
+        return Err(DataError::at(
+            path,
+            None,
+            Some("key summary.half_width_mm".into()),
+            format!(
+                "the probe lines reach {} mm from the centre, off the face of {} (bulge {:.1} mm, \
+                 roll {:.1} mm); use a smaller half_width_mm",
+                probe.half_width_mm,
+                club_path.display(),
+                club.nominal.bulge_m * 1e3,
+                club.nominal.roll_m * 1e3
+            ),
+        ));
+    }
+    let probe_points = (probe.half_width_mm / probe.step_mm + 1e-9).floor() as usize + 1;
+    let per_variant = limits::count_sum(
+        "impacts per design variant",
+        &[
+            ("grid points", n_points / n_variants.max(1)),
+            ("summary probes", 4 * probe_points),
+            (
+                "distribution points",
+                distribution.as_ref().map_or(0, |d| d.point_count()),
+            ),
+        ],
+        limits::MAX_STUDY_IMPACTS,
+        "",
+    )
+    .map_err(|e| whole("grid", e))?;
+    count_product(
+        "impact evaluations",
+        &[
+            ("design variants", n_variants),
+            ("impacts per variant", per_variant),
+        ],
+        limits::MAX_STUDY_IMPACTS,
+        "use fewer [design] values, a coarser [grid] or fewer distribution points",
+    )
+    .map_err(|e| whole("design", e))?;
 
     // [optimise]
     let optimise = match &raw.optimise {
@@ -946,7 +1119,12 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
                 let [lo, hi] = *b.get_ref();
                 let n = var.neutral();
                 if !(lo.is_finite() && hi.is_finite() && lo < hi && lo <= n && n <= hi) {
-                    return Err(ctx.err(b.span(), &key, format!("must be [lower, upper], finite, lower < upper, containing the base value {n}; got [{lo}, {hi}]")));
+                    return Err(ctx.err(b.span(), &key, format!("must be [lower, upper], finite, lower < upper, containing the base value {n}; got [{}, {}]", limits::fmt_value(lo), limits::fmt_value(hi))));
+                }
+                for x in [lo, hi] {
+                    var.range()
+                        .check(x)
+                        .map_err(|m| ctx.err(b.span(), &key, m))?;
                 }
                 if var.needs_discretionary_mass() && discretionary_mass.is_none() {
                     return Err(ctx.err(k.span(), &key, "needs design.discretionary_mass"));
@@ -1031,7 +1209,14 @@ fn parse_mass(
     let at = match t.get("at_mm") {
         Some(toml::Value::Array(a)) if a.len() == 3 => a
             .iter()
-            .map(|x| ctx.number(x, v.span(), "design.discretionary_mass.at_mm"))
+            .map(|x| {
+                let key = "design.discretionary_mass.at_mm";
+                ctx.number(x, v.span(), key).and_then(|x| {
+                    limits::CLUB_COM_MM
+                        .check(x)
+                        .map_err(|m| ctx.err(v.span(), key, m))
+                })
+            })
             .collect::<Result<Vec<_>, _>>()?,
         _ => {
             return Err(ctx.err(

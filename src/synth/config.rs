@@ -15,6 +15,7 @@ use toml::Spanned;
 use crate::data::club_file::parse_effect_table;
 use crate::data::{parse_toml, read_text, toml_key_error, DataError};
 use crate::effects::Effect;
+use crate::limits::{self, count_product, PhysicalRange};
 use crate::physics::LaunchComponent;
 
 use super::contact::{ContactParams, ShaftTip};
@@ -115,6 +116,19 @@ impl DeliveryVar {
             Self::LieTilt => 0.5,
             Self::OmegaX | Self::OmegaY | Self::OmegaZ => 0.5,
             Self::ImpactY | Self::ImpactZ => 1.5,
+        }
+    }
+
+    /// The physically meaningful values of the variable (see [`crate::limits`]).
+    pub const fn range(self) -> PhysicalRange {
+        match self {
+            Self::ClubSpeed => limits::CLUB_SPEED_MPH,
+            Self::DynamicLoft => limits::DYNAMIC_LOFT_DEG,
+            Self::AttackAngle | Self::ClubPath | Self::FaceAngle | Self::LieTilt => {
+                limits::DELIVERY_ANGLE_DEG
+            }
+            Self::OmegaX | Self::OmegaY | Self::OmegaZ => limits::CLUB_OMEGA_RAD_S,
+            Self::ImpactY | Self::ImpactZ => limits::IMPACT_LOCATION_MM,
         }
     }
 
@@ -437,19 +451,6 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
         if let Some(v) = &d.max_redraws_per_shot {
             cfg.max_redraws_per_shot = ctx.count(v, "design.max_redraws_per_shot", 0)?;
         }
-        let shots = cfg.golfers * cfg.swings_per_golfer;
-        if shots > 10_000_000 {
-            let span = d
-                .golfers
-                .as_ref()
-                .or(d.swings_per_golfer.as_ref())
-                .map_or(0..0, |v| v.span());
-            return Err(ctx.err(
-                span,
-                "design",
-                format!("golfers × swings_per_golfer = {shots} per group; at most 10000000"),
-            ));
-        }
         if let Some(g) = &d.groups {
             let key = "design.groups";
             if g.get_ref().is_empty() {
@@ -472,14 +473,9 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
                         format!("group '{}' is listed twice", rg.name),
                     ));
                 }
-                let m = ctx.in_range(
-                    g.span(),
-                    &format!("{k}.shaft_mass_g"),
-                    rg.shaft_mass_g,
-                    f64::MIN_POSITIVE,
-                    1000.0,
-                    "g",
-                )?;
+                let m = limits::SHAFT_MASS_G
+                    .check(rg.shaft_mass_g)
+                    .map_err(|m| ctx.err(g.span(), &format!("{k}.shaft_mass_g"), m))?;
                 groups.push(GroupSpec {
                     name: rg.name.clone(),
                     shaft_mass_g: m,
@@ -487,6 +483,24 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
             }
             cfg.groups = groups;
         }
+        count_product(
+            "shots",
+            &[
+                ("groups", cfg.groups.len()),
+                ("design.golfers", cfg.golfers),
+                ("design.swings_per_golfer", cfg.swings_per_golfer),
+            ],
+            limits::MAX_SYNTH_SHOTS,
+            "every shot is held in memory before the file is written; use fewer golfers or swings",
+        )
+        .map_err(|e| {
+            let span = d
+                .golfers
+                .as_ref()
+                .or(d.swings_per_golfer.as_ref())
+                .map_or(0..0, |v| v.span());
+            ctx.err(span, "design", e.to_string())
+        })?;
     }
     if let Some(map) = &raw.delivery {
         for (key, spread) in map {
@@ -503,28 +517,28 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
                 })?;
             let s = *spread.get_ref();
             let sp = spread.span();
-            if !s.mean.is_finite() {
-                return Err(ctx.err(sp, &format!("{full}.mean"), "must be finite"));
-            }
+            let range = var.range();
+            range
+                .check(s.mean)
+                .map_err(|m| ctx.err(sp.clone(), &format!("{full}.mean"), m))?;
+            // A spread wider than the whole physical range draws nothing but redraws.
+            let width = range.max - range.min;
             ctx.in_range(
                 sp.clone(),
                 &format!("{full}.between"),
                 s.between,
                 0.0,
-                1e3,
-                "",
+                width,
+                range.unit,
             )?;
             ctx.in_range(
                 sp.clone(),
                 &format!("{full}.within"),
                 s.within,
                 0.0,
-                1e3,
-                "",
+                width,
+                range.unit,
             )?;
-            if var == DeliveryVar::ClubSpeed && !(s.mean > 0.0) {
-                return Err(ctx.err(sp, &format!("{full}.mean"), "club speed must be > 0 mph"));
-            }
             cfg.delivery[var.index()] = s;
         }
     }

@@ -346,6 +346,13 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                         let true_launch = truth.to_file_units();
                         let launch: [f64; 5] =
                             std::array::from_fn(|i| true_launch[i] + cfg.launch_noise[i] * zl[i]);
+                        // What is written must read back: every value in its physical range.
+                        for (v, x) in DeliveryVar::ALL.iter().zip(measured) {
+                            v.range().check(x)?;
+                        }
+                        for (c, x) in LaunchComponent::ALL.iter().zip(launch) {
+                            crate::data::shots::measured_range(*c).check(x)?;
+                        }
                         Ok(SynthShot {
                             id: id.clone(),
                             group: group.name.clone(),

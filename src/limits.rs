@@ -1,0 +1,356 @@
+//! Limits, in one place: the physical range of every input quantity, and the caps on how much
+//! work one command may be asked to do.
+//!
+//! Every reader (club, shots, study, synth files and the command line) checks its inputs against
+//! the ranges here, so a value that is not a golf club, a golf ball or a golf swing is refused at
+//! the edge, with the file, key or column, the value and the allowed range. The ranges are wide
+//! (every real club and swing lies well inside), but finite: inside them no derived quantity of
+//! the impact model can overflow to infinity or lose all precision, which is what keeps `inf`
+//! and `NaN` out of every output.
+//!
+//! Every product of counts (design axes, grid points × variants, groups × shots, …) goes
+//! through [`count_product`]: checked arithmetic, one cap, and a message that states the
+//! factors, the product and the limit.
+
+use std::fmt;
+
+/// The physically meaningful values of one quantity, in its file unit.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PhysicalRange {
+    /// What the quantity is, for messages (`club speed`).
+    pub quantity: &'static str,
+    /// File unit (`mph`).
+    pub unit: &'static str,
+    /// Lowest value.
+    pub min: f64,
+    /// Highest value (inclusive).
+    pub max: f64,
+    /// Whether `min` itself is allowed (`false`: values must exceed it).
+    pub min_inclusive: bool,
+}
+
+impl PhysicalRange {
+    const fn closed(quantity: &'static str, unit: &'static str, min: f64, max: f64) -> Self {
+        Self {
+            quantity,
+            unit,
+            min,
+            max,
+            min_inclusive: true,
+        }
+    }
+
+    const fn above(quantity: &'static str, unit: &'static str, min: f64, max: f64) -> Self {
+        Self {
+            quantity,
+            unit,
+            min,
+            max,
+            min_inclusive: false,
+        }
+    }
+
+    /// Whether `x` is finite and in the range.
+    pub fn contains(&self, x: f64) -> bool {
+        let low_ok = if self.min_inclusive {
+            x >= self.min
+        } else {
+            x > self.min
+        };
+        x.is_finite() && low_ok && x <= self.max
+    }
+
+    /// `x`, or a message stating the value and the allowed range (no location: the caller
+    /// names the file, key or column).
+    pub fn check(&self, x: f64) -> Result<f64, String> {
+        if self.contains(x) {
+            Ok(x)
+        } else {
+            Err(self.refusal(x))
+        }
+    }
+
+    /// The message for a value outside the range.
+    pub fn refusal(&self, x: f64) -> String {
+        format!(
+            "{} {} is outside the physical range {}",
+            self.quantity,
+            fmt_value(x),
+            self
+        )
+    }
+}
+
+impl fmt::Display for PhysicalRange {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let open = if self.min_inclusive { '[' } else { '(' };
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(" {}", self.unit)
+        };
+        write!(
+            f,
+            "{open}{}, {}]{unit}",
+            fmt_value(self.min),
+            fmt_value(self.max)
+        )
+    }
+}
+
+/// A number for a message: short, and in scientific notation when huge or tiny (never 300
+/// digits).
+pub fn fmt_value(x: f64) -> String {
+    if x.is_finite() && x != 0.0 && !(1e-4..1e9).contains(&x.abs()) {
+        format!("{x:e}")
+    } else {
+        format!("{x}")
+    }
+}
+
+/// Clubhead CoM speed at impact, mph. The fastest long-drive swings measured are near 150 mph
+/// and the slowest putts a few mph; 250 leaves room for any real club while keeping ball speed,
+/// spin and energy far from overflow, and below 1 mph the head's rotation would dominate the
+/// contact velocity and ratios such as the smash factor lose their meaning.
+pub const CLUB_SPEED_MPH: PhysicalRange = PhysicalRange::closed("club speed", "mph", 1.0, 250.0);
+
+/// Delivery angles (attack angle, club path, face angle, lie tilt), deg. Beyond ±90° the club
+/// moves away from the target or the face points backwards: no golf stroke.
+pub const DELIVERY_ANGLE_DEG: PhysicalRange =
+    PhysicalRange::closed("delivery angle", "deg", -90.0, 90.0);
+
+/// Dynamic loft at impact, deg: from a strongly delofted putter (−90 is a face pointing at the
+/// ground) to a face pointing straight up (90).
+pub const DYNAMIC_LOFT_DEG: PhysicalRange =
+    PhysicalRange::closed("dynamic loft", "deg", -90.0, 90.0);
+
+/// One component of the clubhead's angular velocity, rad/s. Measured values at impact are a few
+/// tens of rad/s (the face closes at up to about 50 rad/s); 200 leaves a factor of four.
+pub const CLUB_OMEGA_RAD_S: PhysicalRange =
+    PhysicalRange::closed("clubhead angular velocity", "rad/s", -200.0, 200.0);
+
+/// Impact location from the centre of face in either direction, mm (shots, grids, probe lines,
+/// distributions). The largest driver faces span about 60 mm by 110 mm; 100 mm from the centre
+/// is off every club face.
+pub const IMPACT_LOCATION_MM: PhysicalRange =
+    PhysicalRange::closed("impact location", "mm", -100.0, 100.0);
+
+/// Values of a study's face grid, mm. A grid may reach past the face's edge to show where the
+/// face ends (those points are marked invalid); no club face is a metre from its centre.
+pub const GRID_LOCATION_MM: PhysicalRange =
+    PhysicalRange::closed("grid location", "mm", -1000.0, 1000.0);
+
+/// Standard deviation of an impact location, mm (a study's distribution): wider than a face.
+pub const SIGMA_LOCATION_MM: PhysicalRange =
+    PhysicalRange::closed("impact-location spread", "mm", 0.0, 100.0);
+
+/// Standard deviation of the club speed, mph (a study's distribution).
+pub const SIGMA_CLUB_SPEED_MPH: PhysicalRange =
+    PhysicalRange::closed("club-speed spread", "mph", 0.0, 50.0);
+
+/// Standard deviation of a delivery angle, deg (a study's distribution).
+pub const SIGMA_ANGLE_DEG: PhysicalRange =
+    PhysicalRange::closed("delivery-angle spread", "deg", 0.0, 30.0);
+
+/// Half-length of a study's summary probe lines through the centre of face, mm (the lines
+/// must also lie on the club's face, which is checked against the club).
+pub const PROBE_HALF_WIDTH_MM: PhysicalRange =
+    PhysicalRange::above("probe half-width", "mm", 0.0, 100.0);
+
+/// Shaft mass, g. Real shafts weigh 40–130 g.
+pub const SHAFT_MASS_G: PhysicalRange = PhysicalRange::above("shaft mass", "g", 0.0, 1000.0);
+
+/// Measured ball speed, mph. The fastest measured drives launch near 230 mph.
+pub const BALL_SPEED_MPH: PhysicalRange =
+    PhysicalRange::closed("measured ball speed", "mph", 0.0, 400.0);
+
+/// Measured launch angle or azimuth, deg: a ball leaving the face goes forward.
+pub const LAUNCH_DIRECTION_DEG: PhysicalRange =
+    PhysicalRange::closed("measured launch direction", "deg", -90.0, 90.0);
+
+/// Measured backspin or sidespin, rpm. Wedges spin near 12,000 rpm; launch monitors stop far
+/// below 30,000.
+pub const BALL_SPIN_RPM: PhysicalRange =
+    PhysicalRange::closed("measured spin", "rpm", -30_000.0, 30_000.0);
+
+/// Clubhead mass, g: from a toy head to a sledgehammer (drivers weigh about 200 g).
+pub const CLUB_MASS_G: PhysicalRange = PhysicalRange::closed("club mass", "g", 1.0, 10_000.0);
+
+/// One component of the clubhead CoM's position from the centre of face, mm. A driver's CoM
+/// sits about 40 mm behind the face; no head is half a metre long.
+pub const CLUB_COM_MM: PhysicalRange =
+    PhysicalRange::closed("club centre of mass", "mm", -500.0, 500.0);
+
+/// One entry of the clubhead inertia tensor, g·cm². Drivers are near 5000 g·cm² (the USGA MOI
+/// limit is 5900); 10⁶ allows any club while keeping the tensor's inverse well conditioned.
+pub const CLUB_INERTIA_GCM2: PhysicalRange =
+    PhysicalRange::closed("club inertia entry", "g·cm²", -1e6, 1e6);
+
+/// Face bulge and roll radii, mm. Driver faces have 250–330 mm; a radius below the ball's 21 mm
+/// cannot meet a ball, and 10⁶ mm is a flat face for every purpose.
+pub const FACE_RADIUS_MM: PhysicalRange = PhysicalRange::closed("face radius", "mm", 20.0, 1e6);
+
+/// Ball mass, g (the rules cap a golf ball at 45.93 g).
+pub const BALL_MASS_G: PhysicalRange = PhysicalRange::closed("ball mass", "g", 1.0, 1000.0);
+
+/// Ball radius, mm (a golf ball is at least 21.335 mm).
+pub const BALL_RADIUS_MM: PhysicalRange = PhysicalRange::closed("ball radius", "mm", 1.0, 200.0);
+
+/// Ball moment of inertia, g·cm² (a golf ball is near 80).
+pub const BALL_INERTIA_GCM2: PhysicalRange =
+    PhysicalRange::closed("ball inertia", "g·cm²", 0.01, 1e6);
+
+/// A design study's CoM offset or discretionary-mass move, mm: within the head (see
+/// [`IMPACT_LOCATION_MM`] for the face's size).
+pub const DESIGN_OFFSET_MM: PhysicalRange =
+    PhysicalRange::closed("design offset", "mm", -100.0, 100.0);
+
+/// A design study's inertia scale (whole tensor or one axis), 1: from a tenth to ten times the
+/// base club.
+pub const DESIGN_INERTIA_SCALE: PhysicalRange =
+    PhysicalRange::closed("inertia scale", "", 0.1, 10.0);
+
+/// A design study's change of a principal moment, g·cm² (the base moments are a few thousand).
+pub const DESIGN_MOMENT_CHANGE_GCM2: PhysicalRange =
+    PhysicalRange::closed("principal-moment change", "g·cm²", -1e5, 1e5);
+
+// ---------------------------------------------------------------------------------------------
+// Caps on counts. The cap on grid points per run (variants × rows × columns) is
+// `crate::study::MAX_SWEEP_POINTS`, beside the sweep whose memory it bounds.
+
+/// Most design variants (the product of the `[design]` axes' counts) one study may list.
+pub const MAX_DESIGN_VARIANTS: usize = 1_000_000;
+
+/// Most values on one axis (grid or design).
+pub const MAX_AXIS_VALUES: usize = 100_000;
+
+/// Most points on one summary probe line (half-width / step + 1).
+pub const MAX_PROBE_POINTS: usize = 10_001;
+
+/// Most impacts of one quadrature distribution (nodes^dimensions).
+pub const MAX_QUADRATURE_POINTS: usize = 200_000;
+
+/// Most impact evaluations of one study run (variants × (grid + summary + distribution)): about
+/// an hour at the measured sweep rate of a few million impacts per second.
+pub const MAX_STUDY_IMPACTS: usize = 10_000_000_000;
+
+/// Most shots one synthetic experiment makes (groups × golfers × swings): each shot is held in
+/// memory with its CSV row (under 1 kB), so the cap is a few GB.
+pub const MAX_SYNTH_SHOTS: usize = 2_000_000;
+
+/// Most face bins of a comparison (rows × columns).
+pub const MAX_FACE_BINS: usize = 1_000_000;
+
+/// Whether every component of a launch is a finite number (checked before anything is written).
+pub fn finite_launch(l: &crate::physics::Launch) -> bool {
+    crate::physics::LaunchComponent::ALL
+        .iter()
+        .all(|c| l.get_file(*c).is_finite())
+}
+
+/// Why a count is refused.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{what}: {factors} = {product}, above the limit of {limit}{reason}")]
+pub struct CapError {
+    /// What is counted.
+    pub what: String,
+    /// The factors with their names, `a (name) × b (name)`.
+    pub factors: String,
+    /// The product, or "over 2^64" when it overflows.
+    pub product: String,
+    /// The cap.
+    pub limit: usize,
+    /// Why the cap exists and what to do (starts with `; ` when given).
+    pub reason: String,
+}
+
+/// The product of named counts, checked: overflow and values above `limit` are errors that
+/// state every factor, the product and the limit. `what` names the product (`design variants`);
+/// `advice` says what to do (may be empty).
+pub fn count_product(
+    what: &str,
+    factors: &[(&str, usize)],
+    limit: usize,
+    advice: &str,
+) -> Result<usize, CapError> {
+    let product = factors
+        .iter()
+        .try_fold(1usize, |acc, (_, n)| acc.checked_mul(*n));
+    match product {
+        Some(p) if p <= limit => Ok(p),
+        _ => Err(CapError {
+            what: what.to_owned(),
+            factors: factors
+                .iter()
+                .map(|(name, n)| format!("{n} ({name})"))
+                .collect::<Vec<_>>()
+                .join(" × "),
+            product: product.map_or_else(|| "over 2^64".to_owned(), |p| p.to_string()),
+            limit,
+            reason: if advice.is_empty() {
+                String::new()
+            } else {
+                format!("; {advice}")
+            },
+        }),
+    }
+}
+
+/// The sum of counts, checked against `limit` like [`count_product`].
+pub fn count_sum(
+    what: &str,
+    terms: &[(&str, usize)],
+    limit: usize,
+    advice: &str,
+) -> Result<usize, CapError> {
+    let sum = terms
+        .iter()
+        .try_fold(0usize, |acc, (_, n)| acc.checked_add(*n));
+    match sum {
+        Some(s) if s <= limit => Ok(s),
+        _ => Err(CapError {
+            what: what.to_owned(),
+            factors: terms
+                .iter()
+                .map(|(name, n)| format!("{n} ({name})"))
+                .collect::<Vec<_>>()
+                .join(" + "),
+            product: sum.map_or_else(|| "over 2^64".to_owned(), |s| s.to_string()),
+            limit,
+            reason: if advice.is_empty() {
+                String::new()
+            } else {
+                format!("; {advice}")
+            },
+        }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overflowing_products_are_refused_not_wrapped() {
+        let f = [("a", 65536), ("b", 65536), ("c", 65536), ("d", 65536)];
+        let e = count_product("design variants", &f, MAX_DESIGN_VARIANTS, "").unwrap_err();
+        let m = e.to_string();
+        assert!(m.contains("over 2^64"), "{m}");
+        assert!(m.contains("1000000"), "{m}");
+        assert_eq!(count_product("x", &[("a", 3), ("b", 4)], 12, ""), Ok(12));
+        assert!(count_product("x", &[("a", 3), ("b", 5)], 12, "").is_err());
+        assert_eq!(count_product("x", &[], 1, ""), Ok(1));
+    }
+
+    #[test]
+    fn ranges_reject_non_finite_and_name_the_value() {
+        assert!(CLUB_SPEED_MPH.check(f64::NAN).is_err());
+        assert!(CLUB_SPEED_MPH.check(f64::INFINITY).is_err());
+        assert!(CLUB_SPEED_MPH.check(0.0).is_err());
+        assert!(CLUB_SPEED_MPH.check(1e-300).is_err());
+        assert_eq!(CLUB_SPEED_MPH.check(100.0), Ok(100.0));
+        let m = CLUB_SPEED_MPH.check(1e155).unwrap_err();
+        assert!(m.contains("1e155") && m.contains("[1, 250] mph"), "{m}");
+        assert!(DELIVERY_ANGLE_DEG.check(-90.0).is_ok());
+    }
+}
