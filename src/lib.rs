@@ -17,6 +17,8 @@
 //! - [`fit`]: residual problem, bounded Levenberg–Marquardt through argmin, covariance,
 //!   calibration reports.
 //! - [`diagnose`]: which effect is missing: grouped cross-validation and forward selection.
+//! - [`flight`]: ball flight from launch to landing (aerodynamics, atmosphere, batched
+//!   integrator, bounce and roll) and its validation data.
 //! - [`sweep`]: the face-map kernel: many impacts of one model and swing, fast.
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
@@ -33,6 +35,7 @@ pub mod data;
 pub mod diagnose;
 pub mod effects;
 pub mod fit;
+pub mod flight;
 pub mod limits;
 pub mod measurement;
 pub mod physics;

@@ -144,7 +144,12 @@ fn diagnose_reports_the_noise_floor_and_stops_at_it() {
 
     // A COR that falls with speed, and no candidate allowed to explain it: structure remains
     // in ball speed, trending with club speed, and the report says so.
-    let cor = world(dir.path(), "cor", 44, "[world]\ncor_power = { p = 0.3 }\n");
+    let cor = world(
+        dir.path(),
+        "cor",
+        44,
+        "[[hidden]]\nname = \"cor_power\"\nq = 0.3\n",
+    );
     let args = [
         "diagnose",
         "--club",

@@ -154,3 +154,22 @@ fn null_world_selects_nothing_and_finds_the_location_noise_instead() {
         "expected a spurious effect when noise is ignored"
     );
 }
+
+#[test]
+fn opt_in_candidates_name_the_hidden_power_law_cor() {
+    // cor_power is searched only when named: beside its linear cousin cor_speed and the other
+    // ball-speed effects, the shipped world (library cor_power, q = 0.15) must be named as such.
+    let dir = tempfile::tempdir().unwrap();
+    let d = diagnose_world(
+        dir.path(),
+        "cor_power_opt_in",
+        &repo("configs/synth/cor_power_world.toml"),
+        &["--candidates", "cor_power,cor_speed,cor_level,added_mass"],
+    );
+    let sel = selected(&d);
+    assert_eq!(
+        sel.first().map(String::as_str),
+        Some("cor_power"),
+        "selected {sel:?}"
+    );
+}

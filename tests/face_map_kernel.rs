@@ -29,7 +29,13 @@ fn model_strategy() -> impl Strategy<Value = ImpactModel> {
         (on(0.5), -0.01f64..0.02, on(0.5), 0.0f64..300.0),
         (on(0.5), -4.0f64..4.0, -4.0f64..4.0),
         (on(0.5), prop::array::uniform3(-6e-3f64..6e-3), 0.6f64..1.5),
-        (0.15f64..0.6, 0.15f64..0.6, 0.6f64..1.0),
+        (
+            0.15f64..0.6,
+            0.15f64..0.6,
+            0.6f64..1.0,
+            on(0.5),
+            0.0f64..1.0,
+        ),
     )
         .prop_map(
             |(
@@ -38,9 +44,12 @@ fn model_strategy() -> impl Strategy<Value = ImpactModel> {
                 (cs, k, cr, c),
                 (bias, loft, face),
                 (co, com, scale),
-                (bulge, roll, cor),
+                (bulge, roll, cor, cp, q),
             )| {
                 let mut p = paper_params();
+                if cp {
+                    p.cor_power_q = q;
+                }
                 if am {
                     p.club_mass_kg += dm;
                 }

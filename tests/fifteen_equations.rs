@@ -36,7 +36,7 @@ fn params_strategy() -> impl Strategy<Value = ModelParams> {
         ),
         (on(0.5), -4.0f64..4.0, -4.0f64..4.0),
         (on(0.5), prop::array::uniform3(-6e-3f64..6e-3), 0.6f64..1.5),
-        (0.2f64..0.5, 0.2f64..0.5),
+        (0.2f64..0.5, 0.2f64..0.5, on(0.5), 0.0f64..1.0),
     )
         .prop_map(
             |(
@@ -44,9 +44,12 @@ fn params_strategy() -> impl Strategy<Value = ModelParams> {
                 (tr, et, cs, k, cr, c),
                 (bias, loft, face),
                 (co, com, scale),
-                (bulge, roll),
+                (bulge, roll, cp, q),
             )| {
                 let mut p = paper_params();
+                if cp {
+                    p.cor_power_q = q;
+                }
                 if am {
                     p.club_mass_kg += dm;
                 }

@@ -357,7 +357,7 @@ fn sensitivities_match_independent_finite_differences() {
     let h = 0.05;
     let fd =
         (side(&model_with(h, 1.0), 5.0, 20.0) - side(&model_with(-h, 1.0), 5.0, 20.0)) / (2.0 * h);
-    let got = sens[0].maps[4][iy * nz + iz];
+    let got = sens[0].maps(&p)[4][iy * nz + iz];
     assert!((got - fd).abs() <= 1e-4 * fd.abs(), "{got} vs {fd}");
 }
 
@@ -627,4 +627,106 @@ fn a_failing_run_leaves_no_output_file() {
         assert!(!o.status.success(), "{spec}");
         assert!(!dir.path().join("s").exists());
     }
+}
+
+#[test]
+fn parquet_long_table_reads_back_to_the_csv_numbers() {
+    use parquet::file::reader::SerializedFileReader;
+    use parquet::record::Field;
+
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.toml");
+    // A grid reaching off the face (invalid cells), two design variables, four outputs.
+    let text = study_text("[design]\ncom_dy_mm = [-2.0, 2.0]\ninertia_scale = [0.95, 1.05]\n")
+        .replace(
+            "y_mm = { from = -10.0, to = 10.0, count = 5 }",
+            "y_mm = [-320.0, -30.0, -20.0, -12.5, -5.0, 0.0, 5.0, 12.5, 20.0, 30.0, 320.0]",
+        )
+        .replace(
+            "[delivery]",
+            "outputs = [\"ball_speed_mph\", \"launch_angle_deg\", \"sidespin_rpm\", \"smash_factor\"]\n\n[delivery]",
+        );
+    std::fs::write(&study, text).unwrap();
+    let (csv_dir, pq_dir) = (dir.path().join("csv"), dir.path().join("pq"));
+    for (out, format) in [(&csv_dir, "csv"), (&pq_dir, "parquet")] {
+        run_ok(&[
+            "run".as_ref(),
+            study.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+            "--format".as_ref(),
+            format.as_ref(),
+        ]);
+    }
+    // Everything but the long table is the same file.
+    let (mut a, mut b) = (tree(&csv_dir), tree(&pq_dir));
+    let csv_long = a
+        .remove(Path::new("maps_long.csv"))
+        .expect("csv long table");
+    assert!(b.remove(Path::new("maps_long.parquet")).is_some());
+    // The manifests of what smash wrote differ by that one file name.
+    assert!(a.remove(Path::new(".smash-outputs")).is_some());
+    assert!(b.remove(Path::new(".smash-outputs")).is_some());
+    assert_eq!(a, b);
+
+    let (header, rows) = read_csv(&csv_dir.join("maps_long.csv"));
+    assert!(!csv_long.is_empty());
+    let file = std::fs::File::open(pq_dir.join("maps_long.parquet")).unwrap();
+    let reader = SerializedFileReader::new(file).unwrap();
+    let mut n = 0;
+    let mut invalid = 0;
+    for (row, csv) in reader.into_iter().zip(&rows) {
+        let row = row.unwrap();
+        let cols: Vec<(&String, &Field)> = row.get_column_iter().collect();
+        assert_eq!(cols.len(), header.len());
+        for ((name, field), (h, cell)) in cols.iter().zip(header.iter().zip(csv)) {
+            assert_eq!(*name, h);
+            match field {
+                Field::Int(i) => assert_eq!(i.to_string(), *cell),
+                Field::Bool(v) => assert_eq!(if *v { "1" } else { "0" }, cell),
+                Field::Double(x) => {
+                    assert_eq!(x.to_bits(), cell.parse::<f64>().unwrap().to_bits(), "{h}")
+                }
+                Field::Null => {
+                    assert!(cell.is_empty(), "{h}: null vs '{cell}'");
+                    invalid += 1;
+                }
+                other => panic!("unexpected field {other:?} in {h}"),
+            }
+        }
+        n += 1;
+    }
+    assert_eq!(n, rows.len());
+    assert_eq!(n, 4 * 11 * 9);
+    assert!(invalid > 0, "rows at ±320 mm lie off the face");
+}
+
+#[test]
+fn a_shard_too_large_to_hold_is_refused_with_the_shard_count_that_fits() {
+    let dir = tempfile::tempdir().unwrap();
+    let study = dir.path().join("s.toml");
+    let text = study_text("")
+        .replace(
+            "y_mm = { from = -10.0, to = 10.0, count = 5 }",
+            "y_mm = { from = -10.0, to = 10.0, count = 3000 }",
+        )
+        .replace(
+            "z_mm = { from = -20.0, to = 20.0, count = 9 }",
+            "z_mm = { from = -20.0, to = 20.0, count = 3000 }",
+        );
+    std::fs::write(&study, text).unwrap();
+    let o = smash()
+        .args([
+            "run".as_ref(),
+            study.as_os_str(),
+            "--shard".as_ref(),
+            "0/1".as_ref(),
+        ])
+        .args(["--out".as_ref(), dir.path().join("shard").as_os_str()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(!o.status.success());
+    assert!(err.contains("use at least 2 shards"), "{err}");
+    assert!(!dir.path().join("shard").exists());
 }

@@ -131,7 +131,9 @@ fn noise_has_the_configured_standard_deviations() {
 #[test]
 fn cor_power_law_changes_cor_with_speed_as_specified() {
     let cfg = world("cor_power_world").without_noise();
-    let p = cfg.world.cor_power_p.unwrap();
+    let hidden = &cfg.hidden[0];
+    assert_eq!(hidden.kind(), smash::effects::EffectKind::CorPower);
+    let p = hidden.values()[0];
     let r = run(&cfg);
     for s in &r.shots {
         let expect = 0.83 * (s.normal_approach_speed_m_s / 48.77).powf(-p);

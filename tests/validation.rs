@@ -122,23 +122,27 @@ fn design_axes_whose_product_overflows_are_refused_with_the_limit() {
 #[test]
 fn grid_points_times_variants_are_capped_before_anything_is_allocated() {
     let dir = tempfile::tempdir().unwrap();
-    // 7071 × 7071 ≈ 50 million points was accepted and aborted at 15 GB.
+    // 7071 × 7071 ≈ 50 million points was accepted and aborted at 15 GB before the outputs were
+    // streamed; now the cap is 500 million points (time and disk, not memory): 30000² is over it.
     let p = study(
         dir.path(),
         "",
-        &[("count = 3", "count = 7071"), ("count = 5", "count = 7071")],
+        &[
+            ("count = 3", "count = 30000"),
+            ("count = 5", "count = 30000"),
+        ],
     );
     let o = run_study(dir.path(), &p);
-    refused(&o, &["study.toml", "grid points", "49999041", "20000000"]);
+    refused(&o, &["study.toml", "grid points", "900000000", "500000000"]);
     // Variants × grid: each within its own cap, the product beyond.
     let p = study(
         dir.path(),
         "[design]\ncom_dx_mm = { from = -1.0, to = 1.0, count = 1000 }\n",
-        &[("count = 3", "count = 200"), ("count = 5", "count = 200")],
+        &[("count = 3", "count = 800"), ("count = 5", "count = 800")],
     );
     refused(
         &run_study(dir.path(), &p),
-        &["grid points", "1000 (design variants)", "20000000"],
+        &["grid points", "1000 (design variants)", "500000000"],
     );
 }
 

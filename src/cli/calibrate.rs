@@ -8,7 +8,6 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use crate::data::club_file::{club_toml_checked, read_club};
-use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::diagnose::honest;
 use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
@@ -44,6 +43,10 @@ pub struct CalibrateArgs {
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
 
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
     /// Effects to fit, comma-separated: `name` (global), `name@group` (one per group of the
     /// shots), `name@A` (group A only).
     #[arg(long, value_name = "LIST")]
@@ -56,6 +59,11 @@ pub struct CalibrateArgs {
     /// Write the calibrated club (club TOML with [[effect]] tables), only after success.
     #[arg(long, value_name = "OUT.toml")]
     pub out_club: Option<PathBuf>,
+
+    /// Write a self-contained HTML report (errors before and after, estimates with their
+    /// plausible ranges, the calibrated model's trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 
     /// Print one JSON object on stdout (progress and prose go to stderr).
     #[arg(long)]
@@ -85,7 +93,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         )?;
     }
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
     }
@@ -131,6 +139,30 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         );
         write_atomic(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
         eprintln!("calibrated club -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let launches = crate::predict::expected_launches(
+            &cal.club,
+            &table.shots,
+            args.measurement.impact_noise_mm,
+        )
+        .with_context(|| args.shots.display().to_string())?;
+        let after = crate::compare::compare(
+            &table.shots,
+            &launches,
+            &crate::compare::CompareOptions::default(),
+        )?;
+        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
+        let title = format!(
+            "{} calibrated on {} ({} shots)",
+            club.name,
+            args.shots.display(),
+            table.shots.len()
+        );
+        let html = crate::report::html::calibrate_page(&cal, &after, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if args.json {
         crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;

@@ -7,7 +7,6 @@ use clap::Args;
 
 use crate::compare::{compare, CompareOptions};
 use crate::data::club_file::read_club;
-use crate::data::shots::read_shots;
 use crate::data::write_folder_atomic;
 use crate::physics::LaunchComponent;
 use crate::predict::expected_launches;
@@ -27,9 +26,17 @@ pub struct CompareArgs {
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
 
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
     /// Folder for the tables, face pictures and JSON (created). Nothing is written without it.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
+
+    /// Write a self-contained HTML report (charts of Table 2, trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 
     /// Print one JSON object on stdout instead of the text report (which goes to stderr).
     #[arg(long)]
@@ -87,7 +94,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         bail!("--bin-mm must be from 0.5 to 100 mm (impact locations are measured to about a millimetre), got {}", args.bin_mm);
     }
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(
@@ -132,6 +139,13 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         crate::cli::stdout::println(compare_json(&report))?;
     } else {
         crate::cli::stdout::print(&text)?;
+    }
+    if let Some(path) = &args.report {
+        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
+        let html = crate::report::html::compare_page(&report, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        crate::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
         let files: Vec<(PathBuf, Vec<u8>)> = files

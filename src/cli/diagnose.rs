@@ -10,7 +10,6 @@ use serde_json::json;
 
 use crate::data::club_file::{club_toml_checked, read_club};
 use crate::data::noise_file::read_noise_file;
-use crate::data::shots::read_shots;
 use crate::data::write_atomic;
 use crate::diagnose::honest;
 use crate::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
@@ -37,6 +36,15 @@ pub struct DiagnoseArgs {
     /// Shots file (CSV) with measured launch columns (and a golfer column for grouped folds).
     #[arg(long, value_name = "SHOTS.csv")]
     pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
+    /// Write a self-contained HTML report (gains per candidate and step, errors before and after,
+    /// estimates with their plausible ranges).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
 
     /// Write the club with the selected effects, only after success.
     #[arg(long, value_name = "OUT.toml")]
@@ -144,7 +152,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         crate::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
     }
     let club = read_club(&args.club)?;
-    let table = read_shots(&args.shots)?;
+    let table = args.shots_format.read(&args.shots)?;
     let known_noise = match (&args.noise, args.instrument) {
         (Some(p), _) => Some(read_noise_file(p)?),
         (None, Some(c)) => Some(c.noise()),
@@ -198,6 +206,13 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         );
         write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
         eprintln!("club with selected effects -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let title = format!("{} on {}", club.name, args.shots.display());
+        let html = crate::report::html::diagnose_page(&to_json(&d, &floor), &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
     }
     if args.json {
         crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;

@@ -4,11 +4,13 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
+use super::run::TableFormatArg;
+use crate::data::write_folder_atomic_with;
 use crate::study::metrics::metric_names;
 use crate::study::optimise::OptimiseResult;
-use crate::study::output::cell;
+use crate::study::output::{cell, write_study, HeldGrids};
 use crate::study::shard::merge_shards;
-use crate::study::{finish, Prepared, VariantResult};
+use crate::study::{finish, Prepared};
 
 /// Arguments of `smash merge`.
 #[derive(Debug, Args)]
@@ -23,6 +25,12 @@ pub struct MergeArgs {
     /// Output folder for the merged result.
     #[arg(long, value_name = "DIR")]
     pub out: PathBuf,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
 }
 
 /// Run `smash merge`.
@@ -43,9 +51,24 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     crate::data::safe_write::clean_stale_temporaries(&args.out);
     crate::data::safe_write::check_replaceable(&args.out)?;
     let (prepared, variants) = merge_shards(&args.shards)?;
-    let (files, opt) = finish(&prepared, &variants)?;
-    super::run::write_all(&args.out, &files)?;
-    print_summary(&prepared, &variants, opt.as_ref(), &args.out, files.len())?;
+    let metrics: Vec<Vec<f64>> = variants.iter().map(|v| v.metrics.clone()).collect();
+    let (sens, opt) = finish(&prepared, &metrics)?;
+    let grids = HeldGrids {
+        results: &variants,
+        nz: prepared.zs_mm.len(),
+    };
+    let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
+        write_study(
+            tmp,
+            &prepared,
+            &grids,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
+    })?;
+    print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }
@@ -54,7 +77,7 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
 /// the optimiser's result.
 pub fn print_summary(
     p: &Prepared,
-    variants: &[VariantResult],
+    metrics: &[Vec<f64>],
     opt: Option<&OptimiseResult>,
     dir: &Path,
     n_files: usize,
@@ -78,18 +101,18 @@ pub fn print_summary(
         p.study.name,
         p.study.club.name,
         p.study.group,
-        variants.len()
+        metrics.len()
     );
-    for (i, (d, r)) in p.variants.iter().zip(variants).enumerate().take(5) {
+    for (i, (d, m)) in p.variants.iter().zip(metrics).enumerate().take(5) {
         let mut line = format!("  variant {i} ({}):", d.describe());
         for k in pick {
             if let Some(j) = names.iter().position(|n| n == k) {
-                line.push_str(&format!(" {k} = {:.4}", r.metrics[j]));
+                line.push_str(&format!(" {k} = {:.4}", m[j]));
             }
         }
         let _ = writeln!(text, "{line}");
     }
-    if variants.len() > 5 {
+    if metrics.len() > 5 {
         let _ = writeln!(text, "  … see variants.csv");
     }
     if let Some(o) = opt {

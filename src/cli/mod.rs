@@ -7,6 +7,8 @@ pub mod calibrate;
 pub mod compare;
 pub mod diagnose;
 pub mod effects;
+pub mod flight;
+pub mod import;
 pub mod merge;
 pub mod predict;
 pub mod progress;
@@ -41,12 +43,18 @@ pub enum Command {
     Run(run::RunArgs),
     /// Merge the shards of a study into exactly the unsharded result.
     Merge(merge::MergeArgs),
+    /// Fly launch conditions (measured or predicted) to landing: carry, offline, apex, flight
+    /// time, land angle (and total with --total), in a given atmosphere.
+    Flight(flight::FlightArgs),
     /// Fit named effects' parameters to measured launch (values ± standard errors,
     /// correlations, chi2, AIC/BIC, before/after error tables).
     Calibrate(calibrate::CalibrateArgs),
     /// Rank the library's effects by how much each explains (cross-validated by golfer) and
     /// select them forward until the improvement is not significant.
     Diagnose(diagnose::DiagnoseArgs),
+    /// Convert a launch-monitor export (TrackMan, Foresight, FlightScope, Uneekor or a mapping
+    /// file) to a shots file.
+    Import(import::ImportArgs),
 }
 
 /// Run a parsed command line.
@@ -58,8 +66,10 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Compare(args) => compare::run(args),
         Command::Run(args) => run::run(args),
         Command::Merge(args) => merge::run(args),
+        Command::Flight(args) => flight::run(args),
         Command::Calibrate(args) => calibrate::run(args),
         Command::Diagnose(args) => diagnose::run(args),
+        Command::Import(args) => import::run(args),
     }
 }
 
@@ -154,4 +164,61 @@ fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String
         crate::limits::SIGMA_LOCATION_MM.check(v)?;
     }
     crate::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
+}
+
+/// How a shots argument is read: a shots file (default) or a launch-monitor export converted on
+/// the fly, exactly as `smash import` would.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ShotsFormatArgs {
+    /// Format of the shots input: `shots` (default), a launch-monitor preset (trackman,
+    /// foresight, flightscope, uneekor) or a mapping file NAME.toml (docs/import.md).
+    #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
+    pub format: Option<String>,
+
+    /// Which way a positive heel–toe impact offset points in the export, where the vendor does
+    /// not say (the import refuses to guess).
+    #[arg(long, value_name = "SIDE", value_enum, help_heading = "Input format")]
+    pub impact_offset_positive: Option<crate::data::import::OffsetSide>,
+
+    /// Drop export columns the format does not know instead of refusing the file.
+    #[arg(long, help_heading = "Input format")]
+    pub ignore_unknown_columns: bool,
+}
+
+impl ShotsFormatArgs {
+    /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) go to
+    /// stderr.
+    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<crate::data::shots::ShotTable> {
+        match self.format.as_deref() {
+            None | Some("shots") => Ok(crate::data::shots::read_shots(path)?),
+            Some(format) => {
+                let imported = self.import(path, format)?;
+                Ok(crate::data::shots::parse_shots(
+                    path,
+                    imported.csv.as_slice(),
+                )?)
+            }
+        }
+    }
+
+    /// Convert the export at `path` with `format`, printing the notes.
+    pub fn import(
+        &self,
+        path: &std::path::Path,
+        format: &str,
+    ) -> anyhow::Result<crate::data::import::Imported> {
+        use crate::data::import::{import, load_mapping, ImportOptions};
+        let mapping = load_mapping(format)?;
+        let bytes = std::fs::read(path)
+            .map_err(|e| crate::data::DataError::file(path, format!("cannot read: {e}")))?;
+        let opts = ImportOptions {
+            impact_offset_positive: self.impact_offset_positive,
+            ignore_unknown_columns: self.ignore_unknown_columns,
+        };
+        let imported = import(path, &bytes, &mapping, &opts)?;
+        for note in &imported.notes {
+            eprintln!("import ({}): {note}", mapping.export.name);
+        }
+        Ok(imported)
+    }
 }

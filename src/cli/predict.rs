@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 use crate::data::club_file::read_club;
 use crate::data::predictions::predictions_csv;
-use crate::data::shots::{read_shots, DEFAULT_GROUP};
+use crate::data::shots::DEFAULT_GROUP;
 use crate::data::write_atomic;
 use crate::limits;
 use crate::physics::{Delivery, LaunchComponent};
@@ -35,6 +35,10 @@ pub struct PredictArgs {
         conflicts_with = "club_speed_mph"
     )]
     pub shots: Option<PathBuf>,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
 
     /// Predictions file to write (CSV: input columns, pred_*, and err_* where measured).
     #[arg(long, value_name = "PRED.csv")]
@@ -148,6 +152,15 @@ pub struct PredictArgs {
     /// Group whose effects apply (one-shot form).
     #[arg(long, default_value = DEFAULT_GROUP, help_heading = "One delivery")]
     pub group: String,
+
+    /// Also fly each predicted launch: pred_carry_yd, pred_offline_yd, pred_apex_yd,
+    /// pred_flight_time_s, pred_land_angle_deg (and err_* where the shots file has measured
+    /// carry_yd, … columns).
+    #[arg(long)]
+    pub flight: bool,
+    /// Flight options (with --flight).
+    #[command(flatten)]
+    pub flight_options: crate::cli::flight::FlightOptions,
 }
 
 /// Run `smash predict`.
@@ -159,7 +172,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
             &[("--out", out, false)],
             &[("--shots", shots_path), ("--club", &args.club)],
         )?;
-        let table = read_shots(shots_path)?;
+        let table = args.shots_format.read(shots_path)?;
         let outcomes =
             predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
         for (shot, o) in table.shots.iter().zip(&outcomes) {
@@ -173,7 +186,11 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
                 );
             }
         }
-        write_atomic(out, &predictions_csv(&table, &outcomes))?;
+        let mut bytes = predictions_csv(&table, &outcomes);
+        if args.flight {
+            bytes = add_flight(&args, shots_path, &bytes, &outcomes)?;
+        }
+        write_atomic(out, &bytes)?;
         eprintln!(
             "predicted {} shot(s) with {} -> {}",
             outcomes.len(),
@@ -260,6 +277,56 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         "Smash factor",
         outcome.smash_factor()
     );
+    if args.flight {
+        let cfg = args.flight_options.config()?;
+        let f = crate::flight::fly_one(&cfg, &crate::flight::FlightLaunch::from_launch(&launch))
+            .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());
+        let _ = writeln!(text, "{:<14} {:>10.2} s", "Flight time", f.flight_time_s);
+        let _ = writeln!(
+            text,
+            "{:<14} {:>10.1} deg",
+            "Land angle",
+            f.land_angle_deg()
+        );
+        if let Some(t) = f.total_yd() {
+            let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
+        }
+    }
     crate::cli::stdout::print(text)?;
     Ok(())
+}
+
+/// Fly the predicted launches and append the flight columns to the predictions CSV.
+fn add_flight(
+    args: &PredictArgs,
+    shots_path: &std::path::Path,
+    predictions: &[u8],
+    outcomes: &[crate::physics::ImpactOutcome],
+) -> anyhow::Result<Vec<u8>> {
+    use crate::data::flight_files::{flight_csv, parse_raw_csv};
+    let cfg = args.flight_options.config()?;
+    let launches: Vec<crate::flight::FlightLaunch> = outcomes
+        .iter()
+        .map(|o| crate::flight::FlightLaunch::from_launch(&o.launch()))
+        .collect();
+    let raw = parse_raw_csv(shots_path, predictions)?;
+    let shots_raw = parse_raw_csv(
+        shots_path,
+        &crate::data::read_text(shots_path)?.into_bytes(),
+    )?;
+    let flights = crate::cli::flight::collect(
+        shots_path,
+        &shots_raw.lines,
+        "pred_",
+        crate::flight::fly(&cfg, &launches),
+    )?;
+    Ok(flight_csv(
+        &raw.headers,
+        &raw.records,
+        &flights,
+        cfg.ground.is_some(),
+    ))
 }

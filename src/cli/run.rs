@@ -6,8 +6,8 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::data::write_folder_atomic;
-use crate::study::output::Files;
+use crate::data::{write_folder_atomic, write_folder_atomic_with};
+use crate::study::output::{write_study, Files, TableFormat};
 use crate::study::shard::{parse_shard_spec, shard_files};
 use crate::study::{finish, read_study, Prepared, StudyError};
 
@@ -33,6 +33,33 @@ pub struct RunArgs {
     /// combine the shards with `smash merge`.
     #[arg(long, value_name = "k/N", value_parser = parse_shard_spec, allow_hyphen_values = true)]
     pub shard: Option<(usize, usize)>,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
+    /// Also write a self-contained HTML report of the study (face maps and tables).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+}
+
+/// `--format` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum TableFormatArg {
+    /// maps_long.csv
+    Csv,
+    /// maps_long.parquet
+    Parquet,
+}
+
+impl From<TableFormatArg> for TableFormat {
+    fn from(f: TableFormatArg) -> Self {
+        match f {
+            TableFormatArg::Csv => TableFormat::Csv,
+            TableFormatArg::Parquet => TableFormat::Parquet,
+        }
+    }
 }
 
 /// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
@@ -110,21 +137,32 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     // the thread pool's start-up.
     // The output slots are allocated (and their pages touched) before the clock too.
     rayon::broadcast(|_| ());
-    let mut results = prepared.allocate(items.clone());
-    let start = Instant::now();
-    prepared.compute_into(&mut results, &|| bar.inc(1));
-    let seconds = start.elapsed().as_secs_f64();
-    bar.finish_and_clear();
-
-    let closing = format!(
-        "swept {impacts} impact evaluations ({} variant(s) × {}×{} grid + summary metrics{}) in {seconds:.3} s: {:.0} impacts/s",
+    let grid = format!(
+        "{} variant(s) × {}×{} grid + summary metrics",
         prepared.variants.len(),
         prepared.ys_mm.len(),
-        prepared.zs_mm.len(),
-        if args.shard.is_some() { format!(", shard {k} of {n}") } else { String::new() },
-        impacts as f64 / seconds.max(1e-9)
+        prepared.zs_mm.len()
     );
     if args.shard.is_some() {
+        let nz = prepared.zs_mm.len() as u128;
+        let rows = items.len() as u128; // at most one metrics item per variant besides rows
+        let points = rows * nz;
+        if points > crate::study::MAX_SHARD_POINTS {
+            let total = prepared.work_len() as u128 * nz;
+            return Err(crate::study::StudyError::ShardTooLarge {
+                k,
+                n,
+                points,
+                min_shards: total.div_ceil(crate::study::MAX_SHARD_POINTS),
+            }
+            .into());
+        }
+        // The output slots are allocated (and their pages touched) before the clock too.
+        let mut results = prepared.allocate(items.clone());
+        let start = Instant::now();
+        prepared.compute_into(&mut results, &|| bar.inc(1));
+        let seconds = start.elapsed().as_secs_f64();
+        bar.finish_and_clear();
         write_all(&dir, &shard_files(&prepared, k, n, &results)?)?;
         eprintln!(
             "shard {k} of {n}: work items {}..{} -> {}",
@@ -132,13 +170,75 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             items.end,
             dir.display()
         );
-        eprintln!("{closing}");
+        eprintln!(
+            "swept {impacts} impact evaluations ({grid}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
+            impacts as f64 / seconds.max(1e-9)
+        );
         return Ok(());
     }
-    let variants = prepared.assemble(results)?;
-    let (files, opt) = finish(&prepared, &variants)?;
-    write_all(&dir, &files)?;
-    super::merge::print_summary(&prepared, &variants, opt.as_ref(), &dir, files.len())?;
-    eprintln!("{closing}");
+    // Unsharded: the maps are computed band by band as they are written (bounded memory).
+    bar.finish_and_clear();
+    let start = Instant::now();
+    let metrics = prepared.all_metrics();
+    let (sens, opt) = finish(&prepared, &metrics)?;
+    let kernels = prepared.kernels();
+    let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
+        write_study(
+            tmp,
+            &prepared,
+            &kernels,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(path) = &args.report {
+        let html = crate::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
+            .map_err(anyhow::Error::msg)?;
+        crate::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
+    eprintln!(
+        "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
+         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
+         for the long table and the matrices)",
+        kernels.points(),
+        kernels.seconds(),
+        kernels.points() as f64 / kernels.seconds().max(1e-9)
+    );
     Ok(())
+}
+
+/// The written outputs a study report shows (the face-map pictures and the small summary,
+/// sensitivity, optimiser and variant tables), read back from the output folder: the maps
+/// themselves were streamed to disk and are not held in memory.
+fn report_inputs(dir: &Path) -> anyhow::Result<Vec<(PathBuf, Vec<u8>)>> {
+    use anyhow::Context;
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).with_context(|| d.display().to_string())? {
+            let path = entry?.path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let rel = path.strip_prefix(dir).unwrap_or(&path).to_path_buf();
+            let name = rel.to_string_lossy();
+            let wanted = name.ends_with(".svg")
+                || (name.ends_with(".csv")
+                    && ["summary", "sensitiv", "optim", "variants"]
+                        .iter()
+                        .any(|k| name.contains(k)));
+            if wanted {
+                let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
+                out.push((rel, bytes));
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
 }

@@ -21,7 +21,7 @@ use crate::data::shots::Shot;
 use crate::physics::{Launch, LaunchComponent};
 use crate::stats::{pearson, student_t_two_sided_p, Summary};
 
-pub use signatures::{hints_for, Pattern, Signature, SIGNATURES};
+pub use signatures::{hints_for, Hint, Pattern, Signature, SIGNATURES};
 
 /// Settings of a comparison.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -2,9 +2,34 @@
 //! missing physics behind a finding. Each row was read off the model (an effect's derivative of
 //! the launch over typical driver shots); `smash diagnose` tests them quantitatively.
 
+use std::fmt;
+
 use serde::Serialize;
 
+use crate::effects::EffectKind;
 use crate::physics::LaunchComponent;
+
+/// What a signature points at: a library effect (checked by the compiler), the effect per group
+/// of shots, or noise in the measured impact location.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Hint {
+    /// A library effect, for all shots.
+    Effect(EffectKind),
+    /// A library effect fitted per group (`name@group`).
+    PerGroup(EffectKind),
+    /// Impact-location measurement noise (`--impact-noise-mm`).
+    ImpactNoise,
+}
+
+impl fmt::Display for Hint {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Self::Effect(k) => f.write_str(k.name()),
+            Self::PerGroup(k) => write!(f, "{}@group", k.name()),
+            Self::ImpactNoise => f.write_str("impact_noise"),
+        }
+    }
+}
 
 /// The shape of an error pattern.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -25,19 +50,20 @@ pub struct Signature {
     pub component: LaunchComponent,
     /// Pattern.
     pub pattern: Pattern,
-    /// Effects that produce it (`name` or `name@group`).
-    pub effects: &'static [&'static str],
+    /// Effects (or measurement noise) that produce it.
+    pub effects: &'static [Hint],
     /// Why, in a few words.
     pub why: &'static str,
 }
 
+use Hint::{Effect, ImpactNoise, PerGroup};
 use LaunchComponent::{Azimuth, Backspin, BallSpeed, LaunchAngle, Sidespin};
 use Pattern::{Bias, GroupBias, Trend};
 
 const fn sig(
     component: LaunchComponent,
     pattern: Pattern,
-    effects: &'static [&'static str],
+    effects: &'static [Hint],
     why: &'static str,
 ) -> Signature {
     Signature {
@@ -53,134 +79,175 @@ pub const SIGNATURES: &[Signature] = &[
     sig(
         BallSpeed,
         Bias,
-        &["added_mass"],
+        &[
+            Effect(EffectKind::AddedMass),
+            Effect(EffectKind::CorLevel),
+            Effect(EffectKind::HoselMass),
+        ],
         "effective clubhead mass (shaft taking part) or the club's COR",
     ),
     sig(
         BallSpeed,
         GroupBias,
-        &["added_mass@group"],
+        &[PerGroup(EffectKind::AddedMass)],
         "shaft mass taking part in the impact",
     ),
     sig(
         BallSpeed,
         Trend("club_speed_mph"),
-        &["cor_speed"],
+        &[Effect(EffectKind::CorSpeed), Effect(EffectKind::CorPower)],
         "COR falling with impact speed",
     ),
     sig(
         BallSpeed,
         Trend("impact_r_mm"),
-        &["cor_radial", "impact_noise"],
+        &[Effect(EffectKind::CorRadial), ImpactNoise],
         "COR falling off-centre, or noisy impact locations (falling with r: the model is charged \
          for strikes measured farther out than they were; try --impact-noise-mm)",
     ),
     sig(
         BallSpeed,
         Trend("impact_y_mm"),
-        &["cor_radial", "com_offset"],
+        &[Effect(EffectKind::CorRadial), Effect(EffectKind::ComOffset)],
         "COR or effective mass varying up the face",
     ),
     sig(
         BallSpeed,
         Trend("impact_z_mm"),
-        &["com_offset", "inertia_scale"],
+        &[
+            Effect(EffectKind::ComOffset),
+            Effect(EffectKind::InertiaScale),
+        ],
         "heel-toe energy loss: CoM position, inertia",
     ),
     sig(
         LaunchAngle,
         Bias,
-        &["loft_bias"],
+        &[Effect(EffectKind::LoftBias)],
         "delivered loft measured with an offset",
     ),
     sig(
         LaunchAngle,
         Trend("dynamic_loft_deg"),
-        &["loft_bias", "tangential_restitution", "friction"],
+        &[
+            Effect(EffectKind::LoftBias),
+            Effect(EffectKind::TangentialRestitution),
+            Effect(EffectKind::Friction),
+        ],
         "how far the ball follows the face normal",
     ),
     sig(
         LaunchAngle,
         Trend("impact_y_mm"),
-        &["com_offset"],
+        &[Effect(EffectKind::ComOffset)],
         "vertical gear effect",
     ),
     sig(
         Azimuth,
         Bias,
-        &["face_bias"],
+        &[Effect(EffectKind::FaceBias)],
         "delivered face angle measured with an offset",
     ),
     sig(
         Azimuth,
         Trend("face_angle_deg"),
-        &["tangential_restitution", "friction", "face_bias"],
+        &[
+            Effect(EffectKind::TangentialRestitution),
+            Effect(EffectKind::Friction),
+            Effect(EffectKind::FaceBias),
+        ],
         "how far the ball follows the face vs the path",
     ),
     sig(
         Azimuth,
         Trend("club_path_deg"),
-        &["tangential_restitution", "friction"],
+        &[
+            Effect(EffectKind::TangentialRestitution),
+            Effect(EffectKind::Friction),
+        ],
         "how far the ball follows the path",
     ),
     sig(
         Azimuth,
         Trend("impact_z_mm"),
-        &["com_offset", "inertia_scale"],
+        &[
+            Effect(EffectKind::ComOffset),
+            Effect(EffectKind::InertiaScale),
+        ],
         "horizontal gear effect",
     ),
     sig(
         Backspin,
         Bias,
-        &["ball_offset", "loft_bias"],
+        &[Effect(EffectKind::BallOffset), Effect(EffectKind::LoftBias)],
         "ball deformation: CoM off the contact normal (dy)",
     ),
     sig(
         Backspin,
         GroupBias,
-        &["ball_offset@group", "added_mass@group"],
+        &[
+            PerGroup(EffectKind::BallOffset),
+            PerGroup(EffectKind::AddedMass),
+        ],
         "shaft-dependent spin",
     ),
     sig(
         Backspin,
         Trend("dynamic_loft_deg"),
-        &["loft_bias", "friction", "tangential_restitution"],
+        &[
+            Effect(EffectKind::LoftBias),
+            Effect(EffectKind::Friction),
+            Effect(EffectKind::TangentialRestitution),
+        ],
         "spin loft: grip and loft reading",
     ),
     sig(
         Backspin,
         Trend("club_speed_mph"),
-        &["ball_offset", "friction"],
+        &[Effect(EffectKind::BallOffset), Effect(EffectKind::Friction)],
         "spin growing with speed: deformation, slip",
     ),
     sig(
         Backspin,
         Trend("impact_y_mm"),
-        &["com_offset", "inertia_scale"],
+        &[
+            Effect(EffectKind::ComOffset),
+            Effect(EffectKind::InertiaScale),
+        ],
         "vertical gear effect: CoM height/depth, inertia",
     ),
     sig(
         Sidespin,
         Bias,
-        &["ball_offset", "face_bias"],
+        &[Effect(EffectKind::BallOffset), Effect(EffectKind::FaceBias)],
         "ball deformation sideways (dz), face reading",
     ),
     sig(
         Sidespin,
         Trend("impact_z_mm"),
-        &["com_offset", "inertia_scale"],
+        &[
+            Effect(EffectKind::ComOffset),
+            Effect(EffectKind::InertiaScale),
+        ],
         "horizontal gear effect: CoM, inertia",
     ),
     sig(
         Sidespin,
         Trend("face_angle_deg"),
-        &["face_bias", "friction", "tangential_restitution"],
+        &[
+            Effect(EffectKind::FaceBias),
+            Effect(EffectKind::Friction),
+            Effect(EffectKind::TangentialRestitution),
+        ],
         "face-to-path spin axis",
     ),
     sig(
         Sidespin,
         Trend("club_path_deg"),
-        &["friction", "tangential_restitution"],
+        &[
+            Effect(EffectKind::Friction),
+            Effect(EffectKind::TangentialRestitution),
+        ],
         "face-to-path spin axis",
     ),
 ];
@@ -190,6 +257,9 @@ pub fn hints_for(component: LaunchComponent, pattern: &Pattern) -> Vec<String> {
     SIGNATURES
         .iter()
         .filter(|s| s.component == component && s.pattern == *pattern)
-        .map(|s| format!("{} ({})", s.effects.join(" or "), s.why))
+        .map(|s| {
+            let names: Vec<String> = s.effects.iter().map(Hint::to_string).collect();
+            format!("{} ({})", names.join(" or "), s.why)
+        })
         .collect()
 }

@@ -10,6 +10,7 @@
 //! loft_deg = 9.8                         # static loft (informational)
 //! bulge_mm = 305.0
 //! roll_mm = 305.0
+//! hosel_mm = [-20.0, 25.0, -55.0]       # optional: where the shaft joins the head, in F
 //!
 //! [ball]
 //! mass_g = 45.9
@@ -36,6 +37,7 @@ use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::club::ClubSpec;
 use crate::effects::{Effect, EffectKind};
 use crate::limits::{self, PhysicalRange};
+use crate::physics::impact::DRIVER_HOSEL_MM;
 use crate::physics::{validate_inertia, ModelParams};
 use crate::units::{deg, g, gcm2, mm};
 
@@ -59,6 +61,7 @@ struct RawClub {
     loft_deg: Option<Spanned<f64>>,
     bulge_mm: Spanned<f64>,
     roll_mm: Spanned<f64>,
+    hosel_mm: Option<Spanned<[f64; 3]>>,
 }
 
 #[derive(Deserialize)]
@@ -106,7 +109,7 @@ pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
 /// Parse and validate club-file text (`path` is used in messages only).
 pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
+    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
     let c = &raw.club;
     let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = c.com_mm.get_ref();
@@ -137,6 +140,22 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         }
         Some(l) => Some(deg(*l.get_ref())),
         None => None,
+    };
+    let hosel_mm = match &c.hosel_mm {
+        Some(h)
+            if !h
+                .get_ref()
+                .iter()
+                .all(|v| v.is_finite() && v.abs() <= 500.0) =>
+        {
+            return Err(ctx.err(
+                h.span(),
+                "club.hosel_mm",
+                "every component must be a finite number of mm within ±500 mm of the face centre",
+            ));
+        }
+        Some(h) => *h.get_ref(),
+        None => DRIVER_HOSEL_MM,
     };
     let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
     let roll_mm = ctx.in_range(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
@@ -175,9 +194,11 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         tangential_restitution: 0.0,
         friction_mu: None,
         cor_speed_k_s_per_m: 0.0,
+        cor_power_q: 0.0,
         cor_radial_c_per_m2: 0.0,
         loft_bias_rad: 0.0,
         face_bias_rad: 0.0,
+        hosel_m: Vector3::new(mm(hosel_mm[0]), mm(hosel_mm[1]), mm(hosel_mm[2])),
     };
 
     let mut effects = Vec::with_capacity(raw.effect.len());
@@ -319,6 +340,10 @@ pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     }
     let _ = writeln!(s, "bulge_mm = {:?}", p.bulge_m * 1e3);
     let _ = writeln!(s, "roll_mm = {:?}", p.roll_m * 1e3);
+    let h = p.hosel_m * 1e3;
+    if [h.x, h.y, h.z] != DRIVER_HOSEL_MM {
+        let _ = writeln!(s, "hosel_mm = [{:?}, {:?}, {:?}]", h.x, h.y, h.z);
+    }
     let _ = writeln!(s, "\n[ball]");
     let _ = writeln!(s, "mass_g = {:?}", p.ball_mass_kg * 1e3);
     let _ = writeln!(s, "radius_mm = {:?}", p.ball_radius_m * 1e3);

@@ -5,7 +5,10 @@
 //! temporary file and a rename, so a failed run never leaves a half-written file behind.
 
 pub mod club_file;
+pub mod flight_files;
+pub mod import;
 pub mod noise_file;
+pub mod number;
 pub mod predictions;
 pub mod safe_write;
 pub mod shots;
@@ -219,8 +222,29 @@ pub fn write_folder_atomic(
     files: &[(PathBuf, Vec<u8>)],
     marker: &str,
 ) -> Result<(), DataError> {
+    write_folder_atomic_with(dir, marker, |tmp| {
+        for (rel, bytes) in files {
+            let path = tmp.join(rel);
+            if let Some(p) = path.parent() {
+                std::fs::create_dir_all(p)?;
+            }
+            let mut f = std::fs::File::create(&path)?;
+            f.write_all(bytes)?;
+            f.sync_all()?;
+        }
+        Ok(())
+    })
+}
+
+/// [`write_folder_atomic`] for outputs written as they are made: `write` fills the temporary
+/// folder it is given (and syncs what it writes); then that folder replaces `dir` as a unit.
+pub fn write_folder_atomic_with<T>(
+    dir: &Path,
+    marker: &str,
+    write: impl FnOnce(&Path) -> std::io::Result<T>,
+) -> Result<T, DataError> {
     let err = |m: String| DataError::file(dir, m);
-    debug_assert!(files.iter().any(|(p, _)| p == Path::new(marker)));
+    let _ = marker;
     safe_write::clean_stale_temporaries(dir);
     safe_write::check_replaceable(dir)?;
     let name = dir
@@ -237,24 +261,16 @@ pub fn write_folder_atomic(
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let old = parent.join(format!(".{name}.old-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&tmp);
-    let written = (|| -> std::io::Result<()> {
-        for (rel, bytes) in files {
-            let path = tmp.join(rel);
-            if let Some(p) = path.parent() {
-                std::fs::create_dir_all(p)?;
-            }
-            let mut f = std::fs::File::create(&path)?;
-            f.write_all(bytes)?;
-            f.sync_all()?;
+    let written = std::fs::create_dir_all(&tmp)
+        .and_then(|()| write(&tmp))
+        .and_then(|v| safe_write::write_manifest(&tmp).map(|()| v));
+    let value = match written {
+        Ok(v) => v,
+        Err(e) => {
+            let _ = std::fs::remove_dir_all(&tmp);
+            return Err(err(format!("cannot write: {e}")));
         }
-        std::fs::create_dir_all(&tmp)?;
-        let manifest = safe_write::manifest_text(files.iter().map(|(p, _)| p.as_path()));
-        std::fs::write(tmp.join(safe_write::MANIFEST), manifest)
-    })();
-    if let Err(e) = written {
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(err(format!("cannot write: {e}")));
-    }
+    };
     let swapped = (|| -> std::io::Result<()> {
         if dir.exists() {
             std::fs::rename(dir, &old)?;
@@ -272,7 +288,7 @@ pub fn write_folder_atomic(
         return Err(err(format!("cannot replace the folder: {e}")));
     }
     let _ = std::fs::remove_dir_all(&old);
-    Ok(())
+    Ok(value)
 }
 
 pub use crate::units::Num;
@@ -310,9 +326,7 @@ pub fn line_col(text: &str, offset: usize) -> (usize, usize) {
 /// A non-finite value (a bug upstream: solvers reject them) becomes an empty cell, never `NaN`.
 pub fn fmt_f64(v: f64) -> String {
     debug_assert!(v.is_finite(), "non-finite value written to a file");
-    if v.is_finite() {
-        format!("{v}")
-    } else {
-        String::new()
-    }
+    let mut out = Vec::with_capacity(24);
+    number::push_cell(&mut out, v);
+    String::from_utf8(out).expect("digits are ASCII")
 }

@@ -38,6 +38,13 @@ fn files_under(dir: &Path) -> std::io::Result<Vec<String>> {
     Ok(out)
 }
 
+/// Write the manifest of every file now under `dir` (the temporary folder of a finished run).
+pub fn write_manifest(dir: &Path) -> std::io::Result<()> {
+    let files = files_under(dir)?;
+    let text = manifest_text(files.iter().map(Path::new));
+    std::fs::write(dir.join(MANIFEST), text)
+}
+
 /// The manifest's text for `files` (relative paths).
 pub fn manifest_text<'a>(files: impl IntoIterator<Item = &'a Path>) -> String {
     let mut lines: Vec<String> = files

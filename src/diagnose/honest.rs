@@ -85,6 +85,18 @@ pub fn stand_in(p: &ParamEstimate) -> Option<&'static str> {
             "a head that turns more or less off-centre than its inertia allows: behaves like a \
              finite contact time, a shaft constraint at the hosel, or tangential compliance"
         }
+        (EffectKind::CorLevel, _, _) => {
+            "a face COR outside what conforming drivers show: behaves like an effective mass \
+             change (shaft taking part) or energy lost in a compliant contact"
+        }
+        (EffectKind::HoselMass, _, _) => {
+            "more shaft mass at the hosel than a shaft tip has: behaves like a higher face COR or \
+             a centre of mass and inertia different from the file's"
+        }
+        (EffectKind::CorPower, _, _) => {
+            "a COR falling with speed faster than balls do: behaves like a COR level or energy \
+             lost in a compliant contact"
+        }
     })
 }
 
@@ -112,6 +124,15 @@ pub fn separating_measurement(effect: &str) -> &'static str {
         Some(EffectKind::InertiaScale) => {
             "a measured moment of inertia (pendulum or MOI instrument) and off-centre shots"
         }
+        Some(EffectKind::CorLevel) => {
+            "a COR test of the face (pendulum CT or ball-cannon rebound) or head speed just after \
+             impact"
+        }
+        Some(EffectKind::HoselMass) => {
+            "heel and toe strikes (the hosel mass changes the gear effect) with shafts of \
+             different tip mass"
+        }
+        Some(EffectKind::CorPower) => "shots over a wider range of club speed",
         None => "an independent measurement of this parameter",
     }
 }

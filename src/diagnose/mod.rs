@@ -206,10 +206,22 @@ pub trait DiagnoseProgress: Sync {
     fn job_done(&self);
 }
 
-/// Every library effect as a global candidate, plus `added_mass@group` with several groups.
+/// Library effects that are searched only when named with `--candidates`: each is a near-alias
+/// of a default candidate on launch data alone (`cor_level` and `hosel_mass` change ball speed
+/// almost as `added_mass` does; `cor_power` is `cor_speed` curved), so in the default search
+/// they would compete for the same signal and the ranking would depend on noise.
+pub const OPT_IN_CANDIDATES: [EffectKind; 3] = [
+    EffectKind::CorLevel,
+    EffectKind::HoselMass,
+    EffectKind::CorPower,
+];
+
+/// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
+/// `added_mass@group` with several groups.
 pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
     let mut c: Vec<EffectRequest> = EffectKind::ALL
         .iter()
+        .filter(|k| !OPT_IN_CANDIDATES.contains(k))
         .map(|&k| EffectRequest::Global(k))
         .collect();
     if groups.len() > 1 {

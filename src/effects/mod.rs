@@ -16,6 +16,12 @@
 //! | `face_bias` | `deg` | delivered face angle + deg |
 //! | `com_offset` | `dx_mm`, `dy_mm`, `dz_mm` | clubhead CoM + offset, in F |
 //! | `inertia_scale` | `s` | `I_c → s·I_c` |
+//! | `cor_level` | `dcor` | `cor → cor + dcor` (the face's own COR, fitted) |
+//! | `hosel_mass` | `dm_g` | point mass at the club's `hosel_mm`: mass, CoM and inertia (parallel axis) |
+//!
+//! Each effect is one file in this folder plus one line in the `library!` registration below
+//! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read
+//! them are written once in [`crate::physics::laws`], for the scalar solve and the kernel alike.
 //!
 //! When several listed effects of one name apply to the same shot (a global one and a per-group
 //! one, say), they compose: additive parameters add, `inertia_scale` multiplies, and `friction`
@@ -24,7 +30,6 @@
 use std::fmt;
 
 use crate::physics::ModelParams;
-use crate::units::{deg, mm};
 
 /// Most parameters any effect has.
 pub const MAX_EFFECT_PARAMS: usize = 3;
@@ -51,32 +56,8 @@ pub struct ParamSpec {
     pub doc: &'static str,
 }
 
-/// The kinds of effect in the library.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum EffectKind {
-    /// Added clubhead mass (the paper's shaft effect).
-    AddedMass,
-    /// Shifted ball centre of mass relative to the contact point (the paper's ball deformation).
-    BallOffset,
-    /// Tangential restitution `e_t`.
-    TangentialRestitution,
-    /// Coulomb friction limit on the tangential impulse.
-    Friction,
-    /// COR falling linearly with normal approach speed.
-    CorSpeed,
-    /// COR falling with squared distance from the face centre.
-    CorRadial,
-    /// Bias on delivered dynamic loft.
-    LoftBias,
-    /// Bias on delivered face angle.
-    FaceBias,
-    /// Offset of the clubhead centre of mass.
-    ComOffset,
-    /// Scaling of the clubhead inertia tensor.
-    InertiaScale,
-}
-
-const fn spec(
+/// Build a parameter specification (for the effect files).
+pub(crate) const fn spec(
     key: &'static str,
     unit: &'static str,
     default: f64,
@@ -96,190 +77,77 @@ const fn spec(
     }
 }
 
-const ADDED_MASS: [ParamSpec; 1] = [spec(
-    "dm_g",
-    "g",
-    0.0,
-    -100.0,
-    200.0,
-    (0.0, 10.0),
-    "mass added to the clubhead",
-)];
-const BALL_OFFSET: [ParamSpec; 2] = [
-    spec(
-        "dy_mm",
-        "mm",
-        0.0,
-        -10.0,
-        10.0,
-        (-2.0, 2.0),
-        "contact point relative to ball CoM, along y_I",
-    ),
-    spec(
-        "dz_mm",
-        "mm",
-        0.0,
-        -10.0,
-        10.0,
-        (-2.0, 2.0),
-        "contact point relative to ball CoM, along z_I",
-    ),
-];
-const TANGENTIAL_RESTITUTION: [ParamSpec; 1] = [spec(
-    "et",
-    "1",
-    0.0,
-    -1.0,
-    1.0,
-    (-0.3, 0.3),
-    "tangential restitution (0 = no slip, the paper's model)",
-)];
-const FRICTION: [ParamSpec; 1] = [spec(
-    "mu",
-    "1",
-    0.4,
-    1e-3,
-    2.0,
-    (0.1, 0.6),
-    "Coulomb friction coefficient face-ball",
-)];
-const COR_SPEED: [ParamSpec; 1] = [spec(
-    "k_per_m_s",
-    "s/m",
-    0.0,
-    0.0,
-    0.02, (0.0, 0.005),
-    "COR drop per m/s of normal approach speed above 48.77 m/s (a ball's COR falls with speed: k >= 0)",
-)];
-const COR_RADIAL: [ParamSpec; 1] = [spec(
-    "c_per_mm2",
-    "1/mm²",
-    0.0,
-    0.0,
-    2e-3,
-    (0.0, 3e-4),
-    "COR drop per mm² of squared distance from the face centre (COR peaks at the centre: c >= 0)",
-)];
-const LOFT_BIAS: [ParamSpec; 1] = [spec(
-    "deg",
-    "deg",
-    0.0,
-    -15.0,
-    15.0,
-    (-3.0, 3.0),
-    "added to the delivered dynamic loft",
-)];
-const FACE_BIAS: [ParamSpec; 1] = [spec(
-    "deg",
-    "deg",
-    0.0,
-    -15.0,
-    15.0,
-    (-3.0, 3.0),
-    "added to the delivered face angle",
-)];
-const COM_OFFSET: [ParamSpec; 3] = [
-    spec(
-        "dx_mm",
-        "mm",
-        0.0,
-        -30.0,
-        30.0,
-        (-3.0, 3.0),
-        "clubhead CoM shift along x_F (face normal)",
-    ),
-    spec(
-        "dy_mm",
-        "mm",
-        0.0,
-        -30.0,
-        30.0,
-        (-3.0, 3.0),
-        "clubhead CoM shift along y_F (up)",
-    ),
-    spec(
-        "dz_mm",
-        "mm",
-        0.0,
-        -30.0,
-        30.0,
-        (-3.0, 3.0),
-        "clubhead CoM shift along z_F (toe)",
-    ),
-];
-const INERTIA_SCALE: [ParamSpec; 1] = [spec(
-    "s",
-    "1",
-    1.0,
-    0.1,
-    10.0,
-    (0.85, 1.15),
-    "factor on the clubhead inertia tensor",
-)];
+/// Declares the library: one line per effect, `module => Variant,`. The module is the file
+/// `src/effects/<module>.rs`, which defines `NAME`, `DESCRIPTION`, `PARAMS` and
+/// `apply(values, &mut ModelParams)` (see `docs/adding-an-effect.md`).
+macro_rules! library {
+    ($($module:ident => $variant:ident,)*) => {
+        $(pub mod $module;)*
+
+        /// The kinds of effect in the library (one per file in `src/effects/`).
+        #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+        pub enum EffectKind {
+            $(
+                #[doc = concat!("The `", stringify!($module), "` effect (see [`", stringify!($module), "`]).")]
+                $variant,
+            )*
+        }
+
+        impl EffectKind {
+            /// Every effect in the library, in registration order.
+            pub const ALL: [EffectKind; [$(stringify!($variant)),*].len()] =
+                [$(EffectKind::$variant),*];
+
+            /// The effect's name in files and on the command line.
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Self::$variant => $module::NAME,)*
+                }
+            }
+
+            /// One-line description.
+            pub const fn description(self) -> &'static str {
+                match self {
+                    $(Self::$variant => $module::DESCRIPTION,)*
+                }
+            }
+
+            /// Parameter specifications, in file order.
+            pub const fn params(self) -> &'static [ParamSpec] {
+                match self {
+                    $(Self::$variant => $module::PARAMS,)*
+                }
+            }
+
+            /// Apply the effect with parameter values `v` (in the units of
+            /// [`EffectKind::params`]).
+            pub fn apply(self, v: &[f64], p: &mut ModelParams) {
+                match self {
+                    $(Self::$variant => $module::apply(v, p),)*
+                }
+            }
+        }
+    };
+}
+
+// The library: one registration line per effect file.
+library! {
+    added_mass => AddedMass,
+    ball_offset => BallOffset,
+    tangential_restitution => TangentialRestitution,
+    friction => Friction,
+    cor_speed => CorSpeed,
+    cor_radial => CorRadial,
+    loft_bias => LoftBias,
+    face_bias => FaceBias,
+    com_offset => ComOffset,
+    inertia_scale => InertiaScale,
+    cor_level => CorLevel,
+    hosel_mass => HoselMass,
+    cor_power => CorPower,
+}
 
 impl EffectKind {
-    /// Every effect in the library, in the order of `docs/conventions.md`.
-    pub const ALL: [EffectKind; 10] = [
-        Self::AddedMass,
-        Self::BallOffset,
-        Self::TangentialRestitution,
-        Self::Friction,
-        Self::CorSpeed,
-        Self::CorRadial,
-        Self::LoftBias,
-        Self::FaceBias,
-        Self::ComOffset,
-        Self::InertiaScale,
-    ];
-
-    /// The effect's name in files and on the command line.
-    pub const fn name(self) -> &'static str {
-        match self {
-            Self::AddedMass => "added_mass",
-            Self::BallOffset => "ball_offset",
-            Self::TangentialRestitution => "tangential_restitution",
-            Self::Friction => "friction",
-            Self::CorSpeed => "cor_speed",
-            Self::CorRadial => "cor_radial",
-            Self::LoftBias => "loft_bias",
-            Self::FaceBias => "face_bias",
-            Self::ComOffset => "com_offset",
-            Self::InertiaScale => "inertia_scale",
-        }
-    }
-
-    /// One-line description.
-    pub const fn description(self) -> &'static str {
-        match self {
-            Self::AddedMass => "m_c -> m_c + dm (shaft mass taking part in the impact)",
-            Self::BallOffset => "ball CoM shifted from the contact normal (ball deformation)",
-            Self::TangentialRestitution => "tangential rebound e_t instead of no slip",
-            Self::Friction => "Coulomb limit mu on the tangential impulse (gross slip)",
-            Self::CorSpeed => "COR falls linearly with normal approach speed",
-            Self::CorRadial => "COR falls with squared distance from the face centre",
-            Self::LoftBias => "bias on the measured dynamic loft",
-            Self::FaceBias => "bias on the measured face angle",
-            Self::ComOffset => "clubhead centre of mass offset, in F",
-            Self::InertiaScale => "clubhead inertia tensor scaled",
-        }
-    }
-
-    /// Parameter specifications, in file order.
-    pub const fn params(self) -> &'static [ParamSpec] {
-        match self {
-            Self::AddedMass => &ADDED_MASS,
-            Self::BallOffset => &BALL_OFFSET,
-            Self::TangentialRestitution => &TANGENTIAL_RESTITUTION,
-            Self::Friction => &FRICTION,
-            Self::CorSpeed => &COR_SPEED,
-            Self::CorRadial => &COR_RADIAL,
-            Self::LoftBias => &LOFT_BIAS,
-            Self::FaceBias => &FACE_BIAS,
-            Self::ComOffset => &COM_OFFSET,
-            Self::InertiaScale => &INERTIA_SCALE,
-        }
-    }
-
     /// Look an effect up by name.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.name() == name)
@@ -288,29 +156,6 @@ impl EffectKind {
     /// Comma-separated list of all effect names, for error messages.
     pub fn all_names() -> String {
         Self::ALL.map(|k| k.name()).join(", ")
-    }
-
-    /// Apply the effect with parameter values `v` (in the units of [`EffectKind::params`]).
-    pub fn apply(self, v: &[f64], p: &mut ModelParams) {
-        match self {
-            Self::AddedMass => p.club_mass_kg += v[0] * 1e-3,
-            Self::BallOffset => {
-                p.ball_offset_y_m += mm(v[0]);
-                p.ball_offset_z_m += mm(v[1]);
-            }
-            Self::TangentialRestitution => p.tangential_restitution += v[0],
-            Self::Friction => p.friction_mu = Some(p.friction_mu.map_or(v[0], |mu| mu.min(v[0]))),
-            Self::CorSpeed => p.cor_speed_k_s_per_m += v[0],
-            Self::CorRadial => p.cor_radial_c_per_m2 += v[0] * 1e6,
-            Self::LoftBias => p.loft_bias_rad += deg(v[0]),
-            Self::FaceBias => p.face_bias_rad += deg(v[0]),
-            Self::ComOffset => {
-                p.club_com_m.x += mm(v[0]);
-                p.club_com_m.y += mm(v[1]);
-                p.club_com_m.z += mm(v[2]);
-            }
-            Self::InertiaScale => p.club_inertia_kgm2 *= v[0],
-        }
     }
 }
 

@@ -26,9 +26,10 @@ use nalgebra::{Matrix3, Vector3};
 use super::delivery::{face_orientation, Delivery};
 use super::face::{FaceError, FaceGeometry};
 use super::launch::Launch;
+use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
-pub const COR_SPEED_REFERENCE_M_S: f64 = 48.77;
+pub const COR_SPEED_REFERENCE_M_S: f64 = super::laws::COR_REFERENCE_SPEED_M_S;
 
 /// Physical parameters of one impact model, SI units, before validation.
 ///
@@ -64,13 +65,26 @@ pub struct ModelParams {
     pub friction_mu: Option<f64>,
     /// COR slope with normal approach speed `k`, s/m.
     pub cor_speed_k_s_per_m: f64,
+    /// Exponent `q` of the COR's power law in normal approach speed,
+    /// `e = cor·(u1n / 48.77 m/s)^(−q)` (0: off).
+    pub cor_power_q: f64,
     /// COR falloff with squared distance from CoF `c`, 1/m².
     pub cor_radial_c_per_m2: f64,
     /// Added to the delivered dynamic loft, rad.
     pub loft_bias_rad: f64,
     /// Added to the delivered face angle, rad.
     pub face_bias_rad: f64,
+    /// Where the shaft joins the head (top of the hosel bore, on the shaft axis), in F, m: the
+    /// point a `hosel_mass` effect puts its mass. Geometry only; the impact does not read it.
+    pub hosel_m: Vector3<f64>,
 }
+
+/// Default hosel position of a driver in the face frame F, mm: 20 mm behind the face plane,
+/// 25 mm above and 55 mm heelward of the face centre. An estimate from the proportions of a
+/// 460 cm³ driver head (heel–toe length near the rules' 127 mm limit, USGA/R&A Equipment Rules
+/// Appendix II 1b; the shaft axis enters at the heel end of the crown), not a measurement of
+/// any club: give `hosel_mm` in the club file when it is known.
+pub const DRIVER_HOSEL_MM: [f64; 3] = [-20.0, 25.0, -55.0];
 
 impl ModelParams {
     /// The paper's driver and ball (its Table 1), nominal: the values of
@@ -94,9 +108,11 @@ impl ModelParams {
             tangential_restitution: 0.0,
             friction_mu: None,
             cor_speed_k_s_per_m: 0.0,
+            cor_power_q: 0.0,
             cor_radial_c_per_m2: 0.0,
             loft_bias_rad: 0.0,
             face_bias_rad: 0.0,
+            hosel_m: Vector3::from(DRIVER_HOSEL_MM) * 1e-3,
         }
     }
 }
@@ -138,6 +154,7 @@ pub struct ImpactModel {
     face: FaceGeometry,
     club_inv_inertia: Matrix3<f64>,
     inv_mass_sum: f64,
+    laws: Laws,
 }
 
 /// Everything the impact produces, in the ground frame `G`, SI units.
@@ -282,8 +299,14 @@ impl ImpactModel {
                 format!("must be finite and > 0, got {mu}")
             })?;
         }
+        check(
+            p.hosel_m.iter().all(|v| v.is_finite()),
+            "club hosel position",
+            || "every component must be finite".into(),
+        )?;
         for (v, name) in [
             (p.cor_speed_k_s_per_m, "cor speed slope"),
+            (p.cor_power_q, "cor power exponent"),
             (p.cor_radial_c_per_m2, "cor radial falloff"),
             (p.loft_bias_rad, "loft bias"),
             (p.face_bias_rad, "face bias"),
@@ -302,17 +325,55 @@ impl ImpactModel {
                 problem: "the tensor is singular".into(),
             })?;
         let inv_mass_sum = 1.0 / p.club_mass_kg + 1.0 / p.ball_mass_kg;
+        let j = &club_inv_inertia;
+        let sym = |a: usize, b: usize| 0.5 * (j[(a, b)] + j[(b, a)]);
+        let laws = Laws {
+            restitution: Restitution {
+                cor: p.cor,
+                power_q: p.cor_power_q,
+                speed_k_s_per_m: p.cor_speed_k_s_per_m,
+                radial_c_per_m2: p.cor_radial_c_per_m2,
+            },
+            ball: BallContact {
+                radius_m: p.ball_radius_m,
+                offset_y_m: p.ball_offset_y_m,
+                offset_z_m: p.ball_offset_z_m,
+            },
+            collision: CollisionMatrix {
+                inv_mass_sum,
+                club_inv_inertia: [
+                    j[(0, 0)],
+                    sym(0, 1),
+                    sym(0, 2),
+                    j[(1, 1)],
+                    sym(1, 2),
+                    j[(2, 2)],
+                ],
+                ball_inv_inertia: 1.0 / p.ball_inertia_kgm2,
+            },
+            tangential: TangentialLaw {
+                e_t: p.tangential_restitution,
+                mu: p.friction_mu,
+            },
+        };
         Ok(Self {
             params,
             face,
             club_inv_inertia,
             inv_mass_sum,
+            laws,
         })
     }
 
     /// The validated parameters.
     pub fn params(&self) -> &ModelParams {
         &self.params
+    }
+
+    /// The model's laws (restitution, ball lever arm, collision matrix, tangential law), for
+    /// evaluation on one shot or on lanes of many.
+    pub fn laws(&self) -> &Laws {
+        &self.laws
     }
 
     /// The face geometry.
@@ -348,9 +409,6 @@ impl ImpactModel {
         let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
         let n = cf.normal;
         let r_c = cf.point_m - p.club_com_m;
-        let r_b = -p.ball_radius_m * n
-            + p.ball_offset_y_m * cf.tangent_y
-            + p.ball_offset_z_m * cf.tangent_z;
 
         let u1 = v_c + w_c.cross(&r_c);
         let u1n = u1.dot(&n);
@@ -359,26 +417,28 @@ impl ImpactModel {
                 normal_speed_m_s: u1n,
             });
         }
-        let e = p.cor
-            - p.cor_speed_k_s_per_m * (u1n - COR_SPEED_REFERENCE_M_S)
-            - p.cor_radial_c_per_m2 * (d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m);
-
-        let k = self.k_matrix(&r_c, &r_b);
-        let u1t = u1 - u1n * n;
-        let rhs = u1 + (e * u1n) * n + p.tangential_restitution * u1t;
-        let mut impulse = solve_spd3(&k, &rhs);
-        let mut slipped = false;
-        if let Some(mu) = p.friction_mu {
-            let pn = impulse.dot(&n);
-            let pt = impulse - pn * n;
-            let u1t_norm = u1t.norm();
-            if pt.norm() > mu * pn && u1t_norm > 0.0 {
-                let dir = n + (mu / u1t_norm) * u1t;
-                let pn_slip = (1.0 + e) * u1n / n.dot(&(k * dir));
-                impulse = pn_slip * dir;
-                slipped = true;
-            }
-        }
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        let laws = &self.laws;
+        let e = laws.restitution.cor(
+            u1n,
+            d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m,
+        );
+        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
+        let r_b_arr = laws.ball.lever(
+            &arr(&n),
+            &arr(&cf.tangent_y),
+            &[cf.tangent_z.x, cf.tangent_z.z],
+        );
+        let r_b = Vector3::from(r_b_arr);
+        let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
+        let (impulse, slipped) = if laws.tangential.mu.is_some() {
+            laws.tangential
+                .impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
+        } else {
+            laws.tangential
+                .impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
+        };
+        let impulse = Vector3::from(impulse);
 
         let v_b = impulse / p.ball_mass_kg;
         let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;

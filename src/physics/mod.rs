@@ -10,6 +10,7 @@ pub mod delivery;
 pub mod face;
 pub mod impact;
 pub mod launch;
+pub mod laws;
 
 pub use delivery::{face_orientation, Delivery};
 pub use face::{ContactFrame, FaceError, FaceGeometry};

@@ -6,6 +6,8 @@
 
 use std::fmt::Write as _;
 
+use crate::data::number::{push_cell, push_f64};
+
 /// How values map to colours.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Scale {
@@ -64,24 +66,33 @@ impl Heatmap<'_> {
 /// the front. Invalid cells are empty.
 pub fn matrix_csv(map: &Heatmap<'_>) -> Vec<u8> {
     map.check();
-    let mut s = String::new();
-    s.push_str("y\\x");
-    for x in map.xs {
-        let _ = write!(s, ",{x}");
-    }
-    s.push('\n');
+    let mut s = matrix_csv_header(map.xs);
     let nx = map.xs.len();
     for (i, y) in map.ys.iter().enumerate().rev() {
-        let _ = write!(s, "{y}");
-        for v in &map.values[i * nx..(i + 1) * nx] {
-            s.push(',');
-            if v.is_finite() {
-                let _ = write!(s, "{v}");
-            }
-        }
-        s.push('\n');
+        matrix_csv_row(&mut s, *y, &map.values[i * nx..(i + 1) * nx]);
     }
-    s.into_bytes()
+    s
+}
+
+/// The first line of [`matrix_csv`]: `y\x` and the column centres.
+pub fn matrix_csv_header(xs: &[f64]) -> Vec<u8> {
+    let mut s = b"y\\x".to_vec();
+    for x in xs {
+        s.push(b',');
+        push_f64(&mut s, *x);
+    }
+    s.push(b'\n');
+    s
+}
+
+/// One row of [`matrix_csv`]: the row centre `y`, then the row's values (invalid: empty).
+pub fn matrix_csv_row(out: &mut Vec<u8>, y: f64, values: &[f64]) {
+    push_f64(out, y);
+    for v in values {
+        out.push(b',');
+        push_cell(out, *v);
+    }
+    out.push(b'\n');
 }
 
 // Viridis, 9 stops.
@@ -217,43 +228,102 @@ fn block_centres(c: &[f64], f: usize) -> Vec<f64> {
         .collect()
 }
 
+/// Rows and columns per drawn block for a map of `ny × nx` cells: 1 × 1 up to
+/// [`MAX_SVG_CELLS_PER_AXIS`] cells per axis.
+pub fn svg_block(ny: usize, nx: usize) -> (usize, usize) {
+    (
+        ny.div_ceil(MAX_SVG_CELLS_PER_AXIS).max(1),
+        nx.div_ceil(MAX_SVG_CELLS_PER_AXIS).max(1),
+    )
+}
+
+/// Sums and counts of the finite values of a map's [`svg_block`] blocks, filled a band of rows
+/// at a time, bottom row first (so a map need never be held whole). Within a block the values
+/// are added row by row, left to right, as [`heatmap_svg`] adds them.
+#[derive(Debug, Clone)]
+pub struct BlockMeans {
+    next_row: usize,
+    fy: usize,
+    fx: usize,
+    nx: usize,
+    bx: usize,
+    sum: Vec<f64>,
+    count: Vec<usize>,
+}
+
+impl BlockMeans {
+    /// Accumulators for a map of `ny × nx` cells.
+    pub fn new(ny: usize, nx: usize) -> Self {
+        let (fy, fx) = svg_block(ny, nx);
+        let (by, bx) = (ny.div_ceil(fy), nx.div_ceil(fx));
+        Self {
+            next_row: 0,
+            fy,
+            fx,
+            nx,
+            bx,
+            sum: vec![0.0; by * bx],
+            count: vec![0; by * bx],
+        }
+    }
+
+    /// Add the next rows (`values` row-major, whole rows, following those added before).
+    pub fn add_rows(&mut self, values: &[f64]) {
+        let first = self.next_row;
+        self.next_row += values.len() / self.nx;
+        for (k, row) in values.chunks_exact(self.nx).enumerate() {
+            let b = (first + k) / self.fy;
+            for (bj, cells) in row.chunks(self.fx).enumerate() {
+                let (mut s, mut n) = (self.sum[b * self.bx + bj], self.count[b * self.bx + bj]);
+                for v in cells {
+                    if v.is_finite() {
+                        s += v;
+                        n += 1;
+                    }
+                }
+                self.sum[b * self.bx + bj] = s;
+                self.count[b * self.bx + bj] = n;
+            }
+        }
+    }
+
+    /// The SVG picture of `map` (whose `values` are ignored; its blocks were added here).
+    pub fn svg(&self, map: &Heatmap<'_>) -> String {
+        let values: Vec<f64> = self
+            .sum
+            .iter()
+            .zip(&self.count)
+            .map(|(s, &n)| if n > 0 { s / n as f64 } else { f64::NAN })
+            .collect();
+        blocks_svg(map, self.fy, self.fx, &values)
+    }
+}
+
+/// The picture of `map` drawn from its `fy × fx` block means `values`.
+fn blocks_svg(map: &Heatmap<'_>, fy: usize, fx: usize, values: &[f64]) -> String {
+    if fx == 1 && fy == 1 {
+        return draw_svg(&Heatmap { values, ..*map });
+    }
+    let xs = block_centres(map.xs, fx);
+    let ys = block_centres(map.ys, fy);
+    let title = format!("{} (drawn as {fy}×{fx}-cell block means)", map.title);
+    draw_svg(&Heatmap {
+        title: &title,
+        xs: &xs,
+        ys: &ys,
+        values,
+        ..*map
+    })
+}
+
 /// SVG picture of the map: cells, axes with ticks, a colour bar with the value label and unit,
 /// the marker, and the title. Invalid cells are light grey. Maps finer than
 /// [`MAX_SVG_CELLS_PER_AXIS`] are drawn as block means of their valid cells.
 pub fn heatmap_svg(map: &Heatmap<'_>) -> String {
     map.check();
-    let fx = map.xs.len().div_ceil(MAX_SVG_CELLS_PER_AXIS);
-    let fy = map.ys.len().div_ceil(MAX_SVG_CELLS_PER_AXIS);
-    if fx > 1 || fy > 1 {
-        let xs = block_centres(map.xs, fx);
-        let ys = block_centres(map.ys, fy);
-        let nx = map.xs.len();
-        let mut values = Vec::with_capacity(xs.len() * ys.len());
-        for bi in 0..ys.len() {
-            for bj in 0..xs.len() {
-                let (mut sum, mut n) = (0.0, 0usize);
-                for i in bi * fy..((bi + 1) * fy).min(map.ys.len()) {
-                    for j in bj * fx..((bj + 1) * fx).min(nx) {
-                        let v = map.values[i * nx + j];
-                        if v.is_finite() {
-                            sum += v;
-                            n += 1;
-                        }
-                    }
-                }
-                values.push(if n > 0 { sum / n as f64 } else { f64::NAN });
-            }
-        }
-        let title = format!("{} (drawn as {fy}×{fx}-cell block means)", map.title);
-        return draw_svg(&Heatmap {
-            title: &title,
-            xs: &xs,
-            ys: &ys,
-            values: &values,
-            ..*map
-        });
-    }
-    draw_svg(map)
+    let mut blocks = BlockMeans::new(map.ys.len(), map.xs.len());
+    blocks.add_rows(map.values);
+    blocks.svg(map)
 }
 
 fn draw_svg(map: &Heatmap<'_>) -> String {

@@ -1,8 +1,10 @@
 //! Output rendering: builds bytes and strings (SVG pictures, CSV matrices, text tables, JSON);
 //! never writes files. Writing is done in one place, [`crate::data::write_atomic`].
 
+pub mod charts;
 pub mod compare;
 pub mod heatmap;
+pub mod html;
 pub mod tables;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};

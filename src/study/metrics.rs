@@ -244,13 +244,10 @@ pub fn evaluate(model: &ImpactModel, study: &Study, groups: &[SwingGroup]) -> Ve
 
 /// Every summary metric of every variant is finite (nothing infinite or undefined may reach an
 /// output); the first that is not is an error naming the variant and the metric.
-pub fn check_finite(
-    p: &super::Prepared,
-    results: &[super::VariantResult],
-) -> Result<(), super::StudyError> {
+pub fn check_finite(p: &super::Prepared, metrics: &[Vec<f64>]) -> Result<(), super::StudyError> {
     let names = metric_names(p.study.distribution.is_some());
-    for (id, (d, r)) in p.variants.iter().zip(results).enumerate() {
-        if let Some((j, v)) = r.metrics.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+    for (id, (d, m)) in p.variants.iter().zip(metrics).enumerate() {
+        if let Some((j, v)) = m.iter().enumerate().find(|(_, v)| !v.is_finite()) {
             return Err(super::StudyError::NotFinite {
                 id,
                 values: d.describe(),

@@ -13,6 +13,9 @@
 //! - [`sensitivity`]: central differences at the base design, maps and a ranked table.
 //! - [`optimise`]: an argmin cost function over bounded design variables (Nelder–Mead).
 //! - [`output`]: the output files as bytes; [`shard`]: shard files and their merge.
+//! - [`yards`]: studies in yards (impact then ball flight): carry maps, robust carry and
+//!   dispersion over a distribution, head constraints (mass, Rules MOI limit, CoM box) and a
+//!   discretionary-mass optimiser for expected carry or dispersion.
 //!
 //! Nothing here writes files or prints: the CLI does.
 
@@ -25,19 +28,23 @@ pub mod sensitivity;
 pub mod shard;
 pub mod spec;
 pub mod sweep;
+pub mod yards;
 
 pub use spec::{parse_study, read_study, resolved_toml, Study};
 pub use sweep::{Prepared, VariantResult};
 
 use crate::data::DataError;
 
-/// Most grid points (variants × rows × columns) one run sweeps. Until the study outputs stream
-/// to disk, every point's results and its CSV and SVG text are held in memory before writing:
-/// a 1000 × 1000 grid peaked at 356 MB resident (`/usr/bin/time -v smash run`, 263 MB of
-/// files), about 360 B per point, so 20 million points stay near 7 GB, well inside this
-/// machine's 24 GB shared with other work (50 million were accepted before and aborted at
-/// 15 GB). Raise this once the outputs stream to disk.
-pub const MAX_SWEEP_POINTS: u128 = 20_000_000;
+/// Most grid points (variants × rows × columns) one run sweeps. Outputs are streamed to disk a
+/// band at a time, so memory does not grow with the sweep; the cap bounds the time and the disk
+/// a run takes (about 70 bytes of CSV per point and output in the long table and matrices: a
+/// 500 M-point run with three outputs writes about 100 GB).
+pub const MAX_SWEEP_POINTS: u128 = 500_000_000;
+
+/// Most grid points one shard run (`smash run --shard k/N`) computes: a shard is held in memory
+/// and written as one `rows.csv` (about 150 bytes a point in all), so this keeps a shard run
+/// under 1 GB. An unsharded run streams its outputs and is bounded only by [`MAX_SWEEP_POINTS`].
+pub const MAX_SHARD_POINTS: u128 = 6_000_000;
 
 /// Why a study cannot be run or merged.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -59,6 +66,22 @@ pub enum StudyError {
         ny: usize,
         /// Columns.
         nz: usize,
+    },
+    /// A shard holds more grid points than one run keeps in memory.
+    #[error(
+        "shard {k} of {n} holds {points} grid points; a shard holds at most {MAX_SHARD_POINTS} \
+         (shards are kept in memory): use at least {min_shards} shards, or run unsharded \
+         (streamed to disk)"
+    )]
+    ShardTooLarge {
+        /// Shard index.
+        k: usize,
+        /// Shards.
+        n: usize,
+        /// Grid points in the shard.
+        points: u128,
+        /// Fewest shards that fit.
+        min_shards: u128,
     },
     /// A design variant of the sweep is not physical.
     #[error("design variant {id} ({values}) is not physical: {problem}")]
@@ -108,13 +131,20 @@ pub enum StudyError {
     Merge(String),
 }
 
-/// Everything after the sweep: sensitivities, optimisation and the output files.
+/// Everything besides the face maps: sensitivities and optimisation (written with the maps by
+/// [`output::write_study`]).
 pub fn finish(
     p: &Prepared,
-    results: &[VariantResult],
-) -> Result<(output::Files, Option<optimise::OptimiseResult>), StudyError> {
-    metrics::check_finite(p, results)?;
+    metrics: &[Vec<f64>],
+) -> Result<
+    (
+        Vec<sensitivity::Sensitivity>,
+        Option<optimise::OptimiseResult>,
+    ),
+    StudyError,
+> {
+    metrics::check_finite(p, metrics)?;
     let sens = sensitivity::sensitivities(p)?;
     let opt = optimise::optimise(p)?;
-    Ok((output::study_files(p, results, &sens, opt.as_ref()), opt))
+    Ok((sens, opt))
 }

@@ -1,6 +1,16 @@
-//! Study outputs as bytes: CSV tables, CSV matrices and SVG heatmaps. Nothing here writes files;
-//! the CLI hands the list to [`crate::data::write_atomic`]. No NaN reaches a file: values that
-//! cannot be computed are empty cells.
+//! Study outputs: CSV tables, CSV matrices and SVG heatmaps, written into a folder the CLI
+//! provides (a temporary one it swaps in as a unit: [`crate::data::write_folder_atomic_with`]).
+//! No NaN reaches a file: values that cannot be computed are empty cells.
+//!
+//! The face maps are streamed: a band of grid rows is computed (or copied, for a merge), its
+//! numbers formatted in parallel and written, while the next band is computed. Memory is a few
+//! bands whatever the grid (see [`BAND_POINTS`]); the pictures are drawn from block means
+//! accumulated band by band. The long table is written in ascending rows and the matrices top
+//! row first, so each variant's grid is computed twice (the kernel is cheap next to formatting).
+//!
+//! The files are not synced to the disk one by one (`fsync` would hold a large study to the
+//! disk's sustained write rate, a few hundred MB/s here, instead of the page cache's): the folder
+//! swap still makes a failed or interrupted run leave the previous outputs as they were.
 //!
 //! | file | content |
 //! |---|---|
@@ -15,12 +25,26 @@
 //! | `optimise/optimum_club.toml` | the optimum as a club file |
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::fs::File;
+use std::io::Write as _;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use std::sync::Arc;
+
+use parquet::basic::Compression;
+use parquet::data_type::{BoolType, DoubleType, Int32Type};
+use parquet::file::properties::WriterProperties;
+use parquet::file::writer::SerializedFileWriter;
+use parquet::schema::parser::parse_message_type;
+use rayon::prelude::*;
 
 use crate::data::club_file::club_toml;
 use crate::data::fmt_f64;
-use crate::report::heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
-use crate::units::mph;
+use crate::data::number::push_cell;
+use crate::report::heatmap::{matrix_csv_header, matrix_csv_row, BlockMeans, Heatmap, Scale};
+use crate::sweep::kernel::LaunchGrid;
+use crate::units::{mm, mph};
 
 use super::design::DesignVar;
 use super::metrics::{metric_names, metric_unit, Output};
@@ -48,18 +72,127 @@ fn id_width(n: usize) -> usize {
     (n.saturating_sub(1)).to_string().len().max(3)
 }
 
-/// Every output file of a complete (unsharded or merged) run.
-pub fn study_files(
+/// How the long table is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum TableFormat {
+    /// `maps_long.csv`: text, for small studies and any tool.
+    #[default]
+    Csv,
+    /// `maps_long.parquet`: columnar, typed and compressed (Snappy); invalid cells are nulls.
+    /// Several times smaller and faster to write and to read (pandas, polars, Arrow) than CSV.
+    Parquet,
+}
+
+/// Grid points per streamed band (about 64 k: a few MB of values and text per band).
+pub const BAND_POINTS: usize = 1 << 16;
+
+/// Where the face maps come from: computed on demand (a run) or held (a merge).
+pub trait GridSource: Sync {
+    /// Rows `rows` of variant `variant` into `out` (resized to `rows.len() · nz` points).
+    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid);
+}
+
+/// Complete per-variant results (a merge) as a [`GridSource`].
+pub struct HeldGrids<'a> {
+    /// The results, one per variant.
+    pub results: &'a [VariantResult],
+    /// Grid columns.
+    pub nz: usize,
+}
+
+impl GridSource for HeldGrids<'_> {
+    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid) {
+        let g = &self.results[variant].grid;
+        let r = rows.start * self.nz..rows.end * self.nz;
+        out.ball_speed_m_s.clear();
+        out.ball_speed_m_s
+            .extend_from_slice(&g.ball_speed_m_s[r.clone()]);
+        out.launch_angle_rad.clear();
+        out.launch_angle_rad
+            .extend_from_slice(&g.launch_angle_rad[r.clone()]);
+        out.azimuth_rad.clear();
+        out.azimuth_rad.extend_from_slice(&g.azimuth_rad[r.clone()]);
+        out.backspin_rad_s.clear();
+        out.backspin_rad_s
+            .extend_from_slice(&g.backspin_rad_s[r.clone()]);
+        out.sidespin_rad_s.clear();
+        out.sidespin_rad_s
+            .extend_from_slice(&g.sidespin_rad_s[r.clone()]);
+        out.valid.clear();
+        out.valid.extend_from_slice(&g.valid[r]);
+    }
+}
+
+fn io_err(path: &Path, e: std::io::Error) -> std::io::Error {
+    std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
+}
+
+/// Write `bytes` to `root/rel` (creating folders).
+fn put(root: &Path, rel: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let mut f = create(root, rel)?;
+    f.write_all(bytes).map_err(|e| io_err(rel, e))
+}
+
+fn create(root: &Path, rel: &Path) -> std::io::Result<File> {
+    let path = root.join(rel);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| io_err(rel, e))?;
+    }
+    File::create(&path).map_err(|e| io_err(rel, e))
+}
+
+/// Rows per band for a grid of `nz` columns (at least one row: an axis has at most 100,000
+/// points, so a band stays a few tens of MB).
+fn band_rows(nz: usize) -> usize {
+    (BAND_POINTS / nz.max(1)).max(1)
+}
+
+/// Produce `bands` items with `make` into two alternating buffers and hand each, in order, to
+/// `consume`: the next band is made while the previous one is consumed.
+fn pipeline<T: Send + Sync>(
+    bands: usize,
+    bufs: [T; 2],
+    make: &(dyn Fn(usize, &mut T) + Sync),
+    consume: &mut (dyn FnMut(usize, &T) -> std::io::Result<()> + Send),
+) -> std::io::Result<()> {
+    if bands == 0 {
+        return Ok(());
+    }
+    let [mut cur, mut next] = bufs;
+    make(0, &mut cur);
+    for b in 0..bands {
+        let (done, ()) = rayon::join(
+            || consume(b, &cur),
+            || {
+                if b + 1 < bands {
+                    make(b + 1, &mut next)
+                }
+            },
+        );
+        done?;
+        std::mem::swap(&mut cur, &mut next);
+    }
+    Ok(())
+}
+
+/// Every output file of a complete (unsharded or merged) run, written under `root`, with the
+/// face maps from `grids` and each variant's summary metrics in `metrics`. Returns the number
+/// of files written.
+pub fn write_study(
+    root: &Path,
     p: &Prepared,
-    results: &[VariantResult],
+    grids: &dyn GridSource,
+    metrics: &[Vec<f64>],
     sens: &[Sensitivity],
     opt: Option<&OptimiseResult>,
-) -> Files {
+    format: TableFormat,
+) -> std::io::Result<usize> {
     let s = &p.study;
-    let mut files: Files = vec![("study.toml".into(), resolved_toml(s).into_bytes())];
+    let mut n_files = 0;
+    put(root, Path::new("study.toml"), resolved_toml(s).as_bytes())?;
+    n_files += 1;
     let axes: Vec<DesignVar> = s.design.axes.iter().map(|(v, _)| *v).collect();
     let names = metric_names(s.distribution.is_some());
-    let club_speed = mph(s.swing.club_speed_mph);
 
     // variants.csv
     let mut t = String::from("variant_id");
@@ -70,95 +203,460 @@ pub fn study_files(
         let _ = write!(t, ",{n}");
     }
     t.push('\n');
-    for (i, (d, r)) in p.variants.iter().zip(results).enumerate() {
+    for (i, (d, m)) in p.variants.iter().zip(metrics).enumerate() {
         let _ = write!(t, "{i}");
         for v in &axes {
             let _ = write!(t, ",{}", cell(d.get(*v)));
         }
-        for m in &r.metrics {
-            let _ = write!(t, ",{}", cell(*m));
+        for x in m {
+            let _ = write!(t, ",{}", cell(*x));
         }
         t.push('\n');
     }
-    files.push(("variants.csv".into(), t.into_bytes()));
+    put(root, Path::new("variants.csv"), t.as_bytes())?;
+    n_files += 1;
 
-    // maps_long.csv
-    let nz = p.zs_mm.len();
-    let mut t = String::from("variant_id");
-    for v in &axes {
-        let _ = write!(t, ",{}", v.key());
-    }
-    t.push_str(",y_mm,z_mm,valid");
-    for o in &s.outputs {
-        let _ = write!(t, ",{}", o.column());
-    }
-    t.push('\n');
-    for (i, (d, r)) in p.variants.iter().zip(results).enumerate() {
+    // maps_long.csv and the per-variant maps, one variant at a time: its long-table rows
+    // (ascending, which also sums the pictures' block means), then its matrices (top row first).
+    let long_rel = Path::new(match format {
+        TableFormat::Csv => "maps_long.csv",
+        TableFormat::Parquet => "maps_long.parquet",
+    });
+    let long_file = create(root, long_rel)?;
+    let mut long = match format {
+        TableFormat::Csv => {
+            let mut f = long_file;
+            let mut head = String::from("variant_id");
+            for v in &axes {
+                let _ = write!(head, ",{}", v.key());
+            }
+            head.push_str(",y_mm,z_mm,valid");
+            for o in &s.outputs {
+                let _ = write!(head, ",{}", o.column());
+            }
+            head.push('\n');
+            f.write_all(head.as_bytes())
+                .map_err(|e| io_err(long_rel, e))?;
+            LongWriter::Csv(f)
+        }
+        TableFormat::Parquet => LongWriter::Parquet(
+            parquet_long_writer(long_file, &axes, &s.outputs).map_err(|e| io_err(long_rel, e))?,
+        ),
+    };
+    n_files += 1;
+    // `,z,` of every column, formatted once.
+    let zs_text: Vec<Vec<u8>> = p
+        .zs_mm
+        .iter()
+        .map(|z| {
+            let mut b = vec![b','];
+            push_cell(&mut b, *z);
+            b.push(b',');
+            b
+        })
+        .collect();
+    let club_speed = mph(s.swing.club_speed_mph);
+    let w = id_width(p.variants.len());
+    let ys_m: Vec<f64> = p.ys_mm.iter().map(|v| mm(*v)).collect();
+    let zs_m: Vec<f64> = p.zs_mm.iter().map(|v| mm(*v)).collect();
+    for (i, d) in p.variants.iter().enumerate() {
         let mut prefix = i.to_string();
         for v in &axes {
             let _ = write!(prefix, ",{}", cell(d.get(*v)));
         }
-        for (iy, y) in p.ys_mm.iter().enumerate() {
-            for (iz, z) in p.zs_mm.iter().enumerate() {
-                let k = iy * nz + iz;
-                let _ = write!(
-                    t,
-                    "{prefix},{},{},{}",
-                    cell(*y),
-                    cell(*z),
-                    u8::from(r.grid.valid[k])
+        prefix.push(',');
+        let fill = |rows: Range<usize>, valid: &mut Vec<bool>, out: &mut [Vec<f64>]| {
+            let mut g = LaunchGrid::default();
+            grids.grid_rows(i, rows, &mut g);
+            for (o, dst) in s.outputs.iter().zip(out.iter_mut()) {
+                dst.clear();
+                dst.par_extend(
+                    (0..g.len())
+                        .into_par_iter()
+                        .map(|k| o.file_value(&g, k, club_speed)),
                 );
-                for o in &s.outputs {
-                    let _ = write!(t, ",{}", cell(o.file_value(&r.grid, k, club_speed)));
-                }
-                t.push('\n');
+            }
+            std::mem::swap(valid, &mut g.valid);
+        };
+        let blocks = match &mut long {
+            LongWriter::Csv(f) => {
+                write_long_rows(f, p, s.outputs.len(), (prefix.as_bytes(), &zs_text), &fill)
+            }
+            LongWriter::Parquet(w) => {
+                let design: Vec<f64> = axes.iter().map(|v| d.get(*v)).collect();
+                write_long_parquet(w, p, i, &design, s.outputs.len(), &fill)
             }
         }
-    }
-    files.push(("maps_long.csv".into(), t.into_bytes()));
-
-    // Per-variant maps.
-    let w = id_width(p.variants.len());
-    for (i, (d, r)) in p.variants.iter().zip(results).enumerate() {
-        for o in &s.outputs {
-            let values: Vec<f64> = (0..r.grid.len())
-                .map(|k| o.file_value(&r.grid, k, club_speed))
-                .collect();
-            let title = format!("{}: variant {i} ({}): {}", s.name, d.describe(), o.label());
-            let value_label = format!("{}, {}", o.label().to_lowercase(), o.unit());
-            let map = Heatmap {
-                title: &title,
-                x_label: X_LABEL,
-                y_label: Y_LABEL,
-                value_label: &value_label,
-                xs: &p.zs_mm,
-                ys: &p.ys_mm,
-                values: &values,
-                marker: Some((0.0, 0.0)),
+        .map_err(|e| io_err(long_rel, e))?;
+        let maps: Vec<MapFile> = s
+            .outputs
+            .iter()
+            .map(|o| MapFile {
+                stem: format!("maps/v{i:0w$}_{}", o.column()),
+                title: format!("{}: variant {i} ({}): {}", s.name, d.describe(), o.label()),
+                value_label: format!("{}, {}", o.label().to_lowercase(), o.unit()),
                 scale: if o.signed() {
                     Scale::Diverging
                 } else {
                     Scale::Sequential
                 },
-            };
-            let stem = format!("maps/v{i:0w$}_{}", o.column());
-            files.push((format!("{stem}.csv").into(), matrix_csv(&map)));
-            files.push((format!("{stem}.svg").into(), heatmap_svg(&map).into_bytes()));
-        }
+            })
+            .collect();
+        let fill_values = |rows: Range<usize>, out: &mut [Vec<f64>]| {
+            fill(rows, &mut Vec::new(), out);
+        };
+        n_files += write_maps(root, p, &maps, &fill_values, &blocks)?;
+    }
+    if let LongWriter::Parquet(w) = long {
+        w.close()
+            .map_err(|e| io_err(long_rel, std::io::Error::other(e)))?;
     }
 
     if !sens.is_empty() {
-        files.extend(sensitivity_files(p, sens, &names));
+        let mut t = sensitivity_table(sens, &names);
+        put(root, Path::new("sensitivity.csv"), t.as_bytes())?;
+        t.clear();
+        n_files += 1;
+        for x in sens {
+            let outputs: Vec<Output> = Output::ALL
+                .iter()
+                .copied()
+                .filter(|o| s.outputs.contains(o))
+                .collect();
+            let maps: Vec<MapFile> = outputs
+                .iter()
+                .map(|o| MapFile {
+                    stem: format!("sensitivity/d_{}__d_{}", o.column(), x.var.key()),
+                    title: format!(
+                        "{}: d({}) / d({}) at the base design (step {})",
+                        s.name,
+                        o.label().to_lowercase(),
+                        x.var.key(),
+                        x.step
+                    ),
+                    value_label: format!(
+                        "{} per {}, {}/{}",
+                        o.label().to_lowercase(),
+                        x.var.key(),
+                        o.unit(),
+                        x.var.unit()
+                    ),
+                    scale: Scale::Diverging,
+                })
+                .collect();
+            let fill = |rows: Range<usize>, out: &mut [Vec<f64>]| {
+                x.map_rows(&ys_m[rows], &zs_m, club_speed, &outputs, out);
+            };
+            let blocks = block_means(p, maps.len(), &fill);
+            n_files += write_maps(root, p, &maps, &fill, &blocks)?;
+        }
     }
     if let Some(o) = opt {
-        files.extend(optimise_files(p, o, &names));
+        for (rel, bytes) in optimise_files(p, o, &names) {
+            put(root, &rel, &bytes)?;
+            n_files += 1;
+        }
     }
-    files
+    Ok(n_files)
 }
 
-fn sensitivity_files(p: &Prepared, sens: &[Sensitivity], names: &[String]) -> Files {
-    let s = &p.study;
-    let mut files = Files::new();
+/// Values of a band of rows for [`write_long_rows`]: validity and each output (row-major).
+type LongFill<'a> = dyn Fn(Range<usize>, &mut Vec<bool>, &mut [Vec<f64>]) + Sync + 'a;
+
+/// A band of long-table rows: first row, validity, values per output, text lines.
+#[derive(Default)]
+struct LongBand {
+    valid: Vec<bool>,
+    values: Vec<Vec<f64>>,
+    lines: Vec<Vec<u8>>,
+}
+
+/// One variant's lines of `maps_long.csv` (ascending rows; `prefix` is `id,variables,` and
+/// `zs` holds `,z,` per column) into `f`; returns the block means of each output's picture.
+fn write_long_rows(
+    f: &mut File,
+    p: &Prepared,
+    n_outputs: usize,
+    (prefix, zs): (&[u8], &[Vec<u8>]),
+    fill: &LongFill<'_>,
+) -> std::io::Result<Vec<BlockMeans>> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let bands = ny.div_ceil(per);
+    let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, band: &mut LongBand| {
+        let rows = b * per..((b + 1) * per).min(ny);
+        band.values.resize_with(n_outputs, Vec::new);
+        fill(rows.clone(), &mut band.valid, &mut band.values);
+        band.lines.resize_with(rows.len(), Vec::new);
+        let (valid, values) = (&band.valid, &band.values);
+        band.lines.par_iter_mut().enumerate().for_each(|(r, out)| {
+            out.clear();
+            let mut y = Vec::new();
+            push_cell(&mut y, p.ys_mm[rows.start + r]);
+            for (iz, z) in zs.iter().enumerate() {
+                let k = r * nz + iz;
+                out.extend_from_slice(prefix);
+                out.extend_from_slice(&y);
+                out.extend_from_slice(z);
+                out.push(if valid[k] { b'1' } else { b'0' });
+                for v in values {
+                    out.push(b',');
+                    push_cell(out, v[k]);
+                }
+                out.push(b'\n');
+            }
+        });
+    };
+    let mut consume = |_: usize, band: &LongBand| -> std::io::Result<()> {
+        for l in &band.lines {
+            f.write_all(l)?;
+        }
+        for (b, v) in blocks.iter_mut().zip(&band.values) {
+            b.add_rows(v);
+        }
+        Ok(())
+    };
+    pipeline(
+        bands,
+        [LongBand::default(), LongBand::default()],
+        &make,
+        &mut consume,
+    )?;
+    Ok(blocks)
+}
+
+/// The long table's file.
+enum LongWriter {
+    Csv(File),
+    Parquet(SerializedFileWriter<File>),
+}
+
+/// A Parquet writer for the long table: `variant_id` (INT32), the design variables, `y_mm`,
+/// `z_mm` (DOUBLE), `valid` (BOOLEAN), then the outputs (DOUBLE, null where invalid).
+fn parquet_long_writer(
+    f: File,
+    axes: &[DesignVar],
+    outputs: &[Output],
+) -> std::io::Result<SerializedFileWriter<File>> {
+    let mut schema = String::from("message maps_long {\n  REQUIRED INT32 variant_id;\n");
+    for v in axes {
+        let _ = writeln!(schema, "  REQUIRED DOUBLE {};", v.key());
+    }
+    schema
+        .push_str("  REQUIRED DOUBLE y_mm;\n  REQUIRED DOUBLE z_mm;\n  REQUIRED BOOLEAN valid;\n");
+    for o in outputs {
+        let _ = writeln!(schema, "  OPTIONAL DOUBLE {};", o.column());
+    }
+    schema.push('}');
+    let schema = parse_message_type(&schema).map_err(std::io::Error::other)?;
+    let props = WriterProperties::builder()
+        .set_compression(Compression::SNAPPY)
+        .set_dictionary_enabled(false)
+        .build();
+    SerializedFileWriter::new(f, Arc::new(schema), Arc::new(props)).map_err(std::io::Error::other)
+}
+
+/// One variant's rows of the long table as Parquet row groups (one a band, ascending rows);
+/// returns the block means of each output's picture.
+fn write_long_parquet(
+    w: &mut SerializedFileWriter<File>,
+    p: &Prepared,
+    variant: usize,
+    design: &[f64],
+    n_outputs: usize,
+    fill: &LongFill<'_>,
+) -> std::io::Result<Vec<BlockMeans>> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let bands = ny.div_ceil(per);
+    let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, band: &mut LongBand| {
+        let rows = b * per..((b + 1) * per).min(ny);
+        band.values.resize_with(n_outputs, Vec::new);
+        fill(rows, &mut band.valid, &mut band.values);
+    };
+    let pq = |e: parquet::errors::ParquetError| std::io::Error::other(e);
+    let mut consume = |b: usize, band: &LongBand| -> std::io::Result<()> {
+        let rows = b * per..((b + 1) * per).min(ny);
+        let n = band.valid.len();
+        let ys: Vec<f64> = rows
+            .flat_map(|r| std::iter::repeat_n(p.ys_mm[r], nz))
+            .collect();
+        let zs: Vec<f64> = p.zs_mm.iter().copied().cycle().take(n).collect();
+        let mut rg = w.next_row_group().map_err(pq)?;
+        let mut column = 0;
+        while let Some(mut col) = rg.next_column().map_err(pq)? {
+            let c = column;
+            column += 1;
+            if c == 0 {
+                let ids = vec![variant as i32; n];
+                col.typed::<Int32Type>()
+                    .write_batch(&ids, None, None)
+                    .map_err(pq)?;
+            } else if c <= design.len() {
+                let x = vec![design[c - 1]; n];
+                col.typed::<DoubleType>()
+                    .write_batch(&x, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 1 {
+                col.typed::<DoubleType>()
+                    .write_batch(&ys, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 2 {
+                col.typed::<DoubleType>()
+                    .write_batch(&zs, None, None)
+                    .map_err(pq)?;
+            } else if c == design.len() + 3 {
+                col.typed::<BoolType>()
+                    .write_batch(&band.valid, None, None)
+                    .map_err(pq)?;
+            } else {
+                let v = &band.values[c - design.len() - 4];
+                let present: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
+                let def: Vec<i16> = v.iter().map(|x| i16::from(x.is_finite())).collect();
+                col.typed::<DoubleType>()
+                    .write_batch(&present, Some(&def), None)
+                    .map_err(pq)?;
+            }
+            col.close().map_err(pq)?;
+        }
+        rg.close().map_err(pq)?;
+        for (b, v) in blocks.iter_mut().zip(&band.values) {
+            b.add_rows(v);
+        }
+        Ok(())
+    };
+    pipeline(
+        bands,
+        [LongBand::default(), LongBand::default()],
+        &make,
+        &mut consume,
+    )?;
+    Ok(blocks)
+}
+
+/// The block means of the pictures of a map set, from an ascending pass over the rows.
+fn block_means(p: &Prepared, n_maps: usize, fill: &MapFill<'_>) -> Vec<BlockMeans> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let mut blocks: Vec<BlockMeans> = (0..n_maps).map(|_| BlockMeans::new(ny, nz)).collect();
+    let make = |b: usize, values: &mut Vec<Vec<f64>>| {
+        values.resize_with(n_maps, Vec::new);
+        fill(b * per..((b + 1) * per).min(ny), values);
+    };
+    let mut consume = |_: usize, values: &Vec<Vec<f64>>| -> std::io::Result<()> {
+        for (b, v) in blocks.iter_mut().zip(values) {
+            b.add_rows(v);
+        }
+        Ok(())
+    };
+    pipeline(
+        ny.div_ceil(per),
+        [Vec::new(), Vec::new()],
+        &make,
+        &mut consume,
+    )
+    .expect("no I/O in this pass");
+    blocks
+}
+
+/// Values of each map of a set on a band of rows: `fill(rows, out)`, row-major.
+type MapFill<'a> = dyn Fn(Range<usize>, &mut [Vec<f64>]) + Sync + 'a;
+
+/// One map of a set written by [`write_maps`].
+struct MapFile {
+    stem: String,
+    title: String,
+    value_label: String,
+    scale: Scale,
+}
+
+/// A band of a map set: per map its values (row-major) and its matrix lines (top row first).
+#[derive(Default)]
+struct MapBand {
+    values: Vec<Vec<f64>>,
+    lines: Vec<Vec<Vec<u8>>>,
+}
+
+/// The matrices (`<stem>.csv`, top row first) and pictures (`<stem>.svg`, from `blocks`) of
+/// maps over the study grid; `fill(rows, out)` gives each map's values on `rows` (row-major).
+/// Returns the number of files written.
+fn write_maps(
+    root: &Path,
+    p: &Prepared,
+    maps: &[MapFile],
+    fill: &MapFill<'_>,
+    blocks: &[BlockMeans],
+) -> std::io::Result<usize> {
+    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let per = band_rows(nz);
+    let bands = ny.div_ceil(per);
+    let header = matrix_csv_header(&p.zs_mm);
+    let mut files: Vec<File> = Vec::with_capacity(maps.len());
+    for m in maps {
+        let rel = PathBuf::from(format!("{}.csv", m.stem));
+        let mut f = create(root, &rel)?;
+        f.write_all(&header).map_err(|e| io_err(&rel, e))?;
+        files.push(f);
+    }
+    // Bands from the top of the face down.
+    let band_range = |b: usize| {
+        let k = bands - 1 - b;
+        k * per..((k + 1) * per).min(ny)
+    };
+    let make = |b: usize, band: &mut MapBand| {
+        let rows = band_range(b);
+        band.values.resize_with(maps.len(), Vec::new);
+        fill(rows.clone(), &mut band.values);
+        band.lines.resize_with(maps.len(), Vec::new);
+        for (vals, lines) in band.values.iter().zip(band.lines.iter_mut()) {
+            lines.resize_with(rows.len(), Vec::new);
+            lines.par_iter_mut().enumerate().for_each(|(k, out)| {
+                // Line k of the band is row `rows.end - 1 - k`.
+                let r = rows.len() - 1 - k;
+                out.clear();
+                matrix_csv_row(out, p.ys_mm[rows.start + r], &vals[r * nz..(r + 1) * nz]);
+            });
+        }
+    };
+    let mut consume = |_: usize, band: &MapBand| -> std::io::Result<()> {
+        for (i, f) in files.iter_mut().enumerate() {
+            for l in &band.lines[i] {
+                f.write_all(l)?;
+            }
+        }
+        Ok(())
+    };
+    pipeline(
+        bands,
+        [MapBand::default(), MapBand::default()],
+        &make,
+        &mut consume,
+    )?;
+    drop(files);
+    for (m, b) in maps.iter().zip(blocks) {
+        let map = Heatmap {
+            title: &m.title,
+            x_label: X_LABEL,
+            y_label: Y_LABEL,
+            value_label: &m.value_label,
+            xs: &p.zs_mm,
+            ys: &p.ys_mm,
+            values: &[],
+            marker: Some((0.0, 0.0)),
+            scale: m.scale,
+        };
+        put(
+            root,
+            Path::new(&format!("{}.svg", m.stem)),
+            b.svg(&map).as_bytes(),
+        )?;
+    }
+    Ok(2 * maps.len())
+}
+
+fn sensitivity_table(sens: &[Sensitivity], names: &[String]) -> String {
     let mut t = String::from(
         "metric,variable,derivative,unit,step,reference_change,change_per_reference,rank\n",
     );
@@ -192,43 +690,7 @@ fn sensitivity_files(p: &Prepared, sens: &[Sensitivity], names: &[String]) -> Fi
             );
         }
     }
-    files.push(("sensitivity.csv".into(), t.into_bytes()));
-    for x in sens {
-        for (oi, o) in Output::ALL.iter().enumerate() {
-            if !s.outputs.contains(o) {
-                continue;
-            }
-            let title = format!(
-                "{}: d({}) / d({}) at the base design (step {})",
-                s.name,
-                o.label().to_lowercase(),
-                x.var.key(),
-                x.step
-            );
-            let value_label = format!(
-                "{} per {}, {}/{}",
-                o.label().to_lowercase(),
-                x.var.key(),
-                o.unit(),
-                x.var.unit()
-            );
-            let map = Heatmap {
-                title: &title,
-                x_label: X_LABEL,
-                y_label: Y_LABEL,
-                value_label: &value_label,
-                xs: &p.zs_mm,
-                ys: &p.ys_mm,
-                values: &x.maps[oi],
-                marker: Some((0.0, 0.0)),
-                scale: Scale::Diverging,
-            };
-            let stem = format!("sensitivity/d_{}__d_{}", o.column(), x.var.key());
-            files.push((format!("{stem}.csv").into(), matrix_csv(&map)));
-            files.push((format!("{stem}.svg").into(), heatmap_svg(&map).into_bytes()));
-        }
-    }
-    files
+    t
 }
 
 fn optimise_files(p: &Prepared, o: &OptimiseResult, names: &[String]) -> Files {

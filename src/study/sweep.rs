@@ -14,6 +14,7 @@ use crate::units::mm;
 use super::design::Design;
 use super::distribution::SwingGroup;
 use super::metrics::{evaluate, impacts_per_design};
+use super::output::GridSource;
 use super::spec::Study;
 use super::StudyError;
 
@@ -204,6 +205,30 @@ impl Prepared {
         });
     }
 
+    /// Every variant's summary metrics, in parallel.
+    pub fn all_metrics(&self) -> Vec<Vec<f64>> {
+        self.models
+            .par_iter()
+            .map(|m| evaluate(m, &self.study, &self.groups))
+            .collect()
+    }
+
+    /// The face maps computed on demand, a band of rows at a time, by one kernel per variant.
+    pub fn kernels(&self) -> Kernels {
+        let delivery = self.study.swing.delivery(0.0, 0.0);
+        Kernels {
+            kernels: self
+                .models
+                .iter()
+                .map(|m| FaceMapKernel::new(m, &delivery))
+                .collect(),
+            ys_m: self.ys_mm.iter().map(|y| mm(*y)).collect(),
+            zs_m: self.zs_mm.iter().map(|z| mm(*z)).collect(),
+            seconds: std::sync::Mutex::new(0.0),
+            points: std::sync::atomic::AtomicUsize::new(0),
+        }
+    }
+
     /// Assemble complete per-variant results from item results covering the whole work list.
     pub fn assemble(&self, items: Vec<ItemResult>) -> Result<Vec<VariantResult>, StudyError> {
         let (ny, nz) = (self.ys_mm.len(), self.zs_mm.len());
@@ -295,4 +320,38 @@ pub struct VariantResult {
     pub grid: LaunchGrid,
     /// Summary metrics.
     pub metrics: Vec<f64>,
+}
+
+/// One face-map kernel per variant: the study's maps computed on demand (a [`GridSource`]).
+/// Bit-identical to [`Prepared::compute`] row by row.
+#[derive(Debug)]
+pub struct Kernels {
+    kernels: Vec<FaceMapKernel>,
+    ys_m: Vec<f64>,
+    zs_m: Vec<f64>,
+    seconds: std::sync::Mutex<f64>,
+    points: std::sync::atomic::AtomicUsize,
+}
+
+impl Kernels {
+    /// Wall-clock seconds spent in the kernel so far.
+    pub fn seconds(&self) -> f64 {
+        *self.seconds.lock().expect("not poisoned")
+    }
+
+    /// Grid points computed so far.
+    pub fn points(&self) -> usize {
+        self.points.load(std::sync::atomic::Ordering::Relaxed)
+    }
+}
+
+impl GridSource for Kernels {
+    fn grid_rows(&self, variant: usize, rows: std::ops::Range<usize>, out: &mut LaunchGrid) {
+        let start = std::time::Instant::now();
+        out.resize(rows.len() * self.zs_m.len());
+        self.kernels[variant].par_eval_grid(&self.ys_m[rows], &self.zs_m, out);
+        *self.seconds.lock().expect("not poisoned") += start.elapsed().as_secs_f64();
+        self.points
+            .fetch_add(out.len(), std::sync::atomic::Ordering::Relaxed);
+    }
 }

@@ -15,9 +15,11 @@
 //!
 //! # Same results as [`ImpactModel::solve`]
 //!
-//! Every effect of the model is handled (ball offset, tangential restitution, friction slip as a
-//! blend of the two branches, `cor_speed`, `cor_radial`, loft/face bias, and whatever
-//! `ModelParams` carries: CoM offset, inertia scale, added mass). The torus test and `u1` use
+//! The physical laws (restitution with `cor_speed`/`cor_radial`/`cor_power`, the ball lever arm,
+//! the collision matrix, the tangential law with friction slip as a blend of the two branches)
+//! are not written here: the kernel evaluates the model's [`crate::physics::laws`] on lanes, the
+//! same code the scalar solve runs on one shot. [`FaceMapKernel::new`] names every field of
+//! [`ModelParams`], so a new one does not compile until it is handled. The torus test and `u1` use
 //! exactly the operations of the generic path, and the sign of `u1·n` is taken from a fast
 //! normal unless it is within 1e-13 of rounding, where `n` and `u1·n` are recomputed with the
 //! generic path's operations: a point is invalid here exactly when [`ImpactModel::solve`]
@@ -28,7 +30,8 @@
 //! # Determinism
 //!
 //! A point's outputs depend only on its own `(y, z)` and the kernel: every point goes through
-//! the same sequence of IEEE-754 operations (`+ − × ÷ √`, no fused multiply–add, no libm
+//! the same sequence of IEEE-754 operations (`+ − × ÷ √`, no fused multiply–add; the one libm
+//! call, `pow` for a `cor_power` exponent, runs lane by lane on the same function; no other libm
 //! calls), whatever its lane, its chunk, the row length, the thread that runs it, or whether
 //! the AVX2 or the portable path runs (the exact `u1·n` recheck is selected per lane from the
 //! lane's own values). The tail of a row is padded into a full chunk. So sharded or
@@ -40,8 +43,8 @@ use rayon::prelude::*;
 
 use super::fastmath::atan2_v;
 use super::lanes::{M, V, W};
-use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
-use crate::physics::{Delivery, ImpactModel, LaunchComponent};
+use crate::physics::laws::Laws;
+use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 
 /// Points per chunk: the unit the vector code works on.
 pub const LANES: usize = 8;
@@ -194,26 +197,9 @@ pub struct FaceMapKernel {
     v_c: [f64; 3],
     /// Clubhead angular velocity in F, rad/s.
     w_c: [f64; 3],
-    /// Symmetrised inverse clubhead inertia in F: xx, xy, xz, yy, yz, zz; 1/(kg·m²).
-    j_inv: [f64; 6],
-    /// `1/m_c + 1/m_b`, 1/kg.
-    inv_mass_sum: f64,
-    /// `−ball radius`, m.
-    neg_ball_radius_m: f64,
-    /// Ball offset along `y_I`, `z_I`, m.
-    ball_offset_m: [f64; 2],
-    /// `1/I_b`, 1/(kg·m²).
-    inv_ball_inertia: f64,
-    /// Normal COR at the reference speed and the face centre.
-    cor: f64,
-    /// `cor_speed` slope, s/m.
-    cor_speed_k: f64,
-    /// `cor_radial` falloff, 1/m².
-    cor_radial_c: f64,
-    /// Tangential restitution `e_t`.
-    e_t: f64,
-    /// Friction coefficient, if friction is on.
-    mu: Option<f64>,
+    /// The model's laws (restitution, ball lever arm, collision matrix, tangential law),
+    /// evaluated on lanes with the same code as the scalar solve.
+    laws: Laws,
     /// `R_GF / m_b`: ball impulse in F → ball velocity in G.
     r_v: [[f64; 3]; 3],
     /// Rows y and z of `R_GF / I_b`: `r_b × P` in F → ball spin components y, z in G.
@@ -289,44 +275,47 @@ impl FaceMapKernel {
     /// Precompute the location-independent part of the impact of `delivery` on `model`.
     /// `delivery`'s impact location is ignored.
     pub fn new(model: &ImpactModel, delivery: &Delivery) -> Self {
-        let p = model.params();
+        // Every field of the parameters is named here, so that a new one stops the build until
+        // the kernel handles it. Most reach the kernel through the model's laws, the face or
+        // the face orientation; the rest are read below.
+        let ModelParams {
+            club_mass_kg: _,           // in laws.collision
+            club_com_m,                // r_c below
+            club_inertia_kgm2: _,      // in laws.collision
+            cor: _,                    // in laws.restitution
+            bulge_m: _,                // in model.face()
+            roll_m: _,                 // in model.face()
+            ball_mass_kg,              // r_v below; in laws.collision
+            ball_radius_m: _,          // in laws.ball
+            ball_inertia_kgm2,         // r_w below; in laws.collision
+            ball_offset_y_m: _,        // in laws.ball
+            ball_offset_z_m: _,        // in laws.ball
+            tangential_restitution: _, // in laws.tangential
+            friction_mu: _,            // in laws.tangential
+            cor_speed_k_s_per_m: _,    // in laws.restitution
+            cor_power_q: _,            // in laws.restitution
+            cor_radial_c_per_m2: _,    // in laws.restitution
+            loft_bias_rad: _,          // in model.face_orientation
+            face_bias_rad: _,          // in model.face_orientation
+            hosel_m: _,                // composed into mass, CoM and inertia by the effects
+        } = model.params();
         // Exactly the operations of `ImpactModel::solve`, so u1·n has the same bits.
         let r_gf = model.face_orientation(delivery);
         let r_fg = r_gf.transpose();
         let v_c = r_fg * delivery.club_velocity_m_s();
         let w_c = r_fg * delivery.club_omega_rad_s;
-        let j = model.club_inv_inertia();
-        let sym = |a: usize, b: usize| 0.5 * (j[(a, b)] + j[(b, a)]);
-        let inv_mb = 1.0 / p.ball_mass_kg;
-        let inv_ib = 1.0 / p.ball_inertia_kgm2;
-        let r_v: Matrix3<f64> = r_gf * inv_mb;
-        let r_w: Matrix3<f64> = r_gf * inv_ib;
+        let r_v: Matrix3<f64> = r_gf * (1.0 / ball_mass_kg);
+        let r_w: Matrix3<f64> = r_gf * (1.0 / ball_inertia_kgm2);
         let face = model.face();
         let arr = |v: Vector3<f64>| [v.x, v.y, v.z];
         Self {
             roll_m: face.roll_m(),
             major_m: face.bulge_m() - face.roll_m(),
             bulge_m: face.bulge_m(),
-            com_m: arr(p.club_com_m),
+            com_m: arr(*club_com_m),
             v_c: arr(v_c),
             w_c: arr(w_c),
-            j_inv: [
-                j[(0, 0)],
-                sym(0, 1),
-                sym(0, 2),
-                j[(1, 1)],
-                sym(1, 2),
-                j[(2, 2)],
-            ],
-            inv_mass_sum: 1.0 / p.club_mass_kg + 1.0 / p.ball_mass_kg,
-            neg_ball_radius_m: -p.ball_radius_m,
-            ball_offset_m: [p.ball_offset_y_m, p.ball_offset_z_m],
-            inv_ball_inertia: inv_ib,
-            cor: p.cor,
-            cor_speed_k: p.cor_speed_k_s_per_m,
-            cor_radial_c: p.cor_radial_c_per_m2,
-            e_t: p.tangential_restitution,
-            mu: p.friction_mu,
+            laws: *model.laws(),
             r_v: [
                 [r_v[(0, 0)], r_v[(0, 1)], r_v[(0, 2)]],
                 [r_v[(1, 0)], r_v[(1, 1)], r_v[(1, 2)]],
@@ -360,14 +349,14 @@ impl FaceMapKernel {
         } else {
             level
         };
-        match (self.mu.is_some(), level) {
-            #[cfg(target_arch = "x86_64")]
-            (false, SimdLevel::Avx2) => unsafe { self.row_avx2::<false>(&row, zs_m, out) },
-            #[cfg(target_arch = "x86_64")]
-            (true, SimdLevel::Avx2) => unsafe { self.row_avx2::<true>(&row, zs_m, out) },
-            (false, _) => self.row_impl::<false>(&row, zs_m, out),
-            (true, _) => self.row_impl::<true>(&row, zs_m, out),
-        }
+        self.dispatch(
+            level,
+            &RowJob {
+                row: &row,
+                zs: zs_m,
+            },
+            out,
+        );
     }
 
     /// Evaluate arbitrary points `(ys_m[i], zs_m[i])` into `out`.
@@ -397,14 +386,7 @@ impl FaceMapKernel {
         } else {
             level
         };
-        match (self.mu.is_some(), level) {
-            #[cfg(target_arch = "x86_64")]
-            (false, SimdLevel::Avx2) => unsafe { self.points_avx2::<false>(ys_m, zs_m, out) },
-            #[cfg(target_arch = "x86_64")]
-            (true, SimdLevel::Avx2) => unsafe { self.points_avx2::<true>(ys_m, zs_m, out) },
-            (false, _) => self.points_impl::<false>(ys_m, zs_m, out),
-            (true, _) => self.points_impl::<true>(ys_m, zs_m, out),
-        }
+        self.dispatch(level, &PointsJob { ys: ys_m, zs: zs_m }, out);
     }
 
     /// Evaluate the grid `ys_m × zs_m` (row-major) on the calling thread.
@@ -494,7 +476,7 @@ impl FaceMapKernel {
 
     /// Impacts at heel–toe locations `z` on `row`: straight-line code, no branches.
     #[inline(always)]
-    fn point<const FRICTION: bool>(&self, row: &Row, z: V) -> Out {
+    fn point<const FRICTION: bool, const POWER: bool>(&self, row: &Row, z: V) -> Out {
         let zero = V::splat(0.0);
         // Contact point and normal, with the operations of `FaceGeometry::contact`.
         let x2 = row.rho2 - z * z;
@@ -533,89 +515,21 @@ impl FaceMapKernel {
         };
         let valid = on_face & approaching;
 
-        let e = self.cor
-            - self.cor_speed_k * (u1n - COR_SPEED_REFERENCE_M_S)
-            - self.cor_radial_c * (row.yy + z * z);
+        let laws = &self.laws;
+        let e = laws.restitution.cor_with::<V, POWER>(u1n, row.yy + z * z);
 
-        // Impact frame tangents and r_b = −radius·n + dy·y_I + dz·z_I.
+        // Impact frame tangents z_I = (−z, 0, X)/ρ, y_I = z_I × n, and the ball lever arm.
         let tzx = -z * row.inv_rho;
         let tzz = x * row.inv_rho;
         let tyx = -(tzz * ny);
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
-        let [dy, dz] = self.ball_offset_m;
-        let nr = self.neg_ball_radius_m;
-        let rbx = nr * nx + dy * tyx + dz * tzx;
-        let rby = nr * ny + dy * tyy;
-        let rbz = nr * nz + dy * tyz + dz * tzz;
-
-        // K = (1/m_c + 1/m_b)·1 + Cᵀ J C + (|r_b|²·1 − r_b r_bᵀ)/I_b, with C = [r_c]×, whose
-        // columns are c0 = (0, a2, −a1), c1 = (−a2, 0, a0), c2 = (a1, −a0, 0).
-        let (a0, a1, a2) = (rcx, rcy, rcz);
-        let [jxx, jxy, jxz, jyy, jyz, jzz] = self.j_inv;
-        let jc0y = jyy * a2 - jyz * a1;
-        let jc0z = jyz * a2 - jzz * a1;
-        let jc1x = jxz * a0 - jxx * a2;
-        let jc1y = jyz * a0 - jxy * a2;
-        let jc1z = jzz * a0 - jxz * a2;
-        let jc2x = jxx * a1 - jxy * a0;
-        let jc2y = jxy * a1 - jyy * a0;
-        let jc2z = jxz * a1 - jyz * a0;
-        let m00 = a2 * jc0y - a1 * jc0z;
-        let m01 = a2 * jc1y - a1 * jc1z;
-        let m02 = a2 * jc2y - a1 * jc2z;
-        let m11 = a0 * jc1z - a2 * jc1x;
-        let m12 = a0 * jc2z - a2 * jc2x;
-        let m22 = a1 * jc2x - a0 * jc2y;
-        let ib = self.inv_ball_inertia;
-        let rb2 = rbx * rbx + rby * rby + rbz * rbz;
-        let ims = self.inv_mass_sum;
-        let k00 = ims + m00 + (rb2 - rbx * rbx) * ib;
-        let k11 = ims + m11 + (rb2 - rby * rby) * ib;
-        let k22 = ims + m22 + (rb2 - rbz * rbz) * ib;
-        let k01 = m01 - rbx * rby * ib;
-        let k02 = m02 - rbx * rbz * ib;
-        let k12 = m12 - rby * rbz * ib;
-
-        // K P = u1 + e·u1n·n + e_t·(u1 − u1n·n).
-        let u1tx = u1x - u1n * nx;
-        let u1ty = u1y - u1n * ny;
-        let u1tz = u1z - u1n * nz;
-        let eu = e * u1n;
-        let bx = u1x + eu * nx + self.e_t * u1tx;
-        let by = u1y + eu * ny + self.e_t * u1ty;
-        let bz = u1z + eu * nz + self.e_t * u1tz;
-        // Symmetric 3×3 solve by cofactors (as `solve_spd3`).
-        let c00 = k11 * k22 - k12 * k12;
-        let c01 = k02 * k12 - k01 * k22;
-        let c02 = k01 * k12 - k02 * k11;
-        let c11 = k00 * k22 - k02 * k02;
-        let c12 = k01 * k02 - k00 * k12;
-        let c22 = k00 * k11 - k01 * k01;
-        let inv_det = 1.0 / (k00 * c00 + k01 * c01 + k02 * c02);
-        let mut px = (c00 * bx + c01 * by + c02 * bz) * inv_det;
-        let mut py = (c01 * bx + c11 * by + c12 * bz) * inv_det;
-        let mut pz = (c02 * bx + c12 * by + c22 * bz) * inv_det;
-
-        if FRICTION {
-            // Gross slip when |P_t| > mu·P_n: P = P_n·(n + mu·ŝ), ŝ = u1_t/|u1_t|,
-            // P_n = (1 + e)·u1n / (n·K·(n + mu·ŝ)). Both branches computed, then a select.
-            let mu = self.mu.unwrap_or(f64::INFINITY);
-            let pn = px * nx + py * ny + pz * nz;
-            let (ptx, pty, ptz) = (px - pn * nx, py - pn * ny, pz - pn * nz);
-            let pt = (ptx * ptx + pty * pty + ptz * ptz).sqrt();
-            let ut = (u1tx * u1tx + u1ty * u1ty + u1tz * u1tz).sqrt();
-            let slip = pt.gt(mu * pn) & ut.gt(zero);
-            let f = mu / ut;
-            let (dx, dy, dz) = (nx + f * u1tx, ny + f * u1ty, nz + f * u1tz);
-            let kdx = k00 * dx + k01 * dy + k02 * dz;
-            let kdy = k01 * dx + k11 * dy + k12 * dz;
-            let kdz = k02 * dx + k12 * dy + k22 * dz;
-            let pn_slip = (1.0 + e) * u1n / (nx * kdx + ny * kdy + nz * kdz);
-            px = slip.select(pn_slip * dx, px);
-            py = slip.select(pn_slip * dy, py);
-            pz = slip.select(pn_slip * dz, pz);
-        }
+        let n = [nx, ny, nz];
+        let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
+        let k = laws.collision.matrix(&[rcx, rcy, rcz], &[rbx, rby, rbz]);
+        let ([px, py, pz], _slip) =
+            laws.tangential
+                .impulse::<V, FRICTION>(&k, &n, &[u1x, u1y, u1z], u1n, e);
 
         // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
         let rv = &self.r_v;
@@ -646,17 +560,22 @@ impl FaceMapKernel {
 
     /// One chunk of a row.
     #[inline(always)]
-    fn row_chunk<const FRICTION: bool>(&self, row: &Row, zs: &[f64; LANES], mut out: Chunk<'_>) {
+    fn row_chunk<const FRICTION: bool, const POWER: bool>(
+        &self,
+        row: &Row,
+        zs: &[f64; LANES],
+        mut out: Chunk<'_>,
+    ) {
         for k in 0..LANES / W {
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
-            let o = self.point::<FRICTION>(row, z);
+            let o = self.point::<FRICTION, POWER>(row, z);
             out.store(k, &o);
         }
     }
 
     /// One chunk of arbitrary points.
     #[inline(always)]
-    fn points_chunk<const FRICTION: bool>(
+    fn points_chunk<const FRICTION: bool, const POWER: bool>(
         &self,
         ys: &[f64; LANES],
         zs: &[f64; LANES],
@@ -666,35 +585,102 @@ impl FaceMapKernel {
             let y = V(ys[k * W..(k + 1) * W].try_into().unwrap());
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
             let row = self.row(y);
-            let o = self.point::<FRICTION>(&row, z);
+            let o = self.point::<FRICTION, POWER>(&row, z);
             out.store(k, &o);
         }
     }
 
     #[inline(always)]
-    fn row_impl<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
+    fn row_impl<const FRICTION: bool, const POWER: bool>(
+        &self,
+        row: &Row,
+        zs: &[f64],
+        out: RowOut<'_>,
+    ) {
         if !row.ok.get(0) {
             fill_invalid(out);
             return;
         }
-        for_chunks(zs, zs, out, &RowChunks::<FRICTION> { k: self, row });
+        for_chunks(zs, zs, out, &RowChunks::<FRICTION, POWER> { k: self, row });
     }
 
     #[inline(always)]
-    fn points_impl<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
-        for_chunks(ys, zs, out, &PointChunks::<FRICTION> { k: self });
+    fn points_impl<const FRICTION: bool, const POWER: bool>(
+        &self,
+        ys: &[f64],
+        zs: &[f64],
+        out: RowOut<'_>,
+    ) {
+        for_chunks(ys, zs, out, &PointChunks::<FRICTION, POWER> { k: self });
+    }
+
+    /// Run `job` with the kernel's constant switches (friction on, `cor_power` exponent set)
+    /// turned into compile-time constants, so that the common case carries neither the slip
+    /// branch nor a `pow` call.
+    fn dispatch(&self, level: SimdLevel, job: &impl Job, out: RowOut<'_>) {
+        let friction = self.laws.tangential.mu.is_some();
+        let power = self.laws.restitution.power_q != 0.0;
+        match (friction, power) {
+            (false, false) => self.on_level::<false, false>(level, job, out),
+            (false, true) => self.on_level::<false, true>(level, job, out),
+            (true, false) => self.on_level::<true, false>(level, job, out),
+            (true, true) => self.on_level::<true, true>(level, job, out),
+        }
+    }
+
+    #[inline(always)]
+    fn on_level<const FRICTION: bool, const POWER: bool>(
+        &self,
+        level: SimdLevel,
+        job: &impl Job,
+        out: RowOut<'_>,
+    ) {
+        match level {
+            #[cfg(target_arch = "x86_64")]
+            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER>(job, out) },
+            _ => job.run::<FRICTION, POWER>(self, out),
+        }
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn row_avx2<const FRICTION: bool>(&self, row: &Row, zs: &[f64], out: RowOut<'_>) {
-        self.row_impl::<FRICTION>(row, zs, out)
+    unsafe fn avx2<const FRICTION: bool, const POWER: bool>(
+        &self,
+        job: &impl Job,
+        out: RowOut<'_>,
+    ) {
+        job.run::<FRICTION, POWER>(self, out)
     }
+}
 
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
-    unsafe fn points_avx2<const FRICTION: bool>(&self, ys: &[f64], zs: &[f64], out: RowOut<'_>) {
-        self.points_impl::<FRICTION>(ys, zs, out)
+/// A row or a set of points, run by [`FaceMapKernel::dispatch`].
+trait Job {
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>);
+}
+
+/// One grid row: the heights are fixed in `row`.
+struct RowJob<'a> {
+    row: &'a Row,
+    zs: &'a [f64],
+}
+
+impl Job for RowJob<'_> {
+    #[inline(always)]
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+        k.row_impl::<FRICTION, POWER>(self.row, self.zs, out)
+    }
+}
+
+/// Arbitrary points.
+struct PointsJob<'a> {
+    ys: &'a [f64],
+    zs: &'a [f64],
+}
+
+impl Job for PointsJob<'_> {
+    #[inline(always)]
+    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+        k.points_impl::<FRICTION, POWER>(self.ys, self.zs, out)
     }
 }
 
@@ -705,27 +691,27 @@ trait ChunkFn {
 }
 
 /// Chunks of a row: `b` holds the heel–toe locations (`a` is unused).
-struct RowChunks<'a, const FRICTION: bool> {
+struct RowChunks<'a, const FRICTION: bool, const POWER: bool> {
     k: &'a FaceMapKernel,
     row: &'a Row,
 }
 
-impl<const FRICTION: bool> ChunkFn for RowChunks<'_, FRICTION> {
+impl<const FRICTION: bool, const POWER: bool> ChunkFn for RowChunks<'_, FRICTION, POWER> {
     #[inline(always)]
     fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.row_chunk::<FRICTION>(self.row, zs, out)
+        self.k.row_chunk::<FRICTION, POWER>(self.row, zs, out)
     }
 }
 
 /// Chunks of arbitrary points: `a` holds the heights, `b` the heel–toe locations.
-struct PointChunks<'a, const FRICTION: bool> {
+struct PointChunks<'a, const FRICTION: bool, const POWER: bool> {
     k: &'a FaceMapKernel,
 }
 
-impl<const FRICTION: bool> ChunkFn for PointChunks<'_, FRICTION> {
+impl<const FRICTION: bool, const POWER: bool> ChunkFn for PointChunks<'_, FRICTION, POWER> {
     #[inline(always)]
     fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.points_chunk::<FRICTION>(ys, zs, out)
+        self.k.points_chunk::<FRICTION, POWER>(ys, zs, out)
     }
 }
 

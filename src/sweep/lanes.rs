@@ -61,6 +61,16 @@ impl V {
         Self(r)
     }
 
+    /// Lane-wise `self^e` (libm `pow` per lane: the same bits as the scalar `f64::powf`).
+    #[inline(always)]
+    pub fn powf(self, e: f64) -> Self {
+        let mut r = self.0;
+        for v in &mut r {
+            *v = v.powf(e);
+        }
+        Self(r)
+    }
+
     /// Raw bits.
     #[inline(always)]
     pub fn to_bits(self) -> [u64; W] {

@@ -174,8 +174,6 @@ pub struct GroupSpec {
 /// them. Each is off when `None`.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct WorldPhysics {
-    /// Power-law COR: `e = cor·(u1n/48.77 m/s)^(−p)`, `p` in [0, 1].
-    pub cor_power_p: Option<f64>,
     /// Anisotropic face flex: `e = cor − cy·y² − cz·z²` (y, z in mm), each in [0, 2e-3] 1/mm².
     pub face_flex_per_mm2: Option<(f64, f64)>,
     /// Speed-dependent ball offset (ball flattening): `dy, dz += k·(u1n − 48.77 m/s)`,
@@ -190,8 +188,7 @@ pub struct WorldPhysics {
 impl WorldPhysics {
     /// Is any world-only physics switched on?
     pub fn is_active(&self) -> bool {
-        self.cor_power_p.is_some()
-            || self.face_flex_per_mm2.is_some()
+        self.face_flex_per_mm2.is_some()
             || self.offset_speed_mm_per_m_s.is_some()
             || self.loft_gain.is_some()
             || self.contact.is_some()
@@ -615,8 +612,16 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
     }
     if let Some(w) = &raw.world {
         if let Some(v) = &w.cor_power {
-            cfg.world.cor_power_p =
-                Some(ctx.in_range(v.span(), "world.cor_power.p", v.get_ref().p, 0.0, 1.0, "")?);
+            // The power-law COR is the library effect `cor_power` now (one definition of it).
+            return Err(ctx.err(
+                v.span(),
+                "world.cor_power",
+                format!(
+                    "the power-law COR is the library effect `cor_power`: write \
+                     [[hidden]] name = \"cor_power\", q = {:?} instead",
+                    v.get_ref().p
+                ),
+            ));
         }
         if let Some(v) = &w.face_flex {
             let r = v.get_ref();
@@ -833,9 +838,6 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
     let w = &cfg.world;
     if w.is_active() {
         let _ = writeln!(s, "\n[world]");
-        if let Some(p) = w.cor_power_p {
-            let _ = writeln!(s, "cor_power = {{ p = {p:?} }}");
-        }
         if let Some((cy, cz)) = w.face_flex_per_mm2 {
             let _ = writeln!(
                 s,
@@ -928,7 +930,6 @@ club_speed_mph = { mean = 95.0, between = 5.0, within = 1.0 }
 [noise.launch]
 backspin_rpm = 80.0
 [world]
-cor_power = { p = 0.1 }
 face_flex = { cy_per_mm2 = 2e-5, cz_per_mm2 = 8e-5 }
 offset_speed = { dy_mm_per_m_s = 0.01, dz_mm_per_m_s = 0.0 }
 loft_gain = { gain = 0.05 }
@@ -995,7 +996,7 @@ group = "X"
                 "noise.launch.backspin_rpm",
                 2,
             ),
-            ("[world]\ncor_power = { p = 3.0 }\n", "world.cor_power.p", 2),
+            ("[world]\ncor_power = { p = 0.1 }\n", "world.cor_power", 2),
             (
                 "[world]\nface_flex = { cy_per_mm2 = 1e-5 }\n",
                 "cz_per_mm2",

@@ -15,10 +15,10 @@
 //!
 //! The true launch is computed with the base club plus the hidden library effects and the
 //! world-only physics ([`WorldPhysics`]), from the clean delivery. The world-only forms are not in
-//! the effect library, so no calibrated club can reproduce them exactly:
+//! the effect library, so no calibrated club can reproduce them exactly (a power-law COR, once
+//! world-only here, is the library effect `cor_power`: hide it with `[[hidden]]`):
 //!
 //! ```text
-//! cor_power     e  = cor·(u1n / 48.77 m/s)^(−p)
 //! face_flex     e −= cy·y² + cz·z²                 (y, z in mm; cy ≠ cz: anisotropic)
 //! offset_speed  dy, dz += k·(u1n − 48.77 m/s)      (ball flattening grows with speed)
 //! loft_gain     δ_true = δ·(1 + gain)
@@ -194,9 +194,6 @@ pub fn world_impact(
     }
     let u1n = first.normal_approach_speed_m_s;
     let mut p = model.params().clone();
-    if let Some(pw) = world.cor_power_p {
-        p.cor *= (u1n / COR_SPEED_REFERENCE_M_S).powf(-pw);
-    }
     if let Some((cy, cz)) = world.face_flex_per_mm2 {
         let (y, z) = (d.impact_y_m * 1e3, d.impact_z_m * 1e3);
         p.cor -= cy * y * y + cz * z * z;

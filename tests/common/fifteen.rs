@@ -18,14 +18,44 @@
 //!
 //! using `a·(ω × r) = ω·(r × a)`. Everything is assembled in G (the clubhead inertia rotated as
 //! `R I_c Rᵀ`), unlike the closed form, which works in the face frame F. `e` includes the
-//! `cor_speed` and `cor_radial` effects; the ball offset enters through `r_b`. Friction (gross
+//! `cor_speed`, `cor_radial` and `cor_power` laws (and `cor_level` through `cor`); the ball offset enters through `r_b`. Friction (gross
 //! slip) is not part of these equations.
 
 #![allow(dead_code)]
 
 use nalgebra::{Matrix3, SMatrix, SVector, Vector3};
-use smash::physics::impact::COR_SPEED_REFERENCE_M_S;
+use smash::physics::ModelParams;
 use smash::{Delivery, ImpactModel};
+
+/// Reference normal approach speed of the speed-dependent COR laws (`docs/conventions.md`: 109 mph),
+/// written here independently of the engine's constant.
+const REFERENCE_SPEED_M_S: f64 = 48.77;
+
+/// The clubhead with a point mass `dm_kg` rigidly attached at `at_m` (face frame), from first
+/// principles: total mass, mass-weighted centre, and each body's inertia moved to the common
+/// centre by the parallel-axis theorem `I_O = I_C + m·(|d|²·1 − d dᵀ)`, summed. (The engine's
+/// `hosel_mass` uses the equivalent reduced-mass form; this is the independent check.)
+pub fn with_point_mass(p: &ModelParams, dm_kg: f64, at_m: Vector3<f64>) -> ModelParams {
+    let m = p.club_mass_kg;
+    let total = m + dm_kg;
+    let centre = (p.club_com_m * m + at_m * dm_kg) / total;
+    let shift = |d: Vector3<f64>, mass: f64| {
+        let mut s = Matrix3::zeros();
+        for i in 0..3 {
+            for j in 0..3 {
+                let delta = if i == j { d.dot(&d) } else { 0.0 };
+                s[(i, j)] = mass * (delta - d[i] * d[j]);
+            }
+        }
+        s
+    };
+    let mut q = p.clone();
+    q.club_mass_kg = total;
+    q.club_inertia_kgm2 =
+        p.club_inertia_kgm2 + shift(p.club_com_m - centre, m) + shift(at_m - centre, dm_kg);
+    q.club_com_m = centre;
+    q
+}
 
 /// The 15 unknowns, in G, SI units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -71,8 +101,9 @@ pub fn solve_fifteen(model: &ImpactModel, d: &Delivery) -> Option<FifteenSolutio
     if u1n.is_nan() || u1n <= 0.0 {
         return None;
     }
-    let e = p.cor
-        - p.cor_speed_k_s_per_m * (u1n - COR_SPEED_REFERENCE_M_S)
+    // docs/conventions.md: e = cor·(u1n/48.77 m/s)^(−q) − k·(u1n − 48.77 m/s) − c·(y² + z²).
+    let e = p.cor * (u1n / REFERENCE_SPEED_M_S).powf(-p.cor_power_q)
+        - p.cor_speed_k_s_per_m * (u1n - REFERENCE_SPEED_M_S)
         - p.cor_radial_c_per_m2 * (d.impact_y_m.powi(2) + d.impact_z_m.powi(2));
     let e_t = p.tangential_restitution;
 

@@ -1,0 +1,44 @@
+//! Ball flight throughput: 100,000 drives (ball speed 150–180 mph, launch 8–14°, spin
+//! 2000–3200 rpm, sidespin ±600 rpm, azimuth ±3°) to landing with the default model and
+//! atmosphere, all threads (rayon), and the same on one thread.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use smash::flight::integrate::fly_serial;
+use smash::flight::{fly, Flight, FlightConfig, FlightError, FlightLaunch};
+
+/// Deterministic spread of drives (a low-discrepancy walk through the ranges).
+pub fn drives(n: usize) -> Vec<FlightLaunch> {
+    let frac = |k: usize, a: f64| (k as f64 * a).fract();
+    (0..n)
+        .map(|k| {
+            FlightLaunch::from_file_units(
+                150.0 + 30.0 * frac(k, 0.618_033_988_7),
+                8.0 + 6.0 * frac(k, 0.754_877_666_2),
+                -3.0 + 6.0 * frac(k, 0.569_840_290_9),
+                2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
+                -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
+            )
+        })
+        .collect()
+}
+
+fn bench(c: &mut Criterion) {
+    let cfg = FlightConfig::default();
+    let n = 100_000;
+    let ls = drives(n);
+    let mut g = c.benchmark_group("flight");
+    g.throughput(Throughput::Elements(n as u64));
+    g.sample_size(10);
+    g.bench_function("drives_100k_all_threads", |b| {
+        b.iter(|| black_box(fly(&cfg, black_box(&ls))))
+    });
+    let mut out: Vec<Result<Flight, FlightError>> =
+        vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); n];
+    g.bench_function("drives_100k_one_thread", |b| {
+        b.iter(|| fly_serial(&cfg, black_box(&ls), &mut out))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,209 @@
+//! Numbers in output files: the shortest decimal that reads back to the same `f64`, laid out as
+//! Rust's `Display` lays it out (plain digits, never an exponent, no trailing `.0`), so files are
+//! byte-identical to `format!("{v}")` while the digits come from `ryu`, several times faster.
+//!
+//! The two differ only where the value lies exactly halfway between two shortest decimals
+//! (`ryu` rounds half to even, `Display` half up): when the exact decimal expansion of the
+//! double has one digit more than the shortest form. Those rare values (and magnitudes of 2⁵³
+//! and more) are detected exactly and written by `Display`.
+
+/// Append `v` (finite) to `out` exactly as `format!("{v}")` would write it.
+#[inline]
+pub fn push_f64(out: &mut Vec<u8>, v: f64) {
+    debug_assert!(v.is_finite(), "non-finite value written to a file");
+    let mut buf = ryu::Buffer::new();
+    let s = buf.format_finite(v).as_bytes();
+    if may_differ_from_display(v, s) {
+        use std::io::Write as _;
+        let _ = write!(out, "{v}");
+        return;
+    }
+    if let Some(e) = s.iter().position(|&b| b == b'e' || b == b'E') {
+        push_plain(out, &s[..e], &s[e + 1..]);
+    } else if let Some(stripped) = s.strip_suffix(b".0") {
+        out.extend_from_slice(stripped);
+    } else {
+        out.extend_from_slice(s);
+    }
+}
+
+/// Could `ryu`'s digits `s` of `v` differ from `Display`'s? Only at a tie: the exact value
+/// of `v` has exactly one significant digit more than `s`.
+#[inline]
+fn may_differ_from_display(v: f64, s: &[u8]) -> bool {
+    let bits = v.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    let frac = bits & ((1u64 << 52) - 1);
+    let (mut m, mut e) = if biased == 0 {
+        (frac, -1074)
+    } else {
+        (frac | (1u64 << 52), biased - 1075)
+    };
+    if m == 0 {
+        return false;
+    }
+    let tz = m.trailing_zeros();
+    m >>= tz;
+    e += i64::from(tz);
+    if e >= 0 {
+        // An integer: exact (so never a tie) below 2^53; larger ones are left to Display.
+        return v.abs() >= (1u64 << 53) as f64;
+    }
+    // v = m / 2^f = m·5^f / 10^f: the exact decimal has digits(m·5^f) significant digits,
+    // at least 0.69·f, so with more than 25 fractional bits it is longer than any tie (18).
+    let f = (-e) as u32;
+    if f > 25 {
+        return false;
+    }
+    let exact = u128::from(m) * 5u128.pow(f);
+    let exact_digits = exact.ilog10() as usize + 1;
+    let mantissa = s
+        .iter()
+        .position(|&b| b == b'e' || b == b'E')
+        .map_or(s, |i| &s[..i]);
+    let digits: Vec<u8> = mantissa
+        .iter()
+        .copied()
+        .filter(u8::is_ascii_digit)
+        .collect();
+    let first = digits
+        .iter()
+        .position(|&d| d != b'0')
+        .unwrap_or(digits.len());
+    let last = digits
+        .iter()
+        .rposition(|&d| d != b'0')
+        .map_or(first, |i| i + 1);
+    exact_digits == last.saturating_sub(first) + 1
+}
+
+/// Append `v` to `out`; a non-finite value becomes nothing (an empty CSV cell).
+#[inline]
+pub fn push_cell(out: &mut Vec<u8>, v: f64) {
+    if v.is_finite() {
+        push_f64(out, v);
+    }
+}
+
+/// `mantissa` (`[-]d[.ddd]`) times ten to `exp` (`[-]n`), written without an exponent.
+#[cold]
+fn push_plain(out: &mut Vec<u8>, mantissa: &[u8], exp: &[u8]) {
+    let (neg, m) = match mantissa.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        _ => (false, mantissa),
+    };
+    let int_len = m.iter().position(|&b| b == b'.').unwrap_or(m.len()) as i64;
+    let mut digits: Vec<u8> = m.iter().copied().filter(u8::is_ascii_digit).collect();
+    while digits.len() > 1 && digits.last() == Some(&b'0') {
+        digits.pop();
+    }
+    let e: i64 = std::str::from_utf8(exp)
+        .ok()
+        .and_then(|t| t.parse().ok())
+        .expect("ryu writes a decimal exponent");
+    let point = int_len + e;
+    if neg {
+        out.push(b'-');
+    }
+    let n = digits.len() as i64;
+    if point <= 0 {
+        out.extend_from_slice(b"0.");
+        out.extend(std::iter::repeat_n(b'0', (-point) as usize));
+        out.extend_from_slice(&digits);
+    } else if point >= n {
+        out.extend_from_slice(&digits);
+        out.extend(std::iter::repeat_n(b'0', (point - n) as usize));
+    } else {
+        out.extend_from_slice(&digits[..point as usize]);
+        out.push(b'.');
+        out.extend_from_slice(&digits[point as usize..]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn same_as_display(v: f64) {
+        let mut out = Vec::new();
+        push_f64(&mut out, v);
+        assert_eq!(
+            String::from_utf8(out).unwrap(),
+            format!("{v}"),
+            "bits {:#x}",
+            v.to_bits()
+        );
+    }
+
+    #[test]
+    fn matches_display_on_edge_values() {
+        for v in [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            0.1,
+            1.5,
+            100.0,
+            1e15,
+            1e16,
+            1e17,
+            1.2345e21,
+            1e-5,
+            1e-6,
+            1e-7,
+            -2.5e-9,
+            123_456_789.125,
+            f64::MAX,
+            f64::MIN_POSITIVE,
+            5e-324,
+            -f64::MAX,
+            0.30000000000000004,
+        ] {
+            same_as_display(v);
+        }
+    }
+
+    #[test]
+    fn matches_display_on_random_bit_patterns() {
+        // A fixed xorshift sequence over all exponents, and values on a typical output scale.
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let v = f64::from_bits(x);
+            if v.is_finite() {
+                same_as_display(v);
+                same_as_display((x >> 11) as f64 / (1u64 << 53) as f64 * 300.0 - 150.0);
+            }
+        }
+    }
+
+    #[test]
+    fn matches_display_on_values_with_few_fractional_bits() {
+        // Values with few fractional bits, where shortest-digit ties exist (1 + 2^-17 is one).
+        same_as_display(1.0 + 2f64.powi(-17));
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        for _ in 0..200_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let int = (x >> 14) as f64; // up to 2^50
+            let frac = (x & 7) as f64 / 8.0;
+            same_as_display(int + frac);
+            same_as_display(-(int / 4.0 + frac));
+            same_as_display(int * 16.0 + frac);
+            let k = (x % 40) as i32;
+            same_as_display(((x >> 20) as f64) * 2f64.powi(-k - 10));
+        }
+    }
+
+    #[test]
+    fn non_finite_cells_are_empty() {
+        let mut out = Vec::new();
+        push_cell(&mut out, f64::NAN);
+        push_cell(&mut out, f64::INFINITY);
+        assert!(out.is_empty());
+    }
+}

@@ -1,0 +1,296 @@
+//! Ball flight: from launch (ball speed, angles, spin) to the first landing, then optionally
+//! a simple bounce and roll.
+//!
+//! A spinning ball under gravity, aerodynamic drag against the air-relative velocity, Magnus
+//! lift along `ω × v_rel`, and spin decay, in the G frame of CONVENTIONS (origin at the ball
+//! centre at address, `x` toward the target, `y` up, `z` right). The ball lands when its centre
+//! comes back down to the height it had at address (`y = 0`).
+//!
+//! - [`aero`]: coefficient models (`C_D`, `C_L`, `C_M` from spin factor and Reynolds number),
+//!   the trait and the built-in and table models;
+//! - [`atmosphere`]: air density and viscosity from temperature, pressure or elevation and
+//!   humidity; wind with a log profile;
+//! - [`integrate`]: the batched fixed-step integrator (lanes of `f64`, rayon across batches);
+//! - [`ground`]: bounce and roll after the first landing;
+//! - [`trackman`]: TrackMan's PGA Tour averages, the validation data.
+//!
+//! Pure physics: no I/O.
+
+pub mod aero;
+pub mod atmosphere;
+pub mod ground;
+pub mod integrate;
+pub mod trackman;
+
+pub use aero::{AeroModel, CoefficientModel, Coefficients};
+pub use atmosphere::{Air, Atmosphere, AtmosphereError};
+pub use ground::Ground;
+pub use integrate::{fly, fly_one};
+
+use crate::units;
+
+/// Metres per yard (exact, international yard of 1959).
+pub const M_PER_YD: f64 = 0.9144;
+/// Standard gravity, m/s² (CGPM 1901).
+pub const G_M_S2: f64 = 9.806_65;
+
+/// The ball as it flies.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ball {
+    /// Mass, kg.
+    pub mass_kg: f64,
+    /// Radius, m.
+    pub radius_m: f64,
+    /// Moment of inertia about a diameter, kg·m².
+    pub inertia_kg_m2: f64,
+}
+
+impl Default for Ball {
+    /// The Rules of Golf ball at its limits (Equipment Rules, Part 4: mass at most 45.93 g,
+    /// diameter at least 42.67 mm), moment of inertia of a uniform sphere `2/5·m·R²`
+    /// (8.36e-6 kg·m², within the 8.0–8.6e-6 kg·m² measured on tour balls).
+    fn default() -> Self {
+        let (m, r) = (0.045_93, 0.042_67 / 2.0);
+        Self {
+            mass_kg: m,
+            radius_m: r,
+            inertia_kg_m2: 0.4 * m * r * r,
+        }
+    }
+}
+
+/// How the spin decays in flight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum SpinDecay {
+    /// An aerodynamic moment `½ρ|v|²·A·2R·C_M` against the spin, `C_M` from the coefficient
+    /// model (the default; Smits & Smith 1994 form).
+    Moment,
+    /// Exponential decay with this time constant, s.
+    Exponential {
+        /// Time constant, s.
+        time_constant_s: f64,
+    },
+    /// No decay.
+    None,
+}
+
+/// Default fixed time step in still air, s: chosen by the tolerance test in `tests/flight.rs`
+/// (carry, offline and apex within 0.01 yd of a step 64 times finer and within 1 cm of an
+/// adaptive Dormand–Prince reference, land angle within 0.01°, driver to wedge plus extreme
+/// launches; 0.25 s already fails the 1 cm test).
+pub const DEFAULT_DT_S: f64 = 0.2;
+/// Default fixed time step in wind, s: the log profile's steep gradient near the ground needs
+/// smaller steps (same test, 0.05 yd).
+pub const DEFAULT_DT_WIND_S: f64 = 0.1;
+/// Default longest flight, s (a 90° pop-up at 250 mph stays up under 15 s).
+pub const DEFAULT_MAX_TIME_S: f64 = 30.0;
+
+/// Everything a flight needs besides the launch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlightConfig {
+    /// Coefficient model.
+    pub aero: AeroModel,
+    /// Air (density, viscosity, wind).
+    pub air: Air,
+    /// Ball.
+    pub ball: Ball,
+    /// Spin decay.
+    pub spin_decay: SpinDecay,
+    /// Fixed time step, s (`None`: [`DEFAULT_DT_S`], or [`DEFAULT_DT_WIND_S`] in wind).
+    pub dt_s: Option<f64>,
+    /// Longest flight before it is an error, s.
+    pub max_time_s: f64,
+    /// Bounce and roll after landing (`None`: carry only).
+    pub ground: Option<Ground>,
+}
+
+impl Default for FlightConfig {
+    /// `fmm2022`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
+    /// no ground.
+    fn default() -> Self {
+        Self {
+            aero: AeroModel::default(),
+            air: Atmosphere::default()
+                .air()
+                .expect("the default atmosphere is valid"),
+            ball: Ball::default(),
+            spin_decay: SpinDecay::Moment,
+            dt_s: None,
+            max_time_s: DEFAULT_MAX_TIME_S,
+            ground: None,
+        }
+    }
+}
+
+impl FlightConfig {
+    /// The time step used, s.
+    pub fn dt(&self) -> f64 {
+        self.dt_s.unwrap_or(if self.air.has_wind() {
+            DEFAULT_DT_WIND_S
+        } else {
+            DEFAULT_DT_S
+        })
+    }
+}
+
+/// Launch conditions, SI, as CONVENTIONS defines them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FlightLaunch {
+    /// Ball speed, m/s.
+    pub ball_speed_m_s: f64,
+    /// Launch angle, rad (+ up).
+    pub launch_angle_rad: f64,
+    /// Azimuth, rad (+ right of target).
+    pub azimuth_rad: f64,
+    /// Backspin `ω_z`, rad/s (+ backspin).
+    pub backspin_rad_s: f64,
+    /// Sidespin `−ω_y`, rad/s (+ curves right).
+    pub sidespin_rad_s: f64,
+}
+
+impl FlightLaunch {
+    /// From file units (mph, degrees, rpm).
+    pub fn from_file_units(
+        ball_speed_mph: f64,
+        launch_angle_deg: f64,
+        azimuth_deg: f64,
+        backspin_rpm: f64,
+        sidespin_rpm: f64,
+    ) -> Self {
+        Self {
+            ball_speed_m_s: units::mph(ball_speed_mph),
+            launch_angle_rad: units::deg(launch_angle_deg),
+            azimuth_rad: units::deg(azimuth_deg),
+            backspin_rad_s: units::rpm(backspin_rpm),
+            sidespin_rad_s: units::rpm(sidespin_rpm),
+        }
+    }
+
+    /// From a launch of the impact model.
+    pub fn from_launch(l: &crate::physics::Launch) -> Self {
+        Self {
+            ball_speed_m_s: l.ball_speed_m_s,
+            launch_angle_rad: l.launch_angle_rad,
+            azimuth_rad: l.azimuth_rad,
+            backspin_rad_s: l.backspin_rad_s,
+            sidespin_rad_s: l.sidespin_rad_s,
+        }
+    }
+
+    /// Check the launch is physical; the error names the quantity in file units.
+    pub fn check(&self) -> Result<(), FlightError> {
+        let bad = |field: &'static str, value: f64, allowed: &'static str| {
+            Err(FlightError::InvalidLaunch {
+                field,
+                value,
+                allowed,
+            })
+        };
+        let mph = self.ball_speed_m_s / units::M_S_PER_MPH;
+        if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
+            return bad(
+                "ball_speed_mph",
+                mph,
+                "must be > 0 and at most 250 mph (beyond the long-drive record)",
+            );
+        }
+        let la = self.launch_angle_rad.to_degrees();
+        if !(la.abs() <= 90.0) {
+            return bad("launch_angle_deg", la, "must be within [-90, 90] degrees");
+        }
+        let az = self.azimuth_rad.to_degrees();
+        if !(az.abs() <= 90.0) {
+            return bad("azimuth_deg", az, "must be within [-90, 90] degrees");
+        }
+        let b = self.backspin_rad_s / units::RAD_S_PER_RPM;
+        if !(b.abs() <= MAX_SPIN_RPM) {
+            return bad(
+                "backspin_rpm",
+                b,
+                "must be within ±20000 rpm (about twice a wedge's spin)",
+            );
+        }
+        let s = self.sidespin_rad_s / units::RAD_S_PER_RPM;
+        if !(s.abs() <= MAX_SPIN_RPM) {
+            return bad(
+                "sidespin_rpm",
+                s,
+                "must be within ±20000 rpm (about twice a wedge's spin)",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Highest ball speed accepted, mph.
+pub const MAX_BALL_SPEED_MPH: f64 = 250.0;
+/// Largest spin component accepted, rpm.
+pub const MAX_SPIN_RPM: f64 = 20_000.0;
+
+/// Where and how the ball lands, SI.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Flight {
+    /// Distance along the ground from address to the first landing, m.
+    pub carry_m: f64,
+    /// Lateral position at landing, m (+ right of target, G `z`).
+    pub offline_m: f64,
+    /// Downrange position at landing, m (G `x`).
+    pub downrange_m: f64,
+    /// Greatest height of the ball centre above its address height, m.
+    pub apex_m: f64,
+    /// Time from launch to landing, s.
+    pub flight_time_s: f64,
+    /// Angle of descent below horizontal at landing, rad (positive).
+    pub land_angle_rad: f64,
+    /// Ball speed at landing (ground frame), m/s.
+    pub land_speed_m_s: f64,
+    /// Spin rate at landing, rad/s.
+    pub land_spin_rad_s: f64,
+    /// Distance along the ground from address to where the ball stops, m, when a
+    /// [`Ground`] model is given.
+    pub total_m: Option<f64>,
+}
+
+impl Flight {
+    /// Carry in yards.
+    pub fn carry_yd(&self) -> f64 {
+        self.carry_m / M_PER_YD
+    }
+    /// Offline in yards.
+    pub fn offline_yd(&self) -> f64 {
+        self.offline_m / M_PER_YD
+    }
+    /// Apex in yards.
+    pub fn apex_yd(&self) -> f64 {
+        self.apex_m / M_PER_YD
+    }
+    /// Land angle in degrees.
+    pub fn land_angle_deg(&self) -> f64 {
+        self.land_angle_rad.to_degrees()
+    }
+    /// Total in yards.
+    pub fn total_yd(&self) -> Option<f64> {
+        self.total_m.map(|t| t / M_PER_YD)
+    }
+}
+
+/// Why a flight has no result.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum FlightError {
+    /// A launch value out of its physical range.
+    #[error("{field} = {value}: {allowed}")]
+    InvalidLaunch {
+        /// Column name (file units).
+        field: &'static str,
+        /// The value, file units.
+        value: f64,
+        /// What is allowed.
+        allowed: &'static str,
+    },
+    /// The ball did not come down within the time limit.
+    #[error("the ball has not landed after {time_limit_s} s (time limit); check the launch and the wind")]
+    NeverLands {
+        /// The limit, s.
+        time_limit_s: f64,
+    },
+}

@@ -1,0 +1,401 @@
+//! The model's physical laws, each written once.
+//!
+//! Every law is a small `Copy` type holding its constants (SI units) with one evaluation that is
+//! generic over [`Real`]: a plain `f64` for the scalar solve ([`super::ImpactModel::solve`], one
+//! shot at a time) and a vector of lanes for the face-map kernel
+//! ([`crate::sweep::FaceMapKernel`]), or for any batch of shots. Both paths call the same code,
+//! so a law cannot be changed in one and forgotten in the other.
+//!
+//! | law | type | where the effects enter |
+//! |---|---|---|
+//! | normal restitution | [`Restitution`] | `cor_level`, `cor_speed`, `cor_radial`, `cor_power` |
+//! | ball lever arm | [`BallContact`] | `ball_offset` |
+//! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale` (composed into [`super::ModelParams`] once, see `crate::effects`) |
+//! | tangential law | [`TangentialLaw`] | `tangential_restitution`, `friction` |
+//!
+//! Geometry biases (`loft_bias`, `face_bias`) act on the delivered angles in
+//! [`super::ImpactModel::face_orientation`], which both paths call.
+//!
+//! Only `+ − × ÷ √` (and `powf` when a `cor_power` exponent is set) are used, never fused
+//! multiply–add, so every code path gives the same bits for the same inputs.
+
+use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
+
+use crate::sweep::lanes::{M, V};
+
+/// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
+/// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
+pub const COR_REFERENCE_SPEED_M_S: f64 = 48.77;
+
+/// A number the laws are evaluated on: `f64` (one shot) or [`V`] (a vector of lanes).
+pub trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + Add<f64, Output = Self>
+    + Sub<f64, Output = Self>
+    + Mul<f64, Output = Self>
+    + Div<f64, Output = Self>
+{
+    /// Per-lane truth value (`bool` for `f64`).
+    type Mask: Copy + BitAnd<Output = Self::Mask>;
+    /// Every lane `v`.
+    fn splat(v: f64) -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// `self^e` (libm `pow`, lane by lane).
+    fn powf(self, e: f64) -> Self;
+    /// `self > o`, lane by lane.
+    fn gt(self, o: Self) -> Self::Mask;
+    /// All lanes false.
+    fn no() -> Self::Mask;
+    /// `if m { a } else { b }`, lane by lane.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn powf(self, e: f64) -> Self {
+        f64::powf(self, e)
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> bool {
+        self > o
+    }
+    #[inline(always)]
+    fn no() -> bool {
+        false
+    }
+    #[inline(always)]
+    fn select(m: bool, a: Self, b: Self) -> Self {
+        if m {
+            a
+        } else {
+            b
+        }
+    }
+}
+
+impl Real for V {
+    type Mask = M;
+    #[inline(always)]
+    fn splat(v: f64) -> Self {
+        V::splat(v)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        V::sqrt(self)
+    }
+    #[inline(always)]
+    fn powf(self, e: f64) -> Self {
+        V::powf(self, e)
+    }
+    #[inline(always)]
+    fn gt(self, o: Self) -> M {
+        V::gt(self, o)
+    }
+    #[inline(always)]
+    fn no() -> M {
+        M([0; crate::sweep::lanes::W])
+    }
+    #[inline(always)]
+    fn select(m: M, a: Self, b: Self) -> Self {
+        m.select(a, b)
+    }
+}
+
+/// A 3-vector of [`Real`]s (components in the face frame F unless said otherwise).
+pub type Vec3<R> = [R; 3];
+
+/// A symmetric 3×3 matrix: `[xx, xy, xz, yy, yz, zz]`.
+pub type Sym3<R> = [R; 6];
+
+#[inline(always)]
+fn dot<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> R {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+#[inline(always)]
+fn sym_mul<R: Real>(k: &Sym3<R>, v: &Vec3<R>) -> Vec3<R> {
+    [
+        k[0] * v[0] + k[1] * v[1] + k[2] * v[2],
+        k[1] * v[0] + k[3] * v[1] + k[4] * v[2],
+        k[2] * v[0] + k[4] * v[1] + k[5] * v[2],
+    ]
+}
+
+/// The normal coefficient of restitution of one impact:
+///
+/// ```text
+/// e = cor·(u1n / v_ref)^(−q) − k·(u1n − v_ref) − c·(y² + z²)      v_ref = 48.77 m/s
+/// ```
+///
+/// `cor` is the face's COR (club file `cor`, plus `cor_level`), `q` the `cor_power` exponent,
+/// `k` the `cor_speed` slope and `c` the `cor_radial` falloff; `y`, `z` the impact location.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Restitution {
+    /// COR at the reference speed and the face centre.
+    pub cor: f64,
+    /// Power-law exponent `q` on the normal approach speed (0: off).
+    pub power_q: f64,
+    /// Linear slope `k` with normal approach speed, s/m.
+    pub speed_k_s_per_m: f64,
+    /// Falloff `c` with squared distance from the face centre, 1/m².
+    pub radial_c_per_m2: f64,
+}
+
+impl Restitution {
+    /// `e` for normal approach speed `u1n_m_s` at squared distance `r2_m2` from the face centre.
+    #[inline(always)]
+    pub fn cor<R: Real>(&self, u1n_m_s: R, r2_m2: R) -> R {
+        if self.power_q == 0.0 {
+            self.cor_with::<R, false>(u1n_m_s, r2_m2)
+        } else {
+            self.cor_with::<R, true>(u1n_m_s, r2_m2)
+        }
+    }
+
+    /// [`Restitution::cor`] with the power term switched at compile time: `POWER` must be
+    /// `self.power_q != 0.0` (with `q = 0` both give the same bits, since `x^0 = 1` exactly).
+    /// Inner loops use it so that the common case carries no `pow` call.
+    #[inline(always)]
+    pub fn cor_with<R: Real, const POWER: bool>(&self, u1n_m_s: R, r2_m2: R) -> R {
+        let base = if POWER {
+            (u1n_m_s / COR_REFERENCE_SPEED_M_S).powf(-self.power_q) * self.cor
+        } else {
+            R::splat(self.cor)
+        };
+        base - (u1n_m_s - COR_REFERENCE_SPEED_M_S) * self.speed_k_s_per_m
+            - r2_m2 * self.radial_c_per_m2
+    }
+}
+
+/// The contact point relative to the ball's centre of mass, `r_b = −radius·n + dy·y_I + dz·z_I`
+/// (the paper's `[−21.3 0 0]` mm in the impact frame, plus the `ball_offset` effect).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BallContact {
+    /// Ball radius, m.
+    pub radius_m: f64,
+    /// Offset `dy` along `y_I`, m.
+    pub offset_y_m: f64,
+    /// Offset `dz` along `z_I`, m.
+    pub offset_z_m: f64,
+}
+
+impl BallContact {
+    /// `r_b` from the unit normal `n`, the impact-frame tangent `t_y` and the horizontal
+    /// tangent `t_z`, given by its x and z components (`z_I = (−z, 0, X)/ρ` has no y component:
+    /// `docs/conventions.md`, face geometry).
+    #[inline(always)]
+    pub fn lever<R: Real>(&self, n: &Vec3<R>, t_y: &Vec3<R>, t_z_xz: &[R; 2]) -> Vec3<R> {
+        let (nr, dy, dz) = (-self.radius_m, self.offset_y_m, self.offset_z_m);
+        [
+            n[0] * nr + t_y[0] * dy + t_z_xz[0] * dz,
+            n[1] * nr + t_y[1] * dy,
+            n[2] * nr + t_y[2] * dy + t_z_xz[1] * dz,
+        ]
+    }
+}
+
+/// The collision matrix
+/// `K = (1/m_c + 1/m_b)·1 − [r_c]× I_c⁻¹ [r_c]× − [r_b]× I_b⁻¹ [r_b]×` (isotropic ball), which
+/// maps an impulse on the ball to the change of the contact points' relative velocity. Every
+/// mass and inertia effect reaches the impact through it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CollisionMatrix {
+    /// `1/m_c + 1/m_b`, 1/kg.
+    pub inv_mass_sum: f64,
+    /// Symmetrised inverse clubhead inertia in F, `[xx, xy, xz, yy, yz, zz]`, 1/(kg·m²).
+    pub club_inv_inertia: [f64; 6],
+    /// `1/I_b`, 1/(kg·m²).
+    pub ball_inv_inertia: f64,
+}
+
+impl CollisionMatrix {
+    /// `K` for lever arms `r_c` (contact from clubhead CoM) and `r_b` (contact from ball CoM).
+    #[inline(always)]
+    pub fn matrix<R: Real>(&self, r_c: &Vec3<R>, r_b: &Vec3<R>) -> Sym3<R> {
+        // −[r_c]× J [r_c]× = Cᵀ J C with C = [r_c]×, whose columns are
+        // c0 = (0, a2, −a1), c1 = (−a2, 0, a0), c2 = (a1, −a0, 0).
+        let [a0, a1, a2] = *r_c;
+        let [jxx, jxy, jxz, jyy, jyz, jzz] = self.club_inv_inertia;
+        let jc0y = a2 * jyy - a1 * jyz;
+        let jc0z = a2 * jyz - a1 * jzz;
+        let jc1x = a0 * jxz - a2 * jxx;
+        let jc1y = a0 * jyz - a2 * jxy;
+        let jc1z = a0 * jzz - a2 * jxz;
+        let jc2x = a1 * jxx - a0 * jxy;
+        let jc2y = a1 * jxy - a0 * jyy;
+        let jc2z = a1 * jxz - a0 * jyz;
+        let m00 = a2 * jc0y - a1 * jc0z;
+        let m01 = a2 * jc1y - a1 * jc1z;
+        let m02 = a2 * jc2y - a1 * jc2z;
+        let m11 = a0 * jc1z - a2 * jc1x;
+        let m12 = a0 * jc2z - a2 * jc2x;
+        let m22 = a1 * jc2x - a0 * jc2y;
+        // −[r_b]× I_b⁻¹ [r_b]× = (|r_b|²·1 − r_b r_bᵀ)/I_b.
+        let ib = self.ball_inv_inertia;
+        let [bx, by, bz] = *r_b;
+        let rb2 = bx * bx + by * by + bz * bz;
+        let ims = self.inv_mass_sum;
+        [
+            m00 + ims + (rb2 - bx * bx) * ib,
+            m01 - bx * by * ib,
+            m02 - bx * bz * ib,
+            m11 + ims + (rb2 - by * by) * ib,
+            m12 - by * bz * ib,
+            m22 + ims + (rb2 - bz * bz) * ib,
+        ]
+    }
+}
+
+/// Solve `K x = b` for a symmetric positive definite `K` by cofactors (no allocation, no branch).
+#[inline(always)]
+pub fn solve_sym3<R: Real>(k: &Sym3<R>, b: &Vec3<R>) -> Vec3<R> {
+    let [a, bb, c, d, e, f] = *k;
+    let c00 = d * f - e * e;
+    let c01 = c * e - bb * f;
+    let c02 = bb * e - c * d;
+    let c11 = a * f - c * c;
+    let c12 = bb * c - a * e;
+    let c22 = a * d - bb * bb;
+    let inv_det = R::splat(1.0) / (a * c00 + bb * c01 + c * c02);
+    [
+        (c00 * b[0] + c01 * b[1] + c02 * b[2]) * inv_det,
+        (c01 * b[0] + c11 * b[1] + c12 * b[2]) * inv_det,
+        (c02 * b[0] + c12 * b[1] + c22 * b[2]) * inv_det,
+    ]
+}
+
+/// The impulse of one impact from the normal restitution and the tangential law:
+///
+/// ```text
+/// K P = u1 + e·u1n·n + e_t·(u1 − u1n·n)                    (e_t = 0: the paper's no slip)
+/// ```
+///
+/// and, with friction `mu`, gross slip where that impulse's tangential part exceeds `mu·P_n`:
+/// `P = P_n·(n + mu·ŝ)`, `ŝ = u1_t/|u1_t|`, `P_n = (1 + e)·u1n / (n·K·(n + mu·ŝ))`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TangentialLaw {
+    /// Tangential restitution `e_t`.
+    pub e_t: f64,
+    /// Coulomb friction coefficient, or `None` for unlimited friction.
+    pub mu: Option<f64>,
+}
+
+impl TangentialLaw {
+    /// The impulse on the ball and whether friction limited it (slip), from the collision matrix
+    /// `k`, unit normal `n`, approach velocity `u1`, its normal part `u1n` and the COR `e`.
+    /// `FRICTION` must be `self.mu.is_some()` (a constant so that lanes without friction carry
+    /// no slip code).
+    #[inline(always)]
+    pub fn impulse<R: Real, const FRICTION: bool>(
+        &self,
+        k: &Sym3<R>,
+        n: &Vec3<R>,
+        u1: &Vec3<R>,
+        u1n: R,
+        e: R,
+    ) -> (Vec3<R>, R::Mask) {
+        let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
+        let eu = e * u1n;
+        let b = [
+            u1[0] + eu * n[0] + u1t[0] * self.e_t,
+            u1[1] + eu * n[1] + u1t[1] * self.e_t,
+            u1[2] + eu * n[2] + u1t[2] * self.e_t,
+        ];
+        let p = solve_sym3(k, &b);
+        if !FRICTION {
+            return (p, R::no());
+        }
+        let mu = self.mu.unwrap_or(f64::INFINITY);
+        let pn = dot(&p, n);
+        let pt = [p[0] - pn * n[0], p[1] - pn * n[1], p[2] - pn * n[2]];
+        let pt_norm = dot(&pt, &pt).sqrt();
+        let ut = dot(&u1t, &u1t).sqrt();
+        let zero = R::splat(0.0);
+        let slip = pt_norm.gt(pn * mu) & ut.gt(zero);
+        let f = R::splat(mu) / ut;
+        let dir = [n[0] + u1t[0] * f, n[1] + u1t[1] * f, n[2] + u1t[2] * f];
+        let pn_slip = (e + 1.0) * u1n / dot(n, &sym_mul(k, &dir));
+        (
+            [
+                R::select(slip, dir[0] * pn_slip, p[0]),
+                R::select(slip, dir[1] * pn_slip, p[1]),
+                R::select(slip, dir[2] * pn_slip, p[2]),
+            ],
+            slip,
+        )
+    }
+}
+
+/// Every law of one validated model (see [`super::ImpactModel::laws`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Laws {
+    /// Normal restitution.
+    pub restitution: Restitution,
+    /// Ball lever arm.
+    pub ball: BallContact,
+    /// Collision matrix constants.
+    pub collision: CollisionMatrix,
+    /// Tangential law.
+    pub tangential: TangentialLaw,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lanes_and_scalars_give_the_same_bits() {
+        let law = Restitution {
+            cor: 0.83,
+            power_q: 0.12,
+            speed_k_s_per_m: 0.003,
+            radial_c_per_m2: 150.0,
+        };
+        let u = [40.0, 45.5, 48.77, 52.0];
+        let r2 = [0.0, 1e-4, 4e-4, 9e-5];
+        let v = law.cor(V(u), V(r2));
+        for i in 0..4 {
+            assert_eq!(v.0[i].to_bits(), law.cor(u[i], r2[i]).to_bits());
+        }
+        // At the reference speed and centre the COR is the face's own.
+        assert_eq!(law.cor(48.77, 0.0), 0.83);
+    }
+
+    #[test]
+    fn power_law_matches_its_formula() {
+        let law = Restitution {
+            cor: 0.8,
+            power_q: 0.2,
+            speed_k_s_per_m: 0.0,
+            radial_c_per_m2: 0.0,
+        };
+        let e = law.cor(2.0 * 48.77, 0.0);
+        assert!((e - 0.8 * 2f64.powf(-0.2)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn sym3_solve_inverts() {
+        let k = [26.7, 1.3, -0.4, 80.2, 2.1, 77.9];
+        let b = [40.0, -3.0, 1.5];
+        let x = solve_sym3(&k, &b);
+        let back = sym_mul(&k, &x);
+        for i in 0..3 {
+            assert!((back[i] - b[i]).abs() < 1e-12);
+        }
+    }
+}
