@@ -963,7 +963,9 @@ group = "X"
         );
         let back = parse_config(Path::new("t.toml"), &config_toml(&c)).unwrap();
         assert_eq!(back.world, c.world);
-        let e = parse("[world]\ncor_power = { p = 0.1 }\ncontact = {}\n").unwrap_err();
+        let e =
+            parse("[world]\nface_flex = { cy_per_mm2 = 1e-5, cz_per_mm2 = 1e-5 }\ncontact = {}\n")
+                .unwrap_err();
         assert!(e.to_string().contains("world.contact"), "{e}");
         let e = parse("[world]\ncontact = { mu = -1.0 }\n").unwrap_err();
         assert!(e.to_string().contains("world.contact.mu"), "{e}");

@@ -388,13 +388,14 @@ impl ContactWorld {
         if p.tangential_restitution != 0.0
             || p.friction_mu.is_some()
             || p.cor_speed_k_s_per_m != 0.0
+            || p.cor_power_q != 0.0
             || p.cor_radial_c_per_m2 != 0.0
             || p.ball_offset_y_m != 0.0
             || p.ball_offset_z_m != 0.0
         {
             return Err(
                 "the contact world makes its own restitution, friction and ball \
-                        deformation: hidden effects tangential_restitution, friction, cor_speed, \
+                        deformation: hidden effects tangential_restitution, friction, cor_speed, cor_power, \
                         cor_radial and ball_offset cannot be combined with it"
                     .into(),
             );
