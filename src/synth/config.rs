@@ -18,6 +18,8 @@ use crate::effects::Effect;
 use crate::limits::{self, count_product, PhysicalRange};
 use crate::physics::LaunchComponent;
 
+use super::contact::{ContactParams, ShaftTip};
+
 /// The delivery variables a synthetic golfer produces, in shots-file column order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DeliveryVar {
@@ -179,6 +181,8 @@ pub struct WorldPhysics {
     pub offset_speed_mm_per_m_s: Option<(f64, f64)>,
     /// Loft gain: the true dynamic loft is `δ·(1 + gain)`, `gain` in [−0.5, 0.5].
     pub loft_gain: Option<f64>,
+    /// Time-integrated compliant contact ([`super::contact`]) in place of the momentum model.
+    pub contact: Option<ContactParams>,
 }
 
 impl WorldPhysics {
@@ -187,6 +191,7 @@ impl WorldPhysics {
         self.face_flex_per_mm2.is_some()
             || self.offset_speed_mm_per_m_s.is_some()
             || self.loft_gain.is_some()
+            || self.contact.is_some()
     }
 }
 
@@ -315,6 +320,28 @@ struct RawWorld {
     face_flex: Option<Spanned<RawFaceFlex>>,
     offset_speed: Option<Spanned<RawOffsetSpeed>>,
     loft_gain: Option<Spanned<RawLoftGain>>,
+    contact: Option<Spanned<RawContact>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawContact {
+    hertz_k_n_per_m1_5: Option<f64>,
+    cor_ref: Option<f64>,
+    mu: Option<f64>,
+    tangential_stiffness_ratio: Option<f64>,
+    tangential_damping_ratio: Option<f64>,
+    steps_per_contact: Option<i64>,
+    shaft_tip: Option<RawShaftTip>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawShaftTip {
+    mass_g: Option<f64>,
+    frequency_hz: Option<f64>,
+    damping_ratio: Option<f64>,
+    hosel_mm: Option<[f64; 3]>,
 }
 
 #[derive(Deserialize)]
@@ -646,8 +673,113 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
                 "",
             )?);
         }
+        if let Some(v) = &w.contact {
+            cfg.world.contact = Some(parse_contact(&ctx, v)?);
+            if w.cor_power.is_some() || w.face_flex.is_some() || w.offset_speed.is_some() {
+                return Err(ctx.err(
+                    v.span(),
+                    "world.contact",
+                    "makes its own restitution and ball deformation: it cannot be combined with \
+                     world.cor_power, world.face_flex or world.offset_speed (loft_gain is allowed)",
+                ));
+            }
+        }
     }
     Ok(cfg)
+}
+
+fn parse_contact(ctx: &Ctx, v: &Spanned<RawContact>) -> Result<ContactParams, DataError> {
+    let r = v.get_ref();
+    let sp = || v.span();
+    let mut c = ContactParams::default();
+    if let Some(x) = r.hertz_k_n_per_m1_5 {
+        c.hertz_k_n_per_m1_5 = ctx.in_range(
+            sp(),
+            "world.contact.hertz_k_n_per_m1_5",
+            x,
+            1e5,
+            1e18,
+            "N/m^1.5",
+        )?;
+    }
+    if let Some(x) = r.cor_ref {
+        c.cor_ref = Some(ctx.in_range(sp(), "world.contact.cor_ref", x, 0.05, 1.0, "")?);
+    }
+    if let Some(x) = r.mu {
+        c.mu = ctx.in_range(sp(), "world.contact.mu", x, 1e-3, 1e3, "")?;
+    }
+    if let Some(x) = r.tangential_stiffness_ratio {
+        c.tangential_stiffness_ratio = ctx.in_range(
+            sp(),
+            "world.contact.tangential_stiffness_ratio",
+            x,
+            1e-4,
+            1e4,
+            "",
+        )?;
+    }
+    if let Some(x) = r.tangential_damping_ratio {
+        c.tangential_damping_ratio = ctx.in_range(
+            sp(),
+            "world.contact.tangential_damping_ratio",
+            x,
+            0.0,
+            10.0,
+            "",
+        )?;
+    }
+    if let Some(x) = r.steps_per_contact {
+        if !(20..=100_000).contains(&x) {
+            return Err(ctx.err(
+                sp(),
+                "world.contact.steps_per_contact",
+                format!("must be an integer from 20 to 100000, got {x}"),
+            ));
+        }
+        c.steps_per_contact = x as u32;
+    }
+    if let Some(t) = &r.shaft_tip {
+        let mut tip = ShaftTip::default();
+        if let Some(x) = t.mass_g {
+            tip.mass_g =
+                ctx.in_range(sp(), "world.contact.shaft_tip.mass_g", x, 0.01, 500.0, "g")?;
+        }
+        if let Some(x) = t.frequency_hz {
+            tip.frequency_hz = ctx.in_range(
+                sp(),
+                "world.contact.shaft_tip.frequency_hz",
+                x,
+                10.0,
+                1e6,
+                "Hz",
+            )?;
+        }
+        if let Some(x) = t.damping_ratio {
+            tip.damping_ratio = ctx.in_range(
+                sp(),
+                "world.contact.shaft_tip.damping_ratio",
+                x,
+                0.0,
+                10.0,
+                "",
+            )?;
+        }
+        if let Some(h) = t.hosel_mm {
+            for x in h {
+                ctx.in_range(
+                    sp(),
+                    "world.contact.shaft_tip.hosel_mm",
+                    x,
+                    -200.0,
+                    200.0,
+                    "mm",
+                )?;
+            }
+            tip.hosel_mm = h;
+        }
+        c.shaft_tip = Some(tip);
+    }
+    Ok(c)
 }
 
 fn delivery_keys() -> String {
@@ -721,6 +853,37 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
         if let Some(g) = w.loft_gain {
             let _ = writeln!(s, "loft_gain = {{ gain = {g:?} }}");
         }
+        if let Some(c) = &w.contact {
+            let mut parts = vec![
+                format!("hertz_k_n_per_m1_5 = {:?}", c.hertz_k_n_per_m1_5),
+                format!("mu = {:?}", c.mu),
+                format!(
+                    "tangential_stiffness_ratio = {:?}",
+                    c.tangential_stiffness_ratio
+                ),
+                format!(
+                    "tangential_damping_ratio = {:?}",
+                    c.tangential_damping_ratio
+                ),
+                format!("steps_per_contact = {}", c.steps_per_contact),
+            ];
+            if let Some(e) = c.cor_ref {
+                parts.insert(1, format!("cor_ref = {e:?}"));
+            }
+            if let Some(t) = &c.shaft_tip {
+                parts.push(format!(
+                    "shaft_tip = {{ mass_g = {:?}, frequency_hz = {:?}, damping_ratio = {:?}, \
+                     hosel_mm = [{:?}, {:?}, {:?}] }}",
+                    t.mass_g,
+                    t.frequency_hz,
+                    t.damping_ratio,
+                    t.hosel_mm[0],
+                    t.hosel_mm[1],
+                    t.hosel_mm[2]
+                ));
+            }
+            let _ = writeln!(s, "contact = {{ {} }}", parts.join(", "));
+        }
     }
     for e in &cfg.hidden {
         let _ = writeln!(s, "\n[[hidden]]");
@@ -782,6 +945,32 @@ group = "X"
         let mut expect = c.clone();
         expect.club = PathBuf::from(c.club.to_string_lossy().as_ref());
         assert_eq!(back, expect);
+    }
+
+    #[test]
+    fn contact_world_round_trips_and_refuses_other_restitution_forms() {
+        let text = "[world]\nloft_gain = { gain = 0.02 }\ncontact = { mu = 0.3, cor_ref = 0.8, \
+                    shaft_tip = { mass_g = 3.0, hosel_mm = [-10.0, 12.0, -40.0] } }\n";
+        let c = parse(text).unwrap();
+        let k = c.world.contact.unwrap();
+        assert_eq!(k.mu, 0.3);
+        assert_eq!(k.cor_ref, Some(0.8));
+        let tip = k.shaft_tip.unwrap();
+        assert_eq!((tip.mass_g, tip.hosel_mm[2]), (3.0, -40.0));
+        assert_eq!(
+            tip.frequency_hz,
+            super::super::contact::DEFAULT_TIP_FREQUENCY_HZ
+        );
+        let back = parse_config(Path::new("t.toml"), &config_toml(&c)).unwrap();
+        assert_eq!(back.world, c.world);
+        let e =
+            parse("[world]\nface_flex = { cy_per_mm2 = 1e-5, cz_per_mm2 = 1e-5 }\ncontact = {}\n")
+                .unwrap_err();
+        assert!(e.to_string().contains("world.contact"), "{e}");
+        let e = parse("[world]\ncontact = { mu = -1.0 }\n").unwrap_err();
+        assert!(e.to_string().contains("world.contact.mu"), "{e}");
+        let e = parse("[world]\ncontact = { muu = 1.0 }\n").unwrap_err();
+        assert!(e.to_string().contains("muu"), "{e}");
     }
 
     #[test]

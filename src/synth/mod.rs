@@ -22,6 +22,10 @@
 //! face_flex     e −= cy·y² + cz·z²                 (y, z in mm; cy ≠ cz: anisotropic)
 //! offset_speed  dy, dz += k·(u1n − 48.77 m/s)      (ball flattening grows with speed)
 //! loft_gain     δ_true = δ·(1 + gain)
+//! contact       the impact integrated in time with a compliant contact (see [`contact`]):
+//!               Hertz + Hunt–Crossley normal force, Mindlin tangential spring with a Coulomb
+//!               limit, the contact point travelling over the torus face, the head turning,
+//!               and optionally a shaft-tip mass on a spring–damper at the hosel
 //! ```
 //!
 //! `u1n` does not depend on the COR or the ball offset, so each shot is solved once to get `u1n`
@@ -35,6 +39,7 @@
 //! the same configuration and seed, on any machine and thread count.
 
 pub mod config;
+pub mod contact;
 
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
@@ -46,6 +51,8 @@ use crate::data::shots::Shot;
 use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
 use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ParamError};
 use crate::units::{deg, mm, mph, rpm};
+
+pub use contact::{ContactOutcome, ContactParams, ContactWorld, ShaftTip};
 
 pub use config::{
     config_toml, parse_config, read_config, DeliveryVar, GroupSpec, Spread, SynthConfig,
@@ -173,6 +180,10 @@ pub fn world_impact(
     if let Some(g) = world.loft_gain {
         d.dynamic_loft_rad *= 1.0 + g;
     }
+    if let Some(c) = &world.contact {
+        let cw = ContactWorld::new(model, *c)?;
+        return contact_impact(&cw, &d);
+    }
     let first = model.solve(&d).map_err(|e: ImpactError| e.to_string())?;
     if !world.is_active() {
         return Ok((
@@ -197,6 +208,16 @@ pub fn world_impact(
     Ok((
         out.launch(),
         out.cor_effective,
+        out.normal_approach_speed_m_s,
+    ))
+}
+
+/// One shot of a contact world (the loft gain already applied to `d`): launch, COR achieved, `u1n`.
+fn contact_impact(cw: &ContactWorld, d: &Delivery) -> Result<(Launch, f64, f64), String> {
+    let out = cw.impact(d)?;
+    Ok((
+        out.launch(),
+        out.cor_measured,
         out.normal_approach_speed_m_s,
     ))
 }
@@ -234,6 +255,26 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                     group: g.name.clone(),
                     source,
                 })
+        })
+        .collect::<Result<_, _>>()?;
+
+    // The contact world's damping is calibrated once per group, not per shot.
+    let contact_worlds: Vec<Option<ContactWorld>> = world_models
+        .iter()
+        .zip(&cfg.groups)
+        .map(|(m, g)| {
+            cfg.world
+                .contact
+                .map(|c| {
+                    ContactWorld::new(m, c).map_err(|problem| SynthError::World {
+                        group: g.name.clone(),
+                        source: ParamError {
+                            quantity: "world.contact",
+                            problem,
+                        },
+                    })
+                })
+                .transpose()
         })
         .collect::<Result<_, _>>()?;
 
@@ -280,11 +321,17 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                         if !(clean[0] > 0.0) {
                             return reject("club speed ≤ 0".into());
                         }
-                        let (truth, cor, u1n) = world_impact(
-                            &world_models[gi],
-                            &cfg.world,
-                            &delivery_from_file_units(&clean),
-                        )?;
+                        let clean_si = delivery_from_file_units(&clean);
+                        let (truth, cor, u1n) = match &contact_worlds[gi] {
+                            Some(cw) => {
+                                let mut d = clean_si;
+                                if let Some(g) = cfg.world.loft_gain {
+                                    d.dynamic_loft_rad *= 1.0 + g;
+                                }
+                                contact_impact(cw, &d)?
+                            }
+                            None => world_impact(&world_models[gi], &cfg.world, &clean_si)?,
+                        };
                         let measured: [f64; N_DELIVERY] =
                             std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
                         if !(measured[0] > 0.0) {
