@@ -249,6 +249,32 @@ fn an_output_that_is_an_input_is_refused() {
         assert_one_line_error(&o, "--out-club is the same file as --club");
         assert_kept(&club_copy, &club_text);
     }
+    // An HTML report may not replace an input either.
+    for cmd in ["compare", "calibrate", "diagnose"] {
+        let mut args = vec![cmd, "--club", s(&club_copy), "--shots", s(&shots)];
+        if cmd == "calibrate" {
+            args.extend(["--effects", "added_mass"]);
+        }
+        args.extend(["--report", s(&alias)]);
+        let o = smash(&args);
+        assert_one_line_error(&o, "--report is the same file as --shots");
+        assert_kept(&shots, &before);
+    }
+    let study = study_file(tmp.path());
+    let study_text = std::fs::read_to_string(&study).unwrap();
+    let out = tmp.path().join("out");
+    let o = smash(&["run", s(&study), "--out", s(&out), "--report", s(&study)]);
+    assert_one_line_error(&o, "--report is the same file as STUDY.toml");
+    assert_kept(&study, &study_text);
+    let o = smash(&[
+        "run",
+        s(&study),
+        "--out",
+        s(&out),
+        "--report",
+        s(&out.join("r.html")),
+    ]);
+    assert_one_line_error(&o, "inside the study's output folder");
 }
 
 #[test]

@@ -86,6 +86,12 @@ pub struct CalibrateArgs {
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    if let Some(report) = &args.report {
+        crate::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
     if let Some(out) = &args.out_club {
         crate::data::safe_write::refuse_inputs(
             &[("--out-club", out, false)],

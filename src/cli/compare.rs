@@ -79,6 +79,12 @@ pub struct CompareArgs {
 
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    if let Some(report) = &args.report {
+        crate::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
     if let Some(dir) = &args.out_dir {
         crate::data::safe_write::refuse_inputs(
             &[("--out-dir", dir, true)],

@@ -144,12 +144,15 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
+    if let Some(noise) = &args.noise {
+        inputs.push(("--noise", noise));
+    }
     if let Some(out) = &args.out_club {
-        let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
-        if let Some(noise) = &args.noise {
-            inputs.push(("--noise", noise));
-        }
         crate::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
+    }
+    if let Some(report) = &args.report {
+        crate::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;

@@ -115,6 +115,26 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             ("the study's club", &study.club_path),
         ],
     )?;
+    if let Some(report) = &args.report {
+        crate::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[
+                ("STUDY.toml", &args.study),
+                ("the study's club", &study.club_path),
+            ],
+        )?;
+        // The output folder is replaced as a whole and holds only what smash lists in it.
+        if crate::data::safe_write::canonical(report)
+            .starts_with(crate::data::safe_write::canonical(&dir))
+        {
+            anyhow::bail!(
+                "{}: --report is inside the study's output folder {}, which each run replaces \
+                 as a whole; write the report beside it",
+                report.display(),
+                dir.display()
+            );
+        }
+    }
     crate::data::safe_write::clean_stale_temporaries(&dir);
     crate::data::safe_write::check_replaceable(&dir)?;
     let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
