@@ -177,6 +177,10 @@ pub const CLUB_MASS_G: PhysicalRange = PhysicalRange::closed("club mass", "g", 1
 pub const CLUB_COM_MM: PhysicalRange =
     PhysicalRange::closed("club centre of mass", "mm", -500.0, 500.0);
 
+/// One component of the hosel's position (where the shaft joins the head) from the centre of
+/// face, mm: like the CoM, somewhere on a head that is nowhere near half a metre long.
+pub const HOSEL_MM: PhysicalRange = PhysicalRange::closed("hosel position", "mm", -500.0, 500.0);
+
 /// One entry of the clubhead inertia tensor, g·cm². Drivers are near 5000 g·cm² (the USGA MOI
 /// limit is 5900); 10⁶ allows any club while keeping the tensor's inverse well conditioned.
 pub const CLUB_INERTIA_GCM2: PhysicalRange =

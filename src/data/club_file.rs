@@ -142,19 +142,14 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         None => None,
     };
     let hosel_mm = match &c.hosel_mm {
-        Some(h)
-            if !h
-                .get_ref()
-                .iter()
-                .all(|v| v.is_finite() && v.abs() <= 500.0) =>
-        {
-            return Err(ctx.err(
-                h.span(),
-                "club.hosel_mm",
-                "every component must be a finite number of mm within ±500 mm of the face centre",
-            ));
+        Some(h) => {
+            for x in h.get_ref() {
+                limits::HOSEL_MM
+                    .check(*x)
+                    .map_err(|m| ctx.err(h.span(), "club.hosel_mm", m))?;
+            }
+            *h.get_ref()
         }
-        Some(h) => *h.get_ref(),
         None => DRIVER_HOSEL_MM,
     };
     let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
