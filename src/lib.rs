@@ -23,12 +23,13 @@
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
 //! - [`report`]: output rendering (SVG heatmaps, CSV matrices, text tables).
-//! - [`cli`]: the `smash` command line, a thin layer over the library.
+//!
+//! The `smash` command line is a separate package of the workspace (`cli/`), a thin layer over
+//! this library; the library itself has no command-line dependencies.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod cli;
 pub mod club;
 pub mod compare;
 pub mod data;

@@ -7,13 +7,13 @@ use anyhow::Context;
 use clap::{Args, ValueEnum};
 use serde_json::json;
 
-use crate::data::club_file::{club_toml_checked, read_club};
-use crate::data::write_atomic;
-use crate::diagnose::honest;
-use crate::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
-use crate::physics::LaunchComponent;
-use crate::report::{error_tables_side_by_side, TextTable};
-use crate::stats::t_statistic;
+use smash::data::club_file::{club_toml_checked, read_club};
+use smash::data::write_atomic;
+use smash::diagnose::honest;
+use smash::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
+use smash::physics::LaunchComponent;
+use smash::report::{error_tables_side_by_side, TextTable};
+use smash::stats::t_statistic;
 
 use super::progress::IterationLine;
 
@@ -87,13 +87,13 @@ pub struct CalibrateArgs {
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     if let Some(report) = &args.report {
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--report", report, false)],
             &[("--club", &args.club), ("--shots", &args.shots)],
         )?;
     }
     if let Some(out) = &args.out_club {
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--out-club", out, false)],
             &[("--club", &args.club), ("--shots", &args.shots)],
         )?;
@@ -147,33 +147,33 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         eprintln!("calibrated club -> {}", out.display());
     }
     if let Some(path) = &args.report {
-        let launches = crate::predict::expected_launches(
+        let launches = smash::predict::expected_launches(
             &cal.club,
             &table.shots,
             args.measurement.impact_noise_mm,
         )
         .with_context(|| args.shots.display().to_string())?;
-        let after = crate::compare::compare(
+        let after = smash::compare::compare(
             &table.shots,
             &launches,
-            &crate::compare::CompareOptions::default(),
+            &smash::compare::CompareOptions::default(),
         )?;
-        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
+        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
         let title = format!(
             "{} calibrated on {} ({} shots)",
             club.name,
             args.shots.display(),
             table.shots.len()
         );
-        let html = crate::report::html::calibrate_page(&cal, &after, &residuals, &title)
+        let html = smash::report::html::calibrate_page(&cal, &after, &residuals, &title)
             .map_err(anyhow::Error::msg)?;
         write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
     if args.json {
-        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
+        crate::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
     } else {
-        crate::cli::stdout::print(text_report(&cal, table.shots.len()))?;
+        crate::stdout::print(text_report(&cal, table.shots.len()))?;
     }
     Ok(())
 }
@@ -242,7 +242,7 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         .map(|a| {
             json!({
                 "param": labels[a.param],
-                "stage": match a.stage { crate::fit::Stage::Linear => "W=inf", crate::fit::Stage::Angular => "W=0" },
+                "stage": match a.stage { smash::fit::Stage::Linear => "W=inf", smash::fit::Stage::Angular => "W=0" },
                 "linear_sensitivity": a.linear_sensitivity,
                 "angular_sensitivity": a.angular_sensitivity,
             })
@@ -398,8 +398,8 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
                 a.linear_sensitivity,
                 a.angular_sensitivity,
                 match a.stage {
-                    crate::fit::Stage::Linear => "W = inf (velocity)",
-                    crate::fit::Stage::Angular => "W = 0 (spin)",
+                    smash::fit::Stage::Linear => "W = inf (velocity)",
+                    smash::fit::Stage::Angular => "W = 0 (spin)",
                 }
             ));
         }

@@ -5,12 +5,12 @@ use std::path::PathBuf;
 use anyhow::bail;
 use clap::Args;
 
-use crate::compare::{compare, CompareOptions};
-use crate::data::club_file::read_club;
-use crate::data::write_folder_atomic;
-use crate::physics::LaunchComponent;
-use crate::predict::expected_launches;
-use crate::report::compare::{compare_files, compare_json, compare_text};
+use smash::compare::{compare, CompareOptions};
+use smash::data::club_file::read_club;
+use smash::data::write_folder_atomic;
+use smash::physics::LaunchComponent;
+use smash::predict::expected_launches;
+use smash::report::compare::{compare_files, compare_json, compare_text};
 
 /// Arguments of `smash compare`.
 #[derive(Debug, Args)]
@@ -80,18 +80,18 @@ pub struct CompareArgs {
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     if let Some(report) = &args.report {
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--report", report, false)],
             &[("--club", &args.club), ("--shots", &args.shots)],
         )?;
     }
     if let Some(dir) = &args.out_dir {
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--out-dir", dir, true)],
             &[("--club", &args.club), ("--shots", &args.shots)],
         )?;
-        crate::data::safe_write::clean_stale_temporaries(dir);
-        crate::data::safe_write::check_replaceable(dir)?;
+        smash::data::safe_write::clean_stale_temporaries(dir);
+        smash::data::safe_write::check_replaceable(dir)?;
     }
     if !(args.alpha > 0.0 && args.alpha < 1.0) {
         bail!("--alpha must be in (0, 1), got {}", args.alpha);
@@ -115,7 +115,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         .shots
         .iter()
         .zip(&launches)
-        .find(|(_, l)| !crate::limits::finite_launch(l))
+        .find(|(_, l)| !smash::limits::finite_launch(l))
     {
         bail!(
             "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
@@ -142,15 +142,15 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");
-        crate::cli::stdout::println(compare_json(&report))?;
+        crate::stdout::println(compare_json(&report))?;
     } else {
-        crate::cli::stdout::print(&text)?;
+        crate::stdout::print(&text)?;
     }
     if let Some(path) = &args.report {
-        let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
-        let html = crate::report::html::compare_page(&report, &residuals, &title)
+        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
+        let html = smash::report::html::compare_page(&report, &residuals, &title)
             .map_err(anyhow::Error::msg)?;
-        crate::data::write_atomic(path, html.as_bytes())?;
+        smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {

@@ -1,5 +1,5 @@
 //! `smash diagnose`: which effects does the data ask for? Forward selection with grouped
-//! cross-validation (see [`crate::diagnose`]).
+//! cross-validation (see [`smash::diagnose`]).
 
 use std::path::PathBuf;
 
@@ -8,18 +8,18 @@ use clap::Args;
 use indicatif::ProgressBar;
 use serde_json::json;
 
-use crate::data::club_file::{club_toml_checked, read_club};
-use crate::data::noise_file::read_noise_file;
-use crate::data::write_atomic;
-use crate::diagnose::honest;
-use crate::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
-use crate::diagnose::{
+use smash::data::club_file::{club_toml_checked, read_club};
+use smash::data::noise_file::read_noise_file;
+use smash::data::write_atomic;
+use smash::diagnose::honest;
+use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
+use smash::diagnose::{
     diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
 };
-use crate::fit::{parse_effect_list, FitError, ParamEstimate};
-use crate::physics::LaunchComponent;
-use crate::report::{error_table_text, error_tables_side_by_side, TextTable};
+use smash::fit::{parse_effect_list, FitError, ParamEstimate};
+use smash::physics::LaunchComponent;
+use smash::report::{error_table_text, error_tables_side_by_side, TextTable};
 
 use super::progress::job_bar;
 
@@ -149,10 +149,10 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         inputs.push(("--noise", noise));
     }
     if let Some(out) = &args.out_club {
-        crate::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
+        smash::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
     }
     if let Some(report) = &args.report {
-        crate::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
+        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
@@ -194,7 +194,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let d = d.with_context(|| args.shots.display().to_string())?;
     let floor = noise_floor(&d, &table.shots, &instrument)?;
     for w in &d.warnings {
-        eprintln!("warning: {}", crate::data::escape(w));
+        eprintln!("warning: {}", smash::data::escape(w));
     }
     if let Some(out) = &args.out_club {
         let comment = format!(
@@ -212,15 +212,15 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     }
     if let Some(path) = &args.report {
         let title = format!("{} on {}", club.name, args.shots.display());
-        let html = crate::report::html::diagnose_page(&to_json(&d, &floor), &title)
+        let html = smash::report::html::diagnose_page(&to_json(&d, &floor), &title)
             .map_err(anyhow::Error::msg)?;
         write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
     if args.json {
-        crate::cli::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
+        crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
     } else {
-        crate::cli::stdout::print(text_report(&d, &floor))?;
+        crate::stdout::print(text_report(&d, &floor))?;
     }
     Ok(())
 }

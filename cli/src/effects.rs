@@ -4,8 +4,8 @@ use clap::Args;
 
 use std::fmt::Write;
 
-use crate::cli::stdout;
-use crate::effects::EffectKind;
+use crate::stdout;
+use smash::effects::EffectKind;
 
 /// Arguments of `smash effects`.
 #[derive(Debug, Args)]

@@ -6,11 +6,11 @@ use std::path::PathBuf;
 use anyhow::Context;
 use clap::Args;
 
-use crate::data::flight_files::{
+use smash::data::flight_files::{
     flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource,
 };
-use crate::data::{write_atomic, DataError};
-use crate::flight::{fly, AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+use smash::data::{write_atomic, DataError};
+use smash::flight::{fly, AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -151,10 +151,10 @@ impl FlightOptions {
             let g = Ground {
                 restitution: self
                     .ground_restitution
-                    .unwrap_or(crate::flight::ground::DEFAULT_RESTITUTION),
+                    .unwrap_or(smash::flight::ground::DEFAULT_RESTITUTION),
                 roll_decel_m_s2: self
                     .roll_decel_m_s2
-                    .unwrap_or(crate::flight::ground::DEFAULT_ROLL_DECEL_M_S2),
+                    .unwrap_or(smash::flight::ground::DEFAULT_ROLL_DECEL_M_S2),
             };
             g.check().map_err(|e| anyhow::anyhow!("--total: {e}"))?;
             Some(g)
@@ -167,7 +167,7 @@ impl FlightOptions {
             }
         }
         let dt_s = self.dt_s;
-        let max_time_s = self.max_time_s.unwrap_or(crate::flight::DEFAULT_MAX_TIME_S);
+        let max_time_s = self.max_time_s.unwrap_or(smash::flight::DEFAULT_MAX_TIME_S);
         if !(max_time_s > 0.0 && max_time_s <= 120.0) {
             anyhow::bail!("--max-time-s {max_time_s}: must be within (0, 120] s");
         }
@@ -213,7 +213,7 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     if let Some(a) = &args.flight.atmosphere {
         inputs.push(("--atmosphere", a.as_path()));
     }
-    crate::data::safe_write::refuse_inputs(&[("--out", &args.out, false)], &inputs)?;
+    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, false)], &inputs)?;
     let cfg = args.flight.config()?;
     let source = args.launch.as_deref().map(|s| match s {
         "predicted" => LaunchSource::Predicted,
@@ -254,8 +254,8 @@ pub fn collect(
     path: &std::path::Path,
     lines: &[usize],
     prefix: &str,
-    results: Vec<Result<crate::flight::Flight, crate::flight::FlightError>>,
-) -> Result<Vec<crate::flight::Flight>, DataError> {
+    results: Vec<Result<smash::flight::Flight, smash::flight::FlightError>>,
+) -> Result<Vec<smash::flight::Flight>, DataError> {
     results
         .into_iter()
         .zip(lines)

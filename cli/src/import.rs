@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use crate::data::shots::parse_shots;
-use crate::data::write_atomic;
+use smash::data::shots::parse_shots;
+use smash::data::write_atomic;
 
 /// Arguments of `smash import`.
 #[derive(Debug, Args)]
@@ -37,7 +37,7 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     if format == "shots" {
         anyhow::bail!("--format shots: the file is already a shots file; nothing to import");
     }
-    crate::data::safe_write::refuse_inputs(
+    smash::data::safe_write::refuse_inputs(
         &[("--out", &args.out, false)],
         &[("IN.csv", &args.input)],
     )?;

@@ -76,11 +76,11 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
 /// A shot that cannot be predicted, located in its file: `FILE:LINE: columns …: shot 'ID': …`,
 /// the same form as the shots reader's own errors.
 pub fn locate_shot_error(
-    table: &crate::data::shots::ShotTable,
-    e: crate::predict::PredictError,
+    table: &smash::data::shots::ShotTable,
+    e: smash::predict::PredictError,
 ) -> anyhow::Error {
-    use crate::physics::ImpactError;
-    use crate::predict::PredictError;
+    use smash::physics::ImpactError;
+    use smash::predict::PredictError;
     let PredictError::Shot {
         shot_id,
         row,
@@ -99,7 +99,7 @@ pub fn locate_shot_error(
         ),
         _ => None,
     };
-    crate::data::DataError::at(
+    smash::data::DataError::at(
         &table.path,
         line,
         place,
@@ -118,7 +118,7 @@ pub fn error_chain(e: &anyhow::Error) -> String {
             parts.push(s);
         }
     }
-    crate::data::escape(&parts.join(": ").replace('\n', " ")).into_owned()
+    smash::data::escape(&parts.join(": ").replace('\n', " ")).into_owned()
 }
 
 #[cfg(test)]
@@ -145,10 +145,10 @@ pub struct MeasurementArgs {
         allow_hyphen_values = true,
         help_heading = "Measurement noise"
     )]
-    pub impact_noise_mm: Option<crate::measurement::ImpactNoise>,
+    pub impact_noise_mm: Option<smash::measurement::ImpactNoise>,
 }
 
-fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String> {
+fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [y, z] = parts.as_slice() else {
         return Err(format!(
@@ -161,9 +161,9 @@ fn parse_impact_noise(s: &str) -> Result<crate::measurement::ImpactNoise, String
     };
     let (sy, sz) = (num(y)?, num(z)?);
     for v in [sy, sz] {
-        crate::limits::SIGMA_LOCATION_MM.check(v)?;
+        smash::limits::SIGMA_LOCATION_MM.check(v)?;
     }
-    crate::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
+    smash::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
 }
 
 /// How a shots argument is read: a shots file (default) or a launch-monitor export converted on
@@ -178,7 +178,7 @@ pub struct ShotsFormatArgs {
     /// Which way a positive heel–toe impact offset points in the export, where the vendor does
     /// not say (the import refuses to guess).
     #[arg(long, value_name = "SIDE", value_enum, help_heading = "Input format")]
-    pub impact_offset_positive: Option<crate::data::import::OffsetSide>,
+    pub impact_offset_positive: Option<OffsetSideArg>,
 
     /// Drop export columns the format does not know instead of refusing the file.
     #[arg(long, help_heading = "Input format")]
@@ -188,12 +188,12 @@ pub struct ShotsFormatArgs {
 impl ShotsFormatArgs {
     /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) go to
     /// stderr.
-    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<crate::data::shots::ShotTable> {
+    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<smash::data::shots::ShotTable> {
         match self.format.as_deref() {
-            None | Some("shots") => Ok(crate::data::shots::read_shots(path)?),
+            None | Some("shots") => Ok(smash::data::shots::read_shots(path)?),
             Some(format) => {
                 let imported = self.import(path, format)?;
-                Ok(crate::data::shots::parse_shots(
+                Ok(smash::data::shots::parse_shots(
                     path,
                     imported.csv.as_slice(),
                 )?)
@@ -206,13 +206,13 @@ impl ShotsFormatArgs {
         &self,
         path: &std::path::Path,
         format: &str,
-    ) -> anyhow::Result<crate::data::import::Imported> {
-        use crate::data::import::{import, load_mapping, ImportOptions};
+    ) -> anyhow::Result<smash::data::import::Imported> {
+        use smash::data::import::{import, load_mapping, ImportOptions};
         let mapping = load_mapping(format)?;
         let bytes = std::fs::read(path)
-            .map_err(|e| crate::data::DataError::file(path, format!("cannot read: {e}")))?;
+            .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
         let opts = ImportOptions {
-            impact_offset_positive: self.impact_offset_positive,
+            impact_offset_positive: self.impact_offset_positive.map(Into::into),
             ignore_unknown_columns: self.ignore_unknown_columns,
         };
         let imported = import(path, &bytes, &mapping, &opts)?;
@@ -220,5 +220,24 @@ impl ShotsFormatArgs {
             eprintln!("import ({}): {note}", mapping.export.name);
         }
         Ok(imported)
+    }
+}
+
+/// Which way a positive heel–toe impact offset points (the command-line face of
+/// [`smash::data::import::OffsetSide`], which stays free of clap).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OffsetSideArg {
+    /// Positive offsets are toward the toe (the shots file's `impact_z_mm` sign).
+    Toe,
+    /// Positive offsets are toward the heel.
+    Heel,
+}
+
+impl From<OffsetSideArg> for smash::data::import::OffsetSide {
+    fn from(side: OffsetSideArg) -> Self {
+        match side {
+            OffsetSideArg::Toe => Self::Toe,
+            OffsetSideArg::Heel => Self::Heel,
+        }
     }
 }

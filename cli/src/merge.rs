@@ -5,12 +5,12 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use super::run::TableFormatArg;
-use crate::data::write_folder_atomic_with;
-use crate::study::metrics::metric_names;
-use crate::study::optimise::OptimiseResult;
-use crate::study::output::{cell, write_study, HeldGrids};
-use crate::study::shard::merge_shards;
-use crate::study::{finish, Prepared};
+use smash::data::write_folder_atomic_with;
+use smash::study::metrics::metric_names;
+use smash::study::optimise::OptimiseResult;
+use smash::study::output::{cell, write_study, HeldGrids};
+use smash::study::shard::merge_shards;
+use smash::study::{finish, Prepared};
 
 /// Arguments of `smash merge`.
 #[derive(Debug, Args)]
@@ -47,9 +47,9 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         .iter()
         .map(|s| ("a SHARD_DIR", s.as_path()))
         .collect();
-    crate::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
-    crate::data::safe_write::clean_stale_temporaries(&args.out);
-    crate::data::safe_write::check_replaceable(&args.out)?;
+    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
+    smash::data::safe_write::clean_stale_temporaries(&args.out);
+    smash::data::safe_write::check_replaceable(&args.out)?;
     let (prepared, variants) = merge_shards(&args.shards)?;
     let metrics: Vec<Vec<f64>> = variants.iter().map(|v| v.metrics.clone()).collect();
     let (sens, opt) = finish(&prepared, &metrics)?;
@@ -81,7 +81,7 @@ pub fn print_summary(
     opt: Option<&OptimiseResult>,
     dir: &Path,
     n_files: usize,
-) -> Result<(), crate::cli::stdout::StdoutError> {
+) -> Result<(), crate::stdout::StdoutError> {
     use std::fmt::Write;
     let mut text = String::new();
     let names = metric_names(p.study.distribution.is_some());
@@ -131,5 +131,5 @@ pub fn print_summary(
         );
     }
     let _ = writeln!(text, "wrote {n_files} file(s) to {}", dir.display());
-    crate::cli::stdout::print(text)
+    crate::stdout::print(text)
 }

@@ -7,14 +7,14 @@ use anyhow::{bail, Context};
 use clap::Args;
 use nalgebra::Vector3;
 
-use crate::data::club_file::read_club;
-use crate::data::predictions::predictions_csv;
-use crate::data::shots::DEFAULT_GROUP;
-use crate::data::write_atomic;
-use crate::limits;
-use crate::physics::{Delivery, LaunchComponent};
-use crate::predict::predict_table;
-use crate::units::{deg, mm, mph};
+use smash::data::club_file::read_club;
+use smash::data::predictions::predictions_csv;
+use smash::data::shots::DEFAULT_GROUP;
+use smash::data::write_atomic;
+use smash::limits;
+use smash::physics::{Delivery, LaunchComponent};
+use smash::predict::predict_table;
+use smash::units::{deg, mm, mph};
 
 /// Arguments of `smash predict`.
 #[derive(Debug, Args)]
@@ -160,7 +160,7 @@ pub struct PredictArgs {
     pub flight: bool,
     /// Flight options (with --flight).
     #[command(flatten)]
-    pub flight_options: crate::cli::flight::FlightOptions,
+    pub flight_options: crate::flight::FlightOptions,
 }
 
 /// Run `smash predict`.
@@ -168,7 +168,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     if let Some(shots_path) = &args.shots {
         let out = args.out.as_ref().expect("clap: --shots requires --out");
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--out", out, false)],
             &[("--shots", shots_path), ("--club", &args.club)],
         )?;
@@ -279,7 +279,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     );
     if args.flight {
         let cfg = args.flight_options.config()?;
-        let f = crate::flight::fly_one(&cfg, &crate::flight::FlightLaunch::from_launch(&launch))
+        let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(&launch))
             .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
         let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
         let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
@@ -295,7 +295,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
             let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
         }
     }
-    crate::cli::stdout::print(text)?;
+    crate::stdout::print(text)?;
     Ok(())
 }
 
@@ -304,24 +304,24 @@ fn add_flight(
     args: &PredictArgs,
     shots_path: &std::path::Path,
     predictions: &[u8],
-    outcomes: &[crate::physics::ImpactOutcome],
+    outcomes: &[smash::physics::ImpactOutcome],
 ) -> anyhow::Result<Vec<u8>> {
-    use crate::data::flight_files::{flight_csv, parse_raw_csv};
+    use smash::data::flight_files::{flight_csv, parse_raw_csv};
     let cfg = args.flight_options.config()?;
-    let launches: Vec<crate::flight::FlightLaunch> = outcomes
+    let launches: Vec<smash::flight::FlightLaunch> = outcomes
         .iter()
-        .map(|o| crate::flight::FlightLaunch::from_launch(&o.launch()))
+        .map(|o| smash::flight::FlightLaunch::from_launch(&o.launch()))
         .collect();
     let raw = parse_raw_csv(shots_path, predictions)?;
     let shots_raw = parse_raw_csv(
         shots_path,
-        &crate::data::read_text(shots_path)?.into_bytes(),
+        &smash::data::read_text(shots_path)?.into_bytes(),
     )?;
-    let flights = crate::cli::flight::collect(
+    let flights = crate::flight::collect(
         shots_path,
         &shots_raw.lines,
         "pred_",
-        crate::flight::fly(&cfg, &launches),
+        smash::flight::fly(&cfg, &launches),
     )?;
     Ok(flight_csv(
         &raw.headers,

@@ -3,7 +3,7 @@
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::fit::{IterInfo, Progress};
+use smash::fit::{IterInfo, Progress};
 
 /// A spinner whose message is the latest iteration.
 pub struct IterationLine {

@@ -6,10 +6,10 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::data::{write_folder_atomic, write_folder_atomic_with};
-use crate::study::output::{write_study, Files, TableFormat};
-use crate::study::shard::{parse_shard_spec, shard_files};
-use crate::study::{finish, read_study, Prepared, StudyError};
+use smash::data::{write_folder_atomic, write_folder_atomic_with};
+use smash::study::output::{write_study, Files, TableFormat};
+use smash::study::shard::{parse_shard_spec, shard_files};
+use smash::study::{finish, read_study, Prepared, StudyError};
 
 /// Arguments of `smash run`.
 #[derive(Debug, Args)]
@@ -80,7 +80,7 @@ fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
             .position(|l| l.trim_start().starts_with("[delivery]"))
             .map(|i| i + 1)
     });
-    crate::data::DataError::at(
+    smash::data::DataError::at(
         study,
         line,
         Some("table [delivery]".into()),
@@ -100,7 +100,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     };
     // Refuse before the sweep, not after it: the output folder may not hold the inputs or
     // files smash did not write.
-    crate::data::safe_write::refuse_inputs(
+    smash::data::safe_write::refuse_inputs(
         &[(
             if args.out.is_some() {
                 "--out"
@@ -116,7 +116,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         ],
     )?;
     if let Some(report) = &args.report {
-        crate::data::safe_write::refuse_inputs(
+        smash::data::safe_write::refuse_inputs(
             &[("--report", report, false)],
             &[
                 ("STUDY.toml", &args.study),
@@ -124,8 +124,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             ],
         )?;
         // The output folder is replaced as a whole and holds only what smash lists in it.
-        if crate::data::safe_write::canonical(report)
-            .starts_with(crate::data::safe_write::canonical(&dir))
+        if smash::data::safe_write::canonical(report)
+            .starts_with(smash::data::safe_write::canonical(&dir))
         {
             anyhow::bail!(
                 "{}: --report is inside the study's output folder {}, which each run replaces \
@@ -135,8 +135,8 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             );
         }
     }
-    crate::data::safe_write::clean_stale_temporaries(&dir);
-    crate::data::safe_write::check_replaceable(&dir)?;
+    smash::data::safe_write::clean_stale_temporaries(&dir);
+    smash::data::safe_write::check_replaceable(&dir)?;
     let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
     let items = prepared.shard_range(k, n);
     let impacts = prepared.impacts_in(items.clone());
@@ -165,17 +165,17 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     );
     if args.shard.is_some() {
         // Shards are only useful if they can be merged: refuse before computing any.
-        crate::study::shard::check_mergeable(&prepared)?;
+        smash::study::shard::check_mergeable(&prepared)?;
         let nz = prepared.zs_mm.len() as u128;
         let rows = items.len() as u128; // at most one metrics item per variant besides rows
         let points = rows * nz;
-        if points > crate::study::MAX_SHARD_POINTS {
+        if points > smash::study::MAX_SHARD_POINTS {
             let total = prepared.work_len() as u128 * nz;
-            return Err(crate::study::StudyError::ShardTooLarge {
+            return Err(smash::study::StudyError::ShardTooLarge {
                 k,
                 n,
                 points,
-                min_shards: total.div_ceil(crate::study::MAX_SHARD_POINTS),
+                min_shards: total.div_ceil(smash::study::MAX_SHARD_POINTS),
             }
             .into());
         }
@@ -217,9 +217,9 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     })?;
     let seconds = start.elapsed().as_secs_f64();
     if let Some(path) = &args.report {
-        let html = crate::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
+        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
             .map_err(anyhow::Error::msg)?;
-        crate::data::write_atomic(path, html.as_bytes())?;
+        smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
     super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;

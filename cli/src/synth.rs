@@ -5,10 +5,10 @@ use std::path::{Path, PathBuf};
 use anyhow::Context;
 use clap::Args;
 
-use crate::data::club_file::read_club;
-use crate::data::synth_files::{synth_shots_csv, truth_toml};
-use crate::data::write_files_atomic;
-use crate::synth::{generate, read_config};
+use smash::data::club_file::read_club;
+use smash::data::synth_files::{synth_shots_csv, truth_toml};
+use smash::data::write_files_atomic;
+use smash::synth::{generate, read_config};
 
 /// Arguments of `smash synth`.
 #[derive(Debug, Args)]
@@ -40,14 +40,14 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
     if let Some(t) = &args.truth {
         outputs.push(("--truth", t.as_path(), false));
     }
-    crate::data::safe_write::refuse_inputs(&outputs, &[("--config", &args.config)])?;
+    smash::data::safe_write::refuse_inputs(&outputs, &[("--config", &args.config)])?;
     let mut cfg = read_config(&args.config)?;
     if let Some(seed) = args.seed {
         cfg.seed = seed;
     }
     let club =
         read_club(&cfg.club).with_context(|| format!("base club of {}", args.config.display()))?;
-    crate::data::safe_write::refuse_inputs(&outputs, &[("the configuration's club", &cfg.club)])?;
+    smash::data::safe_write::refuse_inputs(&outputs, &[("the configuration's club", &cfg.club)])?;
     let run = generate(&cfg, &club).with_context(|| args.config.display().to_string())?;
     let csv = synth_shots_csv(&run);
     let truth = args

@@ -1,5 +1,6 @@
 //! `smash calibrate` and `smash diagnose` end to end: JSON shape, written club, bad input.
 
+#[path = "../../tests/common/mod.rs"]
 mod common;
 
 use std::path::Path;

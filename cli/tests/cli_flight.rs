@@ -127,7 +127,8 @@ fn predict_with_flight_adds_the_flight_columns() {
         "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,carry_yd\n\
          s1,110,2,0,13,0,0,0,280\n",
     );
-    let club = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml");
+    let club = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .join("configs/clubs/paper_driver.toml");
     let out = dir.path().join("p.csv");
     let o = smash(&[
         "predict",

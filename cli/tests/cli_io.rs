@@ -8,7 +8,7 @@ use std::process::{Command, Output, Stdio};
 const SMASH: &str = env!("CARGO_BIN_EXE_smash");
 
 fn repo(rel: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
 }
 
 fn smash(args: &[&str]) -> Output {

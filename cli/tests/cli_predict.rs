@@ -6,7 +6,8 @@ use std::process::{Command, Output};
 
 fn paper_club_text() -> String {
     std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml"),
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+            .join("configs/clubs/paper_driver.toml"),
     )
     .unwrap()
 }

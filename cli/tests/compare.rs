@@ -12,9 +12,12 @@ use smash::report::compare::{compare_files, compare_json, compare_text};
 use smash::stats::{mean, std_dev};
 use smash::synth::{generate, read_config};
 
+/// The repository root (this package is `cli/`); the command runs from there.
+const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+
 fn world(name: &str) -> (Vec<Shot>, Vec<Launch>) {
-    let cfg = read_config(Path::new(&format!("configs/synth/{name}.toml"))).unwrap();
-    let club = read_club(Path::new("configs/clubs/paper_driver.toml")).unwrap();
+    let cfg = read_config(&Path::new(ROOT).join(format!("configs/synth/{name}.toml"))).unwrap();
+    let club = read_club(&Path::new(ROOT).join("configs/clubs/paper_driver.toml")).unwrap();
     let run = generate(&cfg, &club).unwrap();
     let shots: Vec<Shot> = run.shots.iter().map(|s| s.to_shot()).collect();
     let pred = predict_shots(&club, &shots)
@@ -156,6 +159,7 @@ fn no_nan_anywhere_in_the_outputs() {
 fn smash(args: &[&str]) -> std::process::Output {
     Command::new(env!("CARGO_BIN_EXE_smash"))
         .args(args)
+        .current_dir(ROOT)
         .output()
         .unwrap()
 }

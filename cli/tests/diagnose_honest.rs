@@ -13,7 +13,7 @@ fn smash(args: &[&str]) -> std::process::Output {
 }
 
 fn repo(p: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .join(p)
         .to_str()
         .unwrap()

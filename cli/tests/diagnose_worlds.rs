@@ -15,7 +15,7 @@ fn smash(args: &[&str]) -> std::process::Output {
 }
 
 fn repo(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join(p)
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(p)
 }
 
 /// Generate a world from `config` and diagnose it with the nominal paper club.

@@ -17,7 +17,7 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
 /// Fixed seeds: every CI run fuzzes the same cases.
@@ -369,7 +369,7 @@ fn mutated_files_never_panic_and_errors_are_one_line() {
                         }
                         Ok(Err(e)) => {
                             errors += 1;
-                            let line = smash::cli::error_chain(&e);
+                            let line = smash_cli::error_chain(&e);
                             // One line, and no control character reaches the terminal.
                             if line.chars().any(char::is_control) || line.trim().is_empty() {
                                 failures.push(format!(

@@ -28,7 +28,7 @@ const COMPONENTS: [&str; 5] = [
 ];
 
 fn golden_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/golden")
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join("tests/data/golden")
 }
 
 fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {
@@ -50,8 +50,8 @@ fn column(h: &[String], rows: &[Vec<String>], name: &str) -> Vec<f64> {
 }
 
 fn predict(case: &str, out: &Path) {
-    let club =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/data/golden_clubs/{case}.toml"));
+    let club = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .join(format!("tests/data/golden_clubs/{case}.toml"));
     let shots = golden_dir().join(format!("{case}.csv"));
     let status = Command::new(env!("CARGO_BIN_EXE_smash"))
         .args(["predict", "--club"])

@@ -10,7 +10,7 @@ use serde_json::Value;
 fn smash(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_smash"))
         .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
         .output()
         .expect("smash runs")
 }

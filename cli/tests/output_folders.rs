@@ -32,7 +32,7 @@ fn files_under(dir: &Path) -> Vec<String> {
 #[test]
 fn rerunning_a_study_leaves_no_stale_files_and_foreign_folders_are_kept() {
     let tmp = tempfile::tempdir().unwrap();
-    let repo = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let repo = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."));
     let club = repo.join("configs/clubs/paper_driver.toml");
     let study = |outputs: &str| {
         format!(

@@ -14,7 +14,7 @@ use smash::study::{parse_study, resolved_toml, Prepared};
 use smash::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 
 fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
 }
 
 fn club_path() -> String {
