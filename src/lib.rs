@@ -2,6 +2,8 @@
 //!
 //! The flow, one room per folder, in the order data moves through them:
 //!
+//! - [`lanes`]: a tiny portable SIMD type (fixed-width `f64` lanes) that the batch code (physics
+//!   laws, face-map kernel, flight integrator) is written in.
 //! - [`physics`]: the pure momentum-based impact model (face torus, frames, 3×3 impulse solve,
 //!   launch conditions). No I/O.
 //! - [`effects`]: the named library of physics beyond the nominal model, each with parameters,
@@ -37,6 +39,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod fit;
 pub mod flight;
+pub mod lanes;
 pub mod limits;
 pub mod measurement;
 pub mod physics;

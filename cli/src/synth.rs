@@ -6,8 +6,8 @@ use anyhow::Context;
 use clap::Args;
 
 use smash::data::club_file::read_club;
-use smash::data::synth_files::{synth_shots_csv, truth_toml};
 use smash::data::write_files_atomic;
+use smash::synth::files::{synth_shots_csv, truth_toml};
 use smash::synth::{generate, read_config};
 
 /// Arguments of `smash synth`.

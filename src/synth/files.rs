@@ -3,8 +3,8 @@
 
 use std::fmt::Write as _;
 
+use super::{config_toml, csv_header, SynthConfig, SynthRun};
 use crate::data::fmt_f64;
-use crate::synth::{config_toml, csv_header, SynthConfig, SynthRun};
 
 /// Shots CSV: `shot_id, group, golfer, shaft_mass_g`, the measured delivery, the measured launch.
 /// Floats are written in shortest round-trip form, so reading the file gives the generator's

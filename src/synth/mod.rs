@@ -40,6 +40,7 @@
 
 pub mod config;
 pub mod contact;
+pub mod files;
 
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
