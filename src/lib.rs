@@ -9,6 +9,8 @@
 //! - [`effects`]: the named library of physics beyond the nominal model, each with parameters,
 //!   units and bounds.
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
+//! - [`model`]: the domain types every room above the physics shares: a shot and the delivery
+//!   variables (column, unit, range, typical instrument noise). No I/O.
 //! - [`data`]: club TOML, shots CSV, predictions CSV, synth outputs; the one place that writes
 //!   files.
 //! - [`synth`]: synthetic experiments with hidden effects and world-only physics.
@@ -42,6 +44,7 @@ pub mod flight;
 pub mod lanes;
 pub mod limits;
 pub mod measurement;
+pub mod model;
 pub mod physics;
 pub mod predict;
 pub mod report;

@@ -26,7 +26,7 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
     p.to_str().unwrap().to_owned()
 }
 
-fn paper_shots() -> Vec<smash::data::shots::Shot> {
+fn paper_shots() -> Vec<smash::model::Shot> {
     let e = Experiment {
         golfers: 8,
         ..Experiment::default()

@@ -5,7 +5,7 @@ use std::process::Command;
 
 use smash::compare::{compare, CompareOptions, CompareReport, Pattern};
 use smash::data::club_file::read_club;
-use smash::data::shots::Shot;
+use smash::model::Shot;
 use smash::physics::{Launch, LaunchComponent};
 use smash::predict::predict_shots;
 use smash::report::compare::{compare_files, compare_json, compare_text};

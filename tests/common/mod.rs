@@ -11,8 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
 use smash::data::club_file::read_club;
-use smash::data::shots::Shot;
 use smash::effects::{Effect, EffectKind};
+use smash::model::Shot;
 use smash::physics::{Delivery, Launch};
 use smash::units::{deg, mm, mph, rpm};
 use smash::ClubSpec;
