@@ -377,7 +377,7 @@ fn gear_effect_hooks_toe_strikes_and_speed_falls_off_centre() {
     assert!(high.backspin_rad_s < low.backspin_rad_s);
 
     let p = Prepared::new(parse(&study_text("")).unwrap()).unwrap();
-    let m = smash::study::metrics::evaluate(&p.models[0], &p.study, &p.groups);
+    let m = smash::study::evaluate::evaluate(&p.models[0], &p.study, &p.groups);
     let names = metric_names(false);
     let get = |n: &str| m[names.iter().position(|x| x == n).unwrap()];
     assert!(get("gear_sidespin_rpm_per_mm") < 0.0);
@@ -389,7 +389,7 @@ fn gear_effect_hooks_toe_strikes_and_speed_falls_off_centre() {
     // A CoM further back strengthens the gear effect.
     let p =
         Prepared::new(parse(&study_text("[design]\ncom_dx_mm = [-10.0, 0.0]\n")).unwrap()).unwrap();
-    let back = smash::study::metrics::evaluate(&p.models[0], &p.study, &p.groups);
+    let back = smash::study::evaluate::evaluate(&p.models[0], &p.study, &p.groups);
     let i = names
         .iter()
         .position(|x| x == "gear_sidespin_rpm_per_mm")
@@ -436,7 +436,7 @@ fn optimiser_beats_the_base_within_bounds_at_constant_mass() {
     assert!((shift - delta * (md.mass_kg / base.club_mass_kg)).norm() < 1e-15);
     // The reported optimum objective is what an independent evaluation gives.
     let model = smash::study::sweep::design_model(&p.study, &o.best).unwrap();
-    let m = smash::study::metrics::evaluate(&model, &p.study, &p.groups);
+    let m = smash::study::evaluate::evaluate(&model, &p.study, &p.groups);
     assert_eq!(m, o.best_metrics);
 }
 
