@@ -14,6 +14,7 @@ pub mod predict;
 pub mod progress;
 pub mod run;
 pub mod stdout;
+pub mod study_output;
 pub mod synth;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the

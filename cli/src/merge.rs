@@ -4,13 +4,11 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::run::TableFormatArg;
+use crate::study_output::{print_summary, TableFormatArg};
 use smash::data::write_folder_atomic_with;
-use smash::study::metrics::metric_names;
-use smash::study::optimise::OptimiseResult;
-use smash::study::output::{cell, write_study, HeldGrids};
+use smash::study::finish;
+use smash::study::output::{write_study, HeldGrids};
 use smash::study::shard::merge_shards;
-use smash::study::{finish, Prepared};
 
 /// Arguments of `smash merge`.
 #[derive(Debug, Args)]
@@ -71,65 +69,4 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
-}
-
-/// A short human summary on stdout: speed retention and gear effect of the first variants, and
-/// the optimiser's result.
-pub fn print_summary(
-    p: &Prepared,
-    metrics: &[Vec<f64>],
-    opt: Option<&OptimiseResult>,
-    dir: &Path,
-    n_files: usize,
-) -> Result<(), crate::stdout::StdoutError> {
-    use std::fmt::Write;
-    let mut text = String::new();
-    let names = metric_names(p.study.distribution.is_some());
-    let pick = [
-        "cof_ball_speed_mph",
-        "speed_loss_toe_mph_per_mm",
-        "speed_loss_heel_mph_per_mm",
-        "speed_loss_crown_mph_per_mm",
-        "speed_loss_sole_mph_per_mm",
-        "gear_sidespin_rpm_per_mm",
-        "gear_backspin_rpm_per_mm",
-    ];
-    // Writing to a String cannot fail.
-    let _ = writeln!(
-        text,
-        "study '{}' ({}, group {}): {} variant(s)",
-        p.study.name,
-        p.study.club.name,
-        p.study.group,
-        metrics.len()
-    );
-    for (i, (d, m)) in p.variants.iter().zip(metrics).enumerate().take(5) {
-        let mut line = format!("  variant {i} ({}):", d.describe());
-        for k in pick {
-            if let Some(j) = names.iter().position(|n| n == k) {
-                line.push_str(&format!(" {k} = {:.4}", m[j]));
-            }
-        }
-        let _ = writeln!(text, "{line}");
-    }
-    if metrics.len() > 5 {
-        let _ = writeln!(text, "  … see variants.csv");
-    }
-    if let Some(o) = opt {
-        let gain = o.best_objective - o.base_objective;
-        let _ = writeln!(
-            text,
-            "optimum: {} — objective {} -> {} (change {}, {:.3} %), {} iterations, {} evaluations, {}",
-            o.best.describe(),
-            cell(o.base_objective),
-            cell(o.best_objective),
-            cell(gain),
-            100.0 * gain / o.base_objective.abs().max(f64::MIN_POSITIVE),
-            o.path.last().map_or(0, |p| p.iteration),
-            o.evaluations,
-            o.termination
-        );
-    }
-    let _ = writeln!(text, "wrote {n_files} file(s) to {}", dir.display());
-    crate::stdout::print(text)
 }

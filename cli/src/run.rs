@@ -6,8 +6,9 @@ use std::time::Instant;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
+use crate::study_output::TableFormatArg;
 use smash::data::{write_folder_atomic, write_folder_atomic_with};
-use smash::study::output::{write_study, Files, TableFormat};
+use smash::study::output::{write_study, Files};
 use smash::study::shard::{parse_shard_spec, shard_files};
 use smash::study::{finish, read_study, Prepared, StudyError};
 
@@ -42,24 +43,6 @@ pub struct RunArgs {
     /// Also write a self-contained HTML report of the study (face maps and tables).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
-}
-
-/// `--format` values.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
-pub enum TableFormatArg {
-    /// maps_long.csv
-    Csv,
-    /// maps_long.parquet
-    Parquet,
-}
-
-impl From<TableFormatArg> for TableFormat {
-    fn from(f: TableFormatArg) -> Self {
-        match f {
-            TableFormatArg::Csv => TableFormat::Csv,
-            TableFormatArg::Parquet => TableFormat::Parquet,
-        }
-    }
 }
 
 /// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
@@ -222,7 +205,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
-    super::merge::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
+    crate::study_output::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
     eprintln!(
         "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
          (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
