@@ -11,9 +11,10 @@
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
 //! - [`model`]: the domain types every room above the physics shares: a shot and the delivery
 //!   variables (column, unit, range, typical instrument noise). No I/O.
-//! - [`data`]: club TOML, shots CSV, predictions CSV, synth outputs; the one place that writes
-//!   files.
-//! - [`synth`]: synthetic experiments with hidden effects and world-only physics.
+//! - [`data`]: club TOML, shots CSV, predictions CSV, noise files, launch-monitor import; the one
+//!   place that writes files.
+//! - [`synth`]: synthetic experiments with hidden effects and world-only physics (and the bytes
+//!   of their files).
 //! - [`predict`]: shots → model → predictions.
 //! - [`compare`]: model against measurements: Table 2, significance, face maps, findings.
 //! - [`stats`]: pure statistics (summaries, t tests, correlation, robust scale, regression,
