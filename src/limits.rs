@@ -248,6 +248,38 @@ pub fn finite_launch(l: &crate::physics::Launch) -> bool {
         .all(|c| l.get_file(*c).is_finite())
 }
 
+/// A library option outside what it allows (from a validating constructor or `validate`).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("option {option} = {value}: allowed {allowed}")]
+pub struct OptionError {
+    /// The option (field) name.
+    pub option: &'static str,
+    /// The value given.
+    pub value: String,
+    /// What is allowed.
+    pub allowed: &'static str,
+}
+
+impl OptionError {
+    /// `Ok(())` when `ok`, else the error for `option = value`.
+    pub fn check(
+        ok: bool,
+        option: &'static str,
+        value: impl std::fmt::Display,
+        allowed: &'static str,
+    ) -> Result<(), OptionError> {
+        if ok {
+            Ok(())
+        } else {
+            Err(OptionError {
+                option,
+                value: value.to_string(),
+                allowed,
+            })
+        }
+    }
+}
+
 /// Why a count is refused.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error("{what}: {factors} = {product}, above the limit of {limit}{reason}")]

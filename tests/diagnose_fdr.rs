@@ -64,7 +64,7 @@ fn synth_null(seed: u64) -> SynthConfig {
 fn quiet(mut c: SynthConfig) -> SynthConfig {
     // A radar/camera unit at its best and a marker-based delivery at half the default noise;
     // impact locations exact.
-    c.launch_noise = [0.3, 0.15, 0.3, 60.0, 80.0];
+    c.launch_noise = [0.3, 0.15, 0.3, 60.0, 80.0].into();
     for v in DeliveryVar::ALL {
         c.delivery_noise[v.index()] = 0.5 * v.default_noise();
     }
@@ -89,7 +89,7 @@ fn instrument(w: World) -> InstrumentNoise {
             };
             InstrumentNoise {
                 name: w.name().into(),
-                launch_sd: c.launch_noise,
+                launch_sd: c.launch_noise.0,
                 delivery_sd: c.delivery_noise,
             }
         }

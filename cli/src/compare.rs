@@ -96,7 +96,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     if !(args.alpha > 0.0 && args.alpha < 1.0) {
         bail!("--alpha must be in (0, 1), got {}", args.alpha);
     }
-    if !(args.bin_mm >= 0.5 && args.bin_mm <= 100.0) {
+    if !smash::compare::FACE_BIN_MM.contains(&args.bin_mm) {
         bail!("--bin-mm must be from 0.5 to 100 mm (impact locations are measured to about a millimetre), got {}", args.bin_mm);
     }
     let club = read_club(&args.club)?;

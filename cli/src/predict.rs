@@ -5,16 +5,15 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context};
 use clap::Args;
-use nalgebra::Vector3;
 
 use smash::data::club_file::read_club;
 use smash::data::predictions::predictions_csv;
 use smash::data::shots::DEFAULT_GROUP;
 use smash::data::write_atomic;
 use smash::limits;
-use smash::physics::{Delivery, LaunchComponent};
+use smash::model::{delivery_from_file_units, DeliveryVar};
+use smash::physics::LaunchComponent;
 use smash::predict::predict_table;
-use smash::units::{deg, mm, mph};
 
 /// Arguments of `smash predict`.
 #[derive(Debug, Args)]
@@ -205,36 +204,25 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     if args.out.is_some() {
         bail!("--out goes with --shots; the one-shot form prints its table");
     }
-    let angle = limits::DELIVERY_ANGLE_DEG;
-    let omega = limits::CLUB_OMEGA_RAD_S;
-    let location = limits::IMPACT_LOCATION_MM;
-    let values = [
-        ("--speed", speed, limits::CLUB_SPEED_MPH),
-        ("--loft", loft, limits::DYNAMIC_LOFT_DEG),
-        ("--attack", args.attack_angle_deg, angle),
-        ("--path", args.club_path_deg, angle),
-        ("--face", args.face_angle_deg, angle),
-        ("--lie", args.lie_tilt_deg, angle),
-        ("--impact-y", args.impact_y_mm, location),
-        ("--impact-z", args.impact_z_mm, location),
-        ("--omega-x-rad-s", args.omega_x_rad_s, omega),
-        ("--omega-y-rad-s", args.omega_y_rad_s, omega),
-        ("--omega-z-rad-s", args.omega_z_rad_s, omega),
-    ];
-    for (flag, v, range) in values {
-        range.check(v).map_err(|m| anyhow::anyhow!("{flag}: {m}"))?;
+    let values = DeliveryVar::ALL.map(|v| match v {
+        DeliveryVar::ClubSpeed => speed,
+        DeliveryVar::AttackAngle => args.attack_angle_deg,
+        DeliveryVar::ClubPath => args.club_path_deg,
+        DeliveryVar::DynamicLoft => loft,
+        DeliveryVar::FaceAngle => args.face_angle_deg,
+        DeliveryVar::LieTilt => args.lie_tilt_deg,
+        DeliveryVar::OmegaX => args.omega_x_rad_s,
+        DeliveryVar::OmegaY => args.omega_y_rad_s,
+        DeliveryVar::OmegaZ => args.omega_z_rad_s,
+        DeliveryVar::ImpactY => args.impact_y_mm,
+        DeliveryVar::ImpactZ => args.impact_z_mm,
+    });
+    for v in DeliveryVar::ALL {
+        v.range()
+            .check(values[v.index()])
+            .map_err(|m| anyhow::anyhow!("{}: {m}", flag(v)))?;
     }
-    let delivery = Delivery {
-        club_speed_m_s: mph(speed),
-        attack_angle_rad: deg(args.attack_angle_deg),
-        club_path_rad: deg(args.club_path_deg),
-        dynamic_loft_rad: deg(loft),
-        face_angle_rad: deg(args.face_angle_deg),
-        lie_tilt_rad: deg(args.lie_tilt_deg),
-        club_omega_rad_s: Vector3::new(args.omega_x_rad_s, args.omega_y_rad_s, args.omega_z_rad_s),
-        impact_y_m: mm(args.impact_y_mm),
-        impact_z_m: mm(args.impact_z_mm),
-    };
+    let delivery = delivery_from_file_units(&values);
     let model = club
         .model_for_group(&args.group)
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
@@ -329,4 +317,22 @@ fn add_flight(
         &flights,
         cfg.ground.is_some(),
     ))
+}
+
+/// The command-line flag (its short alias) of a delivery variable in messages about the one-shot
+/// form.
+const fn flag(v: DeliveryVar) -> &'static str {
+    match v {
+        DeliveryVar::ClubSpeed => "--speed",
+        DeliveryVar::AttackAngle => "--attack",
+        DeliveryVar::ClubPath => "--path",
+        DeliveryVar::DynamicLoft => "--loft",
+        DeliveryVar::FaceAngle => "--face",
+        DeliveryVar::LieTilt => "--lie",
+        DeliveryVar::OmegaX => "--omega-x-rad-s",
+        DeliveryVar::OmegaY => "--omega-y-rad-s",
+        DeliveryVar::OmegaZ => "--omega-z-rad-s",
+        DeliveryVar::ImpactY => "--impact-y",
+        DeliveryVar::ImpactZ => "--impact-z",
+    }
 }

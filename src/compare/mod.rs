@@ -17,7 +17,8 @@ pub mod signatures;
 
 use serde::Serialize;
 
-use crate::model::Shot;
+use crate::limits::OptionError;
+use crate::model::{DeliveryVar, Shot, N_DELIVERY};
 use crate::physics::{Launch, LaunchComponent};
 use crate::stats::{pearson, student_t_two_sided_p, Summary};
 
@@ -38,6 +39,85 @@ pub struct CompareOptions {
     pub strong_r: f64,
 }
 
+/// Face bin sides [`CompareOptions`] accepts, mm: impact locations are measured to about a
+/// millimetre, and a bin larger than the face holds every shot.
+pub const FACE_BIN_MM: std::ops::RangeInclusive<f64> = 0.5..=100.0;
+
+impl CompareOptions {
+    /// Significance level, in (0, 1).
+    pub fn with_alpha(mut self, alpha: f64) -> Result<Self, OptionError> {
+        self.alpha = alpha;
+        self.check_alpha().map(|()| self)
+    }
+
+    /// Side of a face bin, mm, in [`FACE_BIN_MM`].
+    pub fn with_face_bin_mm(mut self, face_bin_mm: f64) -> Result<Self, OptionError> {
+        self.face_bin_mm = face_bin_mm;
+        self.check_face_bin().map(|()| self)
+    }
+
+    /// Smallest shot count of a reported face bin, ≥ 1.
+    pub fn with_min_bin_count(mut self, min_bin_count: usize) -> Result<Self, OptionError> {
+        self.min_bin_count = min_bin_count;
+        self.check_counts().map(|()| self)
+    }
+
+    /// Number of quantile bins, ≥ 1.
+    pub fn with_quantile_bins(mut self, quantile_bins: usize) -> Result<Self, OptionError> {
+        self.quantile_bins = quantile_bins;
+        self.check_counts().map(|()| self)
+    }
+
+    /// |r| from which a correlation is strong, in [0, 1].
+    pub fn with_strong_r(mut self, strong_r: f64) -> Result<Self, OptionError> {
+        self.strong_r = strong_r;
+        self.check_strong_r().map(|()| self)
+    }
+
+    /// Every option in its allowed range (the fields are public, so [`compare`] checks again).
+    pub fn validate(&self) -> Result<(), OptionError> {
+        self.check_alpha()?;
+        self.check_face_bin()?;
+        self.check_counts()?;
+        self.check_strong_r()
+    }
+
+    fn check_alpha(&self) -> Result<(), OptionError> {
+        let a = self.alpha;
+        OptionError::check(a > 0.0 && a < 1.0, "alpha", a, "in (0, 1)")
+    }
+
+    fn check_face_bin(&self) -> Result<(), OptionError> {
+        let b = self.face_bin_mm;
+        OptionError::check(
+            FACE_BIN_MM.contains(&b),
+            "face_bin_mm",
+            b,
+            "from 0.5 to 100 mm",
+        )
+    }
+
+    fn check_counts(&self) -> Result<(), OptionError> {
+        OptionError::check(
+            self.min_bin_count >= 1,
+            "min_bin_count",
+            self.min_bin_count,
+            "at least 1",
+        )?;
+        OptionError::check(
+            self.quantile_bins >= 1,
+            "quantile_bins",
+            self.quantile_bins,
+            "at least 1",
+        )
+    }
+
+    fn check_strong_r(&self) -> Result<(), OptionError> {
+        let r = self.strong_r;
+        OptionError::check((0.0..=1.0).contains(&r), "strong_r", r, "in [0, 1]")
+    }
+}
+
 impl Default for CompareOptions {
     fn default() -> Self {
         Self {
@@ -51,79 +131,51 @@ impl Default for CompareOptions {
 }
 
 /// A delivery variable the errors are related to.
-#[derive(Debug, Clone, Copy)]
-pub struct Variable {
-    /// Column-style name (`club_speed_mph`, …; `impact_r_mm` is the distance from the centre).
-    pub name: &'static str,
-    /// Unit.
-    pub unit: &'static str,
-    /// The value of a shot, file units.
-    pub get: fn(&Shot) -> f64,
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Variable {
+    /// A delivery variable of the shots file.
+    Delivery(DeliveryVar),
+    /// `impact_r_mm`: the distance of the impact from the face centre.
+    ImpactRadius,
 }
 
-/// The delivery variables correlated with the errors.
-pub const VARIABLES: [Variable; 12] = [
-    Variable {
-        name: "club_speed_mph",
-        unit: "mph",
-        get: |s| s.delivery.club_speed_m_s / crate::units::M_S_PER_MPH,
-    },
-    Variable {
-        name: "attack_angle_deg",
-        unit: "deg",
-        get: |s| s.delivery.attack_angle_rad.to_degrees(),
-    },
-    Variable {
-        name: "club_path_deg",
-        unit: "deg",
-        get: |s| s.delivery.club_path_rad.to_degrees(),
-    },
-    Variable {
-        name: "dynamic_loft_deg",
-        unit: "deg",
-        get: |s| s.delivery.dynamic_loft_rad.to_degrees(),
-    },
-    Variable {
-        name: "face_angle_deg",
-        unit: "deg",
-        get: |s| s.delivery.face_angle_rad.to_degrees(),
-    },
-    Variable {
-        name: "lie_tilt_deg",
-        unit: "deg",
-        get: |s| s.delivery.lie_tilt_rad.to_degrees(),
-    },
-    Variable {
-        name: "club_omega_x_rad_s",
-        unit: "rad/s",
-        get: |s| s.delivery.club_omega_rad_s.x,
-    },
-    Variable {
-        name: "club_omega_y_rad_s",
-        unit: "rad/s",
-        get: |s| s.delivery.club_omega_rad_s.y,
-    },
-    Variable {
-        name: "club_omega_z_rad_s",
-        unit: "rad/s",
-        get: |s| s.delivery.club_omega_rad_s.z,
-    },
-    Variable {
-        name: "impact_y_mm",
-        unit: "mm",
-        get: |s| s.delivery.impact_y_m * 1e3,
-    },
-    Variable {
-        name: "impact_z_mm",
-        unit: "mm",
-        get: |s| s.delivery.impact_z_m * 1e3,
-    },
-    Variable {
-        name: "impact_r_mm",
-        unit: "mm",
-        get: |s| s.delivery.impact_y_m.hypot(s.delivery.impact_z_m) * 1e3,
-    },
-];
+impl Variable {
+    /// Column-style name (`club_speed_mph`, …; `impact_r_mm` is the distance from the centre).
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Delivery(v) => v.column(),
+            Self::ImpactRadius => "impact_r_mm",
+        }
+    }
+
+    /// Unit.
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Self::Delivery(v) => v.unit(),
+            Self::ImpactRadius => "mm",
+        }
+    }
+
+    /// The value of a shot, file units.
+    pub fn get(self, s: &Shot) -> f64 {
+        match self {
+            Self::Delivery(v) => v.file_value(&s.delivery),
+            Self::ImpactRadius => s.delivery.impact_y_m.hypot(s.delivery.impact_z_m) * 1e3,
+        }
+    }
+}
+
+/// The delivery variables correlated with the errors: every [`DeliveryVar`], then the impact
+/// radius.
+pub const VARIABLES: [Variable; N_DELIVERY + 1] = {
+    let mut v = [Variable::ImpactRadius; N_DELIVERY + 1];
+    let mut i = 0;
+    while i < N_DELIVERY {
+        v[i] = Variable::Delivery(DeliveryVar::ALL[i]);
+        i += 1;
+    }
+    v
+};
 
 /// Mean and spread of one error component.
 #[derive(Debug, Clone, Serialize)]
@@ -141,7 +193,7 @@ pub struct ComponentError {
 
 /// The Table 2 block of one group (or `all`).
 #[derive(Debug, Clone, Serialize)]
-pub struct GroupErrors {
+pub struct GroupBias {
     /// Group name, or `all`.
     pub group: String,
     /// Number of shots.
@@ -256,7 +308,7 @@ pub struct CompareReport {
     /// Significance level used for flags.
     pub alpha: f64,
     /// Table 2 layout: one block per group, then `all`.
-    pub table2: Vec<GroupErrors>,
+    pub table2: Vec<GroupBias>,
     /// Errors over the face.
     pub face: FaceResiduals,
     /// Errors by club speed and by dynamic loft.
@@ -300,6 +352,9 @@ pub enum CompareError {
     /// Too many face bins.
     #[error(transparent)]
     TooLarge(#[from] crate::limits::CapError),
+    /// An option out of range.
+    #[error(transparent)]
+    Option(#[from] OptionError),
 }
 
 fn launch_columns() -> String {
@@ -331,8 +386,8 @@ fn errors_of(shots: &[Shot], predicted: &[Launch]) -> Result<Vec<[f64; 5]>, Comp
         .collect()
 }
 
-fn group_errors(group: &str, errs: &[&[f64; 5]], alpha: f64) -> GroupErrors {
-    GroupErrors {
+fn group_errors(group: &str, errs: &[&[f64; 5]], alpha: f64) -> GroupBias {
+    GroupBias {
         group: group.to_owned(),
         n: errs.len(),
         components: LaunchComponent::ALL
@@ -409,7 +464,7 @@ fn face_residuals(
 
 fn binned(v: &Variable, shots: &[Shot], errs: &[[f64; 5]], nbins: usize) -> BinnedTable {
     let mut order: Vec<usize> = (0..shots.len()).collect();
-    let x: Vec<f64> = shots.iter().map(v.get).collect();
+    let x: Vec<f64> = shots.iter().map(|s| v.get(s)).collect();
     order.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
     let nbins = nbins.clamp(1, shots.len());
     let rows = (0..nbins)
@@ -430,7 +485,7 @@ fn binned(v: &Variable, shots: &[Shot], errs: &[[f64; 5]], nbins: usize) -> Binn
         })
         .collect();
     BinnedTable {
-        variable: v.name,
+        variable: v.name(),
         rows,
     }
 }
@@ -487,13 +542,14 @@ pub fn compare(
     predicted: &[Launch],
     o: &CompareOptions,
 ) -> Result<CompareReport, CompareError> {
+    o.validate()?;
     let errs = errors_of(shots, predicted)?;
     let mut groups: Vec<&str> = shots.iter().map(|s| s.group.as_str()).collect();
     groups.sort();
     groups.dedup();
     let members =
         |g: &str| -> Vec<usize> { (0..shots.len()).filter(|&k| shots[k].group == g).collect() };
-    let mut table2: Vec<GroupErrors> = groups
+    let mut table2: Vec<GroupBias> = groups
         .iter()
         .map(|g| {
             let e: Vec<&[f64; 5]> = members(g).iter().map(|&k| &errs[k]).collect();
@@ -510,12 +566,12 @@ pub fn compare(
     for c in LaunchComponent::ALL {
         let y: Vec<f64> = errs.iter().map(|e| e[c.index()]).collect();
         for v in &VARIABLES {
-            let x: Vec<f64> = shots.iter().map(v.get).collect();
+            let x: Vec<f64> = shots.iter().map(|s| v.get(s)).collect();
             if let Some(k) = pearson(&x, &y) {
                 let significant = k.p < o.alpha;
                 correlations.push(CorrelationEntry {
                     component: c.column(),
-                    variable: v.name,
+                    variable: v.name(),
                     n: k.n,
                     r: k.r,
                     t: k.t,
@@ -644,7 +700,7 @@ pub fn compare(
         binned: ["club_speed_mph", "dynamic_loft_deg"]
             .iter()
             .map(|n| {
-                let v = VARIABLES.iter().find(|v| v.name == *n).expect("variable");
+                let v = VARIABLES.iter().find(|v| v.name() == *n).expect("variable");
                 binned(v, shots, &errs, o.quantile_bins)
             })
             .collect(),
@@ -679,5 +735,76 @@ pub fn sig3(v: f64) -> String {
         format!("{v:.2}")
     } else {
         format!("{v:.3}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::delivery_from_file_units;
+
+    fn shots(n: usize) -> (Vec<Shot>, Vec<Launch>) {
+        let launch = Launch {
+            ball_speed_m_s: 65.0,
+            launch_angle_rad: 0.2,
+            azimuth_rad: 0.0,
+            backspin_rad_s: 280.0,
+            sidespin_rad_s: 0.0,
+        };
+        let shots = (0..n)
+            .map(|i| {
+                let mut v = DeliveryVar::ALL.map(|v| v.range().min.max(0.0));
+                v[DeliveryVar::ClubSpeed.index()] = 95.0 + i as f64;
+                v[DeliveryVar::DynamicLoft.index()] = 12.0;
+                v[DeliveryVar::ImpactZ.index()] = i as f64 - 5.0;
+                Shot {
+                    id: format!("s{i}"),
+                    group: "all".into(),
+                    golfer: None,
+                    shaft_mass_g: None,
+                    delivery: delivery_from_file_units(&v),
+                    measured: Some(launch),
+                }
+            })
+            .collect();
+        let predicted = (0..n)
+            .map(|i| Launch {
+                ball_speed_m_s: 65.0 + 0.1 * i as f64,
+                ..launch
+            })
+            .collect();
+        (shots, predicted)
+    }
+
+    #[test]
+    fn a_bad_bin_size_is_an_error_not_an_allocation() {
+        let (s, p) = shots(12);
+        for bin in [0.0, -1.0, f64::NAN, 1e-300, f64::INFINITY] {
+            let o = CompareOptions {
+                face_bin_mm: bin,
+                ..CompareOptions::default()
+            };
+            match compare(&s, &p, &o) {
+                Err(CompareError::Option(e)) => assert_eq!(e.option, "face_bin_mm"),
+                other => panic!("bin {bin}: {:?}", other.map(|r| r.table2.len())),
+            }
+            assert!(CompareOptions::default().with_face_bin_mm(bin).is_err());
+        }
+        assert!(compare(&s, &p, &CompareOptions::default()).is_ok());
+    }
+
+    #[test]
+    fn builders_check_each_option() {
+        let o = CompareOptions::default();
+        assert!(o.with_alpha(0.0).is_err());
+        assert!(o.with_alpha(1.0).is_err());
+        assert!(o.with_alpha(f64::NAN).is_err());
+        assert_eq!(o.with_alpha(0.05).unwrap().alpha, 0.05);
+        assert!(o.with_min_bin_count(0).is_err());
+        assert!(o.with_quantile_bins(0).is_err());
+        assert!(o.with_strong_r(1.5).is_err());
+        let b = o.with_face_bin_mm(3.0).unwrap();
+        assert_eq!(b.face_bin_mm, 3.0);
+        assert!(b.validate().is_ok());
     }
 }

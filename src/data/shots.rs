@@ -18,38 +18,40 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use nalgebra::Vector3;
-
 use super::DataError;
 use crate::limits::{self, PhysicalRange};
 /// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
 /// callers of the reader.
 pub use crate::model::Shot;
-use crate::physics::{Delivery, Launch, LaunchComponent};
-use crate::units::{deg, mm, mph, rpm};
+use crate::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
+use crate::physics::{Launch, LaunchComponent};
+use crate::units::{deg, mph, rpm};
 
-/// Columns a shots file must have.
-pub const REQUIRED_COLUMNS: [&str; 8] = [
-    "shot_id",
-    "club_speed_mph",
-    "attack_angle_deg",
-    "club_path_deg",
-    "dynamic_loft_deg",
-    "face_angle_deg",
-    "impact_y_mm",
-    "impact_z_mm",
-];
+/// Columns a shots file must have: `shot_id` and the required [`DeliveryVar`]s.
+pub fn required_columns() -> Vec<&'static str> {
+    std::iter::once("shot_id")
+        .chain(
+            DeliveryVar::ALL
+                .into_iter()
+                .filter(|v| v.required())
+                .map(DeliveryVar::column),
+        )
+        .collect()
+}
 
-/// Optional input columns the engine reads.
-pub const OPTIONAL_COLUMNS: [&str; 7] = [
-    "group",
-    "golfer",
-    "shaft_mass_g",
-    "lie_tilt_deg",
-    "club_omega_x_rad_s",
-    "club_omega_y_rad_s",
-    "club_omega_z_rad_s",
-];
+/// Optional input columns the engine reads: `group`, `golfer`, `shaft_mass_g` and the
+/// optional [`DeliveryVar`]s.
+pub fn optional_columns() -> Vec<&'static str> {
+    ["group", "golfer", "shaft_mass_g"]
+        .into_iter()
+        .chain(
+            DeliveryVar::ALL
+                .into_iter()
+                .filter(|v| !v.required())
+                .map(DeliveryVar::column),
+        )
+        .collect()
+}
 
 /// Group of shots without a `group` column.
 pub const DEFAULT_GROUP: &str = "all";
@@ -106,22 +108,78 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
     reader
         .read_to_end(&mut bytes)
         .map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
-    // Lines from byte offsets: the csv crate's own line count is off for CRLF files (as written
-    // by Excel and Python's csv module).
-    let newlines: Vec<usize> = bytes
-        .iter()
-        .enumerate()
-        .filter(|(_, &b)| b == b'\n')
-        .map(|(i, _)| i)
-        .collect();
-    // With CRLF the reported byte is the previous line's `\n` itself, hence `<=`.
-    let line_of = |p: &csv::Position| newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1;
+    let lines = LineIndex::new(&bytes);
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
         .trim(csv::Trim::All)
         .from_reader(bytes.as_slice());
-    let csv_err = |e: csv::Error| {
-        let line = e.position().map(line_of);
+    let csv_err = |e: csv::Error| lines.csv_error(path, e);
+    let headers: Vec<String> = rdr
+        .headers()
+        .map_err(csv_err)?
+        .iter()
+        .map(str::to_owned)
+        .collect();
+    let cols = Columns::locate(path, &headers)?;
+
+    let mut table = ShotTable {
+        path: path.to_owned(),
+        headers,
+        records: Vec::new(),
+        shots: Vec::new(),
+        lines: Vec::new(),
+    };
+    let mut ids = HashSet::new();
+    for rec in rdr.records() {
+        let rec = rec.map_err(csv_err)?;
+        let line = rec
+            .position()
+            .map_or(table.records.len() + 2, |p| lines.line_of(p));
+        table.lines.push(line);
+        let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
+        let row = Row {
+            path,
+            line,
+            headers: &table.headers,
+            cells: &cells,
+        };
+        table.shots.push(row.shot(&cols, &mut ids)?);
+        table.records.push(cells);
+    }
+    if table.shots.is_empty() {
+        return Err(DataError::file(
+            path,
+            "no shots: the file has a header but no rows",
+        ));
+    }
+    Ok(table)
+}
+
+/// Lines from byte offsets: the csv crate's own line count is off for CRLF files (as written
+/// by Excel and Python's csv module).
+struct LineIndex {
+    newlines: Vec<usize>,
+}
+
+impl LineIndex {
+    fn new(bytes: &[u8]) -> Self {
+        let newlines = bytes
+            .iter()
+            .enumerate()
+            .filter(|(_, &b)| b == b'\n')
+            .map(|(i, _)| i)
+            .collect();
+        Self { newlines }
+    }
+
+    /// 1-based line of a position. With CRLF the reported byte is the previous line's `\n`
+    /// itself, hence `<=`.
+    fn line_of(&self, p: &csv::Position) -> usize {
+        self.newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1
+    }
+
+    fn csv_error(&self, path: &Path, e: csv::Error) -> DataError {
+        let line = e.position().map(|p| self.line_of(p));
         let msg = match e.kind() {
             csv::ErrorKind::UnequalLengths {
                 expected_len, len, ..
@@ -131,220 +189,173 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
             _ => e.to_string(),
         };
         DataError::at(path, line, None, msg)
-    };
-    let headers: Vec<String> = rdr
-        .headers()
-        .map_err(csv_err)?
-        .iter()
-        .map(str::to_owned)
-        .collect();
-    if headers.iter().all(|h| h.is_empty()) {
-        return Err(DataError::file(
-            path,
-            "empty file: a header row is required",
-        ));
     }
-    let mut seen = HashSet::new();
-    for h in &headers {
-        if !seen.insert(h.as_str()) {
-            return Err(DataError::at(
+}
+
+/// Where each column the engine reads sits in the header.
+struct Columns {
+    id: usize,
+    group: Option<usize>,
+    golfer: Option<usize>,
+    shaft: Option<usize>,
+    /// Per [`DeliveryVar`]; `None` only for optional variables.
+    delivery: [Option<usize>; N_DELIVERY],
+    /// Per [`LaunchComponent`]; all or none present.
+    launch: Option<[usize; 5]>,
+}
+
+impl Columns {
+    /// Checks the header (non-empty, no duplicates, required columns, launch all-or-none).
+    fn locate(path: &Path, headers: &[String]) -> Result<Self, DataError> {
+        if headers.iter().all(|h| h.is_empty()) {
+            return Err(DataError::file(
                 path,
-                Some(1),
-                None,
-                format!("column '{h}' appears twice in the header"),
+                "empty file: a header row is required",
             ));
         }
-    }
-    let col = |name: &str| headers.iter().position(|h| h == name);
-    let missing: Vec<&str> = REQUIRED_COLUMNS
-        .iter()
-        .copied()
-        .filter(|c| col(c).is_none())
-        .collect();
-    if !missing.is_empty() {
-        return Err(DataError::at(
-            path,
-            Some(1),
-            None,
-            format!(
+        let header_err = |m: String| DataError::at(path, Some(1), None, m);
+        let mut seen = HashSet::new();
+        for h in headers {
+            if !seen.insert(h.as_str()) {
+                return Err(header_err(format!(
+                    "column '{h}' appears twice in the header"
+                )));
+            }
+        }
+        let col = |name: &str| headers.iter().position(|h| h == name);
+        let required = required_columns();
+        let missing: Vec<&str> = required
+            .iter()
+            .copied()
+            .filter(|c| col(c).is_none())
+            .collect();
+        if !missing.is_empty() {
+            return Err(header_err(format!(
                 "missing required column(s): {} (required: {})",
                 missing.join(", "),
-                REQUIRED_COLUMNS.join(", ")
-            ),
-        ));
-    }
-    let req = |name: &str| col(name).expect("checked above");
-    let launch_cols: Vec<Option<usize>> = LaunchComponent::ALL
-        .iter()
-        .map(|c| col(c.column()))
-        .collect();
-    let n_launch = launch_cols.iter().flatten().count();
-    if n_launch != 0 && n_launch != launch_cols.len() {
-        let absent: Vec<&str> = LaunchComponent::ALL
-            .iter()
-            .zip(&launch_cols)
-            .filter(|(_, c)| c.is_none())
-            .map(|(c, _)| c.column())
-            .collect();
-        return Err(DataError::at(
-            path,
-            Some(1),
-            None,
-            format!(
+                required.join(", ")
+            )));
+        }
+        let launch_cols = LaunchComponent::ALL.map(|c| col(c.column()));
+        let n_launch = launch_cols.iter().flatten().count();
+        if n_launch != 0 && n_launch != launch_cols.len() {
+            let absent: Vec<&str> = LaunchComponent::ALL
+                .iter()
+                .zip(&launch_cols)
+                .filter(|(_, c)| c.is_none())
+                .map(|(c, _)| c.column())
+                .collect();
+            return Err(header_err(format!(
                 "measured launch columns must be all present or all absent; missing: {}",
                 absent.join(", ")
-            ),
-        ));
+            )));
+        }
+        Ok(Self {
+            id: col("shot_id").expect("checked above"),
+            group: col("group"),
+            golfer: col("golfer"),
+            shaft: col("shaft_mass_g"),
+            delivery: DeliveryVar::ALL.map(|v| col(v.column())),
+            launch: (n_launch > 0).then(|| launch_cols.map(|c| c.expect("all present"))),
+        })
+    }
+}
+
+/// One record of the file, with what messages about it need.
+struct Row<'a> {
+    path: &'a Path,
+    line: usize,
+    headers: &'a [String],
+    cells: &'a [String],
+}
+
+impl Row<'_> {
+    fn error(&self, column: &str, m: impl Into<String>) -> DataError {
+        DataError::at(
+            self.path,
+            Some(self.line),
+            Some(format!("column '{column}'")),
+            m,
+        )
     }
 
-    let i_id = req("shot_id");
-    let i_speed = req("club_speed_mph");
-    let i_attack = req("attack_angle_deg");
-    let i_path = req("club_path_deg");
-    let i_loft = req("dynamic_loft_deg");
-    let i_face = req("face_angle_deg");
-    let i_y = req("impact_y_mm");
-    let i_z = req("impact_z_mm");
-    let i_group = col("group");
-    let i_golfer = col("golfer");
-    let i_shaft = col("shaft_mass_g");
-    let i_lie = col("lie_tilt_deg");
-    let i_w = [
-        col("club_omega_x_rad_s"),
-        col("club_omega_y_rad_s"),
-        col("club_omega_z_rad_s"),
-    ];
+    /// A finite number.
+    fn num(&self, i: usize) -> Result<f64, DataError> {
+        let s = self.cells[i].as_str();
+        let here = |m: String| self.error(&self.headers[i], m);
+        match s.parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            Ok(v) => Err(here(format!(
+                "value {v} is not finite; a finite number is required"
+            ))),
+            Err(_) if s.is_empty() => Err(here("empty cell; a number is required".into())),
+            Err(_) => Err(here(format!("'{s}' is not a number"))),
+        }
+    }
 
-    let mut records = Vec::new();
-    let mut shots = Vec::new();
-    let mut lines = Vec::new();
-    let mut ids = HashSet::new();
-    for rec in rdr.records() {
-        let rec = rec.map_err(csv_err)?;
-        let line = rec.position().map_or(records.len() + 2, line_of);
-        lines.push(line);
-        let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
-        let num = |i: usize| -> Result<f64, DataError> {
-            let s = cells[i].as_str();
-            let here = |m: String| {
-                DataError::at(
-                    path,
-                    Some(line),
-                    Some(format!("column '{}'", headers[i])),
-                    m,
-                )
-            };
-            match s.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                Ok(v) => Err(here(format!(
-                    "value {v} is not finite; a finite number is required"
-                ))),
-                Err(_) if s.is_empty() => Err(here("empty cell; a number is required".into())),
-                Err(_) => Err(here(format!("'{s}' is not a number"))),
-            }
-        };
-        // A number in its physical range (see `crate::limits`).
-        let ranged = |i: usize, range: PhysicalRange| -> Result<f64, DataError> {
-            let v = num(i)?;
-            range.check(v).map_err(|m| {
-                DataError::at(
-                    path,
-                    Some(line),
-                    Some(format!("column '{}'", headers[i])),
-                    m,
-                )
-            })
-        };
-        let opt_ranged =
-            |i: Option<usize>, range: PhysicalRange| i.map_or(Ok(0.0), |i| ranged(i, range));
-        let id = cells[i_id].clone();
+    /// A number in its physical range (see `crate::limits`).
+    fn ranged(&self, i: usize, range: PhysicalRange) -> Result<f64, DataError> {
+        let v = self.num(i)?;
+        range.check(v).map_err(|m| self.error(&self.headers[i], m))
+    }
+
+    /// The shot of this row; `ids` are those of the rows before (ids must be unique).
+    fn shot(&self, cols: &Columns, ids: &mut HashSet<String>) -> Result<Shot, DataError> {
+        let id = self.cells[cols.id].clone();
         if id.is_empty() {
-            return Err(DataError::at(
-                path,
-                Some(line),
-                Some("column 'shot_id'".into()),
-                "empty shot id",
-            ));
+            return Err(self.error("shot_id", "empty shot id"));
         }
         if !ids.insert(id.clone()) {
-            return Err(DataError::at(
-                path,
-                Some(line),
-                Some("column 'shot_id'".into()),
+            return Err(self.error(
+                "shot_id",
                 format!("shot id '{id}' is used twice; ids must be unique"),
             ));
         }
-        let group = match i_group {
-            Some(i) if cells[i].is_empty() => {
-                return Err(DataError::at(
-                    path,
-                    Some(line),
-                    Some("column 'group'".into()),
-                    "empty group name",
-                ));
+        let group = match cols.group {
+            Some(i) if self.cells[i].is_empty() => {
+                return Err(self.error("group", "empty group name"));
             }
-            Some(i) => cells[i].clone(),
+            Some(i) => self.cells[i].clone(),
             None => DEFAULT_GROUP.to_owned(),
         };
-        let golfer = i_golfer.map(|i| cells[i].clone()).filter(|g| !g.is_empty());
-        let shaft_mass_g = match i_shaft {
-            Some(i) => Some(ranged(i, limits::SHAFT_MASS_G)?),
+        let golfer = cols
+            .golfer
+            .map(|i| self.cells[i].clone())
+            .filter(|g| !g.is_empty());
+        let shaft_mass_g = match cols.shaft {
+            Some(i) => Some(self.ranged(i, limits::SHAFT_MASS_G)?),
             None => None,
         };
-        let angle = limits::DELIVERY_ANGLE_DEG;
-        let omega = limits::CLUB_OMEGA_RAD_S;
-        let delivery = Delivery {
-            club_speed_m_s: mph(ranged(i_speed, limits::CLUB_SPEED_MPH)?),
-            attack_angle_rad: deg(ranged(i_attack, angle)?),
-            club_path_rad: deg(ranged(i_path, angle)?),
-            dynamic_loft_rad: deg(ranged(i_loft, limits::DYNAMIC_LOFT_DEG)?),
-            face_angle_rad: deg(ranged(i_face, angle)?),
-            lie_tilt_rad: deg(opt_ranged(i_lie, angle)?),
-            club_omega_rad_s: Vector3::new(
-                opt_ranged(i_w[0], omega)?,
-                opt_ranged(i_w[1], omega)?,
-                opt_ranged(i_w[2], omega)?,
-            ),
-            impact_y_m: mm(ranged(i_y, limits::IMPACT_LOCATION_MM)?),
-            impact_z_m: mm(ranged(i_z, limits::IMPACT_LOCATION_MM)?),
+        let mut values = [0.0; N_DELIVERY];
+        for v in DeliveryVar::ALL {
+            if let Some(i) = cols.delivery[v.index()] {
+                values[v.index()] = self.ranged(i, v.range())?;
+            }
+        }
+        let delivery = delivery_from_file_units(&values);
+        let measured = match cols.launch {
+            Some(idx) => {
+                let mut v = [0.0; 5];
+                for (c, i) in LaunchComponent::ALL.into_iter().zip(idx) {
+                    v[c.index()] = self.ranged(i, measured_range(c))?;
+                }
+                Some(Launch {
+                    ball_speed_m_s: mph(v[0]),
+                    launch_angle_rad: deg(v[1]),
+                    azimuth_rad: deg(v[2]),
+                    backspin_rad_s: rpm(v[3]),
+                    sidespin_rad_s: rpm(v[4]),
+                })
+            }
+            None => None,
         };
-        let measured = if n_launch > 0 {
-            let v: Vec<f64> = launch_cols
-                .iter()
-                .zip(LaunchComponent::ALL)
-                .map(|(c, comp)| ranged(c.expect("all present"), measured_range(comp)))
-                .collect::<Result<_, _>>()?;
-            Some(Launch {
-                ball_speed_m_s: mph(v[0]),
-                launch_angle_rad: deg(v[1]),
-                azimuth_rad: deg(v[2]),
-                backspin_rad_s: rpm(v[3]),
-                sidespin_rad_s: rpm(v[4]),
-            })
-        } else {
-            None
-        };
-        shots.push(Shot {
+        Ok(Shot {
             id,
             group,
             golfer,
             shaft_mass_g,
             delivery,
             measured,
-        });
-        records.push(cells);
+        })
     }
-    if shots.is_empty() {
-        return Err(DataError::file(
-            path,
-            "no shots: the file has a header but no rows",
-        ));
-    }
-    Ok(ShotTable {
-        path: path.to_owned(),
-        headers,
-        records,
-        shots,
-        lines,
-    })
 }

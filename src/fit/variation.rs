@@ -10,57 +10,25 @@
 //! `calibrate` and `diagnose` can say so instead of reporting a fit.
 
 use crate::effects::EffectKind;
-use crate::model::Shot;
+use crate::model::{DeliveryVar, Shot};
 
 use super::{EffectRequest, FitError};
 
-/// A delivery variable by its shots-file column and its value in file units.
-type Getter = fn(&Shot) -> f64;
-
-/// The delivery variables a model responds to, file units.
-const DELIVERY: [(&str, Getter); 11] = [
-    ("club_speed_mph", |s| {
-        s.delivery.club_speed_m_s / crate::units::M_S_PER_MPH
-    }),
-    ("attack_angle_deg", |s| {
-        s.delivery.attack_angle_rad.to_degrees()
-    }),
-    ("club_path_deg", |s| s.delivery.club_path_rad.to_degrees()),
-    ("dynamic_loft_deg", |s| {
-        s.delivery.dynamic_loft_rad.to_degrees()
-    }),
-    ("face_angle_deg", |s| s.delivery.face_angle_rad.to_degrees()),
-    ("lie_tilt_deg", |s| s.delivery.lie_tilt_rad.to_degrees()),
-    ("club_omega_x_rad_s", |s| s.delivery.club_omega_rad_s.x),
-    ("club_omega_y_rad_s", |s| s.delivery.club_omega_rad_s.y),
-    ("club_omega_z_rad_s", |s| s.delivery.club_omega_rad_s.z),
-    ("impact_y_mm", |s| s.delivery.impact_y_m * 1e3),
-    ("impact_z_mm", |s| s.delivery.impact_z_m * 1e3),
-];
-
-fn varies(shots: &[Shot], get: Getter) -> bool {
-    let first = get(&shots[0]);
-    shots.iter().any(|s| get(s) != first)
-}
-
-fn column(name: &str) -> Getter {
-    DELIVERY
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, g)| *g)
-        .expect("a delivery column")
+fn varies(shots: &[Shot], v: DeliveryVar) -> bool {
+    let first = v.file_value(&shots[0].delivery);
+    shots.iter().any(|s| v.file_value(&s.delivery) != first)
 }
 
 /// The delivery variables an effect's parameters are slopes against: without variation in
 /// at least one of them the effect is a constant offset, indistinguishable from others.
-fn needs(kind: EffectKind) -> Option<(&'static [&'static str], &'static str)> {
+fn needs(kind: EffectKind) -> Option<(&'static [DeliveryVar], &'static str)> {
     match kind {
         EffectKind::CorSpeed => Some((
-            &["club_speed_mph"],
+            &[DeliveryVar::ClubSpeed],
             "its COR slope is against approach speed, so the club speed must vary",
         )),
         EffectKind::CorRadial => Some((
-            &["impact_y_mm", "impact_z_mm"],
+            &[DeliveryVar::ImpactY, DeliveryVar::ImpactZ],
             "its COR falloff is with distance from the face centre, so the impact location \
              must vary",
         )),
@@ -82,7 +50,7 @@ pub fn check_variation(
             "{n} shot: a fit needs shots that differ, and at least one more than its parameters"
         )));
     }
-    if !DELIVERY.iter().any(|(_, g)| varies(shots, *g)) {
+    if !DeliveryVar::ALL.into_iter().any(|v| varies(shots, v)) {
         return Err(FitError::Degenerate(format!(
             "all {n} shots have the same delivery (club speed, angles, spin and impact \
              location): nothing varies for a model to explain, so no effect can be told from \
@@ -109,10 +77,10 @@ pub fn check_variation(
             continue;
         }
         if let Some((vars, why)) = needs(r.kind()) {
-            if !vars.iter().any(|v| varies(shots, column(v))) {
+            if !vars.iter().any(|v| varies(shots, *v)) {
                 let values: Vec<String> = vars
                     .iter()
-                    .map(|v| format!("{v} = {}", column(v)(&shots[0])))
+                    .map(|v| format!("{} = {}", v.column(), v.file_value(&shots[0].delivery)))
                     .collect();
                 out.push((
                     r.clone(),

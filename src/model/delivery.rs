@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 
 use crate::limits::{self, PhysicalRange};
 use crate::physics::{Delivery, LaunchComponent};
-use crate::units::{deg, mm, mph};
+use crate::units::{deg, mm, mph, M_S_PER_MPH};
 
 /// The delivery variables, in shots-file column order.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -103,6 +103,67 @@ impl DeliveryVar {
     pub const fn index(self) -> usize {
         self as usize
     }
+
+    /// File unit (`mph`, `deg`, `rad/s`, `mm`).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Self::ClubSpeed => "mph",
+            Self::AttackAngle
+            | Self::ClubPath
+            | Self::DynamicLoft
+            | Self::FaceAngle
+            | Self::LieTilt => "deg",
+            Self::OmegaX | Self::OmegaY | Self::OmegaZ => "rad/s",
+            Self::ImpactY | Self::ImpactZ => "mm",
+        }
+    }
+
+    /// Whether a shots file must have the column (the others default to 0).
+    pub const fn required(self) -> bool {
+        !matches!(
+            self,
+            Self::LieTilt | Self::OmegaX | Self::OmegaY | Self::OmegaZ
+        )
+    }
+
+    /// The variable of a shots-file column.
+    pub fn from_column(column: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|v| v.column() == column)
+    }
+
+    /// The variable's value in `d`, file units.
+    pub fn file_value(self, d: &Delivery) -> f64 {
+        match self {
+            Self::ClubSpeed => d.club_speed_m_s / M_S_PER_MPH,
+            Self::AttackAngle => d.attack_angle_rad.to_degrees(),
+            Self::ClubPath => d.club_path_rad.to_degrees(),
+            Self::DynamicLoft => d.dynamic_loft_rad.to_degrees(),
+            Self::FaceAngle => d.face_angle_rad.to_degrees(),
+            Self::LieTilt => d.lie_tilt_rad.to_degrees(),
+            Self::OmegaX => d.club_omega_rad_s.x,
+            Self::OmegaY => d.club_omega_rad_s.y,
+            Self::OmegaZ => d.club_omega_rad_s.z,
+            Self::ImpactY => d.impact_y_m * 1e3,
+            Self::ImpactZ => d.impact_z_m * 1e3,
+        }
+    }
+
+    /// Sets the variable in `d` from a file-unit value.
+    pub fn set_file_value(self, d: &mut Delivery, v: f64) {
+        match self {
+            Self::ClubSpeed => d.club_speed_m_s = mph(v),
+            Self::AttackAngle => d.attack_angle_rad = deg(v),
+            Self::ClubPath => d.club_path_rad = deg(v),
+            Self::DynamicLoft => d.dynamic_loft_rad = deg(v),
+            Self::FaceAngle => d.face_angle_rad = deg(v),
+            Self::LieTilt => d.lie_tilt_rad = deg(v),
+            Self::OmegaX => d.club_omega_rad_s.x = v,
+            Self::OmegaY => d.club_omega_rad_s.y = v,
+            Self::OmegaZ => d.club_omega_rad_s.z = v,
+            Self::ImpactY => d.impact_y_m = mm(v),
+            Self::ImpactZ => d.impact_z_m = mm(v),
+        }
+    }
 }
 
 /// Default launch-monitor noise SD (a GCQuad-class camera unit), file units.
@@ -118,15 +179,45 @@ pub const fn default_launch_noise(c: LaunchComponent) -> f64 {
 
 /// Delivery in SI from file-unit values in [`DeliveryVar::ALL`] order.
 pub fn delivery_from_file_units(v: &[f64; N_DELIVERY]) -> Delivery {
-    Delivery {
-        club_speed_m_s: mph(v[0]),
-        attack_angle_rad: deg(v[1]),
-        club_path_rad: deg(v[2]),
-        dynamic_loft_rad: deg(v[3]),
-        face_angle_rad: deg(v[4]),
-        lie_tilt_rad: deg(v[5]),
-        club_omega_rad_s: Vector3::new(v[6], v[7], v[8]),
-        impact_y_m: mm(v[9]),
-        impact_z_m: mm(v[10]),
+    let mut d = Delivery {
+        club_speed_m_s: 0.0,
+        attack_angle_rad: 0.0,
+        club_path_rad: 0.0,
+        dynamic_loft_rad: 0.0,
+        face_angle_rad: 0.0,
+        lie_tilt_rad: 0.0,
+        club_omega_rad_s: Vector3::zeros(),
+        impact_y_m: 0.0,
+        impact_z_m: 0.0,
+    };
+    for var in DeliveryVar::ALL {
+        var.set_file_value(&mut d, v[var.index()]);
+    }
+    d
+}
+
+/// The file-unit values of `d` in [`DeliveryVar::ALL`] order.
+pub fn delivery_to_file_units(d: &Delivery) -> [f64; N_DELIVERY] {
+    DeliveryVar::ALL.map(|v| v.file_value(d))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn file_values_round_trip_through_a_delivery() {
+        let v: [f64; N_DELIVERY] = std::array::from_fn(|i| 1.5 + i as f64);
+        let back = delivery_to_file_units(&delivery_from_file_units(&v));
+        for var in DeliveryVar::ALL {
+            let (a, b) = (v[var.index()], back[var.index()]);
+            assert!(
+                (a - b).abs() < 1e-12 * a.abs(),
+                "{}: {a} vs {b}",
+                var.column()
+            );
+            assert_eq!(DeliveryVar::from_column(var.column()), Some(var));
+            assert!(var.column().ends_with(&var.unit().replace('/', "_")));
+        }
     }
 }

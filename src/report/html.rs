@@ -131,8 +131,8 @@ impl ShotResiduals {
     pub fn new(shots: &[crate::model::Shot], launches: &[crate::physics::Launch]) -> Self {
         let variables = VARIABLES
             .iter()
-            .filter(|v| TREND_VARIABLES.contains(&v.name))
-            .map(|v| (v.name, v.unit, shots.iter().map(|s| (v.get)(s)).collect()))
+            .filter(|v| TREND_VARIABLES.contains(&v.name()))
+            .map(|v| (v.name(), v.unit(), shots.iter().map(|s| v.get(s)).collect()))
             .collect();
         let errors = shots
             .iter()

@@ -6,7 +6,7 @@ use crate::sweep::kernel::{FaceMapKernel, LaunchGrid};
 use crate::units::{mm, mph};
 
 use super::distribution::SwingGroup;
-use super::metrics::{ls_slope, Output};
+use super::metrics::{ls_slope, Metric, Output, Side};
 use super::spec::Study;
 
 /// Probe offsets `0, s, 2s, …` up to `L` (inclusive when `L` is a multiple of `s`), mm.
@@ -23,63 +23,118 @@ pub fn impacts_per_design(study: &Study, groups: &[SwingGroup]) -> usize {
     1 + 2 * (2 * n - 1) + groups.iter().map(|g| g.weights.len()).sum::<usize>()
 }
 
-/// All metrics of one model, in [`metric_names`] order. `groups` is the study distribution's
+/// All metrics of one model, in [`Metric::all`] order. `groups` is the study distribution's
 /// impacts (empty without a distribution).
 pub fn evaluate(model: &ImpactModel, study: &Study, groups: &[SwingGroup]) -> Vec<f64> {
-    let offs = probe_offsets(study);
-    let n = offs.len();
-    // Line coordinates from −L to L.
-    let line: Vec<f64> = offs
-        .iter()
-        .rev()
-        .map(|o| -o)
-        .chain(offs.iter().skip(1).copied())
-        .collect();
-    let mut ys = vec![0.0];
-    let mut zs = vec![0.0];
-    for &c in &line {
-        ys.push(0.0);
-        zs.push(mm(c));
-    }
-    for &c in &line {
-        ys.push(mm(c));
-        zs.push(0.0);
-    }
-    let swing = study.swing;
-    let club_speed = mph(swing.club_speed_mph);
-    let kernel = FaceMapKernel::new(model, &swing.delivery(0.0, 0.0));
-    let mut g = LaunchGrid::with_len(ys.len());
-    kernel.eval_points(&ys, &zs, g.row_out(0, ys.len()));
+    let probes = Probes::new(model, study);
+    let moments = (!groups.is_empty()).then(|| Moments::new(model, groups));
+    Metric::all(moments.is_some())
+        .into_iter()
+        .map(|metric| match (metric, &moments) {
+            (Metric::Mean(o), Some(m)) => m.mean[o.index()],
+            (Metric::Std(o), Some(m)) => m.std[o.index()],
+            (Metric::Mean(_) | Metric::Std(_), None) => unreachable!("listed with a distribution"),
+            _ => probes.value(metric),
+        })
+        .collect()
+}
 
-    let mut out: Vec<f64> = Output::ALL
-        .iter()
-        .map(|o| o.file_value(&g, 0, club_speed))
-        .collect();
-    let m = line.len();
-    let val = |o: Output, start: usize, k: usize| o.file_value(&g, start + k, club_speed);
-    let speed = Output::Launch(LaunchComponent::BallSpeed);
-    let h0 = 1; // first point of the horizontal line (z = −L)
-    let v0 = 1 + m; // first point of the vertical line (y = −L)
-    let centre = n - 1; // index of 0 within the line
-    let side = |start: usize, range: std::ops::Range<usize>, sign: f64| {
-        let x: Vec<f64> = range.clone().map(|k| line[k]).collect();
-        let v: Vec<f64> = range.map(|k| val(speed, start, k)).collect();
-        -sign * ls_slope(&x, &v)
-    };
-    out.push(side(h0, centre..m, 1.0)); // toe: +z
-    out.push(side(h0, 0..centre + 1, -1.0)); // heel: −z
-    out.push(side(v0, centre..m, 1.0)); // crown: +y
-    out.push(side(v0, 0..centre + 1, -1.0)); // sole: −y
-    let side_spin: Vec<f64> = (0..m)
-        .map(|k| val(Output::Launch(LaunchComponent::Sidespin), h0, k))
-        .collect();
-    out.push(ls_slope(&line, &side_spin));
-    let back_spin: Vec<f64> = (0..m)
-        .map(|k| val(Output::Launch(LaunchComponent::Backspin), v0, k))
-        .collect();
-    out.push(ls_slope(&line, &back_spin));
+/// The impacts at the centre and along the two lines through it, for the metrics that are not
+/// distribution moments.
+struct Probes {
+    /// Line coordinates from −L to L, mm.
+    line: Vec<f64>,
+    /// Launch at the centre (point 0), the horizontal line, then the vertical line.
+    grid: LaunchGrid,
+    club_speed_m_s: f64,
+}
 
-    if !groups.is_empty() {
+impl Probes {
+    /// First point of the horizontal line (z = −L).
+    const H0: usize = 1;
+
+    fn new(model: &ImpactModel, study: &Study) -> Self {
+        let offs = probe_offsets(study);
+        let line: Vec<f64> = offs
+            .iter()
+            .rev()
+            .map(|o| -o)
+            .chain(offs.iter().skip(1).copied())
+            .collect();
+        let mut ys = vec![0.0];
+        let mut zs = vec![0.0];
+        for &c in &line {
+            ys.push(0.0);
+            zs.push(mm(c));
+        }
+        for &c in &line {
+            ys.push(mm(c));
+            zs.push(0.0);
+        }
+        let swing = study.swing;
+        let kernel = FaceMapKernel::new(model, &swing.delivery(0.0, 0.0));
+        let mut grid = LaunchGrid::with_len(ys.len());
+        kernel.eval_points(&ys, &zs, grid.row_out(0, ys.len()));
+        Self {
+            line,
+            grid,
+            club_speed_m_s: mph(swing.club_speed_mph),
+        }
+    }
+
+    /// First point of the vertical line (y = −L).
+    fn v0(&self) -> usize {
+        1 + self.line.len()
+    }
+
+    /// Output `o` at point `k` of the line starting at `start`.
+    fn val(&self, o: Output, start: usize, k: usize) -> f64 {
+        o.file_value(&self.grid, start + k, self.club_speed_m_s)
+    }
+
+    /// Least-squares slope of `o` against the line coordinate over points `range` of the line
+    /// starting at `start`.
+    fn slope(&self, o: Output, start: usize, range: std::ops::Range<usize>) -> f64 {
+        let x: Vec<f64> = range.clone().map(|k| self.line[k]).collect();
+        let v: Vec<f64> = range.map(|k| self.val(o, start, k)).collect();
+        ls_slope(&x, &v)
+    }
+
+    /// A metric computed from the probes (not a distribution moment).
+    fn value(&self, metric: Metric) -> f64 {
+        let m = self.line.len();
+        let centre = m / 2; // index of 0 within the line
+        let speed = Output::Launch(LaunchComponent::BallSpeed);
+        match metric {
+            Metric::Centre(o) => o.file_value(&self.grid, 0, self.club_speed_m_s),
+            Metric::SpeedLoss(side) => {
+                let (start, range, sign) = match side {
+                    Side::Toe => (Self::H0, centre..m, 1.0),
+                    Side::Heel => (Self::H0, 0..centre + 1, -1.0),
+                    Side::Crown => (self.v0(), centre..m, 1.0),
+                    Side::Sole => (self.v0(), 0..centre + 1, -1.0),
+                };
+                -sign * self.slope(speed, start, range)
+            }
+            Metric::GearSidespin => {
+                self.slope(Output::Launch(LaunchComponent::Sidespin), Self::H0, 0..m)
+            }
+            Metric::GearBackspin => {
+                self.slope(Output::Launch(LaunchComponent::Backspin), self.v0(), 0..m)
+            }
+            Metric::Mean(_) | Metric::Std(_) => unreachable!("a distribution moment"),
+        }
+    }
+}
+
+/// Weighted mean and standard deviation of every output over the distribution.
+struct Moments {
+    mean: [f64; 6],
+    std: [f64; 6],
+}
+
+impl Moments {
+    fn new(model: &ImpactModel, groups: &[SwingGroup]) -> Self {
         let mut sum = [0.0; 6];
         let mut sum2 = [0.0; 6];
         let mut samples: Vec<([f64; 6], f64)> = Vec::new();
@@ -101,8 +156,9 @@ pub fn evaluate(model: &ImpactModel, study: &Study, groups: &[SwingGroup]) -> Ve
                 sum2[j] += w * (v[j] - sum[j]).powi(2);
             }
         }
-        out.extend(sum);
-        out.extend(sum2.map(f64::sqrt));
+        Self {
+            mean: sum,
+            std: sum2.map(f64::sqrt),
+        }
     }
-    out
 }

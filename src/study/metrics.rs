@@ -73,6 +73,14 @@ impl Output {
         )
     }
 
+    /// Index in [`Output::ALL`].
+    pub const fn index(self) -> usize {
+        match self {
+            Output::Launch(c) => c.index(),
+            Output::SmashFactor => 5,
+        }
+    }
+
     /// From a column name.
     pub fn from_column(s: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|o| o.column() == s)
@@ -95,40 +103,109 @@ impl Output {
     }
 }
 
-/// Metric names, in file order; `mean_*` and `std_*` only with a distribution.
-pub fn metric_names(with_distribution: bool) -> Vec<String> {
-    let mut v: Vec<String> = Output::ALL
-        .iter()
-        .map(|o| format!("cof_{}", o.column()))
-        .collect();
-    for side in ["toe", "heel", "crown", "sole"] {
-        v.push(format!("speed_loss_{side}_mph_per_mm"));
-    }
-    v.push("gear_sidespin_rpm_per_mm".into());
-    v.push("gear_backspin_rpm_per_mm".into());
-    if with_distribution {
-        for o in Output::ALL {
-            v.push(format!("mean_{}", o.column()));
-        }
-        for o in Output::ALL {
-            v.push(format!("std_{}", o.column()));
-        }
-    }
-    v
+/// A side of the face centre a speed-loss slope is taken toward.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Side {
+    /// `+z`, along the horizontal line.
+    Toe,
+    /// `−z`, along the horizontal line.
+    Heel,
+    /// `+y`, along the vertical line.
+    Crown,
+    /// `−y`, along the vertical line.
+    Sole,
 }
 
-/// Unit of a metric, for tables (`mph`, `rpm/mm`, `1`).
-pub fn metric_unit(name: &str) -> String {
-    if let Some(rest) = name.strip_suffix("_per_mm") {
-        let u = rest.rsplit('_').next().unwrap_or("");
-        return format!("{u}/mm");
+impl Side {
+    /// All sides in file order.
+    pub const ALL: [Side; 4] = [Side::Toe, Side::Heel, Side::Crown, Side::Sole];
+
+    /// The name in metric names.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Side::Toe => "toe",
+            Side::Heel => "heel",
+            Side::Crown => "crown",
+            Side::Sole => "sole",
+        }
     }
-    let col = name
-        .strip_prefix("cof_")
-        .or_else(|| name.strip_prefix("mean_"))
-        .or_else(|| name.strip_prefix("std_"))
-        .unwrap_or(name);
-    Output::from_column(col).map_or("1".into(), |o| o.unit().into())
+}
+
+/// One scalar metric of a design (see the table in the module docs). Adding a metric is one
+/// variant here plus its arms in [`Metric::name`], [`Metric::unit`], [`Metric::all`] and
+/// [`super::evaluate`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Metric {
+    /// `cof_<output>`: the output for a strike at the centre of face.
+    Centre(Output),
+    /// `speed_loss_<side>_mph_per_mm`: the ball-speed slope away from the centre.
+    SpeedLoss(Side),
+    /// `gear_sidespin_rpm_per_mm`: sidespin slope along the horizontal line.
+    GearSidespin,
+    /// `gear_backspin_rpm_per_mm`: backspin slope along the vertical line.
+    GearBackspin,
+    /// `mean_<output>` over the distribution.
+    Mean(Output),
+    /// `std_<output>` over the distribution.
+    Std(Output),
+}
+
+impl Metric {
+    /// All metrics in file order; [`Metric::Mean`] and [`Metric::Std`] only with a distribution.
+    pub fn all(with_distribution: bool) -> Vec<Metric> {
+        let mut v: Vec<Metric> = Output::ALL.map(Metric::Centre).to_vec();
+        v.extend(Side::ALL.map(Metric::SpeedLoss));
+        v.extend([Metric::GearSidespin, Metric::GearBackspin]);
+        if with_distribution {
+            v.extend(Output::ALL.map(Metric::Mean));
+            v.extend(Output::ALL.map(Metric::Std));
+        }
+        v
+    }
+
+    /// Name (with unit), as in files and in `[optimise] objective`.
+    pub fn name(self) -> String {
+        match self {
+            Metric::Centre(o) => format!("cof_{}", o.column()),
+            Metric::SpeedLoss(s) => format!("speed_loss_{}_mph_per_mm", s.name()),
+            Metric::GearSidespin => "gear_sidespin_rpm_per_mm".into(),
+            Metric::GearBackspin => "gear_backspin_rpm_per_mm".into(),
+            Metric::Mean(o) => format!("mean_{}", o.column()),
+            Metric::Std(o) => format!("std_{}", o.column()),
+        }
+    }
+
+    /// Unit, for tables (`mph`, `rpm/mm`, `1`).
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Metric::Centre(o) | Metric::Mean(o) | Metric::Std(o) => o.unit(),
+            Metric::SpeedLoss(_) => "mph/mm",
+            Metric::GearSidespin | Metric::GearBackspin => "rpm/mm",
+        }
+    }
+
+    /// Whether the metric needs a `[distribution]`.
+    pub const fn needs_distribution(self) -> bool {
+        matches!(self, Metric::Mean(_) | Metric::Std(_))
+    }
+
+    /// The metric of a name (any metric, with or without a distribution).
+    pub fn from_name(name: &str) -> Option<Metric> {
+        Metric::all(true).into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// Metric names, in file order; `mean_*` and `std_*` only with a distribution.
+pub fn metric_names(with_distribution: bool) -> Vec<String> {
+    Metric::all(with_distribution)
+        .into_iter()
+        .map(Metric::name)
+        .collect()
+}
+
+/// Unit of a metric name, for tables (`mph`, `rpm/mm`, `1`; `1` for an unknown name).
+pub fn metric_unit(name: &str) -> String {
+    Metric::from_name(name).map_or("1", Metric::unit).into()
 }
 
 /// Least-squares slope of `v` against `x`; NaN if any value is NaN.
@@ -159,5 +236,19 @@ mod tests {
         assert_eq!(metric_unit("gear_sidespin_rpm_per_mm"), "rpm/mm");
         assert_eq!(metric_unit("speed_loss_toe_mph_per_mm"), "mph/mm");
         assert_eq!(metric_unit("mean_smash_factor"), "1");
+        assert_eq!(metric_unit("cof_launch_angle_deg"), "deg");
+    }
+
+    #[test]
+    fn names_are_unique_and_read_back() {
+        let all = Metric::all(true);
+        assert_eq!(all.len(), 6 + 4 + 2 + 6 + 6);
+        for m in &all {
+            assert_eq!(Metric::from_name(&m.name()), Some(*m));
+            assert!(m.name().ends_with(&m.unit().replace('/', "_per_")) || m.unit() == "1");
+        }
+        let without = Metric::all(false);
+        assert!(without.iter().all(|m| !m.needs_distribution()));
+        assert_eq!(&all[..without.len()], &without[..]);
     }
 }

@@ -134,9 +134,72 @@ pub enum StudyError {
     /// The optimiser failed.
     #[error("optimiser: {0}")]
     Optimise(String),
-    /// Shards do not fit together.
+    /// Shards do not fit together (their files disagree).
     #[error("merge: {0}")]
     Merge(String),
+    /// The work items of the shards do not make up the study.
+    #[error("merge: {0}")]
+    Items(#[from] ItemError),
+    /// `[optimise] objective` names a metric the study does not compute.
+    #[error("optimise.objective.{metric}: not a metric of this study; allowed: {allowed}")]
+    UnknownMetric {
+        /// The name given.
+        metric: String,
+        /// The study's metric names, comma-separated.
+        allowed: String,
+    },
+}
+
+/// Why the work items collected from shards do not make up the study.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum ItemError {
+    /// An item names a variant or row the study does not have.
+    #[error(
+        "variant {variant}{} is outside the study ({variants} variant(s) of {ny} grid rows)",
+        row.map_or(String::new(), |r| format!(" row {r}"))
+    )]
+    Outside {
+        /// Variant id.
+        variant: usize,
+        /// Grid row (`None` for the metrics item).
+        row: Option<usize>,
+        /// Variants of the study.
+        variants: usize,
+        /// Grid rows of the study.
+        ny: usize,
+    },
+    /// An item index past the end of the study.
+    #[error("work item {item} is outside the study")]
+    PastEnd {
+        /// Work item index.
+        item: usize,
+    },
+    /// The same item twice.
+    #[error("work item {item} appears twice")]
+    Twice {
+        /// Work item index.
+        item: usize,
+    },
+    /// A row of the wrong length.
+    #[error("variant {variant} row {row} has {points} points, the grid has {nz} columns")]
+    RowLength {
+        /// Variant id.
+        variant: usize,
+        /// Grid row.
+        row: usize,
+        /// Points in the row.
+        points: usize,
+        /// Grid columns.
+        nz: usize,
+    },
+    /// An item no shard holds.
+    #[error("work item {item} (variant {variant}) is missing: are all shards given?")]
+    Missing {
+        /// Work item index.
+        item: usize,
+        /// Its variant.
+        variant: usize,
+    },
 }
 
 /// Everything besides the face maps: sensitivities and optimisation (written with the maps by

@@ -18,7 +18,7 @@ use argmin::solver::neldermead::NelderMead;
 
 use super::design::Design;
 use super::evaluate::evaluate;
-use super::metrics::metric_names;
+use super::metrics::{metric_names, Metric};
 use super::spec::{Goal, OptimiseSpec};
 use super::sweep::{design_model, Prepared};
 use super::StudyError;
@@ -64,23 +64,27 @@ pub struct OptimiseResult {
 }
 
 impl<'a> DesignProblem<'a> {
-    /// The problem for the prepared study's `[optimise]`.
-    pub fn new(prepared: &'a Prepared, spec: &'a OptimiseSpec) -> Self {
-        let names = metric_names(prepared.study.distribution.is_some());
+    /// The problem for the prepared study's `[optimise]`; an objective naming a metric the
+    /// study does not compute is an error.
+    pub fn new(prepared: &'a Prepared, spec: &'a OptimiseSpec) -> Result<Self, StudyError> {
+        let metrics = Metric::all(prepared.study.distribution.is_some());
         let weights = spec
             .objective
             .iter()
             .map(|(n, w)| {
-                let i = names.iter().position(|m| m == n).expect("validated metric");
-                (i, *w)
+                let i = metrics.iter().position(|m| m.name() == *n);
+                i.map(|i| (i, *w)).ok_or_else(|| StudyError::UnknownMetric {
+                    metric: n.clone(),
+                    allowed: metric_names(prepared.study.distribution.is_some()).join(", "),
+                })
             })
-            .collect();
-        Self {
+            .collect::<Result<_, _>>()?;
+        Ok(Self {
             prepared,
             spec,
             weights,
             evaluations: AtomicUsize::new(0),
-        }
+        })
     }
 
     /// Design for free variables `u`.
@@ -184,7 +188,7 @@ pub fn optimise(p: &Prepared) -> Result<Option<OptimiseResult>, StudyError> {
     let Some(spec) = &p.study.optimise else {
         return Ok(None);
     };
-    let problem = DesignProblem::new(p, spec);
+    let problem = DesignProblem::new(p, spec)?;
     let u0 = problem.base_u();
     let (base_objective, base_metrics) = problem.objective(&Design::default())?;
     let mut simplex = vec![u0.clone()];
@@ -244,4 +248,46 @@ pub fn optimise(p: &Prepared) -> Result<Option<OptimiseResult>, StudyError> {
         evaluations: problem.evaluations.load(Ordering::Relaxed),
         termination: state.get_termination_status().to_string(),
     }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::spec::read_study;
+
+    fn prepared() -> Prepared {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("configs")
+            .join("studies")
+            .join("optimise.toml");
+        Prepared::new(read_study(&path).expect("the example study reads")).expect("prepares")
+    }
+
+    #[test]
+    fn an_unknown_objective_metric_is_an_error_not_a_panic() {
+        let p = prepared();
+        let mut spec = p.study.optimise.clone().expect("the example optimises");
+        assert!(DesignProblem::new(&p, &spec).is_ok());
+        spec.objective.push(("carry_yd_per_mm".into(), 1.0));
+        match DesignProblem::new(&p, &spec) {
+            Err(StudyError::UnknownMetric { metric, allowed }) => {
+                assert_eq!(metric, "carry_yd_per_mm");
+                assert!(allowed.contains("mean_ball_speed_mph"), "{allowed}");
+            }
+            Err(e) => panic!("{e}"),
+            Ok(_) => panic!("accepted an unknown metric"),
+        }
+    }
+
+    #[test]
+    fn objective_weights_point_at_the_named_metrics() {
+        let p = prepared();
+        let spec = p.study.optimise.clone().expect("the example optimises");
+        let problem = DesignProblem::new(&p, &spec).expect("valid objective");
+        let all = Metric::all(true);
+        for ((i, w), (name, weight)) in problem.weights.iter().zip(&spec.objective) {
+            assert_eq!(all[*i].name(), *name);
+            assert_eq!(w, weight);
+        }
+    }
 }

@@ -21,6 +21,7 @@ use crate::club::ClubSpec;
 use crate::data::club_file::read_club;
 use crate::data::{parse_toml, read_text, toml_key_error, DataError, Num};
 use crate::limits::{self, count_product, PhysicalRange};
+use crate::model::DeliveryVar;
 use crate::units::{g, mm};
 
 /// Values of one axis: an explicit list, or `count` evenly spaced values from `from` to `to`.
@@ -630,17 +631,17 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
 
     // [delivery]
     let d = &raw.delivery;
-    let angle = limits::DELIVERY_ANGLE_DEG;
+    let angle = DeliveryVar::AttackAngle.range();
     let swing = SwingSpec {
         club_speed_mph: ctx.ranged(
             &d.club_speed_mph,
             "delivery.club_speed_mph",
-            limits::CLUB_SPEED_MPH,
+            DeliveryVar::ClubSpeed.range(),
         )?,
         dynamic_loft_deg: ctx.ranged(
             &d.dynamic_loft_deg,
             "delivery.dynamic_loft_deg",
-            limits::DYNAMIC_LOFT_DEG,
+            DeliveryVar::DynamicLoft.range(),
         )?,
         attack_angle_deg: ctx.opt_ranged(
             &d.attack_angle_deg,
@@ -655,7 +656,8 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             None => [0.0; 3],
             Some(w) => {
                 for x in w.get_ref() {
-                    limits::CLUB_OMEGA_RAD_S
+                    DeliveryVar::OmegaX
+                        .range()
                         .check(*x)
                         .map_err(|m| ctx.err(w.span(), "delivery.club_omega_rad_s", m))?;
                 }

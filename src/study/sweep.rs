@@ -15,7 +15,7 @@ use super::design::Design;
 use super::distribution::SwingGroup;
 use super::evaluate::{evaluate, impacts_per_design};
 use super::spec::Study;
-use super::StudyError;
+use super::{ItemError, StudyError};
 
 /// A study ready to run: variants validated into models, grid in metres.
 #[derive(Debug, Clone)]
@@ -245,30 +245,33 @@ impl Prepared {
                 ItemResult::Row { variant, row, .. } => (*variant, Some(*row)),
             };
             if v >= self.variants.len() || row.is_some_and(|r| r >= ny) {
-                return Err(StudyError::Merge(format!(
-                    "variant {v}{} is outside the study ({} variant(s) of {ny} grid rows)",
-                    row.map_or(String::new(), |r| format!(" row {r}")),
-                    self.variants.len()
-                )));
+                return Err(ItemError::Outside {
+                    variant: v,
+                    row,
+                    variants: self.variants.len(),
+                    ny,
+                }
+                .into());
             }
             let idx = v * per + row.map_or(0, |r| r + 1);
             if idx >= seen.len() {
-                return Err(StudyError::Merge(format!(
-                    "work item {idx} is outside the study"
-                )));
+                return Err(ItemError::PastEnd { item: idx }.into());
             }
             if seen[idx] {
-                return Err(StudyError::Merge(format!("work item {idx} appears twice")));
+                return Err(ItemError::Twice { item: idx }.into());
             }
             seen[idx] = true;
             match it {
                 ItemResult::Metrics { values, .. } => out[v].metrics = values,
                 ItemResult::Row { row, grid, .. } => {
                     if grid.len() != nz {
-                        return Err(StudyError::Merge(format!(
-                            "variant {v} row {row} has {} points, the grid has {nz} columns",
-                            grid.len()
-                        )));
+                        return Err(ItemError::RowLength {
+                            variant: v,
+                            row,
+                            points: grid.len(),
+                            nz,
+                        }
+                        .into());
                     }
                     let dst = &mut out[v].grid;
                     let s = row * nz;
@@ -282,10 +285,11 @@ impl Prepared {
             }
         }
         if let Some(missing) = seen.iter().position(|s| !s) {
-            return Err(StudyError::Merge(format!(
-                "work item {missing} (variant {}) is missing: are all shards given?",
-                missing / per
-            )));
+            return Err(ItemError::Missing {
+                item: missing,
+                variant: missing / per,
+            }
+            .into());
         }
         Ok(out)
     }

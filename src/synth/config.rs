@@ -16,7 +16,7 @@ use crate::data::club_file::parse_effect_table;
 use crate::data::{parse_toml, read_text, toml_key_error, DataError};
 use crate::effects::Effect;
 use crate::limits::{self, count_product};
-use crate::model::{default_launch_noise, DeliveryVar, N_DELIVERY};
+use crate::model::{default_launch_noise, DeliveryVar, PerComponent, N_DELIVERY};
 use crate::physics::LaunchComponent;
 
 use super::contact::{ContactParams, ShaftTip};
@@ -119,7 +119,7 @@ pub struct SynthConfig {
     /// Measurement noise SD on the delivery, per variable, file units.
     pub delivery_noise: [f64; N_DELIVERY],
     /// Launch-monitor noise SD, per launch component, file units.
-    pub launch_noise: [f64; 5],
+    pub launch_noise: PerComponent<f64>,
     /// Hidden library effects (global or per group).
     pub hidden: Vec<Effect>,
     /// Hidden world-only physics.
@@ -145,7 +145,7 @@ impl Default for SynthConfig {
             max_abs_impact_z_mm: 40.0,
             max_redraws_per_shot: 1000,
             delivery_noise: DeliveryVar::ALL.map(DeliveryVar::default_noise),
-            launch_noise: LaunchComponent::ALL.map(default_launch_noise),
+            launch_noise: PerComponent::from_fn(default_launch_noise),
             hidden: Vec::new(),
             world: WorldPhysics::default(),
         }
@@ -161,7 +161,7 @@ impl SynthConfig {
     /// The same configuration with all measurement noise set to zero.
     pub fn without_noise(mut self) -> Self {
         self.delivery_noise = [0.0; N_DELIVERY];
-        self.launch_noise = [0.0; 5];
+        self.launch_noise = PerComponent::default();
         self
     }
 }
@@ -496,7 +496,7 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
                         format!("unknown launch component; allowed: {}", keys.join(", ")),
                     )
                 })?;
-            cfg.launch_noise[c.index()] = ctx.in_range(
+            cfg.launch_noise[c] = ctx.in_range(
                 v.span(),
                 &full,
                 *v.get_ref(),
@@ -733,7 +733,7 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
     }
     let _ = writeln!(s, "\n[noise.launch]  # launch-monitor SD");
     for c in LaunchComponent::ALL {
-        let _ = writeln!(s, "{} = {:?}", c.column(), cfg.launch_noise[c.index()]);
+        let _ = writeln!(s, "{} = {:?}", c.column(), cfg.launch_noise[c]);
     }
     let w = &cfg.world;
     if w.is_active() {

@@ -47,7 +47,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 use crate::club::ClubSpec;
-use crate::model::Shot;
+use crate::model::{PerComponent, Shot};
 use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
 use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ParamError};
 use crate::units::{deg, mm, mph, rpm};
@@ -74,10 +74,10 @@ pub struct SynthShot {
     pub clean_delivery: [f64; N_DELIVERY],
     /// Delivery as measured (clean + measurement noise): what the shots file holds.
     pub delivery: [f64; N_DELIVERY],
-    /// True launch, in [`LaunchComponent::ALL`] order.
-    pub true_launch: [f64; 5],
+    /// True launch, file units.
+    pub true_launch: PerComponent<f64>,
     /// Launch as measured (true + launch-monitor noise): what the shots file holds.
-    pub launch: [f64; 5],
+    pub launch: PerComponent<f64>,
     /// Normal COR the world used for this shot.
     pub cor_effective: f64,
     /// Normal approach speed `u1n` of this shot in the world, m/s.
@@ -295,15 +295,18 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                     let zl: [f64; 5] = normals(&mut rng);
                     let reject = |why: String| Err::<SynthShot, String>(why);
                     let r = (|| {
-                        if clean[9].abs() > cfg.max_abs_impact_y_mm
-                            || clean[10].abs() > cfg.max_abs_impact_z_mm
+                        let (impact_y, impact_z) = (
+                            clean[DeliveryVar::ImpactY.index()],
+                            clean[DeliveryVar::ImpactZ.index()],
+                        );
+                        if impact_y.abs() > cfg.max_abs_impact_y_mm
+                            || impact_z.abs() > cfg.max_abs_impact_z_mm
                         {
                             return reject(format!(
-                                "impact ({:.1}, {:.1}) mm is off the face limits",
-                                clean[9], clean[10]
+                                "impact ({impact_y:.1}, {impact_z:.1}) mm is off the face limits"
                             ));
                         }
-                        if !(clean[0] > 0.0) {
+                        if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
                             return reject("club speed ≤ 0".into());
                         }
                         let clean_si = delivery_from_file_units(&clean);
@@ -319,21 +322,22 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                         };
                         let measured: [f64; N_DELIVERY] =
                             std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
-                        if !(measured[0] > 0.0) {
+                        if !(measured[DeliveryVar::ClubSpeed.index()] > 0.0) {
                             return reject("measured club speed ≤ 0".into());
                         }
                         base_models[gi]
                             .solve(&delivery_from_file_units(&measured))
                             .map_err(|e| format!("measured delivery: {e}"))?;
-                        let true_launch = truth.to_file_units();
-                        let launch: [f64; 5] =
-                            std::array::from_fn(|i| true_launch[i] + cfg.launch_noise[i] * zl[i]);
+                        let true_launch = PerComponent(truth.to_file_units());
+                        let launch = PerComponent::from_fn(|c| {
+                            true_launch[c] + cfg.launch_noise[c] * zl[c.index()]
+                        });
                         // What is written must read back: every value in its physical range.
                         for (v, x) in DeliveryVar::ALL.iter().zip(measured) {
                             v.range().check(x)?;
                         }
-                        for (c, x) in LaunchComponent::ALL.iter().zip(launch) {
-                            crate::data::shots::measured_range(*c).check(x)?;
+                        for (c, x) in launch.pairs() {
+                            crate::data::shots::measured_range(c).check(*x)?;
                         }
                         Ok(SynthShot {
                             id: id.clone(),

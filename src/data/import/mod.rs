@@ -21,6 +21,8 @@ use serde::Deserialize;
 
 use self::units::{Quantity, Unit};
 use super::{fmt_f64, DataError};
+use crate::model::DeliveryVar;
+use crate::physics::LaunchComponent;
 
 /// The presets: name and the mapping TOML built into the binary.
 pub const PRESETS: [(&str, &str); 4] = [
@@ -255,21 +257,8 @@ enum Target {
     Status,
 }
 
-/// Numeric shots columns an import may write, with their units, in output order.
-const NUMERIC: [(&str, &str); 19] = [
-    ("club_speed_mph", "mph"),
-    ("attack_angle_deg", "deg"),
-    ("club_path_deg", "deg"),
-    ("dynamic_loft_deg", "deg"),
-    ("face_angle_deg", "deg"),
-    ("lie_tilt_deg", "deg"),
-    ("impact_y_mm", "mm"),
-    ("impact_z_mm", "mm"),
-    ("ball_speed_mph", "mph"),
-    ("launch_angle_deg", "deg"),
-    ("azimuth_deg", "deg"),
-    ("backspin_rpm", "rpm"),
-    ("sidespin_rpm", "rpm"),
+/// Flight columns an import may carry through, with their units, in output order.
+const FLIGHT_NUMERIC: [(&str, &str); 6] = [
     ("carry_yd", "yd"),
     ("apex_yd", "yd"),
     ("total_yd", "yd"),
@@ -277,6 +266,24 @@ const NUMERIC: [(&str, &str); 19] = [
     ("land_angle_deg", "deg"),
     ("dynamic_lie_deg", "deg"),
 ];
+
+/// Numeric shots columns an import may write, with their units, in output order: the delivery
+/// variables (launch monitors do not measure the clubhead's angular velocity), the launch
+/// components, then the flight columns.
+fn numeric() -> Vec<(&'static str, &'static str)> {
+    DeliveryVar::ALL
+        .into_iter()
+        .filter(|v| {
+            !matches!(
+                v,
+                DeliveryVar::OmegaX | DeliveryVar::OmegaY | DeliveryVar::OmegaZ
+            )
+        })
+        .map(|v| (v.column(), v.unit()))
+        .chain(LaunchComponent::ALL.map(|c| (c.column(), c.unit())))
+        .chain(FLIGHT_NUMERIC)
+        .collect()
+}
 
 impl Target {
     fn parse(s: &str) -> Option<Target> {
@@ -289,14 +296,14 @@ impl Target {
             "golfer" => Target::Golfer,
             "status" => Target::Status,
             _ => {
-                let (c, u) = NUMERIC.iter().find(|(c, _)| *c == s)?;
+                let (c, u) = numeric().into_iter().find(|(c, _)| *c == s)?;
                 Target::Num(c, u)
             }
         })
     }
 
     fn names() -> Vec<&'static str> {
-        let mut v: Vec<&str> = NUMERIC.iter().map(|(c, _)| *c).collect();
+        let mut v: Vec<&str> = numeric().into_iter().map(|(c, _)| c).collect();
         v.extend([
             "impact_offset_mm",
             "spin_rate_rpm",
@@ -669,14 +676,12 @@ pub fn import(
             "both impact_offset_mm and impact_z_mm are mapped; map one",
         ));
     }
-    for need in [
-        "club_speed_mph",
-        "attack_angle_deg",
-        "club_path_deg",
-        "dynamic_loft_deg",
-        "face_angle_deg",
-        "impact_y_mm",
-    ] {
+    // The required delivery columns; impact_z_mm may come from impact_offset_mm (below).
+    for need in DeliveryVar::ALL
+        .into_iter()
+        .filter(|v| v.required() && *v != DeliveryVar::ImpactZ)
+        .map(DeliveryVar::column)
+    {
         if !has(need) {
             return Err(DataError::file(
                 path,
@@ -720,9 +725,9 @@ pub fn import(
     let group_col = text_col("group");
     let golfer_col = text_col("golfer");
     let status_col = text_col("status");
-    let mut out_numeric: Vec<&str> = NUMERIC
-        .iter()
-        .map(|(c, _)| *c)
+    let mut out_numeric: Vec<&str> = numeric()
+        .into_iter()
+        .map(|(c, _)| c)
         .filter(|c| {
             has(c)
                 || (*c == "impact_z_mm" && has("impact_offset_mm"))
