@@ -163,6 +163,13 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         prepared.ys_mm.len(),
         prepared.zs_mm.len()
     );
+    if args.shard.is_some() && prepared.study.yards.is_some() {
+        anyhow::bail!(
+            "{}: a study with [yards] cannot be sharded (its yard maps and optimisation run \
+             once over the whole grid); run it without --shard",
+            args.study.display()
+        );
+    }
     if args.shard.is_some() {
         // Shards are only useful if they can be merged: refuse before computing any.
         crate::study::shard::check_mergeable(&prepared)?;
@@ -203,9 +210,16 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let metrics = prepared.all_metrics();
     let (sens, opt) = finish(&prepared, &metrics)?;
+    let yards = match &prepared.study.yards {
+        Some(_) => Some(
+            crate::study::yards_run::run_yards(&prepared.study)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", args.study.display()))?,
+        ),
+        None => None,
+    };
     let kernels = prepared.kernels();
     let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
-        write_study(
+        let mut n = write_study(
             tmp,
             &prepared,
             &kernels,
@@ -213,8 +227,27 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             &sens,
             opt.as_ref(),
             args.format.into(),
-        )
+        )?;
+        if let Some(r) = &yards {
+            for (rel, bytes) in crate::study::yards_run::yards_files(&prepared.study, r) {
+                let path = tmp.join(&rel);
+                if let Some(parent) = path.parent() {
+                    std::fs::create_dir_all(parent)?;
+                }
+                std::fs::write(&path, bytes).map_err(|e| {
+                    std::io::Error::new(e.kind(), format!("{}: {e}", rel.display()))
+                })?;
+                n += 1;
+            }
+        }
+        Ok(n)
     })?;
+    if let Some(r) = &yards {
+        eprint!(
+            "{}",
+            crate::study::yards_run::yards_summary(&prepared.study, r)
+        );
+    }
     let seconds = start.elapsed().as_secs_f64();
     if let Some(path) = &args.report {
         let html = crate::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)

@@ -186,7 +186,16 @@ impl FlightLaunch {
                 allowed,
             })
         };
-        let mph = self.ball_speed_m_s / units::M_S_PER_MPH;
+        // File units back from SI: drop the last-digit noise of the round trip (120° must not
+        // read 119.99999999999999 in a message).
+        let tidy = |x: f64| {
+            if x.is_finite() && x.abs() < 1e6 {
+                (x * 1e9).round() / 1e9
+            } else {
+                x
+            }
+        };
+        let mph = tidy(self.ball_speed_m_s / units::M_S_PER_MPH);
         if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
             return bad(
                 "ball_speed_mph",
@@ -194,15 +203,15 @@ impl FlightLaunch {
                 "must be > 0 and at most 250 mph (beyond the long-drive record)",
             );
         }
-        let la = self.launch_angle_rad.to_degrees();
+        let la = tidy(self.launch_angle_rad.to_degrees());
         if !(la.abs() <= 90.0) {
             return bad("launch_angle_deg", la, "must be within [-90, 90] degrees");
         }
-        let az = self.azimuth_rad.to_degrees();
+        let az = tidy(self.azimuth_rad.to_degrees());
         if !(az.abs() <= 90.0) {
             return bad("azimuth_deg", az, "must be within [-90, 90] degrees");
         }
-        let b = self.backspin_rad_s / units::RAD_S_PER_RPM;
+        let b = tidy(self.backspin_rad_s / units::RAD_S_PER_RPM);
         if !(b.abs() <= MAX_SPIN_RPM) {
             return bad(
                 "backspin_rpm",
@@ -210,7 +219,7 @@ impl FlightLaunch {
                 "must be within ±20000 rpm (about twice a wedge's spin)",
             );
         }
-        let s = self.sidespin_rad_s / units::RAD_S_PER_RPM;
+        let s = tidy(self.sidespin_rad_s / units::RAD_S_PER_RPM);
         if !(s.abs() <= MAX_SPIN_RPM) {
             return bad(
                 "sidespin_rpm",
