@@ -195,7 +195,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let (sens, opt) = finish(&prepared, &metrics)?;
     let yards = match &prepared.study.yards {
         Some(_) => Some(
-            crate::study::yards_run::run_yards(&prepared.study)
+            smash::study::yards_run::run_yards(&prepared.study)
                 .map_err(|e| anyhow::anyhow!("{}: {e}", args.study.display()))?,
         ),
         None => None,
@@ -212,7 +212,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             args.format.into(),
         )?;
         if let Some(r) = &yards {
-            for (rel, bytes) in crate::study::yards_run::yards_files(&prepared.study, r) {
+            for (rel, bytes) in smash::study::yards_run::yards_files(&prepared.study, r) {
                 let path = tmp.join(&rel);
                 if let Some(parent) = path.parent() {
                     std::fs::create_dir_all(parent)?;
@@ -228,7 +228,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     if let Some(r) = &yards {
         eprint!(
             "{}",
-            crate::study::yards_run::yards_summary(&prepared.study, r)
+            smash::study::yards_run::yards_summary(&prepared.study, r)
         );
     }
     let seconds = start.elapsed().as_secs_f64();

@@ -89,7 +89,7 @@ pub fn run_yards(study: &Study) -> Result<YardsResult, String> {
     let robust_map: Vec<Option<YardMetrics>> = (0..ys.len() * zs.len())
         .into_par_iter()
         .map(|k| {
-            let mut d = dist.clone();
+            let mut d = *dist;
             d.impact_centre_mm = [ys[k / zs.len()], zs[k % zs.len()]];
             yard_metrics(&model, &study.swing, &d, &flight, y.confidence).ok()
         })
