@@ -13,7 +13,7 @@ fn smash(args: &[&str]) -> Output {
 
 fn club() -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("configs/clubs/paper_driver.toml")
+        .join("../configs/clubs/paper_driver.toml")
         .to_string_lossy()
         .replace('\\', "/")
 }
