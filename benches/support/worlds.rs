@@ -6,7 +6,7 @@ use std::path::Path;
 
 use smash::data::club_file::read_club;
 use smash::data::shots::{read_shots, Shot};
-use smash::data::synth_files::synth_shots_csv;
+use smash::synth::files::synth_shots_csv;
 use smash::synth::{generate, read_config};
 use smash::ClubSpec;
 

@@ -36,8 +36,8 @@ use rayon::prelude::*;
 use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
 use crate::measurement::{expected_over, ImpactNoise, LocationNode, NODES_PER_SHOT};
+use crate::model::Shot;
 use crate::physics::{
     ContactFrame, Delivery, DeliveryFrame, FaceError, FaceGeometry, ImpactError, ImpactModel,
     Launch, LaunchComponent, ModelParams, ParamError,
