@@ -27,6 +27,7 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
+use crate::effects::user::{self, UserEvalError, UserTerms};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
 pub const COR_SPEED_REFERENCE_M_S: f64 = super::laws::COR_REFERENCE_SPEED_M_S;
@@ -77,6 +78,10 @@ pub struct ModelParams {
     /// Where the shaft joins the head (top of the hosel bore, on the shaft axis), in F, m: the
     /// point a `hosel_mass` effect puts its mass. Geometry only; the impact does not read it.
     pub hosel_m: Vector3<f64>,
+    /// Terms of user-defined effects (`crate::effects::user`), evaluated per shot: mass and
+    /// geometry before the solve, `cor`/`et`/`mu` inside the laws. Empty: the library's laws
+    /// run unchanged.
+    pub user: UserTerms,
 }
 
 /// Default hosel position of a driver in the face frame F, mm: 20 mm behind the face plane,
@@ -113,6 +118,7 @@ impl ModelParams {
             loft_bias_rad: 0.0,
             face_bias_rad: 0.0,
             hosel_m: Vector3::from(DRIVER_HOSEL_MM) * 1e-3,
+            user: UserTerms::default(),
         }
     }
 }
@@ -145,6 +151,20 @@ pub enum ImpactError {
     /// The solve produced a non-finite number (parameters at the edge of floating point).
     #[error("the impact solve produced a non-finite result; check the club's masses, inertia and face radii")]
     NonFinite,
+    /// A user-defined effect's expression gave a value its quantity does not allow.
+    #[error(transparent)]
+    User(#[from] UserEvalError),
+    /// A user-defined effect moved the ball's contact offset out of the ball.
+    #[error(
+        "user-defined effects put the ball contact offset at {offset_mm} mm from the centre line, \
+         beyond the ball radius {radius_mm} mm"
+    )]
+    UserBallOffset {
+        /// |(dy, dz)|, mm.
+        offset_mm: f64,
+        /// Ball radius, mm.
+        radius_mm: f64,
+    },
 }
 
 /// A validated impact model with precomputed inverse inertias. Cheap to clone.
@@ -299,6 +319,12 @@ impl ImpactModel {
                 format!("must be finite and > 0, got {mu}")
             })?;
         }
+        check(!p.user.overflow, "user-defined effects", || {
+            format!(
+                "more than {} user-defined quantities on one model",
+                user::MAX_TERMS
+            )
+        })?;
         check(
             p.hosel_m.iter().all(|v| v.is_finite()),
             "club hosel position",
@@ -355,6 +381,7 @@ impl ImpactModel {
                 e_t: p.tangential_restitution,
                 mu: p.friction_mu,
             },
+            user: p.user,
         };
         Ok(Self {
             params,
@@ -399,8 +426,74 @@ impl ImpactModel {
     /// Solve one impact.
     #[inline]
     pub fn solve(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
+        if self.laws.user.is_empty() {
+            let r_gf = self.face_orientation(d);
+            return self.solve_with(
+                d,
+                &self.laws,
+                r_gf,
+                &self.params.club_com_m,
+                self.params.club_mass_kg,
+                &self.club_inv_inertia,
+            );
+        }
+        // User-defined effects: mass and geometry for this shot, then the same solve.
         let p = &self.params;
-        let r_gf = self.face_orientation(d);
+        let base = user::pre_solve_base(p, d);
+        let vars = user::delivery_vars(d);
+        let pre = if self.laws.user.has_pre_solve() {
+            self.laws.user.pre_solve(&vars, base)?
+        } else {
+            base
+        };
+        let (laws, com, mass, inv_inertia) = self.shot_laws(&pre)?;
+        let r_gf = face_orientation(
+            pre.loft_deg.to_radians(),
+            pre.face_deg.to_radians(),
+            d.lie_tilt_rad,
+        );
+        self.solve_with(d, &laws, r_gf, &com, mass, &inv_inertia)
+    }
+
+    /// The model's laws, clubhead CoM, mass and inverse inertia with a shot's user-defined
+    /// mass and geometry `pre` (from [`crate::effects::user::UserTerms::pre_solve`]).
+    pub fn shot_laws(
+        &self,
+        pre: &user::PreSolve,
+    ) -> Result<(Laws, Vector3<f64>, f64, Matrix3<f64>), ImpactError> {
+        let p = &self.params;
+        let mut laws = self.laws;
+        let mass = pre.club_mass_g * 1e-3;
+        let com = p.club_com_m + pre.com_shift_m();
+        let inv_inertia = self.club_inv_inertia / pre.inertia_scale;
+        laws.collision.inv_mass_sum = 1.0 / mass + 1.0 / p.ball_mass_kg;
+        for c in &mut laws.collision.club_inv_inertia {
+            *c /= pre.inertia_scale;
+        }
+        laws.ball.offset_y_m = pre.ball_d_mm[0] * 1e-3;
+        laws.ball.offset_z_m = pre.ball_d_mm[1] * 1e-3;
+        let offset = laws.ball.offset_y_m.hypot(laws.ball.offset_z_m);
+        if !(offset < p.ball_radius_m) {
+            return Err(ImpactError::UserBallOffset {
+                offset_mm: offset * 1e3,
+                radius_mm: p.ball_radius_m * 1e3,
+            });
+        }
+        Ok((laws, com, mass, inv_inertia))
+    }
+
+    /// The impact with given laws, face orientation, clubhead CoM, mass and inverse inertia.
+    #[inline(always)]
+    fn solve_with(
+        &self,
+        d: &Delivery,
+        laws: &Laws,
+        r_gf: Matrix3<f64>,
+        club_com_m: &Vector3<f64>,
+        club_mass_kg: f64,
+        club_inv_inertia: &Matrix3<f64>,
+    ) -> Result<ImpactOutcome, ImpactError> {
+        let p = &self.params;
         let r_fg = r_gf.transpose();
         let v_c_g = d.club_velocity_m_s();
         let v_c = r_fg * v_c_g;
@@ -408,7 +501,7 @@ impl ImpactModel {
 
         let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
         let n = cf.normal;
-        let r_c = cf.point_m - p.club_com_m;
+        let r_c = cf.point_m - club_com_m;
 
         let u1 = v_c + w_c.cross(&r_c);
         let u1n = u1.dot(&n);
@@ -418,11 +511,27 @@ impl ImpactModel {
             });
         }
         let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
-        let laws = &self.laws;
-        let e = laws.restitution.cor(
+        let mut e = laws.restitution.cor(
             u1n,
             d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m,
         );
+        let mut tangential = laws.tangential;
+        if laws.user.has_contact() {
+            let mut vars = user::delivery_vars(d);
+            vars[user::VAR_U1N as usize] = u1n;
+            vars[user::VAR_UT as usize] = super::laws::tangential_speed(&arr(&u1), &arr(&n), u1n);
+            let (e_u, et_u, mu_u) = laws.user.contact_checked(
+                &mut vars,
+                e,
+                tangential.e_t,
+                tangential.mu.unwrap_or(f64::INFINITY),
+            )?;
+            e = e_u;
+            tangential.e_t = et_u;
+            if laws.user.sets_mu() {
+                tangential.mu = Some(mu_u);
+            }
+        }
         // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
         let r_b_arr = laws.ball.lever(
             &arr(&n),
@@ -431,19 +540,17 @@ impl ImpactModel {
         );
         let r_b = Vector3::from(r_b_arr);
         let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
-        let (impulse, slipped) = if laws.tangential.mu.is_some() {
-            laws.tangential
-                .impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
+        let (impulse, slipped) = if tangential.mu.is_some() {
+            tangential.impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
         } else {
-            laws.tangential
-                .impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
+            tangential.impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
         };
         let impulse = Vector3::from(impulse);
 
         let v_b = impulse / p.ball_mass_kg;
         let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
-        let v_c_after = v_c - impulse / p.club_mass_kg;
-        let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
+        let v_c_after = v_c - impulse / club_mass_kg;
+        let w_c_after = w_c - club_inv_inertia * r_c.cross(&impulse);
         let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
         if !(finite(&v_b) && finite(&w_b) && finite(&v_c_after) && finite(&w_c_after)) {
             return Err(ImpactError::NonFinite);

@@ -54,6 +54,10 @@ pub trait Real:
     fn no() -> Self::Mask;
     /// `if m { a } else { b }`, lane by lane.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+    /// `f` applied lane by lane (the libm functions of user-defined effects).
+    fn map(self, f: impl Fn(f64) -> f64) -> Self;
+    /// `f` applied to the lanes of `self` and `o` pairwise.
+    fn zip_map(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self;
 }
 
 impl Real for f64 {
@@ -86,6 +90,14 @@ impl Real for f64 {
             b
         }
     }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        f(self)
+    }
+    #[inline(always)]
+    fn zip_map(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        f(self, o)
+    }
 }
 
 impl Real for V {
@@ -113,6 +125,22 @@ impl Real for V {
     #[inline(always)]
     fn select(m: M, a: Self, b: Self) -> Self {
         m.select(a, b)
+    }
+    #[inline(always)]
+    fn map(self, f: impl Fn(f64) -> f64) -> Self {
+        let mut r = self.0;
+        for v in &mut r {
+            *v = f(*v);
+        }
+        V(r)
+    }
+    #[inline(always)]
+    fn zip_map(self, o: Self, f: impl Fn(f64, f64) -> f64) -> Self {
+        let mut r = self.0;
+        for (v, w) in r.iter_mut().zip(o.0) {
+            *v = f(*v, w);
+        }
+        V(r)
     }
 }
 
@@ -309,25 +337,47 @@ impl TangentialLaw {
         u1n: R,
         e: R,
     ) -> (Vec3<R>, R::Mask) {
+        Self::impulse_with::<R, FRICTION>(
+            k,
+            n,
+            u1,
+            u1n,
+            e,
+            R::splat(self.e_t),
+            R::splat(self.mu.unwrap_or(f64::INFINITY)),
+        )
+    }
+
+    /// [`TangentialLaw::impulse`] with `e_t` and `mu` given per lane (as user-defined effects
+    /// set them); `mu` is read only when `FRICTION`.
+    #[inline(always)]
+    pub fn impulse_with<R: Real, const FRICTION: bool>(
+        k: &Sym3<R>,
+        n: &Vec3<R>,
+        u1: &Vec3<R>,
+        u1n: R,
+        e: R,
+        e_t: R,
+        mu: R,
+    ) -> (Vec3<R>, R::Mask) {
         let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
         let eu = e * u1n;
         let b = [
-            u1[0] + eu * n[0] + u1t[0] * self.e_t,
-            u1[1] + eu * n[1] + u1t[1] * self.e_t,
-            u1[2] + eu * n[2] + u1t[2] * self.e_t,
+            u1[0] + eu * n[0] + u1t[0] * e_t,
+            u1[1] + eu * n[1] + u1t[1] * e_t,
+            u1[2] + eu * n[2] + u1t[2] * e_t,
         ];
         let p = solve_sym3(k, &b);
         if !FRICTION {
             return (p, R::no());
         }
-        let mu = self.mu.unwrap_or(f64::INFINITY);
         let pn = dot(&p, n);
         let pt = [p[0] - pn * n[0], p[1] - pn * n[1], p[2] - pn * n[2]];
         let pt_norm = dot(&pt, &pt).sqrt();
         let ut = dot(&u1t, &u1t).sqrt();
         let zero = R::splat(0.0);
         let slip = pt_norm.gt(pn * mu) & ut.gt(zero);
-        let f = R::splat(mu) / ut;
+        let f = mu / ut;
         let dir = [n[0] + u1t[0] * f, n[1] + u1t[1] * f, n[2] + u1t[2] * f];
         let pn_slip = (e + 1.0) * u1n / dot(n, &sym_mul(k, &dir));
         (
@@ -341,6 +391,14 @@ impl TangentialLaw {
     }
 }
 
+/// The tangential approach speed `|u1 − u1n·n|` (the `ut_m_s` of user-defined effects), with
+/// the operations of [`TangentialLaw::impulse`].
+#[inline(always)]
+pub fn tangential_speed<R: Real>(u1: &Vec3<R>, n: &Vec3<R>, u1n: R) -> R {
+    let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
+    dot(&u1t, &u1t).sqrt()
+}
+
 /// Every law of one validated model (see [`super::ImpactModel::laws`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Laws {
@@ -352,6 +410,10 @@ pub struct Laws {
     pub collision: CollisionMatrix,
     /// Tangential law.
     pub tangential: TangentialLaw,
+    /// User-defined terms (`crate::effects::user`): `cor`, `et`, `mu` evaluated with
+    /// [`crate::effects::user::UserTerms::contact`] after the library's restitution, and before
+    /// the tangential law; mass and geometry per shot before the solve. Empty: unused.
+    pub user: crate::effects::user::UserTerms,
 }
 
 #[cfg(test)]
