@@ -35,9 +35,9 @@ use toml::Spanned;
 
 use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::club::ClubSpec;
-use crate::effects::{Effect, EffectId};
 #[cfg(test)]
 use crate::effects::EffectKind;
+use crate::effects::{Effect, EffectId};
 use crate::limits::{self, PhysicalRange};
 use crate::physics::impact::DRIVER_HOSEL_MM;
 use crate::physics::{validate_inertia, ModelParams};

@@ -297,7 +297,9 @@ impl Parser<'_> {
         if self.depth > MAX_STACK {
             return Err(ExprError {
                 column,
-                message: format!("expression nested too deeply (more than {MAX_STACK} pending values)"),
+                message: format!(
+                    "expression nested too deeply (more than {MAX_STACK} pending values)"
+                ),
             });
         }
         self.out.ops[self.out.len as usize] = op;
@@ -384,8 +386,7 @@ impl Parser<'_> {
         let Some(tok) = self.tokens.get(self.pos) else {
             return Err(ExprError {
                 column,
-                message: "expected a number, a name or '(', found the end of the expression"
-                    .into(),
+                message: "expected a number, a name or '(', found the end of the expression".into(),
             });
         };
         match &tok.kind {
@@ -488,8 +489,11 @@ mod tests {
 
     #[test]
     fn lanes_and_scalars_agree_bit_for_bit() {
-        let p = Program::compile("exp(-x * y) + ln(q) * max(u1n_m_s, 40) ^ 0.3 - abs(x)", &vars)
-            .unwrap();
+        let p = Program::compile(
+            "exp(-x * y) + ln(q) * max(u1n_m_s, 40) ^ 0.3 - abs(x)",
+            &vars,
+        )
+        .unwrap();
         let lanes = [
             V([0.1, 0.2, 0.3, 0.4]),
             V([1.0, -2.0, 3.0, 0.5]),
@@ -547,10 +551,18 @@ mod tests {
     fn limits_are_errors_not_panics() {
         let long = vec!["x"; MAX_OPS].join(" + ");
         assert!(err(&long).message.contains("too long"));
-        let deep = format!("{}x{}", "(x + ".repeat(MAX_STACK + 2), ")".repeat(MAX_STACK + 2));
+        let deep = format!(
+            "{}x{}",
+            "(x + ".repeat(MAX_STACK + 2),
+            ")".repeat(MAX_STACK + 2)
+        );
         assert!(err(&deep).message.contains("nested too deeply"));
         // Just within the limits compiles and evaluates.
-        let ok = format!("{}x{}", "(x + ".repeat(MAX_STACK - 2), ")".repeat(MAX_STACK - 2));
+        let ok = format!(
+            "{}x{}",
+            "(x + ".repeat(MAX_STACK - 2),
+            ")".repeat(MAX_STACK - 2)
+        );
         assert_eq!(eval(&ok, &[1.0, 0.0, 0.0, 0.0]), (MAX_STACK - 1) as f64);
     }
 }

@@ -305,10 +305,7 @@ impl fmt::Display for EffectId {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EffectError {
     /// No effect has this name.
-    #[error(
-        "unknown effect '{name}'; the library has: {}",
-        EffectId::all_names()
-    )]
+    #[error("unknown effect '{name}'; the library has: {}", EffectId::all_names())]
     UnknownName {
         /// The name given.
         name: String,

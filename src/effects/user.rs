@@ -260,7 +260,7 @@ impl AppliedTerm {
 }
 
 /// Most user-defined terms one model carries.
-pub const MAX_TERMS: usize = 8;
+pub const MAX_TERMS: usize = 16;
 
 /// The user-defined terms applied to a model, in application order. `Copy`, no heap.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -619,8 +619,7 @@ fn at(path: &Path, text: &str, offset: usize, key: &str, message: String) -> Dat
 
 fn is_identifier(s: &str) -> bool {
     let mut c = s.chars();
-    c.next()
-        .is_some_and(|f| f.is_ascii_lowercase() || f == '_')
+    c.next().is_some_and(|f| f.is_ascii_lowercase() || f == '_')
         && c.all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
 }
 
@@ -667,7 +666,10 @@ fn compile_definition(
         ));
     }
     // Parameters.
-    let pspan = raw.params.as_ref().map_or(d.span().start, |p| p.span().start);
+    let pspan = raw
+        .params
+        .as_ref()
+        .map_or(d.span().start, |p| p.span().start);
     let params: &[RawParam] = raw.params.as_ref().map_or(&[], |p| p.get_ref());
     if params.len() > MAX_EFFECT_PARAMS {
         return Err(err_at(
@@ -682,7 +684,13 @@ fn compile_definition(
     let mut specs = Vec::with_capacity(params.len());
     for (k, p) in params.iter().enumerate() {
         let key = p.key.as_str();
-        let here = |m: String| err_at(pspan, &format!("params[{k}]"), format!("effect '{name}': {m}"));
+        let here = |m: String| {
+            err_at(
+                pspan,
+                &format!("params[{k}]"),
+                format!("effect '{name}': {m}"),
+            )
+        };
         if !is_identifier(key) {
             return Err(here(format!("parameter key '{key}' is not a name")));
         }
@@ -725,7 +733,11 @@ fn compile_definition(
             lower: lo,
             upper: hi,
             plausible,
-            doc: leak(p.doc.clone().unwrap_or_else(|| format!("parameter of {name}"))),
+            doc: leak(
+                p.doc
+                    .clone()
+                    .unwrap_or_else(|| format!("parameter of {name}")),
+            ),
         });
     }
     // Quantities.
@@ -748,25 +760,31 @@ fn compile_definition(
         let Some(expr) = expr else { continue };
         let src = expr.get_ref().as_str();
         let resolve = |n: &str| resolve(q, &specs, n);
-        let program = Program::compile(src, &resolve).map_err(|ExprError { column, message }| {
-            // Point at the character in the file when the string has no escapes.
-            let start = expr.span().start;
-            let raw_text = text.get(start..expr.span().end).unwrap_or("");
-            let offset = if raw_text.len() == src.len() + 2 {
-                start + 1 + src.char_indices().nth(column - 1).map_or(src.len(), |(b, _)| b)
-            } else {
-                start
-            };
-            let (line, col) = line_col(text, offset);
-            DataError::at(
-                path,
-                Some(line),
-                Some(format!("column {col}: key {table_key}.{}", q.key())),
-                format!(
-                    "effect '{name}': expression \"{src}\", at character {column}: {message}"
-                ),
-            )
-        })?;
+        let program =
+            Program::compile(src, &resolve).map_err(|ExprError { column, message }| {
+                // Point at the character in the file when the string has no escapes.
+                let start = expr.span().start;
+                let raw_text = text.get(start..expr.span().end).unwrap_or("");
+                let offset = if raw_text.len() == src.len() + 2 {
+                    start
+                        + 1
+                        + src
+                            .char_indices()
+                            .nth(column - 1)
+                            .map_or(src.len(), |(b, _)| b)
+                } else {
+                    start
+                };
+                let (line, col) = line_col(text, offset);
+                DataError::at(
+                    path,
+                    Some(line),
+                    Some(format!("column {col}: key {table_key}.{}", q.key())),
+                    format!(
+                        "effect '{name}': expression \"{src}\", at character {column}: {message}"
+                    ),
+                )
+            })?;
         terms.push(UserTerm {
             quantity: q,
             program,

@@ -7,9 +7,9 @@
 use nalgebra::DVector;
 
 use super::FitError;
-use crate::effects::{Effect, EffectError, EffectId, ParamSpec};
 #[cfg(test)]
 use crate::effects::EffectKind;
+use crate::effects::{Effect, EffectError, EffectId, ParamSpec};
 
 /// The keyword that asks for one effect per group.
 pub const PER_GROUP: &str = "group";

@@ -167,6 +167,22 @@ pub enum ImpactError {
     },
 }
 
+/// An [`ImpactModel`] for one delivery, with its user-defined mass and geometry applied
+/// ([`ImpactModel::shot`]).
+#[derive(Debug, Clone, Copy)]
+pub struct ShotModel {
+    /// The laws with the shot's mass, inertia and ball offsets.
+    pub laws: Laws,
+    /// Face orientation `R_GF` with the shot's loft and face angle.
+    pub r_gf: Matrix3<f64>,
+    /// Clubhead CoM, F, m.
+    pub club_com_m: Vector3<f64>,
+    /// Clubhead mass, kg.
+    pub club_mass_kg: f64,
+    /// Inverse clubhead inertia, F, 1/(kg·m²).
+    pub club_inv_inertia: Matrix3<f64>,
+}
+
 /// A validated impact model with precomputed inverse inertias. Cheap to clone.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImpactModel {
@@ -438,48 +454,80 @@ impl ImpactModel {
             );
         }
         // User-defined effects: mass and geometry for this shot, then the same solve.
-        let p = &self.params;
-        let base = user::pre_solve_base(p, d);
-        let vars = user::delivery_vars(d);
-        let pre = if self.laws.user.has_pre_solve() {
-            self.laws.user.pre_solve(&vars, base)?
-        } else {
-            base
-        };
-        let (laws, com, mass, inv_inertia) = self.shot_laws(&pre)?;
-        let r_gf = face_orientation(
-            pre.loft_deg.to_radians(),
-            pre.face_deg.to_radians(),
-            d.lie_tilt_rad,
-        );
-        self.solve_with(d, &laws, r_gf, &com, mass, &inv_inertia)
+        if !self.laws.user.has_pre_solve() {
+            let r_gf = self.face_orientation(d);
+            return self.solve_with(
+                d,
+                &self.laws,
+                r_gf,
+                &self.params.club_com_m,
+                self.params.club_mass_kg,
+                &self.club_inv_inertia,
+            );
+        }
+        let s = self.shot(d)?;
+        self.solve_with(
+            d,
+            &s.laws,
+            s.r_gf,
+            &s.club_com_m,
+            s.club_mass_kg,
+            &s.club_inv_inertia,
+        )
     }
 
-    /// The model's laws, clubhead CoM, mass and inverse inertia with a shot's user-defined
-    /// mass and geometry `pre` (from [`crate::effects::user::UserTerms::pre_solve`]).
-    pub fn shot_laws(
-        &self,
-        pre: &user::PreSolve,
-    ) -> Result<(Laws, Vector3<f64>, f64, Matrix3<f64>), ImpactError> {
+    /// The model for one delivery with its user-defined mass and geometry evaluated
+    /// ([`crate::effects::user::UserTerms::pre_solve`]). A quantity no term changed keeps the
+    /// model's own value, bit for bit.
+    pub fn shot(&self, d: &Delivery) -> Result<ShotModel, ImpactError> {
         let p = &self.params;
-        let mut laws = self.laws;
-        let mass = pre.club_mass_g * 1e-3;
-        let com = p.club_com_m + pre.com_shift_m();
-        let inv_inertia = self.club_inv_inertia / pre.inertia_scale;
-        laws.collision.inv_mass_sum = 1.0 / mass + 1.0 / p.ball_mass_kg;
-        for c in &mut laws.collision.club_inv_inertia {
-            *c /= pre.inertia_scale;
+        let base = user::pre_solve_base(p, d);
+        let pre = self.laws.user.pre_solve(&user::delivery_vars(d), base)?;
+        let mut s = ShotModel {
+            laws: self.laws,
+            r_gf: self.face_orientation(d),
+            club_com_m: p.club_com_m,
+            club_mass_kg: p.club_mass_kg,
+            club_inv_inertia: self.club_inv_inertia,
+        };
+        if pre.club_mass_g != base.club_mass_g {
+            s.club_mass_kg = pre.club_mass_g * 1e-3;
+            s.laws.collision.inv_mass_sum = 1.0 / s.club_mass_kg + 1.0 / p.ball_mass_kg;
         }
-        laws.ball.offset_y_m = pre.ball_d_mm[0] * 1e-3;
-        laws.ball.offset_z_m = pre.ball_d_mm[1] * 1e-3;
-        let offset = laws.ball.offset_y_m.hypot(laws.ball.offset_z_m);
-        if !(offset < p.ball_radius_m) {
-            return Err(ImpactError::UserBallOffset {
-                offset_mm: offset * 1e3,
-                radius_mm: p.ball_radius_m * 1e3,
-            });
+        if pre.inertia_scale != base.inertia_scale {
+            s.club_inv_inertia /= pre.inertia_scale;
+            for c in &mut s.laws.collision.club_inv_inertia {
+                *c /= pre.inertia_scale;
+            }
         }
-        Ok((laws, com, mass, inv_inertia))
+        if pre.com_d_mm != base.com_d_mm {
+            s.club_com_m += pre.com_shift_m();
+        }
+        if pre.ball_d_mm != base.ball_d_mm {
+            s.laws.ball.offset_y_m = pre.ball_d_mm[0] * 1e-3;
+            s.laws.ball.offset_z_m = pre.ball_d_mm[1] * 1e-3;
+            let offset = s.laws.ball.offset_y_m.hypot(s.laws.ball.offset_z_m);
+            if !(offset < p.ball_radius_m) {
+                return Err(ImpactError::UserBallOffset {
+                    offset_mm: offset * 1e3,
+                    radius_mm: p.ball_radius_m * 1e3,
+                });
+            }
+        }
+        if pre.loft_deg != base.loft_deg || pre.face_deg != base.face_deg {
+            let loft = if pre.loft_deg != base.loft_deg {
+                pre.loft_deg.to_radians()
+            } else {
+                d.dynamic_loft_rad + p.loft_bias_rad
+            };
+            let face = if pre.face_deg != base.face_deg {
+                pre.face_deg.to_radians()
+            } else {
+                d.face_angle_rad + p.face_bias_rad
+            };
+            s.r_gf = face_orientation(loft, face, d.lie_tilt_rad);
+        }
+        Ok(s)
     }
 
     /// The impact with given laws, face orientation, clubhead CoM, mass and inverse inertia.

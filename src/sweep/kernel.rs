@@ -44,7 +44,7 @@ use rayon::prelude::*;
 use super::fastmath::atan2_v;
 use super::lanes::{M, V, W};
 use crate::physics::laws::{Laws, TangentialLaw};
-use crate::physics::{Delivery, ImpactError, ImpactModel, LaunchComponent, ModelParams};
+use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 
 /// Points per chunk: the unit the vector code works on.
 pub const LANES: usize = 8;
@@ -316,20 +316,11 @@ impl FaceMapKernel {
         let mut broken = false;
         let user_vars = crate::effects::user::delivery_vars(delivery);
         if user.has_pre_solve() {
-            let base = crate::effects::user::pre_solve_base(model.params(), delivery);
-            match user
-                .pre_solve(&user_vars, base)
-                .map_err(ImpactError::from)
-                .and_then(|pre| model.shot_laws(&pre).map(|l| (pre, l)))
-            {
-                Ok((pre, (l, com, _, _))) => {
-                    laws = l;
-                    club_com_m = com;
-                    r_gf = crate::physics::delivery::face_orientation(
-                        pre.loft_deg.to_radians(),
-                        pre.face_deg.to_radians(),
-                        delivery.lie_tilt_rad,
-                    );
+            match model.shot(delivery) {
+                Ok(shot) => {
+                    laws = shot.laws;
+                    club_com_m = shot.club_com_m;
+                    r_gf = shot.r_gf;
                 }
                 Err(_) => broken = true,
             }
@@ -513,7 +504,11 @@ impl FaceMapKernel {
 
     /// Impacts at heel–toe locations `z` on `row`: straight-line code, no branches.
     #[inline(always)]
-    fn point<const FRICTION: bool, const POWER: bool, const USER: bool>(&self, row: &Row, z: V) -> Out {
+    fn point<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        row: &Row,
+        z: V,
+    ) -> Out {
         let zero = V::splat(0.0);
         // Contact point and normal, with the operations of `FaceGeometry::contact`.
         let x2 = row.rho2 - z * z;
@@ -669,7 +664,12 @@ impl FaceMapKernel {
             fill_invalid(out);
             return;
         }
-        for_chunks(zs, zs, out, &RowChunks::<FRICTION, POWER, USER> { k: self, row });
+        for_chunks(
+            zs,
+            zs,
+            out,
+            &RowChunks::<FRICTION, POWER, USER> { k: self, row },
+        );
     }
 
     #[inline(always)]
@@ -679,7 +679,12 @@ impl FaceMapKernel {
         zs: &[f64],
         out: RowOut<'_>,
     ) {
-        for_chunks(ys, zs, out, &PointChunks::<FRICTION, POWER, USER> { k: self });
+        for_chunks(
+            ys,
+            zs,
+            out,
+            &PointChunks::<FRICTION, POWER, USER> { k: self },
+        );
     }
 
     /// Run `job` with the kernel's constant switches (friction on, `cor_power` exponent set)
@@ -732,7 +737,11 @@ impl FaceMapKernel {
 
 /// A row or a set of points, run by [`FaceMapKernel::dispatch`].
 trait Job {
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>);
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    );
 }
 
 /// One grid row: the heights are fixed in `row`.
@@ -743,7 +752,11 @@ struct RowJob<'a> {
 
 impl Job for RowJob<'_> {
     #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    ) {
         k.row_impl::<FRICTION, POWER, USER>(self.row, self.zs, out)
     }
 }
@@ -756,7 +769,11 @@ struct PointsJob<'a> {
 
 impl Job for PointsJob<'_> {
     #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    ) {
         k.points_impl::<FRICTION, POWER, USER>(self.ys, self.zs, out)
     }
 }
@@ -773,7 +790,9 @@ struct RowChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool> 
     row: &'a Row,
 }
 
-impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn for RowChunks<'_, FRICTION, POWER, USER> {
+impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
+    for RowChunks<'_, FRICTION, POWER, USER>
+{
     #[inline(always)]
     fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
         self.k.row_chunk::<FRICTION, POWER, USER>(self.row, zs, out)
@@ -785,7 +804,9 @@ struct PointChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool
     k: &'a FaceMapKernel,
 }
 
-impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn for PointChunks<'_, FRICTION, POWER, USER> {
+impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
+    for PointChunks<'_, FRICTION, POWER, USER>
+{
     #[inline(always)]
     fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
         self.k.points_chunk::<FRICTION, POWER, USER>(ys, zs, out)
