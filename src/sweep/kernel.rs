@@ -566,7 +566,7 @@ impl FaceMapKernel {
             );
             // Lanes whose user-defined values are not allowed are invalid (the scalar solve
             // names the effect for them): e and e_t finite, mu > 0 and finite when set.
-            let finite = |x: V| (x - x).eq(zero);
+            let finite = |x: V| x.abs().le(V::splat(f64::MAX));
             valid = valid & finite(e) & finite(e_t);
             if laws.user.sets_mu() {
                 valid = valid & finite(mu) & mu.gt(zero);
