@@ -51,7 +51,7 @@ struct RawFile {
     #[serde(default)]
     effect: Vec<Spanned<toml::Table>>,
     #[serde(default)]
-    define_effect: Vec<Spanned<crate::effects::user::RawDefinition>>,
+    define_effect: Vec<Spanned<super::effect_defs::RawDefinition>>,
 }
 
 #[derive(Deserialize)]
@@ -115,7 +115,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
     let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
     // User-defined effects first, so that [[effect]] tables can name them.
-    crate::effects::user::register_definitions(path, text, &raw.define_effect)?;
+    super::effect_defs::register_definitions(path, text, &raw.define_effect)?;
     let c = &raw.club;
     let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = c.com_mm.get_ref();

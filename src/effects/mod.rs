@@ -31,7 +31,6 @@ use std::fmt;
 
 use crate::physics::ModelParams;
 
-pub mod expr;
 pub mod user;
 
 pub use user::UserEffect;

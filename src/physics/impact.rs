@@ -27,7 +27,7 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
-use crate::effects::user::{self, UserEvalError, UserTerms};
+use super::user_terms::{self as user, UserEvalError, UserTerms};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
 pub const COR_SPEED_REFERENCE_M_S: f64 = super::laws::COR_REFERENCE_SPEED_M_S;
@@ -165,6 +165,19 @@ pub enum ImpactError {
         /// Ball radius, mm.
         radius_mm: f64,
     },
+}
+
+/// The base values of the pre-solve quantities for a model with parameters `p` and delivery
+/// `d` (file units).
+pub fn pre_solve_base(p: &ModelParams, d: &Delivery) -> user::PreSolve {
+    user::PreSolve {
+        club_mass_g: p.club_mass_kg * 1e3,
+        ball_d_mm: [p.ball_offset_y_m * 1e3, p.ball_offset_z_m * 1e3],
+        com_d_mm: [0.0; 3],
+        inertia_scale: 1.0,
+        loft_deg: (d.dynamic_loft_rad + p.loft_bias_rad).to_degrees(),
+        face_deg: (d.face_angle_rad + p.face_bias_rad).to_degrees(),
+    }
 }
 
 /// An [`ImpactModel`] for one delivery, with its user-defined mass and geometry applied
@@ -477,11 +490,11 @@ impl ImpactModel {
     }
 
     /// The model for one delivery with its user-defined mass and geometry evaluated
-    /// ([`crate::effects::user::UserTerms::pre_solve`]). A quantity no term changed keeps the
+    /// ([`crate::physics::user_terms::UserTerms::pre_solve`]). A quantity no term changed keeps the
     /// model's own value, bit for bit.
     pub fn shot(&self, d: &Delivery) -> Result<ShotModel, ImpactError> {
         let p = &self.params;
-        let base = user::pre_solve_base(p, d);
+        let base = pre_solve_base(p, d);
         let pre = self.laws.user.pre_solve(&user::delivery_vars(d), base)?;
         let mut s = ShotModel {
             laws: self.laws,

@@ -42,7 +42,7 @@ use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
 use super::fastmath::atan2_v;
-use super::lanes::{M, V, W};
+use crate::lanes::{M, V, W};
 use crate::physics::laws::{Laws, TangentialLaw};
 use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 
@@ -202,7 +202,7 @@ pub struct FaceMapKernel {
     /// user-defined mass and geometry applied).
     laws: Laws,
     /// The delivery's variables for user-defined `cor`/`et`/`mu` expressions.
-    user_vars: [f64; crate::effects::user::NV],
+    user_vars: [f64; crate::physics::user_terms::NV],
     /// A user-defined mass or geometry expression failed for this delivery: every point is
     /// invalid.
     broken: bool,
@@ -314,7 +314,7 @@ impl FaceMapKernel {
         let mut club_com_m = *club_com_m;
         let mut r_gf = model.face_orientation(delivery);
         let mut broken = false;
-        let user_vars = crate::effects::user::delivery_vars(delivery);
+        let user_vars = crate::physics::user_terms::delivery_vars(delivery);
         if user.has_pre_solve() {
             match model.shot(delivery) {
                 Ok(shot) => {
@@ -552,7 +552,7 @@ impl FaceMapKernel {
         let u1 = [u1x, u1y, u1z];
         let n = [nx, ny, nz];
         let (e, e_t, mu) = if USER {
-            use crate::effects::user::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
+            use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
             let mut vars: [V; NV] = self.user_vars.map(V::splat);
             vars[VAR_IMPACT_Y as usize] = row.y * 1e3;
             vars[VAR_IMPACT_Z as usize] = z * 1e3;
