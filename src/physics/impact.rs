@@ -24,7 +24,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::delivery::{face_orientation, Delivery};
-use super::face::{FaceError, FaceGeometry};
+use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
 use super::user_terms::{self as user, UserEvalError, UserTerms};
@@ -204,6 +204,26 @@ pub struct ImpactModel {
     club_inv_inertia: Matrix3<f64>,
     inv_mass_sum: f64,
     laws: Laws,
+}
+
+/// What an impact needs from a delivery apart from the impact location, for one pair of loft and
+/// face biases (see [`ImpactModel::delivery_frame`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeliveryFrame {
+    /// Orientation `R_GF` of the face at impact (biases applied).
+    pub r_gf: Matrix3<f64>,
+    /// Clubhead CoM velocity in F, m/s.
+    pub club_velocity_f_m_s: Vector3<f64>,
+    /// Clubhead angular velocity in F, rad/s.
+    pub club_omega_f_rad_s: Vector3<f64>,
+    /// Clubhead CoM speed, m/s.
+    pub club_speed_m_s: f64,
+    /// Loft bias the frame was made with, rad.
+    pub loft_bias_rad: f64,
+    /// Face-angle bias the frame was made with, rad.
+    pub face_bias_rad: f64,
+    /// The delivery (user-defined effects read it per shot).
+    pub delivery: Delivery,
 }
 
 /// Everything the impact produces, in the ground frame `G`, SI units.
@@ -452,21 +472,122 @@ impl ImpactModel {
         )
     }
 
+    /// The delivery's part of an impact that does not depend on where the ball meets the face:
+    /// the face orientation (with this model's loft and face biases) and the clubhead's
+    /// velocities in the face frame. A fit computes it once per shot (and per bias) and reuses
+    /// it for every evaluation and every impact-location node ([`ImpactModel::solve_in`]).
+    #[inline]
+    pub fn delivery_frame(&self, d: &Delivery) -> DeliveryFrame {
+        let r_gf = self.face_orientation(d);
+        let r_fg = r_gf.transpose();
+        let v_c_g = d.club_velocity_m_s();
+        DeliveryFrame {
+            r_gf,
+            club_velocity_f_m_s: r_fg * v_c_g,
+            club_omega_f_rad_s: r_fg * d.club_omega_rad_s,
+            club_speed_m_s: d.club_speed_m_s,
+            loft_bias_rad: self.params.loft_bias_rad,
+            face_bias_rad: self.params.face_bias_rad,
+            delivery: *d,
+        }
+    }
+
     /// Solve one impact.
     #[inline]
     pub fn solve(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
-        if self.laws.user.is_empty() {
-            let r_gf = self.face_orientation(d);
-            return self.solve_with(
-                d,
-                &self.laws,
-                r_gf,
-                &self.params.club_com_m,
-                self.params.club_mass_kg,
-                &self.club_inv_inertia,
-            );
+        if !self.laws.user.is_empty() {
+            return self.solve_user(d);
         }
-        // User-defined effects: mass and geometry for this shot, then the same solve.
+        let frame = self.delivery_frame(d);
+        let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
+        self.solve_in(&frame, &cf, d.impact_y_m, d.impact_z_m)
+    }
+
+    /// Solve one impact from a precomputed delivery frame (made by [`ImpactModel::delivery_frame`]
+    /// of a model with the same loft and face biases) and the contact frame of this model's face
+    /// at the impact location `(y_m, z_m)`. [`ImpactModel::solve`] is exactly this, so both give
+    /// the same bits.
+    #[inline]
+    pub fn solve_in(
+        &self,
+        frame: &DeliveryFrame,
+        cf: &ContactFrame,
+        y_m: f64,
+        z_m: f64,
+    ) -> Result<ImpactOutcome, ImpactError> {
+        debug_assert!(
+            frame.loft_bias_rad == self.params.loft_bias_rad
+                && frame.face_bias_rad == self.params.face_bias_rad
+        );
+        if !self.laws.user.is_empty() {
+            // User-defined effects read the whole delivery, per shot.
+            return self.solve_user(&Delivery {
+                impact_y_m: y_m,
+                impact_z_m: z_m,
+                ..frame.delivery
+            });
+        }
+        let p = &self.params;
+        let r_gf = frame.r_gf;
+        let v_c = frame.club_velocity_f_m_s;
+        let w_c = frame.club_omega_f_rad_s;
+        let n = cf.normal;
+        let r_c = cf.point_m - p.club_com_m;
+
+        let u1 = v_c + w_c.cross(&r_c);
+        let u1n = u1.dot(&n);
+        if !(u1n > 0.0) {
+            return Err(ImpactError::NotApproaching {
+                normal_speed_m_s: u1n,
+            });
+        }
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        let laws = &self.laws;
+        let e = laws.restitution.cor(u1n, y_m * y_m + z_m * z_m);
+        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
+        let r_b_arr = laws.ball.lever(
+            &arr(&n),
+            &arr(&cf.tangent_y),
+            &[cf.tangent_z.x, cf.tangent_z.z],
+        );
+        let r_b = Vector3::from(r_b_arr);
+        let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
+        let (impulse, slipped) = if laws.tangential.mu.is_some() {
+            laws.tangential
+                .impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
+        } else {
+            laws.tangential
+                .impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
+        };
+        let impulse = Vector3::from(impulse);
+
+        let v_b = impulse / p.ball_mass_kg;
+        let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
+        let v_c_after = v_c - impulse / p.club_mass_kg;
+        let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
+        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+        if !(finite(&v_b) && finite(&w_b) && finite(&v_c_after) && finite(&w_c_after)) {
+            return Err(ImpactError::NonFinite);
+        }
+        Ok(ImpactOutcome {
+            ball_velocity_m_s: r_gf * v_b,
+            ball_spin_rad_s: r_gf * w_b,
+            club_velocity_after_m_s: r_gf * v_c_after,
+            club_omega_after_rad_s: r_gf * w_c_after,
+            impulse_n_s: r_gf * impulse,
+            contact_from_club_com_m: r_gf * r_c,
+            contact_from_ball_com_m: r_gf * r_b,
+            normal: r_gf * n,
+            normal_approach_speed_m_s: u1n,
+            cor_effective: e,
+            slipped,
+            club_speed_m_s: frame.club_speed_m_s,
+        })
+    }
+
+    /// [`ImpactModel::solve`] with user-defined effects: the shot's mass and geometry, then the
+    /// impact with the user-defined `cor`, `et` and `mu`.
+    fn solve_user(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
         if !self.laws.user.has_pre_solve() {
             let r_gf = self.face_orientation(d);
             return self.solve_with(
