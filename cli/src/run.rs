@@ -21,6 +21,10 @@ use smash::study::{finish, read_study, Prepared, StudyError};
                         smash merge shards/0 shards/1 shards/2 shards/3 --out results/com_sweep"
 )]
 pub struct RunArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Study file (TOML): base club, delivery, face grid, design variants, outputs.
     #[arg(value_name = "STUDY.toml")]
     pub study: PathBuf,
@@ -74,6 +78,7 @@ fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
 
 /// Run `smash run`.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let study = read_study(&args.study)?;
     let (k, n) = args.shard.unwrap_or((0, 1));
     let dir = match (&args.out, args.shard) {
