@@ -20,7 +20,11 @@ pub fn push_f64(out: &mut Vec<u8>, v: f64) {
         let _ = write!(out, "{v}");
         return;
     }
-    if let Some(e) = s.iter().position(|&b| b == b'e' || b == b'E') {
+    // zmij writes plain digits from 1e-5 up to 1e16 (and `0.0`): no exponent to look for.
+    let plain = v == 0.0 || (1e-5..1e16).contains(&v.abs());
+    if plain {
+        out.extend_from_slice(s.strip_suffix(b".0").unwrap_or(s));
+    } else if let Some(e) = s.iter().position(|&b| b == b'e' || b == b'E') {
         push_plain(out, &s[..e], &s[e + 1..]);
     } else if let Some(stripped) = s.strip_suffix(b".0") {
         out.extend_from_slice(stripped);

@@ -784,7 +784,7 @@ fn write_svgs(
     maps: &[MapFile],
     blocks: &[BlockMeans],
 ) -> std::io::Result<usize> {
-    for (m, b) in maps.iter().zip(blocks) {
+    maps.par_iter().zip(blocks).try_for_each(|(m, b)| {
         let map = Heatmap {
             title: &m.title,
             x_label: X_LABEL,
@@ -800,8 +800,8 @@ fn write_svgs(
             root,
             Path::new(&format!("{}.svg", m.stem)),
             b.svg(&map).as_bytes(),
-        )?;
-    }
+        )
+    })?;
     Ok(maps.len())
 }
 
