@@ -54,7 +54,7 @@ use super::metrics::{metric_names, metric_unit, Output};
 use super::optimise::OptimiseResult;
 use super::sensitivity::Sensitivity;
 use super::spec::resolved_toml;
-use super::sweep::{Prepared, VariantResult};
+use super::sweep::Prepared;
 
 /// Files to write: path relative to the output folder, bytes.
 pub type Files = Vec<(PathBuf, Vec<u8>)>;
@@ -89,41 +89,16 @@ pub enum TableFormat {
 /// Grid points per streamed band (about 64 k: a few MB of values and text per band).
 pub const BAND_POINTS: usize = 1 << 16;
 
-/// Where the face maps come from: computed on demand (a run) or held (a merge).
+/// Where the face maps come from: computed on demand (a run) or read back from the shards (a
+/// merge).
 pub trait GridSource: Sync {
     /// Rows `rows` of variant `variant` into `out` (resized to `rows.len() · nz` points).
-    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid);
-}
-
-/// Complete per-variant results (a merge) as a [`GridSource`].
-pub struct HeldGrids<'a> {
-    /// The results, one per variant.
-    pub results: &'a [VariantResult],
-    /// Grid columns.
-    pub nz: usize,
-}
-
-impl GridSource for HeldGrids<'_> {
-    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid) {
-        let g = &self.results[variant].grid;
-        let r = rows.start * self.nz..rows.end * self.nz;
-        out.ball_speed_m_s.clear();
-        out.ball_speed_m_s
-            .extend_from_slice(&g.ball_speed_m_s[r.clone()]);
-        out.launch_angle_rad.clear();
-        out.launch_angle_rad
-            .extend_from_slice(&g.launch_angle_rad[r.clone()]);
-        out.azimuth_rad.clear();
-        out.azimuth_rad.extend_from_slice(&g.azimuth_rad[r.clone()]);
-        out.backspin_rad_s.clear();
-        out.backspin_rad_s
-            .extend_from_slice(&g.backspin_rad_s[r.clone()]);
-        out.sidespin_rad_s.clear();
-        out.sidespin_rad_s
-            .extend_from_slice(&g.sidespin_rad_s[r.clone()]);
-        out.valid.clear();
-        out.valid.extend_from_slice(&g.valid[r]);
-    }
+    fn grid_rows(
+        &self,
+        variant: usize,
+        rows: Range<usize>,
+        out: &mut LaunchGrid,
+    ) -> std::io::Result<()>;
 }
 
 fn io_err(path: &Path, e: std::io::Error) -> std::io::Error {
@@ -282,6 +257,12 @@ fn write_study_holding(
     let w = id_width(p.variants.len());
     let ys_m: Vec<f64> = p.ys_mm.iter().map(|v| mm(*v)).collect();
     let zs_m: Vec<f64> = p.zs_mm.iter().map(|v| mm(*v)).collect();
+    let spare_lines = std::sync::Mutex::new(Vec::new());
+    let read_error: std::sync::Mutex<Option<std::io::Error>> = std::sync::Mutex::new(None);
+    let check_read = || match read_error.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    };
     for (i, d) in p.variants.iter().enumerate() {
         let mut prefix = i.to_string();
         for v in &axes {
@@ -290,7 +271,12 @@ fn write_study_holding(
         prefix.push(',');
         let fill = |rows: Range<usize>, valid: &mut Vec<bool>, out: &mut [Vec<f64>]| {
             let mut g = LaunchGrid::default();
-            grids.grid_rows(i, rows, &mut g);
+            let n = rows.len() * p.zs_mm.len();
+            if let Err(e) = grids.grid_rows(i, rows, &mut g) {
+                // Reported once the band is written (the whole output folder is discarded).
+                *read_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+                g = LaunchGrid::with_len(n);
+            }
             for (o, dst) in s.outputs.iter().zip(out.iter_mut()) {
                 dst.clear();
                 dst.par_extend(
@@ -327,11 +313,19 @@ fn write_study_holding(
                 n_outputs: s.outputs.len(),
             },
             &fill,
-            held_matrix_bytes,
+            (held_matrix_bytes, &spare_lines),
         )
         .map_err(|e| io_err(long_rel, e))?;
         n_files += match pass.held {
-            Some(held) => write_held_maps(root, p, &maps, &held)?,
+            Some(held) => {
+                let n = write_held_maps(root, p, &maps, &held)?;
+                // The next variant formats into these lines' memory.
+                spare_lines
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .extend(held.into_iter().flatten());
+                n
+            }
             None => {
                 let fill_values = |rows: Range<usize>, out: &mut [Vec<f64>]| {
                     fill(rows, &mut Vec::new(), out);
@@ -339,6 +333,7 @@ fn write_study_holding(
                 write_maps(root, p, &maps, &fill_values)?
             }
         };
+        check_read()?;
         n_files += write_svgs(root, p, &maps, &pass.blocks)?;
     }
     if let LongWriter::Parquet(w) = long {
@@ -442,13 +437,13 @@ struct LongPass {
 /// One variant's rows of the long table (ascending rows) into `long`. Every value is formatted
 /// once: the matrix line of each output is written first and the long-table line is assembled
 /// from its cells. The matrix lines are kept for [`write_held_maps`] while they fit in
-/// `budget` bytes ([`HELD_MATRIX_BYTES`]).
+/// `budget` bytes ([`HELD_MATRIX_BYTES`]); new lines reuse the memory of `spare` ones.
 fn long_pass(
     long: &mut LongWriter,
     p: &Prepared,
     v: &LongRows<'_>,
     fill: &LongFill<'_>,
-    budget: usize,
+    (budget, spare): (usize, &std::sync::Mutex<Vec<Vec<Vec<u8>>>>),
 ) -> std::io::Result<LongPass> {
     use std::sync::atomic::{AtomicBool, Ordering};
     let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
@@ -473,11 +468,17 @@ fn long_pass(
         if !(csv || hold) {
             return;
         }
-        band.mats.resize_with(rows.len(), Vec::new);
+        {
+            let mut spare = spare.lock().unwrap_or_else(|e| e.into_inner());
+            band.mats
+                .resize_with(rows.len(), || spare.pop().unwrap_or_default());
+        }
         band.long
             .resize_with(if csv { rows.len() } else { 0 }, Vec::new);
         let (valid, values) = (&band.valid, &band.values);
-        let format_row = |(r, (mats, long)): (usize, (&mut Vec<Vec<u8>>, Option<&mut Vec<u8>>)),
+        let format_row = |r: usize,
+                          mats: &mut Vec<Vec<u8>>,
+                          long: Option<&mut Vec<u8>>,
                           spans: &mut Vec<u32>| {
             let mut y = Vec::new();
             push_f64(&mut y, p.ys_mm[rows.start + r]);
@@ -487,7 +488,7 @@ fn long_pass(
             for (o, line) in mats.iter_mut().enumerate() {
                 let vals = &values[o][r * nz..(r + 1) * nz];
                 line.clear();
-                line.reserve(y.len() + 2 + nz * MATRIX_CELL_BYTES);
+                line.reserve(y.len() + 2 + nz * (MATRIX_CELL_BYTES + 4));
                 line.extend_from_slice(&y);
                 for x in vals {
                     line.push(b',');
@@ -520,13 +521,13 @@ fn long_pass(
                 .zip(band.long.par_iter_mut())
                 .enumerate()
                 .for_each_init(Vec::new, |spans, (r, (m, l))| {
-                    format_row((r, (m, Some(l))), spans)
+                    format_row(r, m, Some(l), spans)
                 });
         } else {
             band.mats
                 .par_iter_mut()
                 .enumerate()
-                .for_each_init(Vec::new, |spans, (r, m)| format_row((r, (m, None)), spans));
+                .for_each_init(Vec::new, |spans, (r, m)| format_row(r, m, None, spans));
         }
     };
     let pq = |e: parquet::errors::ParquetError| std::io::Error::other(e);
@@ -763,17 +764,50 @@ fn write_held_maps(
     files
         .into_par_iter()
         .enumerate()
-        .try_for_each(|(o, f)| -> std::io::Result<()> {
-            let mut f = std::io::BufWriter::with_capacity(1 << 20, f);
-            for band in held.iter().rev() {
-                for row in band.iter().rev() {
-                    f.write_all(&row[o])?;
+        .try_for_each(|(o, mut f)| -> std::io::Result<()> {
+            let mut lines = held
+                .iter()
+                .rev()
+                .flat_map(|band| band.iter().rev().map(|row| &row[o][..]));
+            // A few hundred lines a system call, straight from where they were formatted.
+            loop {
+                let batch: Vec<std::io::IoSlice<'_>> = lines
+                    .by_ref()
+                    .take(256)
+                    .map(std::io::IoSlice::new)
+                    .collect();
+                if batch.is_empty() {
+                    return Ok(());
                 }
+                write_all_slices(&mut f, &batch)?;
             }
-            f.flush()
         })
         .map_err(|e| io_err(Path::new("maps"), e))?;
     Ok(maps.len())
+}
+
+/// Write every byte of `slices` to `f`, in order, with vectored writes.
+fn write_all_slices(f: &mut File, slices: &[std::io::IoSlice<'_>]) -> std::io::Result<()> {
+    let (mut i, mut skip) = (0, 0);
+    while i < slices.len() {
+        let mut head: Vec<std::io::IoSlice<'_>> = Vec::with_capacity(slices.len() - i);
+        head.push(std::io::IoSlice::new(&slices[i][skip..]));
+        head.extend_from_slice(&slices[i + 1..]);
+        let mut n = match f.write_vectored(&head) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        // Skip what was written: whole slices, then part of the next.
+        while i < slices.len() && n >= slices[i].len() - skip {
+            n -= slices[i].len() - skip;
+            i += 1;
+            skip = 0;
+        }
+        skip += n;
+    }
+    Ok(())
 }
 
 /// The pictures (`<stem>.svg`) of `maps`, drawn from their block means. Returns the number of

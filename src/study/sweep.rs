@@ -346,12 +346,18 @@ impl Kernels {
 }
 
 impl GridSource for Kernels {
-    fn grid_rows(&self, variant: usize, rows: std::ops::Range<usize>, out: &mut LaunchGrid) {
+    fn grid_rows(
+        &self,
+        variant: usize,
+        rows: std::ops::Range<usize>,
+        out: &mut LaunchGrid,
+    ) -> std::io::Result<()> {
         let start = std::time::Instant::now();
         out.resize(rows.len() * self.zs_m.len());
         self.kernels[variant].par_eval_grid(&self.ys_m[rows], &self.zs_m, out);
         *self.seconds.lock().expect("not poisoned") += start.elapsed().as_secs_f64();
         self.points
             .fetch_add(out.len(), std::sync::atomic::Ordering::Relaxed);
+        Ok(())
     }
 }
