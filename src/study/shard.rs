@@ -16,9 +16,9 @@ use crate::data::{escape, read_text, DataError};
 use crate::sweep::kernel::LaunchGrid;
 
 use super::metrics::metric_names;
-use super::output::{cell, Files, GridSource};
+use super::output::{cell, Files};
 use super::spec::{parse_study, resolved_toml};
-use super::sweep::{ItemResult, Prepared};
+use super::sweep::{GridSource, ItemResult, Prepared};
 use super::StudyError;
 
 const ROWS_HEADER: &str =
