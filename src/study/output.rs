@@ -89,7 +89,6 @@ pub enum TableFormat {
 /// Grid points per streamed band (about 64 k: a few MB of values and text per band).
 pub const BAND_POINTS: usize = 1 << 16;
 
-
 fn io_err(path: &Path, e: std::io::Error) -> std::io::Error {
     std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
 }
