@@ -24,7 +24,7 @@
 use nalgebra::{Matrix3, Vector3};
 
 use super::delivery::{face_orientation, Delivery};
-use super::face::{FaceError, FaceGeometry};
+use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
 
@@ -155,6 +155,24 @@ pub struct ImpactModel {
     club_inv_inertia: Matrix3<f64>,
     inv_mass_sum: f64,
     laws: Laws,
+}
+
+/// What an impact needs from a delivery apart from the impact location, for one pair of loft and
+/// face biases (see [`ImpactModel::delivery_frame`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DeliveryFrame {
+    /// Orientation `R_GF` of the face at impact (biases applied).
+    pub r_gf: Matrix3<f64>,
+    /// Clubhead CoM velocity in F, m/s.
+    pub club_velocity_f_m_s: Vector3<f64>,
+    /// Clubhead angular velocity in F, rad/s.
+    pub club_omega_f_rad_s: Vector3<f64>,
+    /// Clubhead CoM speed, m/s.
+    pub club_speed_m_s: f64,
+    /// Loft bias the frame was made with, rad.
+    pub loft_bias_rad: f64,
+    /// Face-angle bias the frame was made with, rad.
+    pub face_bias_rad: f64,
 }
 
 /// Everything the impact produces, in the ground frame `G`, SI units.
@@ -396,17 +414,53 @@ impl ImpactModel {
         )
     }
 
-    /// Solve one impact.
+    /// The delivery's part of an impact that does not depend on where the ball meets the face:
+    /// the face orientation (with this model's loft and face biases) and the clubhead's
+    /// velocities in the face frame. A fit computes it once per shot (and per bias) and reuses
+    /// it for every evaluation and every impact-location node ([`ImpactModel::solve_in`]).
     #[inline]
-    pub fn solve(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
-        let p = &self.params;
+    pub fn delivery_frame(&self, d: &Delivery) -> DeliveryFrame {
         let r_gf = self.face_orientation(d);
         let r_fg = r_gf.transpose();
         let v_c_g = d.club_velocity_m_s();
-        let v_c = r_fg * v_c_g;
-        let w_c = r_fg * d.club_omega_rad_s;
+        DeliveryFrame {
+            r_gf,
+            club_velocity_f_m_s: r_fg * v_c_g,
+            club_omega_f_rad_s: r_fg * d.club_omega_rad_s,
+            club_speed_m_s: d.club_speed_m_s,
+            loft_bias_rad: self.params.loft_bias_rad,
+            face_bias_rad: self.params.face_bias_rad,
+        }
+    }
 
+    /// Solve one impact.
+    #[inline]
+    pub fn solve(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
+        let frame = self.delivery_frame(d);
         let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
+        self.solve_in(&frame, &cf, d.impact_y_m, d.impact_z_m)
+    }
+
+    /// Solve one impact from a precomputed delivery frame (made by [`ImpactModel::delivery_frame`]
+    /// of a model with the same loft and face biases) and the contact frame of this model's face
+    /// at the impact location `(y_m, z_m)`. [`ImpactModel::solve`] is exactly this, so both give
+    /// the same bits.
+    #[inline]
+    pub fn solve_in(
+        &self,
+        frame: &DeliveryFrame,
+        cf: &ContactFrame,
+        y_m: f64,
+        z_m: f64,
+    ) -> Result<ImpactOutcome, ImpactError> {
+        debug_assert!(
+            frame.loft_bias_rad == self.params.loft_bias_rad
+                && frame.face_bias_rad == self.params.face_bias_rad
+        );
+        let p = &self.params;
+        let r_gf = frame.r_gf;
+        let v_c = frame.club_velocity_f_m_s;
+        let w_c = frame.club_omega_f_rad_s;
         let n = cf.normal;
         let r_c = cf.point_m - p.club_com_m;
 
@@ -419,10 +473,7 @@ impl ImpactModel {
         }
         let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
         let laws = &self.laws;
-        let e = laws.restitution.cor(
-            u1n,
-            d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m,
-        );
+        let e = laws.restitution.cor(u1n, y_m * y_m + z_m * z_m);
         // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
         let r_b_arr = laws.ball.lever(
             &arr(&n),
@@ -460,7 +511,7 @@ impl ImpactModel {
             normal_approach_speed_m_s: u1n,
             cor_effective: e,
             slipped,
-            club_speed_m_s: d.club_speed_m_s,
+            club_speed_m_s: frame.club_speed_m_s,
         })
     }
 

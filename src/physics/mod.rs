@@ -15,6 +15,7 @@ pub mod laws;
 pub use delivery::{face_orientation, Delivery};
 pub use face::{ContactFrame, FaceError, FaceGeometry};
 pub use impact::{
-    solve_spd3, validate_inertia, ImpactError, ImpactModel, ImpactOutcome, ModelParams, ParamError,
+    solve_spd3, validate_inertia, DeliveryFrame, ImpactError, ImpactModel, ImpactOutcome,
+    ModelParams, ParamError,
 };
 pub use launch::{Launch, LaunchComponent};
