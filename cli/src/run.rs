@@ -246,8 +246,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     crate::study_output::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
     eprintln!(
         "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
-         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
-         for the long table and the matrices)",
+         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s)",
         kernels.points(),
         kernels.seconds(),
         kernels.points() as f64 / kernels.seconds().max(1e-9)

@@ -874,7 +874,7 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             ("grid.z_mm values", grid.z_mm.len()),
         ],
         super::MAX_SWEEP_POINTS as usize,
-        "one run holds its results in memory; use a coarser [grid] or fewer [design] values",
+        "a run's time and disk grow with it; use a coarser [grid] or fewer [design] values",
     )
     .map_err(|e| whole("grid", e))?;
 
