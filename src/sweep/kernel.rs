@@ -298,6 +298,8 @@ impl FaceMapKernel {
             loft_bias_rad: _,          // in model.face_orientation
             face_bias_rad: _,          // in model.face_orientation
             hosel_m: _,                // composed into mass, CoM and inertia by the effects
+            contact_time_s: _,         // in laws.contact
+            tangential_restitution_slope: _, // in laws.tangential
         } = model.params();
         // Exactly the operations of `ImpactModel::solve`, so u1·n has the same bits.
         let r_gf = model.face_orientation(delivery);
@@ -525,20 +527,28 @@ impl FaceMapKernel {
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
         let n = [nx, ny, nz];
-        let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
-        let k = laws.collision.matrix(&[rcx, rcy, rcz], &[rbx, rby, rbz]);
-        let ([px, py, pz], _slip) =
-            laws.tangential
-                .impulse::<V, FRICTION>(&k, &n, &[u1x, u1y, u1z], u1n, e);
+        let r_b = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
+        let r_c = [rcx, rcy, rcz];
+        let k = laws.collision.matrix(&r_c, &r_b);
+        let w_c = self.w_c.map(V::splat);
+        let ([px, py, pz], [wfx, wfy, wfz], _slip) = laws.contact.impact::<V, FRICTION>(
+            &laws.tangential,
+            &laws.collision.club_inv_inertia,
+            &k,
+            &n,
+            &[u1x, u1y, u1z],
+            u1n,
+            e,
+            &w_c,
+            &r_c,
+            &r_b,
+        );
 
         // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
         let rv = &self.r_v;
         let vgx = rv[0][0] * px + rv[0][1] * py + rv[0][2] * pz;
         let vgy = rv[1][0] * px + rv[1][1] * py + rv[1][2] * pz;
         let vgz = rv[2][0] * px + rv[2][1] * py + rv[2][2] * pz;
-        let wfx = rby * pz - rbz * py;
-        let wfy = rbz * px - rbx * pz;
-        let wfz = rbx * py - rby * px;
         let rw = &self.r_w;
         let wgy = rw[0][0] * wfx + rw[0][1] * wfy + rw[0][2] * wfz;
         let wgz = rw[1][0] * wfx + rw[1][1] * wfy + rw[1][2] * wfz;
