@@ -2,14 +2,19 @@
 //!
 //! The flow, one room per folder, in the order data moves through them:
 //!
+//! - [`lanes`]: a tiny portable SIMD type (fixed-width `f64` lanes) that the batch code (physics
+//!   laws, face-map kernel, flight integrator) is written in.
 //! - [`physics`]: the pure momentum-based impact model (face torus, frames, 3×3 impulse solve,
 //!   launch conditions). No I/O.
 //! - [`effects`]: the named library of physics beyond the nominal model, each with parameters,
 //!   units and bounds.
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
-//! - [`data`]: club TOML, shots CSV, predictions CSV, synth outputs; the one place that writes
-//!   files.
-//! - [`synth`]: synthetic experiments with hidden effects and world-only physics.
+//! - [`model`]: the domain types every room above the physics shares: a shot and the delivery
+//!   variables (column, unit, range, typical instrument noise). No I/O.
+//! - [`data`]: club TOML, shots CSV, predictions CSV, noise files, launch-monitor import; the one
+//!   place that writes files.
+//! - [`synth`]: synthetic experiments with hidden effects and world-only physics (and the bytes
+//!   of their files).
 //! - [`predict`]: shots → model → predictions.
 //! - [`compare`]: model against measurements: Table 2, significance, face maps, findings.
 //! - [`stats`]: pure statistics (summaries, t tests, correlation, robust scale, regression,
@@ -23,12 +28,13 @@
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
 //! - [`report`]: output rendering (SVG heatmaps, CSV matrices, text tables).
-//! - [`cli`]: the `smash` command line, a thin layer over the library.
+//!
+//! The `smash` command line is a separate package of the workspace (`cli/`), a thin layer over
+//! this library; the library itself has no command-line dependencies.
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
-pub mod cli;
 pub mod club;
 pub mod compare;
 pub mod data;
@@ -36,8 +42,10 @@ pub mod diagnose;
 pub mod effects;
 pub mod fit;
 pub mod flight;
+pub mod lanes;
 pub mod limits;
 pub mod measurement;
+pub mod model;
 pub mod physics;
 pub mod predict;
 pub mod report;

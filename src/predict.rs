@@ -6,8 +6,9 @@
 use std::collections::BTreeMap;
 
 use crate::club::ClubSpec;
-use crate::data::shots::{Shot, ShotTable};
+use crate::data::shots::ShotTable;
 use crate::measurement::{expected_outcome, ImpactNoise, MeasurementError};
+use crate::model::Shot;
 use crate::physics::{ImpactError, ImpactModel, ImpactOutcome, Launch, ParamError};
 
 /// Why a set of shots cannot be predicted.

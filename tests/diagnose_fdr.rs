@@ -24,10 +24,11 @@ mod common;
 use std::path::Path;
 
 use common::{paper_club, shots, Experiment};
-use smash::data::shots::Shot;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentNoise};
 use smash::diagnose::{diagnose, DiagnoseOptions, Diagnosis};
-use smash::synth::{generate, read_config, DeliveryVar, SynthConfig};
+use smash::model::DeliveryVar;
+use smash::model::Shot;
+use smash::synth::{generate, read_config, SynthConfig};
 
 /// The null worlds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -218,7 +218,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
 
 /// Fit `request` on `shots` from the nominal paper club; every fitted parameter must be within
 /// three standard errors of the truth.
-fn recovers(shots: &[smash::data::shots::Shot], request: &str, truth: &[f64]) {
+fn recovers(shots: &[smash::model::Shot], request: &str, truth: &[f64]) {
     let req = parse_effect_list(request).unwrap();
     let cal = calibrate(
         &common::paper_club(),

@@ -5,10 +5,10 @@ use std::path::Path;
 
 use smash::data::club_file::read_club;
 use smash::data::shots::parse_shots;
-use smash::data::synth_files::{synth_shots_csv, truth_toml};
 use smash::effects::{Effect, EffectKind};
 use smash::physics::LaunchComponent;
 use smash::stats::std_dev;
+use smash::synth::files::{synth_shots_csv, truth_toml};
 use smash::synth::{generate, parse_config, read_config, SynthConfig, SynthError, SynthRun};
 use smash::ClubSpec;
 

@@ -17,7 +17,7 @@ pub mod signatures;
 
 use serde::Serialize;
 
-use crate::data::shots::Shot;
+use crate::model::Shot;
 use crate::physics::{Launch, LaunchComponent};
 use crate::stats::{pearson, student_t_two_sided_p, Summary};
 

@@ -12,7 +12,6 @@ pub mod number;
 pub mod predictions;
 pub mod safe_write;
 pub mod shots;
-pub mod synth_files;
 
 use std::fmt;
 use std::io::Write;

@@ -24,8 +24,8 @@ use toml::Spanned;
 
 use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::diagnose::noise_floor::{InstrumentClass, InstrumentNoise};
+use crate::model::DeliveryVar;
 use crate::physics::LaunchComponent;
-use crate::synth::DeliveryVar;
 
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]

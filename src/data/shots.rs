@@ -22,6 +22,9 @@ use nalgebra::Vector3;
 
 use super::DataError;
 use crate::limits::{self, PhysicalRange};
+/// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
+/// callers of the reader.
+pub use crate::model::Shot;
 use crate::physics::{Delivery, Launch, LaunchComponent};
 use crate::units::{deg, mm, mph, rpm};
 
@@ -50,23 +53,6 @@ pub const OPTIONAL_COLUMNS: [&str; 7] = [
 
 /// Group of shots without a `group` column.
 pub const DEFAULT_GROUP: &str = "all";
-
-/// One shot: who, how the club was delivered and, if measured, how the ball launched.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Shot {
-    /// Unique id.
-    pub id: String,
-    /// Group (e.g. shaft); `all` when the file has none.
-    pub group: String,
-    /// Golfer, when known.
-    pub golfer: Option<String>,
-    /// Shaft mass, g, when known.
-    pub shaft_mass_g: Option<f64>,
-    /// Clubhead delivery, SI.
-    pub delivery: Delivery,
-    /// Measured launch, SI, when the file has launch columns.
-    pub measured: Option<Launch>,
-}
 
 /// A shots file: parsed shots plus the raw table, so outputs can carry every input column.
 #[derive(Debug, Clone, PartialEq)]

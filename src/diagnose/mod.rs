@@ -40,7 +40,6 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
 use crate::effects::EffectKind;
 use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions, ParamEstimate};
 use crate::fit::covariance::covariance;
@@ -48,6 +47,7 @@ use crate::fit::{
     run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
 };
 use crate::measurement::ImpactNoise;
+use crate::model::Shot;
 use crate::physics::LaunchComponent;
 use crate::stats::{self, launch_error_table, ErrorTable};
 

@@ -33,12 +33,11 @@
 use serde_json::json;
 
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
 use crate::fit::{FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::model::Shot;
+use crate::model::{default_launch_noise, delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use crate::physics::{Delivery, LaunchComponent};
 use crate::stats::{self, tdist::student_t_cdf};
-use crate::synth::config::default_launch_noise;
-use crate::synth::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 
 use super::Diagnosis;
 

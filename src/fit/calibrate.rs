@@ -25,8 +25,8 @@ use super::run::{run_lm, FitRun, Progress};
 use super::spec::{EffectRequest, ParamLayout};
 use super::FitError;
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
 use crate::effects::EffectKind;
+use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable, LineFit};
 
 /// Correlation magnitude beyond which a pair of estimates is flagged.

@@ -76,8 +76,8 @@ impl LevenbergMarquardt {
                 .zip(upper.iter())
                 .any(|(l, u)| !(l.is_finite() && u.is_finite() && l < u))
         {
-            return Err(anyhow::anyhow!(
-                "Levenberg-Marquardt: bounds must be finite with lower < upper"
+            return Err(ArgminError::msg(
+                "Levenberg-Marquardt: bounds must be finite with lower < upper",
             ));
         }
         Ok(Self {
@@ -96,7 +96,7 @@ impl LevenbergMarquardt {
     /// Set the relative χ² change at which it stops (default 1e-10).
     pub fn with_ftol(mut self, ftol: f64) -> Result<Self, ArgminError> {
         if !(ftol > 0.0) {
-            return Err(anyhow::anyhow!("Levenberg-Marquardt: ftol must be > 0"));
+            return Err(ArgminError::msg("Levenberg-Marquardt: ftol must be > 0"));
         }
         self.ftol = ftol;
         Ok(self)
@@ -139,13 +139,13 @@ where
     ) -> Result<(LmState, Option<KV>), ArgminError> {
         let mut theta = state
             .take_param()
-            .ok_or_else(|| anyhow::anyhow!("Levenberg-Marquardt needs a starting point"))?;
+            .ok_or_else(|| ArgminError::msg("Levenberg-Marquardt needs a starting point"))?;
         if theta.len() != self.lower.len() {
-            return Err(anyhow::anyhow!(
+            return Err(ArgminError::msg(format!(
                 "Levenberg-Marquardt: {} parameters but {} bounds",
                 theta.len(),
                 self.lower.len()
-            ));
+            )));
         }
         self.project(&mut theta);
         let r = problem.apply(&theta)?;

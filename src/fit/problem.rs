@@ -24,8 +24,8 @@ use rayon::prelude::*;
 use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
 use crate::measurement::{expected_outcome, ImpactNoise, LocationNode, NODES_PER_SHOT};
+use crate::model::Shot;
 use crate::physics::{
     Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError,
 };

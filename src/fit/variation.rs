@@ -9,8 +9,8 @@
 //! centre needs different impact locations. [`check_variation`] finds these cases so
 //! `calibrate` and `diagnose` can say so instead of reporting a fit.
 
-use crate::data::shots::Shot;
 use crate::effects::EffectKind;
+use crate::model::Shot;
 
 use super::{EffectRequest, FitError};
 

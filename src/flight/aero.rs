@@ -29,7 +29,7 @@
 
 use std::path::Path;
 
-use crate::sweep::lanes::{V, W};
+use crate::lanes::{V, W};
 
 /// Drag, lift and moment coefficients (dimensionless).
 #[derive(Debug, Clone, Copy, PartialEq)]

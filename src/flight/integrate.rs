@@ -21,8 +21,8 @@ use rayon::prelude::*;
 
 use super::aero::{CoefficientModel, Fmm2022, NathanLyu};
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
+use crate::lanes::{V, W};
 use crate::sweep::kernel::{simd_level, SimdLevel};
-use crate::sweep::lanes::{V, W};
 
 /// Launches one rayon task takes.
 const PER_TASK: usize = 64;

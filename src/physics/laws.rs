@@ -22,7 +22,7 @@
 
 use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
 
-use crate::sweep::lanes::{M, V};
+use crate::lanes::{M, V};
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
@@ -109,7 +109,7 @@ impl Real for V {
     }
     #[inline(always)]
     fn no() -> M {
-        M([0; crate::sweep::lanes::W])
+        M([0; crate::lanes::W])
     }
     #[inline(always)]
     fn select(m: M, a: Self, b: Self) -> Self {

@@ -128,7 +128,7 @@ pub const TREND_VARIABLES: [&str; 4] = [
 
 impl ShotResiduals {
     /// From shots and their expected launches (same order).
-    pub fn new(shots: &[crate::data::shots::Shot], launches: &[crate::physics::Launch]) -> Self {
+    pub fn new(shots: &[crate::model::Shot], launches: &[crate::physics::Launch]) -> Self {
         let variables = VARIABLES
             .iter()
             .filter(|v| TREND_VARIABLES.contains(&v.name))

@@ -114,6 +114,17 @@ mod tests {
     use crate::stats::launch_error_table;
 
     #[test]
+    fn a_single_shot_groups_undefined_spread_is_a_dash() {
+        // The spread of a one-shot group is undefined (NaN in the table, null in JSON): text
+        // shows a dash, never "NaN".
+        let t = launch_error_table(&["A", "A", "B"], &[[1.0; 5], [3.0; 5], [2.0; 5]]);
+        let std = t.groups[1].components[0].std;
+        assert!(std.is_nan());
+        assert!(fmt_value(LaunchComponent::BallSpeed, std) == "–");
+        assert!(fmt_value(LaunchComponent::BallSpeed, f64::NAN) == "–");
+    }
+
+    #[test]
     fn renders_aligned() {
         let mut t = TextTable::new(["a", "bb"]);
         t.row(["xyz", "1"]);

@@ -21,6 +21,7 @@
 
 pub mod design;
 pub mod distribution;
+pub mod evaluate;
 pub mod metrics;
 pub mod optimise;
 pub mod output;
@@ -150,8 +151,25 @@ pub fn finish(
     ),
     StudyError,
 > {
-    metrics::check_finite(p, metrics)?;
+    check_finite(p, metrics)?;
     let sens = sensitivity::sensitivities(p)?;
     let opt = optimise::optimise(p)?;
     Ok((sens, opt))
+}
+
+/// Every summary metric of every variant is finite (nothing infinite or undefined may reach an
+/// output); the first that is not is an error naming the variant and the metric.
+pub fn check_finite(p: &Prepared, metrics: &[Vec<f64>]) -> Result<(), StudyError> {
+    let names = metrics::metric_names(p.study.distribution.is_some());
+    for (id, (d, m)) in p.variants.iter().zip(metrics).enumerate() {
+        if let Some((j, v)) = m.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+            return Err(StudyError::NotFinite {
+                id,
+                values: d.describe(),
+                metric: names.get(j).cloned().unwrap_or_default(),
+                value: *v,
+            });
+        }
+    }
+    Ok(())
 }

@@ -17,7 +17,8 @@ use argmin::core::{CostFunction, Executor, IterState, State, KV};
 use argmin::solver::neldermead::NelderMead;
 
 use super::design::Design;
-use super::metrics::{evaluate, metric_names};
+use super::evaluate::evaluate;
+use super::metrics::metric_names;
 use super::spec::{Goal, OptimiseSpec};
 use super::sweep::{design_model, Prepared};
 use super::StudyError;

@@ -51,7 +51,7 @@ use super::metrics::{metric_names, metric_unit, Output};
 use super::optimise::OptimiseResult;
 use super::sensitivity::Sensitivity;
 use super::spec::resolved_toml;
-use super::sweep::{Prepared, VariantResult};
+use super::sweep::{GridSource, Prepared, VariantResult};
 
 /// Files to write: path relative to the output folder, bytes.
 pub type Files = Vec<(PathBuf, Vec<u8>)>;
@@ -85,12 +85,6 @@ pub enum TableFormat {
 
 /// Grid points per streamed band (about 64 k: a few MB of values and text per band).
 pub const BAND_POINTS: usize = 1 << 16;
-
-/// Where the face maps come from: computed on demand (a run) or held (a merge).
-pub trait GridSource: Sync {
-    /// Rows `rows` of variant `variant` into `out` (resized to `rows.len() · nz` points).
-    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid);
-}
 
 /// Complete per-variant results (a merge) as a [`GridSource`].
 pub struct HeldGrids<'a> {

@@ -15,7 +15,8 @@ use crate::sweep::kernel::{FaceMapKernel, LaunchGrid};
 use crate::units::{mm, mph};
 
 use super::design::{Design, DesignVar};
-use super::metrics::{evaluate, Output};
+use super::evaluate::evaluate;
+use super::metrics::Output;
 use super::sweep::{design_model, Prepared};
 use super::StudyError;
 

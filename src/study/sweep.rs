@@ -13,8 +13,7 @@ use crate::units::mm;
 
 use super::design::Design;
 use super::distribution::SwingGroup;
-use super::metrics::{evaluate, impacts_per_design};
-use super::output::GridSource;
+use super::evaluate::{evaluate, impacts_per_design};
 use super::spec::Study;
 use super::StudyError;
 
@@ -320,6 +319,12 @@ pub struct VariantResult {
     pub grid: LaunchGrid,
     /// Summary metrics.
     pub metrics: Vec<f64>,
+}
+
+/// Where the face maps come from: computed on demand (a run) or held (a merge).
+pub trait GridSource: Sync {
+    /// Rows `rows` of variant `variant` into `out` (resized to `rows.len() · nz` points).
+    fn grid_rows(&self, variant: usize, rows: std::ops::Range<usize>, out: &mut LaunchGrid);
 }
 
 /// One face-map kernel per variant: the study's maps computed on demand (a [`GridSource`]).

@@ -24,7 +24,7 @@
 //! Special values: `atan2(±0, +0) = ±0`, `atan2(±0, −0) = ±π`, NaN in → NaN out. Infinite
 //! arguments are not supported (the kernel never produces them for valid impacts).
 
-use super::lanes::V;
+use crate::lanes::V;
 
 /// `tan(3π/8)`.
 const T3P8: f64 = 2.414_213_562_373_095;
@@ -65,7 +65,7 @@ pub fn atan2(y: f64, x: f64) -> f64 {
     atan2_v(V::splat(y), V::splat(x)).0[0]
 }
 
-/// [`atan2`] on [`W`](super::lanes::W) lanes.
+/// [`atan2`] on [`W`](crate::lanes::W) lanes.
 #[inline(always)]
 pub fn atan2_v(y: V, x: V) -> V {
     let ax = x.abs();

@@ -42,7 +42,7 @@ use nalgebra::{Matrix3, Vector3};
 use rayon::prelude::*;
 
 use super::fastmath::atan2_v;
-use super::lanes::{M, V, W};
+use crate::lanes::{M, V, W};
 use crate::physics::laws::Laws;
 use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 

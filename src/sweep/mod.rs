@@ -8,7 +8,6 @@
 
 pub mod fastmath;
 pub mod kernel;
-pub mod lanes;
 
 pub use kernel::{
     face_map, face_map_into, simd_level, FaceMapKernel, LaunchGrid, RowOut, SimdLevel, LANES,

@@ -15,74 +15,15 @@ use toml::Spanned;
 use crate::data::club_file::parse_effect_table;
 use crate::data::{parse_toml, read_text, toml_key_error, DataError};
 use crate::effects::Effect;
-use crate::limits::{self, count_product, PhysicalRange};
+use crate::limits::{self, count_product};
+use crate::model::{default_launch_noise, DeliveryVar, N_DELIVERY};
 use crate::physics::LaunchComponent;
 
 use super::contact::{ContactParams, ShaftTip};
 
-/// The delivery variables a synthetic golfer produces, in shots-file column order.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum DeliveryVar {
-    /// Clubhead CoM speed, mph.
-    ClubSpeed,
-    /// Attack angle, deg.
-    AttackAngle,
-    /// Club path, deg.
-    ClubPath,
-    /// Dynamic loft, deg.
-    DynamicLoft,
-    /// Face angle, deg.
-    FaceAngle,
-    /// Lie tilt, deg.
-    LieTilt,
-    /// Clubhead angular velocity about ground x, rad/s.
-    OmegaX,
-    /// About ground y (up), rad/s.
-    OmegaY,
-    /// About ground z, rad/s.
-    OmegaZ,
-    /// Impact location up the face, mm.
-    ImpactY,
-    /// Impact location toward the toe, mm.
-    ImpactZ,
-}
-
-/// Number of delivery variables.
-pub const N_DELIVERY: usize = 11;
-
+// The synthetic golfer's default scatter of each delivery variable belongs to synth, not to
+// the shared definition of the variables (crate::model).
 impl DeliveryVar {
-    /// All variables in column order.
-    pub const ALL: [DeliveryVar; N_DELIVERY] = [
-        Self::ClubSpeed,
-        Self::AttackAngle,
-        Self::ClubPath,
-        Self::DynamicLoft,
-        Self::FaceAngle,
-        Self::LieTilt,
-        Self::OmegaX,
-        Self::OmegaY,
-        Self::OmegaZ,
-        Self::ImpactY,
-        Self::ImpactZ,
-    ];
-
-    /// Shots-file column (and config key).
-    pub const fn column(self) -> &'static str {
-        match self {
-            Self::ClubSpeed => "club_speed_mph",
-            Self::AttackAngle => "attack_angle_deg",
-            Self::ClubPath => "club_path_deg",
-            Self::DynamicLoft => "dynamic_loft_deg",
-            Self::FaceAngle => "face_angle_deg",
-            Self::LieTilt => "lie_tilt_deg",
-            Self::OmegaX => "club_omega_x_rad_s",
-            Self::OmegaY => "club_omega_y_rad_s",
-            Self::OmegaZ => "club_omega_z_rad_s",
-            Self::ImpactY => "impact_y_mm",
-            Self::ImpactZ => "impact_z_mm",
-        }
-    }
-
     /// Default spread: population mean, golfer-to-golfer SD, swing-to-swing SD (file units).
     ///
     /// Driver values for skilled amateurs (reasoning and sources in `configs/synth/README.md`).
@@ -105,47 +46,6 @@ impl DeliveryVar {
             between,
             within,
         }
-    }
-
-    /// Default measurement noise SD on the delivery (motion capture), file units.
-    pub const fn default_noise(self) -> f64 {
-        match self {
-            Self::ClubSpeed => 0.4,
-            Self::AttackAngle | Self::ClubPath | Self::FaceAngle => 0.3,
-            Self::DynamicLoft => 0.5,
-            Self::LieTilt => 0.5,
-            Self::OmegaX | Self::OmegaY | Self::OmegaZ => 0.5,
-            Self::ImpactY | Self::ImpactZ => 1.5,
-        }
-    }
-
-    /// The physically meaningful values of the variable (see [`crate::limits`]).
-    pub const fn range(self) -> PhysicalRange {
-        match self {
-            Self::ClubSpeed => limits::CLUB_SPEED_MPH,
-            Self::DynamicLoft => limits::DYNAMIC_LOFT_DEG,
-            Self::AttackAngle | Self::ClubPath | Self::FaceAngle | Self::LieTilt => {
-                limits::DELIVERY_ANGLE_DEG
-            }
-            Self::OmegaX | Self::OmegaY | Self::OmegaZ => limits::CLUB_OMEGA_RAD_S,
-            Self::ImpactY | Self::ImpactZ => limits::IMPACT_LOCATION_MM,
-        }
-    }
-
-    /// Index in [`DeliveryVar::ALL`].
-    pub const fn index(self) -> usize {
-        self as usize
-    }
-}
-
-/// Default launch-monitor noise SD (a GCQuad-class camera unit), file units.
-pub const fn default_launch_noise(c: LaunchComponent) -> f64 {
-    match c {
-        LaunchComponent::BallSpeed => 0.5,
-        LaunchComponent::LaunchAngle => 0.3,
-        LaunchComponent::Azimuth => 0.5,
-        LaunchComponent::Backspin => 120.0,
-        LaunchComponent::Sidespin => 150.0,
     }
 }
 

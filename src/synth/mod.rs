@@ -40,23 +40,23 @@
 
 pub mod config;
 pub mod contact;
+pub mod files;
 
-use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
 
 use crate::club::ClubSpec;
-use crate::data::shots::Shot;
+use crate::model::Shot;
 use crate::physics::impact::COR_SPEED_REFERENCE_M_S;
 use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ParamError};
 use crate::units::{deg, mm, mph, rpm};
 
 pub use contact::{ContactOutcome, ContactParams, ContactWorld, ShaftTip};
 
+pub use crate::model::delivery::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 pub use config::{
-    config_toml, parse_config, read_config, DeliveryVar, GroupSpec, Spread, SynthConfig,
-    WorldPhysics, N_DELIVERY,
+    config_toml, parse_config, read_config, GroupSpec, Spread, SynthConfig, WorldPhysics,
 };
 
 /// One synthetic shot, file units throughout (mph, deg, rad/s, mm, rpm).
@@ -148,21 +148,6 @@ pub enum SynthError {
         /// Last reason a draw was rejected.
         last: String,
     },
-}
-
-/// Delivery in SI from file-unit values in [`DeliveryVar::ALL`] order.
-pub fn delivery_from_file_units(v: &[f64; N_DELIVERY]) -> Delivery {
-    Delivery {
-        club_speed_m_s: mph(v[0]),
-        attack_angle_rad: deg(v[1]),
-        club_path_rad: deg(v[2]),
-        dynamic_loft_rad: deg(v[3]),
-        face_angle_rad: deg(v[4]),
-        lie_tilt_rad: deg(v[5]),
-        club_omega_rad_s: Vector3::new(v[6], v[7], v[8]),
-        impact_y_m: mm(v[9]),
-        impact_z_m: mm(v[10]),
-    }
 }
 
 fn normals<const N: usize>(rng: &mut ChaCha8Rng) -> [f64; N] {

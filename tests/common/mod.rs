@@ -11,8 +11,8 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 
 use smash::data::club_file::read_club;
-use smash::data::shots::Shot;
 use smash::effects::{Effect, EffectKind};
+use smash::model::Shot;
 use smash::physics::{Delivery, Launch};
 use smash::units::{deg, mm, mph, rpm};
 use smash::ClubSpec;
@@ -26,9 +26,20 @@ pub const NOISE: [f64; 5] = [0.8, 0.5, 0.5, 150.0, 150.0];
 /// The paper's shafts: group and mass, g.
 pub const SHAFTS: [(&str, f64); 3] = [("A", 74.5), ("B", 60.3), ("C", 70.9)];
 
+/// The repository root. This module is compiled into the tests of both packages of the
+/// workspace: the library's (`tests/`) and the command line's (`cli/tests/`, one level down).
+pub fn repo_root() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    if env!("CARGO_PKG_NAME") == "smash-cli" {
+        dir.parent().expect("cli/ has a parent").to_path_buf()
+    } else {
+        dir.to_path_buf()
+    }
+}
+
 /// The paper's driver (Table 1), nominal.
 pub fn paper_club() -> ClubSpec {
-    let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml");
+    let p = repo_root().join("configs/clubs/paper_driver.toml");
     read_club(&p).expect("paper club reads")
 }
 
@@ -180,5 +191,5 @@ pub fn shots_csv(shots: &[Shot], measured: bool, golfer: bool) -> String {
 
 /// Path of the paper club file.
 pub fn paper_club_path() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml")
+    repo_root().join("configs/clubs/paper_driver.toml")
 }

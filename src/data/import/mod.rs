@@ -43,7 +43,7 @@ pub const PRESETS: [(&str, &str); 4] = [
 ];
 
 /// Which way a positive heel–toe impact offset points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, clap::ValueEnum)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum OffsetSide {
     /// Positive offsets are toward the toe (the shots file's `impact_z_mm` sign).

@@ -1,0 +1,427 @@
+//! `smash calibrate`: fit named effects to measured launch conditions.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use anyhow::Context;
+use clap::{Args, ValueEnum};
+use serde_json::json;
+
+use smash::data::club_file::{club_toml_checked, read_club};
+use smash::data::write_atomic;
+use smash::diagnose::honest;
+use smash::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
+use smash::physics::LaunchComponent;
+use smash::report::{error_tables_side_by_side, TextTable};
+use smash::stats::t_statistic;
+
+use super::progress::IterationLine;
+
+/// Fitting procedure.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum MethodArg {
+    /// Whitened Levenberg-Marquardt on all five launch components (noise scales estimated
+    /// from the data, re-estimated after a first fit).
+    Lm,
+    /// The paper's procedure: cost of its Eq. 11, alternating W = inf (velocity) and W = 0
+    /// (spin) stages, each parameter in the stage where it is more sensitive.
+    Paper,
+}
+
+/// Arguments of `smash calibrate`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    smash calibrate --club configs/clubs/paper_driver.toml --shots shots.csv \\\n      \
+    --effects added_mass@group,ball_offset --out-club calibrated.toml\n  \
+    smash calibrate --club club.toml --shots shots.csv --effects added_mass@A --method paper --json")]
+pub struct CalibrateArgs {
+    /// Club file (TOML); its own [[effect]] tables stay fixed.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV) with measured launch columns.
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
+    /// Effects to fit, comma-separated: `name` (global), `name@group` (one per group of the
+    /// shots), `name@A` (group A only).
+    #[arg(long, value_name = "LIST")]
+    pub effects: String,
+
+    /// Fitting procedure.
+    #[arg(long, value_enum, default_value = "lm")]
+    pub method: MethodArg,
+
+    /// Write the calibrated club (club TOML with [[effect]] tables), only after success.
+    #[arg(long, value_name = "OUT.toml")]
+    pub out_club: Option<PathBuf>,
+
+    /// Write a self-contained HTML report (errors before and after, estimates with their
+    /// plausible ranges, the calibrated model's trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
+    /// Print one JSON object on stdout (progress and prose go to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Iteration limit of each solver run.
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Solver",
+        allow_negative_numbers = true
+    )]
+    pub max_iters: u64,
+
+    /// Measurement noise of the inputs.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
+}
+
+/// Run `smash calibrate`.
+pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    if let Some(report) = &args.report {
+        smash::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
+    if let Some(out) = &args.out_club {
+        smash::data::safe_write::refuse_inputs(
+            &[("--out-club", out, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
+    let club = read_club(&args.club)?;
+    let table = args.shots_format.read(&args.shots)?;
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    let requests = parse_effect_list(&args.effects)?;
+    let opts = CalibrateOptions {
+        method: match args.method {
+            MethodArg::Lm => Method::Lm,
+            MethodArg::Paper => Method::Paper,
+        },
+        max_iters: args.max_iters,
+        parallel: true,
+        impact_noise: args.measurement.impact_noise_mm,
+    };
+    let line = Arc::new(IterationLine::new());
+    let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
+    line.finish();
+    let cal = cal.with_context(|| args.shots.display().to_string())?;
+    // Nothing infinite or undefined is reported or written into a club file.
+    let mut numbers: Vec<(String, f64)> = vec![
+        ("chi2".into(), cal.chi2),
+        ("nominal chi2".into(), cal.chi2_before),
+        ("reduced chi2".into(), cal.reduced_chi2),
+    ];
+    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
+    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        anyhow::bail!(
+            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
+             (check the shots' measured launch values)",
+            args.shots.display()
+        );
+    }
+    if let Some(out) = &args.out_club {
+        let comment = format!(
+            "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
+             chi2 = {:.3}, reduced chi2 = {:.4}; {}",
+            args.effects,
+            cal.method.name(),
+            args.shots.display(),
+            table.shots.len(),
+            cal.chi2,
+            cal.reduced_chi2,
+            cal.termination
+        );
+        write_atomic(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
+        eprintln!("calibrated club -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let launches = smash::predict::expected_launches(
+            &cal.club,
+            &table.shots,
+            args.measurement.impact_noise_mm,
+        )
+        .with_context(|| args.shots.display().to_string())?;
+        let after = smash::compare::compare(
+            &table.shots,
+            &launches,
+            &smash::compare::CompareOptions::default(),
+        )?;
+        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
+        let title = format!(
+            "{} calibrated on {} ({} shots)",
+            club.name,
+            args.shots.display(),
+            table.shots.len()
+        );
+        let html = smash::report::html::calibrate_page(&cal, &after, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    if args.json {
+        crate::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
+    } else {
+        crate::stdout::print(text_report(&cal, table.shots.len()))?;
+    }
+    Ok(())
+}
+
+fn opt(v: Option<f64>) -> serde_json::Value {
+    v.filter(|x| x.is_finite())
+        .map_or(serde_json::Value::Null, |x| json!(x))
+}
+
+/// The machine-readable report.
+pub fn to_json(cal: &Calibration) -> serde_json::Value {
+    let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
+    let params: Vec<serde_json::Value> = cal
+        .params
+        .iter()
+        .map(|p| {
+            json!({
+                "effect": p.effect,
+                "param": p.param,
+                "group": p.group,
+                "value": p.value,
+                "stderr": opt(p.stderr),
+                "unit": p.unit,
+                "t": opt(p.stderr.map(|s| t_statistic(p.value, s))),
+                "at_bound": p.at_bound,
+                "plausible": honest::is_plausible(p),
+                "plausible_range": honest::spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
+                "stand_in": honest::stand_in(p),
+            })
+        })
+        .collect();
+    let correlation = cal.correlation.as_ref().map(|c| {
+        let rows: Vec<Vec<f64>> = (0..c.nrows())
+            .map(|i| (0..c.ncols()).map(|j| c[(i, j)]).collect())
+            .collect();
+        json!({"labels": labels, "matrix": rows})
+    });
+    let flagged: Vec<serde_json::Value> = cal
+        .strongly_correlated
+        .iter()
+        .map(|p| json!({"a": labels[p.a], "b": labels[p.b], "r": p.r}))
+        .collect();
+    let unidentified: Vec<&String> = cal
+        .identifiability
+        .unidentified()
+        .into_iter()
+        .map(|j| &labels[j])
+        .collect();
+    let noise: serde_json::Map<String, serde_json::Value> = LaunchComponent::ALL
+        .iter()
+        .map(|c| (c.column().to_owned(), json!(cal.noise_scales[c.index()])))
+        .collect();
+    let shaft = cal.shaft_relation.as_ref().map(|s| {
+        json!({
+            "points": s.points.iter().map(|(g, m, dm, se)| json!({
+                "group": g, "shaft_mass_g": m, "dm_g": dm, "stderr": opt(*se)
+            })).collect::<Vec<_>>(),
+            "slope_g_per_g": s.line.slope,
+            "intercept_g": s.line.intercept,
+            "r": s.line.r,
+        })
+    });
+    let stages: Vec<serde_json::Value> = cal
+        .paper_stages
+        .iter()
+        .map(|a| {
+            json!({
+                "param": labels[a.param],
+                "stage": match a.stage { smash::fit::Stage::Linear => "W=inf", smash::fit::Stage::Angular => "W=0" },
+                "linear_sensitivity": a.linear_sensitivity,
+                "angular_sensitivity": a.angular_sensitivity,
+            })
+        })
+        .collect();
+    json!({
+        "command": "calibrate",
+        "method": cal.method.name(),
+        "params": params,
+        "correlation": correlation,
+        "strongly_correlated": flagged,
+        "aliases": honest::aliases(&cal.params, cal.correlation.as_ref()).iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "unidentifiable": unidentified,
+        "chi2": cal.chi2,
+        "chi2_nominal": cal.chi2_before,
+        "n_residuals": cal.n_residuals,
+        "dof": cal.dof,
+        "reduced_chi2": cal.reduced_chi2,
+        "aic": cal.aic,
+        "bic": cal.bic,
+        "evaluations": cal.evaluations,
+        "iterations": cal.iterations,
+        "termination": cal.termination,
+        "noise_scales": noise,
+        "before": cal.before.to_json(),
+        "after": cal.after.to_json(),
+        "shaft_relation": shaft,
+        "paper_stages": stages,
+    })
+}
+
+/// The human-readable report.
+pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
+    let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
+    let mut s = format!(
+        "Calibration ({}) of {} parameter(s) on {} shots\n\n",
+        cal.method.name(),
+        cal.params.len(),
+        n_shots
+    );
+    let mut t = TextTable::new([
+        "parameter",
+        "value",
+        "± stderr",
+        "t",
+        "unit",
+        "plausible",
+        "note",
+    ]);
+    let unidentified = cal.identifiability.unidentified();
+    for (j, p) in cal.params.iter().enumerate() {
+        let mut note = Vec::new();
+        if p.at_bound {
+            note.push("at bound");
+        }
+        if unidentified.contains(&j) {
+            note.push("not identifiable");
+        }
+        if honest::is_plausible(p) == Some(false) {
+            note.push("IMPLAUSIBLE: a stand-in, not a finding");
+        }
+        t.row([
+            labels[j].clone(),
+            format!("{:.5}", p.value),
+            p.stderr
+                .filter(|e| e.is_finite())
+                .map_or("n/a".into(), |e| format!("{e:.5}")),
+            p.stderr
+                .map(|e| t_statistic(p.value, e))
+                .filter(|t| t.is_finite())
+                .map_or("n/a".into(), |t| format!("{t:.1}")),
+            p.unit.to_owned(),
+            honest::plausible_range_text(p),
+            note.join(", "),
+        ]);
+    }
+    s.push_str(&t.render());
+    if let Some(c) = &cal.correlation {
+        if c.nrows() > 1 {
+            s.push_str("\nCorrelation of the estimates:\n");
+            let mut header = vec![String::new()];
+            header.extend((0..c.ncols()).map(|j| format!("[{j}]")));
+            let mut t = TextTable::new(header);
+            for i in 0..c.nrows() {
+                let mut row = vec![format!("[{i}] {}", labels[i])];
+                row.extend((0..c.ncols()).map(|j| format!("{:+.3}", c[(i, j)])));
+                t.row(row);
+            }
+            s.push_str(&t.render());
+        }
+    }
+    for p in &cal.params {
+        if let Some(w) = honest::stand_in(p) {
+            s.push_str(&format!(
+                "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; it \
+                 behaves like {w}\n",
+                p.label(),
+                p.value,
+                p.unit,
+                honest::plausible_range_text(p)
+            ));
+        }
+    }
+    for a in honest::aliases(&cal.params, cal.correlation.as_ref()) {
+        s.push_str(&format!("  alias: {}\n", a.text()));
+    }
+    if !unidentified.is_empty() {
+        s.push_str(&format!(
+            "  not identifiable from these shots: {}\n",
+            unidentified
+                .iter()
+                .map(|&j| labels[j].as_str())
+                .collect::<Vec<_>>()
+                .join(", ")
+        ));
+    }
+    s.push_str(&format!(
+        "\nchi2 = {:.2} (nominal model: {:.2}) over N = {} residuals, p = {}: reduced chi2 = {:.4}, \
+         AIC = {:.2}, BIC = {:.2}\n",
+        cal.chi2,
+        cal.chi2_before,
+        cal.n_residuals,
+        cal.params.len(),
+        cal.reduced_chi2,
+        cal.aic,
+        cal.bic
+    ));
+    s.push_str("noise scales (robust, from the calibrated residuals): ");
+    s.push_str(
+        &LaunchComponent::ALL
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} {:.3} {}",
+                    c.column(),
+                    cal.noise_scales[c.index()],
+                    c.unit()
+                )
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
+    );
+    s.push_str(&format!(
+        "\nsolver: {} iteration(s), {} residual evaluations; {}\n",
+        cal.iterations, cal.evaluations, cal.termination
+    ));
+    if !cal.paper_stages.is_empty() {
+        s.push_str("paper stages (relative sensitivity velocity / spin):\n");
+        for a in &cal.paper_stages {
+            s.push_str(&format!(
+                "  {:<28} {:.3e} / {:.3e} -> {}\n",
+                labels[a.param],
+                a.linear_sensitivity,
+                a.angular_sensitivity,
+                match a.stage {
+                    smash::fit::Stage::Linear => "W = inf (velocity)",
+                    smash::fit::Stage::Angular => "W = 0 (spin)",
+                }
+            ));
+        }
+    }
+    if let Some(r) = &cal.shaft_relation {
+        s.push_str("\nAdded mass against shaft mass (the paper's Figure 3):\n");
+        for (g, m, dm, se) in &r.points {
+            s.push_str(&format!(
+                "  group {g}: shaft {m:.1} g, added mass {dm:.3} ± {} g\n",
+                se.map_or("n/a".into(), |e| format!("{e:.3}"))
+            ));
+        }
+        s.push_str(&format!(
+            "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({} groups)\n",
+            r.line.slope, r.line.intercept, r.line.r, r.line.n
+        ));
+    }
+    s.push_str("\nErrors (model − measured), per group:\n");
+    s.push_str(&error_tables_side_by_side(
+        &cal.before,
+        &cal.after,
+        ("before (nominal)", "after (calibrated)"),
+    ));
+    s
+}

@@ -1,0 +1,165 @@
+//! `smash compare`: the model against measurements, as a diagnosis.
+
+use std::path::PathBuf;
+
+use anyhow::bail;
+use clap::Args;
+
+use smash::compare::{compare, CompareOptions};
+use smash::data::club_file::read_club;
+use smash::data::write_folder_atomic;
+use smash::physics::LaunchComponent;
+use smash::predict::expected_launches;
+use smash::report::compare::{compare_files, compare_json, compare_text};
+
+/// Arguments of `smash compare`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Example:\n  smash compare --club configs/clubs/paper_driver.toml --shots paper_world.csv --out-dir compare/"
+)]
+pub struct CompareArgs {
+    /// Club file (TOML).
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file with measured launch columns (CSV).
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
+    /// Folder for the tables, face pictures and JSON (created). Nothing is written without it.
+    #[arg(long, value_name = "DIR")]
+    pub out_dir: Option<PathBuf>,
+
+    /// Write a self-contained HTML report (charts of Table 2, trends and face maps).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
+    /// Print one JSON object on stdout instead of the text report (which goes to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Significance level of the flags.
+    #[arg(
+        long,
+        default_value_t = 0.01,
+        value_name = "P",
+        help_heading = "Statistics",
+        allow_negative_numbers = true
+    )]
+    pub alpha: f64,
+
+    /// Side of a face bin, mm.
+    #[arg(
+        long,
+        default_value_t = 5.0,
+        value_name = "MM",
+        help_heading = "Statistics",
+        allow_negative_numbers = true
+    )]
+    pub bin_mm: f64,
+
+    /// Face bins with fewer shots are left empty.
+    #[arg(
+        long,
+        default_value_t = 5,
+        value_name = "N",
+        help_heading = "Statistics",
+        allow_negative_numbers = true
+    )]
+    pub min_bin_count: usize,
+
+    /// Measurement noise of the inputs.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
+}
+
+/// Run `smash compare`.
+pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    if let Some(report) = &args.report {
+        smash::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+    }
+    if let Some(dir) = &args.out_dir {
+        smash::data::safe_write::refuse_inputs(
+            &[("--out-dir", dir, true)],
+            &[("--club", &args.club), ("--shots", &args.shots)],
+        )?;
+        smash::data::safe_write::clean_stale_temporaries(dir);
+        smash::data::safe_write::check_replaceable(dir)?;
+    }
+    if !(args.alpha > 0.0 && args.alpha < 1.0) {
+        bail!("--alpha must be in (0, 1), got {}", args.alpha);
+    }
+    if !(args.bin_mm >= 0.5 && args.bin_mm <= 100.0) {
+        bail!("--bin-mm must be from 0.5 to 100 mm (impact locations are measured to about a millimetre), got {}", args.bin_mm);
+    }
+    let club = read_club(&args.club)?;
+    let table = args.shots_format.read(&args.shots)?;
+    if !table.has_measurements() {
+        let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
+        bail!(
+            "{}: no measured launch columns ({}); compare needs measurements (to predict only, use `smash predict`)",
+            args.shots.display(),
+            cols.join(", ")
+        );
+    }
+    let launches = expected_launches(&club, &table.shots, args.measurement.impact_noise_mm)
+        .map_err(|e| super::locate_shot_error(&table, e))?;
+    if let Some((shot, _)) = table
+        .shots
+        .iter()
+        .zip(&launches)
+        .find(|(_, l)| !smash::limits::finite_launch(l))
+    {
+        bail!(
+            "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
+             the club {}",
+            args.shots.display(),
+            shot.id,
+            args.club.display()
+        );
+    }
+    let options = CompareOptions {
+        alpha: args.alpha,
+        face_bin_mm: args.bin_mm,
+        min_bin_count: args.min_bin_count,
+        ..CompareOptions::default()
+    };
+    let report = compare(&table.shots, &launches, &options)?;
+    let title = format!(
+        "{} vs {} ({} groups)",
+        club.name,
+        args.shots.display(),
+        table.groups().len()
+    );
+    let text = compare_text(&report, &title);
+    let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
+    if args.json {
+        eprint!("{text}");
+        crate::stdout::println(compare_json(&report))?;
+    } else {
+        crate::stdout::print(&text)?;
+    }
+    if let Some(path) = &args.report {
+        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
+        let html = smash::report::html::compare_page(&report, &residuals, &title)
+            .map_err(anyhow::Error::msg)?;
+        smash::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    if let (Some(dir), Some(files)) = (&args.out_dir, files) {
+        let files: Vec<(PathBuf, Vec<u8>)> = files
+            .into_iter()
+            .map(|(n, b)| (PathBuf::from(n), b))
+            .collect();
+        write_folder_atomic(dir, &files, "compare.json")?;
+        eprintln!("wrote {} files to {}", files.len(), dir.display());
+    }
+    Ok(())
+}

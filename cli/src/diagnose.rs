@@ -1,0 +1,561 @@
+//! `smash diagnose`: which effects does the data ask for? Forward selection with grouped
+//! cross-validation (see [`smash::diagnose`]).
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+use indicatif::ProgressBar;
+use serde_json::json;
+
+use smash::data::club_file::{club_toml_checked, read_club};
+use smash::data::noise_file::read_noise_file;
+use smash::data::write_atomic;
+use smash::diagnose::honest;
+use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
+use smash::diagnose::{
+    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
+    DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
+};
+use smash::fit::{parse_effect_list, FitError, ParamEstimate};
+use smash::physics::LaunchComponent;
+use smash::report::{error_table_text, error_tables_side_by_side, TextTable};
+
+use super::progress::job_bar;
+
+/// Arguments of `smash diagnose`.
+#[derive(Debug, Args)]
+#[command(after_help = "Examples:\n  \
+    smash diagnose --club configs/clubs/paper_driver.toml --shots shots.csv\n  \
+    smash diagnose --club club.toml --shots shots.csv --json --out-club diagnosed.toml")]
+pub struct DiagnoseArgs {
+    /// Club file (TOML); its own [[effect]] tables stay fixed.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV) with measured launch columns (and a golfer column for grouped folds).
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub shots: PathBuf,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
+    /// Write a self-contained HTML report (gains per candidate and step, errors before and after,
+    /// estimates with their plausible ranges).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+
+    /// Write the club with the selected effects, only after success.
+    #[arg(long, value_name = "OUT.toml")]
+    pub out_club: Option<PathBuf>,
+
+    /// Print one JSON object on stdout (progress and prose go to stderr).
+    #[arg(long)]
+    pub json: bool,
+
+    /// Cross-validation folds (grouped by golfer).
+    #[arg(
+        long,
+        default_value_t = 5,
+        value_name = "K",
+        help_heading = "Selection",
+        allow_negative_numbers = true
+    )]
+    pub folds: usize,
+
+    /// Most effects to select.
+    #[arg(
+        long,
+        default_value_t = 6,
+        value_name = "N",
+        help_heading = "Selection",
+        allow_negative_numbers = true
+    )]
+    pub max_steps: usize,
+
+    /// Candidates (default: every library effect, plus added_mass@group), same syntax as
+    /// calibrate --effects.
+    #[arg(long, value_name = "LIST", help_heading = "Selection")]
+    pub candidates: Option<String>,
+
+    /// Iteration limit of each fit.
+    #[arg(
+        long,
+        default_value_t = 100,
+        value_name = "N",
+        help_heading = "Selection",
+        allow_negative_numbers = true
+    )]
+    pub max_iters: u64,
+
+    /// Measurement noise of the inputs. Without --impact-noise-mm, impact-location noise of
+    /// 1, 1.5, 2 and 3 mm is offered as a candidate beside the effects.
+    #[command(flatten)]
+    pub measurement: super::MeasurementArgs,
+
+    /// Take the measured impact locations as exact (offer no impact-noise candidate).
+    #[arg(
+        long,
+        conflicts_with = "impact_noise_mm",
+        help_heading = "Measurement noise"
+    )]
+    pub exact_impact_locations: bool,
+
+    /// Instrument class whose documented noise sets the noise floor (camera: camera launch
+    /// monitor with marker-based delivery capture; radar: Doppler launch monitor).
+    /// Given (or with --noise), selection also stops once the errors are at the noise floor;
+    /// without either, the floor is reported for the camera class and only the penalty stops.
+    #[arg(
+        long,
+        value_name = "CLASS",
+        value_parser = parse_instrument,
+        help_heading = "Noise floor"
+    )]
+    pub instrument: Option<InstrumentClass>,
+
+    /// Instrument noise file ([noise] table: instrument, [noise.delivery], [noise.launch]);
+    /// overrides --instrument.
+    #[arg(long, value_name = "NOISE.toml", help_heading = "Noise floor")]
+    pub noise: Option<PathBuf>,
+}
+
+fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
+    InstrumentClass::from_name(s).ok_or_else(|| {
+        format!(
+            "unknown instrument class '{s}'; allowed: {}",
+            InstrumentClass::ALL.map(|c| c.name()).join(", ")
+        )
+    })
+}
+
+struct Bar(ProgressBar);
+
+impl DiagnoseProgress for Bar {
+    fn step(&self, step: usize, jobs: usize) {
+        self.0.set_length(jobs as u64);
+        self.0.set_position(0);
+        self.0.set_message(format!("fits of step {step}"));
+    }
+    fn job_done(&self) {
+        self.0.inc(1);
+    }
+}
+
+/// Run `smash diagnose`.
+pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
+    if let Some(noise) = &args.noise {
+        inputs.push(("--noise", noise));
+    }
+    if let Some(out) = &args.out_club {
+        smash::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
+    }
+    if let Some(report) = &args.report {
+        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
+    }
+    let club = read_club(&args.club)?;
+    let table = args.shots_format.read(&args.shots)?;
+    let known_noise = match (&args.noise, args.instrument) {
+        (Some(p), _) => Some(read_noise_file(p)?),
+        (None, Some(c)) => Some(c.noise()),
+        (None, None) => None,
+    };
+    let instrument = known_noise
+        .clone()
+        .unwrap_or_else(|| InstrumentClass::Camera.noise());
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    if args.folds < 2 {
+        anyhow::bail!("--folds must be at least 2, got {}", args.folds);
+    }
+    let candidates = args
+        .candidates
+        .as_deref()
+        .map(parse_effect_list)
+        .transpose()?;
+    let opts = DiagnoseOptions {
+        folds: args.folds,
+        max_steps: args.max_steps,
+        max_iters: args.max_iters,
+        candidates,
+        impact_noise: args.measurement.impact_noise_mm,
+        impact_noise_candidates_mm: if args.exact_impact_locations {
+            Vec::new()
+        } else {
+            DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
+        },
+        noise_floor: known_noise,
+    };
+    let bar = Bar(job_bar(1, "fits"));
+    let d = diagnose(&club, &table.shots, &opts, Some(&bar));
+    bar.0.finish_and_clear();
+    let d = d.with_context(|| args.shots.display().to_string())?;
+    let floor = noise_floor(&d, &table.shots, &instrument)?;
+    for w in &d.warnings {
+        eprintln!("warning: {}", smash::data::escape(w));
+    }
+    if let Some(out) = &args.out_club {
+        let comment = format!(
+            "Club with the effects selected by smash diagnose on {} ({} shots): {}",
+            args.shots.display(),
+            d.n_shots,
+            if d.selected.is_empty() {
+                "none".to_owned()
+            } else {
+                d.selected.join(", ")
+            }
+        );
+        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
+        eprintln!("club with selected effects -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let title = format!("{} on {}", club.name, args.shots.display());
+        let html = smash::report::html::diagnose_page(&to_json(&d, &floor), &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    if args.json {
+        crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
+    } else {
+        crate::stdout::print(text_report(&d, &floor))?;
+    }
+    Ok(())
+}
+
+fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
+    ps.iter()
+        .map(|p| {
+            let mut v = json!({
+                "effect": p.effect, "param": p.param, "group": p.group,
+                "value": p.value, "stderr": p.stderr, "unit": p.unit,
+            });
+            if let (Some(o), serde_json::Value::Object(h)) =
+                (v.as_object_mut(), honest::plausibility_json(p))
+            {
+                o.extend(h);
+            }
+            v
+        })
+        .collect()
+}
+
+/// The machine-readable report.
+pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
+    let comp_map = |v: &[f64; 5]| -> serde_json::Value {
+        LaunchComponent::ALL
+            .iter()
+            .map(|c| (c.column().to_owned(), json!(v[c.index()])))
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let steps: Vec<serde_json::Value> = d
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            json!({
+                "step": i + 1,
+                "base": s.base,
+                "noise_scales": comp_map(&s.noise_scales),
+                "base_cv_chi2": s.base_cv_chi2,
+                "selected": s.selected,
+                "at_noise_floor": s.at_noise_floor,
+                "candidates": s.candidates.iter().map(|c| json!({
+                    "effect": c.label,
+                    "n_params": c.n_params,
+                    "cv_chi2": c.cv_chi2,
+                    "gain": c.gain,
+                    "penalty": c.penalty,
+                    "margin": c.margin(),
+                    "eligible": c.eligible(),
+                    "converged": c.converged,
+                    "unidentified": c.unidentified,
+                    "failure": c.failure,
+                    "rms_reduction": comp_map(&c.rms_reduction),
+                    "params": estimates_json(&c.params),
+                })).collect::<Vec<_>>(),
+                "after": s.after.to_json(),
+            })
+        })
+        .collect();
+    json!({
+        "command": "diagnose",
+        "selected": d.selected,
+        "impact_noise_mm": d.impact_noise.map(|n| json!({
+            "y": n.sigma_y_m * 1e3,
+            "z": n.sigma_z_m * 1e3,
+            "estimated": d.impact_noise_estimated,
+        })),
+        "estimates": estimates_json(&d.estimates),
+        "findings": d.estimates.iter().filter(|p| honest::is_plausible(p) != Some(false)).map(|p| p.label()).collect::<Vec<_>>(),
+        "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
+            "param": p.label(), "value": p.value, "unit": p.unit,
+            "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
+        }))).collect::<Vec<_>>(),
+        "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "noise_floor": floor.to_json(),
+        "conclusion": conclusion(d, floor),
+        "steps": steps,
+        "folds": d.folds,
+        "fold_by": match d.fold_by { FoldBy::Golfer => "golfer", FoldBy::Shot => "shot" },
+        "n_shots": d.n_shots,
+        "warnings": d.warnings,
+        "before": d.before.to_json(),
+        "after": d.after.to_json(),
+    })
+}
+
+fn fmt_params(ps: &[ParamEstimate]) -> String {
+    ps.iter()
+        .map(|p| {
+            let name = match &p.group {
+                Some(g) => format!("{}@{g}", p.param),
+                None => p.param.to_owned(),
+            };
+            // Small values (COR falloff per mm², say) in scientific notation.
+            let num = |x: f64| {
+                if x != 0.0 && x.abs() < 1e-3 {
+                    format!("{x:.3e}")
+                } else {
+                    format!("{x:.4}")
+                }
+            };
+            match p.stderr {
+                Some(se) => format!("{name} = {} ± {}{}", num(p.value), num(se), honest::mark(p)),
+                None => format!("{name} = {}{}", num(p.value), honest::mark(p)),
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What the diagnosis concludes about the structure left in the errors.
+pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    let stand_ins: Vec<String> = d
+        .estimates
+        .iter()
+        .filter(|p| honest::is_plausible(p) == Some(false))
+        .map(|p| p.label())
+        .collect();
+    let stand_in_note = if stand_ins.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; {} stand(s) in for physics the library lacks and is not a finding",
+            stand_ins.join(", ")
+        )
+    };
+    if !floor.structure_remains() {
+        return format!(
+            "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
+        );
+    }
+    let structured: Vec<&str> = floor
+        .components
+        .iter()
+        .filter(|c| c.structure)
+        .map(|c| c.component.column())
+        .collect();
+    let last = d.steps.last();
+    let stopped_by_limit = last.is_none_or(|s| s.selected.is_some());
+    if stopped_by_limit {
+        format!(
+            "unexplained structure remains in {}, and the step limit was reached: raise \
+             --max-steps to keep looking{stand_in_note}",
+            structured.join(", ")
+        )
+    } else {
+        let best = last
+            .and_then(|s| s.candidates.first())
+            .map_or(String::new(), |c| {
+                format!(" (best: {}, margin {:.1})", c.label, c.margin())
+            });
+        format!(
+            "unexplained structure remains in {}; no library candidate reduces it by more than \
+             its penalty{best}: the data contain physics the library lacks (or the instrument \
+             noise given is too small){stand_in_note}",
+            structured.join(", ")
+        )
+    }
+}
+
+/// The human-readable report.
+pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    let mut s = format!(
+        "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter\n",
+        d.n_shots,
+        d.folds,
+        match d.fold_by {
+            FoldBy::Golfer => "golfer",
+            FoldBy::Shot => "shot",
+        },
+        (d.n_shots as f64).ln()
+    );
+    for (i, st) in d.steps.iter().enumerate() {
+        s.push_str(&format!(
+            "\nStep {}: base = {}; CV chi2 of the base = {:.1}\n",
+            i + 1,
+            if st.base.is_empty() {
+                "nominal".to_owned()
+            } else {
+                st.base.join(" + ")
+            },
+            st.base_cv_chi2
+        ));
+        if st.at_noise_floor {
+            s.push_str(
+                "  (errors at the instruments' noise floor: only measurement candidates offered)\n",
+            );
+        }
+        let mut header = vec![
+            "candidate".to_owned(),
+            "k".into(),
+            "CV gain".into(),
+            "penalty".into(),
+            "margin".into(),
+        ];
+        header.extend(LaunchComponent::ALL.iter().map(|c| {
+            let short = match c {
+                LaunchComponent::BallSpeed => "speed",
+                LaunchComponent::LaunchAngle => "launch",
+                LaunchComponent::Azimuth => "azim",
+                LaunchComponent::Backspin => "back",
+                LaunchComponent::Sidespin => "side",
+            };
+            format!("Δrms {short}")
+        }));
+        header.extend(["parameters".to_owned(), "note".to_owned()]);
+        let mut t = TextTable::new(header);
+        for c in &st.candidates {
+            let mut row = vec![
+                c.label.clone(),
+                c.n_params.to_string(),
+                format!("{:.1}", c.gain),
+                format!("{:.1}", c.penalty),
+                format!("{:.1}", c.margin()),
+            ];
+            row.extend(
+                c.rms_reduction
+                    .iter()
+                    .map(|r| format!("{:+.1}%", -100.0 * r)),
+            );
+            row.push(fmt_params(&c.params));
+            let mut note = Vec::new();
+            if let Some(f) = &c.failure {
+                note.push(format!("failed: {f}"));
+            } else if !c.converged {
+                note.push("fit did not converge".to_owned());
+            }
+            if !c.unidentified.is_empty() {
+                note.push(format!("not identifiable: {}", c.unidentified.join(", ")));
+            }
+            if st.selected.as_deref() == Some(c.label.as_str()) {
+                note.push("SELECTED".to_owned());
+            }
+            row.push(note.join("; "));
+            t.row(row);
+        }
+        s.push_str(&t.render());
+        match &st.selected {
+            Some(l) => {
+                s.push_str(&format!(
+                    "-> add {l}; errors (model − measured) after this step:\n"
+                ));
+                s.push_str(&error_table_text(&st.after));
+            }
+            None if st.at_noise_floor && st.candidates.is_empty() => s.push_str(
+                "-> the errors are at the instruments' noise floor: no physical effect offered; stop\n",
+            ),
+            None => s.push_str("-> no candidate beats its penalty: stop\n"),
+        }
+    }
+    s.push_str(&format!(
+        "\nSelected (in order): {}\n",
+        if d.selected.is_empty() {
+            "none".to_owned()
+        } else {
+            d.selected.join(", ")
+        }
+    ));
+    if !d.estimates.is_empty() {
+        s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
+        let findings: Vec<String> = d
+            .estimates
+            .iter()
+            .filter(|p| honest::is_plausible(p) != Some(false))
+            .map(|p| p.label())
+            .collect();
+        s.push_str(&format!(
+            "Findings (values inside their plausible ranges): {}\n",
+            if findings.is_empty() {
+                "none".to_owned()
+            } else {
+                findings.join(", ")
+            }
+        ));
+        for p in &d.estimates {
+            if let Some(w) = honest::stand_in(p) {
+                s.push_str(&format!(
+                    "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; \
+                     it behaves like {w}\n",
+                    p.label(),
+                    p.value,
+                    p.unit,
+                    honest::plausible_range_text(p)
+                ));
+            }
+        }
+    }
+    for a in &d.aliases {
+        s.push_str(&format!("  alias: {}\n", a.text()));
+    }
+    if let Some(n) = d.impact_noise {
+        s.push_str(&format!(
+            "Measurement model: impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}; \
+             calibrate with --impact-noise-mm {},{}\n",
+            n.sigma_y_m * 1e3,
+            n.sigma_z_m * 1e3,
+            if d.impact_noise_estimated { ", selected from the data" } else { ", as given" },
+            n.sigma_y_m * 1e3,
+            n.sigma_z_m * 1e3
+        ));
+    }
+    s.push_str(&format!(
+        "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
+        floor.instrument.name
+    ));
+    let mut t = TextTable::new([
+        "component",
+        "mean",
+        "mean/σ",
+        "expected sd",
+        "observed sd",
+        "ratio",
+        "p",
+        "verdict",
+    ]);
+    for c in &floor.components {
+        t.row([
+            c.component.column().to_owned(),
+            format!("{:+.3}", c.mean),
+            format!("{:+.2}", c.mean_in_sd),
+            format!("{:.3}", c.expected_sd),
+            format!("{:.3}", c.observed_sd),
+            format!("{:.2}", c.ratio),
+            format!("{:.2e}", c.p_value),
+            c.verdict(),
+        ]);
+    }
+    s.push_str(&t.render());
+    s.push_str(&format!("Conclusion: {}\n", conclusion(d, floor)));
+    s.push('\n');
+    s.push_str(&error_tables_side_by_side(
+        &d.before,
+        &d.after,
+        ("before (club as given)", "after (selected effects)"),
+    ));
+    s
+}

@@ -1,0 +1,66 @@
+//! `smash effects`: the effect library, with parameters, units, defaults and bounds.
+
+use clap::Args;
+
+use std::fmt::Write;
+
+use crate::stdout;
+use smash::effects::EffectKind;
+
+/// Arguments of `smash effects`.
+#[derive(Debug, Args)]
+pub struct EffectsArgs {
+    /// Print the library as JSON on stdout.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Run `smash effects`.
+pub fn run(args: EffectsArgs) -> anyhow::Result<()> {
+    if args.json {
+        let list: Vec<serde_json::Value> = EffectKind::ALL
+            .iter()
+            .map(|k| {
+                serde_json::json!({
+                    "name": k.name(),
+                    "description": k.description(),
+                    "params": k.params().iter().map(|p| serde_json::json!({
+                        "key": p.key, "unit": p.unit, "default": p.default,
+                        "lower": p.lower, "upper": p.upper, "doc": p.doc,
+                    })).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
+        stdout::println(serde_json::to_string_pretty(
+            &serde_json::json!({ "effects": list }),
+        )?)?;
+        return Ok(());
+    }
+    let mut text = String::new();
+    writeln!(
+        text,
+        "{:<24} {:<11} {:>7} {:>22}  meaning",
+        "effect", "parameter", "default", "physical range"
+    )?;
+    for k in EffectKind::ALL {
+        for (i, p) in k.params().iter().enumerate() {
+            let name = if i == 0 { k.name() } else { "" };
+            writeln!(
+                text,
+                "{:<24} {:<11} {:>7} {:>22}  {}",
+                name,
+                p.key,
+                p.default,
+                format!("[{}, {}] {}", p.lower, p.upper, p.unit),
+                p.doc
+            )?;
+        }
+    }
+    writeln!(text, "\nIn a club file: [[effect]] name = \"added_mass\", dm_g = 2.54, group = \"A\" (group optional).")?;
+    writeln!(
+        text,
+        "On the command line: name for one global value, name@group for one value per group."
+    )?;
+    stdout::print(text)?;
+    Ok(())
+}

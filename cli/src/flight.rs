@@ -1,0 +1,264 @@
+//! `smash flight`: fly launch conditions to landing; options shared with `smash predict
+//! --flight`.
+
+use std::path::PathBuf;
+
+use anyhow::Context;
+use clap::Args;
+
+use smash::data::flight_files::{
+    flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource,
+};
+use smash::data::{write_atomic, DataError};
+use smash::flight::{fly, AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+
+/// Flight options (model, atmosphere, ground, integration).
+#[derive(Debug, Clone, Args)]
+pub struct FlightOptions {
+    /// Aerodynamic coefficient model: fmm2022 (Ferguson, McNally & McPhee 2022; default),
+    /// nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with spin_factor, cd,
+    /// cl and optionally cm, reynolds).
+    #[arg(
+        long,
+        default_value = "fmm2022",
+        value_name = "NAME",
+        help_heading = "Flight"
+    )]
+    pub aero: String,
+    /// Spin decay: moment (aerodynamic moment from the model's C_M; default), none, or
+    /// exp:TAU (exponential with time constant TAU seconds).
+    #[arg(
+        long,
+        default_value = "moment",
+        value_name = "MODE",
+        help_heading = "Flight"
+    )]
+    pub spin_decay: String,
+    /// TOML file with an [atmosphere] table (keys as the flags below, without dashes and with
+    /// underscores); flags given on the command line override it.
+    #[arg(long, value_name = "FILE.toml", help_heading = "Atmosphere")]
+    pub atmosphere: Option<PathBuf>,
+    /// Air temperature, °C (default 15).
+    #[arg(
+        long,
+        value_name = "C",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
+    pub temperature_c: Option<f64>,
+    /// Station pressure, hPa (default: ISA at --elevation-m, or 1013.25).
+    #[arg(long, value_name = "HPA", help_heading = "Atmosphere")]
+    pub pressure_hpa: Option<f64>,
+    /// Elevation above sea level, m (ISA pressure there).
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
+    pub elevation_m: Option<f64>,
+    /// Relative humidity, % (default 50).
+    #[arg(long, value_name = "PCT", help_heading = "Atmosphere")]
+    pub humidity_pct: Option<f64>,
+    /// Wind speed at --wind-height-m, m/s (default 0).
+    #[arg(long, value_name = "M/S", help_heading = "Atmosphere")]
+    pub wind_speed_m_s: Option<f64>,
+    /// Direction the wind blows toward, degrees from the target line toward the right
+    /// (0 tailwind, 90 left to right, 180 headwind).
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
+    pub wind_direction_deg: Option<f64>,
+    /// Height of the wind speed, m (default 10, the WMO anemometer height).
+    #[arg(long, value_name = "M", help_heading = "Atmosphere")]
+    pub wind_height_m: Option<f64>,
+    /// Roughness length of the ground for the log wind profile, m (default 0.03).
+    #[arg(long, value_name = "M", help_heading = "Atmosphere")]
+    pub roughness_m: Option<f64>,
+    /// Add total_yd with the simple bounce-and-roll model.
+    #[arg(long, help_heading = "Ground")]
+    pub total: bool,
+    /// Turf coefficient of restitution for --total (default 0.20).
+    #[arg(long, value_name = "E", requires = "total", help_heading = "Ground")]
+    pub ground_restitution: Option<f64>,
+    /// Effective run-out deceleration for --total, m/s² (default 12, see src/flight/ground.rs).
+    #[arg(long, value_name = "M/S2", requires = "total", help_heading = "Ground")]
+    pub roll_decel_m_s2: Option<f64>,
+    /// Integration time step, s (default 0.2 in still air, 0.1 in wind; chosen by a tolerance
+    /// test).
+    #[arg(long, value_name = "S", help_heading = "Flight")]
+    pub dt_s: Option<f64>,
+    /// Longest flight before it is an error, s (default 30).
+    #[arg(long, value_name = "S", help_heading = "Flight")]
+    pub max_time_s: Option<f64>,
+}
+
+impl FlightOptions {
+    /// The flight configuration these options describe.
+    pub fn config(&self) -> anyhow::Result<FlightConfig> {
+        let mut atm = match &self.atmosphere {
+            Some(p) => read_atmosphere(p)?,
+            None => Atmosphere::default(),
+        };
+        if let Some(v) = self.temperature_c {
+            atm.temperature_c = v;
+        }
+        if let Some(v) = self.pressure_hpa {
+            atm.pressure_hpa = Some(v);
+            atm.elevation_m = None;
+        }
+        if let Some(v) = self.elevation_m {
+            atm.elevation_m = Some(v);
+            if self.pressure_hpa.is_none() {
+                atm.pressure_hpa = None;
+            }
+        }
+        if let Some(v) = self.humidity_pct {
+            atm.humidity_pct = v;
+        }
+        if let Some(v) = self.wind_speed_m_s {
+            atm.wind_speed_m_s = v;
+        }
+        if let Some(v) = self.wind_direction_deg {
+            atm.wind_direction_deg = v;
+        }
+        if let Some(v) = self.wind_height_m {
+            atm.wind_height_m = v;
+        }
+        if let Some(v) = self.roughness_m {
+            atm.roughness_m = v;
+        }
+        let air = atm
+            .air()
+            .map_err(|e| anyhow::anyhow!("--{}: {e}", e.key.replace('_', "-")))?;
+        let aero = AeroModel::from_name(&self.aero).map_err(|e| anyhow::anyhow!("--aero: {e}"))?;
+        let spin_decay = match self.spin_decay.as_str() {
+            "moment" => SpinDecay::Moment,
+            "none" => SpinDecay::None,
+            s => match s.strip_prefix("exp:").map(str::parse::<f64>) {
+                Some(Ok(tau)) if tau > 0.0 && tau.is_finite() => SpinDecay::Exponential {
+                    time_constant_s: tau,
+                },
+                _ => anyhow::bail!(
+                    "--spin-decay '{s}': allowed are moment, none, exp:TAU with TAU > 0 seconds"
+                ),
+            },
+        };
+        let ground = if self.total {
+            let g = Ground {
+                restitution: self
+                    .ground_restitution
+                    .unwrap_or(smash::flight::ground::DEFAULT_RESTITUTION),
+                roll_decel_m_s2: self
+                    .roll_decel_m_s2
+                    .unwrap_or(smash::flight::ground::DEFAULT_ROLL_DECEL_M_S2),
+            };
+            g.check().map_err(|e| anyhow::anyhow!("--total: {e}"))?;
+            Some(g)
+        } else {
+            None
+        };
+        if let Some(dt_s) = self.dt_s {
+            if !(dt_s > 0.0 && dt_s <= 0.5) {
+                anyhow::bail!("--dt-s {dt_s}: must be within (0, 0.5] s");
+            }
+        }
+        let dt_s = self.dt_s;
+        let max_time_s = self.max_time_s.unwrap_or(smash::flight::DEFAULT_MAX_TIME_S);
+        if !(max_time_s > 0.0 && max_time_s <= 120.0) {
+            anyhow::bail!("--max-time-s {max_time_s}: must be within (0, 120] s");
+        }
+        Ok(FlightConfig {
+            aero,
+            air,
+            spin_decay,
+            dt_s,
+            max_time_s,
+            ground,
+            ..FlightConfig::default()
+        })
+    }
+}
+
+/// Arguments of `smash flight`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash flight --shots launch.csv --out flight.csv\n  \
+                  smash flight --shots pred.csv --launch predicted --elevation-m 1600 --temperature-c 28 --out f.csv"
+)]
+pub struct FlightArgs {
+    /// Launch file (CSV): ball_speed_mph, launch_angle_deg, backspin_rpm and optionally
+    /// azimuth_deg, sidespin_rpm (or the same with pred_, as `smash predict` writes them).
+    #[arg(long, value_name = "LAUNCH.csv")]
+    pub shots: PathBuf,
+    /// Output file (CSV: input columns, pred_carry_yd, pred_offline_yd, pred_apex_yd,
+    /// pred_flight_time_s, pred_land_angle_deg [, pred_total_yd], err_* where measured).
+    #[arg(long, value_name = "F.csv")]
+    pub out: PathBuf,
+    /// Which launch columns to fly: measured (ball_speed_mph, …) or predicted
+    /// (pred_ball_speed_mph, …). Default: measured if present.
+    #[arg(long, value_name = "WHICH", value_parser = ["measured", "predicted"])]
+    pub launch: Option<String>,
+    /// Flight options.
+    #[command(flatten)]
+    pub flight: FlightOptions,
+}
+
+/// Run `smash flight`.
+pub fn run(args: FlightArgs) -> anyhow::Result<()> {
+    let mut inputs = vec![("--shots", args.shots.as_path())];
+    if let Some(a) = &args.flight.atmosphere {
+        inputs.push(("--atmosphere", a.as_path()));
+    }
+    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, false)], &inputs)?;
+    let cfg = args.flight.config()?;
+    let source = args.launch.as_deref().map(|s| match s {
+        "predicted" => LaunchSource::Predicted,
+        _ => LaunchSource::Measured,
+    });
+    let table = read_launches(&args.shots, source)?;
+    let t0 = std::time::Instant::now();
+    let results = fly(&cfg, &table.launches);
+    let secs = t0.elapsed().as_secs_f64();
+    let prefix = match table.source {
+        LaunchSource::Measured => "",
+        LaunchSource::Predicted => "pred_",
+    };
+    let flights = collect(&args.shots, &table.lines, prefix, results)?;
+    write_atomic(
+        &args.out,
+        &flight_csv(
+            &table.headers,
+            &table.records,
+            &flights,
+            cfg.ground.is_some(),
+        ),
+    )
+    .with_context(|| "writing the flights")?;
+    eprintln!(
+        "flew {} shot(s) with {} (air {:.4} kg/m³) in {:.3} s -> {}",
+        flights.len(),
+        cfg.aero.name(),
+        cfg.air.density_kg_m3,
+        secs,
+        args.out.display()
+    );
+    Ok(())
+}
+
+/// Results to flights, or the first failure as one line naming file, line and column.
+pub fn collect(
+    path: &std::path::Path,
+    lines: &[usize],
+    prefix: &str,
+    results: Vec<Result<smash::flight::Flight, smash::flight::FlightError>>,
+) -> Result<Vec<smash::flight::Flight>, DataError> {
+    results
+        .into_iter()
+        .zip(lines)
+        .map(|(r, &line)| r.map_err(|e| flight_error_at(path, line, prefix, &e)))
+        .collect()
+}

@@ -1,0 +1,56 @@
+//! `smash import`: a launch-monitor export to a shots file.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use smash::data::shots::parse_shots;
+use smash::data::write_atomic;
+
+/// Arguments of `smash import`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash import --format trackman session.csv --impact-offset-positive toe --out shots.csv\n  \
+                  smash import --format my_monitor.toml export.csv --out shots.csv\n\n\
+                  Presets: trackman, foresight (gc3, gcquad), flightscope, uneekor. A mapping file\n\
+                  (TOML) describes any other export; see docs/import.md."
+)]
+pub struct ImportArgs {
+    /// The export (CSV).
+    #[arg(value_name = "IN.csv")]
+    pub input: PathBuf,
+
+    /// Shots file to write (CSV).
+    #[arg(long, value_name = "SHOTS.csv")]
+    pub out: PathBuf,
+
+    /// How to read the export.
+    #[command(flatten)]
+    pub format: super::ShotsFormatArgs,
+}
+
+/// Run `smash import`.
+pub fn run(args: ImportArgs) -> anyhow::Result<()> {
+    let Some(format) = args.format.format.as_deref() else {
+        anyhow::bail!("--format is required: a preset (trackman, foresight, flightscope, uneekor) or a mapping file NAME.toml");
+    };
+    if format == "shots" {
+        anyhow::bail!("--format shots: the file is already a shots file; nothing to import");
+    }
+    smash::data::safe_write::refuse_inputs(
+        &[("--out", &args.out, false)],
+        &[("IN.csv", &args.input)],
+    )?;
+    let imported = args.format.import(&args.input, format)?;
+    // The result must read back as a shots file (ranges, ids, launch columns).
+    let table = parse_shots(&args.input, imported.csv.as_slice())?;
+    write_atomic(&args.out, &imported.csv)?;
+    eprintln!(
+        "import: {} shots ({} groups) from {} -> {}",
+        table.shots.len(),
+        table.groups().len(),
+        args.input.display(),
+        args.out.display()
+    );
+    Ok(())
+}

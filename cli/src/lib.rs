@@ -1,0 +1,244 @@
+//! The `smash` command line: argument parsing and dispatch. Each subcommand lives in its own
+//! file, loads files, calls the library and prints; no physics here.
+
+use clap::{Parser, Subcommand};
+
+pub mod calibrate;
+pub mod compare;
+pub mod diagnose;
+pub mod effects;
+pub mod flight;
+pub mod import;
+pub mod merge;
+pub mod predict;
+pub mod progress;
+pub mod run;
+pub mod stdout;
+pub mod study_output;
+pub mod synth;
+
+/// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
+/// missing physics, calibrate, and run design studies.
+#[derive(Debug, Parser)]
+#[command(name = "smash", version, about, long_about = None, propagate_version = true)]
+pub struct Cli {
+    /// What to do.
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+/// Subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Predict ball launch for a shots file, or for one delivery given on the command line.
+    Predict(predict::PredictArgs),
+    /// List the effect library: names, parameters, units, defaults and physical bounds.
+    Effects(effects::EffectsArgs),
+    /// Generate a synthetic experiment (shots with measured launch) from a configured world.
+    Synth(synth::SynthArgs),
+    /// Compare the model with measured launch: Table 2, bias significance, face maps, trends
+    /// and ranked findings with hints at the missing physics.
+    Compare(compare::CompareArgs),
+    /// Run a design study: face maps over design variants, summaries, sensitivities,
+    /// optimisation (or one shard of it with --shard k/N).
+    Run(run::RunArgs),
+    /// Merge the shards of a study into exactly the unsharded result.
+    Merge(merge::MergeArgs),
+    /// Fly launch conditions (measured or predicted) to landing: carry, offline, apex, flight
+    /// time, land angle (and total with --total), in a given atmosphere.
+    Flight(flight::FlightArgs),
+    /// Fit named effects' parameters to measured launch (values ± standard errors,
+    /// correlations, chi2, AIC/BIC, before/after error tables).
+    Calibrate(calibrate::CalibrateArgs),
+    /// Rank the library's effects by how much each explains (cross-validated by golfer) and
+    /// select them forward until the improvement is not significant.
+    Diagnose(diagnose::DiagnoseArgs),
+    /// Convert a launch-monitor export (TrackMan, Foresight, FlightScope, Uneekor or a mapping
+    /// file) to a shots file.
+    Import(import::ImportArgs),
+}
+
+/// Run a parsed command line.
+pub fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Predict(args) => predict::run(args),
+        Command::Effects(args) => effects::run(args),
+        Command::Synth(args) => synth::run(args),
+        Command::Compare(args) => compare::run(args),
+        Command::Run(args) => run::run(args),
+        Command::Merge(args) => merge::run(args),
+        Command::Flight(args) => flight::run(args),
+        Command::Calibrate(args) => calibrate::run(args),
+        Command::Diagnose(args) => diagnose::run(args),
+        Command::Import(args) => import::run(args),
+    }
+}
+
+/// A shot that cannot be predicted, located in its file: `FILE:LINE: columns …: shot 'ID': …`,
+/// the same form as the shots reader's own errors.
+pub fn locate_shot_error(
+    table: &smash::data::shots::ShotTable,
+    e: smash::predict::PredictError,
+) -> anyhow::Error {
+    use smash::physics::ImpactError;
+    use smash::predict::PredictError;
+    let PredictError::Shot {
+        shot_id,
+        row,
+        source,
+    } = e
+    else {
+        return anyhow::Error::new(e).context(table.path.display().to_string());
+    };
+    let line = row.checked_sub(1).and_then(|i| table.lines.get(i)).copied();
+    let place = match source {
+        ImpactError::OffFace(_) => Some("columns impact_y_mm, impact_z_mm".to_owned()),
+        ImpactError::NotApproaching { .. } => Some(
+            "columns club_speed_mph, attack_angle_deg, club_path_deg, dynamic_loft_deg, \
+             face_angle_deg, club_omega_*_rad_s"
+                .to_owned(),
+        ),
+        _ => None,
+    };
+    smash::data::DataError::at(
+        &table.path,
+        line,
+        place,
+        format!("shot '{shot_id}': {source}"),
+    )
+    .into()
+}
+
+/// One line: the error and its causes, joined by `: `, with control characters from the input
+/// (ESC, CR, …) escaped so that they cannot act on the terminal.
+pub fn error_chain(e: &anyhow::Error) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for cause in e.chain() {
+        let s = cause.to_string();
+        if !parts.iter().any(|p| p.contains(&s)) {
+            parts.push(s);
+        }
+    }
+    smash::data::escape(&parts.join(": ").replace('\n', " ")).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn command_line_is_well_formed() {
+        Cli::command().debug_assert();
+    }
+}
+
+/// Measurement-noise options shared by the commands that compare the model with measurements.
+#[derive(Debug, Clone, clap::Args)]
+pub struct MeasurementArgs {
+    /// 1σ noise of the measured impact location, mm, vertical then heel–toe (e.g. `3,2.5`).
+    /// The model is then averaged over where the ball was most likely struck (regression
+    /// calibration), so location noise is not mistaken for physics.
+    #[arg(
+        long,
+        value_name = "SY,SZ",
+        value_parser = parse_impact_noise,
+        allow_hyphen_values = true,
+        help_heading = "Measurement noise"
+    )]
+    pub impact_noise_mm: Option<smash::measurement::ImpactNoise>,
+}
+
+fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String> {
+    let parts: Vec<&str> = s.split(',').map(str::trim).collect();
+    let [y, z] = parts.as_slice() else {
+        return Err(format!(
+            "expected two numbers 'SY,SZ' in mm (e.g. 3,2.5), got '{s}'"
+        ));
+    };
+    let num = |t: &str| {
+        t.parse::<f64>()
+            .map_err(|_| format!("'{t}' is not a number (mm)"))
+    };
+    let (sy, sz) = (num(y)?, num(z)?);
+    for v in [sy, sz] {
+        smash::limits::SIGMA_LOCATION_MM.check(v)?;
+    }
+    smash::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
+}
+
+/// How a shots argument is read: a shots file (default) or a launch-monitor export converted on
+/// the fly, exactly as `smash import` would.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ShotsFormatArgs {
+    /// Format of the shots input: `shots` (default), a launch-monitor preset (trackman,
+    /// foresight, flightscope, uneekor) or a mapping file NAME.toml (docs/import.md).
+    #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
+    pub format: Option<String>,
+
+    /// Which way a positive heel–toe impact offset points in the export, where the vendor does
+    /// not say (the import refuses to guess).
+    #[arg(long, value_name = "SIDE", value_enum, help_heading = "Input format")]
+    pub impact_offset_positive: Option<OffsetSideArg>,
+
+    /// Drop export columns the format does not know instead of refusing the file.
+    #[arg(long, help_heading = "Input format")]
+    pub ignore_unknown_columns: bool,
+}
+
+impl ShotsFormatArgs {
+    /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) go to
+    /// stderr.
+    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<smash::data::shots::ShotTable> {
+        match self.format.as_deref() {
+            None | Some("shots") => Ok(smash::data::shots::read_shots(path)?),
+            Some(format) => {
+                let imported = self.import(path, format)?;
+                Ok(smash::data::shots::parse_shots(
+                    path,
+                    imported.csv.as_slice(),
+                )?)
+            }
+        }
+    }
+
+    /// Convert the export at `path` with `format`, printing the notes.
+    pub fn import(
+        &self,
+        path: &std::path::Path,
+        format: &str,
+    ) -> anyhow::Result<smash::data::import::Imported> {
+        use smash::data::import::{import, load_mapping, ImportOptions};
+        let mapping = load_mapping(format)?;
+        let bytes = std::fs::read(path)
+            .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
+        let opts = ImportOptions {
+            impact_offset_positive: self.impact_offset_positive.map(Into::into),
+            ignore_unknown_columns: self.ignore_unknown_columns,
+        };
+        let imported = import(path, &bytes, &mapping, &opts)?;
+        for note in &imported.notes {
+            eprintln!("import ({}): {note}", mapping.export.name);
+        }
+        Ok(imported)
+    }
+}
+
+/// Which way a positive heel–toe impact offset points (the command-line face of
+/// [`smash::data::import::OffsetSide`], which stays free of clap).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum OffsetSideArg {
+    /// Positive offsets are toward the toe (the shots file's `impact_z_mm` sign).
+    Toe,
+    /// Positive offsets are toward the heel.
+    Heel,
+}
+
+impl From<OffsetSideArg> for smash::data::import::OffsetSide {
+    fn from(side: OffsetSideArg) -> Self {
+        match side {
+            OffsetSideArg::Toe => Self::Toe,
+            OffsetSideArg::Heel => Self::Heel,
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! `smash merge`: combine the shards of a study into exactly the unsharded outputs.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+
+use crate::study_output::{print_summary, TableFormatArg};
+use smash::data::write_folder_atomic_with;
+use smash::study::finish;
+use smash::study::output::{write_study, HeldGrids};
+use smash::study::shard::merge_shards;
+
+/// Arguments of `smash merge`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Example:\n  smash merge shards/0 shards/1 shards/2 --out results/com_sweep"
+)]
+pub struct MergeArgs {
+    /// Shard folders written by `smash run --shard k/N` (all N of them, any order).
+    #[arg(value_name = "SHARD_DIR", required = true)]
+    pub shards: Vec<PathBuf>,
+
+    /// Output folder for the merged result.
+    #[arg(long, value_name = "DIR")]
+    pub out: PathBuf,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
+}
+
+/// Run `smash merge`.
+pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    let canon = |p: &std::path::Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_owned());
+    if args.shards.iter().any(|s| canon(s) == canon(&args.out)) {
+        anyhow::bail!(
+            "--out {} is one of the shard folders; write the merged result to another folder",
+            args.out.display()
+        );
+    }
+    let inputs: Vec<(&str, &Path)> = args
+        .shards
+        .iter()
+        .map(|s| ("a SHARD_DIR", s.as_path()))
+        .collect();
+    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
+    smash::data::safe_write::clean_stale_temporaries(&args.out);
+    smash::data::safe_write::check_replaceable(&args.out)?;
+    let (prepared, variants) = merge_shards(&args.shards)?;
+    let metrics: Vec<Vec<f64>> = variants.iter().map(|v| v.metrics.clone()).collect();
+    let (sens, opt) = finish(&prepared, &metrics)?;
+    let grids = HeldGrids {
+        results: &variants,
+        nz: prepared.zs_mm.len(),
+    };
+    let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
+        write_study(
+            tmp,
+            &prepared,
+            &grids,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
+    })?;
+    print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
+    eprintln!("merged {} shard(s)", args.shards.len());
+    Ok(())
+}

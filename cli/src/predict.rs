@@ -1,0 +1,332 @@
+//! `smash predict`: launch conditions for a shots file or for one delivery.
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use anyhow::{bail, Context};
+use clap::Args;
+use nalgebra::Vector3;
+
+use smash::data::club_file::read_club;
+use smash::data::predictions::predictions_csv;
+use smash::data::shots::DEFAULT_GROUP;
+use smash::data::write_atomic;
+use smash::limits;
+use smash::physics::{Delivery, LaunchComponent};
+use smash::predict::predict_table;
+use smash::units::{deg, mm, mph};
+
+/// Arguments of `smash predict`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash predict --club configs/clubs/paper_driver.toml --shots shots.csv --out pred.csv\n  \
+                  smash predict --club configs/clubs/paper_driver.toml --speed 100 --loft 12 --impact-z 10"
+)]
+pub struct PredictArgs {
+    /// Club file (TOML): clubhead, ball and optional [[effect]] tables.
+    #[arg(long, value_name = "CLUB.toml")]
+    pub club: PathBuf,
+
+    /// Shots file (CSV). Writes predictions to --out.
+    #[arg(
+        long,
+        value_name = "SHOTS.csv",
+        requires = "out",
+        conflicts_with = "club_speed_mph"
+    )]
+    pub shots: Option<PathBuf>,
+
+    /// Format of --shots (a launch-monitor export is converted on the fly).
+    #[command(flatten)]
+    pub shots_format: super::ShotsFormatArgs,
+
+    /// Predictions file to write (CSV: input columns, pred_*, and err_* where measured).
+    #[arg(long, value_name = "PRED.csv")]
+    pub out: Option<PathBuf>,
+
+    /// One-shot form: clubhead CoM speed, mph.
+    #[arg(
+        long = "speed-mph",
+        visible_alias = "speed",
+        value_name = "MPH",
+        help_heading = "One delivery",
+        allow_negative_numbers = true
+    )]
+    pub club_speed_mph: Option<f64>,
+    /// Dynamic loft at impact, deg.
+    #[arg(
+        long = "loft-deg",
+        visible_alias = "loft",
+        value_name = "DEG",
+        help_heading = "One delivery",
+        allow_negative_numbers = true
+    )]
+    pub dynamic_loft_deg: Option<f64>,
+    /// Attack angle, deg (+ up).
+    #[arg(
+        long = "attack-deg",
+        visible_alias = "attack",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub attack_angle_deg: f64,
+    /// Club path, deg (+ right of target, in-to-out for a right-hander).
+    #[arg(
+        long = "path-deg",
+        visible_alias = "path",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub club_path_deg: f64,
+    /// Face angle, deg (+ open).
+    #[arg(
+        long = "face-deg",
+        visible_alias = "face",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub face_angle_deg: f64,
+    /// Lie tilt, deg (+ toe up).
+    #[arg(
+        long = "lie-deg",
+        visible_alias = "lie",
+        default_value_t = 0.0,
+        value_name = "DEG",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub lie_tilt_deg: f64,
+    /// Impact location up the face from the centre, mm.
+    #[arg(
+        long = "impact-y-mm",
+        visible_alias = "impact-y",
+        default_value_t = 0.0,
+        value_name = "MM",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub impact_y_mm: f64,
+    /// Impact location toward the toe from the centre, mm.
+    #[arg(
+        long = "impact-z-mm",
+        visible_alias = "impact-z",
+        default_value_t = 0.0,
+        value_name = "MM",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub impact_z_mm: f64,
+    /// Clubhead angular velocity about ground x, rad/s.
+    #[arg(
+        long = "omega-x-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_x_rad_s: f64,
+    /// Clubhead angular velocity about ground y (up), rad/s.
+    #[arg(
+        long = "omega-y-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_y_rad_s: f64,
+    /// Clubhead angular velocity about ground z, rad/s.
+    #[arg(
+        long = "omega-z-rad-s",
+        default_value_t = 0.0,
+        value_name = "RAD/S",
+        allow_negative_numbers = true,
+        help_heading = "One delivery"
+    )]
+    pub omega_z_rad_s: f64,
+    /// Group whose effects apply (one-shot form).
+    #[arg(long, default_value = DEFAULT_GROUP, help_heading = "One delivery")]
+    pub group: String,
+
+    /// Also fly each predicted launch: pred_carry_yd, pred_offline_yd, pred_apex_yd,
+    /// pred_flight_time_s, pred_land_angle_deg (and err_* where the shots file has measured
+    /// carry_yd, … columns).
+    #[arg(long)]
+    pub flight: bool,
+    /// Flight options (with --flight).
+    #[command(flatten)]
+    pub flight_options: crate::flight::FlightOptions,
+}
+
+/// Run `smash predict`.
+pub fn run(args: PredictArgs) -> anyhow::Result<()> {
+    let club = read_club(&args.club)?;
+    if let Some(shots_path) = &args.shots {
+        let out = args.out.as_ref().expect("clap: --shots requires --out");
+        smash::data::safe_write::refuse_inputs(
+            &[("--out", out, false)],
+            &[("--shots", shots_path), ("--club", &args.club)],
+        )?;
+        let table = args.shots_format.read(shots_path)?;
+        let outcomes =
+            predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
+        for (shot, o) in table.shots.iter().zip(&outcomes) {
+            if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
+                bail!(
+                    "{}: shot '{}': the impact has no finite launch; check its delivery and the \
+                     club {}",
+                    shots_path.display(),
+                    shot.id,
+                    args.club.display()
+                );
+            }
+        }
+        let mut bytes = predictions_csv(&table, &outcomes);
+        if args.flight {
+            bytes = add_flight(&args, shots_path, &bytes, &outcomes)?;
+        }
+        write_atomic(out, &bytes)?;
+        eprintln!(
+            "predicted {} shot(s) with {} -> {}",
+            outcomes.len(),
+            club.name,
+            out.display()
+        );
+        return Ok(());
+    }
+    let (Some(speed), Some(loft)) = (args.club_speed_mph, args.dynamic_loft_deg) else {
+        bail!("give either --shots SHOTS.csv --out PRED.csv, or a delivery with at least --speed MPH and --loft DEG");
+    };
+    if args.out.is_some() {
+        bail!("--out goes with --shots; the one-shot form prints its table");
+    }
+    let angle = limits::DELIVERY_ANGLE_DEG;
+    let omega = limits::CLUB_OMEGA_RAD_S;
+    let location = limits::IMPACT_LOCATION_MM;
+    let values = [
+        ("--speed", speed, limits::CLUB_SPEED_MPH),
+        ("--loft", loft, limits::DYNAMIC_LOFT_DEG),
+        ("--attack", args.attack_angle_deg, angle),
+        ("--path", args.club_path_deg, angle),
+        ("--face", args.face_angle_deg, angle),
+        ("--lie", args.lie_tilt_deg, angle),
+        ("--impact-y", args.impact_y_mm, location),
+        ("--impact-z", args.impact_z_mm, location),
+        ("--omega-x-rad-s", args.omega_x_rad_s, omega),
+        ("--omega-y-rad-s", args.omega_y_rad_s, omega),
+        ("--omega-z-rad-s", args.omega_z_rad_s, omega),
+    ];
+    for (flag, v, range) in values {
+        range.check(v).map_err(|m| anyhow::anyhow!("{flag}: {m}"))?;
+    }
+    let delivery = Delivery {
+        club_speed_m_s: mph(speed),
+        attack_angle_rad: deg(args.attack_angle_deg),
+        club_path_rad: deg(args.club_path_deg),
+        dynamic_loft_rad: deg(loft),
+        face_angle_rad: deg(args.face_angle_deg),
+        lie_tilt_rad: deg(args.lie_tilt_deg),
+        club_omega_rad_s: Vector3::new(args.omega_x_rad_s, args.omega_y_rad_s, args.omega_z_rad_s),
+        impact_y_m: mm(args.impact_y_mm),
+        impact_z_m: mm(args.impact_z_mm),
+    };
+    let model = club
+        .model_for_group(&args.group)
+        .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
+    let outcome = model.solve(&delivery)?;
+    let launch = outcome.launch();
+    if !(limits::finite_launch(&launch) && outcome.smash_factor().is_finite()) {
+        bail!(
+            "the impact of this delivery ({} mph) with {} has no finite launch; check the \
+             delivery and the club",
+            limits::fmt_value(speed),
+            args.club.display()
+        );
+    }
+    let mut text = format!("{} (group {})\n", club.name, args.group);
+    // Writing to a String cannot fail.
+    let _ = writeln!(
+        text,
+        "delivery: {} mph, loft {} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
+        limits::fmt_value(speed),
+        limits::fmt_value(loft),
+        limits::fmt_value(args.attack_angle_deg),
+        limits::fmt_value(args.club_path_deg),
+        limits::fmt_value(args.face_angle_deg),
+        limits::fmt_value(args.lie_tilt_deg),
+        limits::fmt_value(args.impact_y_mm),
+        limits::fmt_value(args.impact_z_mm)
+    );
+    for c in LaunchComponent::ALL {
+        let _ = writeln!(
+            text,
+            "{:<14} {:>10.2} {}",
+            c.label(),
+            launch.get_file(c),
+            c.unit()
+        );
+    }
+    let _ = writeln!(
+        text,
+        "{:<14} {:>10.4}",
+        "Smash factor",
+        outcome.smash_factor()
+    );
+    if args.flight {
+        let cfg = args.flight_options.config()?;
+        let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(&launch))
+            .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());
+        let _ = writeln!(text, "{:<14} {:>10.2} s", "Flight time", f.flight_time_s);
+        let _ = writeln!(
+            text,
+            "{:<14} {:>10.1} deg",
+            "Land angle",
+            f.land_angle_deg()
+        );
+        if let Some(t) = f.total_yd() {
+            let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
+        }
+    }
+    crate::stdout::print(text)?;
+    Ok(())
+}
+
+/// Fly the predicted launches and append the flight columns to the predictions CSV.
+fn add_flight(
+    args: &PredictArgs,
+    shots_path: &std::path::Path,
+    predictions: &[u8],
+    outcomes: &[smash::physics::ImpactOutcome],
+) -> anyhow::Result<Vec<u8>> {
+    use smash::data::flight_files::{flight_csv, parse_raw_csv};
+    let cfg = args.flight_options.config()?;
+    let launches: Vec<smash::flight::FlightLaunch> = outcomes
+        .iter()
+        .map(|o| smash::flight::FlightLaunch::from_launch(&o.launch()))
+        .collect();
+    let raw = parse_raw_csv(shots_path, predictions)?;
+    let shots_raw = parse_raw_csv(
+        shots_path,
+        &smash::data::read_text(shots_path)?.into_bytes(),
+    )?;
+    let flights = crate::flight::collect(
+        shots_path,
+        &shots_raw.lines,
+        "pred_",
+        smash::flight::fly(&cfg, &launches),
+    )?;
+    Ok(flight_csv(
+        &raw.headers,
+        &raw.records,
+        &flights,
+        cfg.ground.is_some(),
+    ))
+}

@@ -1,0 +1,249 @@
+//! `smash run`: run a design study (or one shard of it) and write its outputs.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+
+use crate::study_output::TableFormatArg;
+use smash::data::{write_folder_atomic, write_folder_atomic_with};
+use smash::study::output::{write_study, Files};
+use smash::study::shard::{parse_shard_spec, shard_files};
+use smash::study::{finish, read_study, Prepared, StudyError};
+
+/// Arguments of `smash run`.
+#[derive(Debug, Args)]
+#[command(
+    after_help = "Examples:\n  smash run configs/studies/face_map.toml\n  \
+                        smash run configs/studies/com_sweep.toml --out /tmp/com_sweep\n  \
+                        smash run configs/studies/com_sweep.toml --shard 0/4 --out shards/0\n  \
+                        smash merge shards/0 shards/1 shards/2 shards/3 --out results/com_sweep"
+)]
+pub struct RunArgs {
+    /// Study file (TOML): base club, delivery, face grid, design variants, outputs.
+    #[arg(value_name = "STUDY.toml")]
+    pub study: PathBuf,
+
+    /// Output folder [default: the study's output_dir, results/<name>; for a shard,
+    /// <that>/shards/<k>_of_<N>].
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+
+    /// Run only shard k of N (0-based k, e.g. $SLURM_ARRAY_TASK_ID/N) and write shard files;
+    /// combine the shards with `smash merge`.
+    #[arg(long, value_name = "k/N", value_parser = parse_shard_spec, allow_hyphen_values = true)]
+    pub shard: Option<(usize, usize)>,
+
+    /// Format of the long table: `csv` (maps_long.csv, the default) or `parquet`
+    /// (maps_long.parquet: typed, compressed, nulls for invalid cells; for large studies,
+    /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
+    #[arg(long, value_enum, default_value = "csv")]
+    pub format: TableFormatArg,
+    /// Also write a self-contained HTML report of the study (face maps and tables).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+}
+
+/// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
+/// [`write_folder_atomic`]; every study output folder holds `study.toml`).
+pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
+    write_folder_atomic(dir, files, "study.toml")?;
+    Ok(())
+}
+
+/// A swing that does not reach the ball is a problem of the study's `[delivery]` table: name the
+/// file and the table's line.
+fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
+    let StudyError::Swing { problem } = &e else {
+        return e.into();
+    };
+    let line = std::fs::read_to_string(study).ok().and_then(|text| {
+        text.lines()
+            .position(|l| l.trim_start().starts_with("[delivery]"))
+            .map(|i| i + 1)
+    });
+    smash::data::DataError::at(
+        study,
+        line,
+        Some("table [delivery]".into()),
+        problem.clone(),
+    )
+    .into()
+}
+
+/// Run `smash run`.
+pub fn run(args: RunArgs) -> anyhow::Result<()> {
+    let study = read_study(&args.study)?;
+    let (k, n) = args.shard.unwrap_or((0, 1));
+    let dir = match (&args.out, args.shard) {
+        (Some(d), _) => d.clone(),
+        (None, Some(_)) => study.output_dir.join("shards").join(format!("{k}_of_{n}")),
+        (None, None) => study.output_dir.clone(),
+    };
+    // Refuse before the sweep, not after it: the output folder may not hold the inputs or
+    // files smash did not write.
+    smash::data::safe_write::refuse_inputs(
+        &[(
+            if args.out.is_some() {
+                "--out"
+            } else {
+                "the study's output folder"
+            },
+            &dir,
+            true,
+        )],
+        &[
+            ("STUDY.toml", &args.study),
+            ("the study's club", &study.club_path),
+        ],
+    )?;
+    if let Some(report) = &args.report {
+        smash::data::safe_write::refuse_inputs(
+            &[("--report", report, false)],
+            &[
+                ("STUDY.toml", &args.study),
+                ("the study's club", &study.club_path),
+            ],
+        )?;
+        // The output folder is replaced as a whole and holds only what smash lists in it.
+        if smash::data::safe_write::canonical(report)
+            .starts_with(smash::data::safe_write::canonical(&dir))
+        {
+            anyhow::bail!(
+                "{}: --report is inside the study's output folder {}, which each run replaces \
+                 as a whole; write the report beside it",
+                report.display(),
+                dir.display()
+            );
+        }
+    }
+    smash::data::safe_write::clean_stale_temporaries(&dir);
+    smash::data::safe_write::check_replaceable(&dir)?;
+    let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
+    let items = prepared.shard_range(k, n);
+    let impacts = prepared.impacts_in(items.clone());
+    let bar = if items.len() >= 64 && impacts >= 50_000 {
+        let b =
+            ProgressBar::with_draw_target(Some(items.len() as u64), ProgressDrawTarget::stderr());
+        b.set_style(
+            ProgressStyle::with_template(
+                "{bar:40} {pos}/{len} work items, {elapsed} elapsed, ETA {eta}",
+            )
+            .expect("static template"),
+        );
+        b
+    } else {
+        ProgressBar::hidden()
+    };
+    // Start the worker threads before the clock: the closing line states the sweep's rate, not
+    // the thread pool's start-up.
+    // The output slots are allocated (and their pages touched) before the clock too.
+    rayon::broadcast(|_| ());
+    let grid = format!(
+        "{} variant(s) × {}×{} grid + summary metrics",
+        prepared.variants.len(),
+        prepared.ys_mm.len(),
+        prepared.zs_mm.len()
+    );
+    if args.shard.is_some() {
+        // Shards are only useful if they can be merged: refuse before computing any.
+        smash::study::shard::check_mergeable(&prepared)?;
+        let nz = prepared.zs_mm.len() as u128;
+        let rows = items.len() as u128; // at most one metrics item per variant besides rows
+        let points = rows * nz;
+        if points > smash::study::MAX_SHARD_POINTS {
+            let total = prepared.work_len() as u128 * nz;
+            return Err(smash::study::StudyError::ShardTooLarge {
+                k,
+                n,
+                points,
+                min_shards: total.div_ceil(smash::study::MAX_SHARD_POINTS),
+            }
+            .into());
+        }
+        // The output slots are allocated (and their pages touched) before the clock too.
+        let mut results = prepared.allocate(items.clone());
+        let start = Instant::now();
+        prepared.compute_into(&mut results, &|| bar.inc(1));
+        let seconds = start.elapsed().as_secs_f64();
+        bar.finish_and_clear();
+        write_all(&dir, &shard_files(&prepared, k, n, &results)?)?;
+        eprintln!(
+            "shard {k} of {n}: work items {}..{} -> {}",
+            items.start,
+            items.end,
+            dir.display()
+        );
+        eprintln!(
+            "swept {impacts} impact evaluations ({grid}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
+            impacts as f64 / seconds.max(1e-9)
+        );
+        return Ok(());
+    }
+    // Unsharded: the maps are computed band by band as they are written (bounded memory).
+    bar.finish_and_clear();
+    let start = Instant::now();
+    let metrics = prepared.all_metrics();
+    let (sens, opt) = finish(&prepared, &metrics)?;
+    let kernels = prepared.kernels();
+    let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
+        write_study(
+            tmp,
+            &prepared,
+            &kernels,
+            &metrics,
+            &sens,
+            opt.as_ref(),
+            args.format.into(),
+        )
+    })?;
+    let seconds = start.elapsed().as_secs_f64();
+    if let Some(path) = &args.report {
+        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
+            .map_err(anyhow::Error::msg)?;
+        smash::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    crate::study_output::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
+    eprintln!(
+        "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
+         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
+         for the long table and the matrices)",
+        kernels.points(),
+        kernels.seconds(),
+        kernels.points() as f64 / kernels.seconds().max(1e-9)
+    );
+    Ok(())
+}
+
+/// The written outputs a study report shows (the face-map pictures and the small summary,
+/// sensitivity, optimiser and variant tables), read back from the output folder: the maps
+/// themselves were streamed to disk and are not held in memory.
+fn report_inputs(dir: &Path) -> anyhow::Result<Vec<(PathBuf, Vec<u8>)>> {
+    use anyhow::Context;
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for entry in std::fs::read_dir(&d).with_context(|| d.display().to_string())? {
+            let path = entry?.path();
+            if path.is_dir() {
+                stack.push(path);
+                continue;
+            }
+            let rel = path.strip_prefix(dir).unwrap_or(&path).to_path_buf();
+            let name = rel.to_string_lossy();
+            let wanted = name.ends_with(".svg")
+                || (name.ends_with(".csv")
+                    && ["summary", "sensitiv", "optim", "variants"]
+                        .iter()
+                        .any(|k| name.contains(k)));
+            if wanted {
+                let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
+                out.push((rel, bytes));
+            }
+        }
+    }
+    out.sort();
+    Ok(out)
+}

@@ -1,0 +1,398 @@
+//! Mutation fuzz of the file readers: club, study, synth and instrument-noise TOML, shots CSV.
+//!
+//! Each case takes a valid file (the shipped configs, a generated shots file), applies one to
+//! four random mutations (bytes, lines, numbers and fields replaced by hostile values) and parses
+//! it. The reader must not panic, and must return either a value or an error whose message, as
+//! the command line prints it, is one line without control characters.
+//!
+//! Seeded and bounded: the seeds are fixed, and the run stops after `SMASH_FUZZ_CASES` cases
+//! (default 20,000) or `SMASH_FUZZ_SECONDS` seconds (default 20), whichever comes first. For a
+//! long local run: `SMASH_FUZZ_SECONDS=300 SMASH_FUZZ_CASES=100000000 cargo test --test fuzz`.
+
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+fn root() -> PathBuf {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
+/// Fixed seeds: every CI run fuzzes the same cases.
+const SEEDS: [u64; 4] = [1, 7, 2024, 0x5eed];
+
+/// Values that broke readers before or sit at the edges of types and ranges.
+const HOSTILE: [&str; 36] = [
+    "1e308",
+    "-1e308",
+    "1e-320",
+    "nan",
+    "inf",
+    "-inf",
+    "NaN",
+    "0",
+    "-0",
+    "0.0",
+    "-1",
+    "65536",
+    "4294967296",
+    "9223372036854775807",
+    "-9223372036854775808",
+    "18446744073709551615",
+    "1e155",
+    "1e200",
+    "1e300",
+    "300",
+    "1000000",
+    "100001",
+    "\"\"",
+    "[]",
+    "{}",
+    "[1e308, -1e308]",
+    "true",
+    "\"x\"",
+    "{ from = -1e308, to = 1e308, count = 3 }",
+    "{ from = 0, to = 1, step = 1e-300 }",
+    "{ from = 0, to = 1, count = 65536 }",
+    "[[1e308, 0, 0], [0, 1e308, 0], [0, 0, 1e308]]",
+    "\"\u{1b}[31m\"",
+    "é",
+    "",
+    "1e-300",
+];
+
+const BYTES: [u8; 22] = [
+    0, b'\n', b'\r', b'"', b',', b'[', b']', b'{', b'}', b'=', b'#', b'.', b'-', b'e', b'9', 0x1b,
+    0xff, b' ', b'\'', b'\\', b'\t', b'0',
+];
+
+fn lines(b: &[u8]) -> Vec<Vec<u8>> {
+    b.split(|&c| c == b'\n').map(<[u8]>::to_vec).collect()
+}
+
+fn join(l: &[Vec<u8>]) -> Vec<u8> {
+    l.join(&b'\n')
+}
+
+/// Spans of number-like tokens.
+fn numbers(b: &[u8]) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < b.len() {
+        if b[i].is_ascii_digit() || (b[i] == b'-' && b.get(i + 1).is_some_and(u8::is_ascii_digit)) {
+            let s = i;
+            i += 1;
+            while i < b.len() && (b[i].is_ascii_alphanumeric() || b"._+-".contains(&b[i])) {
+                i += 1;
+            }
+            out.push((s, i));
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// Spans of values: after `= ` in TOML, or CSV fields.
+fn fields(b: &[u8], csv: bool) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    for (i, &c) in b.iter().enumerate() {
+        if csv {
+            if c == b',' || c == b'\n' {
+                out.push((start, i));
+                start = i + 1;
+            }
+        } else if c == b'=' {
+            let end = b[i..]
+                .iter()
+                .position(|&c| c == b'\n')
+                .map_or(b.len(), |p| i + p);
+            out.push(((i + 1).min(end), end));
+        }
+    }
+    out
+}
+
+fn mutate(rng: &mut ChaCha8Rng, input: &[u8], csv: bool) -> Vec<u8> {
+    let mut b = input.to_vec();
+    for _ in 0..rng.random_range(1..=4) {
+        let pos = |rng: &mut ChaCha8Rng, b: &Vec<u8>| rng.random_range(0..=b.len());
+        match rng.random_range(0..10) {
+            0 if !b.is_empty() => {
+                let i = rng.random_range(0..b.len());
+                b[i] = BYTES[rng.random_range(0..BYTES.len())];
+            }
+            1 => {
+                let i = pos(rng, &b);
+                b.insert(i, BYTES[rng.random_range(0..BYTES.len())]);
+            }
+            2 if !b.is_empty() => {
+                let i = rng.random_range(0..b.len());
+                let n = rng.random_range(1..=8).min(b.len() - i);
+                b.drain(i..i + n);
+            }
+            3 => {
+                let mut l = lines(&b);
+                let i = rng.random_range(0..l.len());
+                let dup = l[i].clone();
+                l.insert(i, dup);
+                b = join(&l);
+            }
+            4 => {
+                let mut l = lines(&b);
+                if l.len() > 1 {
+                    l.remove(rng.random_range(0..l.len()));
+                }
+                b = join(&l);
+            }
+            5 => {
+                let mut l = lines(&b);
+                let (i, j) = (rng.random_range(0..l.len()), rng.random_range(0..l.len()));
+                l.swap(i, j);
+                b = join(&l);
+            }
+            6 | 7 => {
+                let spans = if rng.random_bool(0.5) {
+                    numbers(&b)
+                } else {
+                    fields(&b, csv)
+                };
+                if !spans.is_empty() {
+                    let (s, e) = spans[rng.random_range(0..spans.len())];
+                    let v = HOSTILE[rng.random_range(0..HOSTILE.len())].as_bytes();
+                    let v = if csv && rng.random_bool(0.7) {
+                        v.iter().copied().filter(|c| *c != b',').collect()
+                    } else {
+                        v.to_vec()
+                    };
+                    b.splice(s..e, v);
+                }
+            }
+            8 => {
+                let i = pos(rng, &b);
+                b.truncate(i);
+            }
+            _ if !b.is_empty() => {
+                let i = rng.random_range(0..b.len());
+                let n = rng.random_range(1..=32).min(b.len() - i);
+                let chunk = b[i..i + n].to_vec();
+                let j = pos(rng, &b);
+                b.splice(j..j, chunk);
+            }
+            _ => {}
+        }
+    }
+    b
+}
+
+/// One reader under test.
+struct Target {
+    name: &'static str,
+    csv: bool,
+    /// Valid inputs to mutate.
+    corpus: Vec<Vec<u8>>,
+    /// Parse the bytes as if read from `path`: `Ok(())` or the error.
+    parse: fn(&Path, &[u8]) -> Result<(), anyhow::Error>,
+}
+
+fn read(rel: &str) -> Vec<u8> {
+    let text = std::fs::read_to_string(root().join(rel)).unwrap();
+    // Absolute club paths, so a study or synth file parsed from a temporary path finds its club.
+    let club = root().join("configs/clubs/paper_driver.toml");
+    text.replace(
+        "\"../clubs/paper_driver.toml\"",
+        &format!("{:?}", club.to_str().unwrap()),
+    )
+    .into_bytes()
+}
+
+/// A shots file with every column, measured launch and a few odd-but-valid cells.
+fn shots_corpus() -> Vec<u8> {
+    let mut rng = ChaCha8Rng::seed_from_u64(3);
+    let mut t = String::from(
+        "shot_id,group,golfer,shaft_mass_g,club_speed_mph,attack_angle_deg,club_path_deg,\
+         dynamic_loft_deg,face_angle_deg,lie_tilt_deg,club_omega_x_rad_s,club_omega_y_rad_s,\
+         club_omega_z_rad_s,impact_y_mm,impact_z_mm,ball_speed_mph,launch_angle_deg,azimuth_deg,\
+         backspin_rpm,sidespin_rpm,note\n",
+    );
+    for i in 0..12 {
+        let r = |rng: &mut ChaCha8Rng, a: f64, b: f64| a + (b - a) * rng.random::<f64>();
+        t.push_str(&format!(
+            "s{i},{},G{},{:.1},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},{:.2},\
+             {:.2},{:.2},{:.2},{:.0},{:.0},\"a, b\"\n",
+            ["A", "B"][i % 2],
+            i % 3,
+            r(&mut rng, 50.0, 80.0),
+            r(&mut rng, 90.0, 115.0),
+            r(&mut rng, -4.0, 4.0),
+            r(&mut rng, -4.0, 4.0),
+            r(&mut rng, 8.0, 16.0),
+            r(&mut rng, -4.0, 4.0),
+            r(&mut rng, -2.0, 2.0),
+            r(&mut rng, -2.0, 2.0),
+            r(&mut rng, -2.0, 2.0),
+            r(&mut rng, -2.0, 2.0),
+            r(&mut rng, -10.0, 10.0),
+            r(&mut rng, -15.0, 15.0),
+            r(&mut rng, 130.0, 165.0),
+            r(&mut rng, 8.0, 16.0),
+            r(&mut rng, -4.0, 4.0),
+            r(&mut rng, 2000.0, 3500.0),
+            r(&mut rng, -600.0, 600.0),
+        ));
+    }
+    t.into_bytes()
+}
+
+fn targets() -> Vec<Target> {
+    let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
+    vec![
+        Target {
+            name: "club",
+            csv: false,
+            corpus: vec![read("configs/clubs/paper_driver.toml")],
+            parse: |p, b| {
+                smash::data::club_file::parse_club(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "study",
+            csv: false,
+            corpus: ["face_map", "com_sweep", "optimise", "face_map_fine"]
+                .iter()
+                .map(|s| read(&format!("configs/studies/{s}.toml")))
+                .collect(),
+            parse: |p, b| {
+                smash::study::parse_study(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "synth",
+            csv: false,
+            corpus: [
+                "null_world",
+                "paper_world",
+                "cor_power_world",
+                "face_flex_world",
+                "loft_bias_world",
+            ]
+            .iter()
+            .map(|s| read(&format!("configs/synth/{s}.toml")))
+            .collect(),
+            parse: |p, b| {
+                smash::synth::parse_config(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "noise",
+            csv: false,
+            corpus: vec![read("configs/noise/paper_world.toml")],
+            parse: |p, b| {
+                smash::data::noise_file::parse_noise_file(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "shots",
+            csv: true,
+            corpus: vec![shots_corpus()],
+            parse: |p, b| {
+                smash::data::shots::parse_shots(p, b)?;
+                Ok(())
+            },
+        },
+    ]
+    .into_iter()
+    .inspect(|t| {
+        // The unmutated corpus parses: the fuzz starts from valid files.
+        for c in &t.corpus {
+            if let Err(e) = (t.parse)(Path::new("corpus"), c) {
+                panic!("{} corpus does not parse: {e}\n{}", t.name, text(c));
+            }
+        }
+    })
+    .collect()
+}
+
+fn env_or(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(default)
+}
+
+#[test]
+fn mutated_files_never_panic_and_errors_are_one_line() {
+    let budget = Duration::from_secs(env_or("SMASH_FUZZ_SECONDS", 20));
+    let max_cases = env_or("SMASH_FUZZ_CASES", 20_000);
+    let targets = targets();
+    let path = root().join("configs/studies/fuzz_case.toml");
+    let start = Instant::now();
+    let mut cases = 0u64;
+    let mut errors = 0u64;
+    let mut failures: Vec<String> = Vec::new();
+    // Panics are caught and reported with their input; keep the default hook quiet meanwhile.
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    'outer: for round in 0.. {
+        for seed in SEEDS {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed.wrapping_mul(1_000_003) + round);
+            for t in &targets {
+                for c in &t.corpus {
+                    if cases >= max_cases || start.elapsed() > budget {
+                        break 'outer;
+                    }
+                    cases += 1;
+                    let input = mutate(&mut rng, c, t.csv);
+                    let shown = || {
+                        let s = String::from_utf8_lossy(&input);
+                        format!("{:?}", s.chars().take(4000).collect::<String>())
+                    };
+                    match catch_unwind(AssertUnwindSafe(|| (t.parse)(&path, &input))) {
+                        Err(p) => {
+                            let why = p
+                                .downcast_ref::<String>()
+                                .cloned()
+                                .or_else(|| p.downcast_ref::<&str>().map(|s| s.to_string()))
+                                .unwrap_or_default();
+                            failures.push(format!(
+                                "{} (seed {seed}, round {round}): panic '{why}' on {}",
+                                t.name,
+                                shown()
+                            ));
+                        }
+                        Ok(Err(e)) => {
+                            errors += 1;
+                            let line = smash_cli::error_chain(&e);
+                            // One line, and no control character reaches the terminal.
+                            if line.chars().any(char::is_control) || line.trim().is_empty() {
+                                failures.push(format!(
+                                    "{} (seed {seed}, round {round}): message {line:?} on {}",
+                                    t.name,
+                                    shown()
+                                ));
+                            }
+                        }
+                        Ok(Ok(())) => {}
+                    }
+                    if failures.len() >= 5 {
+                        break 'outer;
+                    }
+                }
+            }
+        }
+    }
+    std::panic::set_hook(hook);
+    eprintln!(
+        "fuzz: {cases} cases ({errors} refused) in {:.1} s",
+        start.elapsed().as_secs_f64()
+    );
+    assert!(failures.is_empty(), "{}", failures.join("\n\n"));
+    assert!(cases >= 100, "only {cases} cases ran");
+}

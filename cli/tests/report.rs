@@ -1,0 +1,408 @@
+//! `--report FILE.html`: the pages' structure without a browser (charts present, nothing fetched,
+//! numbers equal to the JSON), and each page rendered in headless Chromium (screenshot not
+//! blank, no console errors). The browser test skips loudly when Chromium is absent outside CI
+//! and fails in CI (`CI=true`), where `.ci/run` installs it.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use serde_json::Value;
+
+fn smash(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_smash"))
+        .args(args)
+        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .output()
+        .expect("smash runs")
+}
+
+fn ok(out: Output) -> String {
+    assert!(
+        out.status.success(),
+        "smash failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout).expect("utf-8")
+}
+
+const CLUB: &str = "configs/clubs/paper_driver.toml";
+
+/// The paper world's experiment (600 shots, 3 shafts, 20 golfers).
+fn experiment(dir: &Path) -> PathBuf {
+    let shots = dir.join("paper_world.csv");
+    ok(smash(&[
+        "synth",
+        "--config",
+        "configs/synth/paper_world.toml",
+        "--out",
+        shots.to_str().unwrap(),
+    ]));
+    shots
+}
+
+struct Reports {
+    _dir: tempfile::TempDir,
+    compare: (PathBuf, Value),
+    calibrate: (PathBuf, Value),
+    diagnose: (PathBuf, Value),
+    study: PathBuf,
+}
+
+fn reports() -> Reports {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = experiment(dir.path());
+    let s = shots.to_str().unwrap();
+    let path = |n: &str| dir.path().join(n);
+    let compare = path("compare.html");
+    let cj = ok(smash(&[
+        "compare",
+        "--club",
+        CLUB,
+        "--shots",
+        s,
+        "--json",
+        "--report",
+        compare.to_str().unwrap(),
+    ]));
+    let calibrate = path("calibrate.html");
+    let kj = ok(smash(&[
+        "calibrate",
+        "--club",
+        CLUB,
+        "--shots",
+        s,
+        "--effects",
+        "added_mass@group,ball_offset",
+        "--json",
+        "--report",
+        calibrate.to_str().unwrap(),
+    ]));
+    let diagnose = path("diagnose.html");
+    let dj = ok(smash(&[
+        "diagnose",
+        "--club",
+        CLUB,
+        "--shots",
+        s,
+        "--candidates",
+        "added_mass@group,ball_offset,loft_bias",
+        "--folds",
+        "3",
+        "--max-steps",
+        "2",
+        "--impact-noise-mm",
+        "3,2.5",
+        "--json",
+        "--report",
+        diagnose.to_str().unwrap(),
+    ]));
+    let study = path("study.html");
+    ok(smash(&[
+        "run",
+        "configs/studies/face_map.toml",
+        "--out",
+        path("study").to_str().unwrap(),
+        "--report",
+        study.to_str().unwrap(),
+    ]));
+    Reports {
+        compare: (compare, serde_json::from_str(&cj).unwrap()),
+        calibrate: (calibrate, serde_json::from_str(&kj).unwrap()),
+        diagnose: (diagnose, serde_json::from_str(&dj).unwrap()),
+        study,
+        _dir: dir,
+    }
+}
+
+/// Charts on a page, by kind.
+fn charts(html: &str) -> Vec<String> {
+    html.match_indices("<figure class=\"chart\" data-kind=\"")
+        .map(|(i, m)| {
+            let rest = &html[i + m.len()..];
+            rest[..rest.find('"').unwrap()].to_owned()
+        })
+        .collect()
+}
+
+/// Self-contained: no scripts, no external references, every chart an inline SVG.
+fn assert_self_contained(html: &str, name: &str) {
+    assert!(html.starts_with("<!DOCTYPE html>"), "{name}");
+    assert!(!html.contains("<script"), "{name}: has a script");
+    for bad in [
+        "src=\"http",
+        "href=\"http",
+        "url(http",
+        "@import",
+        "@font-face",
+    ] {
+        assert!(!html.contains(bad), "{name}: fetches something ({bad})");
+    }
+    for fig in html.split("<figure class=\"chart\"").skip(1) {
+        let fig = &fig[..fig.find("</figure>").unwrap()];
+        assert!(fig.contains("<svg"), "{name}: a chart without an SVG");
+        assert!(
+            fig.contains("<text"),
+            "{name}: a chart without text (axes, title)"
+        );
+    }
+    assert!(
+        !html.contains("NaN") && !html.contains("inf<"),
+        "{name}: NaN or inf shown"
+    );
+}
+
+/// Equal up to the last bit or two: serde_json's default float parser is not exactly rounding,
+/// so the JSON read back can differ from the printed value in the last place.
+fn same(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 4.0 * f64::EPSILON * a.abs().max(b.abs())
+}
+
+/// Every `data-key`/`data-value` pair on the page.
+fn data_values(html: &str) -> Vec<(String, f64)> {
+    html.match_indices("data-key=\"")
+        .map(|(i, m)| {
+            let rest = &html[i + m.len()..];
+            let key = rest[..rest.find('"').unwrap()].to_owned();
+            let v = &rest[rest.find("data-value=\"").unwrap() + 12..];
+            let v: f64 = v[..v.find('"').unwrap()].parse().unwrap();
+            (key, v)
+        })
+        .collect()
+}
+
+#[test]
+fn pages_have_charts_and_the_json_numbers() {
+    let r = reports();
+
+    let html = std::fs::read_to_string(&r.compare.0).unwrap();
+    assert_self_contained(&html, "compare");
+    let kinds = charts(&html);
+    assert_eq!(
+        kinds.iter().filter(|k| *k == "table2").count(),
+        5,
+        "{kinds:?}"
+    );
+    assert_eq!(
+        kinds.iter().filter(|k| *k == "trend").count(),
+        4,
+        "{kinds:?}"
+    );
+    assert!(
+        kinds.iter().filter(|k| *k == "face").count() >= 1,
+        "{kinds:?}"
+    );
+    // Table 2 on the page carries the JSON's numbers exactly.
+    let vals = data_values(&html);
+    let table2 = r.compare.1["table2"].as_array().unwrap();
+    let mut checked = 0;
+    for g in table2 {
+        for c in g["components"].as_array().unwrap() {
+            for what in ["mean", "std"] {
+                let key = format!(
+                    "{}/{}/{what}",
+                    g["group"].as_str().unwrap(),
+                    c["component"].as_str().unwrap()
+                );
+                let want = c[what].as_f64().unwrap();
+                let got = vals.iter().find(|(k, _)| *k == key).map(|(_, v)| *v);
+                assert!(
+                    got.is_some_and(|g| same(g, want)),
+                    "{key}: {got:?} vs {want}"
+                );
+                checked += 1;
+            }
+        }
+    }
+    assert_eq!(checked, 4 * 5 * 2);
+    // Every finding is on the page.
+    for f in r.compare.1["findings"].as_array().unwrap() {
+        let text = f["text"]
+            .as_str()
+            .unwrap()
+            .replace('&', "&amp;")
+            .replace('<', "&lt;")
+            .replace('>', "&gt;");
+        assert!(html.contains(&text), "finding missing: {text}");
+    }
+
+    let html = std::fs::read_to_string(&r.calibrate.0).unwrap();
+    assert_self_contained(&html, "calibrate");
+    let kinds = charts(&html);
+    assert!(kinds.len() >= 4, "{kinds:?}");
+    assert_eq!(
+        kinds.iter().filter(|k| *k == "table2").count(),
+        5,
+        "{kinds:?}"
+    );
+    assert!(kinds.contains(&"estimates".to_owned()), "{kinds:?}");
+    let vals = data_values(&html);
+    let params = r.calibrate.1["params"].as_array().unwrap();
+    assert_eq!(params.len(), 5);
+    for p in params {
+        let label = match p["group"].as_str() {
+            Some(g) => format!(
+                "{}@{g}.{}",
+                p["effect"].as_str().unwrap(),
+                p["param"].as_str().unwrap()
+            ),
+            None => format!(
+                "{}.{}",
+                p["effect"].as_str().unwrap(),
+                p["param"].as_str().unwrap()
+            ),
+        };
+        let got = vals.iter().find(|(k, _)| *k == label).map(|(_, v)| *v);
+        let want = p["value"].as_f64().unwrap();
+        assert!(
+            got.is_some_and(|g| same(g, want)),
+            "{label}: {got:?} vs {want}"
+        );
+    }
+    assert!(html.contains("before (nominal)") && html.contains("after (calibrated)"));
+
+    let html = std::fs::read_to_string(&r.diagnose.0).unwrap();
+    assert_self_contained(&html, "diagnose");
+    let kinds = charts(&html);
+    let steps = r.diagnose.1["steps"].as_array().unwrap().len();
+    assert_eq!(
+        kinds.iter().filter(|k| *k == "steps").count(),
+        steps,
+        "{kinds:?}"
+    );
+    for e in r.diagnose.1["estimates"].as_array().unwrap() {
+        let v = e["value"].as_f64().unwrap();
+        assert!(
+            data_values(&html).iter().any(|(_, x)| same(*x, v)),
+            "estimate {v} missing"
+        );
+    }
+    // Every candidate of every step is named on its chart.
+    for s in r.diagnose.1["steps"].as_array().unwrap() {
+        for c in s["candidates"].as_array().unwrap() {
+            assert!(html.contains(c["effect"].as_str().unwrap()));
+        }
+    }
+
+    let html = std::fs::read_to_string(&r.study).unwrap();
+    assert_self_contained(&html, "study");
+    assert!(charts(&html).iter().any(|k| k == "face"));
+}
+
+/// Chromium's binary, if installed.
+fn chromium() -> Option<PathBuf> {
+    for name in ["chromium", "chromium-browser", "google-chrome"] {
+        if let Ok(out) = Command::new("sh")
+            .args(["-c", &format!("command -v {name}")])
+            .output()
+        {
+            let p = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+            if out.status.success() && !p.is_empty() {
+                return Some(PathBuf::from(p));
+            }
+        }
+    }
+    None
+}
+
+/// Render `page` headless: (screenshot bytes, console lines, dumped DOM).
+fn render(chrome: &Path, page: &Path, shot: &Path) -> (Vec<u8>, Vec<String>, String) {
+    let profile = tempfile::tempdir().unwrap();
+    let common = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        "--hide-scrollbars",
+        "--enable-logging=stderr",
+        "--v=0",
+    ];
+    let url = format!("file://{}", page.display());
+    let out = Command::new(chrome)
+        .args(common)
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("--screenshot={}", shot.display()))
+        .arg("--window-size=1280,2000")
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    assert!(
+        out.status.success(),
+        "chromium failed on {}",
+        page.display()
+    );
+    let console: Vec<String> = String::from_utf8_lossy(&out.stderr)
+        .lines()
+        .filter(|l| l.contains("CONSOLE") || l.contains("Uncaught"))
+        .map(str::to_owned)
+        .collect();
+    let profile2 = tempfile::tempdir().unwrap();
+    let dom = Command::new(chrome)
+        .args(common)
+        .arg(format!("--user-data-dir={}", profile2.path().display()))
+        .arg("--dump-dom")
+        .arg(&url)
+        .output()
+        .expect("chromium runs");
+    (
+        std::fs::read(shot).expect("screenshot written"),
+        console,
+        String::from_utf8_lossy(&dom.stdout).into_owned(),
+    )
+}
+
+#[test]
+fn pages_render_in_chromium() {
+    let Some(chrome) = chromium() else {
+        if std::env::var("CI").is_ok_and(|v| v == "true") {
+            panic!("Chromium is not installed in CI: .ci/run must install it (apt-get install chromium)");
+        }
+        eprintln!(
+            "\n*** SKIPPED pages_render_in_chromium: chromium is not installed. ***\n\
+             *** Install it (apt-get install chromium) or run .ci/run to check the reports in a browser. ***\n"
+        );
+        return;
+    };
+    let r = reports();
+    let dir = tempfile::tempdir().unwrap();
+    // A blank page at the same size: the baseline a rendered report must be far above.
+    let blank = dir.path().join("blank.html");
+    std::fs::write(&blank, "<!DOCTYPE html><html><body></body></html>").unwrap();
+    let (blank_png, _, _) = render(&chrome, &blank, &dir.path().join("blank.png"));
+    // The check can fail: a page logging an error to the console is caught.
+    let noisy = dir.path().join("noisy.html");
+    std::fs::write(
+        &noisy,
+        "<!DOCTYPE html><html><body><p>x</p><script>console.error('broken chart')</script></body></html>",
+    )
+    .unwrap();
+    let (_, console, _) = render(&chrome, &noisy, &dir.path().join("noisy.png"));
+    assert!(
+        console.iter().any(|l| l.contains("broken chart")),
+        "the console scan missed a console error: {console:?}"
+    );
+    for (name, page, min_charts) in [
+        ("compare", &r.compare.0, 4),
+        ("calibrate", &r.calibrate.0, 4),
+        ("diagnose", &r.diagnose.0, 2),
+        ("study", &r.study, 1),
+    ] {
+        let (png, console, dom) = render(&chrome, page, &dir.path().join(format!("{name}.png")));
+        assert!(png.starts_with(b"\x89PNG"), "{name}: not a PNG");
+        assert!(
+            png.len() > 8 * blank_png.len() && png.len() > 30_000,
+            "{name}: screenshot looks blank ({} bytes; a blank page is {})",
+            png.len(),
+            blank_png.len()
+        );
+        assert!(console.is_empty(), "{name}: console messages: {console:?}");
+        let svgs = dom.matches("<svg").count();
+        assert!(
+            svgs >= min_charts,
+            "{name}: the browser's DOM has {svgs} SVG charts"
+        );
+    }
+}

@@ -1,0 +1,106 @@
+//! `smash run` streams its outputs: its peak memory does not grow with the grid. The peak is
+//! the child process's `VmHWM` (high-water resident set), polled from `/proc/<pid>/status`
+//! while it runs (it only grows, so the last reading before exit is the peak up to then).
+#![cfg(target_os = "linux")]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Duration;
+
+fn club_path() -> String {
+    PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+        .join("configs/clubs/paper_driver.toml")
+        .to_string_lossy()
+        .into_owned()
+}
+
+/// A study of `variants` CoM offsets over an `n × n` grid with `outputs`.
+fn study(dir: &Path, n: usize, variants: usize, outputs: &str) -> PathBuf {
+    let dx: Vec<String> = (0..variants)
+        .map(|i| format!("{:.1}", i as f64 - (variants / 2) as f64))
+        .collect();
+    let text = format!(
+        "[study]\nname = \"mem\"\nclub = \"{}\"\noutputs = {outputs}\n\n\
+         [delivery]\nclub_speed_mph = 100.0\ndynamic_loft_deg = 12.0\n\n\
+         [grid]\ny_mm = {{ from = -25.0, to = 25.0, count = {n} }}\n\
+         z_mm = {{ from = -40.0, to = 40.0, count = {n} }}\n\n\
+         [design]\ncom_dx_mm = [{}]\n",
+        club_path().replace('\\', "/"),
+        dx.join(", ")
+    );
+    let path = dir.join(format!("mem_{n}.toml"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+fn vm_hwm_kb(pid: u32) -> Option<u64> {
+    let status = std::fs::read_to_string(format!("/proc/{pid}/status")).ok()?;
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse().ok())
+}
+
+/// Run `smash run study --out out`; its peak resident memory in MB.
+fn peak_mb(study: &Path, out: &Path) -> f64 {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_smash"))
+        .arg("run")
+        .arg(study)
+        .arg("--out")
+        .arg(out)
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let pid = child.id();
+    let mut peak = 0;
+    loop {
+        if let Some(kb) = vm_hwm_kb(pid) {
+            peak = peak.max(kb);
+        }
+        if child.try_wait().unwrap().is_some() {
+            break;
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+    let out = child.wait_with_output().unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    peak as f64 / 1024.0
+}
+
+#[test]
+fn run_memory_does_not_grow_with_the_grid() {
+    let dir = tempfile::tempdir().unwrap();
+    let small = peak_mb(
+        &study(dir.path(), 100, 2, "[\"ball_speed_mph\"]"),
+        &dir.path().join("small"),
+    );
+    // 256 times the points (8 × 800², 5 M points, ~300 MB of CSV).
+    let big = peak_mb(
+        &study(dir.path(), 800, 8, "[\"ball_speed_mph\"]"),
+        &dir.path().join("big"),
+    );
+    assert!(
+        big < small + 64.0 && big < 1024.0,
+        "peak memory grows with the grid: {small:.0} MB (2 × 100²) -> {big:.0} MB (8 × 800²)"
+    );
+}
+
+/// The issue's bound on the largest grids: 3 variants × 5000 × 5000 (75 M points, about 5 GB
+/// of CSV) in at most 1 GB. Slow (minutes) and disk-hungry, so run on demand:
+/// `cargo test --release --test study_memory -- --ignored`.
+#[test]
+#[ignore]
+fn run_5000_by_5000_with_several_variants_stays_under_1_gb() {
+    let dir = tempfile::tempdir().unwrap();
+    let peak = peak_mb(
+        &study(dir.path(), 5000, 3, "[\"ball_speed_mph\"]"),
+        &dir.path().join("out"),
+    );
+    eprintln!("peak resident memory: {peak:.0} MB");
+    assert!(peak < 1024.0, "peak memory {peak:.0} MB");
+}

@@ -1,0 +1,132 @@
+//! The delivery variables: the eleven numbers a shots file gives for how the club met the ball,
+//! in shots-file column order and file units (mph, deg, rad/s, mm), with their physical ranges
+//! and the typical noise of the instruments that measure them (and of the launch monitor).
+//!
+//! Shared by the synthetic experiments (which generate them), the noise-floor diagnosis and the
+//! noise file (which assume their noise), so it sits below all three.
+
+use nalgebra::Vector3;
+
+use crate::limits::{self, PhysicalRange};
+use crate::physics::{Delivery, LaunchComponent};
+use crate::units::{deg, mm, mph};
+
+/// The delivery variables, in shots-file column order.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DeliveryVar {
+    /// Clubhead CoM speed, mph.
+    ClubSpeed,
+    /// Attack angle, deg.
+    AttackAngle,
+    /// Club path, deg.
+    ClubPath,
+    /// Dynamic loft, deg.
+    DynamicLoft,
+    /// Face angle, deg.
+    FaceAngle,
+    /// Lie tilt, deg.
+    LieTilt,
+    /// Clubhead angular velocity about ground x, rad/s.
+    OmegaX,
+    /// About ground y (up), rad/s.
+    OmegaY,
+    /// About ground z, rad/s.
+    OmegaZ,
+    /// Impact location up the face, mm.
+    ImpactY,
+    /// Impact location toward the toe, mm.
+    ImpactZ,
+}
+
+/// Number of delivery variables.
+pub const N_DELIVERY: usize = 11;
+
+impl DeliveryVar {
+    /// All variables in column order.
+    pub const ALL: [DeliveryVar; N_DELIVERY] = [
+        Self::ClubSpeed,
+        Self::AttackAngle,
+        Self::ClubPath,
+        Self::DynamicLoft,
+        Self::FaceAngle,
+        Self::LieTilt,
+        Self::OmegaX,
+        Self::OmegaY,
+        Self::OmegaZ,
+        Self::ImpactY,
+        Self::ImpactZ,
+    ];
+
+    /// Shots-file column (and config key).
+    pub const fn column(self) -> &'static str {
+        match self {
+            Self::ClubSpeed => "club_speed_mph",
+            Self::AttackAngle => "attack_angle_deg",
+            Self::ClubPath => "club_path_deg",
+            Self::DynamicLoft => "dynamic_loft_deg",
+            Self::FaceAngle => "face_angle_deg",
+            Self::LieTilt => "lie_tilt_deg",
+            Self::OmegaX => "club_omega_x_rad_s",
+            Self::OmegaY => "club_omega_y_rad_s",
+            Self::OmegaZ => "club_omega_z_rad_s",
+            Self::ImpactY => "impact_y_mm",
+            Self::ImpactZ => "impact_z_mm",
+        }
+    }
+
+    /// Default measurement noise SD on the delivery (motion capture), file units.
+    pub const fn default_noise(self) -> f64 {
+        match self {
+            Self::ClubSpeed => 0.4,
+            Self::AttackAngle | Self::ClubPath | Self::FaceAngle => 0.3,
+            Self::DynamicLoft => 0.5,
+            Self::LieTilt => 0.5,
+            Self::OmegaX | Self::OmegaY | Self::OmegaZ => 0.5,
+            Self::ImpactY | Self::ImpactZ => 1.5,
+        }
+    }
+
+    /// The physically meaningful values of the variable (see [`crate::limits`]).
+    pub const fn range(self) -> PhysicalRange {
+        match self {
+            Self::ClubSpeed => limits::CLUB_SPEED_MPH,
+            Self::DynamicLoft => limits::DYNAMIC_LOFT_DEG,
+            Self::AttackAngle | Self::ClubPath | Self::FaceAngle | Self::LieTilt => {
+                limits::DELIVERY_ANGLE_DEG
+            }
+            Self::OmegaX | Self::OmegaY | Self::OmegaZ => limits::CLUB_OMEGA_RAD_S,
+            Self::ImpactY | Self::ImpactZ => limits::IMPACT_LOCATION_MM,
+        }
+    }
+
+    /// Index in [`DeliveryVar::ALL`].
+    pub const fn index(self) -> usize {
+        self as usize
+    }
+}
+
+/// Default launch-monitor noise SD (a GCQuad-class camera unit), file units.
+pub const fn default_launch_noise(c: LaunchComponent) -> f64 {
+    match c {
+        LaunchComponent::BallSpeed => 0.5,
+        LaunchComponent::LaunchAngle => 0.3,
+        LaunchComponent::Azimuth => 0.5,
+        LaunchComponent::Backspin => 120.0,
+        LaunchComponent::Sidespin => 150.0,
+    }
+}
+
+/// Delivery in SI from file-unit values in [`DeliveryVar::ALL`] order.
+pub fn delivery_from_file_units(v: &[f64; N_DELIVERY]) -> Delivery {
+    Delivery {
+        club_speed_m_s: mph(v[0]),
+        attack_angle_rad: deg(v[1]),
+        club_path_rad: deg(v[2]),
+        dynamic_loft_rad: deg(v[3]),
+        face_angle_rad: deg(v[4]),
+        lie_tilt_rad: deg(v[5]),
+        club_omega_rad_s: Vector3::new(v[6], v[7], v[8]),
+        impact_y_m: mm(v[9]),
+        impact_z_m: mm(v[10]),
+    }
+}
