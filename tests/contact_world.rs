@@ -369,7 +369,10 @@ fn contact_time_explains_a_finite_contact_better_than_inertia_scale() {
         whitened(r1),
         best_inertia
     );
-    assert!(r1[0] < 0.9 * r0[0] && r1[2] < 0.9 * r0[2], "{r0:?} -> {r1:?}");
+    assert!(
+        r1[0] < 0.9 * r0[0] && r1[2] < 0.9 * r0[2],
+        "{r0:?} -> {r1:?}"
+    );
     assert!(whitened(r1) < 0.9 * whitened(r0));
     assert!(whitened(r1) < best_inertia);
 }
@@ -402,7 +405,8 @@ fn tangential_compliance_beats_constant_restitution_and_friction() {
         });
         whitened(r)
     };
-    let grid = |lo: f64, hi: f64, n: usize| (0..=n).map(move |i| lo + (hi - lo) * i as f64 / n as f64);
+    let grid =
+        |lo: f64, hi: f64, n: usize| (0..=n).map(move |i| lo + (hi - lo) * i as f64 / n as f64);
     let no_slip = eval(0.0, 0.0, None);
     let constant = grid(-0.5, 0.5, 20)
         .map(|et| eval(et, 0.0, None))
@@ -429,7 +433,10 @@ fn tangential_compliance_beats_constant_restitution_and_friction() {
             et
         );
     }
-    assert!(compliance < 0.9 * constant.min(friction), "{compliance} vs {constant}, {friction}");
+    assert!(
+        compliance < 0.9 * constant.min(friction),
+        "{compliance} vs {constant}, {friction}"
+    );
 }
 
 fn show(label: &str, (m, r): ([f64; 5], [f64; 5])) {

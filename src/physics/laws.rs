@@ -398,7 +398,6 @@ pub struct FiniteContact {
 }
 
 impl FiniteContact {
-
     /// The impulse on the ball `P` and the ball's angular impulse `r_b × P` (both in the face
     /// frame at first contact), and whether friction limited the impulse. With `τ = 0` exactly
     /// the instantaneous law. `w_c` is the head's angular velocity before impact, `j` the

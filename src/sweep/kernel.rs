@@ -279,26 +279,26 @@ impl FaceMapKernel {
         // the kernel handles it. Most reach the kernel through the model's laws, the face or
         // the face orientation; the rest are read below.
         let ModelParams {
-            club_mass_kg: _,           // in laws.collision
-            club_com_m,                // r_c below
-            club_inertia_kgm2: _,      // in laws.collision
-            cor: _,                    // in laws.restitution
-            bulge_m: _,                // in model.face()
-            roll_m: _,                 // in model.face()
-            ball_mass_kg,              // r_v below; in laws.collision
-            ball_radius_m: _,          // in laws.ball
-            ball_inertia_kgm2,         // r_w below; in laws.collision
-            ball_offset_y_m: _,        // in laws.ball
-            ball_offset_z_m: _,        // in laws.ball
-            tangential_restitution: _, // in laws.tangential
-            friction_mu: _,            // in laws.tangential
-            cor_speed_k_s_per_m: _,    // in laws.restitution
-            cor_power_q: _,            // in laws.restitution
-            cor_radial_c_per_m2: _,    // in laws.restitution
-            loft_bias_rad: _,          // in model.face_orientation
-            face_bias_rad: _,          // in model.face_orientation
-            hosel_m: _,                // composed into mass, CoM and inertia by the effects
-            contact_time_s: _,         // in laws.contact
+            club_mass_kg: _,                 // in laws.collision
+            club_com_m,                      // r_c below
+            club_inertia_kgm2: _,            // in laws.collision
+            cor: _,                          // in laws.restitution
+            bulge_m: _,                      // in model.face()
+            roll_m: _,                       // in model.face()
+            ball_mass_kg,                    // r_v below; in laws.collision
+            ball_radius_m: _,                // in laws.ball
+            ball_inertia_kgm2,               // r_w below; in laws.collision
+            ball_offset_y_m: _,              // in laws.ball
+            ball_offset_z_m: _,              // in laws.ball
+            tangential_restitution: _,       // in laws.tangential
+            friction_mu: _,                  // in laws.tangential
+            cor_speed_k_s_per_m: _,          // in laws.restitution
+            cor_power_q: _,                  // in laws.restitution
+            cor_radial_c_per_m2: _,          // in laws.restitution
+            loft_bias_rad: _,                // in model.face_orientation
+            face_bias_rad: _,                // in model.face_orientation
+            hosel_m: _,                      // composed into mass, CoM and inertia by the effects
+            contact_time_s: _,               // in laws.contact
             tangential_restitution_slope: _, // in laws.tangential
         } = model.params();
         // Exactly the operations of `ImpactModel::solve`, so u1·n has the same bits.
