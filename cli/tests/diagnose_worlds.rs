@@ -92,7 +92,16 @@ fn each_hidden_library_effect_is_named_first() {
         let cfg = hidden_world(dir.path(), effect, params, 11 + i as u64);
         let d = diagnose_world(dir.path(), effect, &cfg, &[]);
         let sel = selected(&d);
-        if sel.first().map(String::as_str) != Some(*effect) {
+        // On launch data alone some library effects are aliases: `added_mass` and `cor_level`
+        // change ball speed alike (so does `hosel_mass` at the centre), `cor_speed` and
+        // `cor_power` differ only by curvature over the speeds of one experiment. Naming the
+        // alias first is the data's limit, not a wrong diagnosis.
+        let aliases: Vec<&str> = match *effect {
+            "added_mass" => vec!["added_mass", "cor_level", "hosel_mass"],
+            "cor_speed" => vec!["cor_speed", "cor_power"],
+            e => vec![e],
+        };
+        if !sel.first().is_some_and(|s| aliases.contains(&s.as_str())) {
             wrong.push(format!("{effect}: selected {sel:?}"));
         }
     }
@@ -103,7 +112,7 @@ fn each_hidden_library_effect_is_named_first() {
 fn worlds_off_the_library_lead_to_the_right_family() {
     let dir = tempfile::tempdir().unwrap();
     for (world, family) in [
-        ("cor_power_world", "cor_speed"),
+        ("cor_power_world", "cor_power"),
         ("face_flex_world", "cor_radial"),
         ("loft_bias_world", "loft_bias"),
         ("paper_world", "ball_offset"),
@@ -140,8 +149,9 @@ fn null_world_selects_nothing_and_finds_the_location_noise_instead() {
         (1.0..=2.0).contains(&sy),
         "synth's 1.5 mm location noise, found {sy} mm"
     );
-    // Taking the noisy locations as exact, the same data blame physics: location noise is not
-    // a harmless assumption, which is why diagnose models it.
+    // Taking the noisy locations as exact, no noise is modelled. (Before physical candidates
+    // paid 2·ln m for the best of m, this world then selected a spurious effect; with the
+    // correction it does not, and tests/diagnose_fdr.rs measures the rate over 20 seeds.)
     let exact = diagnose_world(
         dir.path(),
         "null_exact",
@@ -149,16 +159,12 @@ fn null_world_selects_nothing_and_finds_the_location_noise_instead() {
         &["--exact-impact-locations"],
     );
     assert!(exact["impact_noise_mm"].is_null());
-    assert!(
-        !selected(&exact).is_empty(),
-        "expected a spurious effect when noise is ignored"
-    );
 }
 
 #[test]
 fn opt_in_candidates_name_the_hidden_power_law_cor() {
-    // cor_power is searched only when named: beside its linear cousin cor_speed and the other
-    // ball-speed effects, the shipped world (library cor_power, q = 0.15) must be named as such.
+    // Among only its ball-speed neighbours (its linear cousin cor_speed, cor_level and
+    // added_mass), the shipped world (library cor_power, q = 0.15) must be named as such.
     let dir = tempfile::tempdir().unwrap();
     let d = diagnose_world(
         dir.path(),
