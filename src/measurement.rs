@@ -24,7 +24,7 @@
 
 use nalgebra::{Matrix2, Vector2, Vector3};
 
-use crate::physics::{Delivery, ImpactError, ImpactModel, Launch, LaunchComponent};
+use crate::physics::{Delivery, ImpactError, ImpactModel, ImpactOutcome, Launch, LaunchComponent};
 
 /// 1σ measurement noise of the impact location, m.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -217,19 +217,34 @@ pub fn expected_outcome(
     d: &Delivery,
     nodes: Option<&[LocationNode; NODES_PER_SHOT]>,
 ) -> Result<(Launch, Vector3<f64>, Vector3<f64>), ImpactError> {
+    match nodes {
+        None => expected_over(None, |_| model.solve(d)),
+        Some(nodes) => expected_over(Some(nodes), |k| {
+            model.solve(&Delivery {
+                impact_y_m: nodes[k].y_m,
+                impact_z_m: nodes[k].z_m,
+                ..*d
+            })
+        }),
+    }
+}
+
+/// The averaging of [`expected_outcome`] over any way of solving the impact: `solve(k)` is the
+/// impact at node `k` (or at the measured location, `k = 0`, when `nodes` is `None`). The fits
+/// call it with impacts solved from precomputed frames; both give the same bits.
+#[inline]
+pub fn expected_over(
+    nodes: Option<&[LocationNode; NODES_PER_SHOT]>,
+    mut solve: impl FnMut(usize) -> Result<ImpactOutcome, ImpactError>,
+) -> Result<(Launch, Vector3<f64>, Vector3<f64>), ImpactError> {
     let Some(nodes) = nodes else {
-        let o = model.solve(d)?;
+        let o = solve(0)?;
         return Ok((o.launch(), o.ball_velocity_m_s, o.ball_spin_rad_s));
     };
     let mut acc = [0.0; 5];
     let (mut v, mut w) = (Vector3::zeros(), Vector3::zeros());
-    for node in nodes {
-        let at = Delivery {
-            impact_y_m: node.y_m,
-            impact_z_m: node.z_m,
-            ..*d
-        };
-        let o = model.solve(&at)?;
+    for (k, node) in nodes.iter().enumerate() {
+        let o = solve(k)?;
         let l = o.launch();
         for (a, c) in acc.iter_mut().zip(LaunchComponent::ALL) {
             *a += node.weight * l.get_si(c);

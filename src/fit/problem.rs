@@ -15,19 +15,32 @@
 //! (2 h_j)`, with `h_j = 1e-4 · (upper_j − lower_j)` (for example 0.03 g of added mass,
 //! 2 µm of ball offset, 3 mdeg of loft bias); at a bound the difference is taken one-sided
 //! inside the bounds. The model for each group is built once per evaluation; the per-shot
-//! loop does not allocate.
+//! loop does not allocate. A column of a per-group parameter is evaluated on that group's
+//! shots only (the others' differences are exactly zero).
+//!
+//! Everything that does not depend on the fitted parameters is computed once per data set
+//! ([`FitData`] keeps it): each shot's face orientation and clubhead velocities in the face
+//! frame ([`ImpactModel::delivery_frame`], reused while the loft and face biases are those of
+//! the club), and the face's contact frame at every impact location or quadrature node. An
+//! evaluation then runs only [`ImpactModel::solve_in`], the second half of
+//! [`ImpactModel::solve`], so the residuals have the same bits as solving each shot afresh.
+//! Large data sets are evaluated in parallel chunks of shots (each shot's result is the same
+//! whatever the thread; the first failing shot in file order is reported).
 
 use argmin::core::{Error as ArgminError, Jacobian, Operator};
 use nalgebra::{DMatrix, DVector, Vector3};
+use std::sync::{Arc, OnceLock};
+
 use rayon::prelude::*;
 
 use super::spec::ParamLayout;
 use super::FitError;
 use crate::club::ClubSpec;
-use crate::measurement::{expected_outcome, ImpactNoise, LocationNode, NODES_PER_SHOT};
+use crate::measurement::{expected_over, ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::model::Shot;
 use crate::physics::{
-    Delivery, ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError,
+    ContactFrame, Delivery, DeliveryFrame, FaceError, FaceGeometry, ImpactError, ImpactModel,
+    Launch, LaunchComponent, ModelParams, ParamError,
 };
 
 /// Relative finite-difference step: `h_j = FD_STEP_OF_RANGE · (upper_j − lower_j)`.
@@ -57,7 +70,73 @@ pub struct FitData {
     /// Posterior quadrature nodes of each shot's true impact location when the measured
     /// locations are noisy (see [`crate::measurement`]); `None`: locations taken as measured.
     pub impact_nodes: Option<Vec<[LocationNode; NODES_PER_SHOT]>>,
+    /// Parameter-independent parts of every evaluation, built on first use (see the module
+    /// docs). Built from the fields above: change them only through the methods here.
+    cache: OnceLock<Option<Arc<SiteCache>>>,
 }
+
+/// What every evaluation of a [`FitData`] shares: per shot the delivery frame for one pair of
+/// loft and face biases, per evaluation site (shot, or shot × location node) the face's contact
+/// frame for one face geometry.
+#[derive(Debug, PartialEq)]
+struct SiteCache {
+    face: FaceGeometry,
+    loft_bias_rad: f64,
+    face_bias_rad: f64,
+    frames: Vec<DeliveryFrame>,
+    /// `sites_per_shot` entries a shot.
+    contacts: Vec<Result<ContactFrame, FaceError>>,
+    sites_per_shot: usize,
+}
+
+impl SiteCache {
+    fn build(model: &ImpactModel, data: &FitData) -> Self {
+        let frames = data
+            .deliveries
+            .iter()
+            .map(|d| model.delivery_frame(d))
+            .collect();
+        let face = *model.face();
+        let (contacts, sites_per_shot) = match &data.impact_nodes {
+            None => (
+                data.deliveries
+                    .iter()
+                    .map(|d| face.contact(d.impact_y_m, d.impact_z_m))
+                    .collect(),
+                1,
+            ),
+            Some(nodes) => (
+                nodes
+                    .iter()
+                    .flat_map(|ns| ns.iter().map(move |n| face.contact(n.y_m, n.z_m)))
+                    .collect(),
+                NODES_PER_SHOT,
+            ),
+        };
+        let p = model.params();
+        Self {
+            face,
+            loft_bias_rad: p.loft_bias_rad,
+            face_bias_rad: p.face_bias_rad,
+            frames,
+            contacts,
+            sites_per_shot,
+        }
+    }
+
+    /// Are the frames valid for `model` (same biases)?
+    fn frames_fit(&self, model: &ImpactModel) -> bool {
+        let p = model.params();
+        p.loft_bias_rad == self.loft_bias_rad && p.face_bias_rad == self.face_bias_rad
+    }
+}
+
+/// Fewest evaluation sites (shots × location nodes) for which a residual evaluation is split
+/// over threads.
+const PARALLEL_MIN_SITES: usize = 2048;
+
+/// Shots per parallel task of a residual evaluation.
+const SHOTS_PER_TASK: usize = 128;
 
 impl FitData {
     /// Flatten shots that carry measured launch conditions.
@@ -82,6 +161,7 @@ impl FitData {
             measured_velocity_m_s: Vec::with_capacity(shots.len()),
             measured_spin_yz_rad_s: Vec::with_capacity(shots.len()),
             impact_nodes: None,
+            cache: OnceLock::new(),
         };
         for s in shots {
             let m = s.measured.ok_or(FitError::NoMeasurements)?;
@@ -106,6 +186,7 @@ impl FitData {
     /// locations comes from all these shots' measured locations.
     pub fn with_impact_noise(mut self, noise: Option<ImpactNoise>) -> Result<Self, FitError> {
         self.impact_nodes = noise.map(|n| n.nodes_for(&self.deliveries)).transpose()?;
+        self.cache = OnceLock::new();
         Ok(self)
     }
 
@@ -138,7 +219,16 @@ impl FitData {
                 .impact_nodes
                 .as_ref()
                 .map(|n| idx.iter().map(|&i| n[i]).collect()),
+            cache: OnceLock::new(),
         }
+    }
+
+    /// The shared evaluation parts, built on first use with `model`'s face and biases (`None`
+    /// when `model` is `None`: no valid club model to build them with).
+    fn site_cache(&self, model: impl FnOnce() -> Option<ImpactModel>) -> Option<&SiteCache> {
+        self.cache
+            .get_or_init(|| model().map(|m| Arc::new(SiteCache::build(&m, self))))
+            .as_deref()
     }
 
     /// Do all shots name a golfer?
@@ -217,6 +307,8 @@ pub struct FitProblem<'a> {
     theta_fixed: DVector<f64>,
     lower: DVector<f64>,
     upper: DVector<f64>,
+    /// Effect index of each parameter of `θ`.
+    owner: Vec<usize>,
     parallel_jacobian: bool,
 }
 
@@ -244,6 +336,7 @@ impl<'a> FitProblem<'a> {
             .collect();
         let theta_fixed = layout.defaults();
         let (lower, upper) = (layout.lower(), layout.upper());
+        let owner = layout.params().map(|(i, _)| i).collect();
         Self {
             data,
             active: (0..layout.len()).collect(),
@@ -254,6 +347,7 @@ impl<'a> FitProblem<'a> {
             theta_fixed,
             lower,
             upper,
+            owner,
             parallel_jacobian: false,
         }
     }
@@ -354,9 +448,10 @@ impl<'a> FitProblem<'a> {
     /// Model − measured for every shot in file units (mph, deg, deg, rpm, rpm), full `theta`.
     pub fn launch_errors(&self, theta: &[f64]) -> Result<Vec<[f64; 5]>, EvalError> {
         let models = self.models(theta)?;
+        let cache = self.cache();
         (0..self.data.len())
             .map(|i| {
-                let (launch, _, _) = self.predict(&models, i)?;
+                let (launch, _, _) = self.predict(&models, cache, i)?;
                 let m = &self.data.measured[i];
                 Ok(std::array::from_fn(|c| {
                     launch.get_file(LaunchComponent::ALL[c]) - m[c]
@@ -365,20 +460,55 @@ impl<'a> FitProblem<'a> {
             .collect()
     }
 
+    /// The data's shared evaluation parts, built with the club's own model of the first group.
+    fn cache(&self) -> Option<&SiteCache> {
+        self.data
+            .site_cache(|| ImpactModel::new(self.base_params.first()?.clone()).ok())
+    }
+
     /// Predicted launch (SI), ball velocity and spin (G) of shot `i`: the model at the measured
-    /// delivery, or its average over the posterior of the true impact location.
+    /// delivery, or its average over the posterior of the true impact location. The same bits
+    /// as [`crate::measurement::expected_outcome`], from the cached frames where they apply.
     #[inline]
     fn predict(
         &self,
         models: &[ImpactModel],
+        cache: Option<&SiteCache>,
         i: usize,
     ) -> Result<(Launch, Vector3<f64>, Vector3<f64>), EvalError> {
+        let model = &models[self.data.group_of[i]];
+        let d = &self.data.deliveries[i];
         let nodes = self.data.impact_nodes.as_ref().map(|n| &n[i]);
-        expected_outcome(
-            &models[self.data.group_of[i]],
-            &self.data.deliveries[i],
-            nodes,
-        )
+        let at = |k: usize| match nodes {
+            Some(n) => (n[k].y_m, n[k].z_m),
+            None => (d.impact_y_m, d.impact_z_m),
+        };
+        let fresh;
+        let (frame, contacts) = match cache {
+            Some(c) => {
+                let frame = if c.frames_fit(model) {
+                    &c.frames[i]
+                } else {
+                    fresh = model.delivery_frame(d);
+                    &fresh
+                };
+                let per = c.sites_per_shot;
+                let contacts = (*model.face() == c.face).then(|| &c.contacts[i * per..][..per]);
+                (frame, contacts)
+            }
+            None => {
+                fresh = model.delivery_frame(d);
+                (&fresh, None)
+            }
+        };
+        expected_over(nodes, |k| {
+            let (y, z) = at(k);
+            let cf = match contacts {
+                Some(c) => c[k]?,
+                None => model.face().contact(y, z)?,
+            };
+            model.solve_in(frame, &cf, y, z)
+        })
         .map_err(|source| EvalError::Shot {
             shot_id: self.data.ids[i].clone(),
             source,
@@ -387,27 +517,77 @@ impl<'a> FitProblem<'a> {
 
     /// Residuals at full `theta` into `out` (length [`FitProblem::rows`]).
     pub fn residuals_into(&self, theta: &[f64], out: &mut [f64]) -> Result<(), EvalError> {
+        self.residuals_of_groups(theta, out, None)
+    }
+
+    /// Residuals at full `theta` into `out` for the shots of the groups flagged in `groups`
+    /// (all shots when `None`); the rows of other shots are left as they are.
+    fn residuals_of_groups(
+        &self,
+        theta: &[f64],
+        out: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> Result<(), EvalError> {
         let models = self.models(theta)?;
+        let cache = self.cache();
         let rows = self.weighting.rows_per_shot();
         debug_assert_eq!(out.len(), self.rows());
-        for (i, r) in out.chunks_exact_mut(rows).enumerate() {
-            let (launch, ball_v, ball_w) = self.predict(&models, i)?;
-            match self.weighting {
-                Weighting::Launch { inv_scale } => {
-                    let m = &self.data.measured[i];
-                    for c in 0..5 {
-                        r[c] = (launch.get_file(LaunchComponent::ALL[c]) - m[c]) * inv_scale[c];
-                    }
+        let task = |(t, chunk): (usize, &mut [f64])| -> Result<(), EvalError> {
+            for (k, r) in chunk.chunks_exact_mut(rows).enumerate() {
+                let i = t * SHOTS_PER_TASK + k;
+                if groups.is_some_and(|g| !g[self.data.group_of[i]]) {
+                    continue;
                 }
-                Weighting::PaperLinear => {
-                    let d = ball_v - self.data.measured_velocity_m_s[i];
-                    r.copy_from_slice(d.as_slice());
+                self.residual_rows(&models, cache, i, r)?;
+            }
+            Ok(())
+        };
+        let sites = self.data.len()
+            * if self.data.impact_nodes.is_some() {
+                NODES_PER_SHOT
+            } else {
+                1
+            };
+        if sites >= PARALLEL_MIN_SITES {
+            // Collected in order, so the error reported is the first failing shot's.
+            let done: Vec<Result<(), EvalError>> = out
+                .par_chunks_mut(SHOTS_PER_TASK * rows)
+                .enumerate()
+                .map(task)
+                .collect();
+            done.into_iter().collect()
+        } else {
+            out.chunks_mut(SHOTS_PER_TASK * rows)
+                .enumerate()
+                .try_for_each(task)
+        }
+    }
+
+    /// The residual rows of shot `i`.
+    #[inline]
+    fn residual_rows(
+        &self,
+        models: &[ImpactModel],
+        cache: Option<&SiteCache>,
+        i: usize,
+        r: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let (launch, ball_v, ball_w) = self.predict(models, cache, i)?;
+        match self.weighting {
+            Weighting::Launch { inv_scale } => {
+                let m = &self.data.measured[i];
+                for c in 0..5 {
+                    r[c] = (launch.get_file(LaunchComponent::ALL[c]) - m[c]) * inv_scale[c];
                 }
-                Weighting::PaperAngular => {
-                    let m = &self.data.measured_spin_yz_rad_s[i];
-                    r[0] = ball_w.y - m[0];
-                    r[1] = ball_w.z - m[1];
-                }
+            }
+            Weighting::PaperLinear => {
+                let d = ball_v - self.data.measured_velocity_m_s[i];
+                r.copy_from_slice(d.as_slice());
+            }
+            Weighting::PaperAngular => {
+                let m = &self.data.measured_spin_yz_rad_s[i];
+                r[0] = ball_w.y - m[0];
+                r[1] = ball_w.z - m[1];
             }
         }
         Ok(())
@@ -433,9 +613,17 @@ impl<'a> FitProblem<'a> {
             plus[j] = (theta[j] + h).min(self.upper[j]);
             minus[j] = (theta[j] - h).max(self.lower[j]);
             let span = plus[j] - minus[j];
+            // Groups whose model the parameter changes: the other shots' residuals are the same
+            // at both points, so their rows stay 0 (what (r − r)/span gives).
+            let touched: Vec<bool> = self
+                .applies
+                .iter()
+                .map(|a| a.contains(&self.owner[j]))
+                .collect();
+            let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
             let mut r_minus = vec![0.0; m];
-            self.residuals_into(plus.as_slice(), col)?;
-            self.residuals_into(minus.as_slice(), &mut r_minus)?;
+            self.residuals_of_groups(plus.as_slice(), col, groups)?;
+            self.residuals_of_groups(minus.as_slice(), &mut r_minus, groups)?;
             for (c, rm) in col.iter_mut().zip(&r_minus) {
                 *c = (*c - rm) / span;
             }

@@ -20,102 +20,13 @@
 //! Only `+ − × ÷ √` (and `powf` when a `cor_power` exponent is set) are used, never fused
 //! multiply–add, so every code path gives the same bits for the same inputs.
 
-use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
-
-use crate::lanes::{M, V};
+pub use super::real::Real;
+#[cfg(test)]
+use crate::lanes::V;
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
 pub const COR_REFERENCE_SPEED_M_S: f64 = 48.77;
-
-/// A number the laws are evaluated on: `f64` (one shot) or [`V`] (a vector of lanes).
-pub trait Real:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-    + Add<f64, Output = Self>
-    + Sub<f64, Output = Self>
-    + Mul<f64, Output = Self>
-    + Div<f64, Output = Self>
-{
-    /// Per-lane truth value (`bool` for `f64`).
-    type Mask: Copy + BitAnd<Output = Self::Mask>;
-    /// Every lane `v`.
-    fn splat(v: f64) -> Self;
-    /// Correctly rounded square root.
-    fn sqrt(self) -> Self;
-    /// `self^e` (libm `pow`, lane by lane).
-    fn powf(self, e: f64) -> Self;
-    /// `self > o`, lane by lane.
-    fn gt(self, o: Self) -> Self::Mask;
-    /// All lanes false.
-    fn no() -> Self::Mask;
-    /// `if m { a } else { b }`, lane by lane.
-    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
-}
-
-impl Real for f64 {
-    type Mask = bool;
-    #[inline(always)]
-    fn splat(v: f64) -> Self {
-        v
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn powf(self, e: f64) -> Self {
-        f64::powf(self, e)
-    }
-    #[inline(always)]
-    fn gt(self, o: Self) -> bool {
-        self > o
-    }
-    #[inline(always)]
-    fn no() -> bool {
-        false
-    }
-    #[inline(always)]
-    fn select(m: bool, a: Self, b: Self) -> Self {
-        if m {
-            a
-        } else {
-            b
-        }
-    }
-}
-
-impl Real for V {
-    type Mask = M;
-    #[inline(always)]
-    fn splat(v: f64) -> Self {
-        V::splat(v)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        V::sqrt(self)
-    }
-    #[inline(always)]
-    fn powf(self, e: f64) -> Self {
-        V::powf(self, e)
-    }
-    #[inline(always)]
-    fn gt(self, o: Self) -> M {
-        V::gt(self, o)
-    }
-    #[inline(always)]
-    fn no() -> M {
-        M([0; crate::lanes::W])
-    }
-    #[inline(always)]
-    fn select(m: M, a: Self, b: Self) -> Self {
-        m.select(a, b)
-    }
-}
 
 /// A 3-vector of [`Real`]s (components in the face frame F unless said otherwise).
 pub type Vec3<R> = [R; 3];
@@ -324,30 +235,53 @@ impl TangentialLaw {
         u1n: R,
         e: R,
     ) -> (Vec3<R>, R::Mask) {
-        let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
-        let eu = e * u1n;
-        let et = if self.e_t_slope == 0.0 {
+        // `tangential_compliance`: e_t rises with the tangent of the incidence, |u1t|/u1n.
+        let e_t = if self.e_t_slope == 0.0 {
             R::splat(self.e_t)
         } else {
-            dot(&u1t, &u1t).sqrt() / u1n * self.e_t_slope + self.e_t
+            tangential_speed(u1, n, u1n) / u1n * self.e_t_slope + self.e_t
         };
+        Self::impulse_with::<R, FRICTION>(
+            k,
+            n,
+            u1,
+            u1n,
+            e,
+            e_t,
+            R::splat(self.mu.unwrap_or(f64::INFINITY)),
+        )
+    }
+
+    /// [`TangentialLaw::impulse`] with `e_t` and `mu` given per lane (as user-defined effects
+    /// set them); `mu` is read only when `FRICTION`.
+    #[inline(always)]
+    pub fn impulse_with<R: Real, const FRICTION: bool>(
+        k: &Sym3<R>,
+        n: &Vec3<R>,
+        u1: &Vec3<R>,
+        u1n: R,
+        e: R,
+        e_t: R,
+        mu: R,
+    ) -> (Vec3<R>, R::Mask) {
+        let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
+        let eu = e * u1n;
         let b = [
-            u1[0] + eu * n[0] + u1t[0] * et,
-            u1[1] + eu * n[1] + u1t[1] * et,
-            u1[2] + eu * n[2] + u1t[2] * et,
+            u1[0] + eu * n[0] + u1t[0] * e_t,
+            u1[1] + eu * n[1] + u1t[1] * e_t,
+            u1[2] + eu * n[2] + u1t[2] * e_t,
         ];
         let p = solve_sym3(k, &b);
         if !FRICTION {
             return (p, R::no());
         }
-        let mu = self.mu.unwrap_or(f64::INFINITY);
         let pn = dot(&p, n);
         let pt = [p[0] - pn * n[0], p[1] - pn * n[1], p[2] - pn * n[2]];
         let pt_norm = dot(&pt, &pt).sqrt();
         let ut = dot(&u1t, &u1t).sqrt();
         let zero = R::splat(0.0);
         let slip = pt_norm.gt(pn * mu) & ut.gt(zero);
-        let f = R::splat(mu) / ut;
+        let f = mu / ut;
         let dir = [n[0] + u1t[0] * f, n[1] + u1t[1] * f, n[2] + u1t[2] * f];
         let pn_slip = (e + 1.0) * u1n / dot(n, &sym_mul(k, &dir));
         (
@@ -399,25 +333,25 @@ pub struct FiniteContact {
 
 impl FiniteContact {
     /// The impulse on the ball `P` and the ball's angular impulse `r_b × P` (both in the face
-    /// frame at first contact), and whether friction limited the impulse. With `τ = 0` exactly
-    /// the instantaneous law. `w_c` is the head's angular velocity before impact, `j` the
-    /// symmetrised inverse head inertia (as in [`CollisionMatrix`]).
+    /// frame at first contact), and whether friction limited the impulse. `impulse(u1, u1n)` is
+    /// the instantaneous law (the tangential law with its collision matrix and COR) for an
+    /// approach velocity; with `τ = 0` it is called once and its result returned as is. `w_c`
+    /// is the head's angular velocity before impact, `j` the symmetrised inverse head inertia
+    /// (as in [`CollisionMatrix`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
-    pub fn impact<R: Real, const FRICTION: bool>(
+    pub fn impact<R: Real>(
         &self,
-        tangential: &TangentialLaw,
+        impulse: impl Fn(&Vec3<R>, R) -> (Vec3<R>, R::Mask),
         j: &[f64; 6],
-        k: &Sym3<R>,
         n: &Vec3<R>,
         u1: &Vec3<R>,
         u1n: R,
-        e: R,
         w_c: &Vec3<R>,
         r_c: &Vec3<R>,
         r_b: &Vec3<R>,
     ) -> (Vec3<R>, Vec3<R>, R::Mask) {
-        let (p, slip) = tangential.impulse::<R, FRICTION>(k, n, u1, u1n, e);
+        let (p, slip) = impulse(u1, u1n);
         if self.tau_s == 0.0 {
             return (p, cross(r_b, &p), slip);
         }
@@ -432,7 +366,7 @@ impl FiniteContact {
         let tu = cross(&theta, u1);
         let u1r = [u1[0] - tu[0], u1[1] - tu[1], u1[2] - tu[2]];
         let u1nr = dot(&u1r, n);
-        let (pf, slip) = tangential.impulse::<R, FRICTION>(k, n, &u1r, u1nr, e);
+        let (pf, slip) = impulse(&u1r, u1nr);
         let lf = cross(r_b, &pf);
         let turn = |v: &Vec3<R>| {
             let t = cross(&theta, v);
@@ -440,6 +374,14 @@ impl FiniteContact {
         };
         (turn(&pf), turn(&lf), slip)
     }
+}
+
+/// The tangential approach speed `|u1 − u1n·n|` (the `ut_m_s` of user-defined effects), with
+/// the operations of [`TangentialLaw::impulse`].
+#[inline(always)]
+pub fn tangential_speed<R: Real>(u1: &Vec3<R>, n: &Vec3<R>, u1n: R) -> R {
+    let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
+    dot(&u1t, &u1t).sqrt()
 }
 
 /// Every law of one validated model (see [`super::ImpactModel::laws`]).
@@ -455,6 +397,10 @@ pub struct Laws {
     pub tangential: TangentialLaw,
     /// Finite contact time.
     pub contact: FiniteContact,
+    /// User-defined terms (`crate::effects::user`): `cor`, `et`, `mu` evaluated with
+    /// [`crate::physics::user_terms::UserTerms::contact`] after the library's restitution, and before
+    /// the tangential law; mass and geometry per shot before the solve. Empty: unused.
+    pub user: crate::physics::user_terms::UserTerms,
 }
 
 #[cfg(test)]

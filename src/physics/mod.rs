@@ -7,14 +7,18 @@
 //! `docs/conventions.md`.
 
 pub mod delivery;
+pub mod expr;
 pub mod face;
 pub mod impact;
 pub mod launch;
 pub mod laws;
+pub mod real;
+pub mod user_terms;
 
 pub use delivery::{face_orientation, Delivery};
 pub use face::{ContactFrame, FaceError, FaceGeometry};
 pub use impact::{
-    solve_spd3, validate_inertia, ImpactError, ImpactModel, ImpactOutcome, ModelParams, ParamError,
+    solve_spd3, validate_inertia, DeliveryFrame, ImpactError, ImpactModel, ImpactOutcome,
+    ModelParams, ParamError,
 };
 pub use launch::{Launch, LaunchComponent};

@@ -30,6 +30,8 @@ pub mod shard;
 pub mod spec;
 pub mod sweep;
 pub mod yards;
+pub mod yards_run;
+pub mod yards_spec;
 
 pub use spec::{parse_study, read_study, resolved_toml, Study};
 pub use sweep::{Prepared, VariantResult};
