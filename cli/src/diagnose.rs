@@ -268,6 +268,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                 "base_cv_chi2": s.base_cv_chi2,
                 "selected": s.selected,
                 "at_noise_floor": s.at_noise_floor,
+                "alias": s.alias.as_ref().map(|a| a.to_json()),
                 "candidates": s.candidates.iter().map(|c| json!({
                     "effect": c.label,
                     "n_params": c.n_params,
@@ -390,7 +391,8 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
 /// The human-readable report.
 pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let mut s = format!(
-        "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter\n",
+        "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter \
+         (+ 2·ln m for a physical effect picked from m candidates)\n",
         d.n_shots,
         d.folds,
         match d.fold_by {
@@ -464,6 +466,9 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
             t.row(row);
         }
         s.push_str(&t.render());
+        if let Some(a) = &st.alias {
+            s.push_str(&format!("-> aliases: {}\n", a.text()));
+        }
         match &st.selected {
             Some(l) => {
                 s.push_str(&format!(

@@ -200,6 +200,8 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         loft_bias_rad: 0.0,
         face_bias_rad: 0.0,
         hosel_m: Vector3::new(mm(hosel_mm[0]), mm(hosel_mm[1]), mm(hosel_mm[2])),
+        contact_time_s: 0.0,
+        tangential_restitution_slope: 0.0,
         user: Default::default(),
     };
 

@@ -97,6 +97,14 @@ pub fn stand_in(p: &ParamEstimate) -> Option<&'static str> {
             "a COR falling with speed faster than balls do: behaves like a COR level or energy \
              lost in a compliant contact"
         }
+        (EffectKind::ContactTime, _, _) => {
+            "a contact longer than a driver impact lasts: behaves like a spin lever or head \
+             rotation the file's geometry does not give (ball offset, CoM or inertia error)"
+        }
+        (EffectKind::TangentialCompliance, _, _) => {
+            "a tangential rebound or friction outside ball-on-face values: behaves like a spin \
+             lever or a loft bias rather than shear compliance"
+        }
     })
 }
 
@@ -133,6 +141,13 @@ pub fn separating_measurement(effect: &str) -> &'static str {
              different tip mass"
         }
         Some(EffectKind::CorPower) => "shots over a wider range of club speed",
+        Some(EffectKind::ContactTime) => {
+            "a measured contact time (high-speed video or a force-instrumented face) and \
+             off-centre shots"
+        }
+        Some(EffectKind::TangentialCompliance) => {
+            "spin over a wide range of dynamic loft, from gripping to sliding impacts"
+        }
         None => "an independent measurement of this parameter",
     }
 }
@@ -197,6 +212,59 @@ pub fn aliases(params: &[ParamEstimate], correlation: Option<&DMatrix<f64>>) -> 
         }
     }
     out
+}
+
+/// What a candidate's fit changed in the predictions: its errors minus the base model's,
+/// each component divided by its noise scale, flattened (shot-major).
+pub fn explained_signal(base: &[[f64; 5]], after: &[[f64; 5]], sigma: &[f64; 5]) -> Vec<f64> {
+    base.iter()
+        .zip(after)
+        .flat_map(|(b, a)| (0..5).map(move |c| (a[c] - b[c]) / sigma[c]))
+        .collect()
+}
+
+/// Correlation (uncentred: both changes are measured from the same base) of two candidates'
+/// explained signals: near 1 when they change the predictions alike.
+pub fn signal_correlation(a: &[f64], b: &[f64]) -> f64 {
+    let (mut ab, mut aa, mut bb) = (0.0, 0.0, 0.0);
+    for (x, y) in a.iter().zip(b) {
+        ab += x * y;
+        aa += x * x;
+        bb += y * y;
+    }
+    if aa > 0.0 && bb > 0.0 {
+        ab / (aa * bb).sqrt()
+    } else {
+        0.0
+    }
+}
+
+/// Two candidates of one step that explained the same signal: the best by evidence
+/// (`instead_of`) had an implausible value, the other (`selected`) a plausible one.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExplainedAlias {
+    /// The plausible candidate selected.
+    pub selected: String,
+    /// The candidate with more evidence and an implausible value.
+    pub instead_of: String,
+    /// Correlation of the changes they make to the predictions.
+    pub r: f64,
+}
+
+impl ExplainedAlias {
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({"selected": self.selected, "instead_of": self.instead_of, "r": self.r})
+    }
+
+    /// One line of text.
+    pub fn text(&self) -> String {
+        format!(
+            "{} and {} explain the same signal (r = {:.2}); {} is selected because its value is \
+             plausible and {}'s is not",
+            self.selected, self.instead_of, self.r, self.selected, self.instead_of
+        )
+    }
 }
 
 /// The plausible range of an estimate as text (`[lo, hi] unit`), or an empty string.

@@ -10,14 +10,19 @@
 //!    identifiability) and on each training fold; sum the whitened χ² of each held-out fold:
 //!    `CV(B ∪ C)`. The base `B` is cross-validated the same way.
 //! 4. The gain `CV(B) − CV(B ∪ C)` must beat a BIC-sized penalty `k·ln n` (`k` added
-//!    parameters, `n` shots). Out of sample, a useless parameter *raises* χ² by about one, so
+//!    parameters, `n` shots), plus `2·ln m` for a physical candidate picked from the `m` offered
+//!    (Bonferroni: the best of m useless candidates clears a threshold about m times as often
+//!    as one does; impact-noise candidates keep `ln n`). Out of sample, a useless parameter *raises* χ² by about one, so
 //!    pure noise practically never clears `ln 600 ≈ 6.4` per parameter, while a real 0.25 mph
 //!    speed bias over 600 shots with 0.8 mph noise gains `600·0.25²/0.8² ≈ 59`.
 //! 5. The best eligible candidate (its fit converged and every parameter is identifiable: no
 //!    insensitive or collinear Jacobian column, see [`crate::fit::covariance`]) with a positive
 //!    margin `gain − penalty` is added; repeat until none qualifies. Plausibility does not
-//!    change the choice (the evidence does); a selected value outside its plausible range is
-//!    reported as a *stand-in* ([`honest`]), not a finding.
+//!    change the choice (the evidence does), except between aliases: when the best candidate's
+//!    value is implausible and another qualifying candidate with a plausible value changes the
+//!    predictions alike (correlation > 0.9, [`honest::signal_correlation`]), that one is taken
+//!    and the pair reported. A selected value outside its plausible range is reported as a
+//!    *stand-in* ([`honest`]), not a finding.
 //! 6. With known instrument noise ([`DiagnoseOptions::noise_floor`]), each step first asks the
 //!    [`noise_floor`] whether the current model's errors still carry structure beyond what the
 //!    instruments explain; when they do not, no physical effect is offered (measurement
@@ -164,6 +169,10 @@ pub struct Step {
     /// With a known noise floor: the base model's errors were already at it, so no physical
     /// effect was offered this step (only measurement candidates).
     pub at_noise_floor: bool,
+    /// When the best candidate's value was implausible and a plausible candidate explained the
+    /// same signal (an alias, see [`honest::ExplainedAlias`]), the pair; the plausible one was
+    /// selected.
+    pub alias: Option<honest::ExplainedAlias>,
 }
 
 /// The outcome of a diagnosis.
@@ -206,15 +215,11 @@ pub trait DiagnoseProgress: Sync {
     fn job_done(&self);
 }
 
-/// Library effects that are searched only when named with `--candidates`: each is a near-alias
-/// of a default candidate on launch data alone (`cor_level` and `hosel_mass` change ball speed
-/// almost as `added_mass` does; `cor_power` is `cor_speed` curved), so in the default search
-/// they would compete for the same signal and the ranking would depend on noise.
-pub const OPT_IN_CANDIDATES: [EffectKind; 3] = [
-    EffectKind::CorLevel,
-    EffectKind::HoselMass,
-    EffectKind::CorPower,
-];
+/// Library effects that are searched only when named with `--candidates`. None at present:
+/// `cor_level`, `hosel_mass` and `cor_power` were here because they alias `added_mass` and
+/// `cor_speed` on launch data alone; alias arbitration (a plausible alias is preferred to an
+/// implausible best candidate, and the pair reported) made them default candidates.
+pub const OPT_IN_CANDIDATES: [EffectKind; 0] = [];
 
 /// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
 /// `added_mass@group` with several groups, plus every registered user-defined effect
@@ -517,6 +522,7 @@ pub fn diagnose(
                     selected: None,
                     after: launch_error_table(&groups, &base_errors),
                     at_noise_floor,
+                    alias: None,
                 });
             }
             break;
@@ -527,6 +533,13 @@ pub fn diagnose(
         if let Some(p) = progress {
             p.step(step_index + 1, n_folds * (1 + open.len()) + open.len());
         }
+        // Choosing the best of `m` physical candidates: a useless candidate's out-of-sample gain
+        // has an upper tail of about e^(−g/2), so the best of m clears a threshold c with
+        // probability about m·e^(−c/2); adding 2·ln m to every physical candidate's penalty
+        // keeps that what a single candidate has (a Bonferroni correction of the BIC penalty,
+        // docs/diagnose-selection.md). The impact-noise levels are one measurement question
+        // asked at several sizes, not m physical claims, and keep the plain penalty.
+        let multiplicity = 2.0 * (open.len().max(1) as f64).ln();
         let base_cv = cv_chi2(
             club,
             &base,
@@ -554,7 +567,7 @@ pub fn diagnose(
             })
             .collect();
         // Phase 2: cross-validation of every candidate.
-        let mut results: Vec<CandidateResult> = open
+        let evaluated: Vec<(CandidateResult, Option<Vec<f64>>)> = open
             .par_iter()
             .zip(full.par_iter())
             .map(|(c, f)| {
@@ -569,7 +582,7 @@ pub fn diagnose(
                     params: Vec::new(),
                     cv_chi2: f64::NAN,
                     gain: f64::NAN,
-                    penalty: k as f64 * penalty_per_param,
+                    penalty: k as f64 * penalty_per_param + multiplicity,
                     rms_reduction: [0.0; 5],
                     unidentified: Vec::new(),
                     converged: false,
@@ -582,9 +595,10 @@ pub fn diagnose(
                         if let Some(p) = progress {
                             (0..n_folds).for_each(|_| p.job_done());
                         }
-                        return res;
+                        return (res, None);
                     }
                 };
+                let mut explained = None;
                 res.converged = run.converged;
                 let p = layout.len();
                 let dof = (run.residuals.len() - p).max(1);
@@ -618,6 +632,7 @@ pub fn diagnose(
                         let rms = rms_per_component(&errs);
                         res.rms_reduction =
                             std::array::from_fn(|c| (base_rms[c] - rms[c]) / base_rms[c]);
+                        explained = Some(honest::explained_signal(&base_errors, &errs, &sigma));
                     }
                     Err(e) => res.failure = Some(e.to_string()),
                 }
@@ -636,9 +651,11 @@ pub fn diagnose(
                     }
                     Err(e) => res.failure = Some(e.to_string()),
                 }
-                res
+                (res, explained)
             })
             .collect();
+        let (mut results, explained): (Vec<CandidateResult>, Vec<Option<Vec<f64>>>) =
+            evaluated.into_iter().unzip();
 
         // Measurement candidates: the same base model, with the measured impact locations
         // treated as noisy at each offered level (while no level has been chosen).
@@ -681,10 +698,47 @@ pub fn diagnose(
         // The evidence (margin) decides, not plausibility: preferring a plausible candidate
         // with less evidence was tried and chains several plausible stand-ins to mimic one real
         // effect outside its plausible range. Implausible values are reported as stand-ins.
-        let winner = order
+        let best = order
             .iter()
             .copied()
             .find(|&i| results[i].eligible() && results[i].margin() > 0.0);
+        // Alias arbitration: when the best candidate lands on an implausible value and another
+        // eligible candidate with a positive margin, a plausible value, explains the same
+        // signal (the two fits change the predictions alike, correlation above
+        // STRONG_CORRELATION), the data cannot tell them apart, and the plausible reading is
+        // selected; the pair is reported. Only aliases are exchanged, so a real effect outside
+        // its plausible range is not replaced by an unrelated plausible one.
+        let (winner, alias) = match best {
+            Some(b) if b < n_effects && !results[b].plausible() => {
+                let alt = order.iter().copied().find_map(|i| {
+                    let ok = i < n_effects
+                        && i != b
+                        && results[i].eligible()
+                        && results[i].margin() > 0.0
+                        && results[i].plausible();
+                    if !ok {
+                        return None;
+                    }
+                    let r = honest::signal_correlation(
+                        explained[b].as_deref()?,
+                        explained[i].as_deref()?,
+                    );
+                    (r > crate::fit::calibrate::STRONG_CORRELATION).then_some((i, r))
+                });
+                match alt {
+                    Some((i, r)) => (
+                        Some(i),
+                        Some(honest::ExplainedAlias {
+                            selected: results[i].label.clone(),
+                            instead_of: results[b].label.clone(),
+                            r,
+                        }),
+                    ),
+                    None => (best, None),
+                }
+            }
+            _ => (best, None),
+        };
         let after;
         let chosen = match winner {
             Some(i) if i >= n_effects => {
@@ -730,6 +784,7 @@ pub fn diagnose(
             selected: chosen.clone(),
             after,
             at_noise_floor,
+            alias,
         });
         if chosen.is_none() {
             break;

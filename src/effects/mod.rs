@@ -18,6 +18,9 @@
 //! | `inertia_scale` | `s` | `I_c → s·I_c` |
 //! | `cor_level` | `dcor` | `cor → cor + dcor` (the face's own COR, fitted) |
 //! | `hosel_mass` | `dm_g` | point mass at the club's `hosel_mm`: mass, CoM and inertia (parallel axis) |
+//! | `cor_power` | `q` | `e = cor·(u1n/48.77 m/s)^(−q)` |
+//! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)` |
+//! | `tangential_compliance` | `et0`, `mu` | `e_t = et0` while the ball grips, Coulomb `mu` once it slides |
 //!
 //! Each effect is one file in this folder plus one line in the `library!` registration below
 //! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read
@@ -149,6 +152,8 @@ library! {
     cor_level => CorLevel,
     hosel_mass => HoselMass,
     cor_power => CorPower,
+    contact_time => ContactTime,
+    tangential_compliance => TangentialCompliance,
 }
 
 impl EffectKind {

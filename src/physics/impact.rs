@@ -26,7 +26,7 @@ use nalgebra::{Matrix3, Vector3};
 use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
-use super::laws::{BallContact, CollisionMatrix, Laws, Restitution, TangentialLaw};
+use super::laws::{BallContact, CollisionMatrix, FiniteContact, Laws, Restitution, TangentialLaw};
 use super::user_terms::{self as user, UserEvalError, UserTerms};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
@@ -62,6 +62,9 @@ pub struct ModelParams {
     pub ball_offset_z_m: f64,
     /// Tangential restitution `e_t`, in [−1, 1]; 0 is the paper's no-slip condition.
     pub tangential_restitution: f64,
+    /// Change of `e_t` per unit tangent of the contact point's incidence `|u1t|/u1n`
+    /// (`tangential_compliance`; 0: constant `e_t`). The effective `e_t` must stay in [−1, 1].
+    pub tangential_restitution_slope: f64,
     /// Coulomb friction coefficient `mu` (> 0), or `None` for unlimited friction.
     pub friction_mu: Option<f64>,
     /// COR slope with normal approach speed `k`, s/m.
@@ -78,6 +81,9 @@ pub struct ModelParams {
     /// Where the shaft joins the head (top of the hosel bore, on the shaft axis), in F, m: the
     /// point a `hosel_mass` effect puts its mass. Geometry only; the impact does not read it.
     pub hosel_m: Vector3<f64>,
+    /// Contact time `τ` of a finite contact, s (0: the paper's instantaneous impact; the
+    /// `contact_time` effect, [`super::laws::FiniteContact`]).
+    pub contact_time_s: f64,
     /// Terms of user-defined effects (`crate::effects::user`), evaluated per shot: mass and
     /// geometry before the solve, `cor`/`et`/`mu` inside the laws. Empty: the library's laws
     /// run unchanged.
@@ -111,6 +117,7 @@ impl ModelParams {
             ball_offset_y_m: 0.0,
             ball_offset_z_m: 0.0,
             tangential_restitution: 0.0,
+            tangential_restitution_slope: 0.0,
             friction_mu: None,
             cor_speed_k_s_per_m: 0.0,
             cor_power_q: 0.0,
@@ -118,6 +125,7 @@ impl ModelParams {
             loft_bias_rad: 0.0,
             face_bias_rad: 0.0,
             hosel_m: Vector3::from(DRIVER_HOSEL_MM) * 1e-3,
+            contact_time_s: 0.0,
             user: UserTerms::default(),
         }
     }
@@ -379,8 +387,22 @@ impl ImpactModel {
             "club hosel position",
             || "every component must be finite".into(),
         )?;
+        check(
+            p.contact_time_s.is_finite() && p.contact_time_s >= 0.0 && p.contact_time_s <= 0.01,
+            "contact time",
+            || {
+                format!(
+                    "must be in [0, 10] ms, got {} ms",
+                    crate::units::Num(p.contact_time_s * 1e3)
+                )
+            },
+        )?;
         for (v, name) in [
             (p.cor_speed_k_s_per_m, "cor speed slope"),
+            (
+                p.tangential_restitution_slope,
+                "tangential restitution slope",
+            ),
             (p.cor_power_q, "cor power exponent"),
             (p.cor_radial_c_per_m2, "cor radial falloff"),
             (p.loft_bias_rad, "loft bias"),
@@ -428,7 +450,11 @@ impl ImpactModel {
             },
             tangential: TangentialLaw {
                 e_t: p.tangential_restitution,
+                e_t_slope: p.tangential_restitution_slope,
                 mu: p.friction_mu,
+            },
+            contact: FiniteContact {
+                tau_s: p.contact_time_s,
             },
             user: p.user,
         };
@@ -552,17 +578,35 @@ impl ImpactModel {
         );
         let r_b = Vector3::from(r_b_arr);
         let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
-        let (impulse, slipped) = if laws.tangential.mu.is_some() {
-            laws.tangential
-                .impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
+        let j = &laws.collision.club_inv_inertia;
+        let (n_a, u1_a, w_a, rc_a) = (arr(&n), arr(&u1), arr(&w_c), arr(&r_c));
+        let (impulse, ball_ang, slipped) = if laws.tangential.mu.is_some() {
+            laws.contact.impact(
+                |u: &[f64; 3], un: f64| laws.tangential.impulse::<f64, true>(&k, &n_a, u, un, e),
+                j,
+                &n_a,
+                &u1_a,
+                u1n,
+                &w_a,
+                &rc_a,
+                &r_b_arr,
+            )
         } else {
-            laws.tangential
-                .impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
+            laws.contact.impact(
+                |u: &[f64; 3], un: f64| laws.tangential.impulse::<f64, false>(&k, &n_a, u, un, e),
+                j,
+                &n_a,
+                &u1_a,
+                u1n,
+                &w_a,
+                &rc_a,
+                &r_b_arr,
+            )
         };
         let impulse = Vector3::from(impulse);
 
         let v_b = impulse / p.ball_mass_kg;
-        let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
+        let w_b = Vector3::from(ball_ang) / p.ball_inertia_kgm2;
         let v_c_after = v_c - impulse / p.club_mass_kg;
         let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
         let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
@@ -722,15 +766,44 @@ impl ImpactModel {
         );
         let r_b = Vector3::from(r_b_arr);
         let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
-        let (impulse, slipped) = if tangential.mu.is_some() {
-            tangential.impulse::<f64, true>(&k, &arr(&n), &arr(&u1), u1n, e)
+        let jm = &club_inv_inertia;
+        let sym = |a: usize, b: usize| 0.5 * (jm[(a, b)] + jm[(b, a)]);
+        let j = [
+            jm[(0, 0)],
+            sym(0, 1),
+            sym(0, 2),
+            jm[(1, 1)],
+            sym(1, 2),
+            jm[(2, 2)],
+        ];
+        let (n_a, u1_a, w_a, rc_a) = (arr(&n), arr(&u1), arr(&w_c), arr(&r_c));
+        let (impulse, ball_ang, slipped) = if tangential.mu.is_some() {
+            laws.contact.impact(
+                |u: &[f64; 3], un: f64| tangential.impulse::<f64, true>(&k, &n_a, u, un, e),
+                &j,
+                &n_a,
+                &u1_a,
+                u1n,
+                &w_a,
+                &rc_a,
+                &r_b_arr,
+            )
         } else {
-            tangential.impulse::<f64, false>(&k, &arr(&n), &arr(&u1), u1n, e)
+            laws.contact.impact(
+                |u: &[f64; 3], un: f64| tangential.impulse::<f64, false>(&k, &n_a, u, un, e),
+                &j,
+                &n_a,
+                &u1_a,
+                u1n,
+                &w_a,
+                &rc_a,
+                &r_b_arr,
+            )
         };
         let impulse = Vector3::from(impulse);
 
         let v_b = impulse / p.ball_mass_kg;
-        let w_b = r_b.cross(&impulse) / p.ball_inertia_kgm2;
+        let w_b = Vector3::from(ball_ang) / p.ball_inertia_kgm2;
         let v_c_after = v_c - impulse / club_mass_kg;
         let w_c_after = w_c - club_inv_inertia * r_c.cross(&impulse);
         let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());

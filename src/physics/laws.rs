@@ -11,7 +11,8 @@
 //! | normal restitution | [`Restitution`] | `cor_level`, `cor_speed`, `cor_radial`, `cor_power` |
 //! | ball lever arm | [`BallContact`] | `ball_offset` |
 //! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale` (composed into [`super::ModelParams`] once, see `crate::effects`) |
-//! | tangential law | [`TangentialLaw`] | `tangential_restitution`, `friction` |
+//! | tangential law | [`TangentialLaw`] | `tangential_restitution`, `friction`, `tangential_compliance` |
+//! | finite contact | [`FiniteContact`] | `contact_time` (the head turning while in contact) |
 //!
 //! Geometry biases (`loft_bias`, `face_bias`) act on the delivered angles in
 //! [`super::ImpactModel::face_orientation`], which both paths call.
@@ -36,6 +37,17 @@ pub type Sym3<R> = [R; 6];
 #[inline(always)]
 fn dot<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> R {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `a × b`, with the operations of nalgebra's `cross` (so the scalar solve and the lanes agree
+/// to the bit).
+#[inline(always)]
+pub fn cross<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> Vec3<R> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 #[inline(always)]
@@ -200,8 +212,11 @@ pub fn solve_sym3<R: Real>(k: &Sym3<R>, b: &Vec3<R>) -> Vec3<R> {
 /// `P = P_n·(n + mu·ŝ)`, `ŝ = u1_t/|u1_t|`, `P_n = (1 + e)·u1n / (n·K·(n + mu·ŝ))`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialLaw {
-    /// Tangential restitution `e_t`.
+    /// Tangential restitution `e_t` at normal incidence.
     pub e_t: f64,
+    /// Change of `e_t` per unit tangent of the incidence, `|u1t|/u1n` (the
+    /// `tangential_compliance` effect; 0: a constant `e_t`).
+    pub e_t_slope: f64,
     /// Coulomb friction coefficient, or `None` for unlimited friction.
     pub mu: Option<f64>,
 }
@@ -220,13 +235,19 @@ impl TangentialLaw {
         u1n: R,
         e: R,
     ) -> (Vec3<R>, R::Mask) {
+        // `tangential_compliance`: e_t rises with the tangent of the incidence, |u1t|/u1n.
+        let e_t = if self.e_t_slope == 0.0 {
+            R::splat(self.e_t)
+        } else {
+            tangential_speed(u1, n, u1n) / u1n * self.e_t_slope + self.e_t
+        };
         Self::impulse_with::<R, FRICTION>(
             k,
             n,
             u1,
             u1n,
             e,
-            R::splat(self.e_t),
+            e_t,
             R::splat(self.mu.unwrap_or(f64::INFINITY)),
         )
     }
@@ -274,6 +295,87 @@ impl TangentialLaw {
     }
 }
 
+/// Impulse-weighted mean, over a Hertz impact of duration `τ`, of `∫₀ᵗ s dt'` where `s(t)` is
+/// the fraction of the impulse delivered by `t`, divided by `τ`: `1/9` (integrating the
+/// one-body Hertz impact `m·δ̈ = −k·δ^1.5` gives 0.11111; a half-sine force pulse would give
+/// 1/8; recomputed in the tests). The head's mean rotation at the
+/// impulse's centroid is `θ̄ = τ·(ω₀/2 + Δω/9)` (see [`FiniteContact`]).
+pub const HERTZ_MEAN_SPIN_UP: f64 = 1.0 / 9.0;
+
+/// A finite contact of duration `τ` (the `contact_time` effect), to first order in `τ`.
+///
+/// The momentum model treats the impact as instantaneous. During a real contact of a few tenths
+/// of a millisecond the head turns while the impulse is delivered: its angular velocity goes
+/// from `ω₀` (the delivered one) to `ω₀ + Δω`, `Δω = −I_c⁻¹(r_c × P)`, as the impulse `P` builds
+/// up. The impulse-weighted mean of the angle turned is `θ̄ = ∫θ dP / P = τ·(ω₀/2 + Δω/9)`: for
+/// the one-body Hertz impact the impulse's centroid is at `τ/2` (the pulse is nearly symmetric)
+/// and the weighted mean of `∫₀ᵗ s dt'` (`s` the fraction of the impulse delivered by `t`) is
+/// `τ/9` ([`HERTZ_MEAN_SPIN_UP`]). To first order the impulse is delivered by the face turned by
+/// `θ̄`: in that face's frame the approach velocity is `u1 − θ̄×u1` (the restitution keeps the
+/// first-contact normal speed, which changes only at second order), the impulse `P_f` follows
+/// from the same tangential law and collision matrix (both fixed to the head), and the impulse
+/// and the ball's angular impulse `r_b × P_f` are turned back by `θ̄` (`v ↦ v + θ̄×v`).
+///
+/// `Δω` is that of the instantaneous impulse (a first pass of the law). Neglected: terms of
+/// order `τ²`, the travel of the contact point over the face while the head turns (`≈ θ̄×r_c`,
+/// a few tenths of a millimetre), and the ball's compression. The compression shortens the
+/// tangential force's lever about the ball centre to `R − δ(t)` (impulse-weighted mean
+/// `(5/18)·u1n·τ` for Hertz, about 6 mm for a driver); a first-order lever model (the ball's
+/// angular impulse scaled by `1 − δ̄/R`) moved spin and launch the wrong way against the
+/// time-integrated contact, whose spin depends on how the shortened lever interacts with the
+/// tangential spring, so it is not part of this law. Checked against the compliant contact of
+/// `crate::synth::contact` in `tests/contact_world.rs`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FiniteContact {
+    /// Contact time `τ`, s (0: the instantaneous impact of the paper).
+    pub tau_s: f64,
+}
+
+impl FiniteContact {
+    /// The impulse on the ball `P` and the ball's angular impulse `r_b × P` (both in the face
+    /// frame at first contact), and whether friction limited the impulse. `impulse(u1, u1n)` is
+    /// the instantaneous law (the tangential law with its collision matrix and COR) for an
+    /// approach velocity; with `τ = 0` it is called once and its result returned as is. `w_c`
+    /// is the head's angular velocity before impact, `j` the symmetrised inverse head inertia
+    /// (as in [`CollisionMatrix`]).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    pub fn impact<R: Real>(
+        &self,
+        impulse: impl Fn(&Vec3<R>, R) -> (Vec3<R>, R::Mask),
+        j: &[f64; 6],
+        n: &Vec3<R>,
+        u1: &Vec3<R>,
+        u1n: R,
+        w_c: &Vec3<R>,
+        r_c: &Vec3<R>,
+        r_b: &Vec3<R>,
+    ) -> (Vec3<R>, Vec3<R>, R::Mask) {
+        let (p, slip) = impulse(u1, u1n);
+        if self.tau_s == 0.0 {
+            return (p, cross(r_b, &p), slip);
+        }
+        let jm: Sym3<R> = j.map(R::splat);
+        let dw = sym_mul(&jm, &cross(r_c, &p));
+        let (a, b) = (0.5 * self.tau_s, HERTZ_MEAN_SPIN_UP * self.tau_s);
+        let theta = [
+            w_c[0] * a - dw[0] * b,
+            w_c[1] * a - dw[1] * b,
+            w_c[2] * a - dw[2] * b,
+        ];
+        let tu = cross(&theta, u1);
+        let u1r = [u1[0] - tu[0], u1[1] - tu[1], u1[2] - tu[2]];
+        let u1nr = dot(&u1r, n);
+        let (pf, slip) = impulse(&u1r, u1nr);
+        let lf = cross(r_b, &pf);
+        let turn = |v: &Vec3<R>| {
+            let t = cross(&theta, v);
+            [v[0] + t[0], v[1] + t[1], v[2] + t[2]]
+        };
+        (turn(&pf), turn(&lf), slip)
+    }
+}
+
 /// The tangential approach speed `|u1 − u1n·n|` (the `ut_m_s` of user-defined effects), with
 /// the operations of [`TangentialLaw::impulse`].
 #[inline(always)]
@@ -293,6 +395,8 @@ pub struct Laws {
     pub collision: CollisionMatrix,
     /// Tangential law.
     pub tangential: TangentialLaw,
+    /// Finite contact time.
+    pub contact: FiniteContact,
     /// User-defined terms (`crate::effects::user`): `cor`, `et`, `mu` evaluated with
     /// [`crate::physics::user_terms::UserTerms::contact`] after the library's restitution, and before
     /// the tangential law; mass and geometry per shot before the solve. Empty: unused.

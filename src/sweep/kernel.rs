@@ -287,26 +287,28 @@ impl FaceMapKernel {
         // the kernel handles it. Most reach the kernel through the model's laws, the face or
         // the face orientation; the rest are read below.
         let ModelParams {
-            club_mass_kg: _,           // in laws.collision
-            club_com_m,                // r_c below
-            club_inertia_kgm2: _,      // in laws.collision
-            cor: _,                    // in laws.restitution
-            bulge_m: _,                // in model.face()
-            roll_m: _,                 // in model.face()
-            ball_mass_kg,              // r_v below; in laws.collision
-            ball_radius_m: _,          // in laws.ball
-            ball_inertia_kgm2,         // r_w below; in laws.collision
-            ball_offset_y_m: _,        // in laws.ball
-            ball_offset_z_m: _,        // in laws.ball
-            tangential_restitution: _, // in laws.tangential
-            friction_mu: _,            // in laws.tangential
-            cor_speed_k_s_per_m: _,    // in laws.restitution
-            cor_power_q: _,            // in laws.restitution
-            cor_radial_c_per_m2: _,    // in laws.restitution
-            loft_bias_rad: _,          // in model.face_orientation
-            face_bias_rad: _,          // in model.face_orientation
-            hosel_m: _,                // composed into mass, CoM and inertia by the effects
-            user,                      // mass and geometry below; cor, et, mu in laws.user
+            club_mass_kg: _,                 // in laws.collision
+            club_com_m,                      // r_c below
+            club_inertia_kgm2: _,            // in laws.collision
+            cor: _,                          // in laws.restitution
+            bulge_m: _,                      // in model.face()
+            roll_m: _,                       // in model.face()
+            ball_mass_kg,                    // r_v below; in laws.collision
+            ball_radius_m: _,                // in laws.ball
+            ball_inertia_kgm2,               // r_w below; in laws.collision
+            ball_offset_y_m: _,              // in laws.ball
+            ball_offset_z_m: _,              // in laws.ball
+            tangential_restitution: _,       // in laws.tangential
+            friction_mu: _,                  // in laws.tangential
+            cor_speed_k_s_per_m: _,          // in laws.restitution
+            cor_power_q: _,                  // in laws.restitution
+            cor_radial_c_per_m2: _,          // in laws.restitution
+            loft_bias_rad: _,                // in model.face_orientation
+            face_bias_rad: _,                // in model.face_orientation
+            hosel_m: _,                      // composed into mass, CoM and inertia by the effects
+            contact_time_s: _,               // in laws.contact
+            tangential_restitution_slope: _, // in laws.tangential
+            user,                            // mass and geometry below; cor, et, mu in laws.user
         } = model.params();
         // User-defined mass and geometry depend on the delivery only (not on the impact
         // location: `crate::effects::user`), so they are fixed for the whole face map.
@@ -586,22 +588,40 @@ impl FaceMapKernel {
         let tyx = -(tzz * ny);
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
-        let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
-        let k = laws.collision.matrix(&[rcx, rcy, rcz], &[rbx, rby, rbz]);
-        let ([px, py, pz], _slip) = if USER {
-            TangentialLaw::impulse_with::<V, FRICTION>(&k, &n, &u1, u1n, e, e_t, mu)
-        } else {
-            laws.tangential.impulse::<V, FRICTION>(&k, &n, &u1, u1n, e)
-        };
+        let r_b = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
+        let r_c = [rcx, rcy, rcz];
+        let k = laws.collision.matrix(&r_c, &r_b);
+        let w_c = self.w_c.map(V::splat);
+        let ([px, py, pz], [wfx, wfy, wfz], _slip) = laws.contact.impact(
+            |u: &[V; 3], un: V| {
+                if USER {
+                    // As the scalar solve: the user's e_t, plus tangential_compliance's rise.
+                    let e_t = if laws.tangential.e_t_slope == 0.0 {
+                        e_t
+                    } else {
+                        crate::physics::laws::tangential_speed(u, &n, un) / un
+                            * laws.tangential.e_t_slope
+                            + e_t
+                    };
+                    TangentialLaw::impulse_with::<V, FRICTION>(&k, &n, u, un, e, e_t, mu)
+                } else {
+                    laws.tangential.impulse::<V, FRICTION>(&k, &n, u, un, e)
+                }
+            },
+            &laws.collision.club_inv_inertia,
+            &n,
+            &u1,
+            u1n,
+            &w_c,
+            &r_c,
+            &r_b,
+        );
 
         // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
         let rv = &self.r_v;
         let vgx = rv[0][0] * px + rv[0][1] * py + rv[0][2] * pz;
         let vgy = rv[1][0] * px + rv[1][1] * py + rv[1][2] * pz;
         let vgz = rv[2][0] * px + rv[2][1] * py + rv[2][2] * pz;
-        let wfx = rby * pz - rbz * py;
-        let wfy = rbz * px - rbx * pz;
-        let wfz = rbx * py - rby * px;
         let rw = &self.r_w;
         let wgy = rw[0][0] * wfx + rw[0][1] * wfy + rw[0][2] * wfz;
         let wgz = rw[1][0] * wfx + rw[1][1] * wfy + rw[1][2] * wfz;

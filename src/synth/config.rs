@@ -675,7 +675,7 @@ fn parse_contact(ctx: &Ctx, v: &Spanned<RawContact>) -> Result<ContactParams, Da
                     "mm",
                 )?;
             }
-            tip.hosel_mm = h;
+            tip.hosel_mm = Some(h);
         }
         c.shaft_tip = Some(tip);
     }
@@ -771,15 +771,12 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
                 parts.insert(1, format!("cor_ref = {e:?}"));
             }
             if let Some(t) = &c.shaft_tip {
+                let hosel = t.hosel_mm.map_or_else(String::new, |h| {
+                    format!(", hosel_mm = [{:?}, {:?}, {:?}]", h[0], h[1], h[2])
+                });
                 parts.push(format!(
-                    "shaft_tip = {{ mass_g = {:?}, frequency_hz = {:?}, damping_ratio = {:?}, \
-                     hosel_mm = [{:?}, {:?}, {:?}] }}",
-                    t.mass_g,
-                    t.frequency_hz,
-                    t.damping_ratio,
-                    t.hosel_mm[0],
-                    t.hosel_mm[1],
-                    t.hosel_mm[2]
+                    "shaft_tip = {{ mass_g = {:?}, frequency_hz = {:?}, damping_ratio = {:?}{hosel} }}",
+                    t.mass_g, t.frequency_hz, t.damping_ratio,
                 ));
             }
             let _ = writeln!(s, "contact = {{ {} }}", parts.join(", "));
@@ -856,7 +853,7 @@ group = "X"
         assert_eq!(k.mu, 0.3);
         assert_eq!(k.cor_ref, Some(0.8));
         let tip = k.shaft_tip.unwrap();
-        assert_eq!((tip.mass_g, tip.hosel_mm[2]), (3.0, -40.0));
+        assert_eq!((tip.mass_g, tip.hosel_mm.unwrap()[2]), (3.0, -40.0));
         assert_eq!(
             tip.frequency_hz,
             super::super::contact::DEFAULT_TIP_FREQUENCY_HZ

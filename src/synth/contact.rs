@@ -62,7 +62,7 @@
 //! | `shaft_tip.mass_g` | 4.0 g | tip mass (a few grams of shaft and ferrule near the hosel) |
 //! | `shaft_tip.frequency_hz` | 2000 Hz | `sqrt(k_s/m_s)/2π`: a period comparable with the contact time |
 //! | `shaft_tip.damping_ratio` | 0.2 | of the joint |
-//! | `shaft_tip.hosel_mm` | [−15, 15, −45] mm | hosel point in the face frame F (behind the face, up, toward the heel) |
+//! | `shaft_tip.hosel_mm` | the club's `hosel_mm` | hosel point in the face frame F (behind the face, up, toward the heel); the club file's default is [`crate::physics::impact::DRIVER_HOSEL_MM`] = [−20, 25, −55] mm, the point where the library's `hosel_mass` puts its mass |
 //!
 //! The shaft-tip values are estimates chosen to make the effect visible at the size the paper
 //! reports for the shafts (a few grams of effective added mass), not measurements.
@@ -142,8 +142,6 @@ pub const DEFAULT_TIP_MASS_G: f64 = 4.0;
 pub const DEFAULT_TIP_FREQUENCY_HZ: f64 = 2000.0;
 /// Default shaft-tip joint damping ratio.
 pub const DEFAULT_TIP_DAMPING_RATIO: f64 = 0.2;
-/// Default hosel point in the face frame F, mm.
-pub const DEFAULT_HOSEL_MM: [f64; 3] = [-15.0, 15.0, -45.0];
 
 /// Hertz contact-time constant: `T = 3.2146·(m/k)^0.4·v^−0.2` for `F = k·δ^1.5`
 /// (Johnson 1985, §11.1: `T = 2.94·δ_max/v` with `δ_max = (5mv²/4k)^0.4`).
@@ -158,8 +156,9 @@ pub struct ShaftTip {
     pub frequency_hz: f64,
     /// Damping ratio of the joint (≥ 0).
     pub damping_ratio: f64,
-    /// Hosel point in the face frame F, mm.
-    pub hosel_mm: [f64; 3],
+    /// Hosel point in the face frame F, mm; `None`: the club's `hosel_mm` (the point where the
+    /// library's `hosel_mass` effect puts its mass).
+    pub hosel_mm: Option<[f64; 3]>,
 }
 
 impl Default for ShaftTip {
@@ -168,7 +167,7 @@ impl Default for ShaftTip {
             mass_g: DEFAULT_TIP_MASS_G,
             frequency_hz: DEFAULT_TIP_FREQUENCY_HZ,
             damping_ratio: DEFAULT_TIP_DAMPING_RATIO,
-            hosel_mm: DEFAULT_HOSEL_MM,
+            hosel_mm: None,
         }
     }
 }
@@ -430,7 +429,8 @@ impl ContactWorld {
                 mass_kg: m,
                 k_n_per_m: m * w * w,
                 c_n_s_per_m: 2.0 * t.damping_ratio * m * w,
-                hosel_from_com_m: Vector3::from(t.hosel_mm) * 1e-3 - p.club_com_m,
+                hosel_from_com_m: t.hosel_mm.map_or(p.hosel_m, |h| Vector3::from(h) * 1e-3)
+                    - p.club_com_m,
             }
         });
         if let Some(t) = params.shaft_tip {
@@ -438,7 +438,7 @@ impl ContactWorld {
                 && pos(t.frequency_hz)
                 && t.damping_ratio.is_finite()
                 && t.damping_ratio >= 0.0
-                && t.hosel_mm.iter().all(|v| v.is_finite());
+                && t.hosel_mm.iter().flatten().all(|v| v.is_finite());
             if !ok {
                 return Err(
                     "shaft_tip: mass_g and frequency_hz must be > 0, damping_ratio ≥ 0, \
