@@ -148,13 +148,16 @@ fn grid_points_times_variants_are_capped_before_anything_is_allocated() {
 
 #[test]
 fn sharded_studies_too_large_to_merge_are_refused_before_any_shard_runs() {
-    // 4000 × 6000 = 24 M points: fine unsharded (streamed), but `merge` holds a whole study in
-    // memory, so shards of it could never be merged within the machine.
+    // `merge` streams (its cap is the run cap, MAX_MERGE_POINTS = MAX_SWEEP_POINTS): a study of
+    // 25000 × 25000 = 625 M points is over it, so no shard of it may run.
     let dir = tempfile::tempdir().unwrap();
     let p = study(
         dir.path(),
         "",
-        &[("count = 5", "count = 6000"), ("count = 3", "count = 4000")],
+        &[
+            ("count = 5", "count = 25000"),
+            ("count = 3", "count = 25000"),
+        ],
     );
     let out = dir.path().join("shard");
     let o = smash(&[
@@ -165,7 +168,7 @@ fn sharded_studies_too_large_to_merge_are_refused_before_any_shard_runs() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    refused(&o, &["sharded study", "24000000", "20000000", "unsharded"]);
+    refused(&o, &["625000000", "500000000"]);
     assert!(!out.exists());
 }
 
