@@ -109,9 +109,9 @@ fn lane_residuals_and_jacobian_agree_with_the_scalar_solve() {
     let shots = shots(&paper_truth(), &Experiment::default());
     let mut requests: Vec<EffectRequest> = EffectKind::ALL
         .iter()
-        .map(|&k| EffectRequest::Global(k))
+        .map(|&k| EffectRequest::Global(k.into()))
         .collect();
-    requests.push(EffectRequest::PerGroup(EffectKind::AddedMass));
+    requests.push(EffectRequest::PerGroup(EffectKind::AddedMass.into()));
     let sigma = [1.4, 0.9, 0.7, 420.0, 180.0];
     let inv = sigma.map(|s| 1.0 / s);
     let mut rng = ChaCha8Rng::seed_from_u64(10);

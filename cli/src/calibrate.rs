@@ -35,6 +35,10 @@ pub enum MethodArg {
     --effects added_mass@group,ball_offset --out-club calibrated.toml\n  \
     smash calibrate --club club.toml --shots shots.csv --effects added_mass@A --method paper --json")]
 pub struct CalibrateArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Club file (TOML); its own [[effect]] tables stay fixed.
     #[arg(long, value_name = "CLUB.toml")]
     pub club: PathBuf,
@@ -86,6 +90,7 @@ pub struct CalibrateArgs {
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     if let Some(report) = &args.report {
         smash::data::safe_write::refuse_inputs(
             &[("--report", report, false)],

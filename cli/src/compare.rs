@@ -18,6 +18,10 @@ use smash::report::compare::{compare_files, compare_json, compare_text};
     after_help = "Example:\n  smash compare --club configs/clubs/paper_driver.toml --shots paper_world.csv --out-dir compare/"
 )]
 pub struct CompareArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Club file (TOML).
     #[arg(long, value_name = "CLUB.toml")]
     pub club: PathBuf,
@@ -79,6 +83,7 @@ pub struct CompareArgs {
 
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     if let Some(report) = &args.report {
         smash::data::safe_write::refuse_inputs(
             &[("--report", report, false)],

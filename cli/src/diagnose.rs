@@ -29,6 +29,10 @@ use super::progress::job_bar;
     smash diagnose --club configs/clubs/paper_driver.toml --shots shots.csv\n  \
     smash diagnose --club club.toml --shots shots.csv --json --out-club diagnosed.toml")]
 pub struct DiagnoseArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Club file (TOML); its own [[effect]] tables stay fixed.
     #[arg(long, value_name = "CLUB.toml")]
     pub club: PathBuf,
@@ -144,6 +148,7 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
     if let Some(noise) = &args.noise {
         inputs.push(("--noise", noise));

@@ -5,11 +5,15 @@ use clap::Args;
 use std::fmt::Write;
 
 use crate::stdout;
-use smash::effects::EffectKind;
+use smash::effects::{EffectId, EffectKind};
 
 /// Arguments of `smash effects`.
 #[derive(Debug, Args)]
 pub struct EffectsArgs {
+    /// User-defined effects to list after the library's.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Print the library as JSON on stdout.
     #[arg(long)]
     pub json: bool,
@@ -17,12 +21,23 @@ pub struct EffectsArgs {
 
 /// Run `smash effects`.
 pub fn run(args: EffectsArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
+    let all: Vec<EffectId> = EffectKind::ALL
+        .into_iter()
+        .map(EffectId::from)
+        .chain(
+            smash::effects::user::registered()
+                .into_iter()
+                .map(EffectId::User),
+        )
+        .collect();
     if args.json {
-        let list: Vec<serde_json::Value> = EffectKind::ALL
+        let list: Vec<serde_json::Value> = all
             .iter()
             .map(|k| {
                 serde_json::json!({
                     "name": k.name(),
+                    "user_defined": k.user().is_some(),
                     "description": k.description(),
                     "params": k.params().iter().map(|p| serde_json::json!({
                         "key": p.key, "unit": p.unit, "default": p.default,
@@ -42,7 +57,7 @@ pub fn run(args: EffectsArgs) -> anyhow::Result<()> {
         "{:<24} {:<11} {:>7} {:>22}  meaning",
         "effect", "parameter", "default", "physical range"
     )?;
-    for k in EffectKind::ALL {
+    for k in all {
         for (i, p) in k.params().iter().enumerate() {
             let name = if i == 0 { k.name() } else { "" };
             writeln!(

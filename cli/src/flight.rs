@@ -36,7 +36,12 @@ pub struct FlightOptions {
     pub spin_decay: String,
     /// TOML file with an [atmosphere] table (keys as the flags below, without dashes and with
     /// underscores); flags given on the command line override it.
-    #[arg(long, value_name = "FILE.toml", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "FILE.toml",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub atmosphere: Option<PathBuf>,
     /// Air temperature, °C (default 15).
     #[arg(
@@ -47,7 +52,12 @@ pub struct FlightOptions {
     )]
     pub temperature_c: Option<f64>,
     /// Station pressure, hPa (default: ISA at --elevation-m, or 1013.25).
-    #[arg(long, value_name = "HPA", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "HPA",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub pressure_hpa: Option<f64>,
     /// Elevation above sea level, m (ISA pressure there).
     #[arg(
@@ -58,10 +68,20 @@ pub struct FlightOptions {
     )]
     pub elevation_m: Option<f64>,
     /// Relative humidity, % (default 50).
-    #[arg(long, value_name = "PCT", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "PCT",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub humidity_pct: Option<f64>,
     /// Wind speed at --wind-height-m, m/s (default 0).
-    #[arg(long, value_name = "M/S", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "M/S",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub wind_speed_m_s: Option<f64>,
     /// Direction the wind blows toward, degrees from the target line toward the right
     /// (0 tailwind, 90 left to right, 180 headwind).
@@ -73,26 +93,58 @@ pub struct FlightOptions {
     )]
     pub wind_direction_deg: Option<f64>,
     /// Height of the wind speed, m (default 10, the WMO anemometer height).
-    #[arg(long, value_name = "M", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub wind_height_m: Option<f64>,
     /// Roughness length of the ground for the log wind profile, m (default 0.03).
-    #[arg(long, value_name = "M", help_heading = "Atmosphere")]
+    #[arg(
+        long,
+        value_name = "M",
+        allow_negative_numbers = true,
+        help_heading = "Atmosphere"
+    )]
     pub roughness_m: Option<f64>,
     /// Add total_yd with the simple bounce-and-roll model.
     #[arg(long, help_heading = "Ground")]
     pub total: bool,
     /// Turf coefficient of restitution for --total (default 0.20).
-    #[arg(long, value_name = "E", requires = "total", help_heading = "Ground")]
+    #[arg(
+        long,
+        value_name = "E",
+        requires = "total",
+        allow_negative_numbers = true,
+        help_heading = "Ground"
+    )]
     pub ground_restitution: Option<f64>,
     /// Effective run-out deceleration for --total, m/s² (default 12, see src/flight/ground.rs).
-    #[arg(long, value_name = "M/S2", requires = "total", help_heading = "Ground")]
+    #[arg(
+        long,
+        value_name = "M/S2",
+        requires = "total",
+        allow_negative_numbers = true,
+        help_heading = "Ground"
+    )]
     pub roll_decel_m_s2: Option<f64>,
-    /// Integration time step, s (default 0.2 in still air, 0.1 in wind; chosen by a tolerance
+    /// Integration time step, s (default 0.4 in still air, 0.1 in wind; chosen by a tolerance
     /// test).
-    #[arg(long, value_name = "S", help_heading = "Flight")]
+    #[arg(
+        long,
+        value_name = "S",
+        allow_negative_numbers = true,
+        help_heading = "Flight"
+    )]
     pub dt_s: Option<f64>,
     /// Longest flight before it is an error, s (default 30).
-    #[arg(long, value_name = "S", help_heading = "Flight")]
+    #[arg(
+        long,
+        value_name = "S",
+        allow_negative_numbers = true,
+        help_heading = "Flight"
+    )]
     pub max_time_s: Option<f64>,
 }
 

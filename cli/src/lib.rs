@@ -242,3 +242,24 @@ impl From<OffsetSideArg> for smash::data::import::OffsetSide {
         }
     }
 }
+
+/// `--effect-defs FILE`: user-defined effects (`[[define_effect]]` tables) the command may name
+/// like library effects.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct EffectDefsArgs {
+    /// Effects file (TOML) of [[define_effect]] tables: user-defined effects, named like the
+    /// library's (docs/user-effects.md).
+    #[arg(long, value_name = "EFFECTS.toml")]
+    pub effect_defs: Option<std::path::PathBuf>,
+}
+
+impl EffectDefsArgs {
+    /// Read and register the definitions (before any effect list, club, study or synth file
+    /// that names them is read).
+    pub fn load(&self) -> anyhow::Result<()> {
+        if let Some(path) = &self.effect_defs {
+            smash::data::effect_defs::read_effect_defs(path)?;
+        }
+        Ok(())
+    }
+}

@@ -7,7 +7,7 @@ use clap::Args;
 use crate::study_output::{print_summary, TableFormatArg};
 use smash::data::write_folder_atomic_with;
 use smash::study::finish;
-use smash::study::output::{write_study, HeldGrids};
+use smash::study::output::write_study;
 use smash::study::shard::merge_shards;
 
 /// Arguments of `smash merge`.
@@ -48,13 +48,22 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     smash::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
     smash::data::safe_write::clean_stale_temporaries(&args.out);
     smash::data::safe_write::check_replaceable(&args.out)?;
-    let (prepared, variants) = merge_shards(&args.shards)?;
-    let metrics: Vec<Vec<f64>> = variants.iter().map(|v| v.metrics.clone()).collect();
-    let (sens, opt) = finish(&prepared, &metrics)?;
-    let grids = HeldGrids {
-        results: &variants,
-        nz: prepared.zs_mm.len(),
+    // The shards' face maps go to a scratch file beside the output folder (named as the
+    // temporaries a later run cleans up if this one is killed) and are streamed from it.
+    let name = args
+        .out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "merged".into());
+    let parent = match args.out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => PathBuf::from("."),
     };
+    std::fs::create_dir_all(&parent)
+        .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", parent.display()))?;
+    let scratch = parent.join(format!(".{name}.{}.tmp", std::process::id()));
+    let (prepared, metrics, grids) = merge_shards(&args.shards, &scratch)?;
+    let (sens, opt) = finish(&prepared, &metrics)?;
     let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
         write_study(
             tmp,

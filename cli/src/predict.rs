@@ -23,6 +23,10 @@ use smash::units::{deg, mm, mph};
                   smash predict --club configs/clubs/paper_driver.toml --speed 100 --loft 12 --impact-z 10"
 )]
 pub struct PredictArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Club file (TOML): clubhead, ball and optional [[effect]] tables.
     #[arg(long, value_name = "CLUB.toml")]
     pub club: PathBuf,
@@ -165,6 +169,7 @@ pub struct PredictArgs {
 
 /// Run `smash predict`.
 pub fn run(args: PredictArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let club = read_club(&args.club)?;
     if let Some(shots_path) = &args.shots {
         let out = args.out.as_ref().expect("clap: --shots requires --out");

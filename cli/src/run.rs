@@ -21,6 +21,10 @@ use smash::study::{finish, read_study, Prepared, StudyError};
                         smash merge shards/0 shards/1 shards/2 shards/3 --out results/com_sweep"
 )]
 pub struct RunArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Study file (TOML): base club, delivery, face grid, design variants, outputs.
     #[arg(value_name = "STUDY.toml")]
     pub study: PathBuf,
@@ -74,6 +78,7 @@ fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
 
 /// Run `smash run`.
 pub fn run(args: RunArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let study = read_study(&args.study)?;
     let (k, n) = args.shard.unwrap_or((0, 1));
     let dir = match (&args.out, args.shard) {
@@ -146,6 +151,13 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         prepared.ys_mm.len(),
         prepared.zs_mm.len()
     );
+    if args.shard.is_some() && prepared.study.yards.is_some() {
+        anyhow::bail!(
+            "{}: a study with [yards] cannot be sharded (its yard maps and optimisation run \
+             once over the whole grid); run it without --shard",
+            args.study.display()
+        );
+    }
     if args.shard.is_some() {
         // Shards are only useful if they can be merged: refuse before computing any.
         smash::study::shard::check_mergeable(&prepared)?;
@@ -186,9 +198,16 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     let start = Instant::now();
     let metrics = prepared.all_metrics();
     let (sens, opt) = finish(&prepared, &metrics)?;
+    let yards = match &prepared.study.yards {
+        Some(_) => Some(
+            smash::study::yards_run::run_yards(&prepared.study)
+                .map_err(|e| anyhow::anyhow!("{}: {e}", args.study.display()))?,
+        ),
+        None => None,
+    };
     let kernels = prepared.kernels();
     let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
-        write_study(
+        let mut n = write_study(
             tmp,
             &prepared,
             &kernels,
@@ -196,8 +215,27 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             &sens,
             opt.as_ref(),
             args.format.into(),
-        )
+        )?;
+        if let Some(r) = &yards {
+            for (rel, bytes) in smash::study::yards_run::yards_files(&prepared.study, r) {
+                let path = tmp.join(&rel);
+                if let Some(parent) = path.parent() {
+                    std::fs::create_dir_all(parent)?;
+                }
+                std::fs::write(&path, bytes).map_err(|e| {
+                    std::io::Error::new(e.kind(), format!("{}: {e}", rel.display()))
+                })?;
+                n += 1;
+            }
+        }
+        Ok(n)
     })?;
+    if let Some(r) = &yards {
+        eprint!(
+            "{}",
+            smash::study::yards_run::yards_summary(&prepared.study, r)
+        );
+    }
     let seconds = start.elapsed().as_secs_f64();
     if let Some(path) = &args.report {
         let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
@@ -208,8 +246,7 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     crate::study_output::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
     eprintln!(
         "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
-         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s; each map is computed twice, \
-         for the long table and the matrices)",
+         (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s)",
         kernels.points(),
         kernels.seconds(),
         kernels.points() as f64 / kernels.seconds().max(1e-9)

@@ -17,6 +17,10 @@ use smash::synth::{generate, read_config};
                   smash synth --config configs/synth/null_world.toml --out null.csv --seed 7"
 )]
 pub struct SynthArgs {
+    /// User-defined effects.
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
+
     /// Synthetic-experiment configuration (TOML; see configs/synth/README.md).
     #[arg(long, value_name = "CONFIG.toml")]
     pub config: PathBuf,
@@ -36,6 +40,7 @@ pub struct SynthArgs {
 
 /// Run `smash synth`.
 pub fn run(args: SynthArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let mut outputs = vec![("--out", args.out.as_path(), false)];
     if let Some(t) = &args.truth {
         outputs.push(("--truth", t.as_path(), false));

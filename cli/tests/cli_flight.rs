@@ -148,6 +148,45 @@ fn predict_with_flight_adds_the_flight_columns() {
     col(&h, "err_carry_yd");
 }
 
+const LAUNCH_ROW0: &str = "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,0,10,2500\n";
+const OK_ROW: &str = "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,10,2500\n";
+
+#[test]
+fn bad_atmosphere_files_name_file_and_key() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = write(dir.path(), "ok.csv", OK_ROW);
+    for (k, (text, expect)) in [
+        (
+            "[atmosphere]\ntemperature_c = 90\n",
+            "atmosphere.temperature_c",
+        ),
+        ("[atmosphere]\nfoo = 1\n", "unknown field `foo`"),
+        ("[atmosphere]\nhumidity_pct = \"wet\"\n", "invalid type"),
+        ("[air]\ntemperature_c = 20\n", "no [atmosphere] table"),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let atm = write(dir.path(), &format!("atm{k}.toml"), text);
+        let out = dir.path().join(format!("out{k}.csv"));
+        let o = smash(&[
+            "flight",
+            "--shots",
+            shots.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--atmosphere",
+            atm.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "case {k} should fail");
+        assert!(err.contains(expect), "case {k}: {err}");
+        assert!(err.contains(&format!("atm{k}.toml")), "case {k}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "case {k}: {err}");
+        assert!(!out.exists(), "case {k}: no output file");
+    }
+}
+
 #[test]
 fn bad_input_is_one_clear_line_and_no_file() {
     let dir = tempfile::tempdir().unwrap();
@@ -191,6 +230,44 @@ fn bad_input_is_one_clear_line_and_no_file() {
             "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,10,2500\n",
             vec!["--aero", "magic"],
             "unknown aerodynamic model 'magic'",
+        ),
+        (LAUNCH_ROW0, vec![], "ball_speed_mph = 0: must be > 0"),
+        (
+            "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,300,10,2500\n",
+            vec![],
+            "ball_speed_mph = 300",
+        ),
+        (
+            "shot_id,ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm\nd1,150,10,120,2500\n",
+            vec![],
+            "azimuth_deg = 120: must be within [-90, 90]",
+        ),
+        (
+            "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm,sidespin_rpm\nd1,150,10,2500,-30000\n",
+            vec![],
+            "column 'sidespin_rpm'",
+        ),
+        (
+            "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,nan,10,2500\n",
+            vec![],
+            "'nan' is not a finite number",
+        ),
+        (OK_ROW, vec!["--temperature-c", "80"], "--temperature-c"),
+        (OK_ROW, vec!["--elevation-m", "9000"], "--elevation-m"),
+        (
+            OK_ROW,
+            vec!["--pressure-hpa", "1000", "--elevation-m", "100"],
+            "not both",
+        ),
+        (OK_ROW, vec!["--wind-speed-m-s", "50"], "--wind-speed-m-s"),
+        (OK_ROW, vec!["--roughness-m", "-1"], "--roughness-m"),
+        (OK_ROW, vec!["--max-time-s", "-1"], "--max-time-s"),
+        (OK_ROW, vec!["--dt-s", "0"], "--dt-s"),
+        (OK_ROW, vec!["--spin-decay", "foo"], "--spin-decay 'foo'"),
+        (
+            OK_ROW,
+            vec!["--total", "--ground-restitution", "3"],
+            "ground restitution",
         ),
     ];
     for (k, (text, extra, expect)) in cases.into_iter().enumerate() {

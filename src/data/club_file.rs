@@ -35,7 +35,9 @@ use toml::Spanned;
 
 use super::{parse_toml, read_text, toml_key_error, DataError};
 use crate::club::ClubSpec;
-use crate::effects::{Effect, EffectKind};
+#[cfg(test)]
+use crate::effects::EffectKind;
+use crate::effects::{Effect, EffectId};
 use crate::limits::{self, PhysicalRange};
 use crate::physics::impact::DRIVER_HOSEL_MM;
 use crate::physics::{validate_inertia, ModelParams};
@@ -48,6 +50,8 @@ struct RawFile {
     ball: RawBall,
     #[serde(default)]
     effect: Vec<Spanned<toml::Table>>,
+    #[serde(default)]
+    define_effect: Vec<Spanned<super::effect_defs::RawDefinition>>,
 }
 
 #[derive(Deserialize)]
@@ -109,7 +113,9 @@ pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
 /// Parse and validate club-file text (`path` is used in messages only).
 pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] tables")?;
+    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
+    // User-defined effects first, so that [[effect]] tables can name them.
+    super::effect_defs::register_definitions(path, text, &raw.define_effect)?;
     let c = &raw.club;
     let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = c.com_mm.get_ref();
@@ -194,6 +200,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         loft_bias_rad: 0.0,
         face_bias_rad: 0.0,
         hosel_m: Vector3::new(mm(hosel_mm[0]), mm(hosel_mm[1]), mm(hosel_mm[2])),
+        user: Default::default(),
     };
 
     let mut effects = Vec::with_capacity(raw.effect.len());
@@ -236,14 +243,15 @@ fn parse_effect(
         None => {
             return Err(here(format!(
                 "missing `name`; one of: {}",
-                EffectKind::all_names()
+                EffectId::all_names()
             )))
         }
     };
-    let kind = EffectKind::from_name(name).ok_or_else(|| {
+    let kind = EffectId::from_name(name).ok_or_else(|| {
         here(format!(
-            "unknown effect '{name}'; the library has: {}",
-            EffectKind::all_names()
+            "unknown effect '{name}'; the library has: {} (a user-defined effect needs its \
+             [[define_effect]] table in this file or an --effect-defs file)",
+            EffectId::all_names()
         ))
     })?;
     let group = match t.get("group") {
@@ -343,6 +351,14 @@ pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     let _ = writeln!(s, "mass_g = {:?}", p.ball_mass_kg * 1e3);
     let _ = writeln!(s, "radius_mm = {:?}", p.ball_radius_m * 1e3);
     let _ = writeln!(s, "inertia_gcm2 = {:?}", p.ball_inertia_kgm2 * 1e7);
+    // The definitions of the user-defined effects it uses, so the file stays usable alone.
+    let mut defined: Vec<&str> = Vec::new();
+    for u in spec.effects.iter().filter_map(|e| e.kind().user()) {
+        if !defined.contains(&u.name) {
+            defined.push(u.name);
+            let _ = write!(s, "\n{}", u.toml);
+        }
+    }
     for e in &spec.effects {
         let _ = writeln!(s, "\n[[effect]]");
         let _ = writeln!(s, "name = \"{}\"", e.kind().name());

@@ -8,7 +8,8 @@
 
 use std::path::Path;
 
-use crate::data::{fmt_f64, read_text, DataError};
+use crate::data::number::push_cell;
+use crate::data::{read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
 
 /// The flight outputs (file names without prefix).
@@ -56,7 +57,7 @@ pub struct LaunchTable {
     /// Header as in the file.
     pub headers: Vec<String>,
     /// Raw cells.
-    pub records: Vec<Vec<String>>,
+    pub records: Vec<csv::StringRecord>,
     /// 1-based file line of each record.
     pub lines: Vec<usize>,
     /// Parsed launches, SI.
@@ -66,21 +67,113 @@ pub struct LaunchTable {
 }
 
 /// A raw CSV table with the line of each record.
+#[derive(Debug)]
 pub struct RawCsv {
     /// Header.
     pub headers: Vec<String>,
     /// Cells.
-    pub records: Vec<Vec<String>>,
+    pub records: Vec<csv::StringRecord>,
     /// 1-based lines.
     pub lines: Vec<usize>,
 }
 
-/// Read a CSV with a header into raw cells.
+/// Read a CSV with a header into raw cells. Large files without quotes are split at line
+/// starts and parsed in parallel (the same records and lines as one pass; any irregularity
+/// falls back to the one-pass reader, whose error is reported).
 pub fn parse_raw_csv(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> {
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(true)
+    if bytes.len() >= PARALLEL_CSV_BYTES && !bytes.contains(&b'"') && !bytes.contains(&b'\r') {
+        if let Some(raw) = parse_raw_csv_parallel(bytes) {
+            return Ok(raw);
+        }
+    }
+    parse_raw_csv_serial(path, bytes)
+}
+
+/// Files at least this large are parsed in parallel.
+const PARALLEL_CSV_BYTES: usize = 1 << 20;
+
+fn reader(bytes: &[u8], headers: bool) -> csv::Reader<&[u8]> {
+    csv::ReaderBuilder::new()
+        .has_headers(headers)
         .trim(csv::Trim::All)
-        .from_reader(bytes);
+        .from_reader(bytes)
+}
+
+/// Header line, then chunks of whole lines parsed on rayon's threads; `None` when a chunk does
+/// not parse cleanly or a record's width differs from the header's (the serial reader then
+/// reports it).
+fn parse_raw_csv_parallel(bytes: &[u8]) -> Option<RawCsv> {
+    use rayon::prelude::*;
+    let head_end = bytes.iter().position(|&b| b == b'\n')? + 1;
+    let headers: Vec<String> = reader(&bytes[..head_end], false)
+        .records()
+        .next()?
+        .ok()?
+        .iter()
+        .map(str::to_string)
+        .collect();
+    let body = &bytes[head_end..];
+    let n_chunks = (rayon::current_num_threads() * 8).max(1);
+    let target = body.len().div_ceil(n_chunks).max(1);
+    let mut chunks: Vec<&[u8]> = Vec::with_capacity(n_chunks + 1);
+    let mut start = 0;
+    while start < body.len() {
+        let mut end = (start + target).min(body.len());
+        while end < body.len() && body[end - 1] != b'\n' {
+            end += 1;
+        }
+        chunks.push(&body[start..end]);
+        start = end;
+    }
+    // First line of each chunk (the header is line 1).
+    let newlines: Vec<usize> = chunks
+        .par_iter()
+        .map(|c| c.iter().filter(|&&b| b == b'\n').count())
+        .collect();
+    let mut first = Vec::with_capacity(chunks.len());
+    let mut line = 2;
+    for n in &newlines {
+        first.push(line);
+        line += n;
+    }
+    let width = headers.len();
+    let parts: Option<Vec<(Vec<csv::StringRecord>, Vec<usize>)>> = chunks
+        .par_iter()
+        .zip(&first)
+        .map(|(c, &first_line)| {
+            let mut rdr = reader(c, false);
+            let mut rec = csv::StringRecord::new();
+            let (mut recs, mut lines) = (Vec::new(), Vec::new());
+            loop {
+                match rdr.read_record(&mut rec) {
+                    Ok(false) => break,
+                    Ok(true) if rec.len() == width => {
+                        let l = rec.position().map_or(0, |p| p.line() as usize);
+                        lines.push(first_line + l - 1);
+                        recs.push(rec.clone());
+                    }
+                    _ => return None,
+                }
+            }
+            Some((recs, lines))
+        })
+        .collect();
+    let parts = parts?;
+    let total = parts.iter().map(|p| p.0.len()).sum();
+    let (mut records, mut lines) = (Vec::with_capacity(total), Vec::with_capacity(total));
+    for (r, l) in parts {
+        records.extend(r);
+        lines.extend(l);
+    }
+    Some(RawCsv {
+        headers,
+        records,
+        lines,
+    })
+}
+
+fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> {
+    let mut rdr = reader(bytes, true);
     let headers: Vec<String> = rdr
         .headers()
         .map_err(|e| DataError::file(path, e.to_string()))?
@@ -95,7 +188,7 @@ pub fn parse_raw_csv(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> {
             Ok(false) => break,
             Ok(true) => {
                 lines.push(rec.position().map_or(0, |p| p.line() as usize));
-                records.push(rec.iter().map(str::to_string).collect());
+                records.push(rec.clone());
             }
             Err(e) => {
                 let line = e.position().map(|p| p.line() as usize);
@@ -144,28 +237,33 @@ pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<Launch
             ));
         }
     }
-    let mut launches = Vec::with_capacity(raw.records.len());
-    for (rec, &line) in raw.records.iter().zip(&raw.lines) {
-        let mut v = [0.0; 5];
-        for k in 0..5 {
-            if let Some(i) = idx[k] {
-                let cell = rec.get(i).map(String::as_str).unwrap_or("");
-                v[k] = cell
-                    .parse::<f64>()
-                    .ok()
-                    .filter(|x| x.is_finite())
-                    .ok_or_else(|| {
-                        DataError::at(
-                            path,
-                            Some(line),
-                            Some(format!("column '{p}{}'", names[k])),
-                            format!("'{cell}' is not a finite number"),
-                        )
-                    })?;
+    use rayon::prelude::*;
+    let launches = raw
+        .records
+        .par_iter()
+        .zip(&raw.lines)
+        .map(|(rec, &line)| {
+            let mut v = [0.0; 5];
+            for k in 0..5 {
+                if let Some(i) = idx[k] {
+                    let cell = rec.get(i).unwrap_or("");
+                    v[k] = cell
+                        .parse::<f64>()
+                        .ok()
+                        .filter(|x| x.is_finite())
+                        .ok_or_else(|| {
+                            DataError::at(
+                                path,
+                                Some(line),
+                                Some(format!("column '{p}{}'", names[k])),
+                                format!("'{cell}' is not a finite number"),
+                            )
+                        })?;
+                }
             }
-        }
-        launches.push(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]));
-    }
+            Ok(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]))
+        })
+        .collect::<Result<Vec<_>, DataError>>()?;
     Ok(LaunchTable {
         headers: raw.headers,
         records: raw.records,
@@ -198,7 +296,7 @@ fn is_flight_output(h: &str) -> bool {
 /// `err_` columns where measured flight columns exist. `with_total`: add `total_yd`.
 pub fn flight_csv(
     headers: &[String],
-    records: &[Vec<String>],
+    records: &[csv::StringRecord],
     flights: &[Flight],
     with_total: bool,
 ) -> Vec<u8> {
@@ -218,7 +316,6 @@ pub fn flight_csv(
                 .map(|i| (k, i))
         })
         .collect();
-    let mut w = csv::Writer::from_writer(Vec::new());
     let mut header: Vec<String> = keep.iter().map(|&i| headers[i].clone()).collect();
     header.extend(outs.iter().map(|&k| format!("pred_{}", FLIGHT_COLUMNS[k])));
     header.extend(
@@ -226,28 +323,50 @@ pub fn flight_csv(
             .iter()
             .map(|&(k, _)| format!("err_{}", FLIGHT_COLUMNS[k])),
     );
+    let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(&header).expect("writing to memory");
-    let mut row: Vec<String> = Vec::with_capacity(header.len());
-    for (rec, f) in records.iter().zip(flights) {
-        row.clear();
-        row.extend(
-            keep.iter()
-                .map(|&i| rec.get(i).cloned().unwrap_or_default()),
-        );
-        row.extend(
-            outs.iter()
-                .map(|&k| flight_value(f, k).map(fmt_f64).unwrap_or_default()),
-        );
-        for &(k, i) in &measured {
-            let m = rec.get(i).and_then(|c| c.parse::<f64>().ok());
-            row.push(match (flight_value(f, k), m) {
-                (Some(p), Some(m)) if m.is_finite() => fmt_f64(p - m),
-                _ => String::new(),
-            });
-        }
-        w.write_record(&row).expect("writing to memory");
+    let mut out = w.into_inner().expect("flushing memory");
+    // Rows in parallel chunks, each its own CSV writer (same quoting), joined in order.
+    use rayon::prelude::*;
+    let chunk = 4096;
+    let parts: Vec<Vec<u8>> = records
+        .par_chunks(chunk)
+        .zip(flights.par_chunks(chunk))
+        .map(|(recs, fs)| {
+            let mut w = csv::Writer::from_writer(Vec::with_capacity(recs.len() * 96));
+            let mut num = Vec::with_capacity(32);
+            for (rec, f) in recs.iter().zip(fs) {
+                for &i in &keep {
+                    w.write_field(rec.get(i).unwrap_or(""))
+                        .expect("writing to memory");
+                }
+                for &k in &outs {
+                    num.clear();
+                    if let Some(v) = flight_value(f, k) {
+                        push_cell(&mut num, v);
+                    }
+                    w.write_field(&num).expect("writing to memory");
+                }
+                for &(k, i) in &measured {
+                    let m = rec.get(i).and_then(|c| c.parse::<f64>().ok());
+                    num.clear();
+                    if let (Some(p), Some(m)) = (flight_value(f, k), m) {
+                        if m.is_finite() {
+                            push_cell(&mut num, p - m);
+                        }
+                    }
+                    w.write_field(&num).expect("writing to memory");
+                }
+                w.write_record(None::<&[u8]>).expect("writing to memory");
+            }
+            w.into_inner().expect("flushing memory")
+        })
+        .collect();
+    out.reserve(parts.iter().map(Vec::len).sum());
+    for p in parts {
+        out.extend_from_slice(&p);
     }
-    w.into_inner().expect("flushing memory")
+    out
 }
 
 /// Read the `[atmosphere]` table of a TOML file (other tables are ignored, so a study file can
@@ -286,6 +405,33 @@ pub fn parse_atmosphere(path: &Path, text: &str) -> Result<Atmosphere, DataError
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn parallel_csv_reading_equals_one_pass() {
+        // Over the parallel threshold, with blank lines, padded cells and no final newline.
+        let mut text = String::from("shot_id, ball_speed_mph,launch_angle_deg\n");
+        let mut k = 0;
+        while text.len() < 3 * PARALLEL_CSV_BYTES {
+            text.push_str(&format!("s{k}, {}.5 ,{}\n", 100 + k % 90, k % 40));
+            if k % 977 == 0 {
+                text.push('\n');
+            }
+            k += 1;
+        }
+        text.push_str("last,150,12");
+        let p = Path::new("big.csv");
+        let par = parse_raw_csv(p, text.as_bytes()).unwrap();
+        let one = parse_raw_csv_serial(p, text.as_bytes()).unwrap();
+        assert!(parse_raw_csv_parallel(text.as_bytes()).is_some());
+        assert_eq!(par.headers, one.headers);
+        assert_eq!(par.records, one.records);
+        assert_eq!(par.lines, one.lines);
+        // A short row: the one-pass reader's error, with its line.
+        let bad = text.replacen("s5, 105.5 ,5", "s5,105.5", 1);
+        let e = parse_raw_csv(p, bad.as_bytes()).unwrap_err().to_string();
+        // Line 8: the header, s0, the blank line after it, s1 … s5.
+        assert!(e.contains("big.csv:8"), "{e}");
+    }
 
     #[test]
     fn atmosphere_table() {

@@ -23,7 +23,7 @@ use crate::fit::ParamEstimate;
 /// The library specification of an estimate's parameter (`None` for an effect or key the
 /// library does not know).
 pub fn spec_of(p: &ParamEstimate) -> Option<&'static ParamSpec> {
-    EffectKind::from_name(p.effect)?
+    crate::effects::EffectId::from_name(p.effect)?
         .params()
         .iter()
         .find(|s| s.key == p.param)

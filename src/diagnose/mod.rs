@@ -40,7 +40,7 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use crate::club::ClubSpec;
-use crate::effects::EffectKind;
+use crate::effects::{EffectId, EffectKind};
 use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions, ParamEstimate};
 use crate::fit::covariance::covariance;
 use crate::fit::{
@@ -217,16 +217,23 @@ pub const OPT_IN_CANDIDATES: [EffectKind; 3] = [
 ];
 
 /// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
-/// `added_mass@group` with several groups.
+/// `added_mass@group` with several groups, plus every registered user-defined effect
+/// (`crate::effects::user`: those of an effects file or club file the command read) as a
+/// global candidate beside them.
 pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
     let mut c: Vec<EffectRequest> = EffectKind::ALL
         .iter()
         .filter(|k| !OPT_IN_CANDIDATES.contains(k))
-        .map(|&k| EffectRequest::Global(k))
+        .map(|&k| EffectRequest::Global(k.into()))
         .collect();
     if groups.len() > 1 {
-        c.push(EffectRequest::PerGroup(EffectKind::AddedMass));
+        c.push(EffectRequest::PerGroup(EffectKind::AddedMass.into()));
     }
+    c.extend(
+        crate::effects::user::registered()
+            .into_iter()
+            .map(|u| EffectRequest::Global(EffectId::User(u))),
+    );
     c
 }
 

@@ -31,6 +31,10 @@ use std::fmt;
 
 use crate::physics::ModelParams;
 
+pub mod user;
+
+pub use user::UserEffect;
+
 /// Most parameters any effect has.
 pub const MAX_EFFECT_PARAMS: usize = 3;
 
@@ -165,14 +169,142 @@ impl fmt::Display for EffectKind {
     }
 }
 
+/// Any effect: one of the library ([`EffectKind`], typed, so compare's hints stay checked by
+/// the compiler) or one defined by the user at run time ([`user`]).
+#[derive(Debug, Clone, Copy)]
+pub enum EffectId {
+    /// A library effect.
+    Library(EffectKind),
+    /// A user-defined effect (registered for the life of the process).
+    User(&'static UserEffect),
+}
+
+impl From<EffectKind> for EffectId {
+    fn from(k: EffectKind) -> Self {
+        EffectId::Library(k)
+    }
+}
+
+impl PartialEq for EffectId {
+    fn eq(&self, o: &Self) -> bool {
+        match (self, o) {
+            (EffectId::Library(a), EffectId::Library(b)) => a == b,
+            (EffectId::User(a), EffectId::User(b)) => a.name == b.name,
+            _ => false,
+        }
+    }
+}
+
+impl Eq for EffectId {}
+
+impl PartialEq<EffectKind> for EffectId {
+    fn eq(&self, o: &EffectKind) -> bool {
+        matches!(self, EffectId::Library(k) if k == o)
+    }
+}
+
+impl std::hash::Hash for EffectId {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        self.name().hash(h)
+    }
+}
+
+impl PartialOrd for EffectId {
+    fn partial_cmp(&self, o: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(o))
+    }
+}
+
+impl Ord for EffectId {
+    /// Library effects first, in registration order, then user-defined ones by name.
+    fn cmp(&self, o: &Self) -> std::cmp::Ordering {
+        match (self, o) {
+            (EffectId::Library(a), EffectId::Library(b)) => a.cmp(b),
+            (EffectId::Library(_), EffectId::User(_)) => std::cmp::Ordering::Less,
+            (EffectId::User(_), EffectId::Library(_)) => std::cmp::Ordering::Greater,
+            (EffectId::User(a), EffectId::User(b)) => a.name.cmp(b.name),
+        }
+    }
+}
+
+impl EffectId {
+    /// Look an effect up by name: the library, then the registered user-defined effects.
+    pub fn from_name(name: &str) -> Option<Self> {
+        EffectKind::from_name(name)
+            .map(EffectId::Library)
+            .or_else(|| user::lookup(name).map(EffectId::User))
+    }
+
+    /// Comma-separated names of the library and the registered user-defined effects.
+    pub fn all_names() -> String {
+        let mut names = EffectKind::all_names();
+        for u in user::registered() {
+            names.push_str(", ");
+            names.push_str(u.name);
+        }
+        names
+    }
+
+    /// The library kind, if it is one.
+    pub fn library(self) -> Option<EffectKind> {
+        match self {
+            EffectId::Library(k) => Some(k),
+            EffectId::User(_) => None,
+        }
+    }
+
+    /// The user-defined effect, if it is one.
+    pub fn user(self) -> Option<&'static UserEffect> {
+        match self {
+            EffectId::Library(_) => None,
+            EffectId::User(u) => Some(u),
+        }
+    }
+
+    /// The effect's name in files and on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            EffectId::Library(k) => k.name(),
+            EffectId::User(u) => u.name,
+        }
+    }
+
+    /// One-line description.
+    pub fn description(self) -> &'static str {
+        match self {
+            EffectId::Library(k) => k.description(),
+            EffectId::User(u) => u.doc,
+        }
+    }
+
+    /// Parameter specifications, in file order.
+    pub fn params(self) -> &'static [ParamSpec] {
+        match self {
+            EffectId::Library(k) => k.params(),
+            EffectId::User(u) => u.params,
+        }
+    }
+
+    /// Apply with parameter values `v` (units of [`EffectId::params`]).
+    pub fn apply(self, v: &[f64], p: &mut ModelParams) {
+        match self {
+            EffectId::Library(k) => k.apply(v, p),
+            EffectId::User(u) => u.apply(v, p),
+        }
+    }
+}
+
+impl fmt::Display for EffectId {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
 /// Why an effect cannot be built.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EffectError {
     /// No effect has this name.
-    #[error(
-        "unknown effect '{name}'; the library has: {}",
-        EffectKind::all_names()
-    )]
+    #[error("unknown effect '{name}'; the library has: {}", EffectId::all_names())]
     UnknownName {
         /// The name given.
         name: String,
@@ -213,7 +345,7 @@ pub enum EffectError {
 /// An effect with its parameter values, global or restricted to one group of shots.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Effect {
-    kind: EffectKind,
+    kind: EffectId,
     values: [f64; MAX_EFFECT_PARAMS],
     group: Option<String>,
 }
@@ -221,10 +353,11 @@ pub struct Effect {
 impl Effect {
     /// Build an effect; `values` in the order and units of `kind.params()`, each within bounds.
     pub fn new(
-        kind: EffectKind,
+        kind: impl Into<EffectId>,
         values: &[f64],
         group: Option<String>,
     ) -> Result<Self, EffectError> {
+        let kind = kind.into();
         let specs = kind.params();
         if values.len() != specs.len() {
             return Err(EffectError::Arity {
@@ -256,7 +389,8 @@ impl Effect {
     }
 
     /// The effect at its default parameter values.
-    pub fn with_defaults(kind: EffectKind, group: Option<String>) -> Self {
+    pub fn with_defaults(kind: impl Into<EffectId>, group: Option<String>) -> Self {
+        let kind = kind.into();
         let mut values = [0.0; MAX_EFFECT_PARAMS];
         for (slot, s) in values.iter_mut().zip(kind.params()) {
             *slot = s.default;
@@ -269,7 +403,7 @@ impl Effect {
     }
 
     /// Kind of effect.
-    pub fn kind(&self) -> EffectKind {
+    pub fn kind(&self) -> EffectId {
         self.kind
     }
 

@@ -634,8 +634,8 @@ impl<'a> FitProblem<'a> {
     /// evaluated [`W`] shots at a time on the lanes ([`FitProblem::predict_lanes`]). Shots are
     /// taken group by group (a lane vector shares one model), the last vector of a group padded
     /// with copies of its last shot. Returns `false`, with `chunk` partly written, when a shot
-    /// cannot be computed (off the face, not approaching, not finite): the caller then
-    /// evaluates the chunk one shot at a time to report it.
+    /// cannot be computed (off the face, not approaching, not finite) or a model has
+    /// user-defined effects: the caller then evaluates the chunk one shot at a time.
     fn residuals_on_lanes(
         &self,
         models: &[ImpactModel],
@@ -644,6 +644,10 @@ impl<'a> FitProblem<'a> {
         chunk: &mut [f64],
         groups: Option<&[bool]>,
     ) -> bool {
+        // User-defined effects are evaluated per shot by the scalar solve.
+        if models.iter().any(|m| !m.laws().user.is_empty()) {
+            return false;
+        }
         let rows = self.weighting.rows_per_shot();
         let group_of = &self.data.group_of;
         let mut order = [0usize; SHOTS_PER_TASK];

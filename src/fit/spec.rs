@@ -7,7 +7,9 @@
 use nalgebra::DVector;
 
 use super::FitError;
-use crate::effects::{Effect, EffectError, EffectKind, ParamSpec};
+#[cfg(test)]
+use crate::effects::EffectKind;
+use crate::effects::{Effect, EffectError, EffectId, ParamSpec};
 
 /// The keyword that asks for one effect per group.
 pub const PER_GROUP: &str = "group";
@@ -16,16 +18,16 @@ pub const PER_GROUP: &str = "group";
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum EffectRequest {
     /// `name`: one effect for all shots.
-    Global(EffectKind),
+    Global(EffectId),
     /// `name@group`: one effect per group present in the shots.
-    PerGroup(EffectKind),
+    PerGroup(EffectId),
     /// `name@A`: one effect for the shots of group `A` only.
-    OneGroup(EffectKind, String),
+    OneGroup(EffectId, String),
 }
 
 impl EffectRequest {
     /// The effect kind.
-    pub fn kind(&self) -> EffectKind {
+    pub fn kind(&self) -> EffectId {
         match self {
             Self::Global(k) | Self::PerGroup(k) | Self::OneGroup(k, _) => *k,
         }
@@ -86,7 +88,7 @@ pub fn parse_request(text: &str) -> Result<EffectRequest, FitError> {
         Some((n, g)) => (n.trim(), Some(g.trim())),
         None => (text, None),
     };
-    let kind = EffectKind::from_name(name).ok_or_else(|| {
+    let kind = EffectId::from_name(name).ok_or_else(|| {
         FitError::Effect(EffectError::UnknownName {
             name: name.to_owned(),
         })
@@ -113,7 +115,7 @@ pub fn parse_effect_list(text: &str) -> Result<Vec<EffectRequest>, FitError> {
     if list.is_empty() {
         return Err(FitError::BadEffectList(format!(
             "no effect named; the library has: {}",
-            EffectKind::all_names()
+            EffectId::all_names()
         )));
     }
     Ok(list)
@@ -123,7 +125,7 @@ pub fn parse_effect_list(text: &str) -> Result<Vec<EffectRequest>, FitError> {
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct FreeEffect {
     /// Effect kind.
-    pub kind: EffectKind,
+    pub kind: EffectId,
     /// Group it applies to, or `None` for all shots.
     pub group: Option<String>,
 }
@@ -263,11 +265,11 @@ mod tests {
     #[test]
     fn parses_and_expands() {
         let r = parse_effect_list("added_mass@group, ball_offset,cor_speed@B").unwrap();
-        assert_eq!(r[0], EffectRequest::PerGroup(EffectKind::AddedMass));
-        assert_eq!(r[1], EffectRequest::Global(EffectKind::BallOffset));
+        assert_eq!(r[0], EffectRequest::PerGroup(EffectKind::AddedMass.into()));
+        assert_eq!(r[1], EffectRequest::Global(EffectKind::BallOffset.into()));
         assert_eq!(
             r[2],
-            EffectRequest::OneGroup(EffectKind::CorSpeed, "B".into())
+            EffectRequest::OneGroup(EffectKind::CorSpeed.into(), "B".into())
         );
         let l = ParamLayout::from_requests(&r, &groups()).unwrap();
         assert_eq!(l.len(), 3 + 2 + 1);

@@ -108,7 +108,7 @@ pub fn check_variation(
             ));
             continue;
         }
-        if let Some((vars, why)) = needs(r.kind()) {
+        if let Some((vars, why)) = r.kind().library().and_then(needs) {
             if !vars.iter().any(|v| varies(shots, column(v))) {
                 let values: Vec<String> = vars
                     .iter()

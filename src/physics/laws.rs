@@ -19,102 +19,13 @@
 //! Only `+ − × ÷ √` (and `powf` when a `cor_power` exponent is set) are used, never fused
 //! multiply–add, so every code path gives the same bits for the same inputs.
 
-use std::ops::{Add, BitAnd, Div, Mul, Neg, Sub};
-
-use crate::lanes::{M, V};
+pub use super::real::Real;
+#[cfg(test)]
+use crate::lanes::V;
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
 pub const COR_REFERENCE_SPEED_M_S: f64 = 48.77;
-
-/// A number the laws are evaluated on: `f64` (one shot) or [`V`] (a vector of lanes).
-pub trait Real:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-    + Add<f64, Output = Self>
-    + Sub<f64, Output = Self>
-    + Mul<f64, Output = Self>
-    + Div<f64, Output = Self>
-{
-    /// Per-lane truth value (`bool` for `f64`).
-    type Mask: Copy + BitAnd<Output = Self::Mask>;
-    /// Every lane `v`.
-    fn splat(v: f64) -> Self;
-    /// Correctly rounded square root.
-    fn sqrt(self) -> Self;
-    /// `self^e` (libm `pow`, lane by lane).
-    fn powf(self, e: f64) -> Self;
-    /// `self > o`, lane by lane.
-    fn gt(self, o: Self) -> Self::Mask;
-    /// All lanes false.
-    fn no() -> Self::Mask;
-    /// `if m { a } else { b }`, lane by lane.
-    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
-}
-
-impl Real for f64 {
-    type Mask = bool;
-    #[inline(always)]
-    fn splat(v: f64) -> Self {
-        v
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        f64::sqrt(self)
-    }
-    #[inline(always)]
-    fn powf(self, e: f64) -> Self {
-        f64::powf(self, e)
-    }
-    #[inline(always)]
-    fn gt(self, o: Self) -> bool {
-        self > o
-    }
-    #[inline(always)]
-    fn no() -> bool {
-        false
-    }
-    #[inline(always)]
-    fn select(m: bool, a: Self, b: Self) -> Self {
-        if m {
-            a
-        } else {
-            b
-        }
-    }
-}
-
-impl Real for V {
-    type Mask = M;
-    #[inline(always)]
-    fn splat(v: f64) -> Self {
-        V::splat(v)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        V::sqrt(self)
-    }
-    #[inline(always)]
-    fn powf(self, e: f64) -> Self {
-        V::powf(self, e)
-    }
-    #[inline(always)]
-    fn gt(self, o: Self) -> M {
-        V::gt(self, o)
-    }
-    #[inline(always)]
-    fn no() -> M {
-        M([0; crate::lanes::W])
-    }
-    #[inline(always)]
-    fn select(m: M, a: Self, b: Self) -> Self {
-        m.select(a, b)
-    }
-}
 
 /// A 3-vector of [`Real`]s (components in the face frame F unless said otherwise).
 pub type Vec3<R> = [R; 3];
@@ -309,25 +220,47 @@ impl TangentialLaw {
         u1n: R,
         e: R,
     ) -> (Vec3<R>, R::Mask) {
+        Self::impulse_with::<R, FRICTION>(
+            k,
+            n,
+            u1,
+            u1n,
+            e,
+            R::splat(self.e_t),
+            R::splat(self.mu.unwrap_or(f64::INFINITY)),
+        )
+    }
+
+    /// [`TangentialLaw::impulse`] with `e_t` and `mu` given per lane (as user-defined effects
+    /// set them); `mu` is read only when `FRICTION`.
+    #[inline(always)]
+    pub fn impulse_with<R: Real, const FRICTION: bool>(
+        k: &Sym3<R>,
+        n: &Vec3<R>,
+        u1: &Vec3<R>,
+        u1n: R,
+        e: R,
+        e_t: R,
+        mu: R,
+    ) -> (Vec3<R>, R::Mask) {
         let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
         let eu = e * u1n;
         let b = [
-            u1[0] + eu * n[0] + u1t[0] * self.e_t,
-            u1[1] + eu * n[1] + u1t[1] * self.e_t,
-            u1[2] + eu * n[2] + u1t[2] * self.e_t,
+            u1[0] + eu * n[0] + u1t[0] * e_t,
+            u1[1] + eu * n[1] + u1t[1] * e_t,
+            u1[2] + eu * n[2] + u1t[2] * e_t,
         ];
         let p = solve_sym3(k, &b);
         if !FRICTION {
             return (p, R::no());
         }
-        let mu = self.mu.unwrap_or(f64::INFINITY);
         let pn = dot(&p, n);
         let pt = [p[0] - pn * n[0], p[1] - pn * n[1], p[2] - pn * n[2]];
         let pt_norm = dot(&pt, &pt).sqrt();
         let ut = dot(&u1t, &u1t).sqrt();
         let zero = R::splat(0.0);
         let slip = pt_norm.gt(pn * mu) & ut.gt(zero);
-        let f = R::splat(mu) / ut;
+        let f = mu / ut;
         let dir = [n[0] + u1t[0] * f, n[1] + u1t[1] * f, n[2] + u1t[2] * f];
         let pn_slip = (e + 1.0) * u1n / dot(n, &sym_mul(k, &dir));
         (
@@ -341,6 +274,14 @@ impl TangentialLaw {
     }
 }
 
+/// The tangential approach speed `|u1 − u1n·n|` (the `ut_m_s` of user-defined effects), with
+/// the operations of [`TangentialLaw::impulse`].
+#[inline(always)]
+pub fn tangential_speed<R: Real>(u1: &Vec3<R>, n: &Vec3<R>, u1n: R) -> R {
+    let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
+    dot(&u1t, &u1t).sqrt()
+}
+
 /// Every law of one validated model (see [`super::ImpactModel::laws`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Laws {
@@ -352,6 +293,10 @@ pub struct Laws {
     pub collision: CollisionMatrix,
     /// Tangential law.
     pub tangential: TangentialLaw,
+    /// User-defined terms (`crate::effects::user`): `cor`, `et`, `mu` evaluated with
+    /// [`crate::physics::user_terms::UserTerms::contact`] after the library's restitution, and before
+    /// the tangential law; mass and geometry per shot before the solve. Empty: unused.
+    pub user: crate::physics::user_terms::UserTerms,
 }
 
 #[cfg(test)]

@@ -7,10 +7,13 @@
 //! `docs/conventions.md`.
 
 pub mod delivery;
+pub mod expr;
 pub mod face;
 pub mod impact;
 pub mod launch;
 pub mod laws;
+pub mod real;
+pub mod user_terms;
 
 pub use delivery::{face_orientation, Delivery};
 pub use face::{ContactFrame, FaceError, FaceGeometry};

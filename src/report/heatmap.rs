@@ -354,22 +354,30 @@ fn draw_svg(map: &Heatmap<'_>) -> String {
     );
     let nx = map.xs.len();
     let _ = writeln!(s, r#"<g shape-rendering="crispEdges">"#);
+    // `<rect x="{xa:.2}" y="{ya:.2}" width="{w:.2}" height="{h:.2}" fill="{fill}"/>` per cell,
+    // with x and width formatted once per column and y and height once per row.
+    let cols: Vec<(String, String)> = (0..nx)
+        .map(|j| {
+            let (xa, xb) = (px(xe[j]), px(xe[j + 1]));
+            (
+                format!(r#"<rect x="{xa:.2}" y=""#),
+                format!(r#"" width="{:.2}" height=""#, (xb - xa) + 0.3),
+            )
+        })
+        .collect();
     for i in 0..map.ys.len() {
-        for j in 0..nx {
+        let (ya, yb) = (py(ye[i + 1]), py(ye[i]));
+        let (y, h) = (format!("{ya:.2}"), format!("{:.2}", (yb - ya) + 0.3));
+        for (j, (head, width)) in cols.iter().enumerate() {
             let v = map.values[i * nx + j];
             let fill = if v.is_finite() {
                 colour(map, v, lo, hi)
             } else {
                 "#e0e0e0".into()
             };
-            let (xa, xb) = (px(xe[j]), px(xe[j + 1]));
-            let (ya, yb) = (py(ye[i + 1]), py(ye[i]));
-            let _ = writeln!(
-                s,
-                r#"<rect x="{xa:.2}" y="{ya:.2}" width="{:.2}" height="{:.2}" fill="{fill}"/>"#,
-                (xb - xa) + 0.3,
-                (yb - ya) + 0.3
-            );
+            for part in [head, &y, width, &h, "\" fill=\"", &fill, "\"/>\n"] {
+                s.push_str(part);
+            }
         }
     }
     let _ = writeln!(s, "</g>");

@@ -474,7 +474,7 @@ pub fn calibrate_page(
         "<table class=\"params\"><tr><th class=\"l\">parameter</th><th>value</th><th>SE</th><th>unit</th><th>plausible</th></tr>",
     );
     for p in &cal.params {
-        let plausible = crate::effects::EffectKind::from_name(p.effect).and_then(|k| {
+        let plausible = crate::effects::EffectId::from_name(p.effect).and_then(|k| {
             k.params()
                 .iter()
                 .find(|s| s.key == p.param)
@@ -593,7 +593,7 @@ fn plausible_of(p: &serde_json::Value) -> Option<(f64, f64)> {
             }
         }
     }
-    let kind = crate::effects::EffectKind::from_name(p["effect"].as_str()?)?;
+    let kind = crate::effects::EffectId::from_name(p["effect"].as_str()?)?;
     let key = p["param"].as_str()?;
     kind.params()
         .iter()

@@ -2,11 +2,14 @@
 //! provides (a temporary one it swaps in as a unit: [`crate::data::write_folder_atomic_with`]).
 //! No NaN reaches a file: values that cannot be computed are empty cells.
 //!
-//! The face maps are streamed: a band of grid rows is computed (or copied, for a merge), its
+//! The face maps are streamed: a band of grid rows is computed (or read back, for a merge), its
 //! numbers formatted in parallel and written, while the next band is computed. Memory is a few
 //! bands whatever the grid (see [`BAND_POINTS`]); the pictures are drawn from block means
 //! accumulated band by band. The long table is written in ascending rows and the matrices top
-//! row first, so each variant's grid is computed twice (the kernel is cheap next to formatting).
+//! row first. Each number is formatted once, into its matrix line, and the long table's line is
+//! assembled from those cells; a variant's matrix lines are kept until its long-table rows are
+//! written while they fit in [`HELD_MATRIX_BYTES`] (an 801 × 801 grid's do). Larger grids are
+//! computed and formatted a second time, top row first, for the matrices.
 //!
 //! The files are not synced to the disk one by one (`fsync` would hold a large study to the
 //! disk's sustained write rate, a few hundred MB/s here, instead of the page cache's): the folder
@@ -41,7 +44,7 @@ use rayon::prelude::*;
 
 use crate::data::club_file::club_toml;
 use crate::data::fmt_f64;
-use crate::data::number::push_cell;
+use crate::data::number::{push_cell, push_f64};
 use crate::report::heatmap::{matrix_csv_header, matrix_csv_row, BlockMeans, Heatmap, Scale};
 use crate::sweep::kernel::LaunchGrid;
 use crate::units::{mm, mph};
@@ -51,7 +54,7 @@ use super::metrics::{metric_names, metric_unit, Output};
 use super::optimise::OptimiseResult;
 use super::sensitivity::Sensitivity;
 use super::spec::resolved_toml;
-use super::sweep::{GridSource, Prepared, VariantResult};
+use super::sweep::{GridSource, Prepared};
 
 /// Files to write: path relative to the output folder, bytes.
 pub type Files = Vec<(PathBuf, Vec<u8>)>;
@@ -86,37 +89,6 @@ pub enum TableFormat {
 /// Grid points per streamed band (about 64 k: a few MB of values and text per band).
 pub const BAND_POINTS: usize = 1 << 16;
 
-/// Complete per-variant results (a merge) as a [`GridSource`].
-pub struct HeldGrids<'a> {
-    /// The results, one per variant.
-    pub results: &'a [VariantResult],
-    /// Grid columns.
-    pub nz: usize,
-}
-
-impl GridSource for HeldGrids<'_> {
-    fn grid_rows(&self, variant: usize, rows: Range<usize>, out: &mut LaunchGrid) {
-        let g = &self.results[variant].grid;
-        let r = rows.start * self.nz..rows.end * self.nz;
-        out.ball_speed_m_s.clear();
-        out.ball_speed_m_s
-            .extend_from_slice(&g.ball_speed_m_s[r.clone()]);
-        out.launch_angle_rad.clear();
-        out.launch_angle_rad
-            .extend_from_slice(&g.launch_angle_rad[r.clone()]);
-        out.azimuth_rad.clear();
-        out.azimuth_rad.extend_from_slice(&g.azimuth_rad[r.clone()]);
-        out.backspin_rad_s.clear();
-        out.backspin_rad_s
-            .extend_from_slice(&g.backspin_rad_s[r.clone()]);
-        out.sidespin_rad_s.clear();
-        out.sidespin_rad_s
-            .extend_from_slice(&g.sidespin_rad_s[r.clone()]);
-        out.valid.clear();
-        out.valid.extend_from_slice(&g.valid[r]);
-    }
-}
-
 fn io_err(path: &Path, e: std::io::Error) -> std::io::Error {
     std::io::Error::new(e.kind(), format!("{}: {e}", path.display()))
 }
@@ -142,12 +114,13 @@ fn band_rows(nz: usize) -> usize {
 }
 
 /// Produce `bands` items with `make` into two alternating buffers and hand each, in order, to
-/// `consume`: the next band is made while the previous one is consumed.
+/// `consume`: the next band is made while the previous one is consumed (which may take parts
+/// of it, e.g. text to keep).
 fn pipeline<T: Send + Sync>(
     bands: usize,
     bufs: [T; 2],
     make: &(dyn Fn(usize, &mut T) + Sync),
-    consume: &mut (dyn FnMut(usize, &T) -> std::io::Result<()> + Send),
+    consume: &mut (dyn FnMut(usize, &mut T) -> std::io::Result<()> + Send),
 ) -> std::io::Result<()> {
     if bands == 0 {
         return Ok(());
@@ -156,7 +129,7 @@ fn pipeline<T: Send + Sync>(
     make(0, &mut cur);
     for b in 0..bands {
         let (done, ()) = rayon::join(
-            || consume(b, &cur),
+            || consume(b, &mut cur),
             || {
                 if b + 1 < bands {
                     make(b + 1, &mut next)
@@ -180,6 +153,25 @@ pub fn write_study(
     sens: &[Sensitivity],
     opt: Option<&OptimiseResult>,
     format: TableFormat,
+) -> std::io::Result<usize> {
+    write_study_holding(
+        root,
+        p,
+        grids,
+        (metrics, sens, opt),
+        format,
+        HELD_MATRIX_BYTES,
+    )
+}
+
+/// [`write_study`], keeping at most `held_matrix_bytes` of matrix text per variant.
+fn write_study_holding(
+    root: &Path,
+    p: &Prepared,
+    grids: &dyn GridSource,
+    (metrics, sens, opt): (&[Vec<f64>], &[Sensitivity], Option<&OptimiseResult>),
+    format: TableFormat,
+    held_matrix_bytes: usize,
 ) -> std::io::Result<usize> {
     let s = &p.study;
     let mut n_files = 0;
@@ -253,6 +245,12 @@ pub fn write_study(
     let w = id_width(p.variants.len());
     let ys_m: Vec<f64> = p.ys_mm.iter().map(|v| mm(*v)).collect();
     let zs_m: Vec<f64> = p.zs_mm.iter().map(|v| mm(*v)).collect();
+    let spare_lines = std::sync::Mutex::new(Vec::new());
+    let read_error: std::sync::Mutex<Option<std::io::Error>> = std::sync::Mutex::new(None);
+    let check_read = || match read_error.lock().unwrap_or_else(|e| e.into_inner()).take() {
+        Some(e) => Err(e),
+        None => Ok(()),
+    };
     for (i, d) in p.variants.iter().enumerate() {
         let mut prefix = i.to_string();
         for v in &axes {
@@ -261,7 +259,12 @@ pub fn write_study(
         prefix.push(',');
         let fill = |rows: Range<usize>, valid: &mut Vec<bool>, out: &mut [Vec<f64>]| {
             let mut g = LaunchGrid::default();
-            grids.grid_rows(i, rows, &mut g);
+            let n = rows.len() * p.zs_mm.len();
+            if let Err(e) = grids.grid_rows(i, rows, &mut g) {
+                // Reported once the band is written (the whole output folder is discarded).
+                *read_error.lock().unwrap_or_else(|e| e.into_inner()) = Some(e);
+                g = LaunchGrid::with_len(n);
+            }
             for (o, dst) in s.outputs.iter().zip(out.iter_mut()) {
                 dst.clear();
                 dst.par_extend(
@@ -272,16 +275,6 @@ pub fn write_study(
             }
             std::mem::swap(valid, &mut g.valid);
         };
-        let blocks = match &mut long {
-            LongWriter::Csv(f) => {
-                write_long_rows(f, p, s.outputs.len(), (prefix.as_bytes(), &zs_text), &fill)
-            }
-            LongWriter::Parquet(w) => {
-                let design: Vec<f64> = axes.iter().map(|v| d.get(*v)).collect();
-                write_long_parquet(w, p, i, &design, s.outputs.len(), &fill)
-            }
-        }
-        .map_err(|e| io_err(long_rel, e))?;
         let maps: Vec<MapFile> = s
             .outputs
             .iter()
@@ -296,10 +289,40 @@ pub fn write_study(
                 },
             })
             .collect();
-        let fill_values = |rows: Range<usize>, out: &mut [Vec<f64>]| {
-            fill(rows, &mut Vec::new(), out);
+        let design: Vec<f64> = axes.iter().map(|v| d.get(*v)).collect();
+        let pass = long_pass(
+            &mut long,
+            p,
+            &LongRows {
+                variant: i,
+                prefix: prefix.as_bytes(),
+                zs: &zs_text,
+                design: &design,
+                n_outputs: s.outputs.len(),
+            },
+            &fill,
+            (held_matrix_bytes, &spare_lines),
+        )
+        .map_err(|e| io_err(long_rel, e))?;
+        n_files += match pass.held {
+            Some(held) => {
+                let n = write_held_maps(root, p, &maps, &held)?;
+                // The next variant formats into these lines' memory.
+                spare_lines
+                    .lock()
+                    .unwrap_or_else(|e| e.into_inner())
+                    .extend(held.into_iter().flatten());
+                n
+            }
+            None => {
+                let fill_values = |rows: Range<usize>, out: &mut [Vec<f64>]| {
+                    fill(rows, &mut Vec::new(), out);
+                };
+                write_maps(root, p, &maps, &fill_values)?
+            }
         };
-        n_files += write_maps(root, p, &maps, &fill_values, &blocks)?;
+        check_read()?;
+        n_files += write_svgs(root, p, &maps, &pass.blocks)?;
     }
     if let LongWriter::Parquet(w) = long {
         w.close()
@@ -342,7 +365,8 @@ pub fn write_study(
                 x.map_rows(&ys_m[rows], &zs_m, club_speed, &outputs, out);
             };
             let blocks = block_means(p, maps.len(), &fill);
-            n_files += write_maps(root, p, &maps, &fill, &blocks)?;
+            n_files += write_maps(root, p, &maps, &fill)?;
+            n_files += write_svgs(root, p, &maps, &blocks)?;
         }
     }
     if let Some(o) = opt {
@@ -354,60 +378,171 @@ pub fn write_study(
     Ok(n_files)
 }
 
-/// Values of a band of rows for [`write_long_rows`]: validity and each output (row-major).
+/// Values of a band of rows for [`long_pass`]: validity and each output (row-major).
 type LongFill<'a> = dyn Fn(Range<usize>, &mut Vec<bool>, &mut [Vec<f64>]) + Sync + 'a;
 
-/// A band of long-table rows: first row, validity, values per output, text lines.
+/// Most bytes of matrix text [`long_pass`] keeps to write the matrices from (top row first)
+/// after the long table's ascending pass, instead of computing and formatting every value a
+/// second time: a few variants of an 801 × 801 grid. Larger grids take the second pass.
+pub const HELD_MATRIX_BYTES: usize = 192 << 20;
+
+/// Bytes a matrix cell takes, about (17 significant digits, sign, point, comma).
+const MATRIX_CELL_BYTES: usize = 20;
+
+/// What one variant's rows of the long table are made of.
+struct LongRows<'a> {
+    variant: usize,
+    /// `id,variables,` (CSV).
+    prefix: &'a [u8],
+    /// `,z,` per column (CSV).
+    zs: &'a [Vec<u8>],
+    /// The design variables (Parquet).
+    design: &'a [f64],
+    n_outputs: usize,
+}
+
+/// A band of rows of the long pass: values, and per grid row its long-table line (CSV) and its
+/// matrix line per output (`y,v,v,…\n`, as [`matrix_csv_row`] writes it).
 #[derive(Default)]
 struct LongBand {
     valid: Vec<bool>,
     values: Vec<Vec<f64>>,
-    lines: Vec<Vec<u8>>,
+    long: Vec<Vec<u8>>,
+    mats: Vec<Vec<Vec<u8>>>,
 }
 
-/// One variant's lines of `maps_long.csv` (ascending rows; `prefix` is `id,variables,` and
-/// `zs` holds `,z,` per column) into `f`; returns the block means of each output's picture.
-fn write_long_rows(
-    f: &mut File,
+/// The matrix lines of one variant kept by [`long_pass`]: per band (ascending), per grid row,
+/// per output.
+type HeldMatrices = Vec<Vec<Vec<Vec<u8>>>>;
+
+/// What [`long_pass`] leaves: the block means of each output's picture, and the matrix lines
+/// when they were kept.
+struct LongPass {
+    blocks: Vec<BlockMeans>,
+    held: Option<HeldMatrices>,
+}
+
+/// One variant's rows of the long table (ascending rows) into `long`. Every value is formatted
+/// once: the matrix line of each output is written first and the long-table line is assembled
+/// from its cells. The matrix lines are kept for [`write_held_maps`] while they fit in
+/// `budget` bytes ([`HELD_MATRIX_BYTES`]); new lines reuse the memory of `spare` ones.
+fn long_pass(
+    long: &mut LongWriter,
     p: &Prepared,
-    n_outputs: usize,
-    (prefix, zs): (&[u8], &[Vec<u8>]),
+    v: &LongRows<'_>,
     fill: &LongFill<'_>,
-) -> std::io::Result<Vec<BlockMeans>> {
+    (budget, spare): (usize, &std::sync::Mutex<Vec<Vec<Vec<u8>>>>),
+) -> std::io::Result<LongPass> {
+    use std::sync::atomic::{AtomicBool, Ordering};
     let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+    let n_outputs = v.n_outputs;
     let per = band_rows(nz);
     let bands = ny.div_ceil(per);
+    let csv = matches!(long, LongWriter::Csv(_));
+    let estimate = ny
+        .saturating_mul(nz)
+        .saturating_mul(n_outputs)
+        .saturating_mul(MATRIX_CELL_BYTES);
+    let holding = AtomicBool::new(estimate <= budget);
+    let mut held: HeldMatrices = Vec::new();
+    let mut held_bytes = 0usize;
     let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
+    let long_cap = v.prefix.len() + 48 + n_outputs * 26;
     let make = |b: usize, band: &mut LongBand| {
         let rows = b * per..((b + 1) * per).min(ny);
         band.values.resize_with(n_outputs, Vec::new);
         fill(rows.clone(), &mut band.valid, &mut band.values);
-        band.lines.resize_with(rows.len(), Vec::new);
-        let (valid, values) = (&band.valid, &band.values);
-        band.lines.par_iter_mut().enumerate().for_each(|(r, out)| {
-            out.clear();
-            let mut y = Vec::new();
-            push_cell(&mut y, p.ys_mm[rows.start + r]);
-            for (iz, z) in zs.iter().enumerate() {
-                let k = r * nz + iz;
-                out.extend_from_slice(prefix);
-                out.extend_from_slice(&y);
-                out.extend_from_slice(z);
-                out.push(if valid[k] { b'1' } else { b'0' });
-                for v in values {
-                    out.push(b',');
-                    push_cell(out, v[k]);
-                }
-                out.push(b'\n');
-            }
-        });
-    };
-    let mut consume = |_: usize, band: &LongBand| -> std::io::Result<()> {
-        for l in &band.lines {
-            f.write_all(l)?;
+        let hold = holding.load(Ordering::Relaxed);
+        if !(csv || hold) {
+            return;
         }
-        for (b, v) in blocks.iter_mut().zip(&band.values) {
-            b.add_rows(v);
+        {
+            let mut spare = spare.lock().unwrap_or_else(|e| e.into_inner());
+            band.mats
+                .resize_with(rows.len(), || spare.pop().unwrap_or_default());
+        }
+        band.long
+            .resize_with(if csv { rows.len() } else { 0 }, Vec::new);
+        let (valid, values) = (&band.valid, &band.values);
+        let format_row = |r: usize,
+                          mats: &mut Vec<Vec<u8>>,
+                          long: Option<&mut Vec<u8>>,
+                          spans: &mut Vec<u32>| {
+            let mut y = Vec::new();
+            push_f64(&mut y, p.ys_mm[rows.start + r]);
+            mats.resize_with(n_outputs, Vec::new);
+            // Cell k of output o spans spans[2(o·nz + k)]..spans[2(o·nz + k) + 1] of its line.
+            spans.clear();
+            for (o, line) in mats.iter_mut().enumerate() {
+                let vals = &values[o][r * nz..(r + 1) * nz];
+                line.clear();
+                line.reserve(y.len() + 2 + nz * (MATRIX_CELL_BYTES + 4));
+                line.extend_from_slice(&y);
+                for x in vals {
+                    line.push(b',');
+                    spans.push(line.len() as u32);
+                    push_cell(line, *x);
+                    spans.push(line.len() as u32);
+                }
+                line.push(b'\n');
+            }
+            if let Some(out) = long {
+                out.clear();
+                out.reserve(nz * (long_cap + y.len()));
+                for (iz, z) in v.zs.iter().enumerate() {
+                    out.extend_from_slice(v.prefix);
+                    out.extend_from_slice(&y);
+                    out.extend_from_slice(z);
+                    out.push(if valid[r * nz + iz] { b'1' } else { b'0' });
+                    for (o, line) in mats.iter().enumerate() {
+                        let k = 2 * (o * nz + iz);
+                        out.push(b',');
+                        out.extend_from_slice(&line[spans[k] as usize..spans[k + 1] as usize]);
+                    }
+                    out.push(b'\n');
+                }
+            }
+        };
+        if csv {
+            band.mats
+                .par_iter_mut()
+                .zip(band.long.par_iter_mut())
+                .enumerate()
+                .for_each_init(Vec::new, |spans, (r, (m, l))| {
+                    format_row(r, m, Some(l), spans)
+                });
+        } else {
+            band.mats
+                .par_iter_mut()
+                .enumerate()
+                .for_each_init(Vec::new, |spans, (r, m)| format_row(r, m, None, spans));
+        }
+    };
+    let pq = |e: parquet::errors::ParquetError| std::io::Error::other(e);
+    let mut consume = |b: usize, band: &mut LongBand| -> std::io::Result<()> {
+        let rows = b * per..((b + 1) * per).min(ny);
+        match long {
+            LongWriter::Csv(f) => {
+                for l in &band.long {
+                    f.write_all(l)?;
+                }
+            }
+            LongWriter::Parquet(w) => {
+                write_parquet_band(w, p, v, rows, &band.valid, &band.values).map_err(pq)?
+            }
+        }
+        for (b, x) in blocks.iter_mut().zip(&band.values) {
+            b.add_rows(x);
+        }
+        if holding.load(Ordering::Relaxed) {
+            held_bytes += band.mats.iter().flatten().map(Vec::capacity).sum::<usize>();
+            if held_bytes > budget + budget / 2 {
+                // Longer numbers than estimated: give the memory back, take the second pass.
+                holding.store(false, Ordering::Relaxed);
+                held = Vec::new();
+            } else {
+                held.push(std::mem::take(&mut band.mats));
+            }
         }
         Ok(())
     };
@@ -417,7 +552,10 @@ fn write_long_rows(
         &make,
         &mut consume,
     )?;
-    Ok(blocks)
+    Ok(LongPass {
+        blocks,
+        held: holding.into_inner().then_some(held),
+    })
 }
 
 /// The long table's file.
@@ -451,83 +589,50 @@ fn parquet_long_writer(
     SerializedFileWriter::new(f, Arc::new(schema), Arc::new(props)).map_err(std::io::Error::other)
 }
 
-/// One variant's rows of the long table as Parquet row groups (one a band, ascending rows);
-/// returns the block means of each output's picture.
-fn write_long_parquet(
+/// One band of the long table (rows `rows` of variant `v`) as a Parquet row group.
+fn write_parquet_band(
     w: &mut SerializedFileWriter<File>,
     p: &Prepared,
-    variant: usize,
-    design: &[f64],
-    n_outputs: usize,
-    fill: &LongFill<'_>,
-) -> std::io::Result<Vec<BlockMeans>> {
-    let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
-    let per = band_rows(nz);
-    let bands = ny.div_ceil(per);
-    let mut blocks: Vec<BlockMeans> = (0..n_outputs).map(|_| BlockMeans::new(ny, nz)).collect();
-    let make = |b: usize, band: &mut LongBand| {
-        let rows = b * per..((b + 1) * per).min(ny);
-        band.values.resize_with(n_outputs, Vec::new);
-        fill(rows, &mut band.valid, &mut band.values);
-    };
-    let pq = |e: parquet::errors::ParquetError| std::io::Error::other(e);
-    let mut consume = |b: usize, band: &LongBand| -> std::io::Result<()> {
-        let rows = b * per..((b + 1) * per).min(ny);
-        let n = band.valid.len();
-        let ys: Vec<f64> = rows
-            .flat_map(|r| std::iter::repeat_n(p.ys_mm[r], nz))
-            .collect();
-        let zs: Vec<f64> = p.zs_mm.iter().copied().cycle().take(n).collect();
-        let mut rg = w.next_row_group().map_err(pq)?;
-        let mut column = 0;
-        while let Some(mut col) = rg.next_column().map_err(pq)? {
-            let c = column;
-            column += 1;
-            if c == 0 {
-                let ids = vec![variant as i32; n];
-                col.typed::<Int32Type>()
-                    .write_batch(&ids, None, None)
-                    .map_err(pq)?;
-            } else if c <= design.len() {
-                let x = vec![design[c - 1]; n];
-                col.typed::<DoubleType>()
-                    .write_batch(&x, None, None)
-                    .map_err(pq)?;
-            } else if c == design.len() + 1 {
-                col.typed::<DoubleType>()
-                    .write_batch(&ys, None, None)
-                    .map_err(pq)?;
-            } else if c == design.len() + 2 {
-                col.typed::<DoubleType>()
-                    .write_batch(&zs, None, None)
-                    .map_err(pq)?;
-            } else if c == design.len() + 3 {
-                col.typed::<BoolType>()
-                    .write_batch(&band.valid, None, None)
-                    .map_err(pq)?;
-            } else {
-                let v = &band.values[c - design.len() - 4];
-                let present: Vec<f64> = v.iter().copied().filter(|x| x.is_finite()).collect();
-                let def: Vec<i16> = v.iter().map(|x| i16::from(x.is_finite())).collect();
-                col.typed::<DoubleType>()
-                    .write_batch(&present, Some(&def), None)
-                    .map_err(pq)?;
-            }
-            col.close().map_err(pq)?;
+    v: &LongRows<'_>,
+    rows: Range<usize>,
+    valid: &[bool],
+    values: &[Vec<f64>],
+) -> Result<(), parquet::errors::ParquetError> {
+    let nz = p.zs_mm.len();
+    let design = v.design;
+    let n = valid.len();
+    let ys: Vec<f64> = rows
+        .flat_map(|r| std::iter::repeat_n(p.ys_mm[r], nz))
+        .collect();
+    let zs: Vec<f64> = p.zs_mm.iter().copied().cycle().take(n).collect();
+    let mut rg = w.next_row_group()?;
+    let mut column = 0;
+    while let Some(mut col) = rg.next_column()? {
+        let c = column;
+        column += 1;
+        if c == 0 {
+            let ids = vec![v.variant as i32; n];
+            col.typed::<Int32Type>().write_batch(&ids, None, None)?;
+        } else if c <= design.len() {
+            let x = vec![design[c - 1]; n];
+            col.typed::<DoubleType>().write_batch(&x, None, None)?;
+        } else if c == design.len() + 1 {
+            col.typed::<DoubleType>().write_batch(&ys, None, None)?;
+        } else if c == design.len() + 2 {
+            col.typed::<DoubleType>().write_batch(&zs, None, None)?;
+        } else if c == design.len() + 3 {
+            col.typed::<BoolType>().write_batch(valid, None, None)?;
+        } else {
+            let x = &values[c - design.len() - 4];
+            let present: Vec<f64> = x.iter().copied().filter(|x| x.is_finite()).collect();
+            let def: Vec<i16> = x.iter().map(|x| i16::from(x.is_finite())).collect();
+            col.typed::<DoubleType>()
+                .write_batch(&present, Some(&def), None)?;
         }
-        rg.close().map_err(pq)?;
-        for (b, v) in blocks.iter_mut().zip(&band.values) {
-            b.add_rows(v);
-        }
-        Ok(())
-    };
-    pipeline(
-        bands,
-        [LongBand::default(), LongBand::default()],
-        &make,
-        &mut consume,
-    )?;
-    Ok(blocks)
+        col.close()?;
+    }
+    rg.close()?;
+    Ok(())
 }
 
 /// The block means of the pictures of a map set, from an ascending pass over the rows.
@@ -539,7 +644,7 @@ fn block_means(p: &Prepared, n_maps: usize, fill: &MapFill<'_>) -> Vec<BlockMean
         values.resize_with(n_maps, Vec::new);
         fill(b * per..((b + 1) * per).min(ny), values);
     };
-    let mut consume = |_: usize, values: &Vec<Vec<f64>>| -> std::io::Result<()> {
+    let mut consume = |_: usize, values: &mut Vec<Vec<f64>>| -> std::io::Result<()> {
         for (b, v) in blocks.iter_mut().zip(values) {
             b.add_rows(v);
         }
@@ -573,27 +678,31 @@ struct MapBand {
     lines: Vec<Vec<Vec<u8>>>,
 }
 
-/// The matrices (`<stem>.csv`, top row first) and pictures (`<stem>.svg`, from `blocks`) of
-/// maps over the study grid; `fill(rows, out)` gives each map's values on `rows` (row-major).
-/// Returns the number of files written.
+/// Open the matrix files of `maps` (`<stem>.csv`) and write their header.
+fn matrix_files(root: &Path, p: &Prepared, maps: &[MapFile]) -> std::io::Result<Vec<File>> {
+    let header = matrix_csv_header(&p.zs_mm);
+    maps.iter()
+        .map(|m| {
+            let rel = PathBuf::from(format!("{}.csv", m.stem));
+            let mut f = create(root, &rel)?;
+            f.write_all(&header).map_err(|e| io_err(&rel, e))?;
+            Ok(f)
+        })
+        .collect()
+}
+
+/// The matrices (`<stem>.csv`, top row first) of maps over the study grid; `fill(rows, out)`
+/// gives each map's values on `rows` (row-major). Returns the number of files written.
 fn write_maps(
     root: &Path,
     p: &Prepared,
     maps: &[MapFile],
     fill: &MapFill<'_>,
-    blocks: &[BlockMeans],
 ) -> std::io::Result<usize> {
     let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
     let per = band_rows(nz);
     let bands = ny.div_ceil(per);
-    let header = matrix_csv_header(&p.zs_mm);
-    let mut files: Vec<File> = Vec::with_capacity(maps.len());
-    for m in maps {
-        let rel = PathBuf::from(format!("{}.csv", m.stem));
-        let mut f = create(root, &rel)?;
-        f.write_all(&header).map_err(|e| io_err(&rel, e))?;
-        files.push(f);
-    }
+    let mut files = matrix_files(root, p, maps)?;
     // Bands from the top of the face down.
     let band_range = |b: usize| {
         let k = bands - 1 - b;
@@ -614,7 +723,7 @@ fn write_maps(
             });
         }
     };
-    let mut consume = |_: usize, band: &MapBand| -> std::io::Result<()> {
+    let mut consume = |_: usize, band: &mut MapBand| -> std::io::Result<()> {
         for (i, f) in files.iter_mut().enumerate() {
             for l in &band.lines[i] {
                 f.write_all(l)?;
@@ -628,8 +737,76 @@ fn write_maps(
         &make,
         &mut consume,
     )?;
-    drop(files);
-    for (m, b) in maps.iter().zip(blocks) {
+    Ok(maps.len())
+}
+
+/// The matrices of `maps` from the lines [`long_pass`] kept (bands and rows reversed: top row
+/// first), the files written in parallel. Returns the number of files written.
+fn write_held_maps(
+    root: &Path,
+    p: &Prepared,
+    maps: &[MapFile],
+    held: &HeldMatrices,
+) -> std::io::Result<usize> {
+    let files = matrix_files(root, p, maps)?;
+    files
+        .into_par_iter()
+        .enumerate()
+        .try_for_each(|(o, mut f)| -> std::io::Result<()> {
+            let mut lines = held
+                .iter()
+                .rev()
+                .flat_map(|band| band.iter().rev().map(|row| &row[o][..]));
+            // A few hundred lines a system call, straight from where they were formatted.
+            loop {
+                let batch: Vec<std::io::IoSlice<'_>> = lines
+                    .by_ref()
+                    .take(256)
+                    .map(std::io::IoSlice::new)
+                    .collect();
+                if batch.is_empty() {
+                    return Ok(());
+                }
+                write_all_slices(&mut f, &batch)?;
+            }
+        })
+        .map_err(|e| io_err(Path::new("maps"), e))?;
+    Ok(maps.len())
+}
+
+/// Write every byte of `slices` to `f`, in order, with vectored writes.
+fn write_all_slices(f: &mut File, slices: &[std::io::IoSlice<'_>]) -> std::io::Result<()> {
+    let (mut i, mut skip) = (0, 0);
+    while i < slices.len() {
+        let mut head: Vec<std::io::IoSlice<'_>> = Vec::with_capacity(slices.len() - i);
+        head.push(std::io::IoSlice::new(&slices[i][skip..]));
+        head.extend_from_slice(&slices[i + 1..]);
+        let mut n = match f.write_vectored(&head) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => n,
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => continue,
+            Err(e) => return Err(e),
+        };
+        // Skip what was written: whole slices, then part of the next.
+        while i < slices.len() && n >= slices[i].len() - skip {
+            n -= slices[i].len() - skip;
+            i += 1;
+            skip = 0;
+        }
+        skip += n;
+    }
+    Ok(())
+}
+
+/// The pictures (`<stem>.svg`) of `maps`, drawn from their block means. Returns the number of
+/// files written.
+fn write_svgs(
+    root: &Path,
+    p: &Prepared,
+    maps: &[MapFile],
+    blocks: &[BlockMeans],
+) -> std::io::Result<usize> {
+    maps.par_iter().zip(blocks).try_for_each(|(m, b)| {
         let map = Heatmap {
             title: &m.title,
             x_label: X_LABEL,
@@ -645,9 +822,9 @@ fn write_maps(
             root,
             Path::new(&format!("{}.svg", m.stem)),
             b.svg(&map).as_bytes(),
-        )?;
-    }
-    Ok(2 * maps.len())
+        )
+    })?;
+    Ok(maps.len())
 }
 
 fn sensitivity_table(sens: &[Sensitivity], names: &[String]) -> String {
@@ -761,4 +938,133 @@ fn optimise_files(p: &Prepared, o: &OptimiseResult, names: &[String]) -> Files {
         club_toml(&club, &comment).into_bytes(),
     ));
     files
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::study::spec::parse_study;
+    use std::collections::BTreeMap;
+
+    fn tree(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+        let mut out = BTreeMap::new();
+        let mut stack = vec![dir.to_path_buf()];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).unwrap() {
+                let path = e.unwrap().path();
+                if path.is_dir() {
+                    stack.push(path);
+                } else {
+                    let rel = path.strip_prefix(dir).unwrap().to_path_buf();
+                    out.insert(rel, std::fs::read(&path).unwrap());
+                }
+            }
+        }
+        out
+    }
+
+    /// Two variants on a 150 × 701 grid (two bands a variant) reaching off the face.
+    fn prepared() -> Prepared {
+        let club = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml");
+        let text = format!(
+            "[study]\nname = \"t\"\nclub = \"{}\"\n\n[delivery]\nclub_speed_mph = 100.0\n\
+             dynamic_loft_deg = 12.0\n\n[grid]\ny_mm = {{ from = -330.0, to = 25.0, count = 150 }}\n\
+             z_mm = {{ from = -40.0, to = 40.0, count = 701 }}\n\n[design]\n\
+             com_dx_mm = [-5.0, 5.0]\n",
+            club.display().to_string().replace('\\', "/")
+        );
+        Prepared::new(parse_study(Path::new("t.toml"), &text).unwrap()).unwrap()
+    }
+
+    fn write(p: &Prepared, dir: &Path, budget: usize) {
+        let metrics = p.all_metrics();
+        write_study_holding(
+            dir,
+            p,
+            &p.kernels(),
+            (&metrics, &[], None),
+            TableFormat::Csv,
+            budget,
+        )
+        .unwrap();
+    }
+
+    /// `Display` of a cell, empty when not finite: how every number was written before the
+    /// fast formatter.
+    fn display(v: f64) -> String {
+        if v.is_finite() {
+            format!("{v}")
+        } else {
+            String::new()
+        }
+    }
+
+    #[test]
+    fn streamed_outputs_equal_an_in_memory_display_writer_byte_for_byte() {
+        let p = prepared();
+        let (ny, nz) = (p.ys_mm.len(), p.zs_mm.len());
+        assert!(ny > band_rows(nz), "the grid must span several bands");
+        let dir = std::env::temp_dir().join(format!("smash-output-test-{}", std::process::id()));
+        let (held, twice) = (dir.join("held"), dir.join("twice"));
+        write(&p, &held, HELD_MATRIX_BYTES);
+        // No memory for the matrix lines: the matrices take the second (top-down) pass.
+        write(&p, &twice, 0);
+        let (a, b) = (tree(&held), tree(&twice));
+        assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
+        for (k, v) in &a {
+            assert!(v == &b[k], "{} differs between the two passes", k.display());
+        }
+
+        // The whole study held in memory and written with format!, the obvious way.
+        let results = p.assemble(p.compute(0..p.work_len(), &|| ())).unwrap();
+        let s = &p.study;
+        let club_speed = mph(s.swing.club_speed_mph);
+        let mut long = String::from("variant_id,com_dx_mm,y_mm,z_mm,valid");
+        for o in &s.outputs {
+            long += &format!(",{}", o.column());
+        }
+        long.push('\n');
+        let mut invalid = 0;
+        for (i, (d, r)) in p.variants.iter().zip(&results).enumerate() {
+            let (var, _) = &s.design.axes[0];
+            assert_eq!(var.key(), "com_dx_mm");
+            let dx = d.get(*var);
+            for (iy, y) in p.ys_mm.iter().enumerate() {
+                for (iz, z) in p.zs_mm.iter().enumerate() {
+                    let k = iy * nz + iz;
+                    invalid += usize::from(!r.grid.valid[k]);
+                    long += &format!("{i},{dx},{y},{z},{}", u8::from(r.grid.valid[k]));
+                    for o in &s.outputs {
+                        long += &format!(",{}", display(o.file_value(&r.grid, k, club_speed)));
+                    }
+                    long.push('\n');
+                }
+            }
+            for o in &s.outputs {
+                let mut m = String::from("y\\x");
+                for z in &p.zs_mm {
+                    m += &format!(",{z}");
+                }
+                m.push('\n');
+                for (iy, y) in p.ys_mm.iter().enumerate().rev() {
+                    m += &format!("{y}");
+                    for iz in 0..nz {
+                        m += &format!(
+                            ",{}",
+                            display(o.file_value(&r.grid, iy * nz + iz, club_speed))
+                        );
+                    }
+                    m.push('\n');
+                }
+                let rel = PathBuf::from(format!("maps/v{i:03}_{}.csv", o.column()));
+                assert!(a[&rel] == m.as_bytes(), "{} differs", rel.display());
+            }
+        }
+        assert!(invalid > 0, "rows below -305 mm lie off the face");
+        assert!(
+            a[Path::new("maps_long.csv")] == long.as_bytes(),
+            "maps_long.csv differs"
+        );
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -9,6 +9,7 @@
 //! decimal form, so reading them back gives the same bits; invalid values are empty cells.
 
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::{Path, PathBuf};
 
 use crate::data::{escape, read_text, DataError};
@@ -17,7 +18,7 @@ use crate::sweep::kernel::LaunchGrid;
 use super::metrics::metric_names;
 use super::output::{cell, Files};
 use super::spec::{parse_study, resolved_toml};
-use super::sweep::{ItemResult, Prepared};
+use super::sweep::{GridSource, ItemResult, Prepared};
 use super::StudyError;
 
 const ROWS_HEADER: &str =
@@ -239,14 +240,14 @@ fn num(path: &Path, line: u64, col: &str, s: &str) -> Result<f64, DataError> {
 
 /// A CSV reader over `text` whose header must be exactly `header`; records must have as many
 /// fields.
-fn csv_records<'a>(
+fn csv_records<R: std::io::Read>(
     path: &Path,
-    text: &'a str,
+    input: R,
     header: &str,
-) -> Result<csv::Reader<&'a [u8]>, DataError> {
+) -> Result<csv::Reader<R>, DataError> {
     let mut r = csv::ReaderBuilder::new()
         .has_headers(true)
-        .from_reader(text.as_bytes());
+        .from_reader(input);
     let h = r
         .headers()
         .map_err(|e| DataError::at(path, Some(1), None, format!("cannot read the header: {e}")))?;
@@ -272,11 +273,80 @@ fn csv_error(path: &Path, e: &csv::Error) -> DataError {
     DataError::at(path, line, None, msg)
 }
 
-/// Read the shard folders and assemble the full study result. The shards must record the same
-/// study and club hashes, which must also match the study and club files as they are now.
+/// The face maps of a merged study, read back from the shards into a binary scratch file (one
+/// fixed-size record per variant and grid row: the five launch components in SI units as
+/// little-endian `f64`, then the validity bytes) and served a band at a time to
+/// [`super::output::write_study`]: the merge's memory does not grow with the study. The scratch
+/// file is removed when this is dropped.
+pub struct DiskGrids {
+    file: std::sync::Mutex<std::fs::File>,
+    path: PathBuf,
+    ny: usize,
+    nz: usize,
+}
+
+impl DiskGrids {
+    /// Bytes of one grid row's record.
+    fn record(nz: usize) -> usize {
+        nz * (5 * 8 + 1)
+    }
+}
+
+impl Drop for DiskGrids {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_file(&self.path);
+    }
+}
+
+impl GridSource for DiskGrids {
+    fn grid_rows(
+        &self,
+        variant: usize,
+        rows: std::ops::Range<usize>,
+        out: &mut LaunchGrid,
+    ) -> std::io::Result<()> {
+        use std::io::{Read, Seek, SeekFrom};
+        let (nz, rec) = (self.nz, Self::record(self.nz));
+        let mut bytes = vec![0u8; rows.len() * rec];
+        {
+            let mut f = self.file.lock().unwrap_or_else(|e| e.into_inner());
+            f.seek(SeekFrom::Start(
+                ((variant * self.ny + rows.start) * rec) as u64,
+            ))
+            .and_then(|_| f.read_exact(&mut bytes))
+            .map_err(|e| {
+                std::io::Error::new(
+                    e.kind(),
+                    format!("{}: cannot read back: {e}", self.path.display()),
+                )
+            })?;
+        }
+        *out = LaunchGrid::with_len(0);
+        for r in bytes.chunks_exact(rec) {
+            let comp = |k: usize| {
+                r[k * 8 * nz..(k + 1) * 8 * nz]
+                    .chunks_exact(8)
+                    .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes")))
+            };
+            out.ball_speed_m_s.extend(comp(0));
+            out.launch_angle_rad.extend(comp(1));
+            out.azimuth_rad.extend(comp(2));
+            out.backspin_rad_s.extend(comp(3));
+            out.sidespin_rad_s.extend(comp(4));
+            out.valid.extend(r[40 * nz..].iter().map(|&b| b == 1));
+        }
+        Ok(())
+    }
+}
+
+/// Read the shard folders: the study, each variant's summary metrics, and the face maps into
+/// the scratch file `scratch` (see [`DiskGrids`]; a few MB of memory whatever the study). The
+/// shards must record the same study and club hashes, which must also match the study and club
+/// files as they are now, and must cover the study's work items exactly once.
 pub fn merge_shards(
     dirs: &[PathBuf],
-) -> Result<(Prepared, Vec<super::sweep::VariantResult>), StudyError> {
+    scratch: &Path,
+) -> Result<(Prepared, Vec<Vec<f64>>, DiskGrids), StudyError> {
     let first = dirs
         .first()
         .ok_or_else(|| StudyError::Merge("no shard folders given".into()))?;
@@ -327,10 +397,54 @@ pub fn merge_shards(
     }
     let n = metas[0].shards;
     let mut seen: Vec<usize> = Vec::new();
-    let mut items = Vec::new();
     let names = metric_names(p.study.distribution.is_some());
     let (nv, ny, nz) = (p.variants.len(), p.ys_mm.len(), p.zs_mm.len());
     check_mergeable(&p)?;
+    let per = p.items_per_variant();
+    let mut seen_items = vec![false; p.work_len()];
+    let mut metrics: Vec<Vec<f64>> = vec![Vec::new(); nv];
+    // The scratch file, sized for every grid row; each row is written at its place.
+    let scratch_err = |e: std::io::Error| DataError::file(scratch, format!("cannot write: {e}"));
+    let mut guard = ScratchGuard(None);
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .create(true)
+        .truncate(true)
+        .open(scratch)
+        .map_err(scratch_err)?;
+    guard.0 = Some(scratch.to_path_buf());
+    let rec = DiskGrids::record(nz);
+    file.set_len((nv * ny * rec) as u64).map_err(scratch_err)?;
+    let mut scratch_file = std::io::BufWriter::with_capacity(1 << 20, file);
+    let mut at_byte = 0u64;
+    let mut record = Vec::with_capacity(rec);
+    let mut put_row = |at: usize, g: &LaunchGrid| -> Result<(), StudyError> {
+        use std::io::{Seek, SeekFrom};
+        record.clear();
+        for c in [
+            &g.ball_speed_m_s,
+            &g.launch_angle_rad,
+            &g.azimuth_rad,
+            &g.backspin_rad_s,
+            &g.sidespin_rad_s,
+        ] {
+            for v in c {
+                record.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        record.extend(g.valid.iter().map(|&b| u8::from(b)));
+        let pos = (at * rec) as u64;
+        // Rows arrive in order within a shard: seek only when they jump.
+        if at_byte != pos {
+            scratch_file
+                .seek(SeekFrom::Start(pos))
+                .map_err(scratch_err)?;
+        }
+        scratch_file.write_all(&record).map_err(scratch_err)?;
+        at_byte = pos + rec as u64;
+        Ok(())
+    };
     for (d, m) in dirs.iter().zip(&metas) {
         let mp = d.join("shard.toml");
         let k = m.shard;
@@ -366,12 +480,15 @@ pub fn merge_shards(
         }
 
         let rp = d.join("rows.csv");
-        let rt = read_text(&rp)?;
-        let mut reader = csv_records(&rp, &rt, ROWS_HEADER)?;
+        let rf = std::fs::File::open(&rp)
+            .map_err(|e| DataError::file(&rp, format!("cannot read: {e}")))?;
+        let mut reader = csv_records(
+            &rp,
+            std::io::BufReader::with_capacity(1 << 20, rf),
+            ROWS_HEADER,
+        )?;
         let mut current: Option<(usize, usize, LaunchGrid, usize)> = None;
-        let flush = |cur: Option<(usize, usize, LaunchGrid, usize)>,
-                     items: &mut Vec<ItemResult>|
-         -> Result<(), StudyError> {
+        let mut flush = |cur: Option<(usize, usize, LaunchGrid, usize)>| -> Result<(), StudyError> {
             if let Some((variant, row, grid, filled)) = cur {
                 if filled != nz {
                     return Err(StudyError::Merge(format!(
@@ -379,7 +496,12 @@ pub fn merge_shards(
                         rp.display()
                     )));
                 }
-                items.push(ItemResult::Row { variant, row, grid });
+                let idx = variant * per + row + 1;
+                if seen_items[idx] {
+                    return Err(StudyError::Merge(format!("work item {idx} appears twice")));
+                }
+                seen_items[idx] = true;
+                put_row(variant * ny + row, &grid)?;
             }
             Ok(())
         };
@@ -392,7 +514,7 @@ pub fn merge_shards(
                 index(&rp, ln, "col", &f[2], nz, "grid columns")?,
             );
             if current.as_ref().is_none_or(|x| x.0 != v || x.1 != r) {
-                flush(current.take(), &mut items)?;
+                flush(current.take())?;
                 current = Some((v, r, LaunchGrid::with_len(nz), 0));
             }
             let cur = current.as_mut().expect("set above");
@@ -426,15 +548,13 @@ pub fn merge_shards(
             g.sidespin_rad_s[c] = num(&rp, ln, "sidespin_rad_s", &f[8])?;
             cur.3 += 1;
         }
-        flush(current.take(), &mut items)?;
+        flush(current.take())?;
 
         let mp = d.join("metrics.csv");
         let mt = read_text(&mp)?;
-        let mut reader = csv_records(&mp, &mt, "variant,metric,value")?;
+        let mut reader = csv_records(&mp, mt.as_bytes(), "variant,metric,value")?;
         let mut cur: Option<(usize, Vec<f64>)> = None;
-        let push = |cur: Option<(usize, Vec<f64>)>,
-                    items: &mut Vec<ItemResult>|
-         -> Result<(), StudyError> {
+        let mut push = |cur: Option<(usize, Vec<f64>)>| -> Result<(), StudyError> {
             if let Some((variant, values)) = cur {
                 if values.len() != names.len() {
                     return Err(StudyError::Merge(format!(
@@ -444,7 +564,12 @@ pub fn merge_shards(
                         names.len()
                     )));
                 }
-                items.push(ItemResult::Metrics { variant, values });
+                let idx = variant * per;
+                if seen_items[idx] {
+                    return Err(StudyError::Merge(format!("work item {idx} appears twice")));
+                }
+                seen_items[idx] = true;
+                metrics[variant] = values;
             }
             Ok(())
         };
@@ -453,7 +578,7 @@ pub fn merge_shards(
             let ln = f.position().map_or(0, csv::Position::line);
             let v = index(&mp, ln, "variant", &f[0], nv, "variants")?;
             if cur.as_ref().is_none_or(|c| c.0 != v) {
-                push(cur.take(), &mut items)?;
+                push(cur.take())?;
                 cur = Some((v, Vec::new()));
             }
             let c = cur.as_mut().expect("set above");
@@ -474,7 +599,7 @@ pub fn merge_shards(
             }
             c.1.push(num(&mp, ln, "value", &f[2])?);
         }
-        push(cur.take(), &mut items)?;
+        push(cur.take())?;
     }
     if seen.len() != n {
         let missing: Vec<String> = (0..n)
@@ -492,11 +617,42 @@ pub fn merge_shards(
             }
         )));
     }
-    let results = p.assemble(items)?;
-    Ok((p, results))
+    if let Some(missing) = seen_items.iter().position(|s| !s) {
+        return Err(StudyError::Merge(format!(
+            "work item {missing} (variant {}) is missing: are all shards given?",
+            missing / per
+        )));
+    }
+    let file = scratch_file
+        .into_inner()
+        .map_err(|e| DataError::file(scratch, format!("cannot write: {}", e.error())))?;
+    let grids = DiskGrids {
+        file: std::sync::Mutex::new(file),
+        path: guard.take(),
+        ny,
+        nz,
+    };
+    Ok((p, metrics, grids))
 }
 
-/// A sharded study must fit in memory when merged ([`super::MAX_MERGE_POINTS`]).
+/// Removes a scratch file when dropped, unless taken.
+struct ScratchGuard(Option<PathBuf>);
+
+impl ScratchGuard {
+    fn take(&mut self) -> PathBuf {
+        self.0.take().expect("taken once")
+    }
+}
+
+impl Drop for ScratchGuard {
+    fn drop(&mut self) {
+        if let Some(p) = &self.0 {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
+/// A sharded study may have at most [`super::MAX_MERGE_POINTS`] grid points.
 pub fn check_mergeable(p: &Prepared) -> Result<(), StudyError> {
     crate::limits::count_product(
         "grid points of a sharded study",
@@ -506,8 +662,8 @@ pub fn check_mergeable(p: &Prepared) -> Result<(), StudyError> {
             ("grid columns", p.zs_mm.len()),
         ],
         super::MAX_MERGE_POINTS as usize,
-        "sharded studies are merged in memory; run it unsharded (its outputs stream to disk) \
-         or make it smaller",
+        "a merge's time and disk grow with the study; use a coarser [grid] or fewer [design] \
+         values",
     )
     .map(|_| ())
     .map_err(|e| StudyError::Merge(e.to_string()))

@@ -183,6 +183,8 @@ pub struct Study {
     pub probe: Probe,
     /// Optimisation.
     pub optimise: Option<OptimiseSpec>,
+    /// The study in yards (`[yards]`, see [`super::yards_spec`]).
+    pub yards: Option<super::yards_spec::YardsSpec>,
 }
 
 #[derive(Deserialize)]
@@ -196,6 +198,9 @@ struct RawStudy {
     sensitivity: Option<Spanned<RawSensitivity>>,
     summary: Option<RawSummary>,
     optimise: Option<Spanned<RawOptimise>>,
+    /// Parsed on its own by [`super::yards_spec`].
+    #[allow(dead_code)]
+    yards: Option<toml::Value>,
 }
 
 #[derive(Deserialize)]
@@ -540,7 +545,7 @@ pub fn read_study(path: &Path) -> Result<Study, DataError> {
 /// Parse and resolve study text (`path` locates the club and names the file in messages).
 pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
     let ctx = Ctx { path, text };
-    let raw: RawStudy = parse_toml(path, text, "a study file has [study], [delivery], [grid] and optional [distribution], [design], [sensitivity], [summary], [optimise]; see configs/README.md")?;
+    let raw: RawStudy = parse_toml(path, text, "a study file has [study], [delivery], [grid] and optional [distribution], [design], [sensitivity], [summary], [optimise], [yards]; see configs/README.md")?;
 
     // [study]
     let h = &raw.study;
@@ -869,7 +874,7 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
             ("grid.z_mm values", grid.z_mm.len()),
         ],
         super::MAX_SWEEP_POINTS as usize,
-        "one run holds its results in memory; use a coarser [grid] or fewer [design] values",
+        "a run's time and disk grow with it; use a coarser [grid] or fewer [design] values",
     )
     .map_err(|e| whole("grid", e))?;
 
@@ -1157,6 +1162,8 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
         }
     };
 
+    let yards = super::yards_spec::parse_yards(path, text, &club, distribution.is_some())?;
+
     Ok(Study {
         name,
         club_path,
@@ -1171,6 +1178,7 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
         sensitivity,
         probe,
         optimise,
+        yards,
     })
 }
 
@@ -1334,6 +1342,9 @@ pub fn resolved_toml(s: &Study) -> String {
         let _ = writeln!(t, "bounds = {{ {} }}", b.join(", "));
         let _ = writeln!(t, "max_iters = {}", o.max_iters);
         let _ = writeln!(t, "tolerance = {:?}", o.tolerance);
+    }
+    if let Some(y) = &s.yards {
+        t.push_str(&super::yards_spec::yards_toml(y));
     }
     t
 }

@@ -321,10 +321,16 @@ pub struct VariantResult {
     pub metrics: Vec<f64>,
 }
 
-/// Where the face maps come from: computed on demand (a run) or held (a merge).
+/// Where the face maps come from: computed on demand (a run) or read back from the shards (a
+/// merge).
 pub trait GridSource: Sync {
     /// Rows `rows` of variant `variant` into `out` (resized to `rows.len() · nz` points).
-    fn grid_rows(&self, variant: usize, rows: std::ops::Range<usize>, out: &mut LaunchGrid);
+    fn grid_rows(
+        &self,
+        variant: usize,
+        rows: std::ops::Range<usize>,
+        out: &mut LaunchGrid,
+    ) -> std::io::Result<()>;
 }
 
 /// One face-map kernel per variant: the study's maps computed on demand (a [`GridSource`]).
@@ -351,12 +357,18 @@ impl Kernels {
 }
 
 impl GridSource for Kernels {
-    fn grid_rows(&self, variant: usize, rows: std::ops::Range<usize>, out: &mut LaunchGrid) {
+    fn grid_rows(
+        &self,
+        variant: usize,
+        rows: std::ops::Range<usize>,
+        out: &mut LaunchGrid,
+    ) -> std::io::Result<()> {
         let start = std::time::Instant::now();
         out.resize(rows.len() * self.zs_m.len());
         self.kernels[variant].par_eval_grid(&self.ys_m[rows], &self.zs_m, out);
         *self.seconds.lock().expect("not poisoned") += start.elapsed().as_secs_f64();
         self.points
             .fetch_add(out.len(), std::sync::atomic::Ordering::Relaxed);
+        Ok(())
     }
 }

@@ -43,7 +43,7 @@ use rayon::prelude::*;
 
 use super::fastmath::atan2_v;
 use crate::lanes::{M, V, W};
-use crate::physics::laws::Laws;
+use crate::physics::laws::{Laws, TangentialLaw};
 use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
 
 /// Points per chunk: the unit the vector code works on.
@@ -198,8 +198,14 @@ pub struct FaceMapKernel {
     /// Clubhead angular velocity in F, rad/s.
     w_c: [f64; 3],
     /// The model's laws (restitution, ball lever arm, collision matrix, tangential law),
-    /// evaluated on lanes with the same code as the scalar solve.
+    /// evaluated on lanes with the same code as the scalar solve (with the delivery's
+    /// user-defined mass and geometry applied).
     laws: Laws,
+    /// The delivery's variables for user-defined `cor`/`et`/`mu` expressions.
+    user_vars: [f64; crate::physics::user_terms::NV],
+    /// A user-defined mass or geometry expression failed for this delivery: every point is
+    /// invalid.
+    broken: bool,
     /// `R_GF / m_b`: ball impulse in F → ball velocity in G.
     r_v: [[f64; 3]; 3],
     /// Rows y and z of `R_GF / I_b`: `r_b × P` in F → ball spin components y, z in G.
@@ -212,6 +218,8 @@ pub struct FaceMapKernel {
 struct Row {
     /// The height is on the torus (`s² > 0`, `ρ > 0`).
     ok: M,
+    /// `y`, m.
+    y: V,
     /// `y²`, m².
     yy: V,
     /// `s = sqrt(r² − y²)`, m.
@@ -298,9 +306,26 @@ impl FaceMapKernel {
             loft_bias_rad: _,          // in model.face_orientation
             face_bias_rad: _,          // in model.face_orientation
             hosel_m: _,                // composed into mass, CoM and inertia by the effects
+            user,                      // mass and geometry below; cor, et, mu in laws.user
         } = model.params();
+        // User-defined mass and geometry depend on the delivery only (not on the impact
+        // location: `crate::effects::user`), so they are fixed for the whole face map.
+        let mut laws = *model.laws();
+        let mut club_com_m = *club_com_m;
+        let mut r_gf = model.face_orientation(delivery);
+        let mut broken = false;
+        let user_vars = crate::physics::user_terms::delivery_vars(delivery);
+        if user.has_pre_solve() {
+            match model.shot(delivery) {
+                Ok(shot) => {
+                    laws = shot.laws;
+                    club_com_m = shot.club_com_m;
+                    r_gf = shot.r_gf;
+                }
+                Err(_) => broken = true,
+            }
+        }
         // Exactly the operations of `ImpactModel::solve`, so u1·n has the same bits.
-        let r_gf = model.face_orientation(delivery);
         let r_fg = r_gf.transpose();
         let v_c = r_fg * delivery.club_velocity_m_s();
         let w_c = r_fg * delivery.club_omega_rad_s;
@@ -312,10 +337,12 @@ impl FaceMapKernel {
             roll_m: face.roll_m(),
             major_m: face.bulge_m() - face.roll_m(),
             bulge_m: face.bulge_m(),
-            com_m: arr(*club_com_m),
+            com_m: arr(club_com_m),
             v_c: arr(v_c),
             w_c: arr(w_c),
-            laws: *model.laws(),
+            laws,
+            user_vars,
+            broken,
             r_v: [
                 [r_v[(0, 0)], r_v[(0, 1)], r_v[(0, 2)]],
                 [r_v[(1, 0)], r_v[(1, 1)], r_v[(1, 2)]],
@@ -461,6 +488,7 @@ impl FaceMapKernel {
         let zero = V::splat(0.0);
         Row {
             ok: s2.gt(zero) & rho.gt(zero),
+            y,
             yy: y * y,
             s,
             rho,
@@ -476,7 +504,11 @@ impl FaceMapKernel {
 
     /// Impacts at heel–toe locations `z` on `row`: straight-line code, no branches.
     #[inline(always)]
-    fn point<const FRICTION: bool, const POWER: bool>(&self, row: &Row, z: V) -> Out {
+    fn point<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        row: &Row,
+        z: V,
+    ) -> Out {
         let zero = V::splat(0.0);
         // Contact point and normal, with the operations of `FaceGeometry::contact`.
         let x2 = row.rho2 - z * z;
@@ -513,10 +545,40 @@ impl FaceMapKernel {
         } else {
             u1n.gt(zero)
         };
-        let valid = on_face & approaching;
+        let mut valid = on_face & approaching;
 
         let laws = &self.laws;
         let e = laws.restitution.cor_with::<V, POWER>(u1n, row.yy + z * z);
+        let u1 = [u1x, u1y, u1z];
+        let n = [nx, ny, nz];
+        let (e, e_t, mu) = if USER {
+            use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
+            let mut vars: [V; NV] = self.user_vars.map(V::splat);
+            vars[VAR_IMPACT_Y as usize] = row.y * 1e3;
+            vars[VAR_IMPACT_Z as usize] = z * 1e3;
+            vars[VAR_U1N as usize] = u1n;
+            vars[VAR_UT as usize] = crate::physics::laws::tangential_speed(&u1, &n, u1n);
+            let (e, e_t, mu) = laws.user.contact(
+                &mut vars,
+                e,
+                V::splat(laws.tangential.e_t),
+                V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY)),
+            );
+            // Lanes whose user-defined values are not allowed are invalid (the scalar solve
+            // names the effect for them): e and e_t finite, mu > 0 and finite when set.
+            let finite = |x: V| x.abs().le(V::splat(f64::MAX));
+            valid = valid & finite(e) & finite(e_t);
+            if laws.user.sets_mu() {
+                valid = valid & finite(mu) & mu.gt(zero);
+            }
+            (e, e_t, mu)
+        } else {
+            (
+                e,
+                V::splat(laws.tangential.e_t),
+                V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY)),
+            )
+        };
 
         // Impact frame tangents z_I = (−z, 0, X)/ρ, y_I = z_I × n, and the ball lever arm.
         let tzx = -z * row.inv_rho;
@@ -524,12 +586,13 @@ impl FaceMapKernel {
         let tyx = -(tzz * ny);
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
-        let n = [nx, ny, nz];
         let [rbx, rby, rbz] = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
         let k = laws.collision.matrix(&[rcx, rcy, rcz], &[rbx, rby, rbz]);
-        let ([px, py, pz], _slip) =
-            laws.tangential
-                .impulse::<V, FRICTION>(&k, &n, &[u1x, u1y, u1z], u1n, e);
+        let ([px, py, pz], _slip) = if USER {
+            TangentialLaw::impulse_with::<V, FRICTION>(&k, &n, &u1, u1n, e, e_t, mu)
+        } else {
+            laws.tangential.impulse::<V, FRICTION>(&k, &n, &u1, u1n, e)
+        };
 
         // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
         let rv = &self.r_v;
@@ -560,7 +623,7 @@ impl FaceMapKernel {
 
     /// One chunk of a row.
     #[inline(always)]
-    fn row_chunk<const FRICTION: bool, const POWER: bool>(
+    fn row_chunk<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         row: &Row,
         zs: &[f64; LANES],
@@ -568,14 +631,14 @@ impl FaceMapKernel {
     ) {
         for k in 0..LANES / W {
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
-            let o = self.point::<FRICTION, POWER>(row, z);
+            let o = self.point::<FRICTION, POWER, USER>(row, z);
             out.store(k, &o);
         }
     }
 
     /// One chunk of arbitrary points.
     #[inline(always)]
-    fn points_chunk<const FRICTION: bool, const POWER: bool>(
+    fn points_chunk<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         ys: &[f64; LANES],
         zs: &[f64; LANES],
@@ -585,13 +648,13 @@ impl FaceMapKernel {
             let y = V(ys[k * W..(k + 1) * W].try_into().unwrap());
             let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
             let row = self.row(y);
-            let o = self.point::<FRICTION, POWER>(&row, z);
+            let o = self.point::<FRICTION, POWER, USER>(&row, z);
             out.store(k, &o);
         }
     }
 
     #[inline(always)]
-    fn row_impl<const FRICTION: bool, const POWER: bool>(
+    fn row_impl<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         row: &Row,
         zs: &[f64],
@@ -601,35 +664,54 @@ impl FaceMapKernel {
             fill_invalid(out);
             return;
         }
-        for_chunks(zs, zs, out, &RowChunks::<FRICTION, POWER> { k: self, row });
+        for_chunks(
+            zs,
+            zs,
+            out,
+            &RowChunks::<FRICTION, POWER, USER> { k: self, row },
+        );
     }
 
     #[inline(always)]
-    fn points_impl<const FRICTION: bool, const POWER: bool>(
+    fn points_impl<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         ys: &[f64],
         zs: &[f64],
         out: RowOut<'_>,
     ) {
-        for_chunks(ys, zs, out, &PointChunks::<FRICTION, POWER> { k: self });
+        for_chunks(
+            ys,
+            zs,
+            out,
+            &PointChunks::<FRICTION, POWER, USER> { k: self },
+        );
     }
 
     /// Run `job` with the kernel's constant switches (friction on, `cor_power` exponent set)
     /// turned into compile-time constants, so that the common case carries neither the slip
     /// branch nor a `pow` call.
     fn dispatch(&self, level: SimdLevel, job: &impl Job, out: RowOut<'_>) {
-        let friction = self.laws.tangential.mu.is_some();
+        if self.broken {
+            fill_invalid(out);
+            return;
+        }
+        let user = self.laws.user.has_contact();
+        let friction = self.laws.tangential.mu.is_some() || self.laws.user.sets_mu();
         let power = self.laws.restitution.power_q != 0.0;
-        match (friction, power) {
-            (false, false) => self.on_level::<false, false>(level, job, out),
-            (false, true) => self.on_level::<false, true>(level, job, out),
-            (true, false) => self.on_level::<true, false>(level, job, out),
-            (true, true) => self.on_level::<true, true>(level, job, out),
+        match (friction, power, user) {
+            (false, false, false) => self.on_level::<false, false, false>(level, job, out),
+            (false, true, false) => self.on_level::<false, true, false>(level, job, out),
+            (true, false, false) => self.on_level::<true, false, false>(level, job, out),
+            (true, true, false) => self.on_level::<true, true, false>(level, job, out),
+            // User-defined cor/et/mu: one instance per friction switch (the power law, if
+            // any, is taken at run time there).
+            (false, _, true) => self.on_level::<false, true, true>(level, job, out),
+            (true, _, true) => self.on_level::<true, true, true>(level, job, out),
         }
     }
 
     #[inline(always)]
-    fn on_level<const FRICTION: bool, const POWER: bool>(
+    fn on_level<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         level: SimdLevel,
         job: &impl Job,
@@ -637,25 +719,29 @@ impl FaceMapKernel {
     ) {
         match level {
             #[cfg(target_arch = "x86_64")]
-            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER>(job, out) },
-            _ => job.run::<FRICTION, POWER>(self, out),
+            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER, USER>(job, out) },
+            _ => job.run::<FRICTION, POWER, USER>(self, out),
         }
     }
 
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2,fma")]
-    unsafe fn avx2<const FRICTION: bool, const POWER: bool>(
+    unsafe fn avx2<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         job: &impl Job,
         out: RowOut<'_>,
     ) {
-        job.run::<FRICTION, POWER>(self, out)
+        job.run::<FRICTION, POWER, USER>(self, out)
     }
 }
 
 /// A row or a set of points, run by [`FaceMapKernel::dispatch`].
 trait Job {
-    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>);
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    );
 }
 
 /// One grid row: the heights are fixed in `row`.
@@ -666,8 +752,12 @@ struct RowJob<'a> {
 
 impl Job for RowJob<'_> {
     #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
-        k.row_impl::<FRICTION, POWER>(self.row, self.zs, out)
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    ) {
+        k.row_impl::<FRICTION, POWER, USER>(self.row, self.zs, out)
     }
 }
 
@@ -679,8 +769,12 @@ struct PointsJob<'a> {
 
 impl Job for PointsJob<'_> {
     #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool>(&self, k: &FaceMapKernel, out: RowOut<'_>) {
-        k.points_impl::<FRICTION, POWER>(self.ys, self.zs, out)
+    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        k: &FaceMapKernel,
+        out: RowOut<'_>,
+    ) {
+        k.points_impl::<FRICTION, POWER, USER>(self.ys, self.zs, out)
     }
 }
 
@@ -691,27 +785,31 @@ trait ChunkFn {
 }
 
 /// Chunks of a row: `b` holds the heel–toe locations (`a` is unused).
-struct RowChunks<'a, const FRICTION: bool, const POWER: bool> {
+struct RowChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool> {
     k: &'a FaceMapKernel,
     row: &'a Row,
 }
 
-impl<const FRICTION: bool, const POWER: bool> ChunkFn for RowChunks<'_, FRICTION, POWER> {
+impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
+    for RowChunks<'_, FRICTION, POWER, USER>
+{
     #[inline(always)]
     fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.row_chunk::<FRICTION, POWER>(self.row, zs, out)
+        self.k.row_chunk::<FRICTION, POWER, USER>(self.row, zs, out)
     }
 }
 
 /// Chunks of arbitrary points: `a` holds the heights, `b` the heel–toe locations.
-struct PointChunks<'a, const FRICTION: bool, const POWER: bool> {
+struct PointChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool> {
     k: &'a FaceMapKernel,
 }
 
-impl<const FRICTION: bool, const POWER: bool> ChunkFn for PointChunks<'_, FRICTION, POWER> {
+impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
+    for PointChunks<'_, FRICTION, POWER, USER>
+{
     #[inline(always)]
     fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.points_chunk::<FRICTION, POWER>(ys, zs, out)
+        self.k.points_chunk::<FRICTION, POWER, USER>(ys, zs, out)
     }
 }
 

@@ -400,6 +400,13 @@ impl ContactWorld {
                     .into(),
             );
         }
+        if !p.user.is_empty() {
+            return Err(
+                "the contact world integrates its own physics and does not evaluate \
+                 user-defined effects: hide them in a momentum-model world (no [world] contact)"
+                    .into(),
+            );
+        }
         let pos = |v: f64| v.is_finite() && v > 0.0;
         if !pos(params.hertz_k_n_per_m1_5) {
             return Err("hertz_k_n_per_m1_5 must be finite and > 0".into());

@@ -1,0 +1,398 @@
+//! The run-time side of user-defined effects (`crate::effects::user`): the model quantities they
+//! may set, the variables their expressions read, and the compiled terms a model carries
+//! ([`UserTerms`], in [`ModelParams::user`]), evaluated per shot:
+//!
+//! * mass and geometry quantities (`club_mass_g`, `ball_dy_mm`, `ball_dz_mm`, `com_d*_mm`,
+//!   `inertia_scale`, `loft_deg`, `face_deg`) before the solve, from the delivery
+//!   ([`UserTerms::pre_solve`]);
+//! * `cor`, `et`, `mu` inside the restitution and tangential laws, where the normal and
+//!   tangential approach speeds are known ([`UserTerms::contact`], generic over [`Real`], the
+//!   same code on one shot and on the kernel's lanes).
+//!
+//! Every variable an expression reads is the quantity's own nominal value (its value before
+//! this term: the library's law and any earlier term included), the effect's parameters and the
+//! delivery columns of a shots file in file units; `cor`, `et` and `mu` may also read the
+//! impact location (`impact_y_mm`, `impact_z_mm`), `u1n_m_s` and `ut_m_s`. Mass and geometry
+//! are fixed before the ball meets the face, so they may not depend on where or how fast it
+//! does (a face map varies the location at one delivery).
+
+use nalgebra::Vector3;
+
+use super::delivery::Delivery;
+use super::expr::Program;
+use super::real::Real;
+
+/// A model quantity a user-defined effect may set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Quantity {
+    /// Normal coefficient of restitution `e` of the impact.
+    Cor,
+    /// Tangential restitution `e_t`.
+    Et,
+    /// Coulomb friction coefficient (nominal: infinite when no friction effect is on).
+    Mu,
+    /// Clubhead mass, g.
+    ClubMassG,
+    /// Ball contact offset along `y_I`, mm.
+    BallDyMm,
+    /// Ball contact offset along `z_I`, mm.
+    BallDzMm,
+    /// Clubhead CoM shift along x_F, mm (nominal 0).
+    ComDxMm,
+    /// Clubhead CoM shift along y_F, mm (nominal 0).
+    ComDyMm,
+    /// Clubhead CoM shift along z_F, mm (nominal 0).
+    ComDzMm,
+    /// Factor on the clubhead inertia tensor (nominal 1).
+    InertiaScale,
+    /// Delivered dynamic loft, deg.
+    LoftDeg,
+    /// Delivered face angle, deg.
+    FaceDeg,
+}
+
+impl Quantity {
+    /// Every settable quantity, in file order.
+    pub const ALL: [Quantity; 12] = [
+        Quantity::Cor,
+        Quantity::Et,
+        Quantity::Mu,
+        Quantity::ClubMassG,
+        Quantity::BallDyMm,
+        Quantity::BallDzMm,
+        Quantity::ComDxMm,
+        Quantity::ComDyMm,
+        Quantity::ComDzMm,
+        Quantity::InertiaScale,
+        Quantity::LoftDeg,
+        Quantity::FaceDeg,
+    ];
+
+    /// Its key in a `[[define_effect]]` table, and its nominal value's name in expressions.
+    pub const fn key(self) -> &'static str {
+        match self {
+            Quantity::Cor => "cor",
+            Quantity::Et => "et",
+            Quantity::Mu => "mu",
+            Quantity::ClubMassG => "club_mass_g",
+            Quantity::BallDyMm => "ball_dy_mm",
+            Quantity::BallDzMm => "ball_dz_mm",
+            Quantity::ComDxMm => "com_dx_mm",
+            Quantity::ComDyMm => "com_dy_mm",
+            Quantity::ComDzMm => "com_dz_mm",
+            Quantity::InertiaScale => "inertia_scale",
+            Quantity::LoftDeg => "loft_deg",
+            Quantity::FaceDeg => "face_deg",
+        }
+    }
+
+    /// Is it evaluated inside the contact laws (may read `u1n_m_s`, `ut_m_s`, the location)?
+    pub const fn in_contact(self) -> bool {
+        matches!(self, Quantity::Cor | Quantity::Et | Quantity::Mu)
+    }
+
+    /// What a value must be.
+    const fn allowed(self) -> &'static str {
+        match self {
+            Quantity::ClubMassG | Quantity::InertiaScale | Quantity::Mu => "finite and > 0",
+            _ => "finite",
+        }
+    }
+
+    fn ok(self, v: f64) -> bool {
+        match self {
+            Quantity::ClubMassG | Quantity::InertiaScale | Quantity::Mu => v.is_finite() && v > 0.0,
+            _ => v.is_finite(),
+        }
+    }
+
+    /// The quantity with this key.
+    pub fn from_key(key: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|q| q.key() == key)
+    }
+}
+
+/// Number of expression variables.
+pub const NV: usize = 17;
+/// Variable: the quantity's nominal value.
+pub const VAR_NOMINAL: u8 = 0;
+/// Variable: the effect's first parameter (the others follow).
+pub const VAR_PARAM0: u8 = 1;
+/// Variable: first delivery column (`VAR_DELIVERY + i` is `DELIVERY_COLUMNS[i]`).
+pub const VAR_DELIVERY: u8 = 4;
+/// Delivery columns every quantity may read, file units.
+pub const DELIVERY_COLUMNS: [&str; 9] = [
+    "club_speed_mph",
+    "attack_angle_deg",
+    "club_path_deg",
+    "dynamic_loft_deg",
+    "face_angle_deg",
+    "lie_tilt_deg",
+    "club_omega_x_rad_s",
+    "club_omega_y_rad_s",
+    "club_omega_z_rad_s",
+];
+/// Variable: impact height, mm.
+pub const VAR_IMPACT_Y: u8 = 13;
+/// Variable: impact heel–toe location, mm.
+pub const VAR_IMPACT_Z: u8 = 14;
+/// Variable: normal approach speed, m/s.
+pub const VAR_U1N: u8 = 15;
+/// Variable: tangential approach speed, m/s.
+pub const VAR_UT: u8 = 16;
+/// Variables only the contact quantities (`cor`, `et`, `mu`) may read.
+pub const CONTACT_VARIABLES: [(&str, u8); 4] = [
+    ("impact_y_mm", VAR_IMPACT_Y),
+    ("impact_z_mm", VAR_IMPACT_Z),
+    ("u1n_m_s", VAR_U1N),
+    ("ut_m_s", VAR_UT),
+];
+
+/// The per-shot variables of `d` that do not depend on the solve (delivery columns in file
+/// units and the impact location); the nominal, parameter and speed slots are 0.
+pub fn delivery_vars(d: &Delivery) -> [f64; NV] {
+    let mut v = [0.0; NV];
+    let cols = [
+        d.club_speed_m_s / crate::units::M_S_PER_MPH,
+        d.attack_angle_rad.to_degrees(),
+        d.club_path_rad.to_degrees(),
+        d.dynamic_loft_rad.to_degrees(),
+        d.face_angle_rad.to_degrees(),
+        d.lie_tilt_rad.to_degrees(),
+        d.club_omega_rad_s.x,
+        d.club_omega_rad_s.y,
+        d.club_omega_rad_s.z,
+    ];
+    v[VAR_DELIVERY as usize..VAR_DELIVERY as usize + cols.len()].copy_from_slice(&cols);
+    v[VAR_IMPACT_Y as usize] = d.impact_y_m * 1e3;
+    v[VAR_IMPACT_Z as usize] = d.impact_z_m * 1e3;
+    v
+}
+
+/// One quantity a user-defined effect sets: its compiled expression, the text it came from and
+/// the effect's name (for messages). Created once when a definition is read, and kept for the
+/// life of the process.
+#[derive(Debug)]
+pub struct UserTermDef {
+    /// Name of the effect that defines it.
+    pub effect: &'static str,
+    /// The quantity.
+    pub quantity: Quantity,
+    /// The compiled expression.
+    pub program: Program,
+    /// The expression as written.
+    pub text: &'static str,
+}
+
+/// Most parameters of a user-defined effect (the effect library's limit).
+pub const MAX_USER_PARAMS: usize = 3;
+
+/// One term of a user-defined effect with its parameter values, as a model carries it.
+#[derive(Debug, Clone, Copy)]
+pub struct AppliedTerm {
+    /// The term.
+    pub def: &'static UserTermDef,
+    /// Parameter values (file units).
+    pub params: [f64; MAX_USER_PARAMS],
+}
+
+impl PartialEq for AppliedTerm {
+    fn eq(&self, o: &Self) -> bool {
+        std::ptr::eq(self.def, o.def) && self.params == o.params
+    }
+}
+
+impl AppliedTerm {
+    fn def(&self) -> &'static UserTermDef {
+        self.def
+    }
+}
+
+/// Most user-defined terms one model carries.
+pub const MAX_TERMS: usize = 16;
+
+/// The user-defined terms applied to a model, in application order. `Copy`, no heap.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct UserTerms {
+    items: [Option<AppliedTerm>; MAX_TERMS],
+    len: u8,
+    /// More than [`MAX_TERMS`] were pushed (the model refuses to build).
+    pub overflow: bool,
+}
+
+/// The mass and geometry a shot's user terms set (file units), before the solve.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PreSolve {
+    /// Clubhead mass, g.
+    pub club_mass_g: f64,
+    /// Ball offsets along `y_I`, `z_I`, mm.
+    pub ball_d_mm: [f64; 2],
+    /// Clubhead CoM shift, mm.
+    pub com_d_mm: [f64; 3],
+    /// Factor on the clubhead inertia.
+    pub inertia_scale: f64,
+    /// Delivered dynamic loft with the loft bias, deg.
+    pub loft_deg: f64,
+    /// Delivered face angle with the face bias, deg.
+    pub face_deg: f64,
+}
+
+/// A user-defined term gave a value outside what its quantity allows (non-finite, or not
+/// positive for a mass, an inertia factor or a friction coefficient).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+#[error(
+    "user-defined effect '{effect}': {quantity} = \"{expr}\" gave {value}; it must be {allowed}"
+)]
+pub struct UserEvalError {
+    /// Effect name.
+    pub effect: &'static str,
+    /// Quantity key.
+    pub quantity: &'static str,
+    /// Expression text.
+    pub expr: &'static str,
+    /// The value it gave.
+    pub value: f64,
+    /// What is allowed.
+    pub allowed: &'static str,
+}
+
+impl UserTerms {
+    /// Add a term (past [`MAX_TERMS`], set `overflow`).
+    pub fn push(&mut self, t: AppliedTerm) {
+        if (self.len as usize) < MAX_TERMS {
+            self.items[self.len as usize] = Some(t);
+            self.len += 1;
+        } else {
+            self.overflow = true;
+        }
+    }
+
+    /// No user-defined term at all?
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    fn iter(&self) -> impl Iterator<Item = &AppliedTerm> {
+        self.items[..self.len as usize].iter().flatten()
+    }
+
+    /// Does any term set a mass or geometry quantity (evaluated before the solve)?
+    pub fn has_pre_solve(&self) -> bool {
+        self.iter().any(|t| !t.def().quantity.in_contact())
+    }
+
+    /// Does any term set `cor`, `et` or `mu` (evaluated in the contact laws)?
+    pub fn has_contact(&self) -> bool {
+        self.iter().any(|t| t.def().quantity.in_contact())
+    }
+
+    /// Does any term set `mu` (so the friction branch must run)?
+    pub fn sets_mu(&self) -> bool {
+        self.iter().any(|t| t.def().quantity == Quantity::Mu)
+    }
+
+    /// Evaluate the mass and geometry terms for one shot whose delivery variables are `vars`
+    /// ([`delivery_vars`]), starting from the model's values `base`.
+    pub fn pre_solve(&self, vars: &[f64; NV], base: PreSolve) -> Result<PreSolve, UserEvalError> {
+        let mut out = base;
+        let mut v = *vars;
+        for t in self.iter() {
+            let def = t.def();
+            let slot = match def.quantity {
+                Quantity::ClubMassG => &mut out.club_mass_g,
+                Quantity::BallDyMm => &mut out.ball_d_mm[0],
+                Quantity::BallDzMm => &mut out.ball_d_mm[1],
+                Quantity::ComDxMm => &mut out.com_d_mm[0],
+                Quantity::ComDyMm => &mut out.com_d_mm[1],
+                Quantity::ComDzMm => &mut out.com_d_mm[2],
+                Quantity::InertiaScale => &mut out.inertia_scale,
+                Quantity::LoftDeg => &mut out.loft_deg,
+                Quantity::FaceDeg => &mut out.face_deg,
+                Quantity::Cor | Quantity::Et | Quantity::Mu => continue,
+            };
+            v[VAR_NOMINAL as usize] = *slot;
+            v[VAR_PARAM0 as usize..VAR_PARAM0 as usize + MAX_USER_PARAMS]
+                .copy_from_slice(&t.params);
+            let value = def.program.eval(&v);
+            if !def.quantity.ok(value) {
+                return Err(t.error(value));
+            }
+            *slot = value;
+        }
+        Ok(out)
+    }
+
+    /// Evaluate the `cor`, `et` and `mu` terms on lanes (or one shot): `vars` holds the
+    /// delivery variables, the impact location and the approach speeds; `e`, `et`, `mu` the
+    /// values of the library laws. No allocation.
+    #[inline]
+    pub fn contact<R: Real>(&self, vars: &mut [R; NV], e: R, et: R, mu: R) -> (R, R, R) {
+        let mut q = [e, et, mu];
+        for t in self.iter() {
+            let def = t.def();
+            let i = match def.quantity {
+                Quantity::Cor => 0,
+                Quantity::Et => 1,
+                Quantity::Mu => 2,
+                _ => continue,
+            };
+            vars[VAR_NOMINAL as usize] = q[i];
+            for (k, p) in t.params.iter().enumerate() {
+                vars[VAR_PARAM0 as usize + k] = R::splat(*p);
+            }
+            q[i] = def.program.eval(&vars[..]);
+        }
+        (q[0], q[1], q[2])
+    }
+
+    /// [`UserTerms::contact`] on one shot, with the first term whose value is not allowed
+    /// named.
+    pub fn contact_checked(
+        &self,
+        vars: &mut [f64; NV],
+        e: f64,
+        et: f64,
+        mu: f64,
+    ) -> Result<(f64, f64, f64), UserEvalError> {
+        let mut q = [e, et, mu];
+        for t in self.iter() {
+            let def = t.def();
+            let i = match def.quantity {
+                Quantity::Cor => 0,
+                Quantity::Et => 1,
+                Quantity::Mu => 2,
+                _ => continue,
+            };
+            vars[VAR_NOMINAL as usize] = q[i];
+            for (k, p) in t.params.iter().enumerate() {
+                vars[VAR_PARAM0 as usize + k] = *p;
+            }
+            let value = def.program.eval(&vars[..]);
+            if !def.quantity.ok(value) {
+                return Err(t.error(value));
+            }
+            q[i] = value;
+        }
+        Ok((q[0], q[1], q[2]))
+    }
+}
+
+impl AppliedTerm {
+    fn error(&self, value: f64) -> UserEvalError {
+        let def = self.def();
+        UserEvalError {
+            effect: def.effect,
+            quantity: def.quantity.key(),
+            expr: def.text,
+            value,
+            allowed: def.quantity.allowed(),
+        }
+    }
+}
+
+impl PreSolve {
+    /// The clubhead CoM shift, m.
+    pub fn com_shift_m(&self) -> Vector3<f64> {
+        Vector3::new(self.com_d_mm[0], self.com_d_mm[1], self.com_d_mm[2]) * 1e-3
+    }
+}
