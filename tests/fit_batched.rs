@@ -1,8 +1,11 @@
 //! The fits' evaluation machinery (frames and contact frames computed once per data set, shots
-//! evaluated in parallel chunks, Jacobian columns of per-group parameters evaluated on their
-//! group only) gives the same residuals and Jacobian, bit for bit, as solving every shot afresh
-//! with `ImpactModel::solve` (through `measurement::expected_outcome`), with every library
-//! effect free at random values, with and without impact-location noise.
+//! evaluated four at a time on the lanes with the branch-free `atan2`, in parallel chunks,
+//! Jacobian columns of per-group parameters evaluated on their group only) agrees to 1e-9
+//! relative with solving every shot afresh with `ImpactModel::solve` (through
+//! `measurement::expected_outcome`, libm's `atan2` and `hypot`), with every library effect free
+//! at random values, friction on, with and without impact-location noise, and with the shots in
+//! a random order and a count that leaves a short last chunk, so a shot evaluated in another
+//! shot's lane shows as an error of the size of the shot-to-shot spread.
 
 mod common;
 
@@ -51,15 +54,50 @@ fn reference_jacobian(pr: &FitProblem<'_>, theta: &DVector<f64>, inv: &[f64; 5])
     jac
 }
 
-fn same_bits(what: &str, got: &[f64], want: &[f64]) {
+/// Model − measured per row agrees to 1e-9 relative to the magnitudes subtracted (the model's
+/// and the measurement's, whitened).
+fn close_residuals(what: &str, got: &[f64], want: &[f64], pr: &FitProblem<'_>, inv: &[f64; 5]) {
     assert_eq!(got.len(), want.len(), "{what}: lengths");
+    let data = pr.data();
+    let mut worst = 0.0f64;
     for (r, (g, w)) in got.iter().zip(want).enumerate() {
-        assert_eq!(g.to_bits(), w.to_bits(), "{what}: row {r}: {g} vs {w}");
+        let measured = (data.measured[r / 5][r % 5] * inv[r % 5]).abs();
+        let scale = w.abs().max(measured).max(f64::MIN_POSITIVE);
+        let rel = (g - w).abs() / scale;
+        worst = worst.max(rel);
+        assert!(
+            rel <= 1e-9,
+            "{what}: row {r}: {g} vs {w} (relative {rel:e})"
+        );
     }
+    eprintln!("{what}: worst relative difference {worst:e}");
+}
+
+/// Each Jacobian column agrees to 1e-9 relative to its largest entry.
+fn close_jacobian(got: &DMatrix<f64>, want: &DMatrix<f64>) {
+    assert_eq!(got.shape(), want.shape());
+    let mut worst = 0.0f64;
+    for k in 0..want.ncols() {
+        let scale = want.column(k).amax();
+        for r in 0..want.nrows() {
+            let (g, w) = (got[(r, k)], want[(r, k)]);
+            let diff = (g - w).abs();
+            if scale == 0.0 {
+                assert_eq!(g, 0.0, "jacobian ({r}, {k}): {g} where the column is 0");
+                continue;
+            }
+            worst = worst.max(diff / scale);
+            assert!(
+                diff <= 1e-9 * scale,
+                "jacobian ({r}, {k}): {g} vs {w} (column scale {scale:e})"
+            );
+        }
+    }
+    eprintln!("jacobian: worst column-relative difference {worst:e}");
 }
 
 #[test]
-fn batched_residuals_and_jacobian_equal_the_scalar_solve() {
+fn lane_residuals_and_jacobian_agree_with_the_scalar_solve() {
     // A club that carries its own biases and friction (so cached frames are made with non-zero
     // biases), shots from the paper world, and every library effect free on top of it, plus the
     // added mass per shaft.
@@ -77,7 +115,15 @@ fn batched_residuals_and_jacobian_equal_the_scalar_solve() {
     let sigma = [1.4, 0.9, 0.7, 420.0, 180.0];
     let inv = sigma.map(|s| 1.0 / s);
     let mut rng = ChaCha8Rng::seed_from_u64(10);
+    // The shots in a random order, 133 of them: a full chunk of 128 and a last chunk of 5, so
+    // groups are cut into runs of every length and the lane vectors have padded tails.
+    let mut order: Vec<usize> = (0..shots.len()).collect();
+    for i in (1..order.len()).rev() {
+        order.swap(i, rng.random_range(0..=i));
+    }
+    let shots: Vec<_> = order[..133].iter().map(|&i| shots[i].clone()).collect();
     let plain = FitData::from_shots(&shots).unwrap();
+    assert!(plain.groups.len() >= 2, "the test needs several groups");
     let noisy = plain
         .clone()
         .with_impact_noise(Some(ImpactNoise::from_mm(2.0, 2.5).unwrap()))
@@ -104,7 +150,7 @@ fn batched_residuals_and_jacobian_equal_the_scalar_solve() {
                 continue;
             };
             let want = reference_residuals(&pr, theta.as_slice(), &inv);
-            same_bits("residuals", got.as_slice(), &want);
+            close_residuals("residuals", got.as_slice(), &want, &pr, &inv);
             // A Jacobian over a few columns, among them a per-group one.
             let active: Vec<usize> = layout
                 .labels()
@@ -127,7 +173,7 @@ fn batched_residuals_and_jacobian_equal_the_scalar_solve() {
             let sub = pr.clone().with_active(active, theta.clone());
             let jac = sub.jacobian_full(&theta).unwrap();
             let want_jac = reference_jacobian(&sub, &theta, &inv);
-            same_bits("jacobian", jac.as_slice(), want_jac.as_slice());
+            close_jacobian(&jac, &want_jac);
             checked += 1;
         }
     }

@@ -26,7 +26,9 @@ use nalgebra::{Matrix3, Vector3};
 use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
-use super::laws::{BallContact, CollisionMatrix, FiniteContact, Laws, Restitution, TangentialLaw};
+use super::laws::{
+    BallContact, CollisionMatrix, FiniteContact, Laws, Real, Restitution, TangentialLaw, Vec3,
+};
 use super::user_terms::{self as user, UserEvalError, UserTerms};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
@@ -261,6 +263,60 @@ pub struct ImpactOutcome {
     pub slipped: bool,
     /// Clubhead CoM speed before impact, m/s.
     pub club_speed_m_s: f64,
+}
+
+/// What [`ImpactModel::solve_contact`] needs of one impact (or of each lane of impacts), all in
+/// the face frame `F`: the delivery frame's clubhead velocities and the contact frame at the
+/// impact location `(y_m, z_m)`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactInputs<R> {
+    /// Clubhead CoM velocity, m/s.
+    pub club_velocity_f_m_s: Vec3<R>,
+    /// Clubhead angular velocity, rad/s.
+    pub club_omega_f_rad_s: Vec3<R>,
+    /// Contact point relative to the centre of face, m.
+    pub point_m: Vec3<R>,
+    /// Unit face normal `x_I`.
+    pub normal: Vec3<R>,
+    /// Unit tangent `y_I`.
+    pub tangent_y: Vec3<R>,
+    /// The `x` and `z` components of the tangent `z_I` (its `y` component is 0).
+    pub tangent_z_xz: [R; 2],
+    /// Impact location up the face, m.
+    pub y_m: R,
+    /// Impact location toward the toe, m.
+    pub z_m: R,
+}
+
+/// The contact mechanics of [`ImpactModel::solve_contact`], face frame `F`, SI units.
+#[derive(Debug, Clone, Copy)]
+pub struct ContactSolution<R: Real> {
+    /// Contact point relative to the clubhead CoM, m.
+    pub contact_from_club_com_m: Vec3<R>,
+    /// Contact point relative to the ball CoM, m.
+    pub contact_from_ball_com_m: Vec3<R>,
+    /// Normal approach speed `u1·n`, m/s (the impact is valid only where it is > 0).
+    pub normal_approach_speed_m_s: R,
+    /// Normal COR used.
+    pub cor_effective: R,
+    /// Impulse on the ball, N·s.
+    pub impulse_n_s: Vec3<R>,
+    /// Whether friction limited the tangential impulse.
+    pub slipped: R::Mask,
+    /// Ball CoM velocity after impact, m/s.
+    pub ball_velocity_f_m_s: Vec3<R>,
+    /// Ball angular velocity after impact, rad/s.
+    pub ball_spin_f_rad_s: Vec3<R>,
+}
+
+/// `a × b`, in the component order nalgebra uses (so the scalar solve keeps its bits).
+#[inline(always)]
+fn cross<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> Vec3<R> {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 impl ImpactOutcome {
@@ -557,56 +613,30 @@ impl ImpactModel {
         let r_gf = frame.r_gf;
         let v_c = frame.club_velocity_f_m_s;
         let w_c = frame.club_omega_f_rad_s;
-        let n = cf.normal;
-        let r_c = cf.point_m - p.club_com_m;
-
-        let u1 = v_c + w_c.cross(&r_c);
-        let u1n = u1.dot(&n);
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        let s = self.solve_contact(&ContactInputs {
+            club_velocity_f_m_s: arr(&v_c),
+            club_omega_f_rad_s: arr(&w_c),
+            point_m: arr(&cf.point_m),
+            normal: arr(&cf.normal),
+            tangent_y: arr(&cf.tangent_y),
+            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
+            y_m,
+            z_m,
+        });
+        let u1n = s.normal_approach_speed_m_s;
         if !(u1n > 0.0) {
             return Err(ImpactError::NotApproaching {
                 normal_speed_m_s: u1n,
             });
         }
-        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
-        let laws = &self.laws;
-        let e = laws.restitution.cor(u1n, y_m * y_m + z_m * z_m);
-        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
-        let r_b_arr = laws.ball.lever(
-            &arr(&n),
-            &arr(&cf.tangent_y),
-            &[cf.tangent_z.x, cf.tangent_z.z],
-        );
-        let r_b = Vector3::from(r_b_arr);
-        let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
-        let j = &laws.collision.club_inv_inertia;
-        let (n_a, u1_a, w_a, rc_a) = (arr(&n), arr(&u1), arr(&w_c), arr(&r_c));
-        let (impulse, ball_ang, slipped) = if laws.tangential.mu.is_some() {
-            laws.contact.impact(
-                |u: &[f64; 3], un: f64| laws.tangential.impulse::<f64, true>(&k, &n_a, u, un, e),
-                j,
-                &n_a,
-                &u1_a,
-                u1n,
-                &w_a,
-                &rc_a,
-                &r_b_arr,
-            )
-        } else {
-            laws.contact.impact(
-                |u: &[f64; 3], un: f64| laws.tangential.impulse::<f64, false>(&k, &n_a, u, un, e),
-                j,
-                &n_a,
-                &u1_a,
-                u1n,
-                &w_a,
-                &rc_a,
-                &r_b_arr,
-            )
-        };
-        let impulse = Vector3::from(impulse);
-
-        let v_b = impulse / p.ball_mass_kg;
-        let w_b = Vector3::from(ball_ang) / p.ball_inertia_kgm2;
+        let (e, slipped) = (s.cor_effective, s.slipped);
+        let n = cf.normal;
+        let r_c = Vector3::from(s.contact_from_club_com_m);
+        let r_b = Vector3::from(s.contact_from_ball_com_m);
+        let impulse = Vector3::from(s.impulse_n_s);
+        let v_b = Vector3::from(s.ball_velocity_f_m_s);
+        let w_b = Vector3::from(s.ball_spin_f_rad_s);
         let v_c_after = v_c - impulse / p.club_mass_kg;
         let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
         let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
@@ -627,6 +657,69 @@ impl ImpactModel {
             slipped,
             club_speed_m_s: frame.club_speed_m_s,
         })
+    }
+
+    /// The contact mechanics of an impact in the face frame `F`, on one shot (`R = f64`, inside
+    /// [`ImpactModel::solve_in`]) or on lanes of shots (`R = V`, the fits' batched evaluation):
+    /// lever arms, approach velocity, COR, collision matrix, impulse, and the ball's velocity
+    /// and spin in `F`. The one definition both paths use. It does not check that the club
+    /// approaches the ball (`normal_approach_speed_m_s > 0`) or that the result is finite: the
+    /// caller does.
+    #[inline(always)]
+    pub fn solve_contact<R: Real>(&self, x: &ContactInputs<R>) -> ContactSolution<R> {
+        if self.laws.tangential.mu.is_some() {
+            self.solve_contact_with::<R, true>(x)
+        } else {
+            self.solve_contact_with::<R, false>(x)
+        }
+    }
+
+    #[inline(always)]
+    fn solve_contact_with<R: Real, const FRICTION: bool>(
+        &self,
+        x: &ContactInputs<R>,
+    ) -> ContactSolution<R> {
+        let p = &self.params;
+        let com = &p.club_com_m;
+        let r_c = [
+            x.point_m[0] - com.x,
+            x.point_m[1] - com.y,
+            x.point_m[2] - com.z,
+        ];
+        let wr = cross(&x.club_omega_f_rad_s, &r_c);
+        let v_c = &x.club_velocity_f_m_s;
+        let u1 = [v_c[0] + wr[0], v_c[1] + wr[1], v_c[2] + wr[2]];
+        let n = &x.normal;
+        let u1n = u1[0] * n[0] + u1[1] * n[1] + u1[2] * n[2];
+        let laws = &self.laws;
+        let e = laws.restitution.cor(u1n, x.y_m * x.y_m + x.z_m * x.z_m);
+        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
+        let r_b = laws.ball.lever(n, &x.tangent_y, &x.tangent_z_xz);
+        let k = laws.collision.matrix(&r_c, &r_b);
+        // The instantaneous law, wrapped by the finite contact (`contact_time`; with τ = 0 it is
+        // the law itself, bit for bit).
+        let (impulse, ball_angular_impulse, slipped) = laws.contact.impact(
+            |u: &Vec3<R>, un: R| laws.tangential.impulse::<R, FRICTION>(&k, n, u, un, e),
+            &laws.collision.club_inv_inertia,
+            n,
+            &u1,
+            u1n,
+            &x.club_omega_f_rad_s,
+            &r_c,
+            &r_b,
+        );
+        let v_b = impulse.map(|c| c / p.ball_mass_kg);
+        let w_b = ball_angular_impulse.map(|c| c / p.ball_inertia_kgm2);
+        ContactSolution {
+            contact_from_club_com_m: r_c,
+            contact_from_ball_com_m: r_b,
+            normal_approach_speed_m_s: u1n,
+            cor_effective: e,
+            impulse_n_s: impulse,
+            slipped,
+            ball_velocity_f_m_s: v_b,
+            ball_spin_f_rad_s: w_b,
+        }
     }
 
     /// [`ImpactModel::solve`] with user-defined effects: the shot's mass and geometry, then the
