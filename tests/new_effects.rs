@@ -14,30 +14,6 @@ use smash::physics::{ImpactModel, ModelParams};
 use smash::sweep::face_map;
 use smash::{Delivery, ImpactOutcome, LaunchComponent};
 
-fn deliveries() -> Vec<Delivery> {
-    let mut out = Vec::new();
-    for (i, speed_mph) in [80.0, 95.0, 105.0, 118.0].into_iter().enumerate() {
-        for (j, (y_mm, z_mm)) in [(0.0, 0.0), (8.0, -12.0), (-6.0, 15.0), (12.0, 20.0)]
-            .into_iter()
-            .enumerate()
-        {
-            let f = (i * 4 + j) as f64;
-            out.push(Delivery {
-                club_speed_m_s: speed_mph * 0.44704,
-                attack_angle_rad: (-2.0 + 0.3 * f).to_radians(),
-                club_path_rad: (1.5 - 0.2 * f).to_radians(),
-                dynamic_loft_rad: (10.0 + 0.4 * f).to_radians(),
-                face_angle_rad: (0.8 - 0.1 * f).to_radians(),
-                lie_tilt_rad: 0.5f64.to_radians(),
-                club_omega_rad_s: Vector3::new(-2.0, 4.0 - 0.5 * f, -8.0),
-                impact_y_m: y_mm * 1e-3,
-                impact_z_m: z_mm * 1e-3,
-            });
-        }
-    }
-    out
-}
-
 fn deviation(closed: &ImpactOutcome, direct: &FifteenSolution) -> f64 {
     [
         (closed.impulse_n_s, direct.impulse_n_s),
@@ -62,7 +38,7 @@ fn check_against_fifteen(kind: EffectKind, values: &[f64], independent: ModelPar
     let reference = ImpactModel::new(independent).unwrap();
     let nominal = ImpactModel::new(ModelParams::paper_driver()).unwrap();
     let mut changed = 0.0f64;
-    for d in deliveries() {
+    for d in common::deliveries() {
         let closed = engine.solve(&d).unwrap();
         let direct = solve_fifteen(&reference, &d).unwrap();
         let dev = deviation(&closed, &direct);
@@ -93,7 +69,7 @@ fn cor_power_matches_the_fifteen_equations() {
     let mut p = ModelParams::paper_driver();
     EffectKind::CorPower.apply(&[0.15], &mut p);
     let m = ImpactModel::new(p).unwrap();
-    for d in deliveries() {
+    for d in common::deliveries() {
         let o = m.solve(&d).unwrap();
         let want = 0.83 * (o.normal_approach_speed_m_s / 48.77).powf(-0.15);
         assert!(
@@ -144,7 +120,7 @@ fn hosel_mass_matches_a_rigid_head_plus_point_mass() {
     // changes (sidespin of a toe strike differs by more than a few rpm).
     let mut q = ModelParams::paper_driver();
     EffectKind::AddedMass.apply(&[6.0], &mut q);
-    let d = deliveries()[6];
+    let d = common::deliveries()[6];
     let a = ImpactModel::new(p).unwrap().solve(&d).unwrap().launch();
     let b = ImpactModel::new(q).unwrap().solve(&d).unwrap().launch();
     let side = |l: smash::Launch| l.get_file(LaunchComponent::Sidespin);
@@ -185,7 +161,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
         let model = ImpactModel::new(p).unwrap();
         let ys: Vec<f64> = (0..13).map(|i| (-24.0 + 4.0 * i as f64) * 1e-3).collect();
         let zs: Vec<f64> = (0..21).map(|i| (-40.0 + 4.0 * i as f64) * 1e-3).collect();
-        for d0 in deliveries() {
+        for d0 in common::deliveries() {
             let grid = face_map(&model, &d0, &ys, &zs);
             for (iy, &y) in ys.iter().enumerate() {
                 for (iz, &z) in zs.iter().enumerate() {

@@ -11,7 +11,6 @@ mod common;
 use std::cell::Cell;
 use std::path::{Path, PathBuf};
 
-use nalgebra::Vector3;
 use smash::data::effect_defs::parse_effect_defs;
 use smash::effects::user::UserEffect;
 use smash::effects::{Effect, EffectId, EffectKind};
@@ -70,30 +69,6 @@ fn user(name: &str) -> EffectId {
 
 fn define(text: &str) -> Vec<&'static UserEffect> {
     parse_effect_defs(Path::new("test_effects.toml"), text).expect("definitions load")
-}
-
-fn deliveries() -> Vec<Delivery> {
-    let mut out = Vec::new();
-    for (i, speed_mph) in [80.0, 95.0, 105.0, 118.0].into_iter().enumerate() {
-        for (j, (y_mm, z_mm)) in [(0.0, 0.0), (8.0, -12.0), (-6.0, 15.0), (12.0, 20.0)]
-            .into_iter()
-            .enumerate()
-        {
-            let f = (i * 4 + j) as f64;
-            out.push(Delivery {
-                club_speed_m_s: speed_mph * 0.44704,
-                attack_angle_rad: (-2.0 + 0.3 * f).to_radians(),
-                club_path_rad: (1.5 - 0.2 * f).to_radians(),
-                dynamic_loft_rad: (10.0 + 0.4 * f).to_radians(),
-                face_angle_rad: (0.8 - 0.1 * f).to_radians(),
-                lie_tilt_rad: 0.5f64.to_radians(),
-                club_omega_rad_s: Vector3::new(-2.0, 4.0 - 0.5 * f, -8.0),
-                impact_y_m: y_mm * 1e-3,
-                impact_z_m: z_mm * 1e-3,
-            });
-        }
-    }
-    out
 }
 
 /// A value of each library effect's parameters inside its plausible range, away from neutral.
@@ -161,7 +136,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_and_user_effect_on() {
         let zs: Vec<f64> = (0..21).map(|i| (-40.0 + 4.0 * i as f64) * 1e-3).collect();
         let mut valid = 0;
         let mut slipped = 0;
-        for d0 in deliveries() {
+        for d0 in common::deliveries() {
             let grid = face_map(&model, &d0, &ys, &zs);
             for (iy, &y) in ys.iter().enumerate() {
                 for (iz, &z) in zs.iter().enumerate() {
@@ -204,7 +179,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_and_user_effect_on() {
             kind.apply(&active_values(kind.params()), &mut q);
         }
         let plain = ImpactModel::new(q).unwrap();
-        let d = deliveries()[5];
+        let d = common::deliveries()[5];
         let (a, b) = (
             model.solve(&d).unwrap().launch(),
             plain.solve(&d).unwrap().launch(),
@@ -226,7 +201,7 @@ fn cor_power2_predicts_exactly_as_the_library_cor_power() {
         let mut b = ModelParams::paper_driver();
         cp2.apply(&[q], &mut b);
         let (a, b) = (ImpactModel::new(a).unwrap(), ImpactModel::new(b).unwrap());
-        for d in deliveries() {
+        for d in common::deliveries() {
             let (oa, ob) = (a.solve(&d).unwrap(), b.solve(&d).unwrap());
             assert_eq!(oa.cor_effective.to_bits(), ob.cor_effective.to_bits());
             assert_eq!(oa.ball_velocity_m_s, ob.ball_velocity_m_s);
@@ -300,7 +275,7 @@ fn a_calibrated_club_carries_its_definitions_and_reads_back_alone() {
     assert_eq!(text.matches("[[define_effect]]").count(), 2, "{text}");
     let back = smash::data::club_file::parse_club(Path::new("back.toml"), &text).unwrap();
     assert_eq!(back.effects, club.effects);
-    let d = deliveries()[3];
+    let d = common::deliveries()[3];
     for g in ["A", "B"] {
         let (x, y) = (
             club.model_for_group(g).unwrap().solve(&d).unwrap(),
@@ -440,7 +415,7 @@ fn a_value_out_of_range_at_evaluation_names_effect_expression_and_shot() {
     let mut p = ModelParams::paper_driver();
     user("e_nan").apply(&[], &mut p);
     let m = ImpactModel::new(p).unwrap();
-    let d = deliveries()[0]; // 80 mph: ln of a negative number
+    let d = common::deliveries()[0]; // 80 mph: ln of a negative number
     let e = m.solve(&d).unwrap_err().to_string();
     assert!(
         e.contains(
@@ -460,7 +435,7 @@ fn evaluation_allocates_nothing() {
     user("sink_all").apply(&[0.5, 0.5], &mut p);
     user("sink_mu").apply(&[0.3], &mut p);
     let m = ImpactModel::new(p).unwrap();
-    let ds = deliveries();
+    let ds = common::deliveries();
     let before = allocations();
     let mut sum = 0.0;
     for d in &ds {

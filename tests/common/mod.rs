@@ -193,3 +193,29 @@ pub fn shots_csv(shots: &[Shot], measured: bool, golfer: bool) -> String {
 pub fn paper_club_path() -> PathBuf {
     repo_root().join("configs/clubs/paper_driver.toml")
 }
+
+/// Sixteen deliveries (four speeds × four face locations, angles and head rotation varied
+/// with the index) for the scalar-solve, kernel and golden checks of the effect tests.
+pub fn deliveries() -> Vec<Delivery> {
+    let mut out = Vec::new();
+    for (i, speed_mph) in [80.0, 95.0, 105.0, 118.0].into_iter().enumerate() {
+        for (j, (y_mm, z_mm)) in [(0.0, 0.0), (8.0, -12.0), (-6.0, 15.0), (12.0, 20.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let f = (i * 4 + j) as f64;
+            out.push(Delivery {
+                club_speed_m_s: speed_mph * 0.44704,
+                attack_angle_rad: (-2.0 + 0.3 * f).to_radians(),
+                club_path_rad: (1.5 - 0.2 * f).to_radians(),
+                dynamic_loft_rad: (10.0 + 0.4 * f).to_radians(),
+                face_angle_rad: (0.8 - 0.1 * f).to_radians(),
+                lie_tilt_rad: 0.5f64.to_radians(),
+                club_omega_rad_s: Vector3::new(-2.0, 4.0 - 0.5 * f, -8.0),
+                impact_y_m: y_mm * 1e-3,
+                impact_z_m: z_mm * 1e-3,
+            });
+        }
+    }
+    out
+}
