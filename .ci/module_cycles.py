@@ -26,53 +26,9 @@ import os
 import re
 import sys
 
+from rust_source import code_only
+
 IDENT = r"[A-Za-z_][A-Za-z0-9_]*"
-
-
-def strip(src):
-    """The source with comments, string and char literals blanked (lengths kept)."""
-    out = []
-    i, n = 0, len(src)
-    while i < n:
-        c = src[i]
-        if src.startswith("//", i):
-            j = src.find("\n", i)
-            j = n if j < 0 else j
-            out.append(" " * (j - i))
-            i = j
-        elif src.startswith("/*", i):
-            depth, j = 1, i + 2
-            while j < n and depth:
-                if src.startswith("/*", j):
-                    depth, j = depth + 1, j + 2
-                elif src.startswith("*/", j):
-                    depth, j = depth - 1, j + 2
-                else:
-                    j += 1
-            out.append(re.sub(r"[^\n]", " ", src[i:j]))
-            i = j
-        elif c == "r" and re.match(r'r#*"', src[i:i + 10]) and not re.match(r"\w", src[i - 1:i] or " "):
-            m = re.match(r'r(#*)"', src[i:])
-            end = '"' + m.group(1)
-            j = src.find(end, i + len(m.group(0)))
-            j = n if j < 0 else j + len(end)
-            out.append(re.sub(r"[^\n]", " ", src[i:j]))
-            i = j
-        elif c == '"':
-            j = i + 1
-            while j < n and src[j] != '"':
-                j += 2 if src[j] == "\\" else 1
-            j += 1
-            out.append(re.sub(r"[^\n]", " ", src[i:j]))
-            i = j
-        elif c == "'" and re.match(r"'(\\.|[^\\'])'|'\\u\{[0-9a-fA-F]+\}'|'\\x..'", src[i:i + 12]):
-            m = re.match(r"'(\\.|[^\\'])'|'\\u\{[0-9a-fA-F]+\}'|'\\x..'", src[i:i + 12])
-            out.append(" " * len(m.group(0)))
-            i += len(m.group(0))
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
 
 
 def module_of(root, path):
@@ -199,7 +155,7 @@ def check(root):
     for d, _, fs in os.walk(root):
         files += [os.path.join(d, f) for f in fs if f.endswith(".rs")]
     modules = {tuple(module_of(root, f)) for f in files}
-    sources = {f: strip(open(f).read()) for f in files}
+    sources = {f: code_only(open(f).read()) for f in files}
     # Re-exports (`pub use sweep::Prepared;` in study/mod.rs) lead to the module that defines
     # the item: `crate::study::Prepared` is a dependency on `study::sweep`.
     reexports = {}
