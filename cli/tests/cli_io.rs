@@ -2,6 +2,9 @@
 //! user's files or the command's own inputs, outputs that appear together or not at all, and
 //! stale temporaries of killed runs.
 
+#[path = "../../tests/common/mod.rs"]
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
@@ -17,16 +20,6 @@ fn smash(args: &[&str]) -> Output {
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-/// A failure with exactly one line on stderr (no panic), which contains `want`.
-fn assert_one_line_error(o: &Output, want: &str) {
-    let err = stderr(o);
-    assert_eq!(o.status.code(), Some(1), "exit status; stderr: {err}");
-    assert_eq!(err.lines().count(), 1, "one line: {err:?}");
-    assert!(err.starts_with("error: "), "{err}");
-    assert!(err.contains(want), "expected {want:?} in {err:?}");
-    assert!(!err.contains("panicked"), "{err}");
 }
 
 fn s(p: &Path) -> &str {
@@ -92,7 +85,7 @@ fn a_full_disk_on_stdout_is_one_line_and_exit_1() {
             .stdout(Stdio::from(full))
             .output()
             .unwrap();
-        assert_one_line_error(&o, "cannot write to standard output");
+        common::assert_refused(&o, &["cannot write to standard output"]);
     }
 }
 
@@ -137,7 +130,7 @@ fn run_refuses_a_folder_of_its_outputs_beside_a_users_file() {
     // The user adds notes beside the outputs: a re-run must not delete them.
     std::fs::write(out.join("notes.md"), "my notes").unwrap();
     let o = smash(&["run", s(&study), "--out", s(&out)]);
-    assert_one_line_error(&o, "notes.md");
+    common::assert_refused(&o, &["notes.md"]);
     assert_kept(&out.join("notes.md"), "my notes");
     assert!(out.join("study.toml").is_file());
     // Without them, the earlier outputs are replaced as before.
@@ -146,7 +139,7 @@ fn run_refuses_a_folder_of_its_outputs_beside_a_users_file() {
     assert!(o.status.success(), "{}", stderr(&o));
     // The folder holding the study itself is refused.
     let o = smash(&["run", s(&study), "--out", s(tmp.path())]);
-    assert_one_line_error(&o, "STUDY.toml");
+    common::assert_refused(&o, &["STUDY.toml"]);
     assert!(study.is_file());
 }
 
@@ -171,7 +164,7 @@ fn merge_refuses_a_folder_with_a_users_file() {
     assert!(o.status.success(), "{}", stderr(&o));
     std::fs::write(out.join("thesis.tex"), "chapter 1").unwrap();
     let o = smash(&["merge", s(&shards[0]), s(&shards[1]), "--out", s(&out)]);
-    assert_one_line_error(&o, "thesis.tex");
+    common::assert_refused(&o, &["thesis.tex"]);
     assert_kept(&out.join("thesis.tex"), "chapter 1");
 }
 
@@ -201,7 +194,7 @@ fn compare_refuses_a_folder_with_a_users_file_and_one_holding_its_input() {
         "--out-dir",
         s(&out),
     ]);
-    assert_one_line_error(&o, "thesis.tex");
+    common::assert_refused(&o, &["thesis.tex"]);
     assert_kept(&out.join("thesis.tex"), "chapter 2");
     let o = smash(&[
         "compare",
@@ -212,7 +205,7 @@ fn compare_refuses_a_folder_with_a_users_file_and_one_holding_its_input() {
         "--out-dir",
         s(tmp.path()),
     ]);
-    assert_one_line_error(&o, "--shots");
+    common::assert_refused(&o, &["--shots"]);
     assert!(shots.is_file());
 }
 
@@ -233,7 +226,7 @@ fn an_output_that_is_an_input_is_refused() {
         "--out",
         s(&alias),
     ]);
-    assert_one_line_error(&o, "--out is the same file as --shots");
+    common::assert_refused(&o, &["--out is the same file as --shots"]);
     assert_kept(&shots, &before);
 
     let club_copy = tmp.path().join("club.toml");
@@ -246,7 +239,7 @@ fn an_output_that_is_an_input_is_refused() {
         }
         args.extend(["--out-club", s(&club_copy)]);
         let o = smash(&args);
-        assert_one_line_error(&o, "--out-club is the same file as --club");
+        common::assert_refused(&o, &["--out-club is the same file as --club"]);
         assert_kept(&club_copy, &club_text);
     }
     // An HTML report may not replace an input either.
@@ -257,14 +250,14 @@ fn an_output_that_is_an_input_is_refused() {
         }
         args.extend(["--report", s(&alias)]);
         let o = smash(&args);
-        assert_one_line_error(&o, "--report is the same file as --shots");
+        common::assert_refused(&o, &["--report is the same file as --shots"]);
         assert_kept(&shots, &before);
     }
     let study = study_file(tmp.path());
     let study_text = std::fs::read_to_string(&study).unwrap();
     let out = tmp.path().join("out");
     let o = smash(&["run", s(&study), "--out", s(&out), "--report", s(&study)]);
-    assert_one_line_error(&o, "--report is the same file as STUDY.toml");
+    common::assert_refused(&o, &["--report is the same file as STUDY.toml"]);
     assert_kept(&study, &study_text);
     let o = smash(&[
         "run",
@@ -274,7 +267,7 @@ fn an_output_that_is_an_input_is_refused() {
         "--report",
         s(&out.join("r.html")),
     ]);
-    assert_one_line_error(&o, "inside the study's output folder");
+    common::assert_refused(&o, &["inside the study's output folder"]);
 }
 
 #[test]
@@ -294,7 +287,7 @@ fn synth_writes_both_outputs_or_neither() {
         "--truth",
         s(&truth),
     ]);
-    assert_one_line_error(&o, "truth.toml");
+    common::assert_refused(&o, &["truth.toml"]);
     assert!(!shots.exists(), "the shots file was left behind");
     let left: Vec<_> = std::fs::read_dir(tmp.path()).unwrap().collect();
     assert_eq!(left.len(), 1, "only the user's folder remains: {left:?}");
@@ -308,7 +301,7 @@ fn synth_writes_both_outputs_or_neither() {
         "--truth",
         s(&shots),
     ]);
-    assert_one_line_error(&o, "same path");
+    common::assert_refused(&o, &["same path"]);
     assert!(!shots.exists());
 }
 
@@ -392,7 +385,7 @@ fn shards_of_different_clubs_are_not_merged() {
     edit(&club_copy, "cor = 0.83", "cor = 0.80");
     run_shard(&study, 1, &shards[1]);
     let o = merge(&shards, &tmp.path().join("m2"));
-    assert_one_line_error(&o, "different club files");
+    common::assert_refused(&o, &["different club files"]);
     let err = stderr(&o);
     assert!(err.contains("sh0") && err.contains("sh1"), "{err}");
     assert!(!tmp.path().join("m2").exists());
@@ -400,7 +393,7 @@ fn shards_of_different_clubs_are_not_merged() {
     run_shard(&study, 0, &shards[0]);
     edit(&club_copy, "cor = 0.80", "cor = 0.81");
     let o = merge(&shards, &tmp.path().join("m3"));
-    assert_one_line_error(&o, "changed since the shards were computed");
+    common::assert_refused(&o, &["changed since the shards were computed"]);
 }
 
 #[test]
@@ -431,7 +424,7 @@ fn every_field_read_back_from_a_shard_is_checked() {
     for (k, (text, want)) in cases.iter().enumerate() {
         std::fs::write(&rows, text).unwrap();
         let o = merge(&shards, &tmp.path().join(format!("m{k}")));
-        assert_one_line_error(&o, want);
+        common::assert_refused(&o, &[want]);
         assert!(!stderr(&o).contains('\u{1b}'), "raw ESC echoed");
     }
     std::fs::write(&rows, &original).unwrap();
@@ -449,7 +442,7 @@ fn every_field_read_back_from_a_shard_is_checked() {
     ] {
         std::fs::write(&meta, text.replacen(from, to, 1)).unwrap();
         let o = merge(&shards, &tmp.path().join("mm"));
-        assert_one_line_error(&o, want);
+        common::assert_refused(&o, &[want]);
         assert!(!stderr(&o).contains("shard 0 of 0"), "{}", stderr(&o));
     }
     // A shard without the hashes (an older smash) is refused with what to do.
@@ -460,7 +453,7 @@ fn every_field_read_back_from_a_shard_is_checked() {
         .collect();
     std::fs::write(&meta, no_hash).unwrap();
     let o = merge(&shards, &tmp.path().join("mm"));
-    assert_one_line_error(&o, "run the shards again");
+    common::assert_refused(&o, &["run the shards again"]);
 }
 
 // ---- 8. messages --------------------------------------------------------------------------------
@@ -487,7 +480,7 @@ fn control_characters_from_input_are_escaped() {
             "--out",
             s(&tmp.path().join("p.csv")),
         ]);
-        assert_one_line_error(&o, want);
+        common::assert_refused(&o, &[want]);
         let err = stderr(&o);
         assert!(!err.contains('\u{1b}') && !err.contains('\r'), "{err:?}");
     }
@@ -504,7 +497,10 @@ fn negative_numbers_are_values_not_flags() {
         "--loft",
         "12",
     ]);
-    assert_one_line_error(&o, "--speed: club speed -5 is outside the physical range");
+    common::assert_refused(
+        &o,
+        &["--speed: club speed -5 is outside the physical range"],
+    );
     let o = smash(&[
         "predict",
         "--club",
@@ -524,7 +520,7 @@ fn negative_numbers_are_values_not_flags() {
         "--loft",
         "12",
     ]);
-    assert_one_line_error(&o, "club speed -1e300 is outside");
+    common::assert_refused(&o, &["club speed -1e300 is outside"]);
     // Values of other forms that start with a minus sign reach their own checks too.
     let o = smash(&[
         "compare",
@@ -558,7 +554,7 @@ fn huge_values_are_shown_in_scientific_notation() {
     )
     .unwrap();
     let o = smash(&["run", s(&study), "--out", s(&tmp.path().join("o"))]);
-    assert_one_line_error(&o, "club speed -1e300 is outside");
+    common::assert_refused(&o, &["club speed -1e300 is outside"]);
     assert!(stderr(&o).len() < 200, "{}", stderr(&o));
 }
 
@@ -578,9 +574,9 @@ fn a_study_whose_club_misses_the_ball_names_the_file_and_line() {
     )
     .unwrap();
     let o = smash(&["run", s(&study), "--out", s(&tmp.path().join("o"))]);
-    assert_one_line_error(
+    common::assert_refused(
         &o,
-        "away.toml:5: table [delivery]: the club does not approach",
+        &["away.toml:5: table [delivery]: the club does not approach"],
     );
 }
 
@@ -615,7 +611,7 @@ fn shot_errors_name_file_line_and_columns_like_parse_errors() {
             "--out",
             s(&out),
         ]);
-        assert_one_line_error(&o, want);
+        common::assert_refused(&o, &[want]);
         assert!(!stderr(&o).contains("row "), "{}", stderr(&o));
         assert!(!out.exists());
     }

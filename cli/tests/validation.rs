@@ -3,6 +3,9 @@
 //! Every refusal is one line on stderr naming the culprit (file and key or column, the value and
 //! the allowed range) with a non-zero exit, and writes nothing.
 
+#[path = "../../tests/common/mod.rs"]
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -31,30 +34,6 @@ fn write(dir: &Path, name: &str, text: &str) -> String {
 }
 
 /// Words that mean a number went wrong.
-fn has_non_finite(text: &str) -> bool {
-    text.split(|c: char| !c.is_ascii_alphanumeric())
-        .any(|w| matches!(w, "inf" | "NaN" | "nan" | "infinity" | "Infinity"))
-}
-
-/// The command failed cleanly: exit 1 (not a panic's 101 or a signal), one line on stderr that
-/// contains every `needle`, nothing infinite or undefined anywhere.
-fn refused(o: &Output, needles: &[&str]) {
-    let err = String::from_utf8_lossy(&o.stderr);
-    let out = String::from_utf8_lossy(&o.stdout);
-    assert_eq!(
-        o.status.code(),
-        Some(1),
-        "exit {:?}; stderr: {err}",
-        o.status
-    );
-    assert!(!err.contains("panicked"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err}");
-    for n in needles {
-        assert!(err.contains(n), "missing {n:?} in: {err}");
-    }
-    assert!(!has_non_finite(&err) && !has_non_finite(&out), "{out}{err}");
-}
-
 /// A study of the paper driver with `extra` appended and `(from, to)` replacements.
 fn study(dir: &Path, extra: &str, replace: &[(&str, &str)]) -> String {
     let mut t = format!(
@@ -116,7 +95,7 @@ fn design_axes_whose_product_overflows_are_refused_with_the_limit() {
                 inertia_scale = { from = 0.9, to = 1.1, count = 65536 }\n";
     let p = study(dir.path(), axes, &[]);
     let o = run_study(dir.path(), &p);
-    refused(&o, &["study.toml", "design variants", "65536", "1000000"]);
+    common::assert_refused(&o, &["study.toml", "design variants", "65536", "1000000"]);
 }
 
 #[test]
@@ -133,14 +112,14 @@ fn grid_points_times_variants_are_capped_before_anything_is_allocated() {
         ],
     );
     let o = run_study(dir.path(), &p);
-    refused(&o, &["study.toml", "grid points", "900000000", "500000000"]);
+    common::assert_refused(&o, &["study.toml", "grid points", "900000000", "500000000"]);
     // Variants × grid: each within its own cap, the product beyond.
     let p = study(
         dir.path(),
         "[design]\ncom_dx_mm = { from = -1.0, to = 1.0, count = 1000 }\n",
         &[("count = 3", "count = 800"), ("count = 5", "count = 800")],
     );
-    refused(
+    common::assert_refused(
         &run_study(dir.path(), &p),
         &["grid points", "1000 (design variants)", "500000000"],
     );
@@ -168,7 +147,7 @@ fn sharded_studies_too_large_to_merge_are_refused_before_any_shard_runs() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    refused(&o, &["625000000", "500000000"]);
+    common::assert_refused(&o, &["625000000", "500000000"]);
     assert!(!out.exists());
 }
 
@@ -180,7 +159,7 @@ fn summary_probe_lines_of_billions_of_points_are_refused() {
         "[summary]\nhalf_width_mm = 20.0\nstep_mm = 1e-9\n",
         &[],
     );
-    refused(&run_study(dir.path(), &p), &["summary.step_mm", "10001"]);
+    common::assert_refused(&run_study(dir.path(), &p), &["summary.step_mm", "10001"]);
 }
 
 #[test]
@@ -200,7 +179,7 @@ fn synth_caps_the_total_number_of_shots_not_only_per_group() {
     );
     let out = dir.path().join("big.csv");
     let o = smash(&["synth", "--config", &cfg, "--out", out.to_str().unwrap()]);
-    refused(&o, &["big.toml", "100 (groups)", "1000000000", "2000000"]);
+    common::assert_refused(&o, &["big.toml", "100 (groups)", "1000000000", "2000000"]);
     assert!(!out.exists());
 }
 
@@ -219,7 +198,7 @@ fn one_shot_prediction_refuses_a_speed_outside_the_physical_range() {
             "--loft",
             "12",
         ]);
-        refused(&o, &["--speed", speed, "[1, 250] mph"]);
+        common::assert_refused(&o, &["--speed", speed, "[1, 250] mph"]);
     }
     let o = smash(&[
         "predict",
@@ -232,7 +211,7 @@ fn one_shot_prediction_refuses_a_speed_outside_the_physical_range() {
         "--omega-x-rad-s",
         "1e300",
     ]);
-    refused(&o, &["--omega-x-rad-s", "1e300", "rad/s"]);
+    common::assert_refused(&o, &["--omega-x-rad-s", "1e300", "rad/s"]);
 }
 
 #[test]
@@ -259,7 +238,7 @@ fn a_shots_row_outside_the_physical_ranges_is_named_and_nothing_is_written() {
             "--out",
             out.to_str().unwrap(),
         ]);
-        refused(&o, &["bad.csv:5", &format!("column '{col}'"), value, range]);
+        common::assert_refused(&o, &["bad.csv:5", &format!("column '{col}'"), value, range]);
         assert!(!out.exists(), "{col} = {value} wrote predictions");
     }
 }
@@ -285,7 +264,7 @@ fn calibrate_refuses_an_unphysical_measurement_and_writes_no_club() {
         "--out-club",
         out.to_str().unwrap(),
     ]);
-    refused(&o, &["bad.csv:2", "backspin_rpm", "1e300", "rpm"]);
+    common::assert_refused(&o, &["bad.csv:2", "backspin_rpm", "1e300", "rpm"]);
     assert!(!out.exists());
 }
 
@@ -343,7 +322,7 @@ fn study_values_outside_the_physical_ranges_name_their_key() {
     ];
     for (extra, replace, needles) in cases {
         let p = study(dir.path(), &extra, &replace);
-        refused(&run_study(dir.path(), &p), &needles);
+        common::assert_refused(&run_study(dir.path(), &p), &needles);
     }
 }
 
@@ -360,7 +339,7 @@ fn probe_lines_off_a_small_face_are_refused_before_the_sweep() {
         "[summary]\nhalf_width_mm = 45.0\n",
         &[(club().as_str(), small.as_str())],
     );
-    refused(
+    common::assert_refused(
         &run_study(dir.path(), &p),
         &["summary.half_width_mm", "off the face", "roll 40.0 mm"],
     );
@@ -391,7 +370,7 @@ fn club_files_outside_the_physical_ranges_name_their_key() {
         assert!(base.contains(from), "{from}");
         let c = write(dir.path(), "club.toml", &base.replace(from, to));
         let o = smash(&["predict", "--club", &c, "--speed", "100", "--loft", "12"]);
-        refused(&o, &needles);
+        common::assert_refused(&o, &needles);
     }
 }
 
@@ -408,7 +387,7 @@ fn synth_refuses_unphysical_delivery_means_instead_of_writing_empty_cells() {
     );
     let out = dir.path().join("fast.csv");
     let o = smash(&["synth", "--config", &cfg, "--out", out.to_str().unwrap()]);
-    refused(
+    common::assert_refused(
         &o,
         &[
             "fast.toml",
@@ -449,7 +428,10 @@ fn every_synthetic_shot_reads_back_within_the_physical_ranges() {
     ]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let text = std::fs::read_to_string(&pred).unwrap();
-    assert!(!has_non_finite(&text) && !text.contains(",,"), "{text}");
+    assert!(
+        !common::has_non_finite(&text) && !text.contains(",,"),
+        "{text}"
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -473,7 +455,7 @@ fn diagnose_names_identical_shots_instead_of_selecting_an_effect() {
     let dir = tempfile::tempdir().unwrap();
     let same = identical_shots(dir.path(), 60);
     let o = smash(&["diagnose", "--club", &club(), "--shots", &same]);
-    refused(&o, &["same.csv", "degenerate", "same delivery", "60 shots"]);
+    common::assert_refused(&o, &["same.csv", "degenerate", "same delivery", "60 shots"]);
     assert!(String::from_utf8_lossy(&o.stdout).trim().is_empty());
 }
 
@@ -493,7 +475,7 @@ fn calibrate_names_identical_shots_instead_of_fitting() {
         "--out-club",
         out.to_str().unwrap(),
     ]);
-    refused(&o, &["same.csv", "degenerate", "same delivery"]);
+    common::assert_refused(&o, &["same.csv", "degenerate", "same delivery"]);
     assert!(!out.exists());
 }
 
@@ -514,7 +496,7 @@ fn an_effect_that_needs_a_variable_to_vary_is_refused_when_it_is_constant() {
         let mut args = cmd.clone();
         args.extend(["--club", club.as_str(), "--shots", constant.as_str()]);
         let o = smash(&args);
-        refused(&o, &["constant.csv", "cor_speed", "club_speed_mph = 100"]);
+        common::assert_refused(&o, &["constant.csv", "cor_speed", "club_speed_mph = 100"]);
     }
 }
 
@@ -545,7 +527,7 @@ fn diagnose_leaves_out_a_default_candidate_the_data_cannot_identify_and_says_so(
         "{err}"
     );
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(!has_non_finite(&out), "{out}");
+    assert!(!common::has_non_finite(&out), "{out}");
 }
 
 #[test]

@@ -219,3 +219,30 @@ pub fn deliveries() -> Vec<Delivery> {
     }
     out
 }
+
+/// Does `text` show a non-finite number (`inf`, `NaN`, …) as a word?
+pub fn has_non_finite(text: &str) -> bool {
+    text.split(|c: char| !c.is_ascii_alphanumeric())
+        .any(|w| matches!(w, "inf" | "NaN" | "nan" | "infinity" | "Infinity"))
+}
+
+/// The command failed cleanly: exit 1 (not a panic's 101 or a signal), exactly one line on
+/// stderr, starting `error: ` and containing every `needle`, and nothing infinite or undefined
+/// on stdout or stderr.
+pub fn assert_refused(o: &std::process::Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "exit {:?}; stderr: {err}",
+        o.status
+    );
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err:?}");
+    assert!(err.starts_with("error: "), "{err}");
+    for n in needles {
+        assert!(err.contains(n), "missing {n:?} in: {err}");
+    }
+    assert!(!has_non_finite(&err) && !has_non_finite(&out), "{out}{err}");
+}
