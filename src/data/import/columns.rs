@@ -1,0 +1,273 @@
+//! Matching the mapping's columns to the export's header, and settling the unit of each.
+//!
+//! A unit may come from the header (`Ball Speed (mph)`), from a units row, from the mapping's
+//! `unit` (which the file must agree with) or from its `default_unit` (reported as assumed).
+
+use std::collections::HashSet;
+use std::path::Path;
+
+use super::table::{split_header, Table};
+use super::target::Target;
+use super::units::Unit;
+use super::{ColumnSpec, ImportOptions, Mapping};
+use crate::data::DataError;
+
+/// A mapped column found in the export.
+pub(super) struct Resolved<'a> {
+    /// The mapping's entry.
+    pub spec: &'a ColumnSpec,
+    /// What it feeds.
+    pub target: Target,
+    /// Its index among the export's cells.
+    pub index: usize,
+    /// Its header as written.
+    pub header: String,
+    /// The unit its cells are in (numeric targets only).
+    pub unit: Option<Unit>,
+}
+
+/// Find every mapped column in `table` and its unit. Refuses a file missing a required column,
+/// an export column mapped twice, contradicting units, or (unless `opts` allows it) export
+/// columns the mapping does not know. Returns the columns and the notes for the user (unknown
+/// columns dropped, units assumed).
+pub(super) fn resolve_columns<'a>(
+    path: &Path,
+    table: &Table,
+    mapping: &'a Mapping,
+    opts: &ImportOptions,
+) -> Result<(Vec<Resolved<'a>>, Vec<String>), DataError> {
+    let vendor = &mapping.export.name;
+    let find = |names: &[String]| {
+        let wanted: Vec<String> = names.iter().map(|n| split_header(n).0).collect();
+        table.headers.iter().position(|(h, _)| wanted.contains(h))
+    };
+    let mut used = vec![false; table.headers.len()];
+    let mut resolved: Vec<Resolved> = Vec::new();
+    let mut missing: Vec<String> = Vec::new();
+    let mut assumed: Vec<String> = Vec::new();
+    for spec in &mapping.column {
+        let target = Target::parse(&spec.target).expect("checked when parsed");
+        let Some(index) = find(&spec.source) else {
+            if !spec.optional {
+                missing.push(format!("'{}' ({})", spec.source[0], spec.target));
+            }
+            continue;
+        };
+        if used[index] {
+            return Err(DataError::at(
+                path,
+                Some(table.header_line),
+                Some(format!("column '{}'", table.header[index])),
+                "this column is mapped to two targets",
+            ));
+        }
+        used[index] = true;
+        let unit = match target.unit() {
+            None => None,
+            Some(to) => {
+                let col = ColumnAt { table, spec, index };
+                let (unit, was_assumed) = col.unit(path, to, vendor)?;
+                if was_assumed {
+                    assumed.push(format!("{} in {}", table.header[index], unit.name));
+                }
+                Some(unit)
+            }
+        };
+        resolved.push(Resolved {
+            spec,
+            target,
+            index,
+            header: table.header[index].clone(),
+            unit,
+        });
+    }
+    if !missing.is_empty() {
+        let present: Vec<&str> = table
+            .header
+            .iter()
+            .filter(|h| !h.is_empty())
+            .map(String::as_str)
+            .collect();
+        return Err(DataError::at(
+            path,
+            Some(table.header_line),
+            None,
+            format!(
+                "not a {vendor} export as expected: missing column(s) {}; the file has: {}",
+                missing.join(", "),
+                present.join(", ")
+            ),
+        ));
+    }
+    let mut notes = Vec::new();
+    let unknown = unknown_columns(table, mapping, &used);
+    if !unknown.is_empty() && !opts.ignore_unknown_columns {
+        return Err(DataError::at(
+            path,
+            Some(table.header_line),
+            None,
+            format!(
+                "unknown column(s) for the {vendor} format: '{}'; map or ignore them in a mapping file (--format FILE.toml), \
+                 or pass --ignore-unknown-columns",
+                unknown.join("', '")
+            ),
+        ));
+    }
+    if !unknown.is_empty() {
+        notes.push(format!("ignored unknown column(s): {}", unknown.join(", ")));
+    }
+    if !assumed.is_empty() {
+        notes.push(format!(
+            "the file states no unit for {}: the {vendor} preset's units were assumed",
+            assumed.join(", ")
+        ));
+    }
+    Ok((resolved, notes))
+}
+
+/// Export columns neither mapped (`used`) nor listed as ignored or as a skip-rule column.
+fn unknown_columns<'t>(table: &'t Table, mapping: &Mapping, used: &[bool]) -> Vec<&'t str> {
+    let ignored: HashSet<String> = mapping
+        .export
+        .ignore
+        .iter()
+        .map(|n| split_header(n).0)
+        .chain(
+            mapping
+                .export
+                .skip_rows
+                .iter()
+                .filter_map(|r| r.column.as_ref().map(|c| split_header(c).0)),
+        )
+        .collect();
+    table
+        .header
+        .iter()
+        .enumerate()
+        .filter(|(i, h)| !h.is_empty() && !used[*i] && !ignored.contains(&table.headers[*i].0))
+        .map(|(_, h)| h.as_str())
+        .collect()
+}
+
+/// A mapped numeric column at `index` of the export.
+struct ColumnAt<'t, 'a> {
+    table: &'t Table,
+    spec: &'a ColumnSpec,
+    index: usize,
+}
+
+impl ColumnAt<'_, '_> {
+    /// Where messages point: the column's header.
+    fn place(&self) -> Option<String> {
+        Some(format!("column '{}'", self.table.header[self.index]))
+    }
+
+    /// The unit of the column's cells, converted to `to`: the file's (header or units row),
+    /// else the mapping's `unit`, else its `default_unit` (then `true`: assumed). The file and
+    /// the mapping must agree; no unit at all is an error.
+    fn unit(&self, path: &Path, to: Unit, vendor: &str) -> Result<(Unit, bool), DataError> {
+        let table = self.table;
+        let spec = self.spec;
+        let file_unit = self.file_unit(path, to)?;
+        let asserted = spec.unit.as_deref().and_then(Unit::parse);
+        if let (Some(f), Some(a)) = (file_unit, asserted) {
+            if f.name != a.name {
+                return Err(DataError::at(
+                    path,
+                    table
+                        .unit_row
+                        .as_ref()
+                        .map_or(Some(table.header_line), |(l, _)| Some(*l)),
+                    self.place(),
+                    format!(
+                        "the file says {} but the mapping says {}; fix the mapping's unit",
+                        f.name, a.name
+                    ),
+                ));
+            }
+        }
+        let default = spec.default_unit.as_deref().and_then(Unit::parse);
+        match file_unit.or(asserted).or(default) {
+            Some(u) => Ok((u, file_unit.is_none() && asserted.is_none())),
+            None => Err(DataError::at(
+                path,
+                Some(table.header_line),
+                self.place(),
+                format!(
+                    "no unit: the file states none (no unit row, no unit in the header) and the {vendor} mapping gives none; \
+                     add a unit row or use a mapping file with unit = one of {}",
+                    to.quantity.allowed()
+                ),
+            )),
+        }
+    }
+
+    /// The unit the file states for the column, in its header or its units row (both must
+    /// agree, and measure what `to` measures).
+    fn file_unit(&self, path: &Path, to: Unit) -> Result<Option<Unit>, DataError> {
+        let table = self.table;
+        let from_header = table.headers[self.index].1.as_deref();
+        let from_row = table
+            .unit_row
+            .as_ref()
+            .and_then(|(_, cells)| cells.get(self.index))
+            .map(String::as_str)
+            .filter(|s| !s.is_empty() && *s != "[]");
+        let h = from_header
+            .map(|s| self.parse_file_unit(path, to, s, table.header_line, "header"))
+            .transpose()?;
+        let r = match (&table.unit_row, from_row) {
+            (Some((line, _)), Some(s)) => Some(self.parse_file_unit(path, to, s, *line, "unit row")?),
+            _ => None,
+        };
+        if let (Some(h), Some(r)) = (h, r) {
+            if h.name != r.name {
+                return Err(DataError::at(
+                    path,
+                    table.unit_row.as_ref().map(|(l, _)| *l),
+                    self.place(),
+                    format!(
+                        "the header says {} but the unit row says {}",
+                        h.name, r.name
+                    ),
+                ));
+            }
+        }
+        Ok(h.or(r))
+    }
+
+    /// Read a unit the file states (`s`, on `line`, in its `what`): a unit of the quantity `to`.
+    fn parse_file_unit(
+        &self,
+        path: &Path,
+        to: Unit,
+        s: &str,
+        line: usize,
+        what: &str,
+    ) -> Result<Unit, DataError> {
+        let target = &self.spec.target;
+        let u = Unit::parse(s).ok_or_else(|| {
+            DataError::at(
+                path,
+                Some(line),
+                self.place(),
+                format!(
+                    "the {what} says '{s}', which is not a unit of {target} (allowed: {})",
+                    to.quantity.allowed()
+                ),
+            )
+        })?;
+        if u.quantity != to.quantity {
+            return Err(DataError::at(
+                path,
+                Some(line),
+                self.place(),
+                format!(
+                    "the {what} says '{s}', but {target} needs one of: {}",
+                    to.quantity.allowed()
+                ),
+            ));
+        }
+        Ok(u)
+    }
+}

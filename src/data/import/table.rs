@@ -1,0 +1,191 @@
+//! Reading an export into rows of cells: UTF-8 text with an optional byte-order mark, Excel's
+//! `sep=` delimiter hint, preamble lines the mapping skips, the header row and an optional
+//! units row under it. Every row keeps the file line it came from, for messages.
+
+use std::path::Path;
+
+use super::units::Unit;
+use crate::data::DataError;
+
+/// A row of the export: its 1-based file line and its cells.
+pub(super) type Row = (usize, Vec<String>);
+
+/// An export read into cells.
+pub(super) struct Table {
+    /// File line of the header row.
+    pub header_line: usize,
+    /// The header cells as written (for messages).
+    pub header: Vec<String>,
+    /// The header cells split into a normalised name and the bracketed unit text, if any.
+    pub headers: Vec<(String, Option<String>)>,
+    /// The units row under the header, when there is one.
+    pub unit_row: Option<Row>,
+    /// The data rows; rows with no text in any cell are dropped.
+    pub rows: Vec<Row>,
+}
+
+/// Read an export (`bytes`, from `path`): drop `skip_lines` lines after any BOM and `sep=` line,
+/// then split the header, the units row and the data rows. `vendor` names the export in messages.
+pub(super) fn read_table(
+    path: &Path,
+    bytes: &[u8],
+    skip_lines: usize,
+    vendor: &str,
+) -> Result<Table, DataError> {
+    let text = std::str::from_utf8(bytes)
+        .map_err(|e| DataError::file(path, format!("not UTF-8 text: {e}")))?;
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let (body, offset_lines, delimiter) = strip_preamble(path, text, skip_lines)?;
+    let mut rows = read_rows(path, body, offset_lines, delimiter)?.into_iter();
+    let (header_line, header) = rows.next().ok_or_else(|| {
+        DataError::file(
+            path,
+            format!("empty file: a {vendor} export has a header row"),
+        )
+    })?;
+    let headers = header.iter().map(|h| split_header(h)).collect();
+    let mut rows: Vec<Row> = rows.collect();
+    let unit_row = take_unit_row(&mut rows);
+    Ok(Table {
+        header_line,
+        header,
+        headers,
+        unit_row,
+        rows,
+    })
+}
+
+/// Drop a leading `sep=X` line (taking `X` as the delimiter) and then `skip_lines` lines.
+/// Returns the CSV body, how many lines precede it, and the delimiter.
+fn strip_preamble<'t>(
+    path: &Path,
+    text: &'t str,
+    skip_lines: usize,
+) -> Result<(&'t str, usize, u8), DataError> {
+    let mut body = text;
+    let mut offset_lines = 0usize;
+    let mut delimiter = b',';
+    let first = body
+        .split('\n')
+        .next()
+        .unwrap_or("")
+        .trim_end_matches('\r')
+        .trim();
+    if let Some(sep) = first.strip_prefix("sep=") {
+        let sep = sep.trim_matches('"');
+        let [b] = sep.as_bytes() else {
+            return Err(DataError::at(
+                path,
+                Some(1),
+                None,
+                format!("'{first}': the sep= line must name one character"),
+            ));
+        };
+        delimiter = *b;
+        body = body.split_once('\n').map_or("", |(_, r)| r);
+        offset_lines += 1;
+    }
+    for _ in 0..skip_lines {
+        body = body.split_once('\n').map_or("", |(_, r)| r);
+        offset_lines += 1;
+    }
+    Ok((body, offset_lines, delimiter))
+}
+
+/// Parse the CSV body into trimmed cells, each row with its file line (`offset_lines` lines
+/// precede the body); blank rows are dropped.
+fn read_rows(
+    path: &Path,
+    body: &str,
+    offset_lines: usize,
+    delimiter: u8,
+) -> Result<Vec<Row>, DataError> {
+    let newlines: Vec<usize> = body
+        .bytes()
+        .enumerate()
+        .filter(|(_, b)| *b == b'\n')
+        .map(|(i, _)| i)
+        .collect();
+    let line_of = |p: &csv::Position| {
+        newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1 + offset_lines
+    };
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .trim(csv::Trim::All)
+        .delimiter(delimiter)
+        .from_reader(body.as_bytes());
+    let mut rows: Vec<Row> = Vec::new();
+    for rec in rdr.records() {
+        let rec =
+            rec.map_err(|e| DataError::at(path, e.position().map(line_of), None, e.to_string()))?;
+        let line = rec
+            .position()
+            .map_or(rows.len() + 1 + offset_lines, line_of);
+        let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
+        if cells.iter().all(|c| c.is_empty()) {
+            continue;
+        }
+        rows.push((line, cells));
+    }
+    Ok(rows)
+}
+
+/// Remove and return the first row when it is a units row: every non-empty cell a unit or
+/// bracketed text, at least one of them a unit.
+fn take_unit_row(rows: &mut Vec<Row>) -> Option<Row> {
+    let (_, cells) = rows.first()?;
+    let non_empty: Vec<&String> = cells.iter().filter(|c| !c.is_empty()).collect();
+    let is_unitish = |c: &str| Unit::parse(c).is_some() || (c.starts_with('[') && c.ends_with(']'));
+    if !non_empty.is_empty()
+        && non_empty.iter().all(|c| is_unitish(c))
+        && non_empty.iter().any(|c| Unit::parse(c).is_some())
+    {
+        Some(rows.remove(0))
+    } else {
+        None
+    }
+}
+
+/// Column names compared without case, spacing or a trailing unit in brackets.
+fn normalise(name: &str) -> String {
+    name.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_lowercase()
+}
+
+/// Split `Ball Speed (mph)` / `Carry[yd]` into the name and the bracketed text.
+pub(super) fn split_header(h: &str) -> (String, Option<String>) {
+    let t = h.trim();
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if t.ends_with(close) {
+            if let Some(i) = t.rfind(open) {
+                let inner = &t[i + 1..t.len() - 1];
+                if Unit::parse(inner).is_some() {
+                    return (normalise(&t[..i]), Some(inner.trim().to_owned()));
+                }
+            }
+        }
+    }
+    (normalise(t), None)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn headers_split_units() {
+        assert_eq!(
+            split_header("Ball Speed (mph)"),
+            ("ball speed".into(), Some("mph".into()))
+        );
+        assert_eq!(
+            split_header("Carry[yd]"),
+            ("carry".into(), Some("yd".into()))
+        );
+        assert_eq!(split_header("Dyn.  Loft"), ("dyn. loft".into(), None));
+        assert_eq!(split_header("Club (name)"), ("club (name)".into(), None));
+    }
+}
