@@ -11,8 +11,9 @@ use smash::data::predictions::predictions_csv;
 use smash::data::shots::DEFAULT_GROUP;
 use smash::data::write_atomic;
 use smash::limits;
-use smash::model::{delivery_from_file_units, DeliveryVar};
+use smash::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use smash::physics::LaunchComponent;
+use smash::{ClubSpec, ImpactOutcome, Launch};
 use smash::predict::predict_table;
 
 /// Arguments of `smash predict`.
@@ -166,43 +167,58 @@ pub struct PredictArgs {
     pub flight_options: crate::flight::FlightOptions,
 }
 
-/// Run `smash predict`.
+/// Run `smash predict`: the shots-file form (`--shots`, `--out`) or the one-shot form.
 pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
     let club = read_club(&args.club)?;
-    if let Some(shots_path) = &args.shots {
-        let out = args.out.as_ref().expect("clap: --shots requires --out");
-        smash::data::safe_write::refuse_inputs(
-            &[("--out", out, false)],
-            &[("--shots", shots_path), ("--club", &args.club)],
-        )?;
-        let table = args.shots_format.read(shots_path)?;
-        let outcomes =
-            predict_table(&club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
-        for (shot, o) in table.shots.iter().zip(&outcomes) {
-            if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
-                bail!(
-                    "{}: shot '{}': the impact has no finite launch; check its delivery and the \
-                     club {}",
-                    shots_path.display(),
-                    shot.id,
-                    args.club.display()
-                );
-            }
-        }
-        let mut bytes = predictions_csv(&table, &outcomes);
-        if args.flight {
-            bytes = add_flight(&args, shots_path, &bytes, &outcomes)?;
-        }
-        write_atomic(out, &bytes)?;
-        eprintln!(
-            "predicted {} shot(s) with {} -> {}",
-            outcomes.len(),
-            club.name,
-            out.display()
-        );
-        return Ok(());
+    match &args.shots {
+        Some(shots_path) => predict_file(&args, &club, shots_path),
+        None => predict_one(&args, &club),
     }
+}
+
+/// Predict every shot of `shots_path` and write the predictions CSV (with flight columns under
+/// `--flight`) to `--out`; refuses a shot whose impact has no finite launch.
+fn predict_file(
+    args: &PredictArgs,
+    club: &ClubSpec,
+    shots_path: &std::path::Path,
+) -> anyhow::Result<()> {
+    let out = args.out.as_ref().expect("clap: --shots requires --out");
+    smash::data::safe_write::refuse_inputs(
+        &[("--out", out, false)],
+        &[("--shots", shots_path), ("--club", &args.club)],
+    )?;
+    let table = args.shots_format.read(shots_path)?;
+    let outcomes = predict_table(club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
+    for (shot, o) in table.shots.iter().zip(&outcomes) {
+        if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
+            bail!(
+                "{}: shot '{}': the impact has no finite launch; check its delivery and the \
+                 club {}",
+                shots_path.display(),
+                shot.id,
+                args.club.display()
+            );
+        }
+    }
+    let mut bytes = predictions_csv(&table, &outcomes);
+    if args.flight {
+        bytes = add_flight(args, shots_path, &bytes, &outcomes)?;
+    }
+    write_atomic(out, &bytes)?;
+    eprintln!(
+        "predicted {} shot(s) with {} -> {}",
+        outcomes.len(),
+        club.name,
+        out.display()
+    );
+    Ok(())
+}
+
+/// The one-shot form: check the delivery given by flags, solve its impact and print the launch
+/// (and its flight under `--flight`).
+fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
     let (Some(speed), Some(loft)) = (args.club_speed_mph, args.dynamic_loft_deg) else {
         bail!("give either --shots SHOTS.csv --out PRED.csv, or a delivery with at least --speed MPH and --loft DEG");
     };
@@ -232,8 +248,7 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         .model_for_group(&args.group)
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
     let outcome = model.solve(&delivery)?;
-    let launch = outcome.launch();
-    if !(limits::finite_launch(&launch) && outcome.smash_factor().is_finite()) {
+    if !(limits::finite_launch(&outcome.launch()) && outcome.smash_factor().is_finite()) {
         bail!(
             "the impact of this delivery ({} mph) with {} has no finite launch; check the \
              delivery and the club",
@@ -241,19 +256,36 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
             args.club.display()
         );
     }
-    let mut text = format!("{} (group {})\n", club.name, args.group);
+    let mut text = launch_text(args, &club.name, &values, &outcome);
+    if args.flight {
+        text.push_str(&flight_text(args, &outcome.launch())?);
+    }
+    crate::stdout::print(text)?;
+    Ok(())
+}
+
+/// The one-shot table: club and group, the delivery, the launch components and smash factor.
+fn launch_text(
+    args: &PredictArgs,
+    club_name: &str,
+    values: &[f64; N_DELIVERY],
+    outcome: &ImpactOutcome,
+) -> String {
+    let value = |v: DeliveryVar| limits::fmt_value(values[v.index()]);
+    let launch = outcome.launch();
+    let mut text = format!("{club_name} (group {})\n", args.group);
     // Writing to a String cannot fail.
     let _ = writeln!(
         text,
         "delivery: {} mph, loft {} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
-        limits::fmt_value(speed),
-        limits::fmt_value(loft),
-        limits::fmt_value(args.attack_angle_deg),
-        limits::fmt_value(args.club_path_deg),
-        limits::fmt_value(args.face_angle_deg),
-        limits::fmt_value(args.lie_tilt_deg),
-        limits::fmt_value(args.impact_y_mm),
-        limits::fmt_value(args.impact_z_mm)
+        value(DeliveryVar::ClubSpeed),
+        value(DeliveryVar::DynamicLoft),
+        value(DeliveryVar::AttackAngle),
+        value(DeliveryVar::ClubPath),
+        value(DeliveryVar::FaceAngle),
+        value(DeliveryVar::LieTilt),
+        value(DeliveryVar::ImpactY),
+        value(DeliveryVar::ImpactZ),
     );
     for c in LaunchComponent::ALL {
         let _ = writeln!(
@@ -270,26 +302,30 @@ pub fn run(args: PredictArgs) -> anyhow::Result<()> {
         "Smash factor",
         outcome.smash_factor()
     );
-    if args.flight {
-        let cfg = args.flight_options.config()?;
-        let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(&launch))
-            .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
-        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
-        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
-        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());
-        let _ = writeln!(text, "{:<14} {:>10.2} s", "Flight time", f.flight_time_s);
-        let _ = writeln!(
-            text,
-            "{:<14} {:>10.1} deg",
-            "Land angle",
-            f.land_angle_deg()
-        );
-        if let Some(t) = f.total_yd() {
-            let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
-        }
+    text
+}
+
+/// The one-shot flight lines (`--flight`): carry, offline, apex, flight time, land angle and
+/// total when the ground model gives one.
+fn flight_text(args: &PredictArgs, launch: &Launch) -> anyhow::Result<String> {
+    let cfg = args.flight_options.config()?;
+    let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(launch))
+        .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
+    let mut text = String::new();
+    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
+    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
+    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());
+    let _ = writeln!(text, "{:<14} {:>10.2} s", "Flight time", f.flight_time_s);
+    let _ = writeln!(
+        text,
+        "{:<14} {:>10.1} deg",
+        "Land angle",
+        f.land_angle_deg()
+    );
+    if let Some(t) = f.total_yd() {
+        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
     }
-    crate::stdout::print(text)?;
-    Ok(())
+    Ok(text)
 }
 
 /// Fly the predicted launches and append the flight columns to the predictions CSV.
