@@ -279,15 +279,34 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
     })
 }
 
-/// The human-readable report.
+/// The human-readable report: the parameter table, correlations, warnings (stand-ins, aliases,
+/// unidentifiable parameters), the fit's statistics, the shaft relation and the error tables.
 pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
     let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
+    let unidentified = cal.identifiability.unidentified();
     let mut s = format!(
         "Calibration ({}) of {} parameter(s) on {} shots\n\n",
         cal.method.name(),
         cal.params.len(),
         n_shots
     );
+    s.push_str(&parameter_table(cal, &labels, &unidentified));
+    s.push_str(&correlation_table(cal, &labels));
+    s.push_str(&warnings(cal, &labels, &unidentified));
+    s.push_str(&fit_statistics(cal, &labels));
+    s.push_str(&shaft_relation_text(cal));
+    s.push_str("\nErrors (model − measured), per group:\n");
+    s.push_str(&error_tables_side_by_side(
+        &cal.before,
+        &cal.after,
+        ("before (nominal)", "after (calibrated)"),
+    ));
+    s
+}
+
+/// One row per parameter: value, standard error, t, unit, plausible range and notes (at a
+/// bound, not identifiable, implausible).
+fn parameter_table(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> String {
     let mut t = TextTable::new([
         "parameter",
         "value",
@@ -297,7 +316,6 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         "plausible",
         "note",
     ]);
-    let unidentified = cal.identifiability.unidentified();
     for (j, p) in cal.params.iter().enumerate() {
         let mut note = Vec::new();
         if p.at_bound {
@@ -324,21 +342,31 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             note.join(", "),
         ]);
     }
-    s.push_str(&t.render());
-    if let Some(c) = &cal.correlation {
-        if c.nrows() > 1 {
-            s.push_str("\nCorrelation of the estimates:\n");
-            let mut header = vec![String::new()];
-            header.extend((0..c.ncols()).map(|j| format!("[{j}]")));
-            let mut t = TextTable::new(header);
-            for i in 0..c.nrows() {
-                let mut row = vec![format!("[{i}] {}", labels[i])];
-                row.extend((0..c.ncols()).map(|j| format!("{:+.3}", c[(i, j)])));
-                t.row(row);
-            }
-            s.push_str(&t.render());
-        }
+    t.render()
+}
+
+/// The correlation matrix of the estimates, when more than one parameter was fitted.
+fn correlation_table(cal: &Calibration, labels: &[String]) -> String {
+    let Some(c) = cal.correlation.as_ref().filter(|c| c.nrows() > 1) else {
+        return String::new();
+    };
+    let mut s = String::from("\nCorrelation of the estimates:\n");
+    let mut header = vec![String::new()];
+    header.extend((0..c.ncols()).map(|j| format!("[{j}]")));
+    let mut t = TextTable::new(header);
+    for i in 0..c.nrows() {
+        let mut row = vec![format!("[{i}] {}", labels[i])];
+        row.extend((0..c.ncols()).map(|j| format!("{:+.3}", c[(i, j)])));
+        t.row(row);
     }
+    s.push_str(&t.render());
+    s
+}
+
+/// Warnings about what the estimates mean: stand-ins outside their plausible range, aliased
+/// parameters, parameters these shots cannot identify.
+fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> String {
+    let mut s = String::new();
     for p in &cal.params {
         if let Some(w) = honest::stand_in(p) {
             s.push_str(&format!(
@@ -364,7 +392,13 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
                 .join(", ")
         ));
     }
-    s.push_str(&format!(
+    s
+}
+
+/// The fit's statistics: chi2, information criteria, noise scales, the solver's work and the
+/// paper's stage of each parameter.
+fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
+    let mut s = format!(
         "\nchi2 = {:.2} (nominal model: {:.2}) over N = {} residuals, p = {}: reduced chi2 = {:.4}, \
          AIC = {:.2}, BIC = {:.2}\n",
         cal.chi2,
@@ -374,7 +408,7 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         cal.reduced_chi2,
         cal.aic,
         cal.bic
-    ));
+    );
     s.push_str("noise scales (robust, from the calibrated residuals): ");
     s.push_str(
         &LaunchComponent::ALL
@@ -409,24 +443,25 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
             ));
         }
     }
-    if let Some(r) = &cal.shaft_relation {
-        s.push_str("\nAdded mass against shaft mass (the paper's Figure 3):\n");
-        for (g, m, dm, se) in &r.points {
-            s.push_str(&format!(
-                "  group {g}: shaft {m:.1} g, added mass {dm:.3} ± {} g\n",
-                se.map_or("n/a".into(), |e| format!("{e:.3}"))
-            ));
-        }
+    s
+}
+
+/// Added mass against shaft mass per group with its fitted line (the paper's Figure 3), when
+/// the calibration has one.
+fn shaft_relation_text(cal: &Calibration) -> String {
+    let Some(r) = &cal.shaft_relation else {
+        return String::new();
+    };
+    let mut s = String::from("\nAdded mass against shaft mass (the paper's Figure 3):\n");
+    for (g, m, dm, se) in &r.points {
         s.push_str(&format!(
-            "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({} groups)\n",
-            r.line.slope, r.line.intercept, r.line.r, r.line.n
+            "  group {g}: shaft {m:.1} g, added mass {dm:.3} ± {} g\n",
+            se.map_or("n/a".into(), |e| format!("{e:.3}"))
         ));
     }
-    s.push_str("\nErrors (model − measured), per group:\n");
-    s.push_str(&error_tables_side_by_side(
-        &cal.before,
-        &cal.after,
-        ("before (nominal)", "after (calibrated)"),
+    s.push_str(&format!(
+        "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({} groups)\n",
+        r.line.slope, r.line.intercept, r.line.r, r.line.n
     ));
     s
 }
