@@ -209,166 +209,209 @@ fn contact_impact(cw: &ContactWorld, d: &Delivery) -> Result<(Launch, f64, f64),
 
 /// Generate the experiment of `cfg` with `base` as the nominal club (its own effects kept).
 pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthError> {
+    let models = group_models(cfg, base)?;
+    let tendencies = golfer_tendencies(cfg);
+    let width = cfg.golfers.to_string().len().max(2);
+    let swing_width = cfg.swings_per_golfer.to_string().len().max(2);
+    let mut shots = Vec::with_capacity(cfg.n_shots());
+    let mut redrawn = 0;
+    let mut k: u64 = 0;
+    for (group, models) in cfg.groups.iter().zip(&models) {
+        for (golfer, tendency) in tendencies.iter().enumerate() {
+            for swing in 0..cfg.swings_per_golfer {
+                k += 1;
+                let golfer = format!("G{:0width$}", golfer + 1);
+                let who = Swinger {
+                    id: format!("{}-{}-{:0swing_width$}", group.name, golfer, swing + 1),
+                    group,
+                    golfer,
+                    tendency,
+                };
+                let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
+                rng.set_stream(k);
+                let (shot, redraws) = play_shot(cfg, models, &who, &mut rng)?;
+                redrawn += redraws;
+                shots.push(shot);
+            }
+        }
+    }
+    Ok(SynthRun { shots, redrawn })
+}
+
+/// The models one group's shots are played with.
+struct GroupModels {
+    /// The world's: the base club with the hidden effects.
+    world: ImpactModel,
+    /// The base club's: the engine must be able to solve the measured delivery with it, or
+    /// comparing would fail on a shot the world played (such draws are redrawn too).
+    base: ImpactModel,
+    /// The contact world, when configured (its damping calibrated once per group, not per shot).
+    contact: Option<ContactWorld>,
+}
+
+/// The models of every group, in `cfg.groups` order.
+fn group_models(cfg: &SynthConfig, base: &ClubSpec) -> Result<Vec<GroupModels>, SynthError> {
+    let world_error = |group: &str| {
+        let group = group.to_owned();
+        move |source| SynthError::World { group, source }
+    };
     let mut effects = base.effects.clone();
     effects.extend(cfg.hidden.iter().cloned());
-    let world_club = base
-        .with_effects(effects)
-        .map_err(|source| SynthError::World {
-            group: "all".into(),
-            source,
-        })?;
-    let world_models: Vec<ImpactModel> = cfg
+    let world_club = base.with_effects(effects).map_err(world_error("all"))?;
+    let world: Vec<ImpactModel> = cfg
         .groups
         .iter()
-        .map(|g| {
-            world_club
-                .model_for_group(&g.name)
-                .map_err(|source| SynthError::World {
-                    group: g.name.clone(),
-                    source,
-                })
-        })
+        .map(|g| world_club.model_for_group(&g.name).map_err(world_error(&g.name)))
         .collect::<Result<_, _>>()?;
-    // The engine must be able to solve the measured delivery with the base club, or comparing
-    // would fail on a shot the world played: such draws are redrawn too.
-    let base_models: Vec<ImpactModel> = cfg
+    let base: Vec<ImpactModel> = cfg
         .groups
         .iter()
-        .map(|g| {
-            base.model_for_group(&g.name)
-                .map_err(|source| SynthError::World {
-                    group: g.name.clone(),
-                    source,
-                })
-        })
+        .map(|g| base.model_for_group(&g.name).map_err(world_error(&g.name)))
         .collect::<Result<_, _>>()?;
-
-    // The contact world's damping is calibrated once per group, not per shot.
-    let contact_worlds: Vec<Option<ContactWorld>> = world_models
+    let contact: Vec<Option<ContactWorld>> = world
         .iter()
         .zip(&cfg.groups)
         .map(|(m, g)| {
             cfg.world
                 .contact
                 .map(|c| {
-                    ContactWorld::new(m, c).map_err(|problem| SynthError::World {
-                        group: g.name.clone(),
-                        source: ParamError {
+                    ContactWorld::new(m, c).map_err(|problem| {
+                        world_error(&g.name)(ParamError {
                             quantity: "world.contact",
                             problem,
-                        },
+                        })
                     })
                 })
                 .transpose()
         })
         .collect::<Result<_, _>>()?;
+    Ok(world
+        .into_iter()
+        .zip(base)
+        .zip(contact)
+        .map(|((world, base), contact)| GroupModels {
+            world,
+            base,
+            contact,
+        })
+        .collect())
+}
 
+/// Each golfer's tendency per delivery variable, `mean + between·z`, drawn from stream 0.
+fn golfer_tendencies(cfg: &SynthConfig) -> Vec<[f64; N_DELIVERY]> {
     let mut golfer_rng = ChaCha8Rng::seed_from_u64(cfg.seed);
     golfer_rng.set_stream(0);
-    let tendencies: Vec<[f64; N_DELIVERY]> = (0..cfg.golfers)
+    (0..cfg.golfers)
         .map(|_| {
             let z: [f64; N_DELIVERY] = normals(&mut golfer_rng);
             std::array::from_fn(|i| cfg.delivery[i].mean + cfg.delivery[i].between * z[i])
         })
-        .collect();
+        .collect()
+}
 
-    let width = cfg.golfers.to_string().len().max(2);
-    let swing_width = cfg.swings_per_golfer.to_string().len().max(2);
-    let mut shots = Vec::with_capacity(cfg.n_shots());
-    let mut redrawn = 0;
-    let mut k: u64 = 0;
-    for (gi, group) in cfg.groups.iter().enumerate() {
-        for (golfer, tendency) in tendencies.iter().enumerate() {
-            for swing in 0..cfg.swings_per_golfer {
-                k += 1;
-                let golfer_name = format!("G{:0width$}", golfer + 1);
-                let id = format!("{}-{}-{:0swing_width$}", group.name, golfer_name, swing + 1);
-                let mut rng = ChaCha8Rng::seed_from_u64(cfg.seed);
-                rng.set_stream(k);
-                let mut attempts = 0;
-                let shot = loop {
-                    attempts += 1;
-                    let z: [f64; N_DELIVERY] = normals(&mut rng);
-                    let clean: [f64; N_DELIVERY] =
-                        std::array::from_fn(|i| tendency[i] + cfg.delivery[i].within * z[i]);
-                    let zd: [f64; N_DELIVERY] = normals(&mut rng);
-                    let zl: [f64; 5] = normals(&mut rng);
-                    let reject = |why: String| Err::<SynthShot, String>(why);
-                    let r = (|| {
-                        let (impact_y, impact_z) = (
-                            clean[DeliveryVar::ImpactY.index()],
-                            clean[DeliveryVar::ImpactZ.index()],
-                        );
-                        if impact_y.abs() > cfg.max_abs_impact_y_mm
-                            || impact_z.abs() > cfg.max_abs_impact_z_mm
-                        {
-                            return reject(format!(
-                                "impact ({impact_y:.1}, {impact_z:.1}) mm is off the face limits"
-                            ));
-                        }
-                        if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
-                            return reject("club speed ≤ 0".into());
-                        }
-                        let clean_si = delivery_from_file_units(&clean);
-                        let (truth, cor, u1n) = match &contact_worlds[gi] {
-                            Some(cw) => {
-                                let mut d = clean_si;
-                                if let Some(g) = cfg.world.loft_gain {
-                                    d.dynamic_loft_rad *= 1.0 + g;
-                                }
-                                contact_impact(cw, &d)?
-                            }
-                            None => world_impact(&world_models[gi], &cfg.world, &clean_si)?,
-                        };
-                        let measured: [f64; N_DELIVERY] =
-                            std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
-                        if !(measured[DeliveryVar::ClubSpeed.index()] > 0.0) {
-                            return reject("measured club speed ≤ 0".into());
-                        }
-                        base_models[gi]
-                            .solve(&delivery_from_file_units(&measured))
-                            .map_err(|e| format!("measured delivery: {e}"))?;
-                        let true_launch = PerComponent(truth.to_file_units());
-                        let launch = PerComponent::from_fn(|c| {
-                            true_launch[c] + cfg.launch_noise[c] * zl[c.index()]
-                        });
-                        // What is written must read back: every value in its physical range.
-                        for (v, x) in DeliveryVar::ALL.iter().zip(measured) {
-                            v.range().check(x)?;
-                        }
-                        for (c, x) in launch.pairs() {
-                            crate::data::shots::measured_range(c).check(*x)?;
-                        }
-                        Ok(SynthShot {
-                            id: id.clone(),
-                            group: group.name.clone(),
-                            golfer: golfer_name.clone(),
-                            shaft_mass_g: group.shaft_mass_g,
-                            clean_delivery: clean,
-                            delivery: measured,
-                            true_launch,
-                            launch,
-                            cor_effective: cor,
-                            normal_approach_speed_m_s: u1n,
-                        })
-                    })();
-                    match r {
-                        Ok(s) => break s,
-                        Err(why) if attempts > cfg.max_redraws_per_shot => {
-                            return Err(SynthError::Unplayable {
-                                shot_id: id,
-                                attempts,
-                                last: why,
-                            })
-                        }
-                        Err(_) => redrawn += 1,
-                    }
-                };
-                shots.push(shot);
+/// Who swings a shot: its id, group, golfer and the golfer's tendency.
+struct Swinger<'a> {
+    id: String,
+    group: &'a GroupSpec,
+    golfer: String,
+    tendency: &'a [f64; N_DELIVERY],
+}
+
+/// Draw swings from `rng` until one is playable; returns it and how many were redrawn.
+/// More than `max_redraws_per_shot` redraws is an error naming the last problem.
+fn play_shot(
+    cfg: &SynthConfig,
+    models: &GroupModels,
+    who: &Swinger,
+    rng: &mut ChaCha8Rng,
+) -> Result<(SynthShot, usize), SynthError> {
+    let mut attempts = 0;
+    loop {
+        attempts += 1;
+        match draw_swing(cfg, models, who, rng) {
+            Ok(shot) => return Ok((shot, attempts - 1)),
+            Err(why) if attempts > cfg.max_redraws_per_shot => {
+                return Err(SynthError::Unplayable {
+                    shot_id: who.id.clone(),
+                    attempts,
+                    last: why,
+                })
             }
+            Err(_) => {}
         }
     }
-    Ok(SynthRun { shots, redrawn })
+}
+
+/// One draw of a swing: the clean delivery, its true launch in the world, and the measured
+/// delivery and launch with their noise. Rejected (with the reason) when the impact is off the
+/// face limits, the club speed is not positive, either model cannot solve it, or a value would
+/// not read back from the shots file.
+fn draw_swing(
+    cfg: &SynthConfig,
+    models: &GroupModels,
+    who: &Swinger,
+    rng: &mut ChaCha8Rng,
+) -> Result<SynthShot, String> {
+    // Every draw takes all its random numbers first, so a rejection does not shift the stream.
+    let z: [f64; N_DELIVERY] = normals(rng);
+    let clean: [f64; N_DELIVERY] =
+        std::array::from_fn(|i| who.tendency[i] + cfg.delivery[i].within * z[i]);
+    let zd: [f64; N_DELIVERY] = normals(rng);
+    let zl: [f64; 5] = normals(rng);
+    let (impact_y, impact_z) = (
+        clean[DeliveryVar::ImpactY.index()],
+        clean[DeliveryVar::ImpactZ.index()],
+    );
+    if impact_y.abs() > cfg.max_abs_impact_y_mm || impact_z.abs() > cfg.max_abs_impact_z_mm {
+        return Err(format!(
+            "impact ({impact_y:.1}, {impact_z:.1}) mm is off the face limits"
+        ));
+    }
+    if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
+        return Err("club speed ≤ 0".into());
+    }
+    let clean_si = delivery_from_file_units(&clean);
+    let (truth, cor, u1n) = match &models.contact {
+        Some(cw) => {
+            let mut d = clean_si;
+            if let Some(g) = cfg.world.loft_gain {
+                d.dynamic_loft_rad *= 1.0 + g;
+            }
+            contact_impact(cw, &d)?
+        }
+        None => world_impact(&models.world, &cfg.world, &clean_si)?,
+    };
+    let measured: [f64; N_DELIVERY] =
+        std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
+    if !(measured[DeliveryVar::ClubSpeed.index()] > 0.0) {
+        return Err("measured club speed ≤ 0".into());
+    }
+    models
+        .base
+        .solve(&delivery_from_file_units(&measured))
+        .map_err(|e| format!("measured delivery: {e}"))?;
+    let true_launch = PerComponent(truth.to_file_units());
+    let launch =
+        PerComponent::from_fn(|c| true_launch[c] + cfg.launch_noise[c] * zl[c.index()]);
+    // What is written must read back: every value in its physical range.
+    for (v, x) in DeliveryVar::ALL.iter().zip(measured) {
+        v.range().check(x)?;
+    }
+    for (c, x) in launch.pairs() {
+        crate::data::shots::measured_range(c).check(*x)?;
+    }
+    Ok(SynthShot {
+        id: who.id.clone(),
+        group: who.group.name.clone(),
+        golfer: who.golfer.clone(),
+        shaft_mass_g: who.group.shaft_mass_g,
+        clean_delivery: clean,
+        delivery: measured,
+        true_launch,
+        launch,
+        cor_effective: cor,
+        normal_approach_speed_m_s: u1n,
+    })
 }
 
 /// Column order of synthetic shots files.
