@@ -13,8 +13,8 @@ use smash::data::write_atomic;
 use smash::limits;
 use smash::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use smash::physics::LaunchComponent;
-use smash::{ClubSpec, ImpactOutcome, Launch};
 use smash::predict::predict_table;
+use smash::{ClubSpec, ImpactOutcome, Launch};
 
 /// Arguments of `smash predict`.
 #[derive(Debug, Args)]

@@ -261,7 +261,11 @@ fn group_models(cfg: &SynthConfig, base: &ClubSpec) -> Result<Vec<GroupModels>, 
     let world: Vec<ImpactModel> = cfg
         .groups
         .iter()
-        .map(|g| world_club.model_for_group(&g.name).map_err(world_error(&g.name)))
+        .map(|g| {
+            world_club
+                .model_for_group(&g.name)
+                .map_err(world_error(&g.name))
+        })
         .collect::<Result<_, _>>()?;
     let base: Vec<ImpactModel> = cfg
         .groups
@@ -391,8 +395,7 @@ fn draw_swing(
         .solve(&delivery_from_file_units(&measured))
         .map_err(|e| format!("measured delivery: {e}"))?;
     let true_launch = PerComponent(truth.to_file_units());
-    let launch =
-        PerComponent::from_fn(|c| true_launch[c] + cfg.launch_noise[c] * zl[c.index()]);
+    let launch = PerComponent::from_fn(|c| true_launch[c] + cfg.launch_noise[c] * zl[c.index()]);
     // What is written must read back: every value in its physical range.
     for (v, x) in DeliveryVar::ALL.iter().zip(measured) {
         v.range().check(x)?;

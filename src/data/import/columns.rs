@@ -217,7 +217,9 @@ impl ColumnAt<'_, '_> {
             .map(|s| self.parse_file_unit(path, to, s, table.header_line, "header"))
             .transpose()?;
         let r = match (&table.unit_row, from_row) {
-            (Some((line, _)), Some(s)) => Some(self.parse_file_unit(path, to, s, *line, "unit row")?),
+            (Some((line, _)), Some(s)) => {
+                Some(self.parse_file_unit(path, to, s, *line, "unit row")?)
+            }
             _ => None,
         };
         if let (Some(h), Some(r)) = (h, r) {

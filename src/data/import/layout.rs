@@ -154,9 +154,14 @@ fn check_launch(
     let spin_pair = has("backspin_rpm") && has("sidespin_rpm");
     let rate_axis = has("spin_rate_rpm") && has("spin_axis_deg");
     let launch_any = LAUNCH.iter().any(|c| has(c))
-        || ["backspin_rpm", "sidespin_rpm", "spin_rate_rpm", "spin_axis_deg"]
-            .iter()
-            .any(|c| has(c));
+        || [
+            "backspin_rpm",
+            "sidespin_rpm",
+            "spin_rate_rpm",
+            "spin_axis_deg",
+        ]
+        .iter()
+        .any(|c| has(c));
     let launch_all = LAUNCH.iter().all(|c| has(c)) && (spin_pair || rate_axis);
     if launch_any && !launch_all {
         return Err(DataError::at(

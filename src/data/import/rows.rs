@@ -139,7 +139,10 @@ impl RowAt<'_> {
 
     /// The numeric cells converted to the shots file's units, by target; `None` for an empty
     /// cell of an optional flight column.
-    fn values<'a>(&self, layout: &Layout<'_, 'a>) -> Result<Vec<(&'a str, Option<f64>)>, DataError> {
+    fn values<'a>(
+        &self,
+        layout: &Layout<'_, 'a>,
+    ) -> Result<Vec<(&'a str, Option<f64>)>, DataError> {
         let mut values = Vec::new();
         for r in layout.resolved {
             let Some(to) = r.target.unit() else { continue };
@@ -187,11 +190,7 @@ impl RowAt<'_> {
 
     /// The row's shots record: id, group and golfer, then the numeric columns (back and side
     /// spin from rate and axis, `impact_z_mm` from the signed heel–toe offset, when so laid out).
-    fn record(
-        &self,
-        layout: &Layout,
-        ids: &mut HashSet<String>,
-    ) -> Result<Vec<String>, DataError> {
+    fn record(&self, layout: &Layout, ids: &mut HashSet<String>) -> Result<Vec<String>, DataError> {
         let values = self.values(layout)?;
         let get = |name: &str| {
             values
@@ -215,17 +214,18 @@ impl RowAt<'_> {
             (get("backspin_rpm"), get("sidespin_rpm"))
         };
         for c in &layout.numeric {
-            let v = match *c {
-                "impact_z_mm" if layout.from_offset => get("impact_offset_mm").map(|o| {
-                    match layout.offset_side.expect("checked in the layout") {
-                        OffsetSide::Toe => o,
-                        OffsetSide::Heel => -o,
-                    }
-                }),
-                "backspin_rpm" => back,
-                "sidespin_rpm" => side,
-                c => get(c),
-            };
+            let v =
+                match *c {
+                    "impact_z_mm" if layout.from_offset => get("impact_offset_mm").map(|o| {
+                        match layout.offset_side.expect("checked in the layout") {
+                            OffsetSide::Toe => o,
+                            OffsetSide::Heel => -o,
+                        }
+                    }),
+                    "backspin_rpm" => back,
+                    "sidespin_rpm" => side,
+                    c => get(c),
+                };
             rec.push(v.map(fmt_f64).unwrap_or_default());
         }
         Ok(rec)
