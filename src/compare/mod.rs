@@ -761,7 +761,6 @@ mod tests {
                     id: format!("s{i}"),
                     group: "all".into(),
                     golfer: None,
-                    shaft_mass_g: None,
                     delivery: delivery_from_file_units(&v),
                     measured: Some(launch),
                 }
