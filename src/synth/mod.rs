@@ -87,12 +87,18 @@ pub struct SynthShot {
 impl SynthShot {
     /// The measured delivery in SI units, converted exactly as `read_shots` converts the file.
     pub fn measured_delivery(&self) -> Delivery {
-        delivery_from_file_units(&self.delivery)
+        Delivery {
+            shaft_mass_g: Some(self.shaft_mass_g),
+            ..delivery_from_file_units(&self.delivery)
+        }
     }
 
     /// The clean delivery in SI units.
     pub fn true_delivery(&self) -> Delivery {
-        delivery_from_file_units(&self.clean_delivery)
+        Delivery {
+            shaft_mass_g: Some(self.shaft_mass_g),
+            ..delivery_from_file_units(&self.clean_delivery)
+        }
     }
 
     /// The shot as the engine sees it after reading the shots file.
@@ -102,7 +108,6 @@ impl SynthShot {
             id: self.id.clone(),
             group: self.group.clone(),
             golfer: Some(self.golfer.clone()),
-            shaft_mass_g: Some(self.shaft_mass_g),
             delivery: self.measured_delivery(),
             measured: Some(Launch {
                 ball_speed_m_s: mph(l[0]),
@@ -374,7 +379,10 @@ fn draw_swing(
     if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
         return Err("club speed ≤ 0".into());
     }
-    let clean_si = delivery_from_file_units(&clean);
+    let clean_si = Delivery {
+        shaft_mass_g: Some(who.group.shaft_mass_g),
+        ..delivery_from_file_units(&clean)
+    };
     let (truth, cor, u1n) = match &models.contact {
         Some(cw) => {
             let mut d = clean_si;
@@ -392,7 +400,10 @@ fn draw_swing(
     }
     models
         .base
-        .solve(&delivery_from_file_units(&measured))
+        .solve(&Delivery {
+            shaft_mass_g: Some(who.group.shaft_mass_g),
+            ..delivery_from_file_units(&measured)
+        })
         .map_err(|e| format!("measured delivery: {e}"))?;
     let true_launch = PerComponent(truth.to_file_units());
     let launch = PerComponent::from_fn(|c| true_launch[c] + cfg.launch_noise[c] * zl[c.index()]);
