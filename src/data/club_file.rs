@@ -30,31 +30,31 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use nalgebra::{Matrix3, Vector3};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
-use super::{parse_toml, read_text, toml_key_error, DataError};
+use super::{read_text, DataError, TomlDoc};
 use crate::club::ClubSpec;
 #[cfg(test)]
 use crate::effects::EffectKind;
 use crate::effects::{Effect, EffectId};
-use crate::limits::{self, PhysicalRange};
+use crate::limits;
 use crate::physics::impact::DRIVER_HOSEL_MM;
 use crate::physics::{validate_inertia, ModelParams};
 use crate::units::{deg, g, gcm2, mm};
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawFile {
     club: RawClub,
     ball: RawBall,
-    #[serde(default)]
-    effect: Vec<Spanned<toml::Table>>,
-    #[serde(default)]
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
     define_effect: Vec<Spanned<super::effect_defs::RawDefinition>>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    effect: Vec<Spanned<toml::Table>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawClub {
     name: String,
@@ -68,40 +68,12 @@ struct RawClub {
     hosel_mm: Option<Spanned<[f64; 3]>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawBall {
     mass_g: Spanned<f64>,
     radius_mm: Spanned<f64>,
     inertia_gcm2: Spanned<f64>,
-}
-
-struct Ctx<'a> {
-    path: &'a Path,
-    text: &'a str,
-}
-
-impl Ctx<'_> {
-    fn err(
-        &self,
-        span: std::ops::Range<usize>,
-        key: &str,
-        message: impl Into<String>,
-    ) -> DataError {
-        toml_key_error(self.path, self.text, span.start, key, message)
-    }
-
-    /// A value in its physical range (see [`crate::limits`]).
-    fn in_range(
-        &self,
-        v: &Spanned<f64>,
-        key: &str,
-        range: PhysicalRange,
-    ) -> Result<f64, DataError> {
-        range
-            .check(*v.get_ref())
-            .map_err(|m| self.err(v.span(), key, m))
-    }
 }
 
 /// Read and validate a club file.
@@ -112,18 +84,13 @@ pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
 
 /// Parse and validate club-file text (`path` is used in messages only).
 pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
-    let ctx = Ctx { path, text };
-    let raw: RawFile = parse_toml(path, text, "a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
+    let ctx = TomlDoc::new(path, text);
+    let raw: RawFile = ctx.parse("a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
     // User-defined effects first, so that [[effect]] tables can name them.
     super::effect_defs::register_definitions(path, text, &raw.define_effect)?;
     let c = &raw.club;
-    let mass_g = ctx.in_range(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
-    let com = c.com_mm.get_ref();
-    for x in com {
-        limits::CLUB_COM_MM
-            .check(*x)
-            .map_err(|m| ctx.err(c.com_mm.span(), "club.com_mm", m))?;
-    }
+    let mass_g = ctx.ranged(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
+    let com = ctx.each_ranged(&c.com_mm, "club.com_mm", limits::CLUB_COM_MM)?;
     for x in c.inertia_gcm2.get_ref().iter().flatten() {
         limits::CLUB_INERTIA_GCM2
             .check(*x)
@@ -148,18 +115,11 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         None => None,
     };
     let hosel_mm = match &c.hosel_mm {
-        Some(h) => {
-            for x in h.get_ref() {
-                limits::HOSEL_MM
-                    .check(*x)
-                    .map_err(|m| ctx.err(h.span(), "club.hosel_mm", m))?;
-            }
-            *h.get_ref()
-        }
+        Some(h) => ctx.each_ranged(h, "club.hosel_mm", limits::HOSEL_MM)?,
         None => DRIVER_HOSEL_MM,
     };
-    let bulge_mm = ctx.in_range(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
-    let roll_mm = ctx.in_range(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
+    let bulge_mm = ctx.ranged(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
+    let roll_mm = ctx.ranged(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
     if bulge_mm < roll_mm {
         return Err(ctx.err(
             c.bulge_mm.span(),
@@ -172,9 +132,9 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         ));
     }
     let b = &raw.ball;
-    let ball_mass_g = ctx.in_range(&b.mass_g, "ball.mass_g", limits::BALL_MASS_G)?;
-    let ball_radius_mm = ctx.in_range(&b.radius_mm, "ball.radius_mm", limits::BALL_RADIUS_MM)?;
-    let ball_inertia = ctx.in_range(
+    let ball_mass_g = ctx.ranged(&b.mass_g, "ball.mass_g", limits::BALL_MASS_G)?;
+    let ball_radius_mm = ctx.ranged(&b.radius_mm, "ball.radius_mm", limits::BALL_RADIUS_MM)?;
+    let ball_inertia = ctx.ranged(
         &b.inertia_gcm2,
         "ball.inertia_gcm2",
         limits::BALL_INERTIA_GCM2,
@@ -227,11 +187,11 @@ pub fn parse_effect_table(
     index: usize,
     table: &Spanned<toml::Table>,
 ) -> Result<Effect, DataError> {
-    parse_effect(&Ctx { path, text }, array, index, table)
+    parse_effect(&TomlDoc::new(path, text), array, index, table)
 }
 
 fn parse_effect(
-    ctx: &Ctx<'_>,
+    ctx: &TomlDoc<'_>,
     array: &str,
     index: usize,
     table: &Spanned<toml::Table>,
@@ -250,10 +210,12 @@ fn parse_effect(
         }
     };
     let kind = EffectId::from_name(name).ok_or_else(|| {
+        let names = EffectId::all_names();
+        let hint = super::toml_check::did_you_mean(name, names.split(", "))
+            .map_or_else(String::new, |m| format!(" (did you mean '{m}'?)"));
         here(format!(
-            "unknown effect '{name}'; the library has: {} (a user-defined effect needs its \
-             [[define_effect]] table in this file or an --effect-defs file)",
-            EffectId::all_names()
+            "unknown effect '{name}'{hint}; the library has: {names} (a user-defined effect \
+             needs its [[define_effect]] table in this file or an --effect-defs file)",
         ))
     })?;
     let group = match t.get("group") {
@@ -271,9 +233,11 @@ fn parse_effect(
     };
     for key in t.keys() {
         if key != "name" && key != "group" && !specs.iter().any(|p| p.key == key) {
+            let keys = allowed();
+            let hint = super::toml_check::did_you_mean(key, keys.split(", "))
+                .map_or_else(String::new, |m| format!(" (did you mean `{m}`?)"));
             return Err(here(format!(
-                "{name}: unknown key `{key}`; allowed: {}",
-                allowed()
+                "{name}: unknown key `{key}`{hint}; allowed: {keys}"
             )));
         }
     }
@@ -313,64 +277,72 @@ pub fn club_toml_checked(spec: &ClubSpec, comment: &str, path: &Path) -> Result<
     Ok(text)
 }
 
+/// An effect as a club file's `[[effect]]` table: `name`, its parameters, optional `group`.
+pub fn effect_table(e: &Effect) -> toml::Table {
+    let mut t = toml::Table::new();
+    t.insert(
+        "name".into(),
+        toml::Value::String(e.kind().name().to_owned()),
+    );
+    for (spec, v) in e.kind().params().iter().zip(e.values()) {
+        t.insert(spec.key.to_owned(), toml::Value::Float(*v));
+    }
+    if let Some(g) = e.group() {
+        t.insert("group".into(), toml::Value::String(g.to_owned()));
+    }
+    t
+}
+
 /// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club.
+/// Written by serde from the reader's own raw structs.
 pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     let p = &spec.nominal;
-    let mut s = String::new();
-    for line in comment.lines() {
-        let _ = writeln!(s, "# {line}");
-    }
-    let _ = writeln!(s, "[club]");
-    let _ = writeln!(s, "name = {}", toml::Value::String(spec.name.clone()));
-    let _ = writeln!(s, "mass_g = {:?}", p.club_mass_kg * 1e3);
+    let sp = |x| Spanned::new(0..0, x);
     let c = p.club_com_m * 1e3;
-    let _ = writeln!(s, "com_mm = [{:?}, {:?}, {:?}]", c.x, c.y, c.z);
     let i = p.club_inertia_kgm2 * 1e7;
-    let _ = writeln!(
-        s,
-        "inertia_gcm2 = [[{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}]]",
-        i[(0, 0)],
-        i[(0, 1)],
-        i[(0, 2)],
-        i[(1, 0)],
-        i[(1, 1)],
-        i[(1, 2)],
-        i[(2, 0)],
-        i[(2, 1)],
-        i[(2, 2)]
-    );
-    let _ = writeln!(s, "cor = {:?}", p.cor);
-    if let Some(l) = spec.static_loft_rad {
-        let _ = writeln!(s, "loft_deg = {:?}", l.to_degrees());
-    }
-    let _ = writeln!(s, "bulge_mm = {:?}", p.bulge_m * 1e3);
-    let _ = writeln!(s, "roll_mm = {:?}", p.roll_m * 1e3);
     let h = p.hosel_m * 1e3;
-    if [h.x, h.y, h.z] != DRIVER_HOSEL_MM {
-        let _ = writeln!(s, "hosel_mm = [{:?}, {:?}, {:?}]", h.x, h.y, h.z);
-    }
-    let _ = writeln!(s, "\n[ball]");
-    let _ = writeln!(s, "mass_g = {:?}", p.ball_mass_kg * 1e3);
-    let _ = writeln!(s, "radius_mm = {:?}", p.ball_radius_m * 1e3);
-    let _ = writeln!(s, "inertia_gcm2 = {:?}", p.ball_inertia_kgm2 * 1e7);
+    let hosel = [h.x, h.y, h.z];
     // The definitions of the user-defined effects it uses, so the file stays usable alone.
+    let mut define_effect = Vec::new();
     let mut defined: Vec<&str> = Vec::new();
     for u in spec.effects.iter().filter_map(|e| e.kind().user()) {
         if !defined.contains(&u.name) {
             defined.push(u.name);
-            let _ = write!(s, "\n{}", u.toml);
+            define_effect.push(Spanned::new(0..0, super::effect_defs::raw_definition_of(u)));
         }
     }
-    for e in &spec.effects {
-        let _ = writeln!(s, "\n[[effect]]");
-        let _ = writeln!(s, "name = \"{}\"", e.kind().name());
-        for (spec, v) in e.kind().params().iter().zip(e.values()) {
-            let _ = writeln!(s, "{} = {:?}", spec.key, v);
-        }
-        if let Some(g) = e.group() {
-            let _ = writeln!(s, "group = {}", toml::Value::String(g.to_owned()));
-        }
+    let raw = RawFile {
+        club: RawClub {
+            name: spec.name.clone(),
+            mass_g: sp(p.club_mass_kg * 1e3),
+            com_mm: Spanned::new(0..0, [c.x, c.y, c.z]),
+            inertia_gcm2: Spanned::new(
+                0..0,
+                std::array::from_fn(|r| std::array::from_fn(|k| i[(r, k)])),
+            ),
+            cor: sp(p.cor),
+            loft_deg: spec.static_loft_rad.map(|l| sp(l.to_degrees())),
+            bulge_mm: sp(p.bulge_m * 1e3),
+            roll_mm: sp(p.roll_m * 1e3),
+            hosel_mm: (hosel != DRIVER_HOSEL_MM).then(|| Spanned::new(0..0, hosel)),
+        },
+        ball: RawBall {
+            mass_g: sp(p.ball_mass_kg * 1e3),
+            radius_mm: sp(p.ball_radius_m * 1e3),
+            inertia_gcm2: sp(p.ball_inertia_kgm2 * 1e7),
+        },
+        define_effect,
+        effect: spec
+            .effects
+            .iter()
+            .map(|e| Spanned::new(0..0, effect_table(e)))
+            .collect(),
+    };
+    let mut s = String::new();
+    for line in comment.lines() {
+        let _ = writeln!(s, "# {line}");
     }
+    s.push_str(&toml::to_string(&raw).expect("a club is plain TOML data"));
     s
 }
 

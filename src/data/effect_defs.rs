@@ -4,10 +4,10 @@
 
 use std::path::Path;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
-use super::{line_col, DataError};
+use super::{line_col, DataError, TomlDoc};
 use crate::effects::user::{register, Quantity, UserEffect, UserTermDef};
 use crate::effects::{EffectKind, ParamSpec, MAX_EFFECT_PARAMS};
 use crate::physics::expr::{ExprError, Program};
@@ -16,7 +16,7 @@ use crate::physics::user_terms::{
 };
 
 /// One `[[define_effect]]` table as written.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawDefinition {
     name: Spanned<String>,
@@ -38,7 +38,7 @@ pub struct RawDefinition {
     face_deg: Option<Spanned<String>>,
 }
 
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawParam {
     key: String,
@@ -52,7 +52,7 @@ struct RawParam {
     doc: Option<String>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawDefsFile {
     #[serde(default)]
@@ -67,9 +67,7 @@ pub fn read_effect_defs(path: &Path) -> Result<Vec<&'static UserEffect>, DataErr
 
 /// Parse effects-file text (`path` for messages) and register its definitions.
 pub fn parse_effect_defs(path: &Path, text: &str) -> Result<Vec<&'static UserEffect>, DataError> {
-    let raw: RawDefsFile = super::parse_toml(
-        path,
-        text,
+    let raw: RawDefsFile = TomlDoc::new(path, text).parse(
         "an effects file holds [[define_effect]] tables: name, doc, params = [{ key, unit, \
          default, lower, upper, plausible? }], and one or more of cor, et, mu, club_mass_g, \
          ball_dy_mm, ball_dz_mm, com_dx_mm, com_dy_mm, com_dz_mm, inertia_scale, loft_deg, \
@@ -118,7 +116,7 @@ pub fn register_definitions(
 }
 
 fn at(path: &Path, text: &str, offset: usize, key: &str, message: String) -> DataError {
-    super::toml_key_error(path, text, offset, key, message)
+    TomlDoc::new(path, text).err(offset..offset, key, message)
 }
 
 fn is_identifier(s: &str) -> bool {
@@ -169,7 +167,42 @@ fn compile_definition(
             ),
         ));
     }
-    // Parameters.
+    let specs = compile_params(d, name, &err_at)?;
+    let terms = compile_terms(path, text, &table_key, raw, name, &specs)?;
+    if terms.is_empty() {
+        return Err(err_at(
+            d.span().start,
+            "name",
+            format!(
+                "effect '{name}' sets no quantity; give one or more of {} as an expression",
+                Quantity::ALL.map(|q| q.key()).join(", ")
+            ),
+        ));
+    }
+    let doc = raw.doc.clone().unwrap_or_default();
+    let toml = definition_toml(name, &doc, &specs, &terms);
+    let name: &'static str = leak(name.to_owned());
+    let terms = terms
+        .into_iter()
+        .map(|t| &*Box::leak(Box::new(UserTermDef { effect: name, ..t })))
+        .collect();
+    Ok(UserEffect {
+        name,
+        doc: leak(doc),
+        params: Box::leak(specs.into_boxed_slice()),
+        terms,
+        toml,
+        source: path.display().to_string(),
+    })
+}
+
+/// The parameters of a definition, checked: names, bounds, defaults, plausible ranges.
+fn compile_params(
+    d: &Spanned<RawDefinition>,
+    name: &str,
+    err_at: &dyn Fn(usize, &str, String) -> DataError,
+) -> Result<Vec<ParamSpec>, DataError> {
+    let raw = d.get_ref();
     let pspan = raw
         .params
         .as_ref()
@@ -244,7 +277,18 @@ fn compile_definition(
             ),
         });
     }
-    // Quantities.
+    Ok(specs)
+}
+
+/// The quantities a definition sets, each expression compiled against its parameters.
+fn compile_terms(
+    path: &Path,
+    text: &str,
+    table_key: &str,
+    raw: &RawDefinition,
+    name: &str,
+    specs: &[ParamSpec],
+) -> Result<Vec<UserTermDef>, DataError> {
     let given: [(Quantity, &Option<Spanned<String>>); 12] = [
         (Quantity::Cor, &raw.cor),
         (Quantity::Et, &raw.et),
@@ -263,7 +307,7 @@ fn compile_definition(
     for (q, expr) in given {
         let Some(expr) = expr else { continue };
         let src = expr.get_ref().as_str();
-        let resolve = |n: &str| resolve(q, &specs, n);
+        let resolve = |n: &str| resolve(q, specs, n);
         let program =
             Program::compile(src, &resolve).map_err(|ExprError { column, message }| {
                 // Point at the character in the file when the string has no escapes.
@@ -296,31 +340,7 @@ fn compile_definition(
             text: leak(src.to_owned()),
         });
     }
-    if terms.is_empty() {
-        return Err(err_at(
-            d.span().start,
-            "name",
-            format!(
-                "effect '{name}' sets no quantity; give one or more of {} as an expression",
-                Quantity::ALL.map(|q| q.key()).join(", ")
-            ),
-        ));
-    }
-    let doc = raw.doc.clone().unwrap_or_default();
-    let toml = definition_toml(name, &doc, &specs, &terms);
-    let name: &'static str = leak(name.to_owned());
-    let terms = terms
-        .into_iter()
-        .map(|t| &*Box::leak(Box::new(UserTermDef { effect: name, ..t })))
-        .collect();
-    Ok(UserEffect {
-        name,
-        doc: leak(doc),
-        params: Box::leak(specs.into_boxed_slice()),
-        terms,
-        toml,
-        source: path.display().to_string(),
-    })
+    Ok(terms)
 }
 
 /// The variable number of `name` in an expression for quantity `q` with parameters `specs`.
@@ -366,35 +386,83 @@ fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, String> {
     ))
 }
 
+/// A definition as its raw `[[define_effect]]` table.
+fn raw_definition<'t>(
+    name: &str,
+    doc: &str,
+    specs: &[ParamSpec],
+    terms: impl Iterator<Item = (Quantity, &'t str)>,
+) -> RawDefinition {
+    let sp = |x: &str| Spanned::new(0..0, x.to_owned());
+    let params = specs
+        .iter()
+        .map(|p| RawParam {
+            key: p.key.to_owned(),
+            unit: p.unit.to_owned(),
+            default: p.default,
+            lower: p.lower,
+            upper: p.upper,
+            plausible: Some([p.plausible.0, p.plausible.1]),
+            doc: Some(p.doc.to_owned()),
+        })
+        .collect();
+    let mut raw = RawDefinition {
+        name: sp(name),
+        doc: Some(doc.to_owned()),
+        params: Some(Spanned::new(0..0, params)),
+        cor: None,
+        et: None,
+        mu: None,
+        club_mass_g: None,
+        ball_dy_mm: None,
+        ball_dz_mm: None,
+        com_dx_mm: None,
+        com_dy_mm: None,
+        com_dz_mm: None,
+        inertia_scale: None,
+        loft_deg: None,
+        face_deg: None,
+    };
+    for (q, text) in terms {
+        *raw.quantity_mut(q) = Some(sp(text));
+    }
+    raw
+}
+
+impl RawDefinition {
+    fn quantity_mut(&mut self, q: Quantity) -> &mut Option<Spanned<String>> {
+        match q {
+            Quantity::Cor => &mut self.cor,
+            Quantity::Et => &mut self.et,
+            Quantity::Mu => &mut self.mu,
+            Quantity::ClubMassG => &mut self.club_mass_g,
+            Quantity::BallDyMm => &mut self.ball_dy_mm,
+            Quantity::BallDzMm => &mut self.ball_dz_mm,
+            Quantity::ComDxMm => &mut self.com_dx_mm,
+            Quantity::ComDyMm => &mut self.com_dy_mm,
+            Quantity::ComDzMm => &mut self.com_dz_mm,
+            Quantity::InertiaScale => &mut self.inertia_scale,
+            Quantity::LoftDeg => &mut self.loft_deg,
+            Quantity::FaceDeg => &mut self.face_deg,
+        }
+    }
+}
+
+/// A registered user-defined effect as its `[[define_effect]]` table (for club files that use it).
+pub fn raw_definition_of(u: &UserEffect) -> RawDefinition {
+    raw_definition(
+        u.name,
+        u.doc,
+        u.params,
+        u.terms.iter().map(|t| (t.quantity, t.text)),
+    )
+}
+
 /// The canonical `[[define_effect]]` table of a definition.
 fn definition_toml(name: &str, doc: &str, specs: &[ParamSpec], terms: &[UserTermDef]) -> String {
-    use std::fmt::Write as _;
-    let s = |v: &str| toml::Value::String(v.to_owned()).to_string();
-    let mut t = String::new();
-    let _ = writeln!(t, "[[define_effect]]");
-    let _ = writeln!(t, "name = {}", s(name));
-    let _ = writeln!(t, "doc = {}", s(doc));
-    let _ = write!(t, "params = [");
-    for (i, p) in specs.iter().enumerate() {
-        if i > 0 {
-            let _ = write!(t, ", ");
-        }
-        let _ = write!(
-            t,
-            "{{ key = {}, unit = {}, default = {:?}, lower = {:?}, upper = {:?}, plausible = [{:?}, {:?}], doc = {} }}",
-            s(p.key),
-            s(p.unit),
-            p.default,
-            p.lower,
-            p.upper,
-            p.plausible.0,
-            p.plausible.1,
-            s(p.doc)
-        );
-    }
-    let _ = writeln!(t, "]");
-    for term in terms {
-        let _ = writeln!(t, "{} = {}", term.quantity.key(), s(term.text));
-    }
-    t
+    let raw = raw_definition(name, doc, specs, terms.iter().map(|t| (t.quantity, t.text)));
+    let file = RawDefsFile {
+        define_effect: vec![Spanned::new(0..0, raw)],
+    };
+    toml::to_string(&file).expect("a definition is plain TOML data")
 }

@@ -13,6 +13,9 @@ pub mod number;
 pub mod predictions;
 pub mod safe_write;
 pub mod shots;
+pub mod toml_check;
+
+pub use toml_check::{parse_toml, toml_key_error, TomlDoc};
 
 use std::fmt;
 use std::io::Write;
@@ -108,48 +111,6 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
         let _ = std::fs::remove_file(&tmp);
         DataError::file(path, format!("cannot write: {e}"))
     })
-}
-
-/// Deserialize TOML `text` (strict types and keys come from `T`'s serde attributes). A syntax or
-/// schema error names the file, line and column; `layout` (what such a file holds) is appended
-/// so the message says what is allowed.
-pub fn parse_toml<T: serde::de::DeserializeOwned>(
-    path: &Path,
-    text: &str,
-    layout: &str,
-) -> Result<T, DataError> {
-    toml::from_str(text).map_err(|e| {
-        let (line, place) = match e.span() {
-            Some(span) => {
-                let (line, col) = line_col(text, span.start);
-                (Some(line), Some(format!("column {col}")))
-            }
-            None => (None, None),
-        };
-        DataError::at(
-            path,
-            line,
-            place,
-            format!("{} ({layout})", e.message().trim()),
-        )
-    })
-}
-
-/// An error about the TOML key `key` whose value sits at byte `offset` of `text`.
-pub fn toml_key_error(
-    path: &Path,
-    text: &str,
-    offset: usize,
-    key: &str,
-    message: impl Into<String>,
-) -> DataError {
-    let (line, col) = line_col(text, offset);
-    DataError::at(
-        path,
-        Some(line),
-        Some(format!("column {col}: key {key}")),
-        message,
-    )
 }
 
 /// Write several files as one unit: all are written to temporaries first, then renamed into

@@ -22,7 +22,7 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 
-use super::{parse_toml, read_text, toml_key_error, DataError};
+use super::{read_text, DataError, TomlDoc};
 use crate::diagnose::noise_floor::{InstrumentClass, InstrumentNoise};
 use crate::model::DeliveryVar;
 use crate::physics::LaunchComponent;
@@ -46,82 +46,44 @@ pub fn read_noise_file(path: &Path) -> Result<InstrumentNoise, DataError> {
     parse_noise_file(path, &read_text(path)?)
 }
 
-fn class_names() -> String {
-    InstrumentClass::ALL.map(|c| c.name()).join(", ")
-}
-
 /// Parse an instrument-noise file's text (`path` names it in errors).
 pub fn parse_noise_file(path: &Path, text: &str) -> Result<InstrumentNoise, DataError> {
-    let raw: RawFile = parse_toml(
-        path,
-        text,
+    let doc = TomlDoc::new(path, text);
+    let raw: RawFile = doc.parse(
         "a noise file has a [noise] table (optional instrument = \"camera\"|\"radar\") with \
          [noise.delivery] and [noise.launch] standard deviations in file units",
     )?;
-    let err = |span: std::ops::Range<usize>, key: &str, msg: String| {
-        toml_key_error(path, text, span.start, key, msg)
-    };
     let mut noise = match &raw.noise.instrument {
         None => InstrumentClass::Camera.noise(),
-        Some(s) => InstrumentClass::from_name(s.get_ref())
-            .ok_or_else(|| {
-                err(
-                    s.span(),
-                    "noise.instrument",
-                    format!(
-                        "unknown instrument class '{}'; allowed: {}",
-                        s.get_ref(),
-                        class_names()
-                    ),
-                )
-            })?
-            .noise(),
-    };
-    noise.name = format!("{} (base {})", path.display(), noise.name);
-    let sd = |v: &Spanned<f64>, key: &str| -> Result<f64, DataError> {
-        let x = *v.get_ref();
-        if x.is_finite() && (0.0..=1e4).contains(&x) {
-            Ok(x)
-        } else {
-            Err(err(
-                v.span(),
-                key,
-                format!("must be a finite standard deviation in [0, 10000], got {x}"),
-            ))
+        Some(s) => {
+            let classes: Vec<(&str, InstrumentClass)> =
+                InstrumentClass::ALL.map(|c| (c.name(), c)).to_vec();
+            let what = "instrument class";
+            doc.one_of(s.span(), "noise.instrument", what, s.get_ref(), &classes)?
+                .noise()
         }
     };
+    noise.name = format!("{} (base {})", path.display(), noise.name);
+    let sd = |v: &Spanned<f64>, key: &str| {
+        doc.within(
+            v.span(),
+            key,
+            *v.get_ref(),
+            (0.0, 1e4),
+            "(standard deviation)",
+        )
+    };
+    let vars: Vec<(&str, DeliveryVar)> = DeliveryVar::ALL.map(|d| (d.column(), d)).to_vec();
     for (key, v) in raw.noise.delivery.iter().flatten() {
         let full = format!("noise.delivery.{key}");
-        let var = DeliveryVar::ALL
-            .into_iter()
-            .find(|d| d.column() == key)
-            .ok_or_else(|| {
-                err(
-                    v.span(),
-                    &full,
-                    format!(
-                        "unknown delivery variable; allowed: {}",
-                        DeliveryVar::ALL.map(|d| d.column()).join(", ")
-                    ),
-                )
-            })?;
+        let var = doc.one_of(v.span(), &full, "delivery variable", key, &vars)?;
         noise.delivery_sd[var.index()] = sd(v, &full)?;
     }
+    let components: Vec<(&str, LaunchComponent)> =
+        LaunchComponent::ALL.map(|c| (c.column(), c)).to_vec();
     for (key, v) in raw.noise.launch.iter().flatten() {
         let full = format!("noise.launch.{key}");
-        let c = LaunchComponent::ALL
-            .into_iter()
-            .find(|c| c.column() == key)
-            .ok_or_else(|| {
-                err(
-                    v.span(),
-                    &full,
-                    format!(
-                        "unknown launch component; allowed: {}",
-                        LaunchComponent::ALL.map(|c| c.column()).join(", ")
-                    ),
-                )
-            })?;
+        let c = doc.one_of(v.span(), &full, "launch component", key, &components)?;
         noise.launch_sd[c.index()] = sd(v, &full)?;
     }
     Ok(noise)

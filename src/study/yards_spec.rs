@@ -25,17 +25,16 @@
 //! so the rest of the study file's parser does not know about it; errors name the file, line and
 //! key like the rest of the study file.
 
-use std::fmt::Write as _;
 use std::path::Path;
 
 use nalgebra::Vector3;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
 use super::design::DiscretionaryMass;
 use super::yards::{HeadConstraints, YardGoal};
 use crate::club::ClubSpec;
-use crate::data::{toml_key_error, DataError};
+use crate::data::{DataError, TomlDoc};
 use crate::flight::{AeroModel, Atmosphere};
 use crate::limits;
 use crate::units::{g, mm};
@@ -76,7 +75,7 @@ struct Outer {
     yards: Option<Spanned<RawYards>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawYards {
     static_loft_deg: Spanned<f64>,
@@ -88,7 +87,7 @@ struct RawYards {
     constraints: Option<Spanned<RawConstraints>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawMass {
     mass_g: Spanned<f64>,
@@ -96,20 +95,25 @@ struct RawMass {
     bounds_mm: Spanned<[[f64; 2]; 3]>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawOptimise {
     goal: Spanned<String>,
     max_iters: Option<Spanned<i64>>,
 }
 
-#[derive(Deserialize)]
+#[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawConstraints {
     mass_g: Option<Spanned<[f64; 2]>>,
     moi_vertical_max_gcm2: Option<Spanned<f64>>,
     com_box_mm: Option<Spanned<[[f64; 2]; 3]>>,
 }
+
+const GOALS: [(&str, YardGoal); 2] = [
+    ("max_mean_carry", YardGoal::MaxMeanCarry),
+    ("min_dispersion", YardGoal::MinDispersion),
+];
 
 /// Parse the `[yards]` table of a study file, if it has one. `has_distribution`: whether the
 /// study has a `[distribution]` (the robust metrics need it).
@@ -119,16 +123,12 @@ pub fn parse_yards(
     club: &ClubSpec,
     has_distribution: bool,
 ) -> Result<Option<YardsSpec>, DataError> {
-    let err = |span: std::ops::Range<usize>, key: &str, msg: String| {
-        toml_key_error(path, text, span.start, key, msg)
-    };
+    let doc = TomlDoc::new(path, text);
     // The whole file already parsed as TOML (the study parser ran first), so an error here is
     // in the `[yards]` table's own keys or types.
     let outer: Outer = toml::from_str(text).map_err(|e| {
-        let at = e.span().map_or(0, |s| s.start);
-        toml_key_error(
-            path,
-            text,
+        let at = e.span().unwrap_or(0..0);
+        doc.err(
             at,
             "yards",
             format!(
@@ -141,50 +141,46 @@ pub fn parse_yards(
     let Some(raw) = outer.yards else {
         return Ok(None);
     };
-    let span = raw.span();
-    let raw = raw.into_inner();
     if !has_distribution {
-        return Err(err(
-            span,
+        return Err(doc.err(
+            raw.span(),
             "yards",
             "needs the study's [distribution] table (the swing and impact scatter of the robust \
-             carry and dispersion metrics)"
-                .into(),
+             carry and dispersion metrics)",
         ));
     }
+    let raw = raw.into_inner();
     let loft = *raw.static_loft_deg.get_ref();
     if !(loft > 0.0 && loft < 90.0) {
-        return Err(err(
+        return Err(doc.err(
             raw.static_loft_deg.span(),
             "yards.static_loft_deg",
             format!("must be in (0, 90) degrees, got {loft}"),
         ));
     }
     let confidence = match &raw.confidence {
-        Some(c) => {
-            let v = *c.get_ref();
-            if !(v > 0.0 && v < 1.0) {
-                return Err(err(
-                    c.span(),
-                    "yards.confidence",
-                    format!("must be in (0, 1) (e.g. 0.95), got {v}"),
-                ));
-            }
-            v
+        Some(c) if !(*c.get_ref() > 0.0 && *c.get_ref() < 1.0) => {
+            return Err(doc.err(
+                c.span(),
+                "yards.confidence",
+                format!("must be in (0, 1) (e.g. 0.95), got {}", c.get_ref()),
+            ))
         }
+        Some(c) => *c.get_ref(),
         None => DEFAULT_CONFIDENCE,
     };
     let model = match &raw.model {
         Some(m) => {
-            let name = m.get_ref().clone();
-            if !crate::flight::aero::MODEL_NAMES.contains(&name.as_str()) {
-                return Err(err(
-                    m.span(),
-                    "yards.model",
-                    format!("unknown aerodynamic model '{name}' (allowed: fmm2022, nathan-lyu)"),
-                ));
-            }
-            name
+            let names = crate::flight::aero::MODEL_NAMES;
+            let allowed: Vec<(&str, &str)> = names.iter().map(|n| (*n, *n)).collect();
+            doc.one_of(
+                m.span(),
+                "yards.model",
+                "aerodynamic model",
+                m.get_ref(),
+                &allowed,
+            )?
+            .to_owned()
         }
         None => "fmm2022".into(),
     };
@@ -192,141 +188,21 @@ pub fn parse_yards(
         Some(a) => {
             let atm = *a.get_ref();
             atm.air()
-                .map_err(|e| err(a.span(), "yards.atmosphere", e.to_string()))?;
+                .map_err(|e| doc.err(a.span(), "yards.atmosphere", e.to_string()))?;
             atm
         }
         None => Atmosphere::default(),
     };
-    let mass = match &raw.mass {
-        None => None,
-        Some(m) => {
-            let m = m.get_ref();
-            let mg = *m.mass_g.get_ref();
-            let head_g = club.nominal.club_mass_kg * 1e3;
-            if !(mg > 0.0 && mg < head_g) {
-                return Err(err(
-                    m.mass_g.span(),
-                    "yards.mass.mass_g",
-                    format!("must be > 0 and below the head mass {head_g} g, got {mg}"),
-                ));
-            }
-            let at = *m.at_mm.get_ref();
-            for x in at {
-                limits::CLUB_COM_MM
-                    .check(x)
-                    .map_err(|msg| err(m.at_mm.span(), "yards.mass.at_mm", msg))?;
-            }
-            let b = *m.bounds_mm.get_ref();
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                let [lo, hi] = b[k];
-                if !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi) {
-                    return Err(err(
-                        m.bounds_mm.span(),
-                        "yards.mass.bounds_mm",
-                        format!(
-                            "the {axis} bounds [{lo}, {hi}] mm must be finite, lower < upper, \
-                             and contain 0 (the base design)"
-                        ),
-                    ));
-                }
-            }
-            Some((
-                DiscretionaryMass {
-                    mass_kg: g(mg),
-                    at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),
-                },
-                b,
-            ))
-        }
-    };
+    let mass = raw
+        .mass
+        .as_ref()
+        .map(|m| parse_mass(&doc, m.get_ref(), club))
+        .transpose()?;
     let optimise = match &raw.optimise {
         None => None,
-        Some(o) => {
-            let o_span = o.span();
-            let o = o.get_ref();
-            let goal = match o.goal.get_ref().as_str() {
-                "max_mean_carry" => YardGoal::MaxMeanCarry,
-                "min_dispersion" => YardGoal::MinDispersion,
-                other => {
-                    return Err(err(
-                        o.goal.span(),
-                        "yards.optimise.goal",
-                        format!("unknown goal '{other}' (allowed: max_mean_carry, min_dispersion)"),
-                    ))
-                }
-            };
-            let iters = match &o.max_iters {
-                Some(n) => {
-                    let v = *n.get_ref();
-                    if !(1..=10_000).contains(&v) {
-                        return Err(err(
-                            n.span(),
-                            "yards.optimise.max_iters",
-                            format!("must be 1 to 10000, got {v}"),
-                        ));
-                    }
-                    v as u64
-                }
-                None => DEFAULT_MAX_ITERS,
-            };
-            if mass.is_none() {
-                return Err(err(
-                    o_span,
-                    "yards.optimise",
-                    "needs [yards.mass] (the discretionary mass it moves)".into(),
-                ));
-            }
-            Some((goal, iters))
-        }
+        Some(o) => Some(parse_optimise(&doc, o, mass.is_some())?),
     };
-    let mut constraints = HeadConstraints {
-        mass_g: None,
-        moi_vertical_max_gcm2: None,
-        loft_deg: loft,
-        com_box_mm: None,
-    };
-    if let Some(c) = &raw.constraints {
-        let c = c.get_ref();
-        if let Some(m) = &c.mass_g {
-            let [lo, hi] = *m.get_ref();
-            if !(lo > 0.0 && lo < hi && hi.is_finite()) {
-                return Err(err(
-                    m.span(),
-                    "yards.constraints.mass_g",
-                    format!("must be [min, max] g with 0 < min < max, got [{lo}, {hi}]"),
-                ));
-            }
-            constraints.mass_g = Some([lo, hi]);
-        }
-        if let Some(m) = &c.moi_vertical_max_gcm2 {
-            let v = *m.get_ref();
-            if !(v > 0.0 && v.is_finite()) {
-                return Err(err(
-                    m.span(),
-                    "yards.constraints.moi_vertical_max_gcm2",
-                    format!(
-                        "must be a finite number > 0 g·cm² (the Rules limit for woods is 5900 + \
-                         100 tolerance), got {v}"
-                    ),
-                ));
-            }
-            constraints.moi_vertical_max_gcm2 = Some(v);
-        }
-        if let Some(b) = &c.com_box_mm {
-            let bx = *b.get_ref();
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                let [lo, hi] = bx[k];
-                if !(lo.is_finite() && hi.is_finite() && lo < hi) {
-                    return Err(err(
-                        b.span(),
-                        "yards.constraints.com_box_mm",
-                        format!("the {axis} range [{lo}, {hi}] mm must be finite with min < max"),
-                    ));
-                }
-            }
-            constraints.com_box_mm = Some(bx);
-        }
-    }
+    let constraints = parse_constraints(&doc, raw.constraints.as_ref(), loft)?;
     Ok(Some(YardsSpec {
         static_loft_deg: loft,
         confidence,
@@ -338,64 +214,164 @@ pub fn parse_yards(
     }))
 }
 
-/// The `[yards]` table as study-file text (every default written out), for the resolved
+fn parse_mass(
+    doc: &TomlDoc<'_>,
+    m: &RawMass,
+    club: &ClubSpec,
+) -> Result<(DiscretionaryMass, [[f64; 2]; 3]), DataError> {
+    let mg = *m.mass_g.get_ref();
+    let head_g = club.nominal.club_mass_kg * 1e3;
+    if !(mg > 0.0 && mg < head_g) {
+        return Err(doc.err(
+            m.mass_g.span(),
+            "yards.mass.mass_g",
+            format!("must be > 0 and below the head mass {head_g} g, got {mg}"),
+        ));
+    }
+    let at = doc.each_ranged(&m.at_mm, "yards.mass.at_mm", limits::CLUB_COM_MM)?;
+    let b = *m.bounds_mm.get_ref();
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let [lo, hi] = b[k];
+        if !(lo.is_finite() && hi.is_finite() && lo <= 0.0 && 0.0 <= hi && lo < hi) {
+            return Err(doc.err(
+                m.bounds_mm.span(),
+                "yards.mass.bounds_mm",
+                format!(
+                    "the {axis} bounds [{lo}, {hi}] mm must be finite, lower < upper, and \
+                     contain 0 (the base design)"
+                ),
+            ));
+        }
+    }
+    let mass = DiscretionaryMass {
+        mass_kg: g(mg),
+        at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),
+    };
+    Ok((mass, b))
+}
+
+fn parse_optimise(
+    doc: &TomlDoc<'_>,
+    o: &Spanned<RawOptimise>,
+    has_mass: bool,
+) -> Result<(YardGoal, u64), DataError> {
+    let r = o.get_ref();
+    let goal = doc.one_of(
+        r.goal.span(),
+        "yards.optimise.goal",
+        "goal",
+        r.goal.get_ref(),
+        &GOALS,
+    )?;
+    let iters = match &r.max_iters {
+        Some(n) => doc.count(n, "yards.optimise.max_iters", (1, 10_000))? as u64,
+        None => DEFAULT_MAX_ITERS,
+    };
+    if !has_mass {
+        return Err(doc.err(
+            o.span(),
+            "yards.optimise",
+            "needs [yards.mass] (the discretionary mass it moves)",
+        ));
+    }
+    Ok((goal, iters))
+}
+
+fn parse_constraints(
+    doc: &TomlDoc<'_>,
+    c: Option<&Spanned<RawConstraints>>,
+    loft_deg: f64,
+) -> Result<HeadConstraints, DataError> {
+    let mut constraints = HeadConstraints {
+        mass_g: None,
+        moi_vertical_max_gcm2: None,
+        loft_deg,
+        com_box_mm: None,
+    };
+    let Some(c) = c.map(Spanned::get_ref) else {
+        return Ok(constraints);
+    };
+    if let Some(m) = &c.mass_g {
+        let [lo, hi] = *m.get_ref();
+        if !(lo > 0.0 && lo < hi && hi.is_finite()) {
+            return Err(doc.err(
+                m.span(),
+                "yards.constraints.mass_g",
+                format!("must be [min, max] g with 0 < min < max, got [{lo}, {hi}]"),
+            ));
+        }
+        constraints.mass_g = Some([lo, hi]);
+    }
+    if let Some(m) = &c.moi_vertical_max_gcm2 {
+        constraints.moi_vertical_max_gcm2 = Some(doc.positive(
+            m,
+            "yards.constraints.moi_vertical_max_gcm2",
+            "g·cm²; the Rules limit for woods is 5900 + 100 tolerance",
+        )?);
+    }
+    if let Some(b) = &c.com_box_mm {
+        let bx = *b.get_ref();
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            let [lo, hi] = bx[k];
+            if !(lo.is_finite() && hi.is_finite() && lo < hi) {
+                return Err(doc.err(
+                    b.span(),
+                    "yards.constraints.com_box_mm",
+                    format!("the {axis} range [{lo}, {hi}] mm must be finite with min < max"),
+                ));
+            }
+        }
+        constraints.com_box_mm = Some(bx);
+    }
+    Ok(constraints)
+}
+
+/// The `[yards]` table as a study-file value (every default written out), for the resolved
 /// `study.toml`.
-pub fn yards_toml(y: &YardsSpec) -> String {
-    let mut t = String::new();
-    let _ = writeln!(t, "\n[yards]");
-    let _ = writeln!(t, "static_loft_deg = {:?}", y.static_loft_deg);
-    let _ = writeln!(t, "confidence = {:?}", y.confidence);
-    let _ = writeln!(t, "model = {}", toml::Value::String(y.model.clone()));
-    let a = &y.atmosphere;
-    let _ = writeln!(t, "\n[yards.atmosphere]");
-    let _ = writeln!(t, "temperature_c = {:?}", a.temperature_c);
-    if let Some(p) = a.pressure_hpa {
-        let _ = writeln!(t, "pressure_hpa = {p:?}");
-    }
-    if let Some(e) = a.elevation_m {
-        let _ = writeln!(t, "elevation_m = {e:?}");
-    }
-    let _ = writeln!(t, "humidity_pct = {:?}", a.humidity_pct);
-    let _ = writeln!(t, "wind_speed_m_s = {:?}", a.wind_speed_m_s);
-    let _ = writeln!(t, "wind_direction_deg = {:?}", a.wind_direction_deg);
-    let _ = writeln!(t, "wind_height_m = {:?}", a.wind_height_m);
-    let _ = writeln!(t, "roughness_m = {:?}", a.roughness_m);
-    if let Some((m, b)) = &y.mass {
-        let _ = writeln!(t, "\n[yards.mass]");
-        let _ = writeln!(t, "mass_g = {:?}", m.mass_kg * 1e3);
-        let at = m.at_m * 1e3;
-        let _ = writeln!(t, "at_mm = [{:?}, {:?}, {:?}]", at[0], at[1], at[2]);
-        let _ = writeln!(
-            t,
-            "bounds_mm = [[{:?}, {:?}], [{:?}, {:?}], [{:?}, {:?}]]",
-            b[0][0], b[0][1], b[1][0], b[1][1], b[2][0], b[2][1]
-        );
-    }
-    if let Some((goal, iters)) = &y.optimise {
-        let _ = writeln!(t, "\n[yards.optimise]");
-        let g = match goal {
-            YardGoal::MaxMeanCarry => "max_mean_carry",
-            YardGoal::MinDispersion => "min_dispersion",
-        };
-        let _ = writeln!(t, "goal = \"{g}\"");
-        let _ = writeln!(t, "max_iters = {iters}");
-    }
+pub fn yards_value(y: &YardsSpec) -> toml::Value {
+    let sp = |x| Spanned::new(0..0, x);
     let c = &y.constraints;
-    if c.mass_g.is_some() || c.moi_vertical_max_gcm2.is_some() || c.com_box_mm.is_some() {
-        let _ = writeln!(t, "\n[yards.constraints]");
-        if let Some([lo, hi]) = c.mass_g {
-            let _ = writeln!(t, "mass_g = [{lo:?}, {hi:?}]");
-        }
-        if let Some(v) = c.moi_vertical_max_gcm2 {
-            let _ = writeln!(t, "moi_vertical_max_gcm2 = {v:?}");
-        }
-        if let Some(b) = c.com_box_mm {
-            let _ = writeln!(
-                t,
-                "com_box_mm = [[{:?}, {:?}], [{:?}, {:?}], [{:?}, {:?}]]",
-                b[0][0], b[0][1], b[1][0], b[1][1], b[2][0], b[2][1]
-            );
-        }
-    }
-    t
+    let has_constraints =
+        c.mass_g.is_some() || c.moi_vertical_max_gcm2.is_some() || c.com_box_mm.is_some();
+    let raw = RawYards {
+        static_loft_deg: sp(y.static_loft_deg),
+        confidence: Some(sp(y.confidence)),
+        model: Some(Spanned::new(0..0, y.model.clone())),
+        atmosphere: Some(Spanned::new(0..0, y.atmosphere)),
+        mass: y.mass.as_ref().map(|(m, b)| {
+            let at = m.at_m * 1e3;
+            Spanned::new(
+                0..0,
+                RawMass {
+                    mass_g: sp(m.mass_kg * 1e3),
+                    at_mm: Spanned::new(0..0, [at.x, at.y, at.z]),
+                    bounds_mm: Spanned::new(0..0, *b),
+                },
+            )
+        }),
+        optimise: y.optimise.map(|(goal, iters)| {
+            let name = GOALS
+                .iter()
+                .find(|(_, g)| *g == goal)
+                .map_or("", |(n, _)| n);
+            Spanned::new(
+                0..0,
+                RawOptimise {
+                    goal: Spanned::new(0..0, name.to_owned()),
+                    max_iters: Some(Spanned::new(0..0, iters as i64)),
+                },
+            )
+        }),
+        constraints: has_constraints.then(|| {
+            Spanned::new(
+                0..0,
+                RawConstraints {
+                    mass_g: c.mass_g.map(|v| Spanned::new(0..0, v)),
+                    moi_vertical_max_gcm2: c.moi_vertical_max_gcm2.map(sp),
+                    com_box_mm: c.com_box_mm.map(|v| Spanned::new(0..0, v)),
+                },
+            )
+        }),
+    };
+    toml::Value::try_from(raw).expect("a resolved [yards] table is plain TOML data")
 }
