@@ -496,3 +496,92 @@ fn read_metrics(
     }
     Ok(push(cur.take())?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::shard_files;
+    use super::*;
+
+    /// A 2-variant 3 × 4 study, split in two shards written under `dir`.
+    fn shards(dir: &Path) -> Vec<PathBuf> {
+        let club = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml");
+        let text = format!(
+            "[study]\nname = \"m\"\nclub = \"{}\"\n\n[delivery]\nclub_speed_mph = 100.0\n\
+             dynamic_loft_deg = 12.0\n\n[grid]\ny_mm = {{ from = -5.0, to = 5.0, count = 3 }}\n\
+             z_mm = {{ from = -6.0, to = 6.0, count = 4 }}\n\n[design]\ncom_dx_mm = [-1.0, 1.0]\n",
+            club.display().to_string().replace('\\', "/")
+        );
+        let p = Prepared::new(parse_study(Path::new("m.toml"), &text).unwrap()).unwrap();
+        (0..2)
+            .map(|k| {
+                let d = dir.join(format!("s{k}"));
+                std::fs::create_dir_all(&d).unwrap();
+                let items = p.compute(p.shard_range(k, 2), &|| ());
+                for (rel, bytes) in shard_files(&p, k, 2, &items).unwrap() {
+                    std::fs::write(d.join(rel), bytes).unwrap();
+                }
+                d
+            })
+            .collect()
+    }
+
+    fn merge_error(dirs: &[PathBuf], scratch: &Path) -> MergeError {
+        match merge_shards(dirs, scratch) {
+            Err(StudyError::Merge(e)) => e,
+            Err(other) => panic!("not a merge error: {other}"),
+            Ok(_) => panic!("merged"),
+        }
+    }
+
+    #[test]
+    fn merge_errors_name_the_file_the_line_and_what_mismatched() {
+        let dir = tempfile::tempdir().unwrap();
+        let dirs = shards(dir.path());
+        let scratch = dir.path().join("scratch");
+        assert!(merge_shards(&dirs, &scratch).is_ok());
+        assert!(!scratch.exists(), "the scratch file is removed");
+
+        // Shard 0 twice, shard 1 missing.
+        let e = merge_error(&[dirs[0].clone(), dirs[0].clone()], &scratch);
+        assert_eq!(
+            e,
+            MergeError::Duplicate {
+                shard: 0,
+                dir: dirs[0].clone()
+            }
+        );
+        let e = merge_error(&dirs[..1], &scratch);
+        assert!(
+            matches!(e, MergeError::MissingShards { ref missing, shards: 2, more: false } if missing == &[1])
+        );
+
+        // The last point of a row removed from shard 1's rows.csv: the row is short, at the
+        // line of its last point.
+        let rows = dirs[1].join("rows.csv");
+        let text = std::fs::read_to_string(&rows).unwrap();
+        let mut lines: Vec<&str> = text.lines().collect();
+        // Variant 1, row 0, column 3 (the last).
+        let cut = lines.iter().position(|l| l.starts_with("1,0,3,")).unwrap();
+        lines.remove(cut);
+        std::fs::write(&rows, lines.join("\n") + "\n").unwrap();
+        let e = merge_error(&dirs, &scratch);
+        let MergeError::ShortRow {
+            file,
+            line,
+            points,
+            nz,
+            ..
+        } = &e
+        else {
+            panic!("{e}")
+        };
+        assert_eq!((file, *line, *points, *nz), (&rows, cut as u64, 3, 4));
+        assert!(e
+            .to_string()
+            .starts_with(&format!("{}:{cut}: ", rows.display())));
+        assert!(
+            !scratch.exists(),
+            "the scratch file is removed after an error"
+        );
+    }
+}
