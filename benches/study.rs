@@ -2,7 +2,7 @@
 //! 3 CoM depths) × an 801 × 801 face grid, the default six outputs, CSV long table (and, for
 //! comparison, `--format parquet`). Each iteration runs the same library calls as the CLI —
 //! summary metrics, sensitivities/optimiser (none here), then the streamed outputs written into
-//! a fresh folder — and removes the folder. About 1.5 GB (CSV) are written per iteration, so
+//! a fresh folder — and removes the folder. About 1.0 GB (CSV) are written per iteration, so
 //! the group takes a few minutes: `cargo bench --bench study`.
 
 use std::hint::black_box;

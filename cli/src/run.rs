@@ -10,7 +10,7 @@ use crate::study_output::TableFormatArg;
 use smash::data::{write_folder_atomic, write_folder_atomic_with};
 use smash::study::output::{write_study, Files};
 use smash::study::shard::{parse_shard_spec, shard_files};
-use smash::study::{finish, read_study, Prepared, StudyError};
+use smash::study::{finish, read_study, Prepared, Study, StudyError};
 
 /// Arguments of `smash run`.
 #[derive(Debug, Args)]
@@ -86,34 +86,35 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         (None, Some(_)) => study.output_dir.join("shards").join(format!("{k}_of_{n}")),
         (None, None) => study.output_dir.clone(),
     };
-    // Refuse before the sweep, not after it: the output folder may not hold the inputs or
-    // files smash did not write.
-    smash::data::safe_write::refuse_inputs(
-        &[(
-            if args.out.is_some() {
-                "--out"
-            } else {
-                "the study's output folder"
-            },
-            &dir,
-            true,
-        )],
-        &[
-            ("STUDY.toml", &args.study),
-            ("the study's club", &study.club_path),
-        ],
-    )?;
+    refuse_outputs(&args, &study, &dir)?;
+    let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
+    // Start the worker threads before the clock: the closing line states the sweep's rate, not
+    // the thread pool's start-up.
+    rayon::broadcast(|_| ());
+    match args.shard {
+        Some((k, n)) => run_shard(&args, &prepared, &dir, (k, n)),
+        None => run_whole(&args, &prepared, &dir),
+    }
+}
+
+/// Refuse before the sweep, not after it: the output folder may not hold the inputs or files
+/// smash did not write, and the report may not lie inside the output folder.
+fn refuse_outputs(args: &RunArgs, study: &Study, dir: &Path) -> anyhow::Result<()> {
+    let inputs = [
+        ("STUDY.toml", args.study.as_path()),
+        ("the study's club", study.club_path.as_path()),
+    ];
+    let out_name = if args.out.is_some() {
+        "--out"
+    } else {
+        "the study's output folder"
+    };
+    smash::data::safe_write::refuse_inputs(&[(out_name, dir, true)], &inputs)?;
     if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(
-            &[("--report", report, false)],
-            &[
-                ("STUDY.toml", &args.study),
-                ("the study's club", &study.club_path),
-            ],
-        )?;
+        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
         // The output folder is replaced as a whole and holds only what smash lists in it.
         if smash::data::safe_write::canonical(report)
-            .starts_with(smash::data::safe_write::canonical(&dir))
+            .starts_with(smash::data::safe_write::canonical(dir))
         {
             anyhow::bail!(
                 "{}: --report is inside the study's output folder {}, which each run replaces \
@@ -123,81 +124,95 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
             );
         }
     }
-    smash::data::safe_write::clean_stale_temporaries(&dir);
-    smash::data::safe_write::check_replaceable(&dir)?;
-    let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
-    let items = prepared.shard_range(k, n);
-    let impacts = prepared.impacts_in(items.clone());
-    let bar = if items.len() >= 64 && impacts >= 50_000 {
-        let b =
-            ProgressBar::with_draw_target(Some(items.len() as u64), ProgressDrawTarget::stderr());
-        b.set_style(
-            ProgressStyle::with_template(
-                "{bar:40} {pos}/{len} work items, {elapsed} elapsed, ETA {eta}",
-            )
-            .expect("static template"),
-        );
-        b
-    } else {
-        ProgressBar::hidden()
-    };
-    // Start the worker threads before the clock: the closing line states the sweep's rate, not
-    // the thread pool's start-up.
-    // The output slots are allocated (and their pages touched) before the clock too.
-    rayon::broadcast(|_| ());
-    let grid = format!(
-        "{} variant(s) × {}×{} grid + summary metrics",
-        prepared.variants.len(),
-        prepared.ys_mm.len(),
-        prepared.zs_mm.len()
+    smash::data::safe_write::clean_stale_temporaries(dir);
+    smash::data::safe_write::check_replaceable(dir)?;
+    Ok(())
+}
+
+/// A progress bar for `items` work items of `impacts` impacts (hidden for small runs).
+fn progress_bar(items: usize, impacts: usize) -> ProgressBar {
+    if items < 64 || impacts < 50_000 {
+        return ProgressBar::hidden();
+    }
+    let b = ProgressBar::with_draw_target(Some(items as u64), ProgressDrawTarget::stderr());
+    b.set_style(
+        ProgressStyle::with_template(
+            "{bar:40} {pos}/{len} work items, {elapsed} elapsed, ETA {eta}",
+        )
+        .expect("static template"),
     );
-    if args.shard.is_some() && prepared.study.yards.is_some() {
+    b
+}
+
+/// `variants × rows × columns + summary metrics`, for the closing line.
+fn grid_text(p: &Prepared) -> String {
+    format!(
+        "{} variant(s) × {}×{} grid + summary metrics",
+        p.variants.len(),
+        p.ys_mm.len(),
+        p.zs_mm.len()
+    )
+}
+
+/// Shard `k` of `n`: its work items computed in memory and written as shard files.
+fn run_shard(
+    args: &RunArgs,
+    prepared: &Prepared,
+    dir: &Path,
+    (k, n): (usize, usize),
+) -> anyhow::Result<()> {
+    if prepared.study.yards.is_some() {
         anyhow::bail!(
             "{}: a study with [yards] cannot be sharded (its yard maps and optimisation run \
              once over the whole grid); run it without --shard",
             args.study.display()
         );
     }
-    if args.shard.is_some() {
-        // Shards are only useful if they can be merged: refuse before computing any.
-        smash::study::shard::check_mergeable(&prepared)?;
-        let nz = prepared.zs_mm.len() as u128;
-        let rows = items.len() as u128; // at most one metrics item per variant besides rows
-        let points = rows * nz;
-        if points > smash::study::MAX_SHARD_POINTS {
-            let total = prepared.work_len() as u128 * nz;
-            return Err(smash::study::StudyError::ShardTooLarge {
-                k,
-                n,
-                points,
-                min_shards: total.div_ceil(smash::study::MAX_SHARD_POINTS),
-            }
-            .into());
+    // Shards are only useful if they can be merged: refuse before computing any.
+    smash::study::shard::check_mergeable(prepared)?;
+    let items = prepared.shard_range(k, n);
+    let impacts = prepared.impacts_in(items.clone());
+    let nz = prepared.zs_mm.len() as u128;
+    let points = items.len() as u128 * nz; // at most one metrics item per variant besides rows
+    if points > smash::study::MAX_SHARD_POINTS {
+        let total = prepared.work_len() as u128 * nz;
+        return Err(StudyError::ShardTooLarge {
+            k,
+            n,
+            points,
+            min_shards: total.div_ceil(smash::study::MAX_SHARD_POINTS),
         }
-        // The output slots are allocated (and their pages touched) before the clock too.
-        let mut results = prepared.allocate(items.clone());
-        let start = Instant::now();
-        prepared.compute_into(&mut results, &|| bar.inc(1));
-        let seconds = start.elapsed().as_secs_f64();
-        bar.finish_and_clear();
-        write_all(&dir, &shard_files(&prepared, k, n, &results)?)?;
-        eprintln!(
-            "shard {k} of {n}: work items {}..{} -> {}",
-            items.start,
-            items.end,
-            dir.display()
-        );
-        eprintln!(
-            "swept {impacts} impact evaluations ({grid}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
-            impacts as f64 / seconds.max(1e-9)
-        );
-        return Ok(());
+        .into());
     }
-    // Unsharded: the maps are computed band by band as they are written (bounded memory).
+    let bar = progress_bar(items.len(), impacts);
+    // The output slots are allocated (and their pages touched) before the clock.
+    let mut results = prepared.allocate(items.clone());
+    let start = Instant::now();
+    prepared.compute_into(&mut results, &|| bar.inc(1));
+    let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
+    write_all(dir, &shard_files(prepared, k, n, &results)?)?;
+    eprintln!(
+        "shard {k} of {n}: work items {}..{} -> {}",
+        items.start,
+        items.end,
+        dir.display()
+    );
+    eprintln!(
+        "swept {impacts} impact evaluations ({}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
+        grid_text(prepared),
+        impacts as f64 / seconds.max(1e-9)
+    );
+    Ok(())
+}
+
+/// The whole study: the maps computed band by band as they are written (bounded memory), the
+/// yard part, the report.
+fn run_whole(args: &RunArgs, prepared: &Prepared, dir: &Path) -> anyhow::Result<()> {
+    let impacts = prepared.impacts_in(0..prepared.work_len());
     let start = Instant::now();
     let metrics = prepared.all_metrics();
-    let (sens, opt) = finish(&prepared, &metrics)?;
+    let (sens, opt) = finish(prepared, &metrics)?;
     let yards = match &prepared.study.yards {
         Some(_) => Some(
             smash::study::yards_run::run_yards(&prepared.study)
@@ -206,29 +221,20 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         None => None,
     };
     let kernels = prepared.kernels();
-    let n_files = write_folder_atomic_with(&dir, "study.toml", |tmp| {
-        let mut n = write_study(
+    let n_files = write_folder_atomic_with(dir, "study.toml", |tmp| {
+        let n = write_study(
             tmp,
-            &prepared,
+            prepared,
             &kernels,
             &metrics,
             &sens,
             opt.as_ref(),
             args.format.into(),
         )?;
-        if let Some(r) = &yards {
-            for (rel, bytes) in smash::study::yards_run::yards_files(&prepared.study, r) {
-                let path = tmp.join(&rel);
-                if let Some(parent) = path.parent() {
-                    std::fs::create_dir_all(parent)?;
-                }
-                std::fs::write(&path, bytes).map_err(|e| {
-                    std::io::Error::new(e.kind(), format!("{}: {e}", rel.display()))
-                })?;
-                n += 1;
-            }
-        }
-        Ok(n)
+        Ok(n + match &yards {
+            Some(r) => write_yards(tmp, prepared, r)?,
+            None => 0,
+        })
     })?;
     if let Some(r) = &yards {
         eprint!(
@@ -238,20 +244,39 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
     }
     let seconds = start.elapsed().as_secs_f64();
     if let Some(path) = &args.report {
-        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&dir)?)
+        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(dir)?)
             .map_err(anyhow::Error::msg)?;
         smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }
-    crate::study_output::print_summary(&prepared, &metrics, opt.as_ref(), &dir, n_files)?;
+    crate::study_output::print_summary(prepared, &metrics, opt.as_ref(), dir, n_files)?;
     eprintln!(
-        "swept {impacts} impact evaluations ({grid}) and wrote {n_files} file(s) in {seconds:.3} s \
+        "swept {impacts} impact evaluations ({}) and wrote {n_files} file(s) in {seconds:.3} s \
          (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s)",
+        grid_text(prepared),
         kernels.points(),
         kernels.seconds(),
         kernels.points() as f64 / kernels.seconds().max(1e-9)
     );
     Ok(())
+}
+
+/// The yard part's files under `tmp`; returns how many.
+fn write_yards(
+    tmp: &Path,
+    prepared: &Prepared,
+    r: &smash::study::yards_run::YardsResult,
+) -> std::io::Result<usize> {
+    let files = smash::study::yards_run::yards_files(&prepared.study, r);
+    for (rel, bytes) in &files {
+        let path = tmp.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent)?;
+        }
+        std::fs::write(&path, bytes)
+            .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", rel.display())))?;
+    }
+    Ok(files.len())
 }
 
 /// The written outputs a study report shows (the face-map pictures and the small summary,

@@ -138,7 +138,7 @@ pub enum StudyError {
     Optimise(String),
     /// Shards do not fit together (their files disagree).
     #[error("merge: {0}")]
-    Merge(String),
+    Merge(#[from] shard::MergeError),
     /// The work items of the shards do not make up the study.
     #[error("merge: {0}")]
     Items(#[from] ItemError),

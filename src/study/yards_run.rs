@@ -162,6 +162,19 @@ fn goal_name(g: YardGoal) -> &'static str {
 
 /// The output files of the yard part (paths under `yards/`).
 pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
+    let mut out = yard_maps(study, r);
+    let opt = r.optimum.as_ref().and_then(|o| o.as_ref().ok());
+    out.push((PathBuf::from("yards/metrics.csv"), metrics_csv(r, opt)));
+    out.push((
+        PathBuf::from("yards/constraints.csv"),
+        constraints_csv(r, opt),
+    ));
+    out.extend(optimise_csv(study, r));
+    out
+}
+
+/// The yard maps (carry, offline and the robust metrics over the face): matrices and pictures.
+fn yard_maps(study: &Study, r: &YardsResult) -> Files {
     let y = study.yards.as_ref().expect("a study with [yards]");
     let mut out = Files::new();
     let nan = |v: &Option<f64>| v.unwrap_or(f64::NAN);
@@ -219,9 +232,11 @@ pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
         &robust(|m| m.ellipse_area_yd2),
         Scale::Sequential,
     );
+    out
+}
 
-    // metrics.csv
-    let opt = r.optimum.as_ref().and_then(|o| o.as_ref().ok());
+/// `yards/metrics.csv`: the base design's yard metrics and the optimum's.
+fn metrics_csv(r: &YardsResult, opt: Option<&YardOptimum>) -> Vec<u8> {
     let mut t = String::from(
         "design,mass_dx_mm,mass_dy_mm,mass_dz_mm,mean_carry_yd,std_carry_yd,mean_offline_yd,\
          std_offline_yd,ellipse_area_yd2,confidence\n",
@@ -245,9 +260,11 @@ pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
     if let Some(o) = opt {
         row("optimum", o.move_mm, &o.best);
     }
-    out.push((PathBuf::from("yards/metrics.csv"), t.into_bytes()));
+    t.into_bytes()
+}
 
-    // constraints.csv
+/// `yards/constraints.csv`: each head constraint at the base and the optimum.
+fn constraints_csv(r: &YardsResult, opt: Option<&YardOptimum>) -> Vec<u8> {
     let mut t = String::from("constraint,limit,base,base_margin,base_holds");
     if opt.is_some() {
         t.push_str(",optimum,optimum_margin,optimum_holds");
@@ -269,10 +286,18 @@ pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
         }
         t.push('\n');
     }
-    out.push((PathBuf::from("yards/constraints.csv"), t.into_bytes()));
+    t.into_bytes()
+}
 
-    // optimise.csv
-    if let (Some(o), Some((goal, iters)), Some((_, bounds))) = (&r.optimum, &y.optimise, &y.mass) {
+/// `yards/optimise.csv` when the study optimises: goal, status, the move and the bounds it
+/// reached.
+fn optimise_csv(study: &Study, r: &YardsResult) -> Option<(PathBuf, Vec<u8>)> {
+    let y = study.yards.as_ref().expect("a study with [yards]");
+    let (Some(o), Some((goal, iters)), Some((_, bounds))) = (&r.optimum, &y.optimise, &y.mass)
+    else {
+        return None;
+    };
+    {
         let mut t = String::from("key,value\n");
         let _ = writeln!(t, "goal,{}", goal_name(*goal));
         let _ = writeln!(t, "max_iters,{iters}");
@@ -308,9 +333,8 @@ pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
                 );
             }
         }
-        out.push((PathBuf::from("yards/optimise.csv"), t.into_bytes()));
+        Some((PathBuf::from("yards/optimise.csv"), t.into_bytes()))
     }
-    out
 }
 
 /// A few lines for the terminal: base and optimum metrics and any broken constraint.
