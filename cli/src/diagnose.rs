@@ -391,8 +391,8 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
         stand_in_note
     } else {
         format!(
-            "{stand_in_note}; {} cannot be told apart from a plausible alternative and is \
-             ambiguous, not a finding",
+            "{stand_in_note}; ambiguous, not findings (each has a plausible alternative the data \
+             cannot tell apart from it): {}",
             ambiguous.join(", ")
         )
     };

@@ -358,12 +358,16 @@ impl Ambiguity {
             .rivals
             .iter()
             .map(|r| {
+                let fit = if r.margin_gap >= 0.0 {
+                    format!("fits worse by {:.1}", r.margin_gap)
+                } else {
+                    format!("fits better by {:.1}", -r.margin_gap)
+                };
                 format!(
-                    "{} ({}; r = {:.2}, fits worse by {:.1}{})",
+                    "{} ({}; r = {:.2}, {fit}{})",
                     r.label,
                     values_text(&r.params),
                     r.r,
-                    r.margin_gap,
                     if r.plausible { "" } else { ", implausible" }
                 )
             })
@@ -474,5 +478,37 @@ mod tests {
         assert!(a[0].separate_by.contains("head speed just after impact"));
         assert!(a[0].separate_by.contains("centre of mass"));
         assert!(aliases(&ps, None).is_empty());
+    }
+
+    fn rival(label: &str, effect: &'static str, param: &'static str, value: f64) -> Rival {
+        let params = vec![est(effect, param, value)];
+        Rival {
+            label: label.into(),
+            plausible: params.iter().all(|p| is_plausible(p).unwrap_or(true)),
+            params,
+            margin_gap: 2.0,
+            r: 0.97,
+        }
+    }
+
+    #[test]
+    fn a_plausible_selection_with_a_plausible_rival_is_ambiguous_not_a_finding() {
+        let mut a = Ambiguity {
+            selected: "added_mass".into(),
+            estimates: vec![est("added_mass", "dm_g", 8.7)],
+            rivals: vec![rival("cor_level", "cor_level", "dcor", 0.02)],
+        };
+        assert!(a.is_ambiguous());
+        let t = a.text();
+        assert!(t.contains("added_mass") && t.contains("cor_level"), "{t}");
+        assert!(t.contains("cannot tell these apart"), "{t}");
+        assert_eq!(a.to_json()["ambiguous"], true);
+        // An implausible rival leaves the selection a finding.
+        a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.3)];
+        assert!(!a.is_ambiguous());
+        // An implausible selection is a stand-in, not an ambiguity.
+        a.estimates = vec![est("added_mass", "dm_g", -5.0)];
+        a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.02)];
+        assert!(!a.is_ambiguous());
     }
 }

@@ -130,3 +130,52 @@ pub(super) fn kin(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cand(label: &str, gain: f64) -> CandidateResult {
+        CandidateResult {
+            label: label.into(),
+            n_params: 1,
+            params: Vec::new(),
+            cv_chi2: 0.0,
+            gain,
+            penalty: 6.0,
+            rms_reduction: [0.0; 5],
+            unidentified: Vec::new(),
+            converged: true,
+            failure: None,
+        }
+    }
+
+    #[test]
+    fn rivals_are_close_in_margin_and_alike_in_prediction_change() {
+        let results = vec![
+            cand("a", 100.0),
+            cand("close_alike", 95.0),
+            cand("close_different", 99.0),
+            cand("far_alike", 80.0),
+        ];
+        let signal = vec![1.0, 2.0, -1.0, 0.5];
+        let explained = vec![
+            Some(signal.clone()),
+            Some(signal.iter().map(|x| 0.9 * x).collect()),
+            Some(vec![-2.0, 1.0, 0.5, 1.0]),
+            Some(signal.clone()),
+        ];
+        let order = by_margin(&results);
+        assert_eq!(order[0], 0);
+        let r = rivals(&results, &explained, &order, 0, results.len());
+        let names: Vec<&str> = r.iter().map(|x| x.label.as_str()).collect();
+        assert_eq!(names, ["close_alike"]);
+        assert!((r[0].margin_gap - 5.0).abs() < 1e-12 && r[0].r > 0.99);
+        // Kin ignore the margin: the far alike candidate is tried in the final model too.
+        let k: Vec<usize> = kin(&results, &explained, 0, results.len())
+            .into_iter()
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(k, [1, 3]);
+    }
+}
