@@ -1,5 +1,8 @@
 //! `smash diagnose`: which effects does the data ask for? Forward selection with grouped
 //! cross-validation (see [`smash::diagnose`]).
+//!
+//! Size: the command's arguments, its JSON and its text report read the same `Diagnosis` and
+//! must stay in step (every field in both forms); the text report is split by section.
 
 use std::path::PathBuf;
 
@@ -14,7 +17,7 @@ use smash::data::write_atomic;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
 use smash::diagnose::{
-    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy,
+    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy, Step,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
 };
 use smash::fit::{parse_effect_list, FitError, ParamEstimate};
@@ -231,6 +234,14 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
 }
 
 fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
+    estimates_json_with(ps, |_| None)
+}
+
+/// Estimates as JSON, each with its plausibility and (when `status` says) its status.
+fn estimates_json_with(
+    ps: &[ParamEstimate],
+    status: impl Fn(&ParamEstimate) -> Option<&'static str>,
+) -> Vec<serde_json::Value> {
     ps.iter()
         .map(|p| {
             let mut v = json!({
@@ -241,10 +252,24 @@ fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
                 (v.as_object_mut(), honest::plausibility_json(p))
             {
                 o.extend(h);
+                if let Some(st) = status(p) {
+                    o.insert("status".into(), st.into());
+                }
             }
             v
         })
         .collect()
+}
+
+/// `finding`, `stand_in` or `ambiguous` (a plausible value with a plausible rival).
+fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
+    if honest::is_plausible(p) == Some(false) {
+        "stand_in"
+    } else if d.is_finding(p) {
+        "finding"
+    } else {
+        "ambiguous"
+    }
 }
 
 /// The machine-readable report.
@@ -269,6 +294,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                 "selected": s.selected,
                 "at_noise_floor": s.at_noise_floor,
                 "alias": s.alias.as_ref().map(|a| a.to_json()),
+                "rivals": s.rivals.iter().map(honest::Rival::to_json).collect::<Vec<_>>(),
                 "candidates": s.candidates.iter().map(|c| json!({
                     "effect": c.label,
                     "n_params": c.n_params,
@@ -295,8 +321,9 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
             "z": n.sigma_z_m * 1e3,
             "estimated": d.impact_noise_estimated,
         })),
-        "estimates": estimates_json(&d.estimates),
-        "findings": d.estimates.iter().filter(|p| honest::is_plausible(p) != Some(false)).map(|p| p.label()).collect::<Vec<_>>(),
+        "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
+        "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
+        "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
         "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
             "param": p.label(), "value": p.value, "unit": p.unit,
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
@@ -354,6 +381,21 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
             stand_ins.join(", ")
         )
     };
+    let ambiguous: Vec<&str> = d
+        .ambiguities
+        .iter()
+        .filter(|a| a.is_ambiguous())
+        .map(|a| a.selected.as_str())
+        .collect();
+    let stand_in_note = if ambiguous.is_empty() {
+        stand_in_note
+    } else {
+        format!(
+            "{stand_in_note}; ambiguous, not findings (each has a plausible alternative the data \
+             cannot tell apart from it): {}",
+            ambiguous.join(", ")
+        )
+    };
     if !floor.structure_remains() {
         return format!(
             "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
@@ -402,104 +444,145 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
         (d.n_shots as f64).ln()
     );
     for (i, st) in d.steps.iter().enumerate() {
-        s.push_str(&format!(
-            "\nStep {}: base = {}; CV chi2 of the base = {:.1}\n",
-            i + 1,
-            if st.base.is_empty() {
-                "nominal".to_owned()
-            } else {
-                st.base.join(" + ")
-            },
-            st.base_cv_chi2
-        ));
-        if st.at_noise_floor {
-            s.push_str(
-                "  (errors at the instruments' noise floor: only measurement candidates offered)\n",
-            );
-        }
-        let mut header = vec![
-            "candidate".to_owned(),
-            "k".into(),
-            "CV gain".into(),
-            "penalty".into(),
-            "margin".into(),
-        ];
-        header.extend(LaunchComponent::ALL.iter().map(|c| {
-            let short = match c {
-                LaunchComponent::BallSpeed => "speed",
-                LaunchComponent::LaunchAngle => "launch",
-                LaunchComponent::Azimuth => "azim",
-                LaunchComponent::Backspin => "back",
-                LaunchComponent::Sidespin => "side",
-            };
-            format!("Δrms {short}")
-        }));
-        header.extend(["parameters".to_owned(), "note".to_owned()]);
-        let mut t = TextTable::new(header);
-        for c in &st.candidates {
-            let mut row = vec![
-                c.label.clone(),
-                c.n_params.to_string(),
-                format!("{:.1}", c.gain),
-                format!("{:.1}", c.penalty),
-                format!("{:.1}", c.margin()),
-            ];
-            row.extend(
-                c.rms_reduction
-                    .iter()
-                    .map(|r| format!("{:+.1}%", -100.0 * r)),
-            );
-            row.push(fmt_params(&c.params));
-            let mut note = Vec::new();
-            if let Some(f) = &c.failure {
-                note.push(format!("failed: {f}"));
-            } else if !c.converged {
-                note.push("fit did not converge".to_owned());
-            }
-            if !c.unidentified.is_empty() {
-                note.push(format!("not identifiable: {}", c.unidentified.join(", ")));
-            }
-            if st.selected.as_deref() == Some(c.label.as_str()) {
-                note.push("SELECTED".to_owned());
-            }
-            row.push(note.join("; "));
-            t.row(row);
-        }
-        s.push_str(&t.render());
-        if let Some(a) = &st.alias {
-            s.push_str(&format!("-> aliases: {}\n", a.text()));
-        }
-        match &st.selected {
-            Some(l) => {
-                s.push_str(&format!(
-                    "-> add {l}; errors (model − measured) after this step:\n"
-                ));
-                s.push_str(&error_table_text(&st.after));
-            }
-            None if st.at_noise_floor && st.candidates.is_empty() => s.push_str(
-                "-> the errors are at the instruments' noise floor: no physical effect offered; stop\n",
-            ),
-            None => s.push_str("-> no candidate beats its penalty: stop\n"),
-        }
+        s.push_str(&step_text(i, st));
     }
-    s.push_str(&format!(
+    s.push_str(&summary_text(d));
+    s.push_str(&floor_text(d, floor));
+    s.push('\n');
+    s.push_str(&error_tables_side_by_side(
+        &d.before,
+        &d.after,
+        ("before (club as given)", "after (selected effects)"),
+    ));
+    s
+}
+
+fn short_name(c: &LaunchComponent) -> &'static str {
+    match c {
+        LaunchComponent::BallSpeed => "speed",
+        LaunchComponent::LaunchAngle => "launch",
+        LaunchComponent::Azimuth => "azim",
+        LaunchComponent::Backspin => "back",
+        LaunchComponent::Sidespin => "side",
+    }
+}
+
+/// The candidate table of one step.
+fn candidates_table(st: &Step) -> String {
+    let mut header = vec![
+        "candidate".to_owned(),
+        "k".into(),
+        "CV gain".into(),
+        "penalty".into(),
+        "margin".into(),
+    ];
+    header.extend(
+        LaunchComponent::ALL
+            .iter()
+            .map(|c| format!("Δrms {}", short_name(c))),
+    );
+    header.extend(["parameters".to_owned(), "note".to_owned()]);
+    let mut t = TextTable::new(header);
+    for c in &st.candidates {
+        let mut row = vec![
+            c.label.clone(),
+            c.n_params.to_string(),
+            format!("{:.1}", c.gain),
+            format!("{:.1}", c.penalty),
+            format!("{:.1}", c.margin()),
+        ];
+        row.extend(
+            c.rms_reduction
+                .iter()
+                .map(|r| format!("{:+.1}%", -100.0 * r)),
+        );
+        row.push(fmt_params(&c.params));
+        let mut note = Vec::new();
+        if let Some(f) = &c.failure {
+            note.push(format!("failed: {f}"));
+        } else if !c.converged {
+            note.push("fit did not converge".to_owned());
+        }
+        if !c.unidentified.is_empty() {
+            note.push(format!("not identifiable: {}", c.unidentified.join(", ")));
+        }
+        if st.selected.as_deref() == Some(c.label.as_str()) {
+            note.push("SELECTED".to_owned());
+        } else if st.rivals.iter().any(|r| r.label == c.label) {
+            note.push("rival of the selected".to_owned());
+        }
+        row.push(note.join("; "));
+        t.row(row);
+    }
+    t.render()
+}
+
+/// One step: its base, candidates, choice and the errors after it.
+fn step_text(i: usize, st: &Step) -> String {
+    let mut s = format!(
+        "\nStep {}: base = {}; CV chi2 of the base = {:.1}\n",
+        i + 1,
+        if st.base.is_empty() {
+            "nominal".to_owned()
+        } else {
+            st.base.join(" + ")
+        },
+        st.base_cv_chi2
+    );
+    if st.at_noise_floor {
+        s.push_str(
+            "  (errors at the instruments' noise floor: only measurement candidates offered)\n",
+        );
+    }
+    s.push_str(&candidates_table(st));
+    if let Some(a) = &st.alias {
+        s.push_str(&format!("-> aliases: {}\n", a.text()));
+    }
+    match &st.selected {
+        Some(l) => {
+            if !st.rivals.is_empty() {
+                let names: Vec<&str> = st.rivals.iter().map(|r| r.label.as_str()).collect();
+                s.push_str(&format!(
+                    "-> rivals of {l} (margin within {} and the same change to the predictions, \
+                     r > 0.9): {}\n",
+                    smash::diagnose::select::RIVAL_MARGIN,
+                    names.join(", ")
+                ));
+            }
+            s.push_str(&format!(
+                "-> add {l}; errors (model − measured) after this step:\n"
+            ));
+            s.push_str(&error_table_text(&st.after));
+        }
+        None if st.at_noise_floor && st.candidates.is_empty() => s.push_str(
+            "-> the errors are at the instruments' noise floor: no physical effect offered; stop\n",
+        ),
+        None => s.push_str("-> no candidate beats its penalty: stop\n"),
+    }
+    s
+}
+
+/// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the
+/// measurement model.
+fn summary_text(d: &Diagnosis) -> String {
+    let mut s = format!(
         "\nSelected (in order): {}\n",
         if d.selected.is_empty() {
             "none".to_owned()
         } else {
             d.selected.join(", ")
         }
-    ));
+    );
     if !d.estimates.is_empty() {
         s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
         let findings: Vec<String> = d
             .estimates
             .iter()
-            .filter(|p| honest::is_plausible(p) != Some(false))
+            .filter(|p| d.is_finding(p))
             .map(|p| p.label())
             .collect();
         s.push_str(&format!(
-            "Findings (values inside their plausible ranges): {}\n",
+            "Findings (values inside their plausible ranges, no plausible rival): {}\n",
             if findings.is_empty() {
                 "none".to_owned()
             } else {
@@ -519,6 +602,9 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
             }
         }
     }
+    for a in &d.ambiguities {
+        s.push_str(&format!("  rivals: {}\n", a.text()));
+    }
     for a in &d.aliases {
         s.push_str(&format!("  alias: {}\n", a.text()));
     }
@@ -533,10 +619,15 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
             n.sigma_z_m * 1e3
         ));
     }
-    s.push_str(&format!(
+    s
+}
+
+/// The noise-floor table and the conclusion.
+fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    let mut s = format!(
         "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
         floor.instrument.name
-    ));
+    );
     let mut t = TextTable::new([
         "component",
         "mean",
@@ -561,11 +652,5 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
     }
     s.push_str(&t.render());
     s.push_str(&format!("Conclusion: {}\n", conclusion(d, floor)));
-    s.push('\n');
-    s.push_str(&error_tables_side_by_side(
-        &d.before,
-        &d.after,
-        ("before (club as given)", "after (selected effects)"),
-    ));
     s
 }

@@ -256,10 +256,45 @@ const COMPLIANT: [(&str, &[&[&str]]); 3] = [
     ),
 ];
 
+/// The shaft-less `compliant_slip_world` has a livelier face (`cor_ref` 0.85 against the
+/// file's 0.83), and diagnose selects `added_mass` with a plausible +8.7 g for it. Swapped into
+/// the final model, `cor_level` fits as well: the report must call the pair ambiguous and not
+/// list the added mass among the findings.
+fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_json::Value) {
+    assert!(
+        selected(d).contains(&"added_mass".to_owned()),
+        "{:?}",
+        selected(d)
+    );
+    let findings = d["findings"].as_array().unwrap();
+    assert!(
+        !findings.iter().any(|f| f == "added_mass.dm_g"),
+        "{findings:?}"
+    );
+    let amb = d["ambiguous"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|a| a["selected"] == "added_mass")
+        .unwrap_or_else(|| panic!("no ambiguity for added_mass: {}", d["ambiguous"]));
+    assert_eq!(amb["ambiguous"], true, "{amb}");
+    assert!(
+        amb["rivals"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|r| r["effect"] == "cor_level"
+                && r["plausible"] == true
+                && r["params"][0]["value"].as_f64().unwrap() > 0.0),
+        "{amb}"
+    );
+}
+
 /// What holds on the compliant worlds today (configs/README.md shows the output): the
 /// speed-dependent COR is named with a plausible value in every world, a tangential law is
 /// named in every world, and every implausible value carries its stand-in reading instead of
-/// being listed as a finding.
+/// being listed as a finding; a plausible selected value with a plausible rival is ambiguous,
+/// not a finding.
 #[test]
 fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
     let dir = tempfile::tempdir().unwrap();
@@ -286,14 +321,33 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
                 e["plausible"] != false || e["stand_in"].is_string(),
                 "{world}: {e}"
             );
+            // Only a plausible value without a plausible rival is presented as found.
+            let label = format!(
+                "{}.{}",
+                e["effect"].as_str().unwrap(),
+                e["param"].as_str().unwrap()
+            );
+            let found = d["findings"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .any(|f| f == &label);
+            assert_eq!(found, e["status"] == "finding", "{world}: {e}");
+            if e["plausible"] == false {
+                assert_eq!(e["status"], "stand_in", "{world}: {e}");
+            }
+        }
+        if world == "compliant_slip_world" {
+            a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(&d);
         }
     }
 }
 
 /// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
 /// not hold yet (configs/README.md, "What this shows"): the shaft tip is not named as
-/// `hosel_mass`, the shaft-less world selects a plausible-looking `added_mass`, the 2.5 mm
-/// location noise is not detected and some spreads stay above 1.10× the noise floor. Run with
+/// `hosel_mass` (alone in a world, the 4 g tip on its 2 kHz joint leaves the launch at the noise
+/// floor), the 2.5 mm location noise is not detected, group means reach 0.3–0.5 σ and some
+/// spreads stay above 1.10× the noise floor. Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]
 #[ignore = "known to fail: see configs/README.md, compliant-contact worlds"]

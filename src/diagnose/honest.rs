@@ -267,6 +267,135 @@ impl ExplainedAlias {
     }
 }
 
+/// An unselected candidate that explains nearly the same signal as a selected effect (see
+/// [`crate::diagnose::select::RIVAL_MARGIN`]): the data hardly prefer one to the other. At a
+/// step, measured by the cross-validated margins; in the final report, by swapping it in for
+/// the selected effect in the final model.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Rival {
+    /// The candidate (`name` or `name@group`).
+    pub label: String,
+    /// Its values fitted at that step.
+    pub params: Vec<ParamEstimate>,
+    /// How much less well it explains the data than the selected effect (a difference of
+    /// `χ² + k·ln n` or of cross-validated margins; ≤ the rival margin, may be negative).
+    pub margin_gap: f64,
+    /// Correlation of the changes the two fits make to the predictions.
+    pub r: f64,
+    /// Are all its values inside their plausible ranges?
+    pub plausible: bool,
+}
+
+fn value_text(p: &ParamEstimate) -> String {
+    let v = if p.value != 0.0 && p.value.abs() < 1e-3 {
+        format!("{:+.3e}", p.value)
+    } else {
+        format!("{:+.4}", p.value)
+    };
+    if p.unit.is_empty() {
+        format!("{} = {v}", p.label())
+    } else {
+        format!("{} = {v} {}", p.label(), p.unit)
+    }
+}
+
+fn values_text(ps: &[ParamEstimate]) -> String {
+    ps.iter().map(value_text).collect::<Vec<_>>().join(", ")
+}
+
+fn estimate_json(p: &ParamEstimate) -> serde_json::Value {
+    json!({"param": p.label(), "value": p.value, "unit": p.unit, "plausible": is_plausible(p)})
+}
+
+impl Rival {
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({
+            "effect": self.label,
+            "params": self.params.iter().map(estimate_json).collect::<Vec<_>>(),
+            "margin_gap": self.margin_gap,
+            "r": self.r,
+            "plausible": self.plausible,
+        })
+    }
+}
+
+/// A selected effect with the rivals of the step that selected it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Ambiguity {
+    /// The selected effect (`name` or `name@group`).
+    pub selected: String,
+    /// Its final values.
+    pub estimates: Vec<ParamEstimate>,
+    /// The unselected candidates that explained nearly the same signal, best first.
+    pub rivals: Vec<Rival>,
+}
+
+impl Ambiguity {
+    /// The selected values are plausible and so are some rival's: two plausible readings the
+    /// data cannot tell apart, so neither is a finding.
+    pub fn is_ambiguous(&self) -> bool {
+        self.estimates
+            .iter()
+            .all(|p| is_plausible(p).unwrap_or(true))
+            && self.rivals.iter().any(|r| r.plausible)
+    }
+
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({
+            "selected": self.selected,
+            "values": self.estimates.iter().map(estimate_json).collect::<Vec<_>>(),
+            "ambiguous": self.is_ambiguous(),
+            "rivals": self.rivals.iter().map(Rival::to_json).collect::<Vec<_>>(),
+            "text": self.text(),
+        })
+    }
+
+    /// One line of text.
+    pub fn text(&self) -> String {
+        let alternatives: Vec<String> = self
+            .rivals
+            .iter()
+            .map(|r| {
+                let fit = if r.margin_gap >= 0.0 {
+                    format!("fits worse by {:.1}", r.margin_gap)
+                } else {
+                    format!("fits better by {:.1}", -r.margin_gap)
+                };
+                format!(
+                    "{} ({}; r = {:.2}, {fit}{})",
+                    r.label,
+                    values_text(&r.params),
+                    r.r,
+                    if r.plausible { "" } else { ", implausible" }
+                )
+            })
+            .collect();
+        let effect_of = |label: &str| label.split('@').next().unwrap_or(label).to_owned();
+        let mut separate: Vec<String> = std::iter::once(&self.selected)
+            .chain(self.rivals.iter().map(|r| &r.label))
+            .map(|l| {
+                let e = effect_of(l);
+                format!("for {e}: {}", separating_measurement(&e))
+            })
+            .collect();
+        separate.dedup();
+        let verdict = if self.is_ambiguous() {
+            "ambiguous, not a finding: the data cannot tell these apart"
+        } else {
+            "the data hardly prefer one; the alternatives' values are implausible"
+        };
+        format!(
+            "{} ({}) or {}: {verdict}; to separate them: {}",
+            self.selected,
+            values_text(&self.estimates),
+            alternatives.join(" or "),
+            separate.join("; ")
+        )
+    }
+}
+
 /// The plausible range of an estimate as text (`[lo, hi] unit`), or an empty string.
 pub fn plausible_range_text(p: &ParamEstimate) -> String {
     spec_of(p).map_or_else(String::new, |s| {
@@ -349,5 +478,37 @@ mod tests {
         assert!(a[0].separate_by.contains("head speed just after impact"));
         assert!(a[0].separate_by.contains("centre of mass"));
         assert!(aliases(&ps, None).is_empty());
+    }
+
+    fn rival(label: &str, effect: &'static str, param: &'static str, value: f64) -> Rival {
+        let params = vec![est(effect, param, value)];
+        Rival {
+            label: label.into(),
+            plausible: params.iter().all(|p| is_plausible(p).unwrap_or(true)),
+            params,
+            margin_gap: 2.0,
+            r: 0.97,
+        }
+    }
+
+    #[test]
+    fn a_plausible_selection_with_a_plausible_rival_is_ambiguous_not_a_finding() {
+        let mut a = Ambiguity {
+            selected: "added_mass".into(),
+            estimates: vec![est("added_mass", "dm_g", 8.7)],
+            rivals: vec![rival("cor_level", "cor_level", "dcor", 0.02)],
+        };
+        assert!(a.is_ambiguous());
+        let t = a.text();
+        assert!(t.contains("added_mass") && t.contains("cor_level"), "{t}");
+        assert!(t.contains("cannot tell these apart"), "{t}");
+        assert_eq!(a.to_json()["ambiguous"], true);
+        // An implausible rival leaves the selection a finding.
+        a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.3)];
+        assert!(!a.is_ambiguous());
+        // An implausible selection is a stand-in, not an ambiguity.
+        a.estimates = vec![est("added_mass", "dm_g", -5.0)];
+        a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.02)];
+        assert!(!a.is_ambiguous());
     }
 }

@@ -1,6 +1,10 @@
 //! A compliant-contact world: the clubhead–ball impact integrated in time, so the engine can be
 //! tested against physics richer than its own impulse–momentum model.
 //!
+//! Size: one simulator — its parameters, validation, state layout, force law and integrator
+//! share private constants and types; about half the file is the derivation and literature the
+//! tests and configs refer to.
+//!
 //! ## Bodies
 //!
 //! * **Clubhead**: a free rigid body with the club's mass, centre of mass and full inertia tensor
@@ -368,6 +372,35 @@ struct Consts {
     mu: f64,
 }
 
+/// What [`ContactWorld::impact`] starts from.
+struct Start {
+    c: Consts,
+    s: State,
+    dt: f64,
+    /// Normal approach speed, m/s.
+    u1n: f64,
+    /// Face frame at first contact to ground.
+    r_gf: Matrix3<f64>,
+}
+
+/// Keep the tangential spring in the tangent plane and within the Coulomb limit (after a
+/// step); returns whether it had to be cut back (the contact slid).
+fn limit_spring(c: &Consts, e: &Eval, s: &mut State) -> bool {
+    let xi = v3(s, XI);
+    let mut xi_t = xi - xi.dot(&e.normal) * e.normal;
+    let mut slid = false;
+    if e.overlap_m > 0.0 {
+        let kt = c.kappa * 1.5 * c.k * e.overlap_m.sqrt();
+        let limit = c.mu * e.normal_force_n;
+        if kt * xi_t.norm() > limit {
+            xi_t *= limit / (kt * xi_t.norm());
+            slid = true;
+        }
+    }
+    set3(s, XI, &xi_t);
+    slid
+}
+
 /// Contact geometry and forces at one state.
 struct Eval {
     deriv: State,
@@ -468,6 +501,74 @@ impl ContactWorld {
 
     /// Integrate one impact from the delivery `d` (loft and face biases of the model applied).
     pub fn impact(&self, d: &Delivery) -> Result<ContactOutcome, String> {
+        let Start {
+            c,
+            mut s,
+            dt,
+            u1n,
+            r_gf,
+        } = self.start(d)?;
+        let first = self.eval(&c, &s);
+        let u1t = first.u - first.u.dot(&first.normal) * first.normal;
+        let max_steps = 50 * self.params.steps_per_contact as usize;
+        let mut max_overlap: f64 = 0.0;
+        let mut slipped = false;
+        let mut normal_impulse = 0.0;
+        for step in 1..=max_steps {
+            normal_impulse += self.rk4_step(&c, &mut s, dt);
+            let e = self.eval(&c, &s);
+            slipped |= e.slipping;
+            slipped |= limit_spring(&c, &e, &mut s);
+            max_overlap = max_overlap.max(e.overlap_m);
+            if e.overlap_m < 0.0 {
+                let un = e.u.dot(&e.normal);
+                let out = ContactOutcome {
+                    ball_velocity_m_s: r_gf * v3(&s, VB),
+                    ball_spin_rad_s: r_gf * v3(&s, WB),
+                    normal_approach_speed_m_s: u1n,
+                    cor_measured: -un / u1n,
+                    tangential_before_m_s: u1t,
+                    tangential_after_m_s: e.u - un * e.normal,
+                    contact_time_s: step as f64 * dt,
+                    max_compression_m: max_overlap,
+                    steps: step,
+                    slipped,
+                    normal_impulse_n_s: normal_impulse,
+                };
+                let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+                if !(finite(&out.ball_velocity_m_s) && finite(&out.ball_spin_rad_s)) {
+                    return Err("the contact integration produced a non-finite result".into());
+                }
+                return Ok(out);
+            }
+        }
+        Err(format!(
+            "the ball did not separate within {max_steps} steps (50 estimated contact times)"
+        ))
+    }
+
+    /// One classic RK4 step of `dt`, then the quaternion renormalised; returns the normal
+    /// impulse over the step (N·s).
+    fn rk4_step(&self, c: &Consts, s: &mut State, dt: f64) -> f64 {
+        let k1 = self.eval(c, s);
+        let k2 = self.eval(c, &(*s + 0.5 * dt * k1.deriv));
+        let k3 = self.eval(c, &(*s + 0.5 * dt * k2.deriv));
+        let k4 = self.eval(c, &(*s + dt * k3.deriv));
+        *s += dt / 6.0 * (k1.deriv + 2.0 * (k2.deriv + k3.deriv) + k4.deriv);
+        let qn =
+            (s[Q] * s[Q] + s[Q + 1] * s[Q + 1] + s[Q + 2] * s[Q + 2] + s[Q + 3] * s[Q + 3]).sqrt();
+        for i in Q..Q + 4 {
+            s[i] /= qn;
+        }
+        dt / 6.0
+            * (k1.normal_force_n
+                + 2.0 * k2.normal_force_n
+                + 2.0 * k3.normal_force_n
+                + k4.normal_force_n)
+    }
+
+    /// The initial state at first contact, the per-impact constants and the step.
+    fn start(&self, d: &Delivery) -> Result<Start, String> {
         let p = self.model.params();
         let r_gf = self.model.face_orientation(d);
         let r_fg = r_gf.transpose();
@@ -528,72 +629,13 @@ impl ContactWorld {
             set3(&mut s, VT, &(v_c + w_c.cross(&t.hosel_from_com_m)));
         }
 
-        let first = self.eval(&c, &s);
-        let u1t = first.u - first.u.dot(&first.normal) * first.normal;
-        let max_steps = 50 * self.params.steps_per_contact as usize;
-        let mut max_overlap: f64 = 0.0;
-        let mut slipped = false;
-        let mut normal_impulse = 0.0;
-        for step in 1..=max_steps {
-            let k1 = self.eval(&c, &s);
-            let k2 = self.eval(&c, &(s + 0.5 * dt * k1.deriv));
-            let k3 = self.eval(&c, &(s + 0.5 * dt * k2.deriv));
-            let k4 = self.eval(&c, &(s + dt * k3.deriv));
-            normal_impulse += dt / 6.0
-                * (k1.normal_force_n
-                    + 2.0 * k2.normal_force_n
-                    + 2.0 * k3.normal_force_n
-                    + k4.normal_force_n);
-            s += dt / 6.0 * (k1.deriv + 2.0 * (k2.deriv + k3.deriv) + k4.deriv);
-            // Keep the quaternion unit and the spring in the tangent plane within the Coulomb limit.
-            let qn =
-                (s[Q] * s[Q] + s[Q + 1] * s[Q + 1] + s[Q + 2] * s[Q + 2] + s[Q + 3] * s[Q + 3])
-                    .sqrt();
-            for i in Q..Q + 4 {
-                s[i] /= qn;
-            }
-            let e = self.eval(&c, &s);
-            slipped |= e.slipping;
-            max_overlap = max_overlap.max(e.overlap_m);
-            let xi = v3(&s, XI);
-            let mut xi_t = xi - xi.dot(&e.normal) * e.normal;
-            if e.overlap_m > 0.0 {
-                let kt = c.kappa * 1.5 * c.k * e.overlap_m.sqrt();
-                let limit = c.mu * e.normal_force_n;
-                if kt * xi_t.norm() > limit {
-                    xi_t *= limit / (kt * xi_t.norm());
-                    slipped = true;
-                }
-            }
-            set3(&mut s, XI, &xi_t);
-            if e.overlap_m < 0.0 {
-                let un = e.u.dot(&e.normal);
-                let ut = e.u - un * e.normal;
-                let v_b = v3(&s, VB);
-                let w_b = v3(&s, WB);
-                let out = ContactOutcome {
-                    ball_velocity_m_s: r_gf * v_b,
-                    ball_spin_rad_s: r_gf * w_b,
-                    normal_approach_speed_m_s: u1n,
-                    cor_measured: -un / u1n,
-                    tangential_before_m_s: u1t,
-                    tangential_after_m_s: ut,
-                    contact_time_s: step as f64 * dt,
-                    max_compression_m: max_overlap,
-                    steps: step,
-                    slipped,
-                    normal_impulse_n_s: normal_impulse,
-                };
-                let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
-                if !(finite(&out.ball_velocity_m_s) && finite(&out.ball_spin_rad_s)) {
-                    return Err("the contact integration produced a non-finite result".into());
-                }
-                return Ok(out);
-            }
-        }
-        Err(format!(
-            "the ball did not separate within {max_steps} steps (50 estimated contact times)"
-        ))
+        Ok(Start {
+            c,
+            s,
+            dt,
+            u1n,
+            r_gf,
+        })
     }
 
     /// Forces and state derivative.

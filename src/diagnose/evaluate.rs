@@ -1,0 +1,390 @@
+//! Fitting and cross-validating the candidates of one diagnose step: each effect candidate
+//! (base effects plus it, fitted on all shots and on every training fold) and each
+//! impact-location noise level (the base effects refitted with the locations treated as noisy).
+
+use std::sync::Arc;
+
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use super::{honest, CandidateResult, DiagnoseProgress};
+use crate::club::ClubSpec;
+use crate::fit::calibrate::ParamEstimate;
+use crate::fit::covariance::covariance;
+use crate::fit::{
+    run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
+};
+use crate::measurement::ImpactNoise;
+use crate::stats;
+
+/// Training and held-out subsets of the data, one pair per fold.
+pub(super) struct Folds {
+    pub(super) train: Vec<FitData>,
+    pub(super) test: Vec<FitData>,
+}
+
+pub(super) fn make_folds(data: &FitData, fold_of: &[usize], n_folds: usize) -> Folds {
+    let pick = |keep: &dyn Fn(usize) -> bool| {
+        let idx: Vec<usize> = (0..data.len()).filter(|&i| keep(fold_of[i])).collect();
+        data.subset(&idx)
+    };
+    Folds {
+        train: (0..n_folds).map(|f| pick(&|g| g != f)).collect(),
+        test: (0..n_folds).map(|f| pick(&|g| g == f)).collect(),
+    }
+}
+
+pub(super) fn fit(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    data: &FitData,
+    w: Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
+}
+
+fn chi2_at(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    data: &FitData,
+    w: Weighting,
+    theta: &DVector<f64>,
+) -> Result<f64, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    Ok(pr.residuals(theta.as_slice())?.norm_squared())
+}
+
+/// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ².
+pub(super) fn cv_chi2(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    folds: &Folds,
+    w: Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> Result<f64, FitError> {
+    let parts: Vec<Result<f64, FitError>> = (0..folds.train.len())
+        .into_par_iter()
+        .map(|f| {
+            let r = if layout.is_empty() {
+                chi2_at(club, layout, &folds.test[f], w, start)
+            } else {
+                fit(club, layout, &folds.train[f], w, start, max_iters)
+                    .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
+            };
+            if let Some(p) = progress {
+                p.job_done();
+            }
+            r
+        })
+        .collect();
+    parts.into_iter().sum()
+}
+
+/// A candidate's layout: the base effects (minus a global effect it refines) plus its own,
+/// the starting point, and how many leading parameters belong to the base.
+struct CandidateLayout {
+    layout: ParamLayout,
+    start: DVector<f64>,
+    kept: usize,
+}
+
+fn candidate_layout(
+    base: &ParamLayout,
+    theta_base: &DVector<f64>,
+    cand: &EffectRequest,
+    groups: &[String],
+) -> Result<CandidateLayout, FitError> {
+    let added = cand.expand(groups)?;
+    // Refinement: a per-group candidate replaces the selected global effect of its kind and
+    // starts every group from the global value.
+    let replaced = match cand {
+        EffectRequest::PerGroup(kind) => base
+            .effects()
+            .iter()
+            .position(|e| e.kind == *kind && e.group.is_none()),
+        _ => None,
+    };
+    let mut effects = Vec::new();
+    let mut start_vals = Vec::new();
+    let mut inherited: Option<Vec<f64>> = None;
+    for (i, e) in base.effects().iter().enumerate() {
+        let vals: Vec<f64> = theta_base.as_slice()[base.range(i)].to_vec();
+        if Some(i) == replaced {
+            inherited = Some(vals);
+        } else {
+            effects.push(e.clone());
+            start_vals.extend(vals);
+        }
+    }
+    let kept = start_vals.len();
+    for e in &added {
+        match &inherited {
+            Some(v) => start_vals.extend(v),
+            None => start_vals.extend(e.kind.params().iter().map(|s| s.default)),
+        }
+    }
+    effects.extend(added);
+    let layout = ParamLayout::new(effects)?;
+    Ok(CandidateLayout {
+        start: DVector::from_vec(start_vals),
+        layout,
+        kept,
+    })
+}
+
+pub(super) fn rms_per_component(errors: &[[f64; 5]]) -> [f64; 5] {
+    std::array::from_fn(|c| stats::rms(&errors.iter().map(|e| e[c]).collect::<Vec<_>>()))
+}
+
+/// The model of one step that every candidate is measured against.
+pub(super) struct StepBase<'a> {
+    pub(super) club: &'a ClubSpec,
+    pub(super) data: &'a FitData,
+    pub(super) folds: &'a Folds,
+    pub(super) layout: &'a ParamLayout,
+    pub(super) theta: &'a DVector<f64>,
+    /// The base model's launch errors on all shots, file units.
+    pub(super) errors: &'a [[f64; 5]],
+    /// Noise scales of this step (file units) and the weighting made from them.
+    pub(super) sigma: [f64; 5],
+    pub(super) w: Weighting,
+    pub(super) rms: [f64; 5],
+    /// Cross-validated χ² of the base.
+    pub(super) cv: f64,
+    pub(super) max_iters: u64,
+    pub(super) progress: Option<&'a dyn DiagnoseProgress>,
+}
+
+/// An effect candidate after fitting: its scores, its all-shots fit (layout and run) and what
+/// that fit changed in the predictions ([`honest::explained_signal`]).
+pub(super) struct EffectFit {
+    pub(super) result: CandidateResult,
+    pub(super) fit: Option<(ParamLayout, FitRun)>,
+    pub(super) explained: Option<Vec<f64>>,
+}
+
+fn empty_result(label: String, n_params: usize, penalty: f64) -> CandidateResult {
+    CandidateResult {
+        label,
+        n_params,
+        params: Vec::new(),
+        cv_chi2: f64::NAN,
+        gain: f64::NAN,
+        penalty,
+        rms_reduction: [0.0; 5],
+        unidentified: Vec::new(),
+        converged: false,
+        failure: None,
+    }
+}
+
+/// Fit one effect candidate on all shots, read its identifiability and estimates, and
+/// cross-validate it. `penalty_per_param` is `ln n`, `multiplicity` the `2·ln m` of the step.
+pub(super) fn evaluate_effect(
+    b: &StepBase,
+    cand: &EffectRequest,
+    penalty_per_param: f64,
+    multiplicity: f64,
+) -> EffectFit {
+    let n_folds = b.folds.train.len();
+    let fitted = candidate_layout(b.layout, b.theta, cand, &b.data.groups).and_then(|l| {
+        let run = fit(b.club, &l.layout, b.data, b.w, &l.start, b.max_iters);
+        if let Some(p) = b.progress {
+            p.job_done();
+        }
+        Ok((l.layout, run?, l.kept))
+    });
+    // Parameters the model gains (a refinement replaces the global one).
+    let k = fitted
+        .as_ref()
+        .map_or(0, |(l, _, _)| l.len() - b.theta.len());
+    let mut res = empty_result(cand.label(), k, k as f64 * penalty_per_param + multiplicity);
+    let (layout, run, kept) = match fitted {
+        Ok(f) => f,
+        Err(e) => {
+            res.failure = Some(e.to_string());
+            if let Some(p) = b.progress {
+                (0..n_folds).for_each(|_| p.job_done());
+            }
+            return EffectFit {
+                result: res,
+                fit: None,
+                explained: None,
+            };
+        }
+    };
+    res.converged = run.converged;
+    read_estimates(&mut res, &layout, &run, kept);
+    let mut explained = None;
+    match FitProblem::new(b.club, layout.clone(), b.data, b.w).launch_errors(run.theta.as_slice()) {
+        Ok(errs) => {
+            let rms = rms_per_component(&errs);
+            res.rms_reduction = std::array::from_fn(|c| (b.rms[c] - rms[c]) / b.rms[c]);
+            explained = Some(honest::explained_signal(b.errors, &errs, &b.sigma));
+        }
+        Err(e) => res.failure = Some(e.to_string()),
+    }
+    match cv_chi2(
+        b.club,
+        &layout,
+        b.folds,
+        b.w,
+        &run.theta,
+        b.max_iters,
+        b.progress,
+    ) {
+        Ok(cv) => {
+            res.cv_chi2 = cv;
+            res.gain = b.cv - cv;
+        }
+        Err(e) => res.failure = Some(e.to_string()),
+    }
+    EffectFit {
+        result: res,
+        fit: Some((layout, run)),
+        explained,
+    }
+}
+
+/// The candidate's own estimates (parameters after the `kept` base ones) with standard errors,
+/// and the parameters the Jacobian cannot determine.
+fn read_estimates(res: &mut CandidateResult, layout: &ParamLayout, run: &FitRun, kept: usize) {
+    let p = layout.len();
+    let dof = (run.residuals.len() - p).max(1);
+    let (lo, hi) = (layout.lower(), layout.upper());
+    let ranges: Vec<f64> = (0..p).map(|j| hi[j] - lo[j]).collect();
+    let cov = covariance(&run.jacobian, run.cost / dof as f64, &ranges);
+    let labels = layout.labels();
+    res.unidentified = cov
+        .identifiability
+        .unidentified()
+        .into_iter()
+        .map(|j| labels[j].clone())
+        .collect();
+    res.params = layout
+        .params()
+        .enumerate()
+        .skip(kept)
+        .map(|(j, (i, s))| ParamEstimate {
+            effect: layout.effects()[i].kind.name(),
+            group: layout.effects()[i].group.clone(),
+            param: s.key,
+            unit: s.unit,
+            value: run.theta[j],
+            stderr: cov.stderr[j],
+            at_bound: false,
+        })
+        .collect();
+}
+
+/// A fitted impact-noise candidate: its index among the noise options and the refitted base
+/// parameters (`None` when the fit failed).
+pub(super) type NoiseFit = Option<(usize, DVector<f64>)>;
+
+/// Label of the measurement candidate for impact-location noise `noise`.
+pub fn impact_noise_label(noise: &ImpactNoise) -> String {
+    format!(
+        "impact_noise({}, {} mm)",
+        noise.sigma_y_m * 1e3,
+        noise.sigma_z_m * 1e3
+    )
+}
+
+/// One impact-noise level as a candidate: refit the base effects with the locations treated as
+/// noisy, cross-validate, and score it like a one-parameter effect.
+pub(super) fn noise_candidate(
+    b: &StepBase,
+    (j, noise, data, folds): (usize, &ImpactNoise, &FitData, &Folds),
+    penalty_per_param: f64,
+) -> (CandidateResult, NoiseFit) {
+    let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
+    res.converged = true;
+    let outcome = (|| -> Result<(f64, [f64; 5], DVector<f64>), FitError> {
+        let theta = if b.layout.is_empty() {
+            b.theta.clone()
+        } else {
+            let run = fit(b.club, b.layout, data, b.w, b.theta, b.max_iters)?;
+            if !run.converged {
+                return Err(FitError::NotConverged {
+                    iterations: run.iterations,
+                    chi2: run.cost,
+                    stage: "impact-noise candidate".into(),
+                });
+            }
+            run.theta
+        };
+        let errs =
+            FitProblem::new(b.club, b.layout.clone(), data, b.w).launch_errors(theta.as_slice())?;
+        let cv = cv_chi2(
+            b.club,
+            b.layout,
+            folds,
+            b.w,
+            &theta,
+            b.max_iters,
+            b.progress,
+        )?;
+        Ok((cv, rms_per_component(&errs), theta))
+    })();
+    match outcome {
+        Ok((cv, rms, theta)) => {
+            res.cv_chi2 = cv;
+            res.gain = b.cv - cv;
+            res.rms_reduction = std::array::from_fn(|c| (b.rms[c] - rms[c]) / b.rms[c]);
+            (res, Some((j, theta)))
+        }
+        Err(e) => {
+            res.converged = false;
+            res.failure = Some(e.to_string());
+            (res, None)
+        }
+    }
+}
+
+/// The final model with the selected effect `out` swapped for the candidate `inn`, fitted on
+/// all shots: the candidate's estimates and the swapped model's `χ² + k·ln n` minus the final
+/// model's (`final_score`). `None` when the swap cannot be fitted or does not converge.
+pub(super) fn swap_score(
+    b: &StepBase,
+    out: &EffectRequest,
+    inn: &EffectRequest,
+    penalty_per_param: f64,
+    final_score: f64,
+) -> Option<(Vec<ParamEstimate>, f64)> {
+    let mut effects = Vec::new();
+    let mut start = Vec::new();
+    for (i, e) in b.layout.effects().iter().enumerate() {
+        if e.kind != out.kind() {
+            effects.push(e.clone());
+            start.extend_from_slice(&b.theta.as_slice()[b.layout.range(i)]);
+        }
+    }
+    let kept = start.len();
+    let added = inn.expand(&b.data.groups).ok()?;
+    for e in &added {
+        start.extend(e.kind.params().iter().map(|s| s.default));
+    }
+    effects.extend(added);
+    let layout = ParamLayout::new(effects).ok()?;
+    let run = fit(
+        b.club,
+        &layout,
+        b.data,
+        b.w,
+        &DVector::from_vec(start),
+        b.max_iters,
+    )
+    .ok()?;
+    if !run.converged {
+        return None;
+    }
+    let mut res = empty_result(inn.label(), 0, 0.0);
+    read_estimates(&mut res, &layout, &run, kept);
+    let score = run.cost + layout.len() as f64 * penalty_per_param;
+    Some((res.params, score - final_score))
+}

@@ -1,0 +1,537 @@
+//! The state of forward selection and its named steps: folds and candidates offered, then per
+//! step the noise-floor check, scoring every open candidate ([`super::evaluate`]), choosing
+//! ([`super::select`]), adopting the winner, and at the end the calibration of what was selected.
+
+use nalgebra::DVector;
+use rayon::prelude::*;
+
+use super::evaluate::{self, cv_chi2, make_folds, EffectFit, Folds, NoiseFit, StepBase};
+use super::{
+    default_candidates, honest, noise_floor, select, CandidateResult, DiagnoseOptions,
+    DiagnoseProgress, Diagnosis, FoldBy, Step,
+};
+use crate::club::ClubSpec;
+use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions};
+use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::measurement::ImpactNoise;
+use crate::model::Shot;
+use crate::stats::{self, launch_error_table, ErrorTable};
+
+fn group_names(data: &FitData) -> Vec<String> {
+    data.group_of
+        .iter()
+        .map(|&g| data.groups[g].clone())
+        .collect()
+}
+
+fn request_label(r: &EffectRequest) -> String {
+    r.label()
+}
+
+/// Fold of every shot and how the folds were formed: by golfer when there are at least two,
+/// else by shot (with a warning).
+pub(super) fn fold_assignment(
+    data: &FitData,
+    folds: usize,
+    warnings: &mut Vec<String>,
+) -> (Vec<usize>, FoldBy) {
+    let golfers: Vec<&str> = data
+        .golfers
+        .iter()
+        .map(|g| g.as_deref().unwrap_or(""))
+        .collect();
+    let mut distinct = golfers.clone();
+    distinct.sort_unstable();
+    distinct.dedup();
+    if data.has_golfers() && distinct.len() >= 2 {
+        return (stats::grouped_folds(&golfers, folds), FoldBy::Golfer);
+    }
+    warnings.push(if data.has_golfers() {
+        format!(
+            "every shot is from one golfer ('{}'): cross-validation folds cannot be grouped by \
+             golfer, so they are by shot, and an effect may win by fitting that golfer's habits",
+            distinct.first().copied().unwrap_or_default()
+        )
+    } else {
+        "no golfer column: cross-validation folds are by shot, so a golfer's shots can be in \
+         both training and test folds"
+            .to_owned()
+    });
+    (stats::item_folds(data.len(), folds), FoldBy::Shot)
+}
+
+/// The candidates to search: the options' list or the defaults, checked against the groups and
+/// without those the data cannot identify (each named in a warning).
+pub(super) fn offered_candidates(
+    opts: &DiagnoseOptions,
+    data: &FitData,
+    shots: &[Shot],
+    warnings: &mut Vec<String>,
+) -> Result<Vec<EffectRequest>, FitError> {
+    let candidates = opts
+        .candidates
+        .clone()
+        .unwrap_or_else(|| default_candidates(&data.groups));
+    for (i, c) in candidates.iter().enumerate() {
+        c.expand(&data.groups)?;
+        if candidates[..i].contains(c) {
+            return Err(FitError::BadEffectList(format!(
+                "candidate '{}' is listed twice",
+                c.label()
+            )));
+        }
+    }
+    // Degenerate data are named, not fitted (see `crate::fit::variation`).
+    let unidentifiable = crate::fit::variation::check_variation(shots, &candidates)?;
+    if opts.candidates.is_some() {
+        if let Some((_, why)) = unidentifiable.first() {
+            return Err(FitError::Degenerate(why.clone()));
+        }
+    }
+    warnings.extend(
+        unidentifiable
+            .iter()
+            .map(|(_, why)| format!("not tried: {why}")),
+    );
+    Ok(candidates
+        .into_iter()
+        .filter(|c| !unidentifiable.iter().any(|(u, _)| u == c))
+        .collect())
+}
+
+/// A selected effect (label, request) and its kin: candidates that changed the predictions
+/// alike at its step, each with that correlation.
+type Kin = (String, EffectRequest, Vec<(EffectRequest, f64)>);
+
+/// The state of forward selection between steps.
+pub(super) struct Search<'a> {
+    club: &'a ClubSpec,
+    shots: &'a [Shot],
+    opts: &'a DiagnoseOptions,
+    progress: Option<&'a dyn DiagnoseProgress>,
+    /// Group name of every shot.
+    pub(super) groups: Vec<String>,
+    data: FitData,
+    folds: Folds,
+    /// Impact-location noise levels offered as measurement candidates, each with its data.
+    noise_options: Vec<(ImpactNoise, FitData, Folds)>,
+    chosen_noise: Option<ImpactNoise>,
+    pub(super) base: ParamLayout,
+    theta_base: DVector<f64>,
+    selected: Vec<EffectRequest>,
+    /// Each selected effect (label, request) with its kin at the step that selected it:
+    /// candidates that changed the predictions alike, and the correlation.
+    kin_of: Vec<Kin>,
+    penalty_per_param: f64,
+}
+
+/// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.
+struct Scored {
+    results: Vec<CandidateResult>,
+    explained: Vec<Option<Vec<f64>>>,
+    fits: Vec<EffectFit>,
+    noise_fits: Vec<NoiseFit>,
+    n_effects: usize,
+    base_cv: f64,
+}
+
+impl<'a> Search<'a> {
+    pub(super) fn new(
+        club: &'a ClubSpec,
+        shots: &'a [Shot],
+        opts: &'a DiagnoseOptions,
+        progress: Option<&'a dyn DiagnoseProgress>,
+        data: FitData,
+        (fold_of, n_folds): (&[usize], usize),
+        warnings: &mut Vec<String>,
+    ) -> Result<Self, FitError> {
+        let mut noise_options = Vec::new();
+        if opts.impact_noise.is_none() {
+            for &s_mm in &opts.impact_noise_candidates_mm {
+                let noise = ImpactNoise::from_mm(s_mm, s_mm)?;
+                match data.clone().with_impact_noise(Some(noise)) {
+                    Ok(d) => {
+                        let f = make_folds(&d, fold_of, n_folds);
+                        noise_options.push((noise, d, f));
+                    }
+                    Err(e) => warnings.push(format!("impact noise {s_mm} mm not tried: {e}")),
+                }
+            }
+        }
+        Ok(Self {
+            club,
+            shots,
+            opts,
+            progress,
+            groups: group_names(&data),
+            folds: make_folds(&data, fold_of, n_folds),
+            penalty_per_param: (data.len() as f64).ln(),
+            data,
+            noise_options,
+            chosen_noise: opts.impact_noise,
+            base: ParamLayout::new(Vec::new())?,
+            theta_base: DVector::zeros(0),
+            selected: Vec::new(),
+            kin_of: Vec::new(),
+        })
+    }
+
+    pub(super) fn errors_of(
+        &self,
+        layout: &ParamLayout,
+        theta: &[f64],
+    ) -> Result<Vec<[f64; 5]>, FitError> {
+        Ok(FitProblem::new(
+            self.club,
+            layout.clone(),
+            &self.data,
+            Weighting::launch(&[1.0; 5]),
+        )
+        .launch_errors(theta)?)
+    }
+
+    /// With a known noise floor: are the base model's errors already at it?
+    fn at_noise_floor(&self, base_errors: &[[f64; 5]]) -> Result<bool, FitError> {
+        let Some(inst) = &self.opts.noise_floor else {
+            return Ok(false);
+        };
+        let mut effects = self.club.effects.clone();
+        effects.extend(
+            self.base
+                .to_effects(self.theta_base.as_slice())
+                .map_err(|e| FitError::Solver(format!("base effects: {e}")))?,
+        );
+        let base_club = self
+            .club
+            .with_effects(effects)
+            .map_err(|e| FitError::Solver(format!("base club: {e}")))?;
+        let floor = noise_floor::noise_floor_of(
+            &base_club,
+            self.shots,
+            base_errors,
+            inst,
+            self.chosen_noise,
+        )?;
+        Ok(!floor.structure_remains())
+    }
+
+    /// Candidates still open: a kind already selected is not offered again, except that a
+    /// selected global effect may be refined into one per group (replacing it).
+    fn open<'c>(&self, candidates: &'c [EffectRequest]) -> Vec<&'c EffectRequest> {
+        candidates
+            .iter()
+            .filter(|c| {
+                !self.selected.iter().any(|s| {
+                    s.kind() == c.kind()
+                        && !(matches!(s, EffectRequest::Global(_))
+                            && matches!(c, EffectRequest::PerGroup(_)))
+                })
+            })
+            .collect()
+    }
+
+    /// Fit, score and cross-validate every open effect and (while no level is chosen) every
+    /// impact-noise level against the base model.
+    fn score(
+        &self,
+        step_index: usize,
+        open: &[&EffectRequest],
+        base_errors: &[[f64; 5]],
+        sigma: [f64; 5],
+    ) -> Result<Scored, FitError> {
+        let w = Weighting::launch(&sigma);
+        let n_folds = self.folds.train.len();
+        let n_noise = if self.chosen_noise.is_none() {
+            self.noise_options.len()
+        } else {
+            0
+        };
+        if let Some(p) = self.progress {
+            p.step(
+                step_index + 1,
+                n_folds * (1 + open.len() + n_noise) + open.len(),
+            );
+        }
+        let base_cv = cv_chi2(
+            self.club,
+            &self.base,
+            &self.folds,
+            w,
+            &self.theta_base,
+            self.opts.max_iters,
+            self.progress,
+        )?;
+        let b = StepBase {
+            club: self.club,
+            data: &self.data,
+            folds: &self.folds,
+            layout: &self.base,
+            theta: &self.theta_base,
+            errors: base_errors,
+            sigma,
+            w,
+            rms: evaluate::rms_per_component(base_errors),
+            cv: base_cv,
+            max_iters: self.opts.max_iters,
+            progress: self.progress,
+        };
+        // Choosing the best of `m` physical candidates: a useless candidate's out-of-sample
+        // gain has an upper tail of about e^(−g/2), so the best of m clears a threshold c with
+        // probability about m·e^(−c/2); adding 2·ln m to every physical candidate's penalty
+        // keeps that what a single candidate has (a Bonferroni correction of the BIC penalty,
+        // docs/diagnose-selection.md). The impact-noise levels are one measurement question
+        // asked at several sizes, not m physical claims, and keep the plain penalty.
+        let multiplicity = 2.0 * (open.len().max(1) as f64).ln();
+        let fits: Vec<EffectFit> = open
+            .par_iter()
+            .map(|c| evaluate::evaluate_effect(&b, c, self.penalty_per_param, multiplicity))
+            .collect();
+        let noise: Vec<(CandidateResult, NoiseFit)> = self.noise_options[..n_noise]
+            .par_iter()
+            .enumerate()
+            .map(|(j, (n, d, f))| {
+                evaluate::noise_candidate(&b, (j, n, d, f), self.penalty_per_param)
+            })
+            .collect();
+        let mut results: Vec<CandidateResult> = fits.iter().map(|f| f.result.clone()).collect();
+        let explained = fits.iter().map(|f| f.explained.clone()).collect();
+        let mut noise_fits = Vec::new();
+        for (r, f) in noise {
+            results.push(r);
+            noise_fits.push(f);
+        }
+        Ok(Scored {
+            n_effects: fits.len(),
+            results,
+            explained,
+            fits,
+            noise_fits,
+            base_cv,
+        })
+    }
+
+    /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
+    fn adopt(
+        &mut self,
+        i: usize,
+        scored: &Scored,
+        open: &[&EffectRequest],
+        w: Weighting,
+    ) -> Result<(String, ErrorTable), FitError> {
+        if i >= scored.n_effects {
+            let (j, theta) = scored.noise_fits[i - scored.n_effects]
+                .clone()
+                .expect("eligible means fitted");
+            let (noise, nd, nf) = self.noise_options.swap_remove(j);
+            self.data = nd;
+            self.folds = nf;
+            self.chosen_noise = Some(noise);
+            self.noise_options.clear();
+            self.theta_base = theta;
+        } else {
+            let (layout, run) = scored.fits[i].fit.as_ref().expect("eligible means fitted");
+            self.base = layout.clone();
+            self.theta_base = run.theta.clone();
+            let refined = self
+                .selected
+                .iter()
+                .position(|s| s.kind() == open[i].kind());
+            match refined {
+                Some(pos) => self.selected[pos] = open[i].clone(),
+                None => self.selected.push(open[i].clone()),
+            }
+        }
+        let errs = FitProblem::new(self.club, self.base.clone(), &self.data, w)
+            .launch_errors(self.theta_base.as_slice())?;
+        Ok((
+            scored.results[i].label.clone(),
+            launch_error_table(&self.groups, &errs),
+        ))
+    }
+
+    /// One step of forward selection; `None` when nothing is left to offer.
+    pub(super) fn step(
+        &mut self,
+        step_index: usize,
+        candidates: &[EffectRequest],
+    ) -> Result<Option<Step>, FitError> {
+        let base_labels: Vec<String> = self.selected.iter().map(request_label).collect();
+        let base_errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
+        // With a known noise floor, physics is offered only while structure remains above it.
+        let at_noise_floor = self.at_noise_floor(&base_errors)?;
+        let open = if at_noise_floor {
+            Vec::new()
+        } else {
+            self.open(candidates)
+        };
+        if open.is_empty() && (self.chosen_noise.is_some() || self.noise_options.is_empty()) {
+            return Ok(at_noise_floor.then(|| Step {
+                base: base_labels,
+                noise_scales: noise_scales(&base_errors),
+                base_cv_chi2: f64::NAN,
+                candidates: Vec::new(),
+                selected: None,
+                after: launch_error_table(&self.groups, &base_errors),
+                at_noise_floor,
+                alias: None,
+                rivals: Vec::new(),
+            }));
+        }
+        let sigma = noise_scales(&base_errors);
+        let scored = self.score(step_index, &open, &base_errors, sigma)?;
+        let order = select::by_margin(&scored.results);
+        let (winner, alias) =
+            select::arbitrate(&scored.results, &scored.explained, &order, scored.n_effects);
+        let rivals = match winner {
+            Some(i) if i < scored.n_effects => select::rivals(
+                &scored.results,
+                &scored.explained,
+                &order,
+                i,
+                scored.n_effects,
+            ),
+            _ => Vec::new(),
+        };
+        let (chosen, after) = match winner {
+            Some(i) => {
+                let (label, after) = self.adopt(i, &scored, &open, Weighting::launch(&sigma))?;
+                if i < scored.n_effects {
+                    let kin = select::kin(&scored.results, &scored.explained, i, scored.n_effects)
+                        .into_iter()
+                        .map(|(j, r)| (open[j].clone(), r))
+                        .collect();
+                    self.kin_of
+                        .retain(|(_, req, _)| req.kind() != open[i].kind());
+                    self.kin_of.push((label.clone(), open[i].clone(), kin));
+                }
+                (Some(label), after)
+            }
+            None => (None, launch_error_table(&self.groups, &base_errors)),
+        };
+        Ok(Some(Step {
+            base: base_labels,
+            noise_scales: sigma,
+            base_cv_chi2: scored.base_cv,
+            candidates: order.iter().map(|&i| scored.results[i].clone()).collect(),
+            selected: chosen,
+            after,
+            at_noise_floor,
+            alias,
+            rivals,
+        }))
+    }
+
+    /// Each selected effect with the kin that, swapped in for it in the final model, fit the
+    /// shots nearly as well: `χ² + k·ln n` at most [`select::RIVAL_MARGIN`] above the final
+    /// model's, on all shots with the final model's noise scales.
+    fn ambiguities(
+        &self,
+        estimates: &[crate::fit::ParamEstimate],
+    ) -> Result<Vec<honest::Ambiguity>, FitError> {
+        if self.kin_of.iter().all(|(_, _, k)| k.is_empty()) {
+            return Ok(Vec::new());
+        }
+        let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
+        let sigma = noise_scales(&errors);
+        let w = Weighting::launch(&sigma);
+        let final_run = evaluate::fit(
+            self.club,
+            &self.base,
+            &self.data,
+            w,
+            &self.theta_base,
+            self.opts.max_iters,
+        )?;
+        let final_score = final_run.cost + self.base.len() as f64 * self.penalty_per_param;
+        let b = StepBase {
+            club: self.club,
+            data: &self.data,
+            folds: &self.folds,
+            layout: &self.base,
+            theta: &final_run.theta,
+            errors: &errors,
+            sigma,
+            w,
+            rms: evaluate::rms_per_component(&errors),
+            cv: f64::NAN,
+            max_iters: self.opts.max_iters,
+            progress: None,
+        };
+        let mut out = Vec::new();
+        for (label, req, kin) in &self.kin_of {
+            let rivals: Vec<honest::Rival> = kin
+                .par_iter()
+                .filter_map(|(c, r)| {
+                    let (params, gap) =
+                        evaluate::swap_score(&b, req, c, self.penalty_per_param, final_score)?;
+                    (gap <= select::RIVAL_MARGIN).then(|| honest::Rival {
+                        label: c.label(),
+                        plausible: params
+                            .iter()
+                            .all(|p| honest::is_plausible(p).unwrap_or(true)),
+                        params,
+                        margin_gap: gap,
+                        r: *r,
+                    })
+                })
+                .collect();
+            if rivals.is_empty() {
+                continue;
+            }
+            let effect = label.split('@').next().unwrap_or(label);
+            out.push(honest::Ambiguity {
+                selected: label.clone(),
+                estimates: estimates
+                    .iter()
+                    .filter(|p| p.effect == effect)
+                    .cloned()
+                    .collect(),
+                rivals,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Calibrate the selected effects on all shots and read aliases and ambiguities.
+    pub(super) fn finish(
+        self,
+        (fold_by, n_folds): (FoldBy, usize),
+        steps: Vec<Step>,
+        before: ErrorTable,
+        warnings: Vec<String>,
+    ) -> Result<Diagnosis, FitError> {
+        let (estimates, after, out_club, aliases) = if self.base.is_empty() {
+            (Vec::new(), before.clone(), self.club.clone(), Vec::new())
+        } else {
+            let cal = calibrate_data(
+                self.club,
+                &self.data,
+                self.base.clone(),
+                &CalibrateOptions {
+                    max_iters: self.opts.max_iters,
+                    ..CalibrateOptions::default()
+                },
+                None,
+            )?;
+            let aliases = honest::aliases(&cal.params, cal.correlation.as_ref());
+            (cal.params, cal.after, cal.club, aliases)
+        };
+        let ambiguities = self.ambiguities(&estimates)?;
+        Ok(Diagnosis {
+            fold_by,
+            folds: n_folds,
+            n_shots: self.data.len(),
+            steps,
+            selected: self.selected.iter().map(request_label).collect(),
+            estimates,
+            before,
+            after,
+            club: out_club,
+            impact_noise: self.chosen_noise,
+            impact_noise_estimated: self.chosen_noise.is_some() && self.opts.impact_noise.is_none(),
+            warnings,
+            aliases,
+            ambiguities,
+        })
+    }
+}

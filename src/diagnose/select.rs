@@ -1,0 +1,181 @@
+//! Choosing among the scored candidates of one step: the best eligible margin, alias
+//! arbitration for an implausible winner, and the rivals of the winner (unselected candidates
+//! that explained nearly the same signal about as well).
+
+use super::honest::{self, ExplainedAlias, Rival};
+use super::CandidateResult;
+use crate::fit::calibrate::STRONG_CORRELATION;
+
+/// How close (in the selection criterion, `gain − penalty`, a difference of cross-validated
+/// χ²) an unselected candidate must come to the selected one to count as its rival. On the
+/// `2·ln(likelihood ratio)` scale a difference below 10 is not "very strong" evidence for one
+/// model over the other (Kass & Raftery 1995, J. Am. Stat. Assoc. 90, 773–795, §3.2); within
+/// it, and changing the predictions alike (correlation > [`STRONG_CORRELATION`]), the data do
+/// not choose between the two.
+pub const RIVAL_MARGIN: f64 = 10.0;
+
+fn margin_key(r: &CandidateResult) -> f64 {
+    if r.margin().is_nan() {
+        f64::NEG_INFINITY
+    } else {
+        r.margin()
+    }
+}
+
+/// Candidate indices, best margin first (failed candidates last).
+pub(super) fn by_margin(results: &[CandidateResult]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..results.len()).collect();
+    order.sort_by(|&a, &b| margin_key(&results[b]).total_cmp(&margin_key(&results[a])));
+    order
+}
+
+/// The candidate to add (index into `results`) and, when alias arbitration replaced an
+/// implausible best candidate, the pair. The first `n_effects` results are effects (with their
+/// explained signals in `explained`); the rest are measurement candidates.
+///
+/// The evidence (margin) decides, not plausibility: preferring a plausible candidate with less
+/// evidence was tried and chains several plausible stand-ins to mimic one real effect outside
+/// its plausible range. Only when the best candidate lands on an implausible value and another
+/// eligible candidate with a positive margin and a plausible value explains the same signal
+/// (the two fits change the predictions alike) is the plausible reading taken, so a real effect
+/// outside its plausible range is not replaced by an unrelated plausible one.
+pub(super) fn arbitrate(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    order: &[usize],
+    n_effects: usize,
+) -> (Option<usize>, Option<ExplainedAlias>) {
+    let best = order
+        .iter()
+        .copied()
+        .find(|&i| results[i].eligible() && results[i].margin() > 0.0);
+    let Some(b) = best.filter(|&b| b < n_effects && !results[b].plausible()) else {
+        return (best, None);
+    };
+    let alt = order.iter().copied().find_map(|i| {
+        let ok = i < n_effects
+            && i != b
+            && results[i].eligible()
+            && results[i].margin() > 0.0
+            && results[i].plausible();
+        if !ok {
+            return None;
+        }
+        let r = honest::signal_correlation(explained[b].as_deref()?, explained[i].as_deref()?);
+        (r > STRONG_CORRELATION).then_some((i, r))
+    });
+    match alt {
+        Some((i, r)) => (
+            Some(i),
+            Some(ExplainedAlias {
+                selected: results[i].label.clone(),
+                instead_of: results[b].label.clone(),
+                r,
+            }),
+        ),
+        None => (best, None),
+    }
+}
+
+/// The unselected effect candidates that explained nearly the same signal as the selected
+/// effect `winner`: eligible, a margin at most [`RIVAL_MARGIN`] below the winner's, and a
+/// prediction change correlated with the winner's above [`STRONG_CORRELATION`]. Best first.
+pub(super) fn rivals(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    order: &[usize],
+    winner: usize,
+    n_effects: usize,
+) -> Vec<Rival> {
+    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
+        return Vec::new();
+    };
+    let w_margin = results[winner].margin();
+    order
+        .iter()
+        .copied()
+        .filter(|&i| i < n_effects && i != winner && results[i].eligible())
+        .filter(|&i| results[i].margin() >= w_margin - RIVAL_MARGIN)
+        .filter_map(|i| {
+            let r = honest::signal_correlation(we, explained[i].as_deref()?);
+            (r > STRONG_CORRELATION).then(|| Rival {
+                label: results[i].label.clone(),
+                params: results[i].params.clone(),
+                margin_gap: w_margin - results[i].margin(),
+                r,
+                plausible: results[i].plausible(),
+            })
+        })
+        .collect()
+}
+
+/// The unselected effect candidates (indices) whose fits changed the predictions like the
+/// selected `winner`'s (correlation above [`STRONG_CORRELATION`]), whatever their margin at
+/// this step, with that correlation: the kin tried in its place once the selection is complete
+/// (see [`RIVAL_MARGIN`]).
+pub(super) fn kin(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    winner: usize,
+    n_effects: usize,
+) -> Vec<(usize, f64)> {
+    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
+        return Vec::new();
+    };
+    (0..n_effects)
+        .filter(|&i| i != winner && results[i].eligible())
+        .filter_map(|i| {
+            let r = honest::signal_correlation(we, explained[i].as_deref()?);
+            (r > STRONG_CORRELATION).then_some((i, r))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cand(label: &str, gain: f64) -> CandidateResult {
+        CandidateResult {
+            label: label.into(),
+            n_params: 1,
+            params: Vec::new(),
+            cv_chi2: 0.0,
+            gain,
+            penalty: 6.0,
+            rms_reduction: [0.0; 5],
+            unidentified: Vec::new(),
+            converged: true,
+            failure: None,
+        }
+    }
+
+    #[test]
+    fn rivals_are_close_in_margin_and_alike_in_prediction_change() {
+        let results = vec![
+            cand("a", 100.0),
+            cand("close_alike", 95.0),
+            cand("close_different", 99.0),
+            cand("far_alike", 80.0),
+        ];
+        let signal = vec![1.0, 2.0, -1.0, 0.5];
+        let explained = vec![
+            Some(signal.clone()),
+            Some(signal.iter().map(|x| 0.9 * x).collect()),
+            Some(vec![-2.0, 1.0, 0.5, 1.0]),
+            Some(signal.clone()),
+        ];
+        let order = by_margin(&results);
+        assert_eq!(order[0], 0);
+        let r = rivals(&results, &explained, &order, 0, results.len());
+        let names: Vec<&str> = r.iter().map(|x| x.label.as_str()).collect();
+        assert_eq!(names, ["close_alike"]);
+        assert!((r[0].margin_gap - 5.0).abs() < 1e-12 && r[0].r > 0.99);
+        // Kin ignore the margin: the far alike candidate is tried in the final model too.
+        let k: Vec<usize> = kin(&results, &explained, 0, results.len())
+            .into_iter()
+            .map(|(i, _)| i)
+            .collect();
+        assert_eq!(k, [1, 3]);
+    }
+}
