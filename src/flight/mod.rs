@@ -19,6 +19,7 @@
 pub mod aero;
 pub mod atmosphere;
 pub mod ground;
+mod hermite;
 pub mod integrate;
 pub mod trackman;
 
@@ -107,7 +108,7 @@ pub struct FlightConfig {
 }
 
 impl Default for FlightConfig {
-    /// `fmm2022`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
+    /// `fmm2022-re`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
     /// no ground.
     fn default() -> Self {
         Self {
