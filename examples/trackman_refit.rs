@@ -105,7 +105,12 @@ fn main() {
         .map(|m| (objective(&errors(m, &LPGA_TOUR_2023)), *m))
         .min_by(|a, b| a.0.total_cmp(&b.0))
         .expect("a non-empty grid");
-    println!("{} candidates; best {:?}, objective {:.2}", grid.len(), best.1, best.0);
+    println!(
+        "{} candidates; best {:?}, objective {:.2}",
+        grid.len(),
+        best.1,
+        best.0
+    );
     let none = LowRe {
         dr: 0.0,
         ll: 0.0,
@@ -113,10 +118,22 @@ fn main() {
         re_low: 4e4,
         re_high: 1e5,
     };
-    report("fmm2022    LPGA 2023 (fitted)", &errors(&none, &LPGA_TOUR_2023));
-    report("fmm2022-re LPGA 2023 (fitted)", &errors(&best.1, &LPGA_TOUR_2023));
+    report(
+        "fmm2022    LPGA 2023 (fitted)",
+        &errors(&none, &LPGA_TOUR_2023),
+    );
+    report(
+        "fmm2022-re LPGA 2023 (fitted)",
+        &errors(&best.1, &LPGA_TOUR_2023),
+    );
     report("fmm2022    PGA (validation) ", &errors(&none, &PGA_TOUR));
     report("fmm2022-re PGA (validation) ", &errors(&best.1, &PGA_TOUR));
-    report("fmm2022    PGA 2023         ", &errors(&none, &PGA_TOUR_2023));
-    report("fmm2022-re PGA 2023         ", &errors(&best.1, &PGA_TOUR_2023));
+    report(
+        "fmm2022    PGA 2023         ",
+        &errors(&none, &PGA_TOUR_2023),
+    );
+    report(
+        "fmm2022-re PGA 2023         ",
+        &errors(&best.1, &PGA_TOUR_2023),
+    );
 }

@@ -5,9 +5,7 @@
 use smash::flight::aero::{CoefficientModel, Coefficients, Fmm2022, Fmm2022Re};
 use smash::flight::integrate::fly_with;
 use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
-use smash::flight::{
-    fly, fly_one, AeroModel, Atmosphere, FlightConfig, FlightLaunch, SpinDecay,
-};
+use smash::flight::{fly, fly_one, AeroModel, Atmosphere, FlightConfig, FlightLaunch, SpinDecay};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -21,10 +19,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 
 /// Carry errors (%), land-angle errors (°) and (model, TrackMan) apex heights (yd) of `aero` in
 /// the default atmosphere against a TrackMan table.
-fn trackman_errors(
-    aero: AeroModel,
-    rows: &[TourAverage],
-) -> (Vec<f64>, Vec<f64>, Vec<(f64, f64)>) {
+fn trackman_errors(aero: AeroModel, rows: &[TourAverage]) -> (Vec<f64>, Vec<f64>, Vec<(f64, f64)>) {
     // Default atmosphere: ISA sea level 15 °C, 1013.25 hPa, 50 % relative humidity, still air.
     let cfg = FlightConfig {
         aero,
@@ -33,7 +28,10 @@ fn trackman_errors(
     let launches: Vec<FlightLaunch> = rows.iter().map(|r| r.launch()).collect();
     let flights = fly(&cfg, &launches);
     let (mut carry, mut land, mut apex) = (Vec::new(), Vec::new(), Vec::new());
-    println!("{}: club  carry  TM   err%   apex  TM  land  TM", cfg.aero.name());
+    println!(
+        "{}: club  carry  TM   err%   apex  TM  land  TM",
+        cfg.aero.name()
+    );
     for (r, f) in rows.iter().zip(&flights) {
         let f = f.as_ref().unwrap();
         let e = 100.0 * (f.carry_yd() / r.carry_yd - 1.0);
@@ -70,8 +68,16 @@ fn trackman_pga_tour_meets_the_issue_targets() {
     let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR);
     let med = median(carry.clone());
     assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(worst(&carry) <= 4.0, "worst carry error {:.2} %", worst(&carry));
-    assert!(worst(&land) <= 5.0, "worst land-angle error {:.2}°", worst(&land));
+    assert!(
+        worst(&carry) <= 4.0,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 5.0,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
 }
 
 /// What the default model reaches on the PGA Tour table: the carry targets hold (measured
@@ -87,8 +93,16 @@ fn trackman_pga_tour_default_model_regression() {
         worst(&land)
     );
     assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(worst(&carry) <= 4.0, "worst carry error {:.2} %", worst(&carry));
-    assert!(worst(&land) <= 5.1, "worst land-angle error {:.2}°", worst(&land));
+    assert!(
+        worst(&carry) <= 4.0,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 5.1,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
     for (model, tm) in apex {
         assert!((model - tm).abs() < 4.0, "apex {model} vs {tm}");
     }
@@ -102,8 +116,16 @@ fn trackman_pga_tour_2023_regression() {
     let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR_2023);
     let med = median(carry.clone());
     assert!(med <= 1.4, "median carry error {med:.2} %");
-    assert!(worst(&carry) <= 4.8, "worst carry error {:.2} %", worst(&carry));
-    assert!(worst(&land) <= 3.3, "worst land-angle error {:.2}°", worst(&land));
+    assert!(
+        worst(&carry) <= 4.8,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 3.3,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
 }
 
 /// `fmm2022` as published misses the targets (measured 1.97 % median, 4.85 % worst carry,
@@ -113,8 +135,16 @@ fn trackman_pga_tour_fmm2022_as_published_regression() {
     let (carry, land, apex) = trackman_errors(AeroModel::Fmm2022, &PGA_TOUR);
     let med = median(carry.clone());
     assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(worst(&carry) <= 4.9, "worst carry error {:.2} %", worst(&carry));
-    assert!(worst(&land) <= 7.3, "worst land-angle error {:.2}°", worst(&land));
+    assert!(
+        worst(&carry) <= 4.9,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 7.3,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
     for (model, tm) in apex {
         assert!((model - tm).abs() < 3.0, "apex {model} vs {tm}");
     }
@@ -176,7 +206,8 @@ fn fmm2022_re_constants_minimise_the_lpga_objective() {
         assert!((a.cd - b.cd).abs() < 1e-15 && a.cl == b.cl && a.cm == b.cm);
     }
     let f0 = lpga_objective(&best);
-    let steps: [(fn(&mut LowRe, f64), f64); 5] = [
+    type Step = fn(&mut LowRe, f64);
+    let steps: [(Step, f64); 5] = [
         (|m, d| m.rise += d, 0.01),
         (|m, d| m.per_s += d, 0.05),
         (|m, d| m.re_low += d, 1e4),

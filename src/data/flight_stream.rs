@@ -447,7 +447,10 @@ impl Temporary {
             .to_string_lossy()
             .into_owned();
         std::fs::create_dir_all(&parent).map_err(|e| {
-            DataError::file(out, format!("cannot create folder {}: {e}", parent.display()))
+            DataError::file(
+                out,
+                format!("cannot create folder {}: {e}", parent.display()),
+            )
         })?;
         safe_write::clean_stale_temporaries(out);
         let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
@@ -495,7 +498,11 @@ mod tests {
                 -3.0 + 6.0 * f(0.57),
                 2000.0 + 1200.0 * f(0.439),
                 -600.0 + 1200.0 * f(0.352),
-                if k % 7 == 0 { String::new() } else { format!("{}", 250 + k % 40) }
+                if k % 7 == 0 {
+                    String::new()
+                } else {
+                    format!("{}", 250 + k % 40)
+                }
             ));
             if k % 500 == 0 {
                 t.push('\n');
@@ -550,9 +557,14 @@ mod tests {
         std::fs::write(&input, &bad).unwrap();
         let one = in_memory(&input, &out, &cfg, None).unwrap_err().to_string();
         for chunk in [4096, CHUNK_BYTES] {
-            let e = fly_csv_file(&input, &out, &cfg, None, chunk).unwrap_err().to_string();
+            let e = fly_csv_file(&input, &out, &cfg, None, chunk)
+                .unwrap_err()
+                .to_string();
             assert!(e.contains("bad.csv:1500"), "{e}");
-            assert!(one.contains("bad.csv:1500") || one.contains("bad.csv:1800"), "{one}");
+            assert!(
+                one.contains("bad.csv:1500") || one.contains("bad.csv:1800"),
+                "{one}"
+            );
         }
         assert_eq!(std::fs::read_to_string(&out).unwrap(), "keep me");
         let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
@@ -571,6 +583,8 @@ mod tests {
         fly_csv_file(&input, &a, &cfg, None, 1000).unwrap();
         in_memory(&input, &b, &cfg, None).unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-        assert!(std::fs::read_to_string(&a).unwrap().contains("\"a, quoted\""));
+        assert!(std::fs::read_to_string(&a)
+            .unwrap()
+            .contains("\"a, quoted\""));
     }
 }

@@ -20,8 +20,8 @@
 use rayon::prelude::*;
 
 use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, NathanLyu};
-use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use super::hermite::Hermite;
+use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use crate::lanes::{V, W};
 use crate::sweep::kernel::{simd_level, SimdLevel};
 
