@@ -2,9 +2,10 @@
 //! and an independent cross-check by an adaptive Dormand–Prince 5(4) integrator written here
 //! from the equations of motion (not sharing code with `smash::flight::integrate`).
 
-use smash::flight::aero::{CoefficientModel, Fmm2022};
-use smash::flight::trackman::PGA_TOUR;
-use smash::flight::{fly, fly_one, Atmosphere, FlightConfig, FlightLaunch, SpinDecay};
+use smash::flight::aero::{CoefficientModel, Coefficients, Fmm2022, Fmm2022Re};
+use smash::flight::integrate::fly_with;
+use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
+use smash::flight::{fly, fly_one, AeroModel, Atmosphere, FlightConfig, FlightLaunch, SpinDecay};
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -16,16 +17,22 @@ fn median(mut v: Vec<f64>) -> f64 {
     }
 }
 
-/// Carry and land-angle errors (%, °) of the default model and atmosphere against the table.
-fn trackman_errors() -> (Vec<f64>, Vec<f64>, Vec<(f64, f64)>) {
-    // Default model (fmm2022) and default atmosphere (ISA sea level 15 °C, 1013.25 hPa,
-    // 50 % relative humidity, still air).
-    let cfg = FlightConfig::default();
-    let launches: Vec<FlightLaunch> = PGA_TOUR.iter().map(|r| r.launch()).collect();
+/// Carry errors (%), land-angle errors (°) and (model, TrackMan) apex heights (yd) of `aero` in
+/// the default atmosphere against a TrackMan table.
+fn trackman_errors(aero: AeroModel, rows: &[TourAverage]) -> (Vec<f64>, Vec<f64>, Vec<(f64, f64)>) {
+    // Default atmosphere: ISA sea level 15 °C, 1013.25 hPa, 50 % relative humidity, still air.
+    let cfg = FlightConfig {
+        aero,
+        ..FlightConfig::default()
+    };
+    let launches: Vec<FlightLaunch> = rows.iter().map(|r| r.launch()).collect();
     let flights = fly(&cfg, &launches);
     let (mut carry, mut land, mut apex) = (Vec::new(), Vec::new(), Vec::new());
-    println!("club      carry  TM   err%   apex  TM  land  TM");
-    for (r, f) in PGA_TOUR.iter().zip(&flights) {
+    println!(
+        "{}: club  carry  TM   err%   apex  TM  land  TM",
+        cfg.aero.name()
+    );
+    for (r, f) in rows.iter().zip(&flights) {
         let f = f.as_ref().unwrap();
         let e = 100.0 * (f.carry_yd() / r.carry_yd - 1.0);
         println!(
@@ -46,39 +53,174 @@ fn trackman_errors() -> (Vec<f64>, Vec<f64>, Vec<(f64, f64)>) {
     (carry, land, apex)
 }
 
-/// The issue's targets: median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle within 5°.
-/// The published Ferguson et al. (2022) law, unchanged, does not meet the last two (7-iron
-/// carry 4.85 % short, 4-iron land angle 7.2° shallow; README "Ball flight" gives the causes
-/// examined). Ignored so the suite stays green; `cargo test --test flight -- --ignored` shows
-/// the gap.
-#[test]
-#[ignore = "fmm2022 misses the 4 % worst-carry and 5° land-angle targets; see README"]
-fn trackman_pga_tour_meets_the_issue_targets() {
-    let (carry, land, _) = trackman_errors();
-    let med = median(carry.clone());
-    let worst = carry.iter().cloned().fold(0.0, f64::max);
-    let land_worst = land.iter().cloned().fold(0.0, f64::max);
-    assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(worst <= 4.0, "worst carry error {worst:.2} %");
-    assert!(land_worst <= 5.0, "worst land-angle error {land_worst:.2}°");
+fn worst(v: &[f64]) -> f64 {
+    v.iter().cloned().fold(0.0, f64::max)
 }
 
-/// Regression guard on what the default model does reach today (measured 1.97 % median,
-/// 4.85 % worst carry, 7.2° worst land angle, apex within 3 yd): the median target holds;
-/// the other two bounds are the measured values rounded up, not the issue's targets (those are
-/// the ignored test above).
+/// The issue's targets, with the default model (`fmm2022-re`, fitted to the LPGA table, not
+/// to this one) and the default atmosphere: median |carry error| ≤ 2 %, worst ≤ 4 %, every land
+/// angle within 5°. Measured: 0.85 %, 3.92 %, 5.07° (the driver, 5.1° steeper than
+/// TrackMan's): the land-angle target is missed by 0.07° (README "Ball flight"). Ignored so the suite stays green;
+/// `cargo test --test flight -- --ignored` shows the gap.
 #[test]
-fn trackman_pga_tour_regression() {
-    let (carry, land, apex) = trackman_errors();
+#[ignore = "fmm2022-re misses the 5° land-angle target by 0.07° (driver); see README"]
+fn trackman_pga_tour_meets_the_issue_targets() {
+    let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR);
     let med = median(carry.clone());
-    let worst = carry.iter().cloned().fold(0.0, f64::max);
-    let land_worst = land.iter().cloned().fold(0.0, f64::max);
-    println!("median |carry err| {med:.2} %, worst {worst:.2} %, worst land {land_worst:.2}°");
     assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(worst <= 5.0, "worst carry error {worst:.2} %");
-    assert!(land_worst <= 7.5, "worst land-angle error {land_worst:.2}°");
+    assert!(
+        worst(&carry) <= 4.0,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 5.0,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
+}
+
+/// What the default model reaches on the PGA Tour table: the carry targets hold (measured
+/// 0.85 % median, 3.92 % worst); the land-angle bound (measured 5.07°) and the apex bound
+/// (measured 3.90 yd) are the measured values rounded up, a regression guard.
+#[test]
+fn trackman_pga_tour_default_model_regression() {
+    let (carry, land, apex) = trackman_errors(AeroModel::default(), &PGA_TOUR);
+    let med = median(carry.clone());
+    println!(
+        "median |carry err| {med:.2} %, worst {:.2} %, worst land {:.2}°",
+        worst(&carry),
+        worst(&land)
+    );
+    assert!(med <= 2.0, "median carry error {med:.2} %");
+    assert!(
+        worst(&carry) <= 4.0,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 5.1,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
+    for (model, tm) in apex {
+        assert!((model - tm).abs() < 4.0, "apex {model} vs {tm}");
+    }
+}
+
+/// The newer (2023) PGA Tour table, also not fitted to: measured 1.30 % median, 4.70 % worst
+/// carry, 3.22° worst land angle. The worst carry misses the 4 % target there; the bounds are
+/// the measured values rounded up, a regression guard.
+#[test]
+fn trackman_pga_tour_2023_regression() {
+    let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR_2023);
+    let med = median(carry.clone());
+    assert!(med <= 1.4, "median carry error {med:.2} %");
+    assert!(
+        worst(&carry) <= 4.8,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 3.3,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
+}
+
+/// `fmm2022` as published misses the targets (measured 1.97 % median, 4.85 % worst carry,
+/// 7.2° worst land angle, apex within 3 yd); a regression guard on those values.
+#[test]
+fn trackman_pga_tour_fmm2022_as_published_regression() {
+    let (carry, land, apex) = trackman_errors(AeroModel::Fmm2022, &PGA_TOUR);
+    let med = median(carry.clone());
+    assert!(med <= 2.0, "median carry error {med:.2} %");
+    assert!(
+        worst(&carry) <= 4.9,
+        "worst carry error {:.2} %",
+        worst(&carry)
+    );
+    assert!(
+        worst(&land) <= 7.3,
+        "worst land-angle error {:.2}°",
+        worst(&land)
+    );
     for (model, tm) in apex {
         assert!((model - tm).abs() < 3.0, "apex {model} vs {tm}");
+    }
+}
+
+/// `fmm2022` with a low-Reynolds drag rise of free parameters and an optional lift loss over
+/// the same window (the family `fmm2022-re` was fitted in).
+#[derive(Clone, Copy)]
+struct LowRe {
+    rise: f64,
+    per_s: f64,
+    re_low: f64,
+    re_high: f64,
+    lift_loss: f64,
+}
+
+impl CoefficientModel for LowRe {
+    fn coefficients(&self, s: f64, re: f64) -> Coefficients {
+        let mut c = Fmm2022.coefficients(s, re);
+        let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
+        let r = t * t * (3.0 - 2.0 * t);
+        c.cd += self.per_s * s.min(Fmm2022::S_MAX) + self.rise * r;
+        c.cl *= 1.0 - self.lift_loss * r;
+        c
+    }
+}
+
+/// The fit's objective on the LPGA 2023 rows: Σ (carry error %)² + (land error °/2)² + (apex
+/// error yd/2)².
+fn lpga_objective(m: &LowRe) -> f64 {
+    let cfg = FlightConfig::default();
+    let launches: Vec<FlightLaunch> = LPGA_TOUR_2023.iter().map(|r| r.launch()).collect();
+    fly_with(&cfg, m, &launches)
+        .iter()
+        .zip(&LPGA_TOUR_2023)
+        .map(|(f, r)| {
+            let f = f.as_ref().unwrap();
+            let c = 100.0 * (f.carry_yd() / r.carry_yd - 1.0);
+            let l = (f.land_angle_deg() - r.land_angle_deg) / 2.0;
+            let a = (f.apex_yd() - r.max_height_yd) / 2.0;
+            c * c + l * l + a * a
+        })
+        .sum()
+}
+
+/// `fmm2022-re`'s constants are the LPGA fit: the family above with them is the built-in model,
+/// and one grid step either way in any parameter does not lower the objective.
+#[test]
+fn fmm2022_re_constants_minimise_the_lpga_objective() {
+    let best = LowRe {
+        rise: Fmm2022Re::CD_LOW_RE,
+        per_s: Fmm2022Re::CD_PER_S,
+        re_low: Fmm2022Re::RE_LOW,
+        re_high: Fmm2022Re::RE_HIGH,
+        lift_loss: 0.0,
+    };
+    for (s, re) in [(0.1, 3e4), (0.3, 8e4), (0.5, 1.2e5), (0.9, 3e5)] {
+        let (a, b) = (best.coefficients(s, re), Fmm2022Re.coefficients(s, re));
+        assert!((a.cd - b.cd).abs() < 1e-15 && a.cl == b.cl && a.cm == b.cm);
+    }
+    let f0 = lpga_objective(&best);
+    type Step = fn(&mut LowRe, f64);
+    let steps: [(Step, f64); 5] = [
+        (|m, d| m.rise += d, 0.01),
+        (|m, d| m.per_s += d, 0.05),
+        (|m, d| m.re_low += d, 1e4),
+        (|m, d| m.re_high += d, 1e4),
+        (|m, d| m.lift_loss += d.abs(), 0.05),
+    ];
+    for (k, (step, d)) in steps.iter().enumerate() {
+        for sign in [-1.0, 1.0] {
+            let mut m = best;
+            step(&mut m, sign * d);
+            let f = lpga_objective(&m);
+            assert!(f >= f0, "parameter {k} {sign:+}: {f} < {f0}");
+        }
     }
 }
 
@@ -158,6 +300,7 @@ mod reference {
 
     pub struct Setup {
         pub rho: f64,
+        pub mu: f64,
         pub mass: f64,
         pub radius: f64,
         pub inertia: f64,
@@ -182,7 +325,7 @@ mod reference {
         let om = [s[6], s[7], s[8]];
         let spin = (om[0] * om[0] + om[1] * om[1] + om[2] * om[2]).sqrt();
         let sf = c.radius * spin / speed;
-        let co = Fmm2022.coefficients(sf, 0.0);
+        let (cd, cl, cm) = coefficients(sf, c.rho * speed * 2.0 * c.radius / c.mu);
         let q = 0.5 * c.rho * speed * speed * area;
         let cross = [
             om[1] * vr[2] - om[2] * vr[1],
@@ -193,11 +336,25 @@ mod reference {
         let mut d = [0.0; 9];
         for j in 0..3 {
             d[j] = s[3 + j];
-            d[3 + j] = (q * co.cl * cross[j] / cn - q * co.cd * vr[j] / speed) / c.mass;
-            d[6 + j] = -q * 2.0 * c.radius * co.cm * om[j] / spin / c.inertia;
+            d[3 + j] = (q * cl * cross[j] / cn - q * cd * vr[j] / speed) / c.mass;
+            d[6 + j] = -q * 2.0 * c.radius * cm * om[j] / spin / c.inertia;
         }
         d[4] -= 9.806_65;
         d
+    }
+
+    /// The default law written out from its published and fitted constants (Ferguson et al.
+    /// 2022 quadratics, spin factor held at 0.75; drag less 0.20·S, plus 0.20 below Re 4e4
+    /// fading as a smoothstep to 0 at 1.5e5): `(C_D, C_L, C_M)`.
+    fn coefficients(sf: f64, re: f64) -> (f64, f64, f64) {
+        let s = sf.min(0.75);
+        let x = ((1.5e5 - re) / 1.1e5).clamp(0.0, 1.0);
+        let rise = x * x * (3.0 - 2.0 * x);
+        (
+            0.1304 + 0.9287 * s - 0.8259 * s * s - 0.20 * s + 0.20 * rise,
+            0.0504 + 1.2031 * s - 1.1490 * s * s,
+            0.01 * s,
+        )
     }
 
     fn add(s: &S9, h: f64, ks: &[(f64, &S9)]) -> S9 {
@@ -379,6 +536,7 @@ fn agrees_with_an_independent_adaptive_integrator() {
         };
         let setup = reference::Setup {
             rho: air.density_kg_m3,
+            mu: air.viscosity_pa_s,
             mass: cfg.ball.mass_kg,
             radius: cfg.ball.radius_m,
             inertia: cfg.ball.inertia_kg_m2,

@@ -3,24 +3,23 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::Args;
 
-use smash::data::flight_files::{
-    flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource,
-};
-use smash::data::{write_atomic, DataError};
-use smash::flight::{fly, AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+use smash::data::flight_files::{flight_error_at, read_atmosphere, LaunchSource};
+use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
+use smash::data::DataError;
+use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
 pub struct FlightOptions {
-    /// Aerodynamic coefficient model: fmm2022 (Ferguson, McNally & McPhee 2022; default),
+    /// Aerodynamic coefficient model: fmm2022-re (default: Ferguson, McNally & McPhee 2022 with
+    /// a low-Reynolds drag rise fitted to TrackMan's LPGA averages), fmm2022 (as published),
     /// nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with spin_factor, cd,
     /// cl and optionally cm, reynolds).
     #[arg(
         long,
-        default_value = "fmm2022",
+        default_value = "fmm2022-re",
         value_name = "NAME",
         help_heading = "Flight"
     )]
@@ -271,28 +270,12 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         "predicted" => LaunchSource::Predicted,
         _ => LaunchSource::Measured,
     });
-    let table = read_launches(&args.shots, source)?;
     let t0 = std::time::Instant::now();
-    let results = fly(&cfg, &table.launches);
+    let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
     let secs = t0.elapsed().as_secs_f64();
-    let prefix = match table.source {
-        LaunchSource::Measured => "",
-        LaunchSource::Predicted => "pred_",
-    };
-    let flights = collect(&args.shots, &table.lines, prefix, results)?;
-    write_atomic(
-        &args.out,
-        &flight_csv(
-            &table.headers,
-            &table.records,
-            &flights,
-            cfg.ground.is_some(),
-        ),
-    )
-    .with_context(|| "writing the flights")?;
     eprintln!(
-        "flew {} shot(s) with {} (air {:.4} kg/m³) in {:.3} s -> {}",
-        flights.len(),
+        "flew {} shot(s) with {} (air {:.4} kg/m³) in {:.3} s (reading, flying and writing) -> {}",
+        flown.shots,
         cfg.aero.name(),
         cfg.air.density_kg_m3,
         secs,

@@ -22,7 +22,7 @@ pub const FLIGHT_COLUMNS: [&str; 6] = [
     "total_yd",
 ];
 
-fn flight_value(f: &Flight, k: usize) -> Option<f64> {
+pub(crate) fn flight_value(f: &Flight, k: usize) -> Option<f64> {
     match k {
         0 => Some(f.carry_yd()),
         1 => Some(f.offline_yd()),
@@ -43,7 +43,8 @@ pub enum LaunchSource {
 }
 
 impl LaunchSource {
-    fn prefix(self) -> &'static str {
+    /// Prefix of its column names.
+    pub fn prefix(self) -> &'static str {
         match self {
             Self::Measured => "",
             Self::Predicted => "pred_",
@@ -203,28 +204,32 @@ fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> 
     })
 }
 
-/// Read launches from a CSV: `source` picks the columns; `None` takes measured columns when
-/// `ball_speed_mph` is present, else predicted ones. `azimuth_deg` and `sidespin_rpm` may be
-/// absent (0).
-pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<LaunchTable, DataError> {
-    let text = read_text(path)?;
-    let raw = parse_raw_csv(path, text.as_bytes())?;
-    let col = |name: &str| raw.headers.iter().position(|h| h == name);
+/// The launch columns (file names without prefix), in [`FlightLaunch::from_file_units`] order.
+pub const LAUNCH_COLUMNS: [&str; 5] = [
+    "ball_speed_mph",
+    "launch_angle_deg",
+    "azimuth_deg",
+    "backspin_rpm",
+    "sidespin_rpm",
+];
+
+/// Which launch columns to fly and where they are: `source` picks them; `None` takes measured
+/// columns when `ball_speed_mph` is present, else predicted ones. `azimuth_deg` and
+/// `sidespin_rpm` may be absent (`None`: 0).
+pub fn launch_columns(
+    path: &Path,
+    headers: &[String],
+    source: Option<LaunchSource>,
+) -> Result<(LaunchSource, [Option<usize>; 5]), DataError> {
+    let col = |name: &str| headers.iter().position(|h| h == name);
     let source = source.unwrap_or(if col("ball_speed_mph").is_some() {
         LaunchSource::Measured
     } else {
         LaunchSource::Predicted
     });
     let p = source.prefix();
-    let names = [
-        "ball_speed_mph",
-        "launch_angle_deg",
-        "azimuth_deg",
-        "backspin_rpm",
-        "sidespin_rpm",
-    ];
     let mut idx = [None; 5];
-    for (k, n) in names.iter().enumerate() {
+    for (k, n) in LAUNCH_COLUMNS.iter().enumerate() {
         let full = format!("{p}{n}");
         idx[k] = col(&full);
         if idx[k].is_none() && k != 2 && k != 4 {
@@ -237,6 +242,18 @@ pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<Launch
             ));
         }
     }
+    Ok((source, idx))
+}
+
+/// Read launches from a CSV: `source` picks the columns; `None` takes measured columns when
+/// `ball_speed_mph` is present, else predicted ones. `azimuth_deg` and `sidespin_rpm` may be
+/// absent (0).
+pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<LaunchTable, DataError> {
+    let text = read_text(path)?;
+    let raw = parse_raw_csv(path, text.as_bytes())?;
+    let (source, idx) = launch_columns(path, &raw.headers, source)?;
+    let p = source.prefix();
+    let names = LAUNCH_COLUMNS;
     use rayon::prelude::*;
     let launches = raw
         .records
@@ -292,6 +309,60 @@ fn is_flight_output(h: &str) -> bool {
         .any(|c| h.strip_prefix("pred_").or_else(|| h.strip_prefix("err_")) == Some(c))
 }
 
+/// The columns of a flight output file: which input columns are kept, which flight columns
+/// follow, and which of them have a measured column (for `err_`).
+#[derive(Debug, Clone)]
+pub struct OutputLayout {
+    /// Input columns kept (earlier flight outputs dropped).
+    pub keep: Vec<usize>,
+    /// Flight outputs written, indices into [`FLIGHT_COLUMNS`].
+    pub outs: Vec<usize>,
+    /// `(flight output, input column of its measured value)` for the `err_` columns.
+    pub measured: Vec<(usize, usize)>,
+    header: Vec<String>,
+}
+
+impl OutputLayout {
+    /// The layout for an input header; `with_total`: add `total_yd`.
+    pub fn new(headers: &[String], with_total: bool) -> Self {
+        let keep: Vec<usize> = (0..headers.len())
+            .filter(|&i| !is_flight_output(&headers[i]))
+            .collect();
+        let outs: Vec<usize> = (0..FLIGHT_COLUMNS.len())
+            .filter(|&k| k < 5 || with_total)
+            .collect();
+        let measured: Vec<(usize, usize)> = outs
+            .iter()
+            .filter_map(|&k| {
+                headers
+                    .iter()
+                    .position(|h| h == FLIGHT_COLUMNS[k])
+                    .map(|i| (k, i))
+            })
+            .collect();
+        let mut header: Vec<String> = keep.iter().map(|&i| headers[i].clone()).collect();
+        header.extend(outs.iter().map(|&k| format!("pred_{}", FLIGHT_COLUMNS[k])));
+        header.extend(
+            measured
+                .iter()
+                .map(|&(k, _)| format!("err_{}", FLIGHT_COLUMNS[k])),
+        );
+        Self {
+            keep,
+            outs,
+            measured,
+            header,
+        }
+    }
+
+    /// The header line, CSV-quoted where needed, with its newline.
+    pub fn header_line(&self) -> Vec<u8> {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.write_record(&self.header).expect("writing to memory");
+        w.into_inner().expect("flushing memory")
+    }
+}
+
 /// CSV bytes: input columns (earlier flight outputs dropped), the `pred_` flight columns and
 /// `err_` columns where measured flight columns exist. `with_total`: add `total_yd`.
 pub fn flight_csv(
@@ -301,31 +372,9 @@ pub fn flight_csv(
     with_total: bool,
 ) -> Vec<u8> {
     assert_eq!(records.len(), flights.len(), "one flight per record");
-    let keep: Vec<usize> = (0..headers.len())
-        .filter(|&i| !is_flight_output(&headers[i]))
-        .collect();
-    let outs: Vec<usize> = (0..FLIGHT_COLUMNS.len())
-        .filter(|&k| k < 5 || with_total)
-        .collect();
-    let measured: Vec<(usize, usize)> = outs
-        .iter()
-        .filter_map(|&k| {
-            headers
-                .iter()
-                .position(|h| h == FLIGHT_COLUMNS[k])
-                .map(|i| (k, i))
-        })
-        .collect();
-    let mut header: Vec<String> = keep.iter().map(|&i| headers[i].clone()).collect();
-    header.extend(outs.iter().map(|&k| format!("pred_{}", FLIGHT_COLUMNS[k])));
-    header.extend(
-        measured
-            .iter()
-            .map(|&(k, _)| format!("err_{}", FLIGHT_COLUMNS[k])),
-    );
-    let mut w = csv::Writer::from_writer(Vec::new());
-    w.write_record(&header).expect("writing to memory");
-    let mut out = w.into_inner().expect("flushing memory");
+    let layout = OutputLayout::new(headers, with_total);
+    let (keep, outs, measured) = (&layout.keep, &layout.outs, &layout.measured);
+    let mut out = layout.header_line();
     // Rows in parallel chunks, each its own CSV writer (same quoting), joined in order.
     use rayon::prelude::*;
     let chunk = 4096;
@@ -336,18 +385,18 @@ pub fn flight_csv(
             let mut w = csv::Writer::from_writer(Vec::with_capacity(recs.len() * 96));
             let mut num = Vec::with_capacity(32);
             for (rec, f) in recs.iter().zip(fs) {
-                for &i in &keep {
+                for &i in keep {
                     w.write_field(rec.get(i).unwrap_or(""))
                         .expect("writing to memory");
                 }
-                for &k in &outs {
+                for &k in outs {
                     num.clear();
                     if let Some(v) = flight_value(f, k) {
                         push_cell(&mut num, v);
                     }
                     w.write_field(&num).expect("writing to memory");
                 }
-                for &(k, i) in &measured {
+                for &(k, i) in measured {
                     let m = rec.get(i).and_then(|c| c.parse::<f64>().ok());
                     num.clear();
                     if let (Some(p), Some(m)) = (flight_value(f, k), m) {

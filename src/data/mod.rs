@@ -7,6 +7,7 @@
 pub mod club_file;
 pub mod effect_defs;
 pub mod flight_files;
+pub mod flight_stream;
 pub mod import;
 pub mod noise_file;
 pub mod number;

@@ -19,7 +19,8 @@
 
 use rayon::prelude::*;
 
-use super::aero::{CoefficientModel, Fmm2022, NathanLyu};
+use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, NathanLyu};
+use super::hermite::Hermite;
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use crate::lanes::{V, W};
 use crate::sweep::kernel::{simd_level, SimdLevel};
@@ -66,10 +67,31 @@ pub fn fly_serial(
 ) {
     let wind = cfg.air.has_wind();
     match &cfg.aero {
+        AeroModel::Fmm2022Re => dispatch(cfg, &Fmm2022Re, wind, launches, out),
         AeroModel::Fmm2022 => dispatch(cfg, &Fmm2022, wind, launches, out),
         AeroModel::NathanLyu => dispatch(cfg, &NathanLyu, wind, launches, out),
         AeroModel::Table(t) => dispatch(cfg, t.as_ref(), wind, launches, out),
     }
+}
+
+/// [`fly`] with any coefficient model (`cfg.aero` is ignored), e.g. a model being fitted.
+pub fn fly_with<C: CoefficientModel>(
+    cfg: &FlightConfig,
+    model: &C,
+    launches: &[FlightLaunch],
+) -> Vec<Result<Flight, FlightError>> {
+    let mut out = vec![
+        Err(FlightError::NeverLands {
+            time_limit_s: cfg.max_time_s,
+        });
+        launches.len()
+    ];
+    let wind = cfg.air.has_wind();
+    launches
+        .par_chunks(PER_TASK)
+        .zip(out.par_chunks_mut(PER_TASK))
+        .for_each(|(l, o)| dispatch(cfg, model, wind, l, o));
+    out
 }
 
 fn dispatch<C: CoefficientModel>(
@@ -270,100 +292,6 @@ fn rk4<C: CoefficientModel, const WIND: bool>(
     })
 }
 
-/// Cubic Hermite interpolant on one step: values `y0, y1`, slopes (per unit θ) `m0, m1`.
-#[derive(Clone, Copy)]
-struct Hermite {
-    y0: f64,
-    y1: f64,
-    m0: f64,
-    m1: f64,
-}
-
-impl Hermite {
-    fn new(y0: f64, y1: f64, v0: f64, v1: f64, h: f64) -> Self {
-        Self {
-            y0,
-            y1,
-            m0: h * v0,
-            m1: h * v1,
-        }
-    }
-    fn at(&self, t: f64) -> f64 {
-        let (t2, t3) = (t * t, t * t * t);
-        (2.0 * t3 - 3.0 * t2 + 1.0) * self.y0
-            + (t3 - 2.0 * t2 + t) * self.m0
-            + (-2.0 * t3 + 3.0 * t2) * self.y1
-            + (t3 - t2) * self.m1
-    }
-    /// Derivative with respect to θ.
-    fn slope(&self, t: f64) -> f64 {
-        let t2 = t * t;
-        (6.0 * t2 - 6.0 * t) * self.y0
-            + (3.0 * t2 - 4.0 * t + 1.0) * self.m0
-            + (-6.0 * t2 + 6.0 * t) * self.y1
-            + (3.0 * t2 - 2.0 * t) * self.m1
-    }
-    /// The root in [0, 1] given `at(0) ≥ 0 > at(1)`: Newton kept inside a shrinking bracket.
-    fn root(&self) -> f64 {
-        let (mut lo, mut hi) = (0.0, 1.0);
-        let mut t = if self.y0 - self.y1 > 0.0 {
-            (self.y0 / (self.y0 - self.y1)).clamp(0.0, 1.0)
-        } else {
-            0.5
-        };
-        for _ in 0..100 {
-            let f = self.at(t);
-            if f == 0.0 {
-                return t;
-            }
-            if f > 0.0 {
-                lo = t;
-            } else {
-                hi = t;
-            }
-            if hi - lo < 1e-15 {
-                break;
-            }
-            let d = self.slope(t);
-            let tn = t - f / d;
-            t = if d != 0.0 && tn > lo && tn < hi {
-                tn
-            } else {
-                0.5 * (lo + hi)
-            };
-        }
-        t
-    }
-    /// Largest value over [0, 1].
-    fn max(&self) -> f64 {
-        // slope(θ) = A θ² + B θ + C.
-        let a = 6.0 * self.y0 + 3.0 * self.m0 - 6.0 * self.y1 + 3.0 * self.m1;
-        let b = -6.0 * self.y0 - 4.0 * self.m0 + 6.0 * self.y1 - 2.0 * self.m1;
-        let c = self.m0;
-        let mut best = self.y0.max(self.y1);
-        let mut try_t = |t: f64| {
-            if (0.0..=1.0).contains(&t) {
-                best = best.max(self.at(t));
-            }
-        };
-        if a.abs() < 1e-300 {
-            if b != 0.0 {
-                try_t(-c / b);
-            }
-        } else {
-            let disc = b * b - 4.0 * a * c;
-            if disc >= 0.0 {
-                let q = -0.5 * (b + b.signum() * disc.sqrt());
-                if q != 0.0 {
-                    try_t(q / a);
-                    try_t(c / q);
-                }
-            }
-        }
-        best
-    }
-}
-
 #[inline(always)]
 fn batches<C: CoefficientModel, const WIND: bool>(
     cfg: &FlightConfig,
@@ -525,19 +453,6 @@ mod tests {
 
     fn drive() -> FlightLaunch {
         FlightLaunch::from_file_units(167.0, 10.9, 0.0, 2686.0, 0.0)
-    }
-
-    #[test]
-    fn hermite_root_and_max_on_a_parabola() {
-        // y = 1 + 2θ − 3θ² on [0, 1] (dy/dθ = 2 − 6θ): root (1 + 2)/3 = 1, max at 1/3 = 4/3.
-        let hm = Hermite {
-            y0: 1.0,
-            y1: 0.0 - 1e-9,
-            m0: 2.0,
-            m1: -4.0,
-        };
-        assert!((hm.max() - 4.0 / 3.0).abs() < 1e-8);
-        assert!((hm.root() - 1.0).abs() < 1e-6);
     }
 
     #[test]
