@@ -271,9 +271,12 @@ fn expected_variances(
             let model = &models[&s.group];
             let x0 = delivery_to_file_units(&s.delivery);
             let launch_at = |x: &[f64; N_DELIVERY]| {
-                model
-                    .solve(&delivery_from_file_units(x))
-                    .ok()
+                // The file-unit vector has no shaft mass: carry the shot's own.
+                let d = Delivery {
+                    shaft_mass_g: s.delivery.shaft_mass_g,
+                    ..delivery_from_file_units(x)
+                };
+                model.solve(&d).ok()
                     .map(|o| o.launch().to_file_units())
             };
             let f0 = launch_at(&x0).ok_or_else(|| {
