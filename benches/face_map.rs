@@ -31,6 +31,7 @@ fn delivery() -> Delivery {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.0,
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     }
 }
 

@@ -25,6 +25,7 @@ fn impact(c: &mut Criterion) {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.008,
         impact_z_m: -0.012,
+        shaft_mass_g: None,
     };
     let nominal = paper_params();
     let mut effects = paper_params();

@@ -52,6 +52,7 @@ fn sweep(c: &mut Criterion) {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.0,
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     };
     let n = 101;
     let ys = linspace(mm(25.0), n);

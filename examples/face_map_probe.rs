@@ -25,6 +25,7 @@ fn main() {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.0,
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     };
     let n = 401;
     let lin = |h: f64| -> Vec<f64> {

@@ -19,6 +19,7 @@ fn delivery(speed: f64, loft_deg: f64, y_mm: f64, z_mm: f64) -> Delivery {
         club_omega_rad_s: Vector3::zeros(),
         impact_y_m: y_mm * 1e-3,
         impact_z_m: z_mm * 1e-3,
+        shaft_mass_g: None,
     }
 }
 
@@ -38,6 +39,7 @@ fn random_deliveries(seed: u64, n: usize, centre: bool) -> Vec<Delivery> {
                 club_omega_rad_s: Vector3::new(u(-3.0, 3.0), u(-4.0, 4.0), u(-3.0, 3.0)),
                 impact_y_m: if centre { 0.0 } else { u(-15.0, 15.0) * 1e-3 },
                 impact_z_m: if centre { 0.0 } else { u(-25.0, 25.0) * 1e-3 },
+                shaft_mass_g: None,
             }
         })
         .collect()

@@ -67,6 +67,7 @@ fn kernel_reproduces_golden_files() {
                 ),
                 impact_y_m: 0.0,
                 impact_z_m: 0.0,
+                shaft_mass_g: None,
             };
             let mut out = LaunchGrid::with_len(1);
             FaceMapKernel::new(&model, &d).eval_points(

@@ -105,6 +105,7 @@ fn delivery_strategy() -> impl Strategy<Value = Delivery> {
             club_omega_rad_s: Vector3::from(omega),
             impact_y_m: 0.0,
             impact_z_m: 0.0,
+            shaft_mass_g: None,
         })
 }
 
@@ -297,6 +298,7 @@ fn paper_driver_dense_map_deviation() {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.0,
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     };
     let n = 201;
     let lin = |h: f64| -> Vec<f64> {
@@ -373,6 +375,7 @@ fn validity_agrees_at_the_approach_boundary_to_the_last_bit() {
                 club_omega_rad_s: Vector3::new(0.0, omega_y, 0.0),
                 impact_y_m: 0.0,
                 impact_z_m: 0.0,
+                shaft_mass_g: None,
             };
             let ok = |y: f64, z: f64| {
                 let mut dd = d;

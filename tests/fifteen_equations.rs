@@ -102,6 +102,7 @@ fn delivery_strategy() -> impl Strategy<Value = Delivery> {
                 club_omega_rad_s: Vector3::from(omega),
                 impact_y_m: y,
                 impact_z_m: z,
+                shaft_mass_g: None,
             },
         )
 }
@@ -151,6 +152,7 @@ fn nominal_delivery() -> Delivery {
         club_omega_rad_s: Vector3::new(-2.0, 5.0, -10.0),
         impact_y_m: 0.008,
         impact_z_m: -0.012,
+        shaft_mass_g: None,
     }
 }
 

@@ -74,6 +74,7 @@ fn delivery_strategy() -> impl Strategy<Value = Delivery> {
             club_omega_rad_s: Vector3::new(wx, wy, wz),
             impact_y_m: mm(y),
             impact_z_m: mm(z),
+            shaft_mass_g: None,
         })
 }
 
@@ -243,6 +244,7 @@ fn off_face_locations_are_errors_not_nan() {
         club_omega_rad_s: Vector3::zeros(),
         impact_y_m: mm(400.0),
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     };
     let err = m.solve(&d).unwrap_err().to_string();
     assert!(err.contains("outside the face"), "{err}");
@@ -269,6 +271,7 @@ fn gear_effect_and_loft_signs_follow_the_conventions() {
         club_omega_rad_s: Vector3::zeros(),
         impact_y_m: mm(y),
         impact_z_m: mm(z),
+        shaft_mass_g: None,
     };
     let centre = m.solve(&d(0.0, 0.0)).unwrap().launch();
     let toe = m.solve(&d(0.0, 20.0)).unwrap().launch();

@@ -53,7 +53,7 @@ fn file_reads_back_with_the_paper_design() {
     for (g, m) in [("A", 74.5), ("B", 60.3), ("C", 70.9)] {
         let shots: Vec<_> = table.shots.iter().filter(|s| s.group == g).collect();
         assert_eq!(shots.len(), 200);
-        assert!(shots.iter().all(|s| s.shaft_mass_g == Some(m)));
+        assert!(shots.iter().all(|s| s.delivery.shaft_mass_g == Some(m)));
     }
     // Bit-for-bit: the file holds exactly what the generator made.
     for (parsed, made) in table.shots.iter().zip(&r.shots) {

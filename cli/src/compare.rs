@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use anyhow::bail;
 use clap::Args;
 
-use smash::compare::{compare, CompareOptions};
+use smash::compare::{compare_with_hints, CompareOptions};
 use smash::data::club_file::read_club;
 use smash::data::write_folder_atomic;
 use smash::physics::LaunchComponent;
@@ -136,7 +136,14 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         min_bin_count: args.min_bin_count,
         ..CompareOptions::default()
     };
-    let report = compare(&table.shots, &launches, &options)?;
+    // Hints at the user-defined effects (of --effect-defs and the club file), from their
+    // signatures measured on these shots.
+    let user = smash::compare::UserHints::measure(
+        &club,
+        &table.shots,
+        &smash::effects::user::registered(),
+    );
+    let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
     let title = format!(
         "{} vs {} ({} groups)",
         club.name,

@@ -124,6 +124,34 @@ fn diagnose_ranks_a_hidden_user_effect_first_and_selects_nothing_in_the_null_wor
     );
     assert!((b - 0.003).abs() < 3.0 * se, "b = {b} ± {se}");
 
+    // compare hints at it: the strongest ball-speed finding names cor_oblique.
+    let o = smash(&[
+        "compare",
+        "--club",
+        repo("configs/clubs/paper_driver.toml").to_str().unwrap(),
+        "--shots",
+        shots.to_str().unwrap(),
+        "--effect-defs",
+        example_defs().to_str().unwrap(),
+        "--json",
+    ]);
+    ok(&o, "compare");
+    let c: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let speed = c["findings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["component"] == "ball_speed_mph")
+        .expect("a ball-speed finding");
+    assert!(
+        speed["hints"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|h| h.as_str().unwrap().starts_with("cor_oblique (user-defined")),
+        "{speed}"
+    );
+
     let null = synth_world(dir.path(), "null", "", 1);
     let d = diagnose(&null);
     assert_eq!(

@@ -69,6 +69,7 @@ fn delivery(y_mm: f64, z_mm: f64) -> Delivery {
         club_omega_rad_s: Vector3::zeros(),
         impact_y_m: y_mm * 1e-3,
         impact_z_m: z_mm * 1e-3,
+        shaft_mass_g: None,
     }
 }
 

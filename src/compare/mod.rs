@@ -9,20 +9,25 @@
 //! - the errors binned by club speed and by dynamic loft (quantile bins);
 //! - the Pearson correlation of each error component with each delivery variable;
 //! - a ranked list of [`Finding`]s, each with hints from a small table of effect
-//!   [`SIGNATURES`]: which library effects produce such a pattern.
+//!   [`SIGNATURES`]: which library effects produce such a pattern, and, given their measured
+//!   signatures ([`UserHints`]), which user-defined effects can cancel it.
 //!
 //! Undefined statistics are `None`, never NaN.
 
+mod findings;
 pub mod signatures;
+mod tables;
+pub mod user_hints;
 
 use serde::Serialize;
 
 use crate::limits::OptionError;
 use crate::model::{DeliveryVar, Shot, N_DELIVERY};
 use crate::physics::{Launch, LaunchComponent};
-use crate::stats::{pearson, student_t_two_sided_p, Summary};
+use crate::stats::Summary;
 
 pub use signatures::{hints_for, Hint, Pattern, Signature, SIGNATURES};
+pub use user_hints::{UserHints, UserSignature};
 
 /// Settings of a comparison.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -361,329 +366,58 @@ fn launch_columns() -> String {
     LaunchComponent::ALL.map(|c| c.column()).join(", ")
 }
 
-fn errors_of(shots: &[Shot], predicted: &[Launch]) -> Result<Vec<[f64; 5]>, CompareError> {
-    if shots.len() != predicted.len() {
-        return Err(CompareError::Length {
-            shots: shots.len(),
-            predictions: predicted.len(),
-        });
-    }
-    if shots.is_empty() {
-        return Err(CompareError::Empty);
-    }
-    shots
-        .iter()
-        .zip(predicted)
-        .map(|(s, p)| {
-            let m = s
-                .measured
-                .as_ref()
-                .ok_or_else(|| CompareError::NoMeasurement {
-                    shot_id: s.id.clone(),
-                })?;
-            Ok(LaunchComponent::ALL.map(|c| p.get_file(c) - m.get_file(c)))
-        })
-        .collect()
-}
-
-fn group_errors(group: &str, errs: &[&[f64; 5]], alpha: f64) -> GroupBias {
-    GroupBias {
-        group: group.to_owned(),
-        n: errs.len(),
-        components: LaunchComponent::ALL
-            .iter()
-            .map(|&c| {
-                let xs: Vec<f64> = errs.iter().map(|e| e[c.index()]).collect();
-                let summary = Summary::of(&xs);
-                ComponentError {
-                    component: c.column(),
-                    unit: c.unit(),
-                    significant: summary.significant(alpha),
-                    summary,
-                }
-            })
-            .collect(),
-    }
-}
-
-fn face_residuals(
-    shots: &[Shot],
-    errs: &[[f64; 5]],
-    o: &CompareOptions,
-) -> Result<FaceResiduals, CompareError> {
-    let b = o.face_bin_mm;
-    let idx = |v_m: f64| (v_m * 1e3 / b).floor() as i64;
-    let iy: Vec<i64> = shots.iter().map(|s| idx(s.delivery.impact_y_m)).collect();
-    let iz: Vec<i64> = shots.iter().map(|s| idx(s.delivery.impact_z_m)).collect();
-    let range = |v: &[i64]| (*v.iter().min().unwrap(), *v.iter().max().unwrap());
-    let ((y0, y1), (z0, z1)) = (range(&iy), range(&iz));
-    let span = |lo: i64, hi: i64| {
-        usize::try_from(hi.saturating_sub(lo)).map_or(usize::MAX, |d| d.saturating_add(1))
-    };
-    crate::limits::count_product(
-        "face bins",
-        &[("rows", span(y0, y1)), ("columns", span(z0, z1))],
-        crate::limits::MAX_FACE_BINS,
-        "use a larger --bin-mm",
-    )?;
-    let ys_mm: Vec<f64> = (y0..=y1).map(|i| (i as f64 + 0.5) * b).collect();
-    let zs_mm: Vec<f64> = (z0..=z1).map(|i| (i as f64 + 0.5) * b).collect();
-    let mut cells: Vec<Vec<usize>> = vec![Vec::new(); ys_mm.len() * zs_mm.len()];
-    for (k, (y, z)) in iy.iter().zip(&iz).enumerate() {
-        cells[(y - y0) as usize * zs_mm.len() + (z - z0) as usize].push(k);
-    }
-    let bins = cells
-        .iter()
-        .enumerate()
-        .map(|(cell, members)| {
-            let enough = members.len() >= o.min_bin_count;
-            let per: Vec<Summary> = LaunchComponent::ALL
-                .iter()
-                .map(|c| {
-                    let xs: Vec<f64> = members.iter().map(|&k| errs[k][c.index()]).collect();
-                    Summary::of(&xs)
-                })
-                .collect();
-            FaceBin {
-                y_mm: ys_mm[cell / zs_mm.len()],
-                z_mm: zs_mm[cell % zs_mm.len()],
-                count: members.len(),
-                mean: per.iter().map(|s| s.mean.filter(|_| enough)).collect(),
-                std: per.iter().map(|s| s.std.filter(|_| enough)).collect(),
-            }
-        })
-        .collect();
-    Ok(FaceResiduals {
-        bin_mm: b,
-        min_count: o.min_bin_count,
-        ys_mm,
-        zs_mm,
-        bins,
-    })
-}
-
-fn binned(v: &Variable, shots: &[Shot], errs: &[[f64; 5]], nbins: usize) -> BinnedTable {
-    let mut order: Vec<usize> = (0..shots.len()).collect();
-    let x: Vec<f64> = shots.iter().map(|s| v.get(s)).collect();
-    order.sort_by(|&a, &b| x[a].total_cmp(&x[b]));
-    let nbins = nbins.clamp(1, shots.len());
-    let rows = (0..nbins)
-        .map(|i| {
-            let part = &order[i * order.len() / nbins..(i + 1) * order.len() / nbins];
-            BinnedRow {
-                lo: x[part[0]],
-                hi: x[*part.last().expect("non-empty bin")],
-                count: part.len(),
-                mean: LaunchComponent::ALL
-                    .iter()
-                    .map(|c| {
-                        let xs: Vec<f64> = part.iter().map(|&k| errs[k][c.index()]).collect();
-                        Summary::of(&xs).mean
-                    })
-                    .collect(),
-            }
-        })
-        .collect();
-    BinnedTable {
-        variable: v.name(),
-        rows,
-    }
-}
-
-/// Welch's t between two samples' means; `None` when undefined.
-fn welch_t(a: &[f64], b: &[f64]) -> Option<(f64, f64)> {
-    let (sa, sb) = (Summary::of(a), Summary::of(b));
-    let (ma, mb, ea, eb) = (sa.mean?, sb.mean?, sa.sem?, sb.sem?);
-    let se2 = ea * ea + eb * eb;
-    if !(se2 > 0.0) {
-        return None;
-    }
-    let t = (ma - mb) / se2.sqrt();
-    let df = se2 * se2 / (ea.powi(4) / (a.len() - 1) as f64 + eb.powi(4) / (b.len() - 1) as f64);
-    Some((t, student_t_two_sided_p(t, df)))
-}
-
-fn direction(variable: &str, r: f64) -> String {
-    let up = r > 0.0;
-    match variable {
-        "impact_y_mm" => if up {
-            "rises toward the crown"
-        } else {
-            "rises toward the sole"
-        }
-        .into(),
-        "impact_z_mm" => if up {
-            "rises toward the toe"
-        } else {
-            "rises toward the heel"
-        }
-        .into(),
-        "impact_r_mm" => if up {
-            "rises off-centre"
-        } else {
-            "falls off-centre"
-        }
-        .into(),
-        v => format!("{} with {v}", if up { "rises" } else { "falls" }),
-    }
-}
-
-fn fmt_p(p: f64) -> String {
-    if p < 1e-16 {
-        "p < 1e-16".into()
-    } else {
-        format!("p = {p:.1e}")
-    }
-}
-
-/// Compare measured launch with the model's predictions, shot by shot.
+/// Compare measured launch with the model's predictions, shot by shot, with the library's
+/// effect hints.
 pub fn compare(
     shots: &[Shot],
     predicted: &[Launch],
     o: &CompareOptions,
 ) -> Result<CompareReport, CompareError> {
+    compare_with_hints(shots, predicted, o, &UserHints::default())
+}
+
+/// [`compare`], with hints at the user-defined effects whose signatures `user` holds (measured
+/// on these shots by [`UserHints::measure`]).
+pub fn compare_with_hints(
+    shots: &[Shot],
+    predicted: &[Launch],
+    o: &CompareOptions,
+    user: &UserHints,
+) -> Result<CompareReport, CompareError> {
     o.validate()?;
-    let errs = errors_of(shots, predicted)?;
-    let mut groups: Vec<&str> = shots.iter().map(|s| s.group.as_str()).collect();
+    let errs = tables::errors_of(shots, predicted)?;
+    let group_of: Vec<&str> = shots.iter().map(|s| s.group.as_str()).collect();
+    let mut groups = group_of.clone();
     groups.sort();
     groups.dedup();
-    let members =
-        |g: &str| -> Vec<usize> { (0..shots.len()).filter(|&k| shots[k].group == g).collect() };
     let mut table2: Vec<GroupBias> = groups
         .iter()
         .map(|g| {
-            let e: Vec<&[f64; 5]> = members(g).iter().map(|&k| &errs[k]).collect();
-            group_errors(g, &e, o.alpha)
+            let e: Vec<&[f64; 5]> = errs
+                .iter()
+                .zip(&group_of)
+                .filter(|(_, sg)| *sg == g)
+                .map(|(e, _)| e)
+                .collect();
+            tables::group_errors(g, &e, o.alpha)
         })
         .collect();
-    table2.push(group_errors(
+    table2.push(tables::group_errors(
         "all",
         &errs.iter().collect::<Vec<_>>(),
         o.alpha,
     ));
-
-    let mut correlations = Vec::new();
-    for c in LaunchComponent::ALL {
-        let y: Vec<f64> = errs.iter().map(|e| e[c.index()]).collect();
-        for v in &VARIABLES {
-            let x: Vec<f64> = shots.iter().map(|s| v.get(s)).collect();
-            if let Some(k) = pearson(&x, &y) {
-                let significant = k.p < o.alpha;
-                correlations.push(CorrelationEntry {
-                    component: c.column(),
-                    variable: v.name(),
-                    n: k.n,
-                    r: k.r,
-                    t: k.t,
-                    p: k.p,
-                    significant,
-                    strong: significant && k.r.abs() >= o.strong_r,
-                });
-            }
-        }
+    let correlations = tables::correlations(shots, &errs, o);
+    let findings = findings::Evidence {
+        errs: &errs,
+        group_of: &group_of,
+        groups: &groups,
+        table2: &table2,
+        correlations: &correlations,
+        o,
+        user,
     }
-
-    // Findings.
-    let all = table2.last().expect("all block");
-    let mut findings = Vec::new();
-    for c in LaunchComponent::ALL {
-        let ce = &all.components[c.index()];
-        let mut trends: Vec<&CorrelationEntry> = correlations
-            .iter()
-            .filter(|k| k.component == c.column() && k.strong)
-            .collect();
-        trends.sort_by(|a, b| b.t.abs().total_cmp(&a.t.abs()));
-        if ce.significant {
-            let (m, t, p) = (
-                ce.summary.mean.unwrap_or(0.0),
-                ce.summary.t.unwrap_or(0.0),
-                ce.summary.p.unwrap_or(1.0),
-            );
-            let mut text = format!(
-                "{} is {} {} too {} (t = {}, {})",
-                c.label(),
-                sig3(m.abs()),
-                c.unit(),
-                if m > 0.0 { "high" } else { "low" },
-                fmt_t(t),
-                fmt_p(p)
-            );
-            if let Some(k) = trends.first() {
-                text.push_str(&format!(
-                    ", {} (r = {:.2} with {})",
-                    direction(k.variable, k.r),
-                    k.r,
-                    k.variable
-                ));
-            }
-            findings.push(Finding {
-                component: c.column(),
-                pattern: Pattern::Bias,
-                strength: t.abs(),
-                text,
-                hints: hints_for(c, &Pattern::Bias),
-            });
-        }
-        for k in &trends {
-            let pattern = Pattern::Trend(k.variable);
-            findings.push(Finding {
-                component: c.column(),
-                pattern,
-                strength: k.t.abs(),
-                text: format!(
-                    "{} error {} (r = {:.2}, t = {}, {})",
-                    c.label(),
-                    direction(k.variable, k.r),
-                    k.r,
-                    fmt_t(k.t),
-                    fmt_p(k.p)
-                ),
-                hints: hints_for(c, &pattern),
-            });
-        }
-        // Group differences: largest vs smallest group mean, Bonferroni over the pairs.
-        if groups.len() > 1 {
-            let block = |g: &str| table2.iter().find(|b| b.group == g).expect("group block");
-            let mean_of = |g: &str| block(g).components[c.index()].summary.mean.unwrap_or(0.0);
-            let lo = groups
-                .iter()
-                .copied()
-                .min_by(|a, b| mean_of(a).total_cmp(&mean_of(b)));
-            let hi = groups
-                .iter()
-                .copied()
-                .max_by(|a, b| mean_of(a).total_cmp(&mean_of(b)));
-            if let (Some(lo), Some(hi)) = (lo, hi) {
-                let xs = |g: &str| -> Vec<f64> {
-                    members(g).iter().map(|&k| errs[k][c.index()]).collect()
-                };
-                let pairs = groups.len() * (groups.len() - 1) / 2;
-                if let Some((t, p)) = welch_t(&xs(hi), &xs(lo)) {
-                    if p * (pairs as f64) < o.alpha {
-                        let list: Vec<String> = groups
-                            .iter()
-                            .map(|g| format!("{g} {}", sig3(mean_of(g))))
-                            .collect();
-                        findings.push(Finding {
-                            component: c.column(),
-                            pattern: Pattern::GroupBias,
-                            strength: t.abs(),
-                            text: format!(
-                                "{} error differs between groups: {} {} (Welch t = {} for {hi} vs {lo}, {})",
-                                c.label(),
-                                list.join(", "),
-                                c.unit(),
-                                fmt_t(t),
-                                fmt_p(p)
-                            ),
-                            hints: hints_for(c, &Pattern::GroupBias),
-                        });
-                    }
-                }
-            }
-        }
-    }
-    findings.sort_by(|a, b| b.strength.total_cmp(&a.strength));
+    .findings();
 
     let bias_tests = table2.len() * LaunchComponent::ALL.len();
     let tests = bias_tests + correlations.len();
@@ -696,12 +430,12 @@ pub fn compare(
     Ok(CompareReport {
         n_shots: shots.len(),
         alpha: o.alpha,
-        face: face_residuals(shots, &errs, o)?,
+        face: tables::face_residuals(shots, &errs, o)?,
         binned: ["club_speed_mph", "dynamic_loft_deg"]
             .iter()
             .map(|n| {
                 let v = VARIABLES.iter().find(|v| v.name() == *n).expect("variable");
-                binned(v, shots, &errs, o.quantile_bins)
+                tables::binned(v, shots, &errs, o.quantile_bins)
             })
             .collect(),
         table2,
@@ -761,7 +495,6 @@ mod tests {
                     id: format!("s{i}"),
                     group: "all".into(),
                     golfer: None,
-                    shaft_mass_g: None,
                     delivery: delivery_from_file_units(&v),
                     measured: Some(launch),
                 }

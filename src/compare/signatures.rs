@@ -6,11 +6,13 @@ use std::fmt;
 
 use serde::Serialize;
 
+use crate::effects::user::UserEffect;
 use crate::effects::EffectKind;
 use crate::physics::LaunchComponent;
 
 /// What a signature points at: a library effect (checked by the compiler), the effect per group
-/// of shots, or noise in the measured impact location.
+/// of shots, noise in the measured impact location, or a user-defined effect whose measured
+/// signature matches ([`super::user_hints`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Hint {
     /// A library effect, for all shots.
@@ -19,6 +21,10 @@ pub enum Hint {
     PerGroup(EffectKind),
     /// Impact-location measurement noise (`--impact-noise-mm`).
     ImpactNoise,
+    /// A user-defined effect, for all shots.
+    User(&'static UserEffect),
+    /// A user-defined effect fitted per group (`name@group`).
+    UserPerGroup(&'static UserEffect),
 }
 
 impl fmt::Display for Hint {
@@ -27,6 +33,8 @@ impl fmt::Display for Hint {
             Self::Effect(k) => f.write_str(k.name()),
             Self::PerGroup(k) => write!(f, "{}@group", k.name()),
             Self::ImpactNoise => f.write_str("impact_noise"),
+            Self::User(u) => f.write_str(u.name),
+            Self::UserPerGroup(u) => write!(f, "{}@group", u.name),
         }
     }
 }
@@ -262,4 +270,14 @@ pub fn hints_for(component: LaunchComponent, pattern: &Pattern) -> Vec<String> {
             format!("{} ({})", names.join(" or "), s.why)
         })
         .collect()
+}
+
+/// The hint text of a user-defined effect: its name and its own description.
+pub fn user_hint_text(h: &Hint) -> String {
+    match h {
+        Hint::User(u) | Hint::UserPerGroup(u) if !u.doc.is_empty() => {
+            format!("{h} (user-defined: {})", u.doc)
+        }
+        _ => format!("{h} (user-defined)"),
+    }
 }

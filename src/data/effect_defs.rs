@@ -340,8 +340,7 @@ fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, String> {
         }
         return Err(format!(
             "{} may not use '{name}': mass and geometry are set before the ball meets the face, \
-             so they cannot depend on where or how fast it does; only cor, et and mu may read \
-             {}",
+             so they cannot depend on how fast it does; only cor, et and mu may read {}",
             q.key(),
             CONTACT_VARIABLES.map(|c| c.0).join(", ")
         ));

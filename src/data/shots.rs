@@ -24,7 +24,7 @@ use crate::limits::{self, PhysicalRange};
 /// callers of the reader.
 pub use crate::model::Shot;
 use crate::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
-use crate::physics::{Launch, LaunchComponent};
+use crate::physics::{Delivery, Launch, LaunchComponent};
 use crate::units::{deg, mph, rpm};
 
 /// Columns a shots file must have: `shot_id` and the required [`DeliveryVar`]s.
@@ -332,7 +332,10 @@ impl Row<'_> {
                 values[v.index()] = self.ranged(i, v.range())?;
             }
         }
-        let delivery = delivery_from_file_units(&values);
+        let delivery = Delivery {
+            shaft_mass_g,
+            ..delivery_from_file_units(&values)
+        };
         let measured = match cols.launch {
             Some(idx) => {
                 let mut v = [0.0; 5];
@@ -353,7 +356,6 @@ impl Row<'_> {
             id,
             group,
             golfer,
-            shaft_mass_g,
             delivery,
             measured,
         })

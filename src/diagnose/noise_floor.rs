@@ -430,7 +430,6 @@ mod tests {
             id: "s".into(),
             group: "all".into(),
             golfer: None,
-            shaft_mass_g: None,
             delivery: delivery_from_file_units(&clean),
             measured: None,
         };

@@ -45,6 +45,9 @@ impl PartialEq for UserEffect {
     }
 }
 
+/// Equality is by name and definition text, an equivalence.
+impl Eq for UserEffect {}
+
 impl UserEffect {
     /// Apply with parameter values `v` (units of [`UserEffect::params`]): add its terms to the
     /// model's user terms.

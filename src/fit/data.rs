@@ -127,7 +127,7 @@ impl FitData {
             d.group_of
                 .push(d.groups.binary_search(&s.group).expect("group listed"));
             d.golfers.push(s.golfer.clone());
-            d.shaft_mass_g.push(s.shaft_mass_g);
+            d.shaft_mass_g.push(s.delivery.shaft_mass_g);
             d.deliveries.push(s.delivery);
             d.measured.push(m.to_file_units());
             let (sl, cl) = m.launch_angle_rad.sin_cos();

@@ -189,6 +189,7 @@ pub fn delivery_from_file_units(v: &[f64; N_DELIVERY]) -> Delivery {
         club_omega_rad_s: Vector3::zeros(),
         impact_y_m: 0.0,
         impact_z_m: 0.0,
+        shaft_mass_g: None,
     };
     for var in DeliveryVar::ALL {
         var.set_file_value(&mut d, v[var.index()]);

@@ -12,9 +12,8 @@ pub struct Shot {
     pub group: String,
     /// Golfer, when known.
     pub golfer: Option<String>,
-    /// Shaft mass, g, when known.
-    pub shaft_mass_g: Option<f64>,
-    /// Clubhead delivery, SI.
+    /// Clubhead delivery, SI, with the shaft mass when the file gives it
+    /// ([`Delivery::shaft_mass_g`]).
     pub delivery: Delivery,
     /// Measured launch, SI, when the file has launch columns.
     pub measured: Option<Launch>,

@@ -15,7 +15,8 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-/// Clubhead state just before impact and where on the face it meets the ball. SI units.
+/// Clubhead state just before impact, where on the face it meets the ball, and the shaft's mass
+/// when known. SI units (the shaft mass in g, as in files).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Delivery {
     /// Clubhead CoM speed `S`, m/s.
@@ -36,6 +37,10 @@ pub struct Delivery {
     pub impact_y_m: f64,
     /// Impact location toward the toe from CoF, m (in the CoF tangent plane).
     pub impact_z_m: f64,
+    /// Mass of the shaft the club was swung with, g, when the shots file gives it (its
+    /// `shaft_mass_g` column). The library's laws do not read it; user-defined effects may
+    /// (`crate::physics::user_terms`, which supplies a default when it is `None`).
+    pub shaft_mass_g: Option<f64>,
 }
 
 impl Delivery {

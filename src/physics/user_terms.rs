@@ -11,10 +11,12 @@
 //!
 //! Every variable an expression reads is the quantity's own nominal value (its value before
 //! this term: the library's law and any earlier term included), the effect's parameters and the
-//! delivery columns of a shots file in file units; `cor`, `et` and `mu` may also read the
-//! impact location (`impact_y_mm`, `impact_z_mm`), `u1n_m_s` and `ut_m_s`. Mass and geometry
-//! are fixed before the ball meets the face, so they may not depend on where or how fast it
-//! does (a face map varies the location at one delivery).
+//! shot columns of a shots file in file units (the delivery, the impact location `impact_y_mm`,
+//! `impact_z_mm`, and `shaft_mass_g`, [`DEFAULT_SHAFT_MASS_G`] when a shot has none); `cor`,
+//! `et` and `mu` may also read the approach speeds `u1n_m_s` and `ut_m_s`. Mass and geometry
+//! are fixed before the ball meets the face, so they may not depend on how fast it does; they
+//! may depend on where (a face map then evaluates them at every point,
+//! [`UserTerms::pre_solve_reads_location`]).
 
 use nalgebra::Vector3;
 
@@ -86,7 +88,7 @@ impl Quantity {
         }
     }
 
-    /// Is it evaluated inside the contact laws (may read `u1n_m_s`, `ut_m_s`, the location)?
+    /// Is it evaluated inside the contact laws (may read `u1n_m_s` and `ut_m_s`)?
     pub const fn in_contact(self) -> bool {
         matches!(self, Quantity::Cor | Quantity::Et | Quantity::Mu)
     }
@@ -113,15 +115,16 @@ impl Quantity {
 }
 
 /// Number of expression variables.
-pub const NV: usize = 17;
+pub const NV: usize = 18;
 /// Variable: the quantity's nominal value.
 pub const VAR_NOMINAL: u8 = 0;
 /// Variable: the effect's first parameter (the others follow).
 pub const VAR_PARAM0: u8 = 1;
-/// Variable: first delivery column (`VAR_DELIVERY + i` is `DELIVERY_COLUMNS[i]`).
+/// Variable: first shot column (`VAR_DELIVERY + i` is `DELIVERY_COLUMNS[i]`).
 pub const VAR_DELIVERY: u8 = 4;
-/// Delivery columns every quantity may read, file units.
-pub const DELIVERY_COLUMNS: [&str; 9] = [
+/// Shots-file columns every quantity may read, file units: the delivery, the impact location
+/// and the shaft mass.
+pub const DELIVERY_COLUMNS: [&str; 12] = [
     "club_speed_mph",
     "attack_angle_deg",
     "club_path_deg",
@@ -131,25 +134,39 @@ pub const DELIVERY_COLUMNS: [&str; 9] = [
     "club_omega_x_rad_s",
     "club_omega_y_rad_s",
     "club_omega_z_rad_s",
+    "impact_y_mm",
+    "impact_z_mm",
+    "shaft_mass_g",
 ];
 /// Variable: impact height, mm.
-pub const VAR_IMPACT_Y: u8 = 13;
+pub const VAR_IMPACT_Y: u8 = VAR_DELIVERY + 9;
 /// Variable: impact heel–toe location, mm.
-pub const VAR_IMPACT_Z: u8 = 14;
+pub const VAR_IMPACT_Z: u8 = VAR_DELIVERY + 10;
+/// Variable: shaft mass, g.
+pub const VAR_SHAFT_MASS: u8 = VAR_DELIVERY + 11;
 /// Variable: normal approach speed, m/s.
-pub const VAR_U1N: u8 = 15;
+pub const VAR_U1N: u8 = 16;
 /// Variable: tangential approach speed, m/s.
-pub const VAR_UT: u8 = 16;
-/// Variables only the contact quantities (`cor`, `et`, `mu`) may read.
-pub const CONTACT_VARIABLES: [(&str, u8); 4] = [
-    ("impact_y_mm", VAR_IMPACT_Y),
-    ("impact_z_mm", VAR_IMPACT_Z),
-    ("u1n_m_s", VAR_U1N),
-    ("ut_m_s", VAR_UT),
-];
+pub const VAR_UT: u8 = 17;
+/// Variables only the contact quantities (`cor`, `et`, `mu`) may read: the approach speeds,
+/// known only once the ball meets the face.
+pub const CONTACT_VARIABLES: [(&str, u8); 2] = [("u1n_m_s", VAR_U1N), ("ut_m_s", VAR_UT)];
 
-/// The per-shot variables of `d` that do not depend on the solve (delivery columns in file
-/// units and the impact location); the nominal, parameter and speed slots are 0.
+const _: () = assert!(VAR_U1N as usize == VAR_DELIVERY as usize + DELIVERY_COLUMNS.len());
+const _: () = assert!(VAR_UT as usize + 1 == NV);
+
+/// Shaft mass an expression reads when a shot does not give one (no `shaft_mass_g` column, or a
+/// face map of a study), g: the mean of the three driver shafts of the paper (Danaei et al.,
+/// Section 2.1: 74.5, 60.3 and 70.9 g; see [`crate::physics`]), a typical graphite driver shaft.
+pub const DEFAULT_SHAFT_MASS_G: f64 = (74.5 + 60.3 + 70.9) / 3.0;
+
+/// Variables that change with the impact location at one delivery: a face map must evaluate an
+/// expression that reads one of them at every point.
+pub const LOCATION_VARIABLES: [u8; 2] = [VAR_IMPACT_Y, VAR_IMPACT_Z];
+
+/// The per-shot variables of `d` that do not depend on the solve (the shot columns in file
+/// units, the shaft mass defaulting to [`DEFAULT_SHAFT_MASS_G`]); the nominal, parameter and
+/// speed slots are 0.
 pub fn delivery_vars(d: &Delivery) -> [f64; NV] {
     let mut v = [0.0; NV];
     let cols = [
@@ -162,10 +179,11 @@ pub fn delivery_vars(d: &Delivery) -> [f64; NV] {
         d.club_omega_rad_s.x,
         d.club_omega_rad_s.y,
         d.club_omega_rad_s.z,
+        d.impact_y_m * 1e3,
+        d.impact_z_m * 1e3,
+        d.shaft_mass_g.unwrap_or(DEFAULT_SHAFT_MASS_G),
     ];
     v[VAR_DELIVERY as usize..VAR_DELIVERY as usize + cols.len()].copy_from_slice(&cols);
-    v[VAR_IMPACT_Y as usize] = d.impact_y_m * 1e3;
-    v[VAR_IMPACT_Z as usize] = d.impact_z_m * 1e3;
     v
 }
 
@@ -279,6 +297,15 @@ impl UserTerms {
     /// Does any term set a mass or geometry quantity (evaluated before the solve)?
     pub fn has_pre_solve(&self) -> bool {
         self.iter().any(|t| !t.def().quantity.in_contact())
+    }
+
+    /// Does a mass or geometry term read the impact location (so that it differs between the
+    /// points of a face map at one delivery)?
+    pub fn pre_solve_reads_location(&self) -> bool {
+        self.iter().any(|t| {
+            let def = t.def();
+            !def.quantity.in_contact() && LOCATION_VARIABLES.iter().any(|&v| def.program.reads(v))
+        })
     }
 
     /// Does any term set `cor`, `et` or `mu` (evaluated in the contact laws)?

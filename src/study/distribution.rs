@@ -47,6 +47,7 @@ impl SwingSpec {
             club_omega_rad_s: Vector3::new(w[0], w[1], w[2]),
             impact_y_m: mm(y_mm),
             impact_z_m: mm(z_mm),
+            shaft_mass_g: None,
         }
     }
 }

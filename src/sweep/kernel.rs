@@ -27,6 +27,11 @@
 //! rearranged for speed and agrees with `solve` + `launch()` to ~1e-15 relative
 //! (property-tested at 1e-12; 1e-9 absolute for angles and spins near zero).
 //!
+//! User-defined mass and geometry expressions are usually fixed by the delivery and folded in
+//! here once. One that reads the impact location (`impact_y_mm`, `impact_z_mm`) differs from
+//! point to point: such a kernel builds a kernel per point at its location (`kernel/located.rs`)
+//! and evaluates it with the same vector code; kernels without one keep the precomputed path.
+//!
 //! # Determinism
 //!
 //! A point's outputs depend only on its own `(y, z)` and the kernel: every point goes through
@@ -39,12 +44,20 @@
 //! 1 and 3 threads vs the portable path).
 
 use nalgebra::{Matrix3, Vector3};
-use rayon::prelude::*;
+
+mod eval;
+mod grid;
+mod jobs;
+mod located;
 
 use super::fastmath::atan2_v;
 use crate::lanes::{M, V, W};
 use crate::physics::laws::{Laws, TangentialLaw};
-use crate::physics::{Delivery, ImpactModel, LaunchComponent, ModelParams};
+use crate::physics::{Delivery, ImpactModel, ModelParams};
+pub use eval::{face_map, face_map_into};
+use grid::fill_invalid;
+pub use grid::{LaunchGrid, RowOut};
+use jobs::Job;
 
 /// Points per chunk: the unit the vector code works on.
 pub const LANES: usize = 8;
@@ -52,138 +65,9 @@ pub const LANES: usize = 8;
 /// Fewest grid rows a rayon task takes (a row of a few hundred points is only a few µs).
 const ROWS_PER_TASK: usize = 4;
 
-/// Launch outputs over a set of impact points, structure of arrays, SI units, row-major for
-/// grids. Invalid points (off the face torus, or club not approaching the ball) have
-/// `valid = false` and NaN outputs.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct LaunchGrid {
-    /// Ball speed, m/s.
-    pub ball_speed_m_s: Vec<f64>,
-    /// Launch angle, rad (+ up).
-    pub launch_angle_rad: Vec<f64>,
-    /// Azimuth, rad (+ right of target).
-    pub azimuth_rad: Vec<f64>,
-    /// Backspin, rad/s.
-    pub backspin_rad_s: Vec<f64>,
-    /// Sidespin, rad/s (+ slice for a right-hander).
-    pub sidespin_rad_s: Vec<f64>,
-    /// Whether the impact at this point is physical (on the face, club approaching the ball).
-    pub valid: Vec<bool>,
-}
-
-/// Mutable output slices for one row or point set (same fields as [`LaunchGrid`], equal
-/// lengths).
-#[derive(Debug)]
-pub struct RowOut<'a> {
-    /// Ball speed, m/s.
-    pub ball_speed_m_s: &'a mut [f64],
-    /// Launch angle, rad.
-    pub launch_angle_rad: &'a mut [f64],
-    /// Azimuth, rad.
-    pub azimuth_rad: &'a mut [f64],
-    /// Backspin, rad/s.
-    pub backspin_rad_s: &'a mut [f64],
-    /// Sidespin, rad/s.
-    pub sidespin_rad_s: &'a mut [f64],
-    /// Validity flags.
-    pub valid: &'a mut [bool],
-}
-
-impl RowOut<'_> {
-    /// Number of points (the length of every slice).
-    pub fn len(&self) -> usize {
-        self.valid.len()
-    }
-
-    /// Whether there are no points.
-    pub fn is_empty(&self) -> bool {
-        self.valid.is_empty()
-    }
-
-    fn assert_len(&self, n: usize) {
-        for (name, len) in [
-            ("ball_speed_m_s", self.ball_speed_m_s.len()),
-            ("launch_angle_rad", self.launch_angle_rad.len()),
-            ("azimuth_rad", self.azimuth_rad.len()),
-            ("backspin_rad_s", self.backspin_rad_s.len()),
-            ("sidespin_rad_s", self.sidespin_rad_s.len()),
-            ("valid", self.valid.len()),
-        ] {
-            assert_eq!(len, n, "RowOut.{name} has {len} entries for {n} points");
-        }
-    }
-}
-
-impl LaunchGrid {
-    /// A grid of `n` points, all NaN and invalid.
-    pub fn with_len(n: usize) -> Self {
-        Self {
-            ball_speed_m_s: vec![f64::NAN; n],
-            launch_angle_rad: vec![f64::NAN; n],
-            azimuth_rad: vec![f64::NAN; n],
-            backspin_rad_s: vec![f64::NAN; n],
-            sidespin_rad_s: vec![f64::NAN; n],
-            valid: vec![false; n],
-        }
-    }
-
-    /// Number of points.
-    pub fn len(&self) -> usize {
-        self.valid.len()
-    }
-
-    /// Whether the grid has no points.
-    pub fn is_empty(&self) -> bool {
-        self.valid.is_empty()
-    }
-
-    /// One launch component, SI units (m/s, rad, rad/s).
-    pub fn component(&self, c: LaunchComponent) -> &[f64] {
-        match c {
-            LaunchComponent::BallSpeed => &self.ball_speed_m_s,
-            LaunchComponent::LaunchAngle => &self.launch_angle_rad,
-            LaunchComponent::Azimuth => &self.azimuth_rad,
-            LaunchComponent::Backspin => &self.backspin_rad_s,
-            LaunchComponent::Sidespin => &self.sidespin_rad_s,
-        }
-    }
-
-    /// Output slices for the points `start..start + len`.
-    ///
-    /// # Panics
-    /// If the range is outside the grid.
-    pub fn row_out(&mut self, start: usize, len: usize) -> RowOut<'_> {
-        let r = start..start + len;
-        RowOut {
-            ball_speed_m_s: &mut self.ball_speed_m_s[r.clone()],
-            launch_angle_rad: &mut self.launch_angle_rad[r.clone()],
-            azimuth_rad: &mut self.azimuth_rad[r.clone()],
-            backspin_rad_s: &mut self.backspin_rad_s[r.clone()],
-            sidespin_rad_s: &mut self.sidespin_rad_s[r.clone()],
-            valid: &mut self.valid[r],
-        }
-    }
-
-    /// Resize to `n` points (allocates only if the capacity is too small).
-    pub fn resize(&mut self, n: usize) {
-        self.ball_speed_m_s.resize(n, f64::NAN);
-        self.launch_angle_rad.resize(n, f64::NAN);
-        self.azimuth_rad.resize(n, f64::NAN);
-        self.backspin_rad_s.resize(n, f64::NAN);
-        self.sidespin_rad_s.resize(n, f64::NAN);
-        self.valid.resize(n, false);
-    }
-
-    /// Output slices for the whole grid.
-    pub fn all_out(&mut self) -> RowOut<'_> {
-        let n = self.len();
-        self.row_out(0, n)
-    }
-}
-
 /// Everything about one (model, delivery) pair that does not depend on the impact location,
-/// precomputed once. Cheap to copy; `Send + Sync`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// precomputed once. Cheap to clone; `Send + Sync`.
+#[derive(Debug, Clone, PartialEq)]
 pub struct FaceMapKernel {
     /// Roll (torus tube radius `r`), m.
     roll_m: f64,
@@ -206,6 +90,9 @@ pub struct FaceMapKernel {
     /// A user-defined mass or geometry expression failed for this delivery: every point is
     /// invalid.
     broken: bool,
+    /// The model and delivery, when a user-defined mass or geometry expression reads the impact
+    /// location: each point then gets its own kernel ([`located`]).
+    located: Option<std::sync::Arc<located::Located>>,
     /// `R_GF / m_b`: ball impulse in F → ball velocity in G.
     r_v: [[f64; 3]; 3],
     /// Rows y and z of `R_GF / I_b`: `r_b × P` in F → ball spin components y, z in G.
@@ -253,6 +140,23 @@ struct Out {
     valid: M,
 }
 
+/// Where and how fast the club meets the ball at one vector of points ([`FaceMapKernel::approach`]).
+#[derive(Debug, Clone, Copy)]
+struct Approach {
+    /// `X = sqrt(ρ² − z²)`, m.
+    x: V,
+    /// Unit face normal.
+    n: [V; 3],
+    /// Contact point relative to the clubhead CoM, m.
+    r_c: [V; 3],
+    /// Contact-point velocity of the club, m/s.
+    u1: [V; 3],
+    /// Normal approach speed `u1·n`, m/s.
+    u1n: V,
+    /// On the face and approaching.
+    valid: M,
+}
+
 /// Fixed-size output chunk.
 struct Chunk<'a> {
     speed: &'a mut [f64; LANES],
@@ -281,8 +185,21 @@ impl Chunk<'_> {
 
 impl FaceMapKernel {
     /// Precompute the location-independent part of the impact of `delivery` on `model`.
-    /// `delivery`'s impact location is ignored.
+    /// `delivery`'s impact location is ignored. When a user-defined mass or geometry expression
+    /// reads the impact location, that part depends on the point after all: the kernel then
+    /// keeps the model and builds a kernel per point ([`located`]); otherwise (the library's
+    /// effects, and every other user-defined expression) it is computed once here.
     pub fn new(model: &ImpactModel, delivery: &Delivery) -> Self {
+        let mut k = Self::at_location(model, delivery);
+        if model.params().user.pre_solve_reads_location() {
+            k.located = Some(located::Located::new(model, delivery));
+        }
+        k
+    }
+
+    /// The kernel of `delivery` on `model` with the user-defined mass and geometry evaluated at
+    /// `delivery`'s impact location.
+    fn at_location(model: &ImpactModel, delivery: &Delivery) -> Self {
         // Every field of the parameters is named here, so that a new one stops the build until
         // the kernel handles it. Most reach the kernel through the model's laws, the face or
         // the face orientation; the rest are read below.
@@ -310,8 +227,8 @@ impl FaceMapKernel {
             tangential_restitution_slope: _, // in laws.tangential
             user,                            // mass and geometry below; cor, et, mu in laws.user
         } = model.params();
-        // User-defined mass and geometry depend on the delivery only (not on the impact
-        // location: `crate::effects::user`), so they are fixed for the whole face map.
+        // User-defined mass and geometry at the delivery's location (`new` handles the case
+        // where they depend on it).
         let mut laws = *model.laws();
         let mut club_com_m = *club_com_m;
         let mut r_gf = model.face_orientation(delivery);
@@ -345,6 +262,7 @@ impl FaceMapKernel {
             laws,
             user_vars,
             broken,
+            located: None,
             r_v: [
                 [r_v[(0, 0)], r_v[(0, 1)], r_v[(0, 2)]],
                 [r_v[(1, 0)], r_v[(1, 1)], r_v[(1, 2)]],
@@ -355,127 +273,6 @@ impl FaceMapKernel {
                 [r_w[(2, 0)], r_w[(2, 1)], r_w[(2, 2)]],
             ],
         }
-    }
-
-    /// Evaluate one row: the points `(y_m, zs_m[j])` into `out` (each slice of `zs_m.len()`).
-    ///
-    /// # Panics
-    /// If an output slice has another length than `zs_m`.
-    pub fn eval_row(&self, y_m: f64, zs_m: &[f64], out: RowOut<'_>) {
-        self.eval_row_on(simd_level(), y_m, zs_m, out)
-    }
-
-    /// [`FaceMapKernel::eval_row`] on a given code path (to check that all paths give the same
-    /// bits). A path this machine does not support falls back to [`SimdLevel::Portable`].
-    ///
-    /// # Panics
-    /// If an output slice has another length than `zs_m`.
-    pub fn eval_row_on(&self, level: SimdLevel, y_m: f64, zs_m: &[f64], out: RowOut<'_>) {
-        out.assert_len(zs_m.len());
-        let row = self.row(V::splat(y_m));
-        let level = if level == SimdLevel::Avx2 {
-            simd_level()
-        } else {
-            level
-        };
-        self.dispatch(
-            level,
-            &RowJob {
-                row: &row,
-                zs: zs_m,
-            },
-            out,
-        );
-    }
-
-    /// Evaluate arbitrary points `(ys_m[i], zs_m[i])` into `out`.
-    ///
-    /// # Panics
-    /// If `ys_m` and `zs_m` differ in length, or an output slice has another length.
-    pub fn eval_points(&self, ys_m: &[f64], zs_m: &[f64], out: RowOut<'_>) {
-        self.eval_points_on(simd_level(), ys_m, zs_m, out)
-    }
-
-    /// [`FaceMapKernel::eval_points`] on a given code path (see
-    /// [`FaceMapKernel::eval_row_on`]).
-    ///
-    /// # Panics
-    /// As [`FaceMapKernel::eval_points`].
-    pub fn eval_points_on(&self, level: SimdLevel, ys_m: &[f64], zs_m: &[f64], out: RowOut<'_>) {
-        assert_eq!(
-            ys_m.len(),
-            zs_m.len(),
-            "eval_points: {} heights for {} heel-toe locations",
-            ys_m.len(),
-            zs_m.len()
-        );
-        out.assert_len(zs_m.len());
-        let level = if level == SimdLevel::Avx2 {
-            simd_level()
-        } else {
-            level
-        };
-        self.dispatch(level, &PointsJob { ys: ys_m, zs: zs_m }, out);
-    }
-
-    /// Evaluate the grid `ys_m × zs_m` (row-major) on the calling thread.
-    ///
-    /// # Panics
-    /// If `out` does not have `ys_m.len() · zs_m.len()` points.
-    pub fn eval_grid(&self, ys_m: &[f64], zs_m: &[f64], out: &mut LaunchGrid) {
-        let nz = zs_m.len();
-        assert_eq!(out.len(), ys_m.len() * nz, "grid size");
-        for (i, &y) in ys_m.iter().enumerate() {
-            self.eval_row(y, zs_m, out.row_out(i * nz, nz));
-        }
-    }
-
-    /// Evaluate the grid `ys_m × zs_m` (row-major), rows in parallel on the rayon pool.
-    /// Bit-identical to [`FaceMapKernel::eval_grid`] for any number of threads.
-    ///
-    /// # Panics
-    /// If `out` does not have `ys_m.len() · zs_m.len()` points.
-    pub fn par_eval_grid(&self, ys_m: &[f64], zs_m: &[f64], out: &mut LaunchGrid) {
-        let nz = zs_m.len();
-        assert_eq!(out.len(), ys_m.len() * nz, "grid size");
-        if nz == 0 || ys_m.is_empty() {
-            return;
-        }
-        (
-            ys_m.par_iter(),
-            out.ball_speed_m_s.par_chunks_mut(nz),
-            out.launch_angle_rad.par_chunks_mut(nz),
-            out.azimuth_rad.par_chunks_mut(nz),
-            out.backspin_rad_s.par_chunks_mut(nz),
-            out.sidespin_rad_s.par_chunks_mut(nz),
-            out.valid.par_chunks_mut(nz),
-        )
-            .into_par_iter()
-            .with_min_len(ROWS_PER_TASK)
-            .for_each(
-                |(
-                    &y,
-                    ball_speed_m_s,
-                    launch_angle_rad,
-                    azimuth_rad,
-                    backspin_rad_s,
-                    sidespin_rad_s,
-                    valid,
-                )| {
-                    self.eval_row(
-                        y,
-                        zs_m,
-                        RowOut {
-                            ball_speed_m_s,
-                            launch_angle_rad,
-                            azimuth_rad,
-                            backspin_rad_s,
-                            sidespin_rad_s,
-                            valid,
-                        },
-                    )
-                },
-            );
     }
 
     /// The row quantities at heights `y`.
@@ -511,6 +308,16 @@ impl FaceMapKernel {
         row: &Row,
         z: V,
     ) -> Out {
+        let a = self.approach(row, z);
+        let (e, e_t, mu, valid) = self.contact_laws::<POWER, USER>(row, z, &a);
+        let (p, w_f) = self.impulse::<FRICTION, USER>(row, z, &a, [e, e_t, mu]);
+        self.launch_out(&p, &w_f, valid)
+    }
+
+    /// Contact point, normal, lever arm and approach velocity of impacts at `z` on `row`, and
+    /// whether they are physical (on the face, club approaching the ball).
+    #[inline(always)]
+    fn approach(&self, row: &Row, z: V) -> Approach {
         let zero = V::splat(0.0);
         // Contact point and normal, with the operations of `FaceGeometry::contact`.
         let x2 = row.rho2 - z * z;
@@ -547,52 +354,74 @@ impl FaceMapKernel {
         } else {
             u1n.gt(zero)
         };
-        let mut valid = on_face & approaching;
+        Approach {
+            x,
+            n: [nx, ny, nz],
+            r_c: [rcx, rcy, rcz],
+            u1: [u1x, u1y, u1z],
+            u1n,
+            valid: on_face & approaching,
+        }
+    }
 
+    /// The restitution `e`, tangential restitution `e_t` and friction `mu` of the impacts (the
+    /// library's laws, then the user-defined `cor`/`et`/`mu` terms when `USER`), and the
+    /// validity with the lanes whose user-defined values are not allowed removed.
+    #[inline(always)]
+    fn contact_laws<const POWER: bool, const USER: bool>(
+        &self,
+        row: &Row,
+        z: V,
+        a: &Approach,
+    ) -> (V, V, V, M) {
         let laws = &self.laws;
-        let e = laws.restitution.cor_with::<V, POWER>(u1n, row.yy + z * z);
-        let u1 = [u1x, u1y, u1z];
-        let n = [nx, ny, nz];
-        let (e, e_t, mu) = if USER {
-            use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
-            let mut vars: [V; NV] = self.user_vars.map(V::splat);
-            vars[VAR_IMPACT_Y as usize] = row.y * 1e3;
-            vars[VAR_IMPACT_Z as usize] = z * 1e3;
-            vars[VAR_U1N as usize] = u1n;
-            vars[VAR_UT as usize] = crate::physics::laws::tangential_speed(&u1, &n, u1n);
-            let (e, e_t, mu) = laws.user.contact(
-                &mut vars,
-                e,
-                V::splat(laws.tangential.e_t),
-                V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY)),
-            );
-            // Lanes whose user-defined values are not allowed are invalid (the scalar solve
-            // names the effect for them): e and e_t finite, mu > 0 and finite when set.
-            let finite = |x: V| x.abs().le(V::splat(f64::MAX));
-            valid = valid & finite(e) & finite(e_t);
-            if laws.user.sets_mu() {
-                valid = valid & finite(mu) & mu.gt(zero);
-            }
-            (e, e_t, mu)
-        } else {
-            (
-                e,
-                V::splat(laws.tangential.e_t),
-                V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY)),
-            )
-        };
+        let zero = V::splat(0.0);
+        let e = laws.restitution.cor_with::<V, POWER>(a.u1n, row.yy + z * z);
+        let e_t = V::splat(laws.tangential.e_t);
+        let mu = V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY));
+        if !USER {
+            return (e, e_t, mu, a.valid);
+        }
+        use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
+        let mut vars: [V; NV] = self.user_vars.map(V::splat);
+        vars[VAR_IMPACT_Y as usize] = row.y * 1e3;
+        vars[VAR_IMPACT_Z as usize] = z * 1e3;
+        vars[VAR_U1N as usize] = a.u1n;
+        vars[VAR_UT as usize] = crate::physics::laws::tangential_speed(&a.u1, &a.n, a.u1n);
+        let (e, e_t, mu) = laws.user.contact(&mut vars, e, e_t, mu);
+        // Lanes whose user-defined values are not allowed are invalid (the scalar solve names
+        // the effect for them): e and e_t finite, mu > 0 and finite when set.
+        let finite = |x: V| x.abs().le(V::splat(f64::MAX));
+        let mut valid = a.valid & finite(e) & finite(e_t);
+        if laws.user.sets_mu() {
+            valid = valid & finite(mu) & mu.gt(zero);
+        }
+        (e, e_t, mu, valid)
+    }
 
+    /// The impulse on the ball and the ball's angular impulse `r_b × P`, in F, with the laws'
+    /// values `[e, e_t, mu]` (`e_t` and `mu` are read only when `USER`).
+    #[inline(always)]
+    fn impulse<const FRICTION: bool, const USER: bool>(
+        &self,
+        row: &Row,
+        z: V,
+        a: &Approach,
+        [e, e_t, mu]: [V; 3],
+    ) -> ([V; 3], [V; 3]) {
+        let laws = &self.laws;
+        let n = a.n;
+        let [nx, ny, nz] = n;
         // Impact frame tangents z_I = (−z, 0, X)/ρ, y_I = z_I × n, and the ball lever arm.
         let tzx = -z * row.inv_rho;
-        let tzz = x * row.inv_rho;
+        let tzz = a.x * row.inv_rho;
         let tyx = -(tzz * ny);
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
         let r_b = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
-        let r_c = [rcx, rcy, rcz];
-        let k = laws.collision.matrix(&r_c, &r_b);
+        let k = laws.collision.matrix(&a.r_c, &r_b);
         let w_c = self.w_c.map(V::splat);
-        let ([px, py, pz], [wfx, wfy, wfz], _slip) = laws.contact.impact(
+        let (p, w_f, _slip) = laws.contact.impact(
             |u: &[V; 3], un: V| {
                 if USER {
                     // As the scalar solve: the user's e_t, plus tangential_compliance's rise.
@@ -610,13 +439,21 @@ impl FaceMapKernel {
             },
             &laws.collision.club_inv_inertia,
             &n,
-            &u1,
-            u1n,
+            &a.u1,
+            a.u1n,
             &w_c,
-            &r_c,
+            &a.r_c,
             &r_b,
         );
+        (p, w_f)
+    }
 
+    /// Launch outputs from the ball's impulse `p` and angular impulse `w_f` (F); NaN where not
+    /// `valid`.
+    #[inline(always)]
+    fn launch_out(&self, p: &[V; 3], w_f: &[V; 3], valid: M) -> Out {
+        let [px, py, pz] = *p;
+        let [wfx, wfy, wfz] = *w_f;
         // Ball velocity in G, and spin (r_b × P)/I_b in G (components y and z).
         let rv = &self.r_v;
         let vgx = rv[0][0] * px + rv[0][1] * py + rv[0][2] * pz;
@@ -641,76 +478,14 @@ impl FaceMapKernel {
         }
     }
 
-    /// One chunk of a row.
-    #[inline(always)]
-    fn row_chunk<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        row: &Row,
-        zs: &[f64; LANES],
-        mut out: Chunk<'_>,
-    ) {
-        for k in 0..LANES / W {
-            let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
-            let o = self.point::<FRICTION, POWER, USER>(row, z);
-            out.store(k, &o);
-        }
-    }
-
-    /// One chunk of arbitrary points.
-    #[inline(always)]
-    fn points_chunk<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        ys: &[f64; LANES],
-        zs: &[f64; LANES],
-        mut out: Chunk<'_>,
-    ) {
-        for k in 0..LANES / W {
-            let y = V(ys[k * W..(k + 1) * W].try_into().unwrap());
-            let z = V(zs[k * W..(k + 1) * W].try_into().unwrap());
-            let row = self.row(y);
-            let o = self.point::<FRICTION, POWER, USER>(&row, z);
-            out.store(k, &o);
-        }
-    }
-
-    #[inline(always)]
-    fn row_impl<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        row: &Row,
-        zs: &[f64],
-        out: RowOut<'_>,
-    ) {
-        if !row.ok.get(0) {
-            fill_invalid(out);
-            return;
-        }
-        for_chunks(
-            zs,
-            zs,
-            out,
-            &RowChunks::<FRICTION, POWER, USER> { k: self, row },
-        );
-    }
-
-    #[inline(always)]
-    fn points_impl<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        ys: &[f64],
-        zs: &[f64],
-        out: RowOut<'_>,
-    ) {
-        for_chunks(
-            ys,
-            zs,
-            out,
-            &PointChunks::<FRICTION, POWER, USER> { k: self },
-        );
-    }
-
     /// Run `job` with the kernel's constant switches (friction on, `cor_power` exponent set)
     /// turned into compile-time constants, so that the common case carries neither the slip
     /// branch nor a `pow` call.
     fn dispatch(&self, level: SimdLevel, job: &impl Job, out: RowOut<'_>) {
+        if let Some(loc) = &self.located {
+            loc.run(level, job, out);
+            return;
+        }
         if self.broken {
             fill_invalid(out);
             return;
@@ -755,146 +530,6 @@ impl FaceMapKernel {
     }
 }
 
-/// A row or a set of points, run by [`FaceMapKernel::dispatch`].
-trait Job {
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        k: &FaceMapKernel,
-        out: RowOut<'_>,
-    );
-}
-
-/// One grid row: the heights are fixed in `row`.
-struct RowJob<'a> {
-    row: &'a Row,
-    zs: &'a [f64],
-}
-
-impl Job for RowJob<'_> {
-    #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        k: &FaceMapKernel,
-        out: RowOut<'_>,
-    ) {
-        k.row_impl::<FRICTION, POWER, USER>(self.row, self.zs, out)
-    }
-}
-
-/// Arbitrary points.
-struct PointsJob<'a> {
-    ys: &'a [f64],
-    zs: &'a [f64],
-}
-
-impl Job for PointsJob<'_> {
-    #[inline(always)]
-    fn run<const FRICTION: bool, const POWER: bool, const USER: bool>(
-        &self,
-        k: &FaceMapKernel,
-        out: RowOut<'_>,
-    ) {
-        k.points_impl::<FRICTION, POWER, USER>(self.ys, self.zs, out)
-    }
-}
-
-/// What [`for_chunks`] runs on each chunk (a trait rather than a closure so that it is inlined
-/// into the `target_feature` functions and compiled with their instruction set).
-trait ChunkFn {
-    fn call(&self, a: &[f64; LANES], b: &[f64; LANES], out: Chunk<'_>);
-}
-
-/// Chunks of a row: `b` holds the heel–toe locations (`a` is unused).
-struct RowChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool> {
-    k: &'a FaceMapKernel,
-    row: &'a Row,
-}
-
-impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
-    for RowChunks<'_, FRICTION, POWER, USER>
-{
-    #[inline(always)]
-    fn call(&self, _: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.row_chunk::<FRICTION, POWER, USER>(self.row, zs, out)
-    }
-}
-
-/// Chunks of arbitrary points: `a` holds the heights, `b` the heel–toe locations.
-struct PointChunks<'a, const FRICTION: bool, const POWER: bool, const USER: bool> {
-    k: &'a FaceMapKernel,
-}
-
-impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
-    for PointChunks<'_, FRICTION, POWER, USER>
-{
-    #[inline(always)]
-    fn call(&self, ys: &[f64; LANES], zs: &[f64; LANES], out: Chunk<'_>) {
-        self.k.points_chunk::<FRICTION, POWER, USER>(ys, zs, out)
-    }
-}
-
-/// Run `f` over full chunks of `(a, b)`, then over the tail padded to a full chunk (with the
-/// last point repeated), so every point goes through the same code whatever its position.
-#[inline(always)]
-fn for_chunks(a: &[f64], b: &[f64], out: RowOut<'_>, f: &impl ChunkFn) {
-    let n = b.len();
-    let full = n - n % LANES;
-    let mut i = 0;
-    while i < full {
-        let r = i..i + LANES;
-        f.call(
-            a[r.clone()].try_into().unwrap(),
-            b[r.clone()].try_into().unwrap(),
-            Chunk {
-                speed: (&mut out.ball_speed_m_s[r.clone()]).try_into().unwrap(),
-                launch: (&mut out.launch_angle_rad[r.clone()]).try_into().unwrap(),
-                azimuth: (&mut out.azimuth_rad[r.clone()]).try_into().unwrap(),
-                backspin: (&mut out.backspin_rad_s[r.clone()]).try_into().unwrap(),
-                sidespin: (&mut out.sidespin_rad_s[r.clone()]).try_into().unwrap(),
-                valid: (&mut out.valid[r]).try_into().unwrap(),
-            },
-        );
-        i += LANES;
-    }
-    if full < n {
-        let m = n - full;
-        let mut pa = [a[n - 1]; LANES];
-        let mut pb = [b[n - 1]; LANES];
-        pa[..m].copy_from_slice(&a[full..]);
-        pb[..m].copy_from_slice(&b[full..]);
-        let mut o = [[0.0; LANES]; 5];
-        let mut v = [false; LANES];
-        let [o0, o1, o2, o3, o4] = &mut o;
-        f.call(
-            &pa,
-            &pb,
-            Chunk {
-                speed: o0,
-                launch: o1,
-                azimuth: o2,
-                backspin: o3,
-                sidespin: o4,
-                valid: &mut v,
-            },
-        );
-        out.ball_speed_m_s[full..].copy_from_slice(&o[0][..m]);
-        out.launch_angle_rad[full..].copy_from_slice(&o[1][..m]);
-        out.azimuth_rad[full..].copy_from_slice(&o[2][..m]);
-        out.backspin_rad_s[full..].copy_from_slice(&o[3][..m]);
-        out.sidespin_rad_s[full..].copy_from_slice(&o[4][..m]);
-        out.valid[full..].copy_from_slice(&v[..m]);
-    }
-}
-
-fn fill_invalid(out: RowOut<'_>) {
-    out.ball_speed_m_s.fill(f64::NAN);
-    out.launch_angle_rad.fill(f64::NAN);
-    out.azimuth_rad.fill(f64::NAN);
-    out.backspin_rad_s.fill(f64::NAN);
-    out.sidespin_rad_s.fill(f64::NAN);
-    out.valid.fill(false);
-}
-
 /// Which code path the kernel runs on this machine.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum SimdLevel {
@@ -914,30 +549,4 @@ pub fn simd_level() -> SimdLevel {
         }
     }
     SimdLevel::Portable
-}
-
-/// Face map over the grid `ys_m × zs_m` (row-major: row `i` is `ys_m[i]`), rows in parallel
-/// with rayon. Deterministic: the result does not depend on the number of threads.
-pub fn face_map(
-    model: &ImpactModel,
-    delivery: &Delivery,
-    ys_m: &[f64],
-    zs_m: &[f64],
-) -> LaunchGrid {
-    let mut out = LaunchGrid::with_len(ys_m.len() * zs_m.len());
-    face_map_into(model, delivery, ys_m, zs_m, &mut out);
-    out
-}
-
-/// Same as [`face_map`], into a caller-provided grid, for repeated sweeps. `out` is resized to
-/// `ys_m.len() · zs_m.len()` points if needed (no allocation when it already has that size).
-pub fn face_map_into(
-    model: &ImpactModel,
-    delivery: &Delivery,
-    ys_m: &[f64],
-    zs_m: &[f64],
-    out: &mut LaunchGrid,
-) {
-    out.resize(ys_m.len() * zs_m.len());
-    FaceMapKernel::new(model, delivery).par_eval_grid(ys_m, zs_m, out);
 }

@@ -87,12 +87,18 @@ pub struct SynthShot {
 impl SynthShot {
     /// The measured delivery in SI units, converted exactly as `read_shots` converts the file.
     pub fn measured_delivery(&self) -> Delivery {
-        delivery_from_file_units(&self.delivery)
+        Delivery {
+            shaft_mass_g: Some(self.shaft_mass_g),
+            ..delivery_from_file_units(&self.delivery)
+        }
     }
 
     /// The clean delivery in SI units.
     pub fn true_delivery(&self) -> Delivery {
-        delivery_from_file_units(&self.clean_delivery)
+        Delivery {
+            shaft_mass_g: Some(self.shaft_mass_g),
+            ..delivery_from_file_units(&self.clean_delivery)
+        }
     }
 
     /// The shot as the engine sees it after reading the shots file.
@@ -102,7 +108,6 @@ impl SynthShot {
             id: self.id.clone(),
             group: self.group.clone(),
             golfer: Some(self.golfer.clone()),
-            shaft_mass_g: Some(self.shaft_mass_g),
             delivery: self.measured_delivery(),
             measured: Some(Launch {
                 ball_speed_m_s: mph(l[0]),
@@ -309,7 +314,10 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                         if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
                             return reject("club speed ≤ 0".into());
                         }
-                        let clean_si = delivery_from_file_units(&clean);
+                        let clean_si = Delivery {
+                            shaft_mass_g: Some(group.shaft_mass_g),
+                            ..delivery_from_file_units(&clean)
+                        };
                         let (truth, cor, u1n) = match &contact_worlds[gi] {
                             Some(cw) => {
                                 let mut d = clean_si;
@@ -326,7 +334,10 @@ pub fn generate(cfg: &SynthConfig, base: &ClubSpec) -> Result<SynthRun, SynthErr
                             return reject("measured club speed ≤ 0".into());
                         }
                         base_models[gi]
-                            .solve(&delivery_from_file_units(&measured))
+                            .solve(&Delivery {
+                                shaft_mass_g: Some(group.shaft_mass_g),
+                                ..delivery_from_file_units(&measured)
+                            })
                             .map_err(|e| format!("measured delivery: {e}"))?;
                         let true_launch = PerComponent(truth.to_file_units());
                         let launch = PerComponent::from_fn(|c| {

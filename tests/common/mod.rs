@@ -122,6 +122,7 @@ pub fn shots(truth: &ClubSpec, e: &Experiment) -> Vec<Shot> {
                     club_omega_rad_s: Vector3::zeros(),
                     impact_y_m: mm(clip(y_g + 5.0 * nz(), -15.0, 15.0)),
                     impact_z_m: mm(clip(z_g + 5.0 * nz(), -15.0, 15.0)),
+                    shaft_mass_g: Some(shaft_mass),
                 };
                 let model = truth.model_for_group(shaft).expect("physical");
                 let l = model.solve(&delivery).expect("solvable").launch();
@@ -131,7 +132,6 @@ pub fn shots(truth: &ClubSpec, e: &Experiment) -> Vec<Shot> {
                     id: format!("g{g:02}-{shaft}-{s}"),
                     group: shaft.to_owned(),
                     golfer: e.with_golfer.then(|| format!("golfer{g:02}")),
-                    shaft_mass_g: Some(shaft_mass),
                     delivery,
                     measured: Some(Launch {
                         ball_speed_m_s: mph(noisy[0]),
@@ -167,7 +167,7 @@ pub fn shots_csv(shots: &[Shot], measured: bool, golfer: bool) -> String {
             "{},{},{},{},{},{},{},{},{},{}",
             sh.id,
             sh.group,
-            sh.shaft_mass_g.unwrap_or(70.0),
+            d.shaft_mass_g.unwrap_or(70.0),
             d.club_speed_m_s / 0.44704,
             d.attack_angle_rad.to_degrees(),
             d.club_path_rad.to_degrees(),
@@ -214,6 +214,7 @@ pub fn deliveries() -> Vec<Delivery> {
                 club_omega_rad_s: Vector3::new(-2.0, 4.0 - 0.5 * f, -8.0),
                 impact_y_m: y_mm * 1e-3,
                 impact_z_m: z_mm * 1e-3,
+                shaft_mass_g: None,
             });
         }
     }
