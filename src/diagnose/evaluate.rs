@@ -12,7 +12,8 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    run_lm, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout, Progress, Weighting,
+    run_lm, run_lm_point, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout,
+    Progress, Weighting,
 };
 use crate::measurement::ImpactNoise;
 use crate::stats;
@@ -73,7 +74,9 @@ pub(super) fn cv_chi2(
             let r = if layout.is_empty() {
                 chi2_at(club, layout, &folds.test[f], w, start)
             } else {
-                fit(club, layout, &folds.train[f], w, start, max_iters)
+                // Only the fold's solution is needed: no Jacobian at it.
+                let pr = FitProblem::new(club, layout.clone(), &folds.train[f], w);
+                run_lm_point(pr, start, max_iters)
                     .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
             };
             if let Some(p) = progress {

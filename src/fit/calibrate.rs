@@ -19,7 +19,7 @@ use std::sync::Arc;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::covariance::{covariance, Identifiability};
+use super::covariance::{covariance, Covariance, Identifiability};
 use super::problem::{FitData, FitProblem, Weighting};
 use super::run::{run_lm, FitRun, Progress};
 use super::spec::{EffectRequest, ParamLayout};
@@ -283,24 +283,7 @@ pub fn calibrate_data(
     let mut paper_stages = Vec::new();
     let (theta, termination) = match opts.method {
         Method::Lm => {
-            let sigma0 = noise_scales(&errors_before);
-            let stage = "fit 1/2 (noise from nominal errors)";
-            let run1 = run_lm(
-                problem.clone().with_weighting(Weighting::launch(&sigma0)),
-                &start,
-                opts.max_iters,
-                sink.map(|s| (s, stage)),
-            )?;
-            ensure_converged(&run1, stage)?;
-            let sigma1 = noise_scales(&problem.launch_errors(run1.theta.as_slice())?);
-            let stage = "fit 2/2 (noise re-estimated)";
-            let run2 = run_lm(
-                problem.clone().with_weighting(Weighting::launch(&sigma1)),
-                &run1.theta,
-                opts.max_iters,
-                sink.map(|s| (s, stage)),
-            )?;
-            ensure_converged(&run2, stage)?;
+            let (run1, run2) = two_lm_fits(&problem, &start, &errors_before, opts.max_iters, sink)?;
             iterations += run1.iterations + run2.iterations;
             evaluations += run1.evaluations + run2.evaluations;
             (run2.theta, run2.termination)
@@ -331,33 +314,8 @@ pub fn calibrate_data(
     let ranges: Vec<f64> = (0..p).map(|j| upper[j] - lower[j]).collect();
     let cov = covariance(&jac, reduced_chi2, &ranges);
 
-    let params: Vec<ParamEstimate> = layout
-        .params()
-        .enumerate()
-        .map(|(j, (i, s))| {
-            let e = &layout.effects()[i];
-            let span = 1e-9 * ranges[j];
-            ParamEstimate {
-                effect: e.kind.name(),
-                group: e.group.clone(),
-                param: s.key,
-                unit: s.unit,
-                value: theta[j],
-                stderr: cov.stderr[j],
-                at_bound: theta[j] <= lower[j] + span || theta[j] >= upper[j] - span,
-            }
-        })
-        .collect();
-    let mut strongly_correlated = Vec::new();
-    if let Some(c) = &cov.correlation {
-        for a in 0..p {
-            for b in a + 1..p {
-                if c[(a, b)].abs() > STRONG_CORRELATION {
-                    strongly_correlated.push(CorrelatedPair { a, b, r: c[(a, b)] });
-                }
-            }
-        }
-    }
+    let params = estimates(&layout, &theta, &cov);
+    let strongly_correlated = correlated_pairs(cov.correlation.as_ref());
     let shaft_relation = shaft_relation(data, &params);
     let mut effects = club.effects.clone();
     effects.extend(
@@ -392,6 +350,75 @@ pub fn calibrate_data(
         club: calibrated,
         layout,
     })
+}
+
+/// The whitened Levenberg–Marquardt procedure ([`Method::Lm`]): a fit with noise scales from
+/// the nominal errors `errors_before`, then one with scales re-estimated from that fit's errors,
+/// started from its solution. Both runs, each checked for convergence.
+fn two_lm_fits(
+    problem: &FitProblem<'_>,
+    start: &DVector<f64>,
+    errors_before: &[[f64; 5]],
+    max_iters: u64,
+    sink: Option<&Arc<dyn Progress>>,
+) -> Result<(FitRun, FitRun), FitError> {
+    let sigma0 = noise_scales(errors_before);
+    let stage = "fit 1/2 (noise from nominal errors)";
+    let run1 = run_lm(
+        problem.clone().with_weighting(Weighting::launch(&sigma0)),
+        start,
+        max_iters,
+        sink.map(|s| (s, stage)),
+    )?;
+    ensure_converged(&run1, stage)?;
+    let sigma1 = noise_scales(&problem.launch_errors(run1.theta.as_slice())?);
+    let stage = "fit 2/2 (noise re-estimated)";
+    let run2 = run_lm(
+        problem.clone().with_weighting(Weighting::launch(&sigma1)),
+        &run1.theta,
+        max_iters,
+        sink.map(|s| (s, stage)),
+    )?;
+    ensure_converged(&run2, stage)?;
+    Ok((run1, run2))
+}
+
+/// One [`ParamEstimate`] per parameter of `layout` at `theta`, with the standard errors of
+/// `cov`; a value within 1e-9 of its range from a bound is flagged as on it.
+fn estimates(layout: &ParamLayout, theta: &DVector<f64>, cov: &Covariance) -> Vec<ParamEstimate> {
+    let (lower, upper) = (layout.lower(), layout.upper());
+    layout
+        .params()
+        .enumerate()
+        .map(|(j, (i, s))| {
+            let e = &layout.effects()[i];
+            let span = 1e-9 * (upper[j] - lower[j]);
+            ParamEstimate {
+                effect: e.kind.name(),
+                group: e.group.clone(),
+                param: s.key,
+                unit: s.unit,
+                value: theta[j],
+                stderr: cov.stderr[j],
+                at_bound: theta[j] <= lower[j] + span || theta[j] >= upper[j] - span,
+            }
+        })
+        .collect()
+}
+
+/// The pairs of parameters whose estimates correlate beyond [`STRONG_CORRELATION`].
+fn correlated_pairs(correlation: Option<&DMatrix<f64>>) -> Vec<CorrelatedPair> {
+    let mut pairs = Vec::new();
+    if let Some(c) = correlation {
+        for a in 0..c.nrows() {
+            for b in a + 1..c.ncols() {
+                if c[(a, b)].abs() > STRONG_CORRELATION {
+                    pairs.push(CorrelatedPair { a, b, r: c[(a, b)] });
+                }
+            }
+        }
+    }
+    pairs
 }
 
 type PaperResult = (DVector<f64>, u64, u64, Vec<PaperStageAssignment>, String);

@@ -65,6 +65,9 @@ pub struct LevenbergMarquardt {
     lambda: f64,
     nu: f64,
     converged: Option<Converged>,
+    /// Compute the Jacobian at the point where it stops on [`Converged::CostChange`] (the
+    /// covariance of the estimates needs it; a fit that only wants the point does not).
+    final_jacobian: bool,
 }
 
 impl LevenbergMarquardt {
@@ -90,6 +93,7 @@ impl LevenbergMarquardt {
             lambda: 0.0,
             nu: 2.0,
             converged: None,
+            final_jacobian: true,
         })
     }
 
@@ -100,6 +104,15 @@ impl LevenbergMarquardt {
         }
         self.ftol = ftol;
         Ok(self)
+    }
+
+    /// Skip the Jacobian at the last accepted point when the fit stops there on a small change
+    /// of `χ²` ([`Converged::CostChange`]): the state then keeps the Jacobian of the point before
+    /// it. The point, `χ²`, the residuals and the iterations are the same as with it; use it
+    /// when only the solution is wanted (cross-validation folds), which saves one Jacobian a fit.
+    pub fn without_final_jacobian(mut self) -> Self {
+        self.final_jacobian = false;
+        self
     }
 
     /// Why it stopped, when it converged (`None` when it ran out of iterations).
@@ -224,11 +237,15 @@ where
                 let actual = cost - cost_trial;
                 if cost_trial.is_finite() && actual > 0.0 && predicted > 0.0 {
                     let rho = actual / predicted;
-                    let j_trial = problem.jacobian(&trial)?;
+                    let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
+                    let j_trial = if small && !self.final_jacobian {
+                        j.clone()
+                    } else {
+                        problem.jacobian(&trial)?
+                    };
                     self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     self.nu = 2.0;
                     accepted = true;
-                    let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
                     new_state = Some((trial, r_trial, j_trial, cost_trial, small));
                 }
             }
@@ -323,6 +340,69 @@ mod tests {
         assert_relative_eq!(p[0], 3.0, epsilon = 1e-7);
         assert_relative_eq!(p[1], 0.7, epsilon = 1e-7);
         assert!(res.solver().converged().is_some());
+    }
+
+    /// Counts Jacobian evaluations of [`Decay`].
+    struct Counted {
+        inner: Decay,
+        jacobians: std::cell::Cell<u32>,
+    }
+
+    impl Operator for Counted {
+        type Param = DVector<f64>;
+        type Output = DVector<f64>;
+        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+            self.inner.apply(p)
+        }
+    }
+
+    impl Jacobian for Counted {
+        type Param = DVector<f64>;
+        type Jacobian = DMatrix<f64>;
+        fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+            self.jacobians.set(self.jacobians.get() + 1);
+            self.inner.jacobian(p)
+        }
+    }
+
+    #[test]
+    fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
+        let run = |skip: bool| {
+            let mut solver = LevenbergMarquardt::new(
+                DVector::from_vec(vec![-10.0, 0.0]),
+                DVector::from_vec(vec![10.0, 5.0]),
+            )
+            .unwrap()
+            .with_ftol(1e-6)
+            .unwrap();
+            if skip {
+                solver = solver.without_final_jacobian();
+            }
+            // Measurements off the curve, so that χ² stops falling at a positive minimum.
+            let mut inner = decay();
+            for (i, y) in inner.y.iter_mut().enumerate() {
+                *y += 0.01 * (7.0 * i as f64).sin();
+            }
+            let problem = Counted {
+                inner,
+                jacobians: std::cell::Cell::new(0),
+            };
+            let res = Executor::new(problem, solver)
+                .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
+                .run()
+                .unwrap();
+            let why = res.solver().converged();
+            let p = res.state().get_best_param().unwrap().clone();
+            let iters = res.state().get_iter();
+            (p, why, iters, res.problem.problem.unwrap().jacobians.get())
+        };
+        let (p_full, why_full, it_full, j_full) = run(false);
+        let (p_skip, why_skip, it_skip, j_skip) = run(true);
+        assert_eq!(why_full, Some(Converged::CostChange));
+        assert_eq!(why_skip, why_full);
+        assert_eq!(it_skip, it_full);
+        assert_eq!(p_skip, p_full);
+        assert_eq!(j_skip + 1, j_full);
     }
 
     #[test]

@@ -138,9 +138,54 @@ pub fn run_lm(
     max_iters: u64,
     progress: Option<(&Arc<dyn Progress>, &str)>,
 ) -> Result<FitRun, FitError> {
+    execute(problem, start, max_iters, progress, true)
+}
+
+/// The solution of a fit without what only its covariance needs.
+#[derive(Debug, Clone)]
+pub struct FitPoint {
+    /// Full parameter vector `θ` at the end (file units).
+    pub theta: DVector<f64>,
+    /// χ² at `θ`.
+    pub cost: f64,
+    /// Iterations done.
+    pub iterations: u64,
+    /// Did it converge (rather than run out of iterations)?
+    pub converged: bool,
+}
+
+/// [`run_lm`] when only the solution is wanted (cross-validation folds): the same point,
+/// iterations and `χ²`, without the Jacobian at the solution when the fit stops on a small
+/// change of `χ²` ([`LevenbergMarquardt::without_final_jacobian`]).
+pub fn run_lm_point(
+    problem: FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+) -> Result<FitPoint, FitError> {
+    let run = execute(problem, start, max_iters, None, false)?;
+    Ok(FitPoint {
+        theta: run.theta,
+        cost: run.cost,
+        iterations: run.iterations,
+        converged: run.converged,
+    })
+}
+
+/// [`run_lm`], with the Jacobian at a solution reached by a small `χ²` change computed or not
+/// (`final_jacobian`; when not, [`FitRun::jacobian`] is that of the point before).
+fn execute(
+    problem: FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+    progress: Option<(&Arc<dyn Progress>, &str)>,
+    final_jacobian: bool,
+) -> Result<FitRun, FitError> {
     let n_active = problem.active().len();
-    let solver = LevenbergMarquardt::new(problem.active_lower(), problem.active_upper())
+    let mut solver = LevenbergMarquardt::new(problem.active_lower(), problem.active_upper())
         .map_err(|e| FitError::Solver(e.to_string()))?;
+    if !final_jacobian {
+        solver = solver.without_final_jacobian();
+    }
     let init = problem.active_part(&scan_nonsmooth_starts(&problem, start));
     let template = problem.clone();
     let mut exec = Executor::new(problem, solver)

@@ -12,6 +12,7 @@ pub mod face;
 pub mod impact;
 pub mod launch;
 pub mod laws;
+mod params;
 pub mod real;
 pub mod user_terms;
 

@@ -1,0 +1,234 @@
+//! The batched residual evaluation: [`W`] shots of one group at a time on the lanes (see the
+//! module docs of [`super`]), compiled twice, for AVX2 and for the portable baseline, and
+//! dispatched at run time as the face-map kernel is ([`crate::sweep::kernel::simd_level`]).
+
+use nalgebra::Vector3;
+
+use super::{FitProblem, SHOTS_PER_TASK};
+use crate::fit::data::SiteCache;
+use crate::lanes::{V, W};
+use crate::physics::impact::ContactInputs;
+use crate::physics::{DeliveryFrame, ImpactModel, Launch};
+use crate::sweep::fastmath::{atan2_v, hypot_v};
+use crate::sweep::kernel::{simd_level, SimdLevel};
+
+/// Predicted launch (SI), ball velocity and spin (G) of [`W`] shots, one lane a shot.
+struct LanePrediction {
+    launch: [V; 5],
+    ball_v: [V; 3],
+    ball_w: [V; 3],
+}
+
+impl FitProblem<'_> {
+    /// Residual rows of the shots `start..` of `chunk` (those of the groups flagged in `groups`)
+    /// evaluated [`W`] shots at a time on the lanes ([`FitProblem::predict_lanes`]). Shots are
+    /// taken group by group (a lane vector shares one model), the last vector of a group padded
+    /// with copies of its last shot. Returns `false`, with `chunk` partly written, when a shot
+    /// cannot be computed (off the face, not approaching, not finite) or a model has
+    /// user-defined effects: the caller then evaluates the chunk one shot at a time.
+    ///
+    /// Runs the AVX2 build of the evaluation where the CPU has it (the same operations, so the
+    /// same bits: no fused multiply–add is formed), the portable one otherwise.
+    pub(super) fn residuals_on_lanes(
+        &self,
+        models: &[ImpactModel],
+        cache: &SiteCache,
+        start: usize,
+        chunk: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> bool {
+        match simd_level() {
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: `simd_level` reports AVX2 and FMA only when the CPU has both.
+            SimdLevel::Avx2 => unsafe { self.lanes_avx2(models, cache, start, chunk, groups) },
+            _ => self.lanes_impl(models, cache, start, chunk, groups),
+        }
+    }
+
+    /// [`FitProblem::lanes_impl`] compiled for AVX2 (everything it calls in the inner loop is
+    /// `#[inline(always)]`, so it is compiled with this instruction set).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma")]
+    unsafe fn lanes_avx2(
+        &self,
+        models: &[ImpactModel],
+        cache: &SiteCache,
+        start: usize,
+        chunk: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> bool {
+        self.lanes_impl(models, cache, start, chunk, groups)
+    }
+
+    /// The body of [`FitProblem::residuals_on_lanes`].
+    #[inline(always)]
+    fn lanes_impl(
+        &self,
+        models: &[ImpactModel],
+        cache: &SiteCache,
+        start: usize,
+        chunk: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> bool {
+        // User-defined effects are evaluated per shot by the scalar solve.
+        if models.iter().any(|m| !m.laws().user.is_empty()) {
+            return false;
+        }
+        let rows = self.weighting.rows_per_shot();
+        let group_of = &self.data.group_of;
+        let mut order = [0usize; SHOTS_PER_TASK];
+        let mut len = 0;
+        for i in start..start + chunk.len() / rows {
+            if groups.is_none_or(|g| g[group_of[i]]) {
+                order[len] = i;
+                len += 1;
+            }
+        }
+        let order = &mut order[..len];
+        // Keys are distinct, so the unstable sort (which does not allocate) keeps file order
+        // within a group.
+        order.sort_unstable_by_key(|&i| (group_of[i], i));
+        for run in order.chunk_by(|&a, &b| group_of[a] == group_of[b]) {
+            let model = &models[group_of[run[0]]];
+            for shots in run.chunks(W) {
+                let mut idx = [shots[shots.len() - 1]; W];
+                idx[..shots.len()].copy_from_slice(shots);
+                let Some(p) = self.predict_lanes(model, cache, &idx) else {
+                    return false;
+                };
+                for (l, &i) in shots.iter().enumerate() {
+                    let launch = Launch {
+                        ball_speed_m_s: p.launch[0].0[l],
+                        launch_angle_rad: p.launch[1].0[l],
+                        azimuth_rad: p.launch[2].0[l],
+                        backspin_rad_s: p.launch[3].0[l],
+                        sidespin_rad_s: p.launch[4].0[l],
+                    };
+                    let lane = |v: &[V; 3]| Vector3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
+                    let r = &mut chunk[(i - start) * rows..][..rows];
+                    self.write_rows(i, &launch, &lane(&p.ball_v), &lane(&p.ball_w), r);
+                }
+            }
+        }
+        true
+    }
+
+    /// [`FitProblem::predict`] for the [`W`] shots `idx` of one group (model `model`) at once:
+    /// [`ImpactModel::solve_contact`] on the lanes (the scalar solve's own contact mechanics),
+    /// rotated to `G`, the launch angles by [`atan2_v`] and [`hypot_v`], averaged over the
+    /// impact-location nodes as [`crate::measurement::expected_over`] does. Agrees with the
+    /// scalar path to rounding (a few ulp). `None` if any lane cannot be computed.
+    #[inline(always)]
+    fn predict_lanes(
+        &self,
+        model: &ImpactModel,
+        cache: &SiteCache,
+        idx: &[usize; W],
+    ) -> Option<LanePrediction> {
+        let data = self.data;
+        let frames: [DeliveryFrame; W] = if cache.frames_fit(model) {
+            idx.map(|i| cache.frames[i])
+        } else {
+            idx.map(|i| model.delivery_frame(&data.deliveries[i]))
+        };
+        let lanes = |f: &dyn Fn(&DeliveryFrame) -> f64| V(frames.each_ref().map(f));
+        let v_c: [V; 3] = std::array::from_fn(|a| lanes(&|fr| fr.club_velocity_f_m_s[a]));
+        let w_c: [V; 3] = std::array::from_fn(|a| lanes(&|fr| fr.club_omega_f_rad_s[a]));
+        let r_gf: [[V; 3]; 3] =
+            std::array::from_fn(|a| std::array::from_fn(|b| lanes(&|fr| fr.r_gf[(a, b)])));
+        let rotate = |v: &[V; 3]| -> [V; 3] {
+            std::array::from_fn(|a| r_gf[a][0] * v[0] + r_gf[a][1] * v[1] + r_gf[a][2] * v[2])
+        };
+        let nodes = data.impact_nodes.as_ref();
+        let per = cache.sites_per_shot;
+        let same_face = *model.face() == cache.face;
+        let zero = V::splat(0.0);
+        let mut out = LanePrediction {
+            launch: [zero; 5],
+            ball_v: [zero; 3],
+            ball_w: [zero; 3],
+        };
+        for k in 0..per {
+            let mut x = ContactInputs {
+                club_velocity_f_m_s: v_c,
+                club_omega_f_rad_s: w_c,
+                point_m: [zero; 3],
+                normal: [zero; 3],
+                tangent_y: [zero; 3],
+                tangent_z_xz: [zero; 2],
+                y_m: zero,
+                z_m: zero,
+            };
+            let mut weight = zero;
+            for (l, &i) in idx.iter().enumerate() {
+                let (y, z, w) = match nodes {
+                    Some(n) => (n[i][k].y_m, n[i][k].z_m, n[i][k].weight),
+                    None => {
+                        let d = &data.deliveries[i];
+                        (d.impact_y_m, d.impact_z_m, 1.0)
+                    }
+                };
+                let cf = if same_face {
+                    cache.contacts[i * per + k].ok()?
+                } else {
+                    model.face().contact(y, z).ok()?
+                };
+                for a in 0..3 {
+                    x.point_m[a].0[l] = cf.point_m[a];
+                    x.normal[a].0[l] = cf.normal[a];
+                    x.tangent_y[a].0[l] = cf.tangent_y[a];
+                }
+                x.tangent_z_xz[0].0[l] = cf.tangent_z.x;
+                x.tangent_z_xz[1].0[l] = cf.tangent_z.z;
+                x.y_m.0[l] = y;
+                x.z_m.0[l] = z;
+                weight.0[l] = w;
+            }
+            let s = model.solve_contact(&x);
+            // The scalar solve's checks: the club approaches the ball, and the ball's and the
+            // club's states after impact are finite.
+            let finite = |v: &[V; 3]| v.iter().all(|c| c.0.iter().all(|x| x.is_finite()));
+            let p = &s.impulse_n_s;
+            let club_dv = p.map(|c| c / model.params().club_mass_kg);
+            let r_c = &s.contact_from_club_com_m;
+            let moment = [
+                r_c[1] * p[2] - r_c[2] * p[1],
+                r_c[2] * p[0] - r_c[0] * p[2],
+                r_c[0] * p[1] - r_c[1] * p[0],
+            ];
+            if (!s.normal_approach_speed_m_s.gt(zero)).any()
+                || !(finite(&s.ball_velocity_f_m_s)
+                    && finite(&s.ball_spin_f_rad_s)
+                    && finite(&club_dv)
+                    && finite(&moment))
+            {
+                return None;
+            }
+            let v = rotate(&s.ball_velocity_f_m_s);
+            let w = rotate(&s.ball_spin_f_rad_s);
+            let launch = [
+                (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(),
+                atan2_v(v[1], hypot_v(v[0], v[2])),
+                atan2_v(v[2], v[0]),
+                w[2],
+                -w[1],
+            ];
+            if nodes.is_none() {
+                out = LanePrediction {
+                    launch,
+                    ball_v: v,
+                    ball_w: w,
+                };
+            } else {
+                for (a, c) in out.launch.iter_mut().zip(launch) {
+                    *a = *a + weight * c;
+                }
+                for a in 0..3 {
+                    out.ball_v[a] = out.ball_v[a] + weight * v[a];
+                    out.ball_w[a] = out.ball_w[a] + weight * w[a];
+                }
+            }
+        }
+        Some(out)
+    }
+}
