@@ -276,8 +276,7 @@ fn expected_variances(
                     shaft_mass_g: s.delivery.shaft_mass_g,
                     ..delivery_from_file_units(x)
                 };
-                model.solve(&d).ok()
-                    .map(|o| o.launch().to_file_units())
+                model.solve(&d).ok().map(|o| o.launch().to_file_units())
             };
             let f0 = launch_at(&x0).ok_or_else(|| {
                 FitError::Solver(format!("noise floor: shot '{}' cannot be solved", s.id))
