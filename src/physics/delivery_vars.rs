@@ -9,8 +9,8 @@
 
 use nalgebra::Vector3;
 
-use crate::limits::{self, PhysicalRange};
 use super::{Delivery, LaunchComponent};
+use crate::limits::{self, PhysicalRange};
 use crate::units::{deg, mm, mph, M_S_PER_MPH};
 
 /// The delivery variables, in shots-file column order.
