@@ -241,13 +241,6 @@ pub const MAX_SYNTH_SHOTS: usize = 2_000_000;
 /// Most face bins of a comparison (rows × columns).
 pub const MAX_FACE_BINS: usize = 1_000_000;
 
-/// Whether every component of a launch is a finite number (checked before anything is written).
-pub fn finite_launch(l: &crate::physics::Launch) -> bool {
-    crate::physics::LaunchComponent::ALL
-        .iter()
-        .all(|c| l.get_file(*c).is_finite())
-}
-
 /// A library option outside what it allows (from a validating constructor or `validate`).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("option {option} = {value}: allowed {allowed}")]

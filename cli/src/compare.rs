@@ -120,7 +120,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         .shots
         .iter()
         .zip(&launches)
-        .find(|(_, l)| !smash::limits::finite_launch(l))
+        .find(|(_, l)| !l.is_finite())
     {
         bail!(
             "{}: shot '{}': the model's launch is not a finite number; check its delivery and \

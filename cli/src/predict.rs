@@ -192,7 +192,7 @@ fn predict_file(
     let table = args.shots_format.read(shots_path)?;
     let outcomes = predict_table(club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
     for (shot, o) in table.shots.iter().zip(&outcomes) {
-        if !(limits::finite_launch(&o.launch()) && o.smash_factor().is_finite()) {
+        if !(o.launch().is_finite() && o.smash_factor().is_finite()) {
             bail!(
                 "{}: shot '{}': the impact has no finite launch; check its delivery and the \
                  club {}",
@@ -248,7 +248,7 @@ fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
         .model_for_group(&args.group)
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
     let outcome = model.solve(&delivery)?;
-    if !(limits::finite_launch(&outcome.launch()) && outcome.smash_factor().is_finite()) {
+    if !(outcome.launch().is_finite() && outcome.smash_factor().is_finite()) {
         bail!(
             "the impact of this delivery ({} mph) with {} has no finite launch; check the \
              delivery and the club",

@@ -99,6 +99,13 @@ impl LaunchComponent {
 }
 
 impl Launch {
+    /// Whether every component is a finite number (checked before anything is written).
+    pub fn is_finite(&self) -> bool {
+        LaunchComponent::ALL
+            .iter()
+            .all(|c| self.get_file(*c).is_finite())
+    }
+
     /// Launch conditions from ball velocity (m/s) and spin (rad/s) in `G`.
     #[inline]
     pub fn from_ball_state(v: &Vector3<f64>, w: &Vector3<f64>) -> Self {

@@ -7,6 +7,7 @@
 //! `docs/conventions.md`.
 
 pub mod delivery;
+pub mod delivery_vars;
 pub mod expr;
 pub mod face;
 pub mod impact;

@@ -21,6 +21,7 @@
 use nalgebra::Vector3;
 
 use super::delivery::Delivery;
+use super::delivery_vars::{delivery_to_file_units, DeliveryVar, N_DELIVERY};
 use super::expr::Program;
 use super::real::Real;
 
@@ -122,28 +123,24 @@ pub const VAR_NOMINAL: u8 = 0;
 pub const VAR_PARAM0: u8 = 1;
 /// Variable: first shot column (`VAR_DELIVERY + i` is `DELIVERY_COLUMNS[i]`).
 pub const VAR_DELIVERY: u8 = 4;
-/// Shots-file columns every quantity may read, file units: the delivery, the impact location
-/// and the shaft mass.
-pub const DELIVERY_COLUMNS: [&str; 12] = [
-    "club_speed_mph",
-    "attack_angle_deg",
-    "club_path_deg",
-    "dynamic_loft_deg",
-    "face_angle_deg",
-    "lie_tilt_deg",
-    "club_omega_x_rad_s",
-    "club_omega_y_rad_s",
-    "club_omega_z_rad_s",
-    "impact_y_mm",
-    "impact_z_mm",
-    "shaft_mass_g",
-];
+/// Shots-file columns every quantity may read, file units: the delivery variables in their
+/// column order ([`DeliveryVar::ALL`], which holds the impact location) and the shaft mass.
+pub const DELIVERY_COLUMNS: [&str; N_DELIVERY + 1] = {
+    let mut c = [""; N_DELIVERY + 1];
+    let mut i = 0;
+    while i < N_DELIVERY {
+        c[i] = DeliveryVar::ALL[i].column();
+        i += 1;
+    }
+    c[N_DELIVERY] = "shaft_mass_g";
+    c
+};
 /// Variable: impact height, mm.
-pub const VAR_IMPACT_Y: u8 = VAR_DELIVERY + 9;
+pub const VAR_IMPACT_Y: u8 = VAR_DELIVERY + DeliveryVar::ImpactY.index() as u8;
 /// Variable: impact heel–toe location, mm.
-pub const VAR_IMPACT_Z: u8 = VAR_DELIVERY + 10;
+pub const VAR_IMPACT_Z: u8 = VAR_DELIVERY + DeliveryVar::ImpactZ.index() as u8;
 /// Variable: shaft mass, g.
-pub const VAR_SHAFT_MASS: u8 = VAR_DELIVERY + 11;
+pub const VAR_SHAFT_MASS: u8 = VAR_DELIVERY + N_DELIVERY as u8;
 /// Variable: normal approach speed, m/s.
 pub const VAR_U1N: u8 = 16;
 /// Variable: tangential approach speed, m/s.
@@ -169,21 +166,9 @@ pub const LOCATION_VARIABLES: [u8; 2] = [VAR_IMPACT_Y, VAR_IMPACT_Z];
 /// speed slots are 0.
 pub fn delivery_vars(d: &Delivery) -> [f64; NV] {
     let mut v = [0.0; NV];
-    let cols = [
-        d.club_speed_m_s / crate::units::M_S_PER_MPH,
-        d.attack_angle_rad.to_degrees(),
-        d.club_path_rad.to_degrees(),
-        d.dynamic_loft_rad.to_degrees(),
-        d.face_angle_rad.to_degrees(),
-        d.lie_tilt_rad.to_degrees(),
-        d.club_omega_rad_s.x,
-        d.club_omega_rad_s.y,
-        d.club_omega_rad_s.z,
-        d.impact_y_m * 1e3,
-        d.impact_z_m * 1e3,
-        d.shaft_mass_g.unwrap_or(DEFAULT_SHAFT_MASS_G),
-    ];
-    v[VAR_DELIVERY as usize..VAR_DELIVERY as usize + cols.len()].copy_from_slice(&cols);
+    let at = VAR_DELIVERY as usize;
+    v[at..at + N_DELIVERY].copy_from_slice(&delivery_to_file_units(d));
+    v[VAR_SHAFT_MASS as usize] = d.shaft_mass_g.unwrap_or(DEFAULT_SHAFT_MASS_G);
     v
 }
 

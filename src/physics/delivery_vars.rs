@@ -3,12 +3,14 @@
 //! and the typical noise of the instruments that measure them (and of the launch monitor).
 //!
 //! Shared by the synthetic experiments (which generate them), the noise-floor diagnosis and the
-//! noise file (which assume their noise), so it sits below all three.
+//! noise file (which assume their noise), and by user-defined effects (whose expressions read
+//! them by column name), so it sits in `physics`, below all of them; [`crate::model`]
+//! re-exports it as `model::delivery`.
 
 use nalgebra::Vector3;
 
+use super::{Delivery, LaunchComponent};
 use crate::limits::{self, PhysicalRange};
-use crate::physics::{Delivery, LaunchComponent};
 use crate::units::{deg, mm, mph, M_S_PER_MPH};
 
 /// The delivery variables, in shots-file column order.
