@@ -193,7 +193,7 @@ fn resolved_study_reparses_to_itself() {
     assert!(
         t.contains("count = 5")
             && t.contains("seed = 1")
-            && t.contains("steps = { com_dx_mm = 0.5 }"),
+            && t.contains("[sensitivity.steps]\ncom_dx_mm = 0.5"),
         "{t}"
     );
     let again = parse_study(Path::new("/elsewhere/study.toml"), &t).unwrap();
