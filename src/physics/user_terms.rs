@@ -18,6 +18,8 @@
 //! may depend on where (a face map then evaluates them at every point,
 //! [`UserTerms::pre_solve_reads_location`]).
 
+use std::convert::Infallible;
+
 use nalgebra::Vector3;
 
 use super::delivery::Delivery;
@@ -339,7 +341,39 @@ impl UserTerms {
     /// values of the library laws. No allocation.
     #[inline]
     pub fn contact<R: Real>(&self, vars: &mut [R; NV], e: R, et: R, mu: R) -> (R, R, R) {
-        let mut q = [e, et, mu];
+        match self.contact_with(vars, [e, et, mu], |_, _| Ok::<(), Infallible>(())) {
+            Ok(q) => q,
+            Err(never) => match never {},
+        }
+    }
+
+    /// [`UserTerms::contact`] on one shot, with the first term whose value is not allowed
+    /// named.
+    pub fn contact_checked(
+        &self,
+        vars: &mut [f64; NV],
+        e: f64,
+        et: f64,
+        mu: f64,
+    ) -> Result<(f64, f64, f64), UserEvalError> {
+        self.contact_with(vars, [e, et, mu], |t, value| {
+            if t.def().quantity.ok(value) {
+                Ok(())
+            } else {
+                Err(t.error(value))
+            }
+        })
+    }
+
+    /// The one loop of [`UserTerms::contact`] and [`UserTerms::contact_checked`]: each contact
+    /// term in turn, its nominal the value so far, `check` asked about every value it makes.
+    #[inline(always)]
+    fn contact_with<R: Real, E>(
+        &self,
+        vars: &mut [R; NV],
+        mut q: [R; 3],
+        mut check: impl FnMut(&AppliedTerm, R) -> Result<(), E>,
+    ) -> Result<(R, R, R), E> {
         for t in self.iter() {
             let def = t.def();
             let i = match def.quantity {
@@ -352,37 +386,8 @@ impl UserTerms {
             for (k, p) in t.params.iter().enumerate() {
                 vars[VAR_PARAM0 as usize + k] = R::splat(*p);
             }
-            q[i] = def.program.eval(&vars[..]);
-        }
-        (q[0], q[1], q[2])
-    }
-
-    /// [`UserTerms::contact`] on one shot, with the first term whose value is not allowed
-    /// named.
-    pub fn contact_checked(
-        &self,
-        vars: &mut [f64; NV],
-        e: f64,
-        et: f64,
-        mu: f64,
-    ) -> Result<(f64, f64, f64), UserEvalError> {
-        let mut q = [e, et, mu];
-        for t in self.iter() {
-            let def = t.def();
-            let i = match def.quantity {
-                Quantity::Cor => 0,
-                Quantity::Et => 1,
-                Quantity::Mu => 2,
-                _ => continue,
-            };
-            vars[VAR_NOMINAL as usize] = q[i];
-            for (k, p) in t.params.iter().enumerate() {
-                vars[VAR_PARAM0 as usize + k] = *p;
-            }
             let value = def.program.eval(&vars[..]);
-            if !def.quantity.ok(value) {
-                return Err(t.error(value));
-            }
+            check(t, value)?;
             q[i] = value;
         }
         Ok((q[0], q[1], q[2]))
