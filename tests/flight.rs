@@ -57,6 +57,28 @@ fn worst(v: &[f64]) -> f64 {
     v.iter().cloned().fold(0.0, f64::max)
 }
 
+/// Asserts a table's median and worst |carry error| (%) and its worst land-angle error (°).
+fn assert_errors_within(
+    carry: &[f64],
+    land: &[f64],
+    median_pct: f64,
+    carry_pct: f64,
+    land_deg: f64,
+) {
+    let med = median(carry.to_vec());
+    assert!(med <= median_pct, "median carry error {med:.2} %");
+    assert!(
+        worst(carry) <= carry_pct,
+        "worst carry error {:.2} %",
+        worst(carry)
+    );
+    assert!(
+        worst(land) <= land_deg,
+        "worst land-angle error {:.2}°",
+        worst(land)
+    );
+}
+
 /// The issue's targets, with the default model (`fmm2022-re`, fitted to the LPGA table, not
 /// to this one) and the default atmosphere: median |carry error| ≤ 2 %, worst ≤ 4 %, every land
 /// angle within 5°. Measured: 0.85 %, 3.92 %, 5.07° (the driver, 5.1° steeper than
@@ -66,18 +88,7 @@ fn worst(v: &[f64]) -> f64 {
 #[ignore = "fmm2022-re misses the 5° land-angle target by 0.07° (driver); see README"]
 fn trackman_pga_tour_meets_the_issue_targets() {
     let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR);
-    let med = median(carry.clone());
-    assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(
-        worst(&carry) <= 4.0,
-        "worst carry error {:.2} %",
-        worst(&carry)
-    );
-    assert!(
-        worst(&land) <= 5.0,
-        "worst land-angle error {:.2}°",
-        worst(&land)
-    );
+    assert_errors_within(&carry, &land, 2.0, 4.0, 5.0);
 }
 
 /// What the default model reaches on the PGA Tour table: the carry targets hold (measured
@@ -92,17 +103,7 @@ fn trackman_pga_tour_default_model_regression() {
         worst(&carry),
         worst(&land)
     );
-    assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(
-        worst(&carry) <= 4.0,
-        "worst carry error {:.2} %",
-        worst(&carry)
-    );
-    assert!(
-        worst(&land) <= 5.1,
-        "worst land-angle error {:.2}°",
-        worst(&land)
-    );
+    assert_errors_within(&carry, &land, 2.0, 4.0, 5.1);
     for (model, tm) in apex {
         assert!((model - tm).abs() < 4.0, "apex {model} vs {tm}");
     }
@@ -114,18 +115,7 @@ fn trackman_pga_tour_default_model_regression() {
 #[test]
 fn trackman_pga_tour_2023_regression() {
     let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR_2023);
-    let med = median(carry.clone());
-    assert!(med <= 1.4, "median carry error {med:.2} %");
-    assert!(
-        worst(&carry) <= 4.8,
-        "worst carry error {:.2} %",
-        worst(&carry)
-    );
-    assert!(
-        worst(&land) <= 3.3,
-        "worst land-angle error {:.2}°",
-        worst(&land)
-    );
+    assert_errors_within(&carry, &land, 1.4, 4.8, 3.3);
 }
 
 /// `fmm2022` as published misses the targets (measured 1.97 % median, 4.85 % worst carry,
@@ -133,18 +123,7 @@ fn trackman_pga_tour_2023_regression() {
 #[test]
 fn trackman_pga_tour_fmm2022_as_published_regression() {
     let (carry, land, apex) = trackman_errors(AeroModel::Fmm2022, &PGA_TOUR);
-    let med = median(carry.clone());
-    assert!(med <= 2.0, "median carry error {med:.2} %");
-    assert!(
-        worst(&carry) <= 4.9,
-        "worst carry error {:.2} %",
-        worst(&carry)
-    );
-    assert!(
-        worst(&land) <= 7.3,
-        "worst land-angle error {:.2}°",
-        worst(&land)
-    );
+    assert_errors_within(&carry, &land, 2.0, 4.9, 7.3);
     for (model, tm) in apex {
         assert!((model - tm).abs() < 3.0, "apex {model} vs {tm}");
     }
