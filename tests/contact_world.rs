@@ -5,6 +5,7 @@
 use nalgebra::Vector3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use smash::effects::EffectKind;
 use smash::physics::{Delivery, ImpactModel, ModelParams};
 use smash::synth::contact::{hunt_crossley_cor, ContactParams, ContactWorld, ShaftTip};
 
@@ -445,5 +446,95 @@ fn show(label: &str, (m, r): ([f64; 5], [f64; 5])) {
     println!(
         "{label:40} mean {:+.3} {:+.3} {:+.3} {:+.0} {:+.0}   rms {:.3} {:.3} {:.3} {:.0} {:.0}",
         m[0], m[1], m[2], m[3], m[4], r[0], r[1], r[2], r[3], r[4]
+    );
+}
+
+/// The gear-effect part of the tangential law (`tangential_compliance.eg`), checked against a
+/// contact world whose only departure is the Mindlin spring (very stiff ball, μ = 0.35) over
+/// random off-centre deliveries. Off the centre the normal impulse itself drives the contact
+/// point sideways through the coupling terms of `K`; the spring grips and returns that motion
+/// with its own factor (its forced response), not with the `e_t` of the approach (its free
+/// response). The best law with `e_g` must fit the launch far better than the best law without
+/// it, with a positive `e_g` (the spring reverses part of the gear-driven slip) inside its
+/// plausible range. Dropping the coupling term from the library's law fails this test.
+#[test]
+fn gear_restitution_fits_the_mindlin_spring_off_centre() {
+    let m = paper();
+    let ds = random_deliveries(23, 40, false);
+    let tw = ContactWorld::new(
+        &m,
+        ContactParams {
+            hertz_k_n_per_m1_5: 1e15,
+            steps_per_contact: 2000,
+            ..ContactParams::default()
+        },
+    )
+    .unwrap();
+    // The world's launches and its COR at each shot's normal speed, integrated once.
+    let world: Vec<([f64; 5], f64)> = ds
+        .iter()
+        .map(|d| {
+            let o = tw.impact(d).unwrap();
+            (
+                o.launch().to_file_units(),
+                tw.cor_at(o.normal_approach_speed_m_s),
+            )
+        })
+        .collect();
+    let eval = |et0: f64, k_tan: f64, eg: f64| {
+        let mut acc = [0.0f64; 5];
+        for (d, (want, cor)) in ds.iter().zip(&world) {
+            let mut p = ModelParams::paper_driver();
+            p.cor = *cor;
+            p.tangential_restitution = et0;
+            p.tangential_restitution_slope = k_tan;
+            p.gear_restitution = eg;
+            let got = ImpactModel::new(p)
+                .unwrap()
+                .solve(d)
+                .unwrap()
+                .launch()
+                .to_file_units();
+            for c in 0..5 {
+                acc[c] += (got[c] - want[c]).powi(2);
+            }
+        }
+        whitened(acc.map(|a| (a / ds.len() as f64).sqrt()))
+    };
+    let grid =
+        |lo: f64, hi: f64, n: usize| (0..=n).map(move |i| lo + (hi - lo) * i as f64 / n as f64);
+    let best = |egs: &[f64]| {
+        let mut b = (f64::INFINITY, [0.0; 3]);
+        for et0 in grid(-0.6, 0.4, 20) {
+            for k_tan in grid(0.0, 2.0, 16) {
+                for &eg in egs {
+                    let v = eval(et0, k_tan, eg);
+                    if v < b.0 {
+                        b = (v, [et0, k_tan, eg]);
+                    }
+                }
+            }
+        }
+        b
+    };
+    let (without, w) = best(&[0.0]);
+    let egs: Vec<f64> = grid(-0.5, 0.8, 26).collect();
+    let (with, g) = best(&egs);
+    println!(
+        "whitened MSE: no slip {:.3}; best without e_g {without:.3} (et0 {:.2}, k_tan {:.3}); \
+         best with e_g {with:.3} (et0 {:.2}, k_tan {:.3}, eg {:.2})",
+        eval(0.0, 0.0, 0.0),
+        w[0],
+        w[1],
+        g[0],
+        g[1],
+        g[2]
+    );
+    assert!(with < 0.5 * without, "{with} vs {without}");
+    let eg = EffectKind::TangentialCompliance.params()[2];
+    assert_eq!(eg.key, "eg");
+    assert!(
+        g[2] > 0.0 && g[2] >= eg.plausible.0 && g[2] <= eg.plausible.1,
+        "{g:?}"
     );
 }

@@ -162,6 +162,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         hosel_m: Vector3::new(mm(hosel_mm[0]), mm(hosel_mm[1]), mm(hosel_mm[2])),
         contact_time_s: 0.0,
         tangential_restitution_slope: 0.0,
+        gear_restitution: 0.0,
         user: Default::default(),
     };
 

@@ -245,6 +245,7 @@ impl ImpactModel {
             tangential: TangentialLaw {
                 e_t: p.tangential_restitution,
                 e_t_slope: p.tangential_restitution_slope,
+                e_g: p.gear_restitution,
                 mu: p.friction_mu,
             },
             contact: FiniteContact {

@@ -11,7 +11,7 @@
 //! | normal restitution | [`Restitution`] | `cor_level`, `cor_speed`, `cor_radial`, `cor_power` |
 //! | ball lever arm | [`BallContact`] | `ball_offset` |
 //! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale` (composed into [`super::ModelParams`] once, see `crate::effects`) |
-//! | tangential law | [`TangentialLaw`] | `tangential_restitution`, `friction`, `tangential_compliance` |
+//! | tangential law (approach and gear-effect parts) | [`TangentialLaw`] | `tangential_restitution`, `friction`, `tangential_compliance` |
 //! | finite contact | [`FiniteContact`] | `contact_time` (the head turning while in contact) |
 //!
 //! Geometry biases (`loft_bias`, `face_bias`) act on the delivered angles in
@@ -205,10 +205,17 @@ pub fn solve_sym3<R: Real>(k: &Sym3<R>, b: &Vec3<R>) -> Vec3<R> {
 /// The impulse of one impact from the normal restitution and the tangential law:
 ///
 /// ```text
-/// K P = u1 + e·u1n·n + e_t·(u1 − u1n·n)                    (e_t = 0: the paper's no slip)
+/// K P = u1 + e·u1n·n + e_t·u1t − e_g·(K·n)_t·P_n0        u1t = u1 − u1n·n
+///                                                         P_n0 = (1 + e)·u1n / (n·K·n)
 /// ```
 ///
-/// and, with friction `mu`, gross slip where that impulse's tangential part exceeds `mu·P_n`:
+/// i.e. the contact point leaves with the tangential velocity `u_t' = −e_t·u1t − e_g·Δ_g`,
+/// where `Δ_g = −(K·n)_t·P_n0` is the tangential velocity the normal impulse alone would add
+/// (the gear effect: the off-diagonal terms of `K` turn a normal push into tangential motion of
+/// the contact point). `e_t = e_g = 0` is the paper's no slip. A gripping, compliant contact
+/// restores the two parts differently (see `crate::effects::tangential_compliance`): `e_t` is
+/// the free rebound of the tangential spring, `e_g` its response to being driven by the normal
+/// force. With friction `mu`, gross slip where that impulse's tangential part exceeds `mu·P_n`:
 /// `P = P_n·(n + mu·ŝ)`, `ŝ = u1_t/|u1_t|`, `P_n = (1 + e)·u1n / (n·K·(n + mu·ŝ))`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TangentialLaw {
@@ -217,6 +224,8 @@ pub struct TangentialLaw {
     /// Change of `e_t` per unit tangent of the incidence, `|u1t|/u1n` (the
     /// `tangential_compliance` effect; 0: a constant `e_t`).
     pub e_t_slope: f64,
+    /// Gear restitution `e_g` (the `tangential_compliance` effect; 0: none).
+    pub e_g: f64,
     /// Coulomb friction coefficient, or `None` for unlimited friction.
     pub mu: Option<f64>,
 }
@@ -248,12 +257,14 @@ impl TangentialLaw {
             u1n,
             e,
             e_t,
+            self.e_g,
             R::splat(self.mu.unwrap_or(f64::INFINITY)),
         )
     }
 
     /// [`TangentialLaw::impulse`] with `e_t` and `mu` given per lane (as user-defined effects
-    /// set them); `mu` is read only when `FRICTION`.
+    /// set them) and the gear restitution `e_g`; `mu` is read only when `FRICTION`.
+    #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     pub fn impulse_with<R: Real, const FRICTION: bool>(
         k: &Sym3<R>,
@@ -262,15 +273,28 @@ impl TangentialLaw {
         u1n: R,
         e: R,
         e_t: R,
+        e_g: f64,
         mu: R,
     ) -> (Vec3<R>, R::Mask) {
         let u1t = [u1[0] - u1n * n[0], u1[1] - u1n * n[1], u1[2] - u1n * n[2]];
         let eu = e * u1n;
-        let b = [
-            u1[0] + eu * n[0] + u1t[0] * e_t,
-            u1[1] + eu * n[1] + u1t[1] * e_t,
-            u1[2] + eu * n[2] + u1t[2] * e_t,
-        ];
+        let b = if e_g == 0.0 {
+            [
+                u1[0] + eu * n[0] + u1t[0] * e_t,
+                u1[1] + eu * n[1] + u1t[1] * e_t,
+                u1[2] + eu * n[2] + u1t[2] * e_t,
+            ]
+        } else {
+            // The gear-effect drive: (K·n)_t·P_n0, scaled by e_g.
+            let kn = sym_mul(k, n);
+            let knn = dot(&kn, n);
+            let s = (e + 1.0) * u1n / knn * e_g;
+            [
+                u1[0] + eu * n[0] + u1t[0] * e_t - (kn[0] - knn * n[0]) * s,
+                u1[1] + eu * n[1] + u1t[1] * e_t - (kn[1] - knn * n[1]) * s,
+                u1[2] + eu * n[2] + u1t[2] * e_t - (kn[2] - knn * n[2]) * s,
+            ]
+        };
         let p = solve_sym3(k, &b);
         if !FRICTION {
             return (p, R::no());

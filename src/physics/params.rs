@@ -39,6 +39,11 @@ pub struct ModelParams {
     /// Change of `e_t` per unit tangent of the contact point's incidence `|u1t|/u1n`
     /// (`tangential_compliance`; 0: constant `e_t`). The effective `e_t` must stay in [−1, 1].
     pub tangential_restitution_slope: f64,
+    /// Gear restitution `e_g`, in [−1, 1]: the part of the tangential velocity that the normal
+    /// impulse alone drives at the contact point (the gear effect, through the coupling terms of
+    /// the collision matrix) which the gripping contact returns (`tangential_compliance`; 0: the
+    /// paper's no slip, −1: no tangential grip at all).
+    pub gear_restitution: f64,
     /// Coulomb friction coefficient `mu` (> 0), or `None` for unlimited friction.
     pub friction_mu: Option<f64>,
     /// COR slope with normal approach speed `k`, s/m.
@@ -92,6 +97,7 @@ impl ModelParams {
             ball_offset_z_m: 0.0,
             tangential_restitution: 0.0,
             tangential_restitution_slope: 0.0,
+            gear_restitution: 0.0,
             friction_mu: None,
             cor_speed_k_s_per_m: 0.0,
             cor_power_q: 0.0,
@@ -151,6 +157,11 @@ impl ModelParams {
             p.tangential_restitution.is_finite() && p.tangential_restitution.abs() <= 1.0,
             "tangential restitution",
             || format!("must be in [-1, 1], got {}", p.tangential_restitution),
+        )?;
+        check(
+            p.gear_restitution.is_finite() && p.gear_restitution.abs() <= 1.0,
+            "gear restitution",
+            || format!("must be in [-1, 1], got {}", p.gear_restitution),
         )?;
         if let Some(mu) = p.friction_mu {
             check(pos(mu), "friction mu", || {

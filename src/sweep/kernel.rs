@@ -225,6 +225,7 @@ impl FaceMapKernel {
             hosel_m: _,                      // composed into mass, CoM and inertia by the effects
             contact_time_s: _,               // in laws.contact
             tangential_restitution_slope: _, // in laws.tangential
+            gear_restitution: _,             // in laws.tangential
             user,                            // mass and geometry below; cor, et, mu in laws.user
         } = model.params();
         // User-defined mass and geometry at the delivery's location (`new` handles the case
@@ -432,7 +433,16 @@ impl FaceMapKernel {
                             * laws.tangential.e_t_slope
                             + e_t
                     };
-                    TangentialLaw::impulse_with::<V, FRICTION>(&k, &n, u, un, e, e_t, mu)
+                    TangentialLaw::impulse_with::<V, FRICTION>(
+                        &k,
+                        &n,
+                        u,
+                        un,
+                        e,
+                        e_t,
+                        laws.tangential.e_g,
+                        mu,
+                    )
                 } else {
                     laws.tangential.impulse::<V, FRICTION>(&k, &n, u, un, e)
                 }
