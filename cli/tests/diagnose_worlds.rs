@@ -257,9 +257,10 @@ const COMPLIANT: [(&str, &[&[&str]]); 3] = [
 ];
 
 /// The shaft-less `compliant_slip_world` has a livelier face (`cor_ref` 0.85 against the
-/// file's 0.83), and diagnose selects `added_mass` with a plausible +8.7 g for it. Swapped into
-/// the final model, `cor_level` fits as well: the report must call the pair ambiguous and not
-/// list the added mass among the findings.
+/// file's 0.83), and diagnose selects `added_mass` for it (+10.9 g, just beyond its plausible
+/// range: a stand-in; formerly a plausible +8.7 g). Swapped into the final model, `cor_level`
+/// fits as well: the report must list it as a rival, call the pair ambiguous when the added
+/// mass is plausible, and never list the added mass among the findings.
 fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_json::Value) {
     assert!(
         selected(d).contains(&"added_mass".to_owned()),
@@ -277,7 +278,12 @@ fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_
         .iter()
         .find(|a| a["selected"] == "added_mass")
         .unwrap_or_else(|| panic!("no ambiguity for added_mass: {}", d["ambiguous"]));
-    assert_eq!(amb["ambiguous"], true, "{amb}");
+    let stand_in = d["estimates"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|e| e["effect"] == "added_mass" && e["status"] == "stand_in");
+    assert!(amb["ambiguous"] == true || stand_in, "{amb}");
     assert!(
         amb["rivals"]
             .as_array()
@@ -291,10 +297,12 @@ fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_
 }
 
 /// What holds on the compliant worlds today (configs/README.md shows the output): the
-/// speed-dependent COR is named with a plausible value in every world, a tangential law is
-/// named in every world, and every implausible value carries its stand-in reading instead of
-/// being listed as a finding; a plausible selected value with a plausible rival is ambiguous,
-/// not a finding.
+/// speed-dependent COR is named with a plausible value in every world, the tangential
+/// compliance (with its gear restitution `eg`) is named with plausible values in every world,
+/// no world needs a centre of mass moved beyond its plausible range (the −14 to −21 mm
+/// `com_offset` stand-in of a tangential law without the gear-effect term), and every
+/// implausible value carries its stand-in reading instead of being listed as a finding; a
+/// plausible selected value with a plausible rival is ambiguous, not a finding.
 #[test]
 fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
     let dir = tempfile::tempdir().unwrap();
@@ -311,12 +319,20 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
                 .any(|e| names.contains(&e["effect"].as_str().unwrap()) && e["plausible"] == true)
         };
         assert!(plausibly(SPEED_COR), "{world}: {:?}", selected(&d));
-        assert!(
-            plausibly(&["tangential_compliance", "tangential_restitution"]),
-            "{world}: {:?}",
-            selected(&d)
-        );
+        for param in ["et0", "k_tan", "eg"] {
+            assert!(
+                est.iter().any(|e| e["effect"] == "tangential_compliance"
+                    && e["param"] == param
+                    && e["plausible"] == true),
+                "{world}: tangential_compliance.{param}: {:?}",
+                selected(&d)
+            );
+        }
         for e in est {
+            assert!(
+                e["effect"] != "com_offset" || e["plausible"] == true,
+                "{world}: {e}"
+            );
             assert!(
                 e["plausible"] != false || e["stand_in"].is_string(),
                 "{world}: {e}"
@@ -346,8 +362,10 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
 /// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
 /// not hold yet (configs/README.md, "What this shows"): the shaft tip is not named as
 /// `hosel_mass` (alone in a world, the 4 g tip on its 2 kHz joint leaves the launch at the noise
-/// floor), the 2.5 mm location noise is not detected, group means reach 0.3–0.5 σ and some
-/// spreads stay above 1.10× the noise floor. Run with
+/// floor), `contact_time` is not named in `compliant_location_noise`, and spreads stay above
+/// 1.10× the noise floor in azimuth (`compliant_driver`, 1.12×) and in ball speed, launch and
+/// azimuth in `compliant_location_noise` (1.25–1.30×: its 2.5 mm location noise, against the
+/// camera class's 1.5 mm, is not detected). Group means are below 0.2 σ in every world. Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]
 #[ignore = "known to fail: see configs/README.md, compliant-contact worlds"]

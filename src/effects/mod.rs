@@ -20,7 +20,7 @@
 //! | `hosel_mass` | `dm_g` | point mass at the club's `hosel_mm`: mass, CoM and inertia (parallel axis) |
 //! | `cor_power` | `q` | `e = cor·(u1n/48.77 m/s)^(−q)` |
 //! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)` |
-//! | `tangential_compliance` | `et0`, `mu` | `e_t = et0` while the ball grips, Coulomb `mu` once it slides |
+//! | `tangential_compliance` | `et0`, `k_tan`, `eg` | `e_t = et0 + k_tan·|u1t|/u1n` on the approach, `e_g = eg` on the gear-effect drive: `K P = u1 + e·u1n·n + e_t·u1t − e_g·(K·n)_t·P_n0` |
 //!
 //! Each effect is one file in this folder plus one line in the `library!` registration below
 //! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read

@@ -51,8 +51,9 @@
 //!
 //! `e_g = 0` is the rigid grip (the paper), `e_g = −1` no grip at all (`ω_t → 0`), `e_g > 0` a
 //! spring that reverses part of the gear-driven slip before release. For a driver and a golf
-//! ball (`r ≈ 1.4–1.6`) the linear estimate is `e_t ≈ 0…0.3` but `e_g ≈ 0.4`: applying `e_t` to
-//! the gear-driven motion too (`u_t' = −e_t·(u1t + Δ_g)`) gets its size and sign wrong, and a
+//! ball (`r ≈ 1.4–1.6`) the linear estimate is `e_t ≈ −0.3…0.3` but `e_g ≈ 0.36–0.42`: applying
+//! `e_t` to the gear-driven motion too (`u_t' = −e_t·(u1t + Δ_g)`) gets its size wrong, and its
+//! sign wherever `e_t < 0` (it fits the simulator worse than no `e_g` at all), and a
 //! law without `e_g` leaves the gear effect's spin as the rigid grip has it, which a fit then
 //! repairs with an implausibly deep centre of mass (`com_offset` dx −12 to −21 mm in the
 //! compliant worlds). The Hertz pulse (the spring stiffens as `δ^½`) and micro-slip change the
