@@ -105,7 +105,7 @@ pub const PARAMS: &[ParamSpec] = &[
         0.0,
         -1.0,
         1.0,
-        (-0.3, 0.5),
+        (0.0, 0.5),
         "gear restitution: rebound of the tangential velocity the normal impulse drives (0 = no slip)",
     ),
 ];
