@@ -484,6 +484,24 @@ mod tests {
             let cv = |start: &DVector<f64>, at: Option<AllShots>| {
                 cv_chi2(&club, &layout, &folds, w, start, at, 100, None).unwrap()
             };
+            // The first fold's fit with and without its rows given: the same point, one
+            // residual and one Jacobian evaluation (2 per parameter) fewer.
+            let pr = || FitProblem::new(&club, layout.clone(), &folds.train[0], w);
+            let rows = fold_rows(
+                (&run.residuals, &run.jacobian),
+                &folds.train_idx[0],
+                w.rows_per_shot(),
+            );
+            let own = crate::fit::run::execute(pr(), &run.theta, 100, None, false, None).unwrap();
+            let given =
+                crate::fit::run::execute(pr(), &run.theta, 100, None, false, Some(rows)).unwrap();
+            assert_eq!(given.theta, own.theta);
+            assert_eq!(given.cost.to_bits(), own.cost.to_bits());
+            assert_eq!(given.iterations, own.iterations);
+            assert_eq!(
+                given.evaluations + 1 + 2 * layout.len() as u64,
+                own.evaluations
+            );
             let plain = cv(&run.theta, None);
             let reused = cv(&run.theta, Some((&run.residuals, &run.jacobian)));
             assert_eq!(plain.to_bits(), reused.to_bits(), "noise {noise:?}");

@@ -186,7 +186,7 @@ pub fn run_lm_point_from(
 
 /// [`run_lm`], with the Jacobian at a solution reached by a small `χ²` change computed or not
 /// (`final_jacobian`; when not, [`FitRun::jacobian`] is that of the point before).
-fn execute(
+pub(crate) fn execute(
     problem: FitProblem<'_>,
     start: &DVector<f64>,
     max_iters: u64,
