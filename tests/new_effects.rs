@@ -132,22 +132,6 @@ fn hosel_mass_matches_a_rigid_head_plus_point_mass() {
     );
 }
 
-/// A value of each library effect's parameters inside its plausible range, away from neutral.
-fn active_values(kind: EffectKind) -> Vec<f64> {
-    kind.params()
-        .iter()
-        .map(|s| {
-            let (lo, hi) = s.plausible;
-            let v = lo + 0.7 * (hi - lo);
-            if v == s.default {
-                lo + 0.3 * (hi - lo)
-            } else {
-                v
-            }
-        })
-        .collect()
-}
-
 #[test]
 fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
     for friction in [false, true] {
@@ -156,7 +140,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
             if kind == EffectKind::Friction && !friction {
                 continue;
             }
-            kind.apply(&active_values(kind), &mut p);
+            kind.apply(&common::active_values(kind.params()), &mut p);
         }
         let model = ImpactModel::new(p).unwrap();
         let ys: Vec<f64> = (0..13).map(|i| (-24.0 + 4.0 * i as f64) * 1e-3).collect();

@@ -71,22 +71,6 @@ fn define(text: &str) -> Vec<&'static UserEffect> {
     parse_effect_defs(Path::new("test_effects.toml"), text).expect("definitions load")
 }
 
-/// A value of each library effect's parameters inside its plausible range, away from neutral.
-fn active_values(params: &[smash::effects::ParamSpec]) -> Vec<f64> {
-    params
-        .iter()
-        .map(|s| {
-            let (lo, hi) = s.plausible;
-            let v = lo + 0.7 * (hi - lo);
-            if v == s.default {
-                lo + 0.3 * (hi - lo)
-            } else {
-                v
-            }
-        })
-        .collect()
-}
-
 const EVERY_QUANTITY: &str = r#"
 [[define_effect]]
 name = "sink_all"
@@ -151,7 +135,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_and_user_effect_on() {
             if kind == EffectKind::Friction && !friction {
                 continue;
             }
-            kind.apply(&active_values(kind.params()), &mut p);
+            kind.apply(&common::active_values(kind.params()), &mut p);
         }
         sink.apply(&[0.6, -0.4][..sink.params().len()], &mut p);
         if friction {
@@ -202,7 +186,7 @@ fn kernel_matches_the_scalar_solve_with_every_library_and_user_effect_on() {
             if kind == EffectKind::Friction && !friction {
                 continue;
             }
-            kind.apply(&active_values(kind.params()), &mut q);
+            kind.apply(&common::active_values(kind.params()), &mut q);
         }
         let plain = ImpactModel::new(q).unwrap();
         let d = common::deliveries()[5];

@@ -42,25 +42,29 @@ fn synth_world(dir: &Path, name: &str, hidden: &str, seed: u64) -> PathBuf {
     );
     std::fs::write(&cfg, text).unwrap();
     let shots = dir.join(format!("{name}.csv"));
-    let defs = example_defs();
-    ok(
-        &smash(&[
-            "synth",
-            "--config",
-            cfg.to_str().unwrap(),
-            "--effect-defs",
-            defs.to_str().unwrap(),
-            "--out",
-            shots.to_str().unwrap(),
-        ]),
-        "synth",
-    );
+    synth(&cfg, &shots);
     shots
 }
 
-fn diagnose(shots: &Path) -> serde_json::Value {
+/// `smash synth --config CONFIG --effect-defs <examples> --out SHOTS`, which must succeed.
+fn synth(config: &Path, shots: &Path) {
     let o = smash(&[
-        "diagnose",
+        "synth",
+        "--config",
+        config.to_str().unwrap(),
+        "--effect-defs",
+        example_defs().to_str().unwrap(),
+        "--out",
+        shots.to_str().unwrap(),
+    ]);
+    ok(&o, "synth");
+}
+
+/// `smash COMMAND --club <paper driver> --shots SHOTS --effect-defs <examples> --json`, which
+/// must succeed; its JSON report.
+fn json_report(command: &str, shots: &Path) -> serde_json::Value {
+    let o = smash(&[
+        command,
         "--club",
         repo("configs/clubs/paper_driver.toml").to_str().unwrap(),
         "--shots",
@@ -69,7 +73,7 @@ fn diagnose(shots: &Path) -> serde_json::Value {
         example_defs().to_str().unwrap(),
         "--json",
     ]);
-    ok(&o, "diagnose");
+    ok(&o, command);
     serde_json::from_slice(&o.stdout).unwrap()
 }
 
@@ -78,21 +82,8 @@ fn diagnose_ranks_a_hidden_user_effect_first_and_selects_nothing_in_the_null_wor
     let dir = tempfile::tempdir().unwrap();
     // The shipped world (configs/synth/cor_oblique_world.toml: b = 0.003 s/m, seed 5).
     let shots = dir.path().join("oblique.csv");
-    ok(
-        &smash(&[
-            "synth",
-            "--config",
-            repo("configs/synth/cor_oblique_world.toml")
-                .to_str()
-                .unwrap(),
-            "--effect-defs",
-            example_defs().to_str().unwrap(),
-            "--out",
-            shots.to_str().unwrap(),
-        ]),
-        "synth",
-    );
-    let d = diagnose(&shots);
+    synth(&repo("configs/synth/cor_oblique_world.toml"), &shots);
+    let d = json_report("diagnose", &shots);
     let selected: Vec<&str> = d["selected"]
         .as_array()
         .unwrap()
@@ -125,18 +116,7 @@ fn diagnose_ranks_a_hidden_user_effect_first_and_selects_nothing_in_the_null_wor
     assert!((b - 0.003).abs() < 3.0 * se, "b = {b} ± {se}");
 
     // compare hints at it: the strongest ball-speed finding names cor_oblique.
-    let o = smash(&[
-        "compare",
-        "--club",
-        repo("configs/clubs/paper_driver.toml").to_str().unwrap(),
-        "--shots",
-        shots.to_str().unwrap(),
-        "--effect-defs",
-        example_defs().to_str().unwrap(),
-        "--json",
-    ]);
-    ok(&o, "compare");
-    let c: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let c = json_report("compare", &shots);
     let speed = c["findings"]
         .as_array()
         .unwrap()
@@ -153,7 +133,7 @@ fn diagnose_ranks_a_hidden_user_effect_first_and_selects_nothing_in_the_null_wor
     );
 
     let null = synth_world(dir.path(), "null", "", 1);
-    let d = diagnose(&null);
+    let d = json_report("diagnose", &null);
     assert_eq!(
         d["selected"].as_array().unwrap().len(),
         0,

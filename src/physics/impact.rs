@@ -131,6 +131,54 @@ pub struct ImpactOutcome {
     pub club_speed_m_s: f64,
 }
 
+/// An [`ImpactOutcome`] still in the face frame `F` (the normal approach speed, COR, slip flag
+/// and club speed are frame-free): what the built-in and the user-defined solves both produce.
+struct FaceOutcome {
+    ball_velocity_m_s: Vector3<f64>,
+    ball_spin_rad_s: Vector3<f64>,
+    club_velocity_after_m_s: Vector3<f64>,
+    club_omega_after_rad_s: Vector3<f64>,
+    impulse_n_s: Vector3<f64>,
+    contact_from_club_com_m: Vector3<f64>,
+    contact_from_ball_com_m: Vector3<f64>,
+    normal: Vector3<f64>,
+    normal_approach_speed_m_s: f64,
+    cor_effective: f64,
+    slipped: bool,
+    club_speed_m_s: f64,
+}
+
+impl FaceOutcome {
+    /// Rotates the vectors to the ground frame `G` (`r_gf` maps `F` to `G`), refusing any
+    /// non-finite ball or club velocity.
+    fn into_ground(self, r_gf: &Matrix3<f64>) -> Result<ImpactOutcome, ImpactError> {
+        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
+        let moving = [
+            &self.ball_velocity_m_s,
+            &self.ball_spin_rad_s,
+            &self.club_velocity_after_m_s,
+            &self.club_omega_after_rad_s,
+        ];
+        if !moving.into_iter().all(finite) {
+            return Err(ImpactError::NonFinite);
+        }
+        Ok(ImpactOutcome {
+            ball_velocity_m_s: r_gf * self.ball_velocity_m_s,
+            ball_spin_rad_s: r_gf * self.ball_spin_rad_s,
+            club_velocity_after_m_s: r_gf * self.club_velocity_after_m_s,
+            club_omega_after_rad_s: r_gf * self.club_omega_after_rad_s,
+            impulse_n_s: r_gf * self.impulse_n_s,
+            contact_from_club_com_m: r_gf * self.contact_from_club_com_m,
+            contact_from_ball_com_m: r_gf * self.contact_from_ball_com_m,
+            normal: r_gf * self.normal,
+            normal_approach_speed_m_s: self.normal_approach_speed_m_s,
+            cor_effective: self.cor_effective,
+            slipped: self.slipped,
+            club_speed_m_s: self.club_speed_m_s,
+        })
+    }
+}
+
 /// What [`ImpactModel::solve_contact`] needs of one impact (or of each lane of impacts), all in
 /// the face frame `F`: the delivery frame's clubhead velocities and the contact frame at the
 /// impact location `(y_m, z_m)`.
@@ -375,26 +423,21 @@ impl ImpactModel {
         let impulse = Vector3::from(s.impulse_n_s);
         let v_b = Vector3::from(s.ball_velocity_f_m_s);
         let w_b = Vector3::from(s.ball_spin_f_rad_s);
-        let v_c_after = v_c - impulse / p.club_mass_kg;
-        let w_c_after = w_c - self.club_inv_inertia * r_c.cross(&impulse);
-        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
-        if !(finite(&v_b) && finite(&w_b) && finite(&v_c_after) && finite(&w_c_after)) {
-            return Err(ImpactError::NonFinite);
-        }
-        Ok(ImpactOutcome {
-            ball_velocity_m_s: r_gf * v_b,
-            ball_spin_rad_s: r_gf * w_b,
-            club_velocity_after_m_s: r_gf * v_c_after,
-            club_omega_after_rad_s: r_gf * w_c_after,
-            impulse_n_s: r_gf * impulse,
-            contact_from_club_com_m: r_gf * r_c,
-            contact_from_ball_com_m: r_gf * r_b,
-            normal: r_gf * n,
+        FaceOutcome {
+            ball_velocity_m_s: v_b,
+            ball_spin_rad_s: w_b,
+            club_velocity_after_m_s: v_c - impulse / p.club_mass_kg,
+            club_omega_after_rad_s: w_c - self.club_inv_inertia * r_c.cross(&impulse),
+            impulse_n_s: impulse,
+            contact_from_club_com_m: r_c,
+            contact_from_ball_com_m: r_b,
+            normal: n,
             normal_approach_speed_m_s: u1n,
             cor_effective: e,
             slipped,
             club_speed_m_s: frame.club_speed_m_s,
-        })
+        }
+        .into_ground(&r_gf)
     }
 
     /// The contact mechanics of an impact in the face frame `F`, on one shot (`R = f64`, inside

@@ -20,6 +20,67 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     format!("drawing a chart: {e}")
 }
 
+/// A drawing area over an SVG string.
+type Root<'b> = DrawingArea<SVGBackend<'b>, plotters::coord::Shift>;
+/// A chart with two `f64` axes on [`Root`].
+type Chart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// A titled chart over `x` × `y` with label areas of `(x_area, y_area)` px.
+fn build_chart<'a, 'b>(
+    root: &'a Root<'b>,
+    title: &str,
+    (x_area, y_area): (u32, u32),
+    x: std::ops::Range<f64>,
+    y: std::ops::Range<f64>,
+) -> Result<Chart<'a, 'b>, String> {
+    ChartBuilder::on(root)
+        .caption(title, ("sans-serif", 17))
+        .margin(12)
+        .x_label_area_size(x_area)
+        .y_label_area_size(y_area)
+        .build_cartesian_2d(x, y)
+        .map_err(err)
+}
+
+/// The mesh of a chart whose x axis holds categories (labelled by the caller, one per unit).
+fn draw_category_mesh<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    y_label: &str,
+    font_px: u32,
+) -> Result<(), String> {
+    chart
+        .configure_mesh()
+        .disable_x_mesh()
+        .x_label_formatter(&|_| String::new())
+        .set_tick_mark_size(LabelAreaPosition::Bottom, 0)
+        .y_desc(y_label)
+        .y_label_formatter(&tick)
+        .light_line_style(BLACK.mix(0.04))
+        .label_style(("sans-serif", font_px))
+        .draw()
+        .map_err(err)
+}
+
+/// The legend box at `position`.
+fn draw_legend<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    position: SeriesLabelPosition,
+    font_px: u32,
+) -> Result<(), String> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.85))
+        .border_style(BLACK.mix(0.4))
+        .label_font(("sans-serif", font_px))
+        .draw()
+        .map_err(err)
+}
+
 /// Tick label: at most four decimals, no trailing zeros, no `-0`.
 pub fn tick(v: &f64) -> String {
     let v = *v;
@@ -90,24 +151,8 @@ pub fn grouped_bars_svg(
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(34)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.0..n as f64, lo..hi)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .disable_x_mesh()
-            .x_label_formatter(&|_| String::new())
-            .set_tick_mark_size(LabelAreaPosition::Bottom, 0)
-            .y_desc(y_label)
-            .y_label_formatter(&tick)
-            .light_line_style(BLACK.mix(0.04))
-            .label_style(("sans-serif", 13))
-            .draw()
-            .map_err(err)?;
+        let mut chart = build_chart(&root, title, (34, 64), 0.0..n as f64, lo..hi)?;
+        draw_category_mesh(&mut chart, y_label, 13)?;
         chart
             .draw_series(LineSeries::new(
                 [(0.0, 0.0), (n as f64, 0.0)],
@@ -170,14 +215,7 @@ pub fn grouped_bars_svg(
             }
         }
         if series.len() > 1 {
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK.mix(0.4))
-                .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(err)?;
+            draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 13)?;
         }
         root.present().map_err(err)?;
     }
@@ -218,21 +256,13 @@ pub fn scatter_trend_svg(
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x0..x1, y0..y1)
-            .map_err(err)?;
+        let mut chart = build_chart(&root, title, (40, 64), x0..x1, y0..y1)?;
         chart
             .configure_mesh()
             .x_desc(x_label)
             .y_desc(y_label)
             .x_label_formatter(&tick)
             .y_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .light_line_style(BLACK.mix(0.04))
             .label_style(("sans-serif", 13))
             .light_line_style(BLACK.mix(0.05))
             .draw()
@@ -285,14 +315,7 @@ pub fn scatter_trend_svg(
                     PathElement::new(vec![(x, y), (x + 14, y)], RED_C.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 13))
-            .draw()
-            .map_err(err)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 13)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
@@ -332,13 +355,7 @@ pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<Strin
     {
         let root = SVGBackend::with_string(&mut svg, (SIZE.0, height)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(170)
-            .build_cartesian_2d(x0..x1, 0.0..n as f64)
-            .map_err(err)?;
+        let mut chart = build_chart(&root, title, (40, 170), x0..x1, 0.0..n as f64)?;
         chart
             .configure_mesh()
             .disable_y_mesh()
@@ -400,14 +417,7 @@ pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<Strin
             .map_err(err)?
             .label("estimate ± 2 SE")
             .legend(|(x, y)| Circle::new((x + 7, y), 4, BLUE_C.filled()));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
+        draw_legend(&mut chart, SeriesLabelPosition::LowerRight, 12)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
@@ -436,24 +446,8 @@ pub fn bars_with_line_svg(
             SVGBackend::with_string(&mut svg, (SIZE.0.max(60 * n as u32 + 140), SIZE.1 + 60))
                 .into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(title, ("sans-serif", 17))
-            .margin(12)
-            .x_label_area_size(110)
-            .y_label_area_size(64)
-            .build_cartesian_2d(0.0..n as f64, lo..hi)
-            .map_err(err)?;
-        chart
-            .configure_mesh()
-            .disable_x_mesh()
-            .x_label_formatter(&|_| String::new())
-            .set_tick_mark_size(LabelAreaPosition::Bottom, 0)
-            .y_desc(y_label)
-            .y_label_formatter(&tick)
-            .light_line_style(BLACK.mix(0.04))
-            .label_style(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
+        let mut chart = build_chart(&root, title, (110, 64), 0.0..n as f64, lo..hi)?;
+        draw_category_mesh(&mut chart, y_label, 12)?;
         chart
             .draw_series(values.iter().enumerate().map(|(i, &v)| {
                 Rectangle::new(
@@ -490,14 +484,7 @@ pub fn bars_with_line_svg(
                     PathElement::new(vec![(x, y), (x + 14, y)], RED_C.stroke_width(2))
                 });
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(BLACK.mix(0.4))
-            .label_font(("sans-serif", 12))
-            .draw()
-            .map_err(err)?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
         root.present().map_err(err)?;
     }
     Ok(svg)

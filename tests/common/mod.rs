@@ -247,3 +247,20 @@ pub fn assert_refused(o: &std::process::Output, needles: &[&str]) {
     }
     assert!(!has_non_finite(&err) && !has_non_finite(&out), "{out}{err}");
 }
+
+/// A value of each parameter inside its plausible range, away from its neutral default: 70 % of
+/// the way up the range (30 % where that is the default).
+pub fn active_values(params: &[smash::effects::ParamSpec]) -> Vec<f64> {
+    params
+        .iter()
+        .map(|s| {
+            let (lo, hi) = s.plausible;
+            let v = lo + 0.7 * (hi - lo);
+            if v == s.default {
+                lo + 0.3 * (hi - lo)
+            } else {
+                v
+            }
+        })
+        .collect()
+}

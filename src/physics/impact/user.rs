@@ -4,7 +4,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{ImpactError, ImpactModel, ImpactOutcome, ModelParams};
+use super::{FaceOutcome, ImpactError, ImpactModel, ImpactOutcome, ModelParams};
 use crate::physics::delivery::{face_orientation, Delivery};
 use crate::physics::laws::{self, Laws};
 use crate::physics::user_terms as user;
@@ -212,27 +212,20 @@ impl ImpactModel {
         };
         let impulse = Vector3::from(impulse);
 
-        let v_b = impulse / p.ball_mass_kg;
-        let w_b = Vector3::from(ball_ang) / p.ball_inertia_kgm2;
-        let v_c_after = v_c - impulse / club_mass_kg;
-        let w_c_after = w_c - club_inv_inertia * r_c.cross(&impulse);
-        let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
-        if !(finite(&v_b) && finite(&w_b) && finite(&v_c_after) && finite(&w_c_after)) {
-            return Err(ImpactError::NonFinite);
-        }
-        Ok(ImpactOutcome {
-            ball_velocity_m_s: r_gf * v_b,
-            ball_spin_rad_s: r_gf * w_b,
-            club_velocity_after_m_s: r_gf * v_c_after,
-            club_omega_after_rad_s: r_gf * w_c_after,
-            impulse_n_s: r_gf * impulse,
-            contact_from_club_com_m: r_gf * r_c,
-            contact_from_ball_com_m: r_gf * r_b,
-            normal: r_gf * n,
+        FaceOutcome {
+            ball_velocity_m_s: impulse / p.ball_mass_kg,
+            ball_spin_rad_s: Vector3::from(ball_ang) / p.ball_inertia_kgm2,
+            club_velocity_after_m_s: v_c - impulse / club_mass_kg,
+            club_omega_after_rad_s: w_c - club_inv_inertia * r_c.cross(&impulse),
+            impulse_n_s: impulse,
+            contact_from_club_com_m: r_c,
+            contact_from_ball_com_m: r_b,
+            normal: n,
             normal_approach_speed_m_s: u1n,
             cor_effective: e,
             slipped,
             club_speed_m_s: d.club_speed_m_s,
-        })
+        }
+        .into_ground(&r_gf)
     }
 }
