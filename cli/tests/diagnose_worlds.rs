@@ -345,8 +345,8 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
 
 /// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
 /// not hold yet (configs/README.md, "What this shows"): the shaft tip is not named as
-/// `hosel_mass` (alone in a world, the 4 g tip on its 2 kHz joint leaves the launch at the noise
-/// floor), the 2.5 mm location noise is not detected, group means reach 0.3–0.5 σ and some
+/// `hosel_mass` (the 6 g tip's heel–toe signature goes to `com_offset`, docs/compliant-worlds.md),
+/// the 2.5 mm location noise is not detected, group means reach 0.3–0.5 σ and some
 /// spreads stay above 1.10× the noise floor. Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]
