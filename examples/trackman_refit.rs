@@ -31,7 +31,7 @@ impl CoefficientModel for LowRe {
         let mut c = Fmm2022.coefficients(s, re);
         let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
         let r = t * t * (3.0 - 2.0 * t);
-        c.cd += self.ds * s.min(Fmm2022::S_MAX) + self.dr * r;
+        c.cd += self.ds * Fmm2022::held_spin_factor(s) + self.dr * r;
         c.cl *= 1.0 - self.ll * r;
         c
     }

@@ -81,8 +81,9 @@ fn assert_errors_within(
 
 /// The issue's targets, with the default model (`fmm2022-re`, fitted to the LPGA table, not
 /// to this one) and the default atmosphere: median |carry error| ≤ 2 %, worst ≤ 4 %, every land
-/// angle within 5°. Measured: 0.85 %, 3.92 %, 5.07° (the driver, 5.1° steeper than
-/// TrackMan's): the land-angle target is missed by 0.07° (README "Ball flight"). Ignored so the suite stays green;
+/// angle within 5°. Measured: 0.86 %, 3.92 %, 5.07° (the driver, 5.1° steeper than
+/// TrackMan's): the land-angle target is missed by 0.07° (README "Ball flight", which lists the
+/// causes examined). Ignored so the suite stays green;
 /// `cargo test --test flight -- --ignored` shows the gap.
 #[test]
 #[ignore = "fmm2022-re misses the 5° land-angle target by 0.07° (driver); see README"]
@@ -92,7 +93,7 @@ fn trackman_pga_tour_meets_the_issue_targets() {
 }
 
 /// What the default model reaches on the PGA Tour table: the carry targets hold (measured
-/// 0.85 % median, 3.92 % worst); the land-angle bound (measured 5.07°) and the apex bound
+/// 0.86 % median, 3.92 % worst); the land-angle bound (measured 5.07°) and the apex bound
 /// (measured 3.90 yd) are the measured values rounded up, a regression guard.
 #[test]
 fn trackman_pga_tour_default_model_regression() {
@@ -109,7 +110,7 @@ fn trackman_pga_tour_default_model_regression() {
     }
 }
 
-/// The newer (2023) PGA Tour table, also not fitted to: measured 1.30 % median, 4.70 % worst
+/// The newer (2023) PGA Tour table, also not fitted to: measured 1.31 % median, 4.70 % worst
 /// carry, 3.22° worst land angle. The worst carry misses the 4 % target there; the bounds are
 /// the measured values rounded up, a regression guard.
 #[test]
@@ -118,7 +119,7 @@ fn trackman_pga_tour_2023_regression() {
     assert_errors_within(&carry, &land, 1.4, 4.8, 3.3);
 }
 
-/// `fmm2022` as published misses the targets (measured 1.97 % median, 4.85 % worst carry,
+/// `fmm2022` as published misses the targets (measured 1.98 % median, 4.84 % worst carry,
 /// 7.2° worst land angle, apex within 3 yd); a regression guard on those values.
 #[test]
 fn trackman_pga_tour_fmm2022_as_published_regression() {
@@ -145,7 +146,7 @@ impl CoefficientModel for LowRe {
         let mut c = Fmm2022.coefficients(s, re);
         let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
         let r = t * t * (3.0 - 2.0 * t);
-        c.cd += self.per_s * s.min(Fmm2022::S_MAX) + self.rise * r;
+        c.cd += self.per_s * Fmm2022::held_spin_factor(s) + self.rise * r;
         c.cl *= 1.0 - self.lift_loss * r;
         c
     }
@@ -224,7 +225,8 @@ fn launch_set() -> Vec<FlightLaunch> {
 #[test]
 fn step_size_passes_the_tolerance_test() {
     // The default step against a 64× finer one: carry, offline and apex within 0.02 yd
-    // (0.05 yd in wind), land angle within 0.02°, flight time within 2 ms.
+    // (0.05 yd in wind), land angle within 0.02°, flight time within 2 ms. Measured: 0.0070 yd,
+    // 0.0017° in still air at 0.35 s; 0.042 yd (offline), 0.004° in the 8 m/s wind at 0.1 s.
     for wind in [0.0, 8.0] {
         let air = Atmosphere {
             wind_speed_m_s: wind,
@@ -262,7 +264,8 @@ fn step_size_passes_the_tolerance_test() {
         );
         // Still air: 0.02 yd and 0.02°. In wind the log profile's steep gradient near the
         // ground costs accuracy at launch and landing: 0.05 yd.
-        let tol = if wind == 0.0 { 0.02 } else { 0.05 };
+        // The default still-air step keeps a margin of two on the position bound.
+        let tol = if wind == 0.0 { 0.02 / 2.0 } else { 0.05 };
         assert!(
             worst[0] < tol && worst[1] < tol && worst[2] < tol,
             "{worst:?}"
@@ -323,10 +326,18 @@ mod reference {
     }
 
     /// The default law written out from its published and fitted constants (Ferguson et al.
-    /// 2022 quadratics, spin factor held at 0.75; drag less 0.20·S, plus 0.20 below Re 4e4
-    /// fading as a smoothstep to 0 at 1.5e5): `(C_D, C_L, C_M)`.
+    /// 2022 quadratics, spin factor held at 0.75 from 0.80 on and blended in from 0.70 by a
+    /// parabola tangent to both; drag less 0.20·S, plus 0.20 below Re 4e4 fading as a
+    /// smoothstep to 0 at 1.5e5): `(C_D, C_L, C_M)`.
     fn coefficients(sf: f64, re: f64) -> (f64, f64, f64) {
-        let s = sf.min(0.75);
+        // The parabola through (0.70, 0.70) with slope 1 and (0.80, 0.75) with slope 0.
+        let s = if sf < 0.7 {
+            sf
+        } else if sf < 0.8 {
+            0.75 - 5.0 * (0.8 - sf).powi(2)
+        } else {
+            0.75
+        };
         let x = ((1.5e5 - re) / 1.1e5).clamp(0.0, 1.0);
         let rise = x * x * (3.0 - 2.0 * x);
         (

@@ -128,7 +128,7 @@ pub struct FlightOptions {
         help_heading = "Ground"
     )]
     pub roll_decel_m_s2: Option<f64>,
-    /// Integration time step, s (default 0.4 in still air, 0.1 in wind; chosen by a tolerance
+    /// Integration time step, s (default 0.35 in still air, 0.1 in wind; chosen by a tolerance
     /// test).
     #[arg(
         long,

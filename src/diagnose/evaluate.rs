@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::{honest, CandidateResult, DiagnoseProgress};
@@ -12,7 +12,7 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    run_lm, run_lm_point, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout,
+    run_lm, run_lm_point_from, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout,
     Progress, Weighting,
 };
 use crate::measurement::ImpactNoise;
@@ -22,17 +22,56 @@ use crate::stats;
 pub(super) struct Folds {
     pub(super) train: Vec<FitData>,
     pub(super) test: Vec<FitData>,
+    /// Per fold, the indices (into the whole data) of its training shots, in order.
+    train_idx: Vec<Vec<usize>>,
 }
 
 pub(super) fn make_folds(data: &FitData, fold_of: &[usize], n_folds: usize) -> Folds {
-    let pick = |keep: &dyn Fn(usize) -> bool| {
-        let idx: Vec<usize> = (0..data.len()).filter(|&i| keep(fold_of[i])).collect();
-        data.subset(&idx)
+    let idx = |keep: &dyn Fn(usize) -> bool| -> Vec<usize> {
+        (0..data.len()).filter(|&i| keep(fold_of[i])).collect()
     };
+    let train_idx: Vec<Vec<usize>> = (0..n_folds).map(|f| idx(&|g| g != f)).collect();
     Folds {
-        train: (0..n_folds).map(|f| pick(&|g| g != f)).collect(),
-        test: (0..n_folds).map(|f| pick(&|g| g == f)).collect(),
+        train: train_idx.iter().map(|i| data.subset(i)).collect(),
+        test: (0..n_folds)
+            .map(|f| data.subset(&idx(&|g| g == f)))
+            .collect(),
+        train_idx,
     }
+}
+
+/// Residuals and Jacobian of a fit on all shots at one point, whose rows a training fold
+/// started there takes instead of evaluating them again.
+pub(super) type AllShots<'r> = (&'r DVector<f64>, &'r DMatrix<f64>);
+
+/// The residuals and Jacobian of `layout` (all parameters active) on all shots of `data` at
+/// `theta`; `None` when they cannot be evaluated there (each fold then evaluates its own).
+pub(super) fn all_shots_at(
+    club: &ClubSpec,
+    layout: &ParamLayout,
+    data: &FitData,
+    w: Weighting,
+    theta: &DVector<f64>,
+) -> Option<(DVector<f64>, DMatrix<f64>)> {
+    if layout.is_empty() {
+        return None;
+    }
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    Some((
+        pr.residuals(theta.as_slice()).ok()?,
+        pr.jacobian_full(theta).ok()?,
+    ))
+}
+
+/// The rows of the training shots `idx` of the all-shots residuals and Jacobian `at`
+/// (`rows` residual rows a shot).
+fn fold_rows((r, j): AllShots, idx: &[usize], rows: usize) -> (DVector<f64>, DMatrix<f64>) {
+    let row = |k: usize| idx[k / rows] * rows + k % rows;
+    let n = idx.len() * rows;
+    (
+        DVector::from_fn(n, |k, _| r[row(k)]),
+        DMatrix::from_fn(n, j.ncols(), |k, c| j[(row(k), c)]),
+    )
 }
 
 pub(super) fn fit(
@@ -58,13 +97,17 @@ fn chi2_at(
     Ok(pr.residuals(theta.as_slice())?.norm_squared())
 }
 
-/// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ².
+/// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ². `at` is the
+/// residuals and Jacobian on all shots (those the folds were made from) at `start`, when known:
+/// each fold's fit then starts from its rows of them (the same fit, [`run_lm_point_from`]).
+#[allow(clippy::too_many_arguments)]
 pub(super) fn cv_chi2(
     club: &ClubSpec,
     layout: &ParamLayout,
     folds: &Folds,
     w: Weighting,
     start: &DVector<f64>,
+    at: Option<AllShots>,
     max_iters: u64,
     progress: Option<&dyn DiagnoseProgress>,
 ) -> Result<f64, FitError> {
@@ -76,7 +119,8 @@ pub(super) fn cv_chi2(
             } else {
                 // Only the fold's solution is needed: no Jacobian at it.
                 let pr = FitProblem::new(club, layout.clone(), &folds.train[f], w);
-                run_lm_point(pr, start, max_iters)
+                let rows = at.map(|a| fold_rows(a, &folds.train_idx[f], w.rows_per_shot()));
+                run_lm_point_from(pr, start, max_iters, rows)
                     .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
             };
             if let Some(p) = progress {
@@ -238,6 +282,7 @@ pub(super) fn evaluate_effect(
         b.folds,
         b.w,
         &run.theta,
+        Some((&run.residuals, &run.jacobian)),
         b.max_iters,
         b.progress,
     ) {
@@ -308,8 +353,8 @@ pub(super) fn noise_candidate(
     let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
     res.converged = true;
     let outcome = (|| -> Result<(f64, [f64; 5], DVector<f64>), FitError> {
-        let theta = if b.layout.is_empty() {
-            b.theta.clone()
+        let run = if b.layout.is_empty() {
+            None
         } else {
             let run = fit(b.club, b.layout, data, b.w, b.theta, b.max_iters)?;
             if !run.converged {
@@ -319,8 +364,11 @@ pub(super) fn noise_candidate(
                     stage: "impact-noise candidate".into(),
                 });
             }
-            run.theta
+            Some(run)
         };
+        let theta = run
+            .as_ref()
+            .map_or_else(|| b.theta.clone(), |r| r.theta.clone());
         let errs =
             FitProblem::new(b.club, b.layout.clone(), data, b.w).launch_errors(theta.as_slice())?;
         let cv = cv_chi2(
@@ -329,6 +377,7 @@ pub(super) fn noise_candidate(
             folds,
             b.w,
             &theta,
+            run.as_ref().map(|r| (&r.residuals, &r.jacobian)),
             b.max_iters,
             b.progress,
         )?;
@@ -390,4 +439,108 @@ pub(super) fn swap_score(
     read_estimates(&mut res, &layout, &run, kept);
     let score = run.cost + layout.len() as f64 * penalty_per_param;
     Some((res.params, score - final_score))
+}
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use super::*;
+    use crate::fit::spec::parse_effect_list;
+
+    /// The paper world with `golfers` golfers per shaft, as shots.
+    fn world(golfers: usize) -> (ClubSpec, Vec<crate::model::Shot>) {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut cfg = crate::synth::read_config(&root.join("configs/synth/paper_world.toml"))
+            .expect("paper world reads");
+        cfg.golfers = golfers;
+        let club = crate::data::club_file::read_club(&root.join("configs/clubs/paper_driver.toml"))
+            .expect("club reads");
+        let run = crate::synth::generate(&cfg, &club).expect("world generates");
+        (club, run.shots.iter().map(|s| s.to_shot()).collect())
+    }
+
+    /// Folds started from the rows of the all-shots fit's residuals and Jacobian give the same
+    /// cross-validated χ², bit for bit, as folds that evaluate their own start: with exact
+    /// locations (one site a shot, serial evaluation) and with impact-location noise (nine
+    /// sites a shot, evaluated in parallel chunks), and for a base point evaluated afresh.
+    #[test]
+    fn folds_started_from_the_all_shots_rows_give_the_same_cv() {
+        let (club, shots) = world(10);
+        let fold_of: Vec<usize> = (0..shots.len()).map(|i| (i / 10) % 5).collect();
+        let layout = ParamLayout::from_requests(
+            &parse_effect_list("added_mass@group,ball_offset").unwrap(),
+            &FitData::from_shots(&shots).unwrap().groups,
+        )
+        .unwrap();
+        for noise in [None, Some(ImpactNoise::from_mm(2.0, 2.0).unwrap())] {
+            let data = FitData::from_shots(&shots)
+                .unwrap()
+                .with_impact_noise(noise)
+                .unwrap();
+            let folds = make_folds(&data, &fold_of, 5);
+            let w = Weighting::launch(&[1.4, 1.0, 0.7, 400.0, 190.0]);
+            let run = fit(&club, &layout, &data, w, &layout.defaults(), 100).unwrap();
+            let cv = |start: &DVector<f64>, at: Option<AllShots>| {
+                cv_chi2(&club, &layout, &folds, w, start, at, 100, None).unwrap()
+            };
+            // The first fold's fit with and without its rows given: the same point, one
+            // residual and one Jacobian evaluation (2 per parameter) fewer.
+            let pr = || FitProblem::new(&club, layout.clone(), &folds.train[0], w);
+            let rows = fold_rows(
+                (&run.residuals, &run.jacobian),
+                &folds.train_idx[0],
+                w.rows_per_shot(),
+            );
+            let own = crate::fit::run::execute(pr(), &run.theta, 100, None, false, None).unwrap();
+            let given =
+                crate::fit::run::execute(pr(), &run.theta, 100, None, false, Some(rows)).unwrap();
+            assert_eq!(given.theta, own.theta);
+            assert_eq!(given.cost.to_bits(), own.cost.to_bits());
+            assert_eq!(given.iterations, own.iterations);
+            assert_eq!(
+                given.evaluations + 1 + 2 * layout.len() as u64,
+                own.evaluations
+            );
+            let plain = cv(&run.theta, None);
+            let reused = cv(&run.theta, Some((&run.residuals, &run.jacobian)));
+            assert_eq!(plain.to_bits(), reused.to_bits(), "noise {noise:?}");
+            // A point that is not a fit's solution, evaluated on all shots.
+            let start = layout.defaults();
+            let at = all_shots_at(&club, &layout, &data, w, &start).unwrap();
+            assert_eq!(
+                cv(&start, None).to_bits(),
+                cv(&start, Some((&at.0, &at.1))).to_bits(),
+                "noise {noise:?}"
+            );
+        }
+    }
+
+    /// The launch errors, now evaluated on the lanes, agree with solving each shot afresh by
+    /// the scalar solve to 1e-9 relative (of the component's scale).
+    #[test]
+    fn launch_errors_agree_with_the_scalar_solve() {
+        let (club, shots) = world(4);
+        let data = FitData::from_shots(&shots).unwrap();
+        let layout = ParamLayout::new(Vec::new()).unwrap();
+        let errors = FitProblem::new(&club, layout, &data, Weighting::launch(&[1.0; 5]))
+            .launch_errors(&[])
+            .unwrap();
+        assert_eq!(errors.len(), shots.len());
+        for (s, e) in shots.iter().zip(&errors) {
+            let model = club.model_for_group(&s.group).unwrap();
+            let launch = model.solve(&s.delivery).unwrap().launch().to_file_units();
+            let measured = s.measured.unwrap().to_file_units();
+            for c in 0..5 {
+                let want = launch[c] - measured[c];
+                let tol = 1e-9 * launch[c].abs().max(1.0);
+                assert!(
+                    (e[c] - want).abs() <= tol,
+                    "shot {}: {} vs {want}",
+                    s.id,
+                    e[c]
+                );
+            }
+        }
+    }
 }

@@ -252,12 +252,16 @@ impl<'a> Search<'a> {
                 n_folds * (1 + open.len() + n_noise) + open.len(),
             );
         }
+        // One evaluation on all shots at the base point serves every fold's start.
+        let at_base =
+            evaluate::all_shots_at(self.club, &self.base, &self.data, w, &self.theta_base);
         let base_cv = cv_chi2(
             self.club,
             &self.base,
             &self.folds,
             w,
             &self.theta_base,
+            at_base.as_ref().map(|(r, j)| (r, j)),
             self.opts.max_iters,
             self.progress,
         )?;

@@ -266,19 +266,22 @@ impl<'a> FitProblem<'a> {
             .collect()
     }
 
-    /// Model − measured for every shot in file units (mph, deg, deg, rpm, rpm), full `theta`.
+    /// Model − measured for every shot in file units (mph, deg, deg, rpm, rpm), full `theta`:
+    /// the launch residuals with unit noise scales (`(ŷ − y)·1` is `ŷ − y` exactly), so
+    /// evaluated on the lanes like every residual.
     pub fn launch_errors(&self, theta: &[f64]) -> Result<Vec<[f64; 5]>, EvalError> {
-        let models = self.models(theta)?;
-        let cache = self.cache();
-        (0..self.data.len())
-            .map(|i| {
-                let (launch, _, _) = self.predict(&models, cache, i)?;
-                let m = &self.data.measured[i];
-                Ok(std::array::from_fn(|c| {
-                    launch.get_file(LaunchComponent::ALL[c]) - m[c]
-                }))
-            })
-            .collect()
+        let unit = Self {
+            weighting: Weighting::Launch {
+                inv_scale: [1.0; 5],
+            },
+            ..self.clone()
+        };
+        let mut rows = vec![0.0; self.data.len() * 5];
+        unit.residuals_into(theta, &mut rows)?;
+        Ok(rows
+            .chunks_exact(5)
+            .map(|r| std::array::from_fn(|c| r[c]))
+            .collect())
     }
 
     /// The data's shared evaluation parts, built with the club's own model of the first group.
