@@ -49,8 +49,13 @@
 //! e_t = −cos(π·r),       e_g = (1 + cos(π·r)) / (2·(r² − 1)) = (1 − e_t) / (2·(r² − 1))
 //! ```
 //!
-//! `e_g = 0` is the rigid grip (the paper), `e_g = −1` no grip at all (`ω_t → 0`), `e_g > 0` a
-//! spring that reverses part of the gear-driven slip before release. For a driver and a golf
+//! `e_g = 0` is the rigid grip (the paper), `e_g > 0` a spring that reverses part of the
+//! gear-driven slip before release. The form is negative only for `r < 1` (a tangential spring
+//! slower than the normal one), which no ball reaches: `χ = 1 + m·R²/I ≥ 2.5` for any ball whose
+//! mass is spread symmetrically about its centre (`I ≤ ⅔·m·R²`, the thin shell) and
+//! `κ = 2(1−ν)/(2−ν) ≥ ⅔`, so `r² = κ·χ ≥ 5/3`. Its physical bounds are therefore `0 … 1`: a
+//! negative value could only stand in for something else (a stiffer head weakens the gear
+//! effect alike). For a driver and a golf
 //! ball (`r ≈ 1.4–1.6`) the linear estimate is `e_t ≈ −0.3…0.3` but `e_g ≈ 0.36–0.42`: applying
 //! `e_t` to the gear-driven motion too (`u_t' = −e_t·(u1t + Δ_g)`) gets its size wrong, and its
 //! sign wherever `e_t < 0` (it fits the simulator worse than no `e_g` at all), and a
@@ -103,7 +108,7 @@ pub const PARAMS: &[ParamSpec] = &[
         "eg",
         "1",
         0.0,
-        -1.0,
+        0.0,
         1.0,
         (0.0, 0.5),
         "gear restitution: rebound of the tangential velocity the normal impulse drives (0 = no slip)",
