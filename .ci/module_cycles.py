@@ -16,7 +16,9 @@ literals are ignored): `use` trees and paths written inline. A path through a re
 (`crate::study::Prepared`, re-exported from `study::sweep`) counts as a dependency on the module
 that defines the item. A module's own `mod.rs` may use its children and they may use it (that
 is what declaring, re-exporting and a shared error type are), so paths between a parent and its
-children do not count.
+children do not count. Unit-test modules (`#[cfg(test)] mod tests { ... }`) are left out: they
+are not part of the library's layers, and a test may build its fixture with a layer above the
+code it tests (a synthetic world for a fit, say).
 
 Prints every cycle found (one per line) and exits 1 if there is any, else prints a summary and
 exits 0.
@@ -79,6 +81,8 @@ def paths_in(text, file_module):
                 stack.pop()
             depth -= 1
         else:
+            if any(name == "tests" for name, _ in stack):
+                continue
             here = file_module + [name for name, _ in stack]
             raw = expand_use(t.group(2)) if t.group(2) else [s]
             for p in raw:
