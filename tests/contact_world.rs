@@ -383,6 +383,21 @@ fn contact_time_explains_a_finite_contact_better_than_inertia_scale() {
     assert!(whitened(r1) < best_inertia);
 }
 
+/// The default contact world with a very stiff ball (no finite-contact effects): its only
+/// departure from the momentum model besides the Hunt–Crossley COR is the Mindlin tangential
+/// spring with its Coulomb limit (μ = 0.35).
+fn mindlin_only_world(m: &ImpactModel) -> ContactWorld {
+    ContactWorld::new(
+        m,
+        ContactParams {
+            hertz_k_n_per_m1_5: 1e15,
+            steps_per_contact: 2000,
+            ..ContactParams::default()
+        },
+    )
+    .unwrap()
+}
+
 /// A contact world whose only departure is tangential compliance (a very stiff ball, so no
 /// finite-contact effects; Mindlin spring, μ = 0.35): the contact point's tangential
 /// restitution varies with the incidence, and `tangential_compliance` (e_t rising with
@@ -392,15 +407,7 @@ fn contact_time_explains_a_finite_contact_better_than_inertia_scale() {
 fn tangential_compliance_beats_constant_restitution_and_friction() {
     let m = paper();
     let ds = random_deliveries(23, 40, false);
-    let tw = ContactWorld::new(
-        &m,
-        ContactParams {
-            hertz_k_n_per_m1_5: 1e15,
-            steps_per_contact: 2000,
-            ..ContactParams::default()
-        },
-    )
-    .unwrap();
+    let tw = mindlin_only_world(&m);
     let eval = |et: f64, k: f64, mu: Option<f64>| {
         let (_, r) = launch_err(&tw, &ds, |o| {
             let mut p = with_cor(&tw, o);
@@ -611,15 +618,7 @@ fn shaft_tip_is_a_mass_at_the_hosel() {
 fn gear_restitution_fits_the_mindlin_spring_off_centre() {
     let m = paper();
     let ds = random_deliveries(23, 40, false);
-    let tw = ContactWorld::new(
-        &m,
-        ContactParams {
-            hertz_k_n_per_m1_5: 1e15,
-            steps_per_contact: 2000,
-            ..ContactParams::default()
-        },
-    )
-    .unwrap();
+    let tw = mindlin_only_world(&m);
     // The world's launches and its COR at each shot's normal speed, integrated once.
     let world: Vec<([f64; 5], f64)> = ds
         .iter()
