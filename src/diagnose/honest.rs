@@ -381,8 +381,15 @@ impl Ambiguity {
             })
             .collect();
         separate.dedup();
+        let selected_plausible = self
+            .estimates
+            .iter()
+            .all(|p| is_plausible(p).unwrap_or(true));
         let verdict = if self.is_ambiguous() {
             "ambiguous, not a finding: the data cannot tell these apart"
+        } else if !selected_plausible && self.rivals.iter().any(|r| r.plausible) {
+            "the data hardly prefer one; the selected value is implausible (a stand-in) and a \
+             plausible alternative explains the same signal: look to the alternative's physics"
         } else {
             "the data hardly prefer one; the alternatives' values are implausible"
         };
@@ -506,9 +513,18 @@ mod tests {
         // An implausible rival leaves the selection a finding.
         a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.3)];
         assert!(!a.is_ambiguous());
-        // An implausible selection is a stand-in, not an ambiguity.
+        assert!(
+            a.text().contains("alternatives' values are implausible"),
+            "{}",
+            a.text()
+        );
+        // An implausible selection is a stand-in, not an ambiguity, and the text points to the
+        // plausible rival's physics instead of calling the alternatives implausible.
         a.estimates = vec![est("added_mass", "dm_g", -5.0)];
         a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.02)];
         assert!(!a.is_ambiguous());
+        let t = a.text();
+        assert!(t.contains("selected value is implausible"), "{t}");
+        assert!(!t.contains("alternatives' values are implausible"), "{t}");
     }
 }
