@@ -252,6 +252,16 @@ fn synth_of_a_contact_world_is_fast_and_reproducible() {
 /// Launch errors (file units) of the momentum model `p_for(outcome)` against the contact world
 /// `cw` over `deliveries`: per component (speed, launch, azimuth, backspin, sidespin), the mean
 /// and the RMS.
+/// The momentum model's launch (file units) with parameters `p` for delivery `d`.
+fn model_launch(p: ModelParams, d: &Delivery) -> [f64; 5] {
+    ImpactModel::new(p)
+        .unwrap()
+        .solve(d)
+        .unwrap()
+        .launch()
+        .to_file_units()
+}
+
 fn launch_err(
     cw: &ContactWorld,
     deliveries: &[Delivery],
@@ -262,12 +272,7 @@ fn launch_err(
     for d in deliveries {
         let o = cw.impact(d).unwrap();
         let want = o.launch().to_file_units();
-        let got = ImpactModel::new(p_for(&o))
-            .unwrap()
-            .solve(d)
-            .unwrap()
-            .launch()
-            .to_file_units();
+        let got = model_launch(p_for(&o), d);
         for c in 0..5 {
             acc[c] += (got[c] - want[c]).powi(2);
             mean[c] += got[c] - want[c];
@@ -549,15 +554,10 @@ fn shaft_tip_is_a_mass_at_the_hosel() {
             whitened_delta(b, a)
         })
         .collect();
-    let model_launch = |d: &Delivery, apply: &dyn Fn(&mut ModelParams)| {
+    let paper_launch = |d: &Delivery, apply: &dyn Fn(&mut ModelParams)| {
         let mut p = ModelParams::paper_driver();
         apply(&mut p);
-        ImpactModel::new(p)
-            .unwrap()
-            .solve(d)
-            .unwrap()
-            .launch()
-            .to_file_units()
+        model_launch(p, d)
     };
     // Sum of squared whitened misfits of one effect's launch change at value v.
     let misfit = |apply: &dyn Fn(&mut ModelParams, f64), v: f64| -> f64 {
@@ -565,7 +565,7 @@ fn shaft_tip_is_a_mass_at_the_hosel() {
             .zip(&world)
             .map(|(d, w)| {
                 let got =
-                    whitened_delta(model_launch(d, &|p| apply(p, v)), model_launch(d, &|_| {}));
+                    whitened_delta(paper_launch(d, &|p| apply(p, v)), paper_launch(d, &|_| {}));
                 (0..5).map(|c| (got[c] - w[c]).powi(2)).sum::<f64>()
             })
             .sum()
@@ -638,12 +638,7 @@ fn gear_restitution_fits_the_mindlin_spring_off_centre() {
             p.tangential_restitution = et0;
             p.tangential_restitution_slope = k_tan;
             p.gear_restitution = eg;
-            let got = ImpactModel::new(p)
-                .unwrap()
-                .solve(d)
-                .unwrap()
-                .launch()
-                .to_file_units();
+            let got = model_launch(p, d);
             for c in 0..5 {
                 acc[c] += (got[c] - want[c]).powi(2);
             }
