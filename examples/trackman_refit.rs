@@ -12,33 +12,12 @@
 //! Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)².
 
 use rayon::prelude::*;
-use smash::flight::aero::{CoefficientModel, Coefficients, Fmm2022};
+use smash::flight::aero::Fmm2022ReFamily;
 use smash::flight::integrate::fly_with;
 use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
 use smash::flight::FlightConfig;
 
-#[derive(Clone, Copy, Debug)]
-struct LowRe {
-    dr: f64,
-    ll: f64,
-    ds: f64,
-    re_low: f64,
-    re_high: f64,
-}
-
-impl CoefficientModel for LowRe {
-    fn coefficients(&self, s: f64, re: f64) -> Coefficients {
-        let mut c = Fmm2022.coefficients(s, re);
-        let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
-        let r = t * t * (3.0 - 2.0 * t);
-        c.cd += self.ds * Fmm2022::held_spin_factor(s) + self.dr * r;
-        c.cl *= 1.0 - self.ll * r;
-        c
-    }
-}
-
-/// Per row: carry error %, land-angle error °, apex error yd.
-fn errors(m: &LowRe, rows: &[TourAverage]) -> Vec<[f64; 3]> {
+fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
     let ls: Vec<_> = rows.iter().map(|r| r.launch()).collect();
     fly_with(&FlightConfig::default(), m, &ls)
         .iter()
@@ -88,10 +67,10 @@ fn main() {
             for ds in -8..=8 {
                 for dr in 0..=40 {
                     for ll in 0..=20 {
-                        grid.push(LowRe {
-                            dr: 0.01 * dr as f64,
-                            ll: 0.05 * ll as f64,
-                            ds: 0.05 * ds as f64,
+                        grid.push(Fmm2022ReFamily {
+                            cd_low_re: 0.01 * dr as f64,
+                            lift_loss: 0.05 * ll as f64,
+                            cd_per_s: 0.05 * ds as f64,
                             re_low: lo as f64 * 1e4,
                             re_high: hi as f64 * 1e4,
                         });
@@ -111,10 +90,10 @@ fn main() {
         best.1,
         best.0
     );
-    let none = LowRe {
-        dr: 0.0,
-        ll: 0.0,
-        ds: 0.0,
+    let none = Fmm2022ReFamily {
+        cd_low_re: 0.0,
+        lift_loss: 0.0,
+        cd_per_s: 0.0,
         re_low: 4e4,
         re_high: 1e5,
     };

@@ -2,10 +2,11 @@
 //! and an independent cross-check by an adaptive Dormand–Prince 5(4) integrator written here
 //! from the equations of motion (not sharing code with `smash::flight::integrate`).
 
-use smash::flight::aero::{CoefficientModel, Coefficients, Fmm2022, Fmm2022Re};
+use smash::flight::aero::{CoefficientModel, Fmm2022Re, Fmm2022ReFamily};
 use smash::flight::integrate::fly_with;
 use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
 use smash::flight::{fly, fly_one, AeroModel, Atmosphere, FlightConfig, FlightLaunch, SpinDecay};
+use smash::lanes::V;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
@@ -130,31 +131,9 @@ fn trackman_pga_tour_fmm2022_as_published_regression() {
     }
 }
 
-/// `fmm2022` with a low-Reynolds drag rise of free parameters and an optional lift loss over
-/// the same window (the family `fmm2022-re` was fitted in).
-#[derive(Clone, Copy)]
-struct LowRe {
-    rise: f64,
-    per_s: f64,
-    re_low: f64,
-    re_high: f64,
-    lift_loss: f64,
-}
-
-impl CoefficientModel for LowRe {
-    fn coefficients(&self, s: f64, re: f64) -> Coefficients {
-        let mut c = Fmm2022.coefficients(s, re);
-        let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
-        let r = t * t * (3.0 - 2.0 * t);
-        c.cd += self.per_s * Fmm2022::held_spin_factor(s) + self.rise * r;
-        c.cl *= 1.0 - self.lift_loss * r;
-        c
-    }
-}
-
 /// The fit's objective on the LPGA 2023 rows: Σ (carry error %)² + (land error °/2)² + (apex
 /// error yd/2)².
-fn lpga_objective(m: &LowRe) -> f64 {
+fn lpga_objective(m: &Fmm2022ReFamily) -> f64 {
     let cfg = FlightConfig::default();
     let launches: Vec<FlightLaunch> = LPGA_TOUR_2023.iter().map(|r| r.launch()).collect();
     fly_with(&cfg, m, &launches)
@@ -170,26 +149,23 @@ fn lpga_objective(m: &LowRe) -> f64 {
         .sum()
 }
 
-/// `fmm2022-re`'s constants are the LPGA fit: the family above with them is the built-in model,
-/// and one grid step either way in any parameter does not lower the objective.
+/// `fmm2022-re`'s constants are the LPGA fit: the family at them is the built-in model (its
+/// lane form, a separate implementation, agrees), and one grid step either way in any
+/// parameter does not lower the objective.
 #[test]
 fn fmm2022_re_constants_minimise_the_lpga_objective() {
-    let best = LowRe {
-        rise: Fmm2022Re::CD_LOW_RE,
-        per_s: Fmm2022Re::CD_PER_S,
-        re_low: Fmm2022Re::RE_LOW,
-        re_high: Fmm2022Re::RE_HIGH,
-        lift_loss: 0.0,
-    };
+    let best = Fmm2022ReFamily::FITTED;
     for (s, re) in [(0.1, 3e4), (0.3, 8e4), (0.5, 1.2e5), (0.9, 3e5)] {
         let (a, b) = (best.coefficients(s, re), Fmm2022Re.coefficients(s, re));
         assert!((a.cd - b.cd).abs() < 1e-15 && a.cl == b.cl && a.cm == b.cm);
+        let (cd, cl, cm) = Fmm2022Re.coefficients_v(V::splat(s), V::splat(re));
+        assert!((a.cd - cd.0[0]).abs() < 1e-15 && a.cl == cl.0[0] && a.cm == cm.0[0]);
     }
     let f0 = lpga_objective(&best);
-    type Step = fn(&mut LowRe, f64);
+    type Step = fn(&mut Fmm2022ReFamily, f64);
     let steps: [(Step, f64); 5] = [
-        (|m, d| m.rise += d, 0.01),
-        (|m, d| m.per_s += d, 0.05),
+        (|m, d| m.cd_low_re += d, 0.01),
+        (|m, d| m.cd_per_s += d, 0.05),
         (|m, d| m.re_low += d, 1e4),
         (|m, d| m.re_high += d, 1e4),
         (|m, d| m.lift_loss += d.abs(), 0.05),

@@ -198,15 +198,53 @@ impl Fmm2022Re {
     pub const RE_HIGH: f64 = 1.5e5;
 }
 
-impl CoefficientModel for Fmm2022Re {
+/// The family `fmm2022-re` was fitted in: `fmm2022` with a drag rise of free size over a free
+/// Reynolds window, a change of the drag slope in spin factor, and a lift loss over the same
+/// window: `C_D = C_D,fmm(S) + cd_per_s·S + cd_low_re·r(Re)`, `C_L = C_L,fmm(S)·(1 −
+/// lift_loss·r(Re))`, `r` the smoothstep of [`Fmm2022Re`]. [`Fmm2022Re`] is this family at
+/// [`Fmm2022ReFamily::FITTED`]; `examples/trackman_refit.rs` searches it and `tests/flight.rs`
+/// checks that the fitted point is a minimum of the fit's objective.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fmm2022ReFamily {
+    /// Drag added below `re_low` (`DR`).
+    pub cd_low_re: f64,
+    /// Change of the drag slope per unit spin factor (`DS`).
+    pub cd_per_s: f64,
+    /// Reynolds number below which the whole rise applies.
+    pub re_low: f64,
+    /// Reynolds number above which there is no rise.
+    pub re_high: f64,
+    /// Fraction of the lift lost below `re_low` (`LL`; the fit put it at 0).
+    pub lift_loss: f64,
+}
+
+impl Fmm2022ReFamily {
+    /// The fitted member: [`Fmm2022Re`].
+    pub const FITTED: Self = Self {
+        cd_low_re: Fmm2022Re::CD_LOW_RE,
+        cd_per_s: Fmm2022Re::CD_PER_S,
+        re_low: Fmm2022Re::RE_LOW,
+        re_high: Fmm2022Re::RE_HIGH,
+        lift_loss: 0.0,
+    };
+}
+
+impl CoefficientModel for Fmm2022ReFamily {
     #[inline]
     fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         let mut c = Fmm2022.coefficients(s, re);
-        let s = Fmm2022::held_spin_factor(s);
-        let t = ((Self::RE_HIGH - re) / (Self::RE_HIGH - Self::RE_LOW)).clamp(0.0, 1.0);
+        let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
         let r = t * t * (3.0 - 2.0 * t);
-        c.cd += Self::CD_PER_S * s + Self::CD_LOW_RE * r;
+        c.cd += self.cd_per_s * Fmm2022::held_spin_factor(s) + self.cd_low_re * r;
+        c.cl *= 1.0 - self.lift_loss * r;
         c
+    }
+}
+
+impl CoefficientModel for Fmm2022Re {
+    #[inline]
+    fn coefficients(&self, s: f64, re: f64) -> Coefficients {
+        Fmm2022ReFamily::FITTED.coefficients(s, re)
     }
 
     #[inline(always)]
