@@ -100,6 +100,23 @@ fn reader(bytes: &[u8], headers: bool) -> csv::Reader<&[u8]> {
         .from_reader(bytes)
 }
 
+/// `bytes` cut into consecutive pieces of about `target` bytes (at least 1), each extended to
+/// the end of its last line (`\n`), so that no line is split; the last piece takes the rest.
+pub(crate) fn split_at_line_ends(bytes: &[u8], target: usize) -> Vec<&[u8]> {
+    let target = target.max(1);
+    let mut pieces = Vec::with_capacity(bytes.len() / target + 1);
+    let mut start = 0;
+    while start < bytes.len() {
+        let mut end = (start + target).min(bytes.len());
+        while end < bytes.len() && bytes[end - 1] != b'\n' {
+            end += 1;
+        }
+        pieces.push(&bytes[start..end]);
+        start = end;
+    }
+    pieces
+}
+
 /// Header line, then chunks of whole lines parsed on rayon's threads; `None` when a chunk does
 /// not parse cleanly or a record's width differs from the header's (the serial reader then
 /// reports it).
@@ -116,16 +133,7 @@ fn parse_raw_csv_parallel(bytes: &[u8]) -> Option<RawCsv> {
     let body = &bytes[head_end..];
     let n_chunks = (rayon::current_num_threads() * 8).max(1);
     let target = body.len().div_ceil(n_chunks).max(1);
-    let mut chunks: Vec<&[u8]> = Vec::with_capacity(n_chunks + 1);
-    let mut start = 0;
-    while start < body.len() {
-        let mut end = (start + target).min(body.len());
-        while end < body.len() && body[end - 1] != b'\n' {
-            end += 1;
-        }
-        chunks.push(&body[start..end]);
-        start = end;
-    }
+    let chunks = split_at_line_ends(body, target);
     // First line of each chunk (the header is line 1).
     let newlines: Vec<usize> = chunks
         .par_iter()

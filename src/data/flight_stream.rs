@@ -16,8 +16,8 @@ use std::path::{Path, PathBuf};
 use rayon::prelude::*;
 
 use crate::data::flight_files::{
-    flight_csv, flight_error_at, flight_value, launch_columns, read_launches, LaunchSource,
-    OutputLayout, LAUNCH_COLUMNS,
+    flight_csv, flight_error_at, flight_value, launch_columns, read_launches, split_at_line_ends,
+    LaunchSource, OutputLayout, LAUNCH_COLUMNS,
 };
 use crate::data::number::push_cell;
 use crate::data::{safe_write, write_atomic, DataError};
@@ -282,17 +282,10 @@ fn bad_row(input: &Path, plan: &Plan, line: usize, bad: Bad) -> DataError {
 
 /// Cut `chunk` (whole lines) into pieces at line starts and work them in parallel, in order.
 fn fly_chunk(plan: &Plan, cfg: &FlightConfig, chunk: &[u8]) -> Vec<Piece> {
-    let mut pieces: Vec<&[u8]> = Vec::with_capacity(chunk.len() / PIECE_BYTES + 1);
-    let mut start = 0;
-    while start < chunk.len() {
-        let mut end = (start + PIECE_BYTES).min(chunk.len());
-        while end < chunk.len() && chunk[end - 1] != b'\n' {
-            end += 1;
-        }
-        pieces.push(&chunk[start..end]);
-        start = end;
-    }
-    pieces.par_iter().map(|p| fly_piece(plan, cfg, p)).collect()
+    split_at_line_ends(chunk, PIECE_BYTES)
+        .par_iter()
+        .map(|p| fly_piece(plan, cfg, p))
+        .collect()
 }
 
 /// Parse, fly and format one piece of whole lines. Stops at its first bad row (parse errors
