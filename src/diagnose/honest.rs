@@ -335,10 +335,14 @@ impl Ambiguity {
     /// The selected values are plausible and so are some rival's: two plausible readings the
     /// data cannot tell apart, so neither is a finding.
     pub fn is_ambiguous(&self) -> bool {
+        self.selected_is_plausible() && self.rivals.iter().any(|r| r.plausible)
+    }
+
+    /// Are all the selected effect's values inside their plausible ranges?
+    fn selected_is_plausible(&self) -> bool {
         self.estimates
             .iter()
             .all(|p| is_plausible(p).unwrap_or(true))
-            && self.rivals.iter().any(|r| r.plausible)
     }
 
     /// The machine-readable form.
@@ -381,13 +385,9 @@ impl Ambiguity {
             })
             .collect();
         separate.dedup();
-        let selected_plausible = self
-            .estimates
-            .iter()
-            .all(|p| is_plausible(p).unwrap_or(true));
         let verdict = if self.is_ambiguous() {
             "ambiguous, not a finding: the data cannot tell these apart"
-        } else if !selected_plausible && self.rivals.iter().any(|r| r.plausible) {
+        } else if !self.selected_is_plausible() && self.rivals.iter().any(|r| r.plausible) {
             "the data hardly prefer one; the selected value is implausible (a stand-in) and a \
              plausible alternative explains the same signal: look to the alternative's physics"
         } else {
