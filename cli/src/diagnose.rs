@@ -74,7 +74,7 @@ pub struct DiagnoseArgs {
     /// Most effects to select.
     #[arg(
         long,
-        default_value_t = 6,
+        default_value_t = 10,
         value_name = "N",
         help_heading = "Selection",
         allow_negative_numbers = true

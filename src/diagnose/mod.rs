@@ -82,7 +82,7 @@ impl Default for DiagnoseOptions {
     fn default() -> Self {
         Self {
             folds: 5,
-            max_steps: 6,
+            max_steps: 10,
             max_iters: 100,
             candidates: None,
             impact_noise: None,
