@@ -105,6 +105,10 @@ pub fn stand_in(p: &ParamEstimate) -> Option<&'static str> {
             "a tangential rebound or friction outside ball-on-face values: behaves like a spin \
              lever or a loft bias rather than shear compliance"
         }
+        (EffectKind::CompressionLever, _, _) => {
+            "a spin lever shortened beyond what a compressed ball gives: behaves like a loft bias \
+             or a tangential rebound outside ball-on-face values"
+        }
     })
 }
 
@@ -147,6 +151,10 @@ pub fn separating_measurement(effect: &str) -> &'static str {
         }
         Some(EffectKind::TangentialCompliance) => {
             "spin over a wide range of dynamic loft, from gripping to sliding impacts"
+        }
+        Some(EffectKind::CompressionLever) => {
+            "spin against launch over a range of attack angle (the tangential approach) and \
+             club speed (the compression)"
         }
         None => "an independent measurement of this parameter",
     }

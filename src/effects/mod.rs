@@ -21,6 +21,7 @@
 //! | `cor_power` | `q` | `e = cor·(u1n/48.77 m/s)^(−q)` |
 //! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)` |
 //! | `tangential_compliance` | `et0`, `k_tan`, `eg` | `e_t = et0 + k_tan·|u1t|/u1n` on the approach, `e_g = eg` on the gear-effect drive: `K P = u1 + e·u1n·n + e_t·u1t − e_g·(K·n)_t·P_n0` |
+//! | `compression_lever` | `delta_mm` | spin lever `R − δ̄` of the compressed ball: `I_b → I_b·R/(R − δ̄)` |
 //!
 //! Each effect is one file in this folder plus one line in the `library!` registration below
 //! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read
@@ -154,6 +155,7 @@ library! {
     cor_power => CorPower,
     contact_time => ContactTime,
     tangential_compliance => TangentialCompliance,
+    compression_lever => CompressionLever,
 }
 
 impl EffectKind {
