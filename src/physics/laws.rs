@@ -10,7 +10,7 @@
 //! |---|---|---|
 //! | normal restitution | [`Restitution`] | `cor_level`, `cor_speed`, `cor_radial`, `cor_power` |
 //! | ball lever arm | [`BallContact`] | `ball_offset` |
-//! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale` (composed into [`super::ModelParams`] once, see `crate::effects`) |
+//! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale`, `compression_lever` (the ball's inertia; composed into [`super::ModelParams`] once, see `crate::effects`) |
 //! | tangential law (approach and gear-effect parts) | [`TangentialLaw`] | `tangential_restitution`, `friction`, `tangential_compliance` |
 //! | finite contact | [`FiniteContact`] | `contact_time` (the head turning while in contact) |
 //!
@@ -342,13 +342,13 @@ pub const HERTZ_MEAN_SPIN_UP: f64 = 1.0 / 9.0;
 ///
 /// `Δω` is that of the instantaneous impulse (a first pass of the law). Neglected: terms of
 /// order `τ²`, the travel of the contact point over the face while the head turns (`≈ θ̄×r_c`,
-/// a few tenths of a millimetre), and the ball's compression. The compression shortens the
-/// tangential force's lever about the ball centre to `R − δ(t)` (impulse-weighted mean
-/// `(5/18)·u1n·τ` for Hertz, about 6 mm for a driver); a first-order lever model (the ball's
-/// angular impulse scaled by `1 − δ̄/R`) moved spin and launch the wrong way against the
-/// time-integrated contact, whose spin depends on how the shortened lever interacts with the
-/// tangential spring, so it is not part of this law. Checked against the compliant contact of
-/// `crate::synth::contact` in `tests/contact_world.rs`.
+/// a few tenths of a millimetre), the ball's rolling over the face during the contact
+/// (`docs/compliant-worlds.md`, section 4: not yet a library form), and the ball's compression.
+/// The compression shortens the tangential force's lever about the ball centre to `R − δ(t)`;
+/// that is the `compression_lever` effect, a ball of inertia `I_b·R/(R − δ̄)` in the collision
+/// matrix and the spin alike (scaling the angular impulse alone, an earlier first-order model,
+/// moved spin the wrong way), so it is not part of this law. Checked against the compliant
+/// contact of `crate::synth::contact` in `tests/contact_world.rs`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FiniteContact {
     /// Contact time `τ`, s (0: the instantaneous impact of the paper).
