@@ -38,7 +38,7 @@
 //! The tangential force's history is not the normal force's (under a gripping Mindlin spring
 //! it peaks near maximum compression and reverses before release; Maw, Barber & Fawcett, Wear
 //! 38, 1976), so `δ̄` is fitted, not computed. The compliant-contact world of
-//! `crate::synth::contact` fits 4.6 mm against its 6.5 mm peak compression
+//! `crate::synth::contact` fits 4.6 mm against its 6.3 mm mean peak compression
 //! (`tests/contact_world.rs`, `compression_lever_fits_the_compliant_contact`).
 //!
 //! One constant is a first-order form: `δ_max` grows as `u1n^0.8`, ±10 % over a driver's speed
