@@ -300,6 +300,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                     "n_params": c.n_params,
                     "cv_chi2": c.cv_chi2,
                     "gain": c.gain,
+                    "score": if c.spread_gain.is_some() { "spread_likelihood" } else { "cv_chi2" },
                     "penalty": c.penalty,
                     "margin": c.margin(),
                     "eligible": c.eligible(),
@@ -498,6 +499,9 @@ fn candidates_table(st: &Step) -> String {
         );
         row.push(fmt_params(&c.params));
         let mut note = Vec::new();
+        if c.spread_gain.is_some() {
+            note.push("gain: −2 ln L of the spread".to_owned());
+        }
         if let Some(f) = &c.failure {
             note.push(format!("failed: {f}"));
         } else if !c.converged {

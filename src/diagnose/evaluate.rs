@@ -7,6 +7,7 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
+use super::spread::{self, SpreadModel};
 use super::{honest, CandidateResult, DiagnoseProgress};
 use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
@@ -205,6 +206,9 @@ pub(super) struct StepBase<'a> {
     pub(super) cv: f64,
     pub(super) max_iters: u64,
     pub(super) progress: Option<&'a dyn DiagnoseProgress>,
+    /// With known instrument noise: the base model's covariance model and the base errors'
+    /// `−2 ln L` under it (exact locations), to score impact-noise levels by the spread.
+    pub(super) spread: Option<(&'a SpreadModel, f64)>,
 }
 
 /// An effect candidate after fitting: its scores, its all-shots fit (layout and run) and what
@@ -222,6 +226,7 @@ fn empty_result(label: String, n_params: usize, penalty: f64) -> CandidateResult
         params: Vec::new(),
         cv_chi2: f64::NAN,
         gain: f64::NAN,
+        spread_gain: None,
         penalty,
         rms_reduction: [0.0; 5],
         unidentified: Vec::new(),
@@ -344,7 +349,9 @@ pub fn impact_noise_label(noise: &ImpactNoise) -> String {
 }
 
 /// One impact-noise level as a candidate: refit the base effects with the locations treated as
-/// noisy, cross-validate, and score it like a one-parameter effect.
+/// noisy, cross-validate, and score it as a one-parameter candidate: by the gain in `−2 ln L`
+/// of the errors' spread when the instruments' noise is known ([`super::spread`]), else by the
+/// gain in cross-validated χ² like an effect.
 pub(super) fn noise_candidate(
     b: &StepBase,
     (j, noise, data, folds): (usize, &ImpactNoise, &FitData, &Folds),
@@ -352,7 +359,7 @@ pub(super) fn noise_candidate(
 ) -> (CandidateResult, NoiseFit) {
     let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
     res.converged = true;
-    let outcome = (|| -> Result<(f64, [f64; 5], DVector<f64>), FitError> {
+    let outcome = (|| -> Result<(f64, [f64; 5], Vec<[f64; 5]>, DVector<f64>), FitError> {
         let run = if b.layout.is_empty() {
             None
         } else {
@@ -381,12 +388,24 @@ pub(super) fn noise_candidate(
             b.max_iters,
             b.progress,
         )?;
-        Ok((cv, rms_per_component(&errs), theta))
+        Ok((cv, rms_per_component(&errs), errs, theta))
     })();
     match outcome {
-        Ok((cv, rms, theta)) => {
+        Ok((cv, rms, errs, theta)) => {
             res.cv_chi2 = cv;
             res.gain = b.cv - cv;
+            if let Some((model, base_dev)) = b.spread {
+                match model.deviance(&errs, Some(*noise)) {
+                    Some(dev) => {
+                        res.spread_gain = Some(base_dev - dev);
+                        res.gain = base_dev - dev;
+                    }
+                    None => {
+                        res.failure =
+                            Some("the spread's covariance is not positive definite".into())
+                    }
+                }
+            }
             res.rms_reduction = std::array::from_fn(|c| (b.rms[c] - rms[c]) / b.rms[c]);
             (res, Some((j, theta)))
         }
@@ -396,6 +415,38 @@ pub(super) fn noise_candidate(
             (res, None)
         }
     }
+}
+
+/// A selected impact-noise level refined by the spread ([`super::spread`]): the isotropic
+/// noise on a [`spread::REFINE_STEP_MM`] grid between the neighbouring levels offered
+/// (`levels_mm`) whose errors (the base model at `theta`, averaged over that noise; not
+/// refitted at each) have the smallest `−2 ln L` under `model`. `None` when none can be
+/// evaluated.
+pub(super) fn refine_noise(
+    b: (&ClubSpec, &ParamLayout, &DVector<f64>),
+    exact: &FitData,
+    model: &SpreadModel,
+    levels_mm: &[f64],
+    chosen_mm: f64,
+) -> Option<ImpactNoise> {
+    let (club, layout, theta) = b;
+    let (lo, hi) = spread::refine_interval(levels_mm, chosen_mm);
+    let steps = ((hi - lo) / spread::REFINE_STEP_MM).round() as usize;
+    (0..=steps)
+        .into_par_iter()
+        .filter_map(|k| {
+            // Round to the grid so the level prints as it is meant (2.4, not 2.4000000000000004).
+            let mm = ((lo + k as f64 * spread::REFINE_STEP_MM) / spread::REFINE_STEP_MM).round()
+                * spread::REFINE_STEP_MM;
+            let noise = ImpactNoise::from_mm(mm, mm).ok()?;
+            let data = exact.clone().with_impact_noise(Some(noise)).ok()?;
+            let errs = FitProblem::new(club, layout.clone(), &data, Weighting::launch(&[1.0; 5]))
+                .launch_errors(theta.as_slice())
+                .ok()?;
+            Some((model.deviance(&errs, Some(noise))?, noise))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, n)| n)
 }
 
 /// The final model with the selected effect `out` swapped for the candidate `inn`, fitted on
