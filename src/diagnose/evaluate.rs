@@ -7,7 +7,7 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
-use super::spread::{self, SpreadModel};
+use super::spread::SpreadModel;
 use super::{honest, CandidateResult, DiagnoseProgress};
 use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
@@ -339,6 +339,10 @@ fn read_estimates(res: &mut CandidateResult, layout: &ParamLayout, run: &FitRun,
 /// parameters (`None` when the fit failed).
 pub(super) type NoiseFit = Option<(usize, DVector<f64>)>;
 
+/// A fitted impact-noise level: cross-validated χ², launch errors on all shots (file units)
+/// and the refitted base parameters.
+type NoiseOutcome = (f64, Vec<[f64; 5]>, DVector<f64>);
+
 /// Label of the measurement candidate for impact-location noise `noise`.
 pub fn impact_noise_label(noise: &ImpactNoise) -> String {
     format!(
@@ -359,7 +363,7 @@ pub(super) fn noise_candidate(
 ) -> (CandidateResult, NoiseFit) {
     let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
     res.converged = true;
-    let outcome = (|| -> Result<(f64, [f64; 5], Vec<[f64; 5]>, DVector<f64>), FitError> {
+    let outcome = (|| -> Result<NoiseOutcome, FitError> {
         let run = if b.layout.is_empty() {
             None
         } else {
@@ -388,10 +392,11 @@ pub(super) fn noise_candidate(
             b.max_iters,
             b.progress,
         )?;
-        Ok((cv, rms_per_component(&errs), errs, theta))
+        Ok((cv, errs, theta))
     })();
     match outcome {
-        Ok((cv, rms, errs, theta)) => {
+        Ok((cv, errs, theta)) => {
+            let rms = rms_per_component(&errs);
             res.cv_chi2 = cv;
             res.gain = b.cv - cv;
             if let Some((model, base_dev)) = b.spread {
@@ -415,38 +420,6 @@ pub(super) fn noise_candidate(
             (res, None)
         }
     }
-}
-
-/// A selected impact-noise level refined by the spread ([`super::spread`]): the isotropic
-/// noise on a [`spread::REFINE_STEP_MM`] grid between the neighbouring levels offered
-/// (`levels_mm`) whose errors (the base model at `theta`, averaged over that noise; not
-/// refitted at each) have the smallest `−2 ln L` under `model`. `None` when none can be
-/// evaluated.
-pub(super) fn refine_noise(
-    b: (&ClubSpec, &ParamLayout, &DVector<f64>),
-    exact: &FitData,
-    model: &SpreadModel,
-    levels_mm: &[f64],
-    chosen_mm: f64,
-) -> Option<ImpactNoise> {
-    let (club, layout, theta) = b;
-    let (lo, hi) = spread::refine_interval(levels_mm, chosen_mm);
-    let steps = ((hi - lo) / spread::REFINE_STEP_MM).round() as usize;
-    (0..=steps)
-        .into_par_iter()
-        .filter_map(|k| {
-            // Round to the grid so the level prints as it is meant (2.4, not 2.4000000000000004).
-            let mm = ((lo + k as f64 * spread::REFINE_STEP_MM) / spread::REFINE_STEP_MM).round()
-                * spread::REFINE_STEP_MM;
-            let noise = ImpactNoise::from_mm(mm, mm).ok()?;
-            let data = exact.clone().with_impact_noise(Some(noise)).ok()?;
-            let errs = FitProblem::new(club, layout.clone(), &data, Weighting::launch(&[1.0; 5]))
-                .launch_errors(theta.as_slice())
-                .ok()?;
-            Some((model.deviance(&errs, Some(noise))?, noise))
-        })
-        .min_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, n)| n)
 }
 
 /// The final model with the selected effect `out` swapped for the candidate `inn`, fitted on

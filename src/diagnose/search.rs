@@ -6,7 +6,7 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::evaluate::{self, cv_chi2, make_folds, EffectFit, Folds, NoiseFit, StepBase};
-use super::spread::SpreadModel;
+use super::spread::{self, SpreadModel};
 use super::{
     default_candidates, honest, noise_floor, select, CandidateResult, DiagnoseOptions,
     DiagnoseProgress, Diagnosis, FoldBy, Step,
@@ -334,44 +334,6 @@ impl<'a> Search<'a> {
         })
     }
 
-    /// The selected impact-noise level `noise` refined by the spread
-    /// ([`evaluate::refine_noise`]; the instruments' noise, or the camera class's when it is
-    /// not known, which the reported noise floor assumes too), with its data and the base
-    /// refitted at it; `None` when it stays as offered.
-    fn refine_noise(
-        &self,
-        noise: ImpactNoise,
-        theta: &DVector<f64>,
-        w: Weighting,
-    ) -> Result<Option<(ImpactNoise, FitData, DVector<f64>)>, FitError> {
-        let inst = self
-            .opts
-            .noise_floor
-            .clone()
-            .unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise());
-        let model = SpreadModel::new(&self.base_club()?, self.shots, &inst)?;
-        let Some(refined) = evaluate::refine_noise(
-            (self.club, &self.base, theta),
-            &self.data,
-            &model,
-            &self.opts.impact_noise_candidates_mm,
-            noise.sigma_z_m * 1e3,
-        )
-        .filter(|r| r != &noise) else {
-            return Ok(None);
-        };
-        let data = self.data.clone().with_impact_noise(Some(refined))?;
-        let theta = if self.base.is_empty() {
-            theta.clone()
-        } else {
-            match evaluate::fit(self.club, &self.base, &data, w, theta, self.opts.max_iters) {
-                Ok(run) if run.converged => run.theta,
-                _ => return Ok(None),
-            }
-        };
-        Ok(Some((refined, data, theta)))
-    }
-
     /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
     fn adopt(
         &mut self,
@@ -385,7 +347,15 @@ impl<'a> Search<'a> {
                 .clone()
                 .expect("eligible means fitted");
             let (noise, nd, nf) = self.noise_options.swap_remove(j);
-            let refined = self.refine_noise(noise, &theta, w)?;
+            let inst = self.opts.noise_floor.clone();
+            let refined = spread::refine_selected(
+                (self.club, &self.base_club()?, self.shots),
+                inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
+                (&self.base, &theta, w, self.opts.max_iters),
+                &self.data,
+                &self.opts.impact_noise_candidates_mm,
+                noise,
+            )?;
             match refined {
                 Some((noise, data, theta)) => {
                     self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());

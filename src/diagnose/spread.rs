@@ -41,13 +41,14 @@
 //! base's noise scales `ŝ_c` is the first-order expansion of the same profile likelihood
 //! (`n·ln(ŝ_c²/s_c²) ≈ (RSS_base − RSS_cand)/ŝ_c²` per component), taken out of sample.
 
-use nalgebra::{Matrix5, Vector5};
+use nalgebra::{DVector, Matrix5, Vector5};
+use rayon::prelude::*;
 
 use super::noise_floor::{
     corrected_location_variance, delivery_jacobians, measured_location_variance, InstrumentNoise,
 };
 use crate::club::ClubSpec;
-use crate::fit::FitError;
+use crate::fit::{FitData, FitError, FitProblem, ParamLayout, Weighting};
 use crate::measurement::ImpactNoise;
 use crate::model::{DeliveryVar, Shot};
 
@@ -161,6 +162,73 @@ pub(super) fn refine_interval(levels_mm: &[f64], chosen_mm: f64) -> (f64, f64) {
         .filter(|&l| l > chosen_mm)
         .fold(1.5 * chosen_mm, f64::min);
     (below, above)
+}
+
+/// A selected impact-noise level refined by the spread ([`super::spread`]): the isotropic
+/// noise on a [`REFINE_STEP_MM`] grid between the neighbouring levels offered
+/// (`levels_mm`) whose errors (the base model at `theta`, averaged over that noise; not
+/// refitted at each) have the smallest `−2 ln L` under `model`. `None` when none can be
+/// evaluated.
+fn refine_noise(
+    b: (&ClubSpec, &ParamLayout, &DVector<f64>),
+    exact: &FitData,
+    model: &SpreadModel,
+    levels_mm: &[f64],
+    chosen_mm: f64,
+) -> Option<ImpactNoise> {
+    let (club, layout, theta) = b;
+    let (lo, hi) = refine_interval(levels_mm, chosen_mm);
+    let steps = ((hi - lo) / REFINE_STEP_MM).round() as usize;
+    (0..=steps)
+        .into_par_iter()
+        .filter_map(|k| {
+            // Round to the grid so the level prints as it is meant (2.4, not 2.4000000000000004).
+            let mm = ((lo + k as f64 * REFINE_STEP_MM) / REFINE_STEP_MM).round() * REFINE_STEP_MM;
+            let noise = ImpactNoise::from_mm(mm, mm).ok()?;
+            let data = exact.clone().with_impact_noise(Some(noise)).ok()?;
+            let errs = FitProblem::new(club, layout.clone(), &data, Weighting::launch(&[1.0; 5]))
+                .launch_errors(theta.as_slice())
+                .ok()?;
+            Some((model.deviance(&errs, Some(noise))?, noise))
+        })
+        .min_by(|a, b| a.0.total_cmp(&b.0))
+        .map(|(_, n)| n)
+}
+
+/// The selected impact-noise level `noise` refined by the spread ([`refine_noise`], with the
+/// instruments' noise `inst`: the known one, or the camera class's, which the reported noise
+/// floor assumes too), with its data and the base (`layout` at `theta`) refitted at it.
+/// `club` is the club as given, `base_club` it with the base effects; `exact` the data with the
+/// locations as measured. `None` when the level stays as offered.
+pub(super) fn refine_selected(
+    (club, base_club, shots): (&ClubSpec, &ClubSpec, &[Shot]),
+    inst: InstrumentNoise,
+    (layout, theta, w, max_iters): (&ParamLayout, &DVector<f64>, Weighting, u64),
+    exact: &FitData,
+    levels_mm: &[f64],
+    noise: ImpactNoise,
+) -> Result<Option<(ImpactNoise, FitData, DVector<f64>)>, FitError> {
+    let model = SpreadModel::new(base_club, shots, &inst)?;
+    let Some(refined) = refine_noise(
+        (club, layout, theta),
+        exact,
+        &model,
+        levels_mm,
+        noise.sigma_z_m * 1e3,
+    )
+    .filter(|r| r != &noise) else {
+        return Ok(None);
+    };
+    let data = exact.clone().with_impact_noise(Some(refined))?;
+    let theta = if layout.is_empty() {
+        theta.clone()
+    } else {
+        match super::evaluate::fit(club, layout, &data, w, theta, max_iters) {
+            Ok(run) if run.converged => run.theta,
+            _ => return Ok(None),
+        }
+    };
+    Ok(Some((refined, data, theta)))
 }
 
 /// `min_{u > 0} uᵀ A u − 2n·Σ ln u_c` for a positive semi-definite `A` with a positive
