@@ -182,8 +182,9 @@ fn refine_noise(
     (0..=steps)
         .into_par_iter()
         .filter_map(|k| {
-            // Round to the grid so the level prints as it is meant (2.4, not 2.4000000000000004).
-            let mm = ((lo + k as f64 * REFINE_STEP_MM) / REFINE_STEP_MM).round() * REFINE_STEP_MM;
+            // In whole tenths of a millimetre, so the level is what it prints (2.4, not
+            // 2.4000000000000004).
+            let mm = ((lo / REFINE_STEP_MM).round() + k as f64) / (1.0 / REFINE_STEP_MM).round();
             let noise = ImpactNoise::from_mm(mm, mm).ok()?;
             let data = exact.clone().with_impact_noise(Some(noise)).ok()?;
             let errs = FitProblem::new(club, layout.clone(), &data, Weighting::launch(&[1.0; 5]))
