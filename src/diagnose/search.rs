@@ -334,6 +334,34 @@ impl<'a> Search<'a> {
         })
     }
 
+    /// Adopt the impact-noise level `noise` (base parameters `theta`) refined by the spread
+    /// ([`spread::refine_selected`]; `exact`: the data with the locations as measured).
+    fn adopt_refined(
+        &mut self,
+        noise: ImpactNoise,
+        exact: &FitData,
+        theta: DVector<f64>,
+        w: Weighting,
+    ) -> Result<(), FitError> {
+        let inst = self.opts.noise_floor.clone();
+        let refined = spread::refine_selected(
+            (self.club, &self.base_club()?, self.shots),
+            inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
+            (&self.base, &theta, w, self.opts.max_iters),
+            exact,
+            &self.opts.impact_noise_candidates_mm,
+            noise,
+        )?;
+        self.theta_base = theta;
+        if let Some((noise, data, theta)) = refined {
+            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
+            self.data = data;
+            self.chosen_noise = Some(noise);
+            self.theta_base = theta;
+        }
+        Ok(())
+    }
+
     /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
     fn adopt(
         &mut self,
@@ -347,30 +375,11 @@ impl<'a> Search<'a> {
                 .clone()
                 .expect("eligible means fitted");
             let (noise, nd, nf) = self.noise_options.swap_remove(j);
-            let inst = self.opts.noise_floor.clone();
-            let refined = spread::refine_selected(
-                (self.club, &self.base_club()?, self.shots),
-                inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
-                (&self.base, &theta, w, self.opts.max_iters),
-                &self.data,
-                &self.opts.impact_noise_candidates_mm,
-                noise,
-            )?;
-            match refined {
-                Some((noise, data, theta)) => {
-                    self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
-                    self.data = data;
-                    self.chosen_noise = Some(noise);
-                    self.theta_base = theta;
-                }
-                None => {
-                    self.data = nd;
-                    self.folds = nf;
-                    self.chosen_noise = Some(noise);
-                    self.theta_base = theta;
-                }
-            }
+            let exact = std::mem::replace(&mut self.data, nd);
+            self.folds = nf;
+            self.chosen_noise = Some(noise);
             self.noise_options.clear();
+            self.adopt_refined(noise, &exact, theta, w)?;
         } else {
             let (layout, run) = scored.fits[i].fit.as_ref().expect("eligible means fitted");
             self.base = layout.clone();
@@ -538,12 +547,20 @@ impl<'a> Search<'a> {
 
     /// Calibrate the selected effects on all shots and read aliases and ambiguities.
     pub(super) fn finish(
-        self,
+        mut self,
         (fold_by, n_folds): (FoldBy, usize),
         steps: Vec<Step>,
         before: ErrorTable,
         warnings: Vec<String>,
     ) -> Result<Diagnosis, FitError> {
+        // A level selected from the data, refined once more on the final model.
+        if let (Some(noise), None) = (self.chosen_noise, self.opts.impact_noise) {
+            let exact = self.data.clone().with_impact_noise(None)?;
+            let w = Weighting::launch(&noise_scales(
+                &self.errors_of(&self.base, self.theta_base.as_slice())?,
+            ));
+            self.adopt_refined(noise, &exact, self.theta_base.clone(), w)?;
+        }
         let (estimates, after, out_club, aliases) = if self.base.is_empty() {
             (Vec::new(), before.clone(), self.club.clone(), Vec::new())
         } else {

@@ -147,25 +147,16 @@ impl SpreadModel {
 /// Resolution (mm) to which a selected impact-noise level is refined.
 pub(super) const REFINE_STEP_MM: f64 = 0.1;
 
-/// The interval (mm) around the selected level `chosen_mm` over which it is refined: up to
-/// the neighbouring levels offered (`levels_mm`), or half and one and a half times it at the
-/// ends of the list.
-pub(super) fn refine_interval(levels_mm: &[f64], chosen_mm: f64) -> (f64, f64) {
-    let below = levels_mm
-        .iter()
-        .copied()
-        .filter(|&l| l < chosen_mm)
-        .fold(0.5 * chosen_mm, f64::max);
-    let above = levels_mm
-        .iter()
-        .copied()
-        .filter(|&l| l > chosen_mm)
-        .fold(1.5 * chosen_mm, f64::min);
-    (below, above)
+/// The interval (mm) over which a selected level is refined: from half the smallest level
+/// offered to one and a half times the largest (0.5–4.5 mm for the default levels).
+pub(super) fn refine_interval(levels_mm: &[f64]) -> (f64, f64) {
+    let lo = levels_mm.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = levels_mm.iter().copied().fold(0.0, f64::max);
+    (0.5 * lo, 1.5 * hi)
 }
 
 /// A selected impact-noise level refined by the spread ([`super::spread`]): the isotropic
-/// noise on a [`REFINE_STEP_MM`] grid between the neighbouring levels offered
+/// noise on a [`REFINE_STEP_MM`] grid over [`refine_interval`] of the levels offered
 /// (`levels_mm`) whose errors (the base model at `theta`, averaged over that noise; not
 /// refitted at each) have the smallest `−2 ln L` under `model`. `None` when none can be
 /// evaluated.
@@ -174,10 +165,9 @@ fn refine_noise(
     exact: &FitData,
     model: &SpreadModel,
     levels_mm: &[f64],
-    chosen_mm: f64,
 ) -> Option<ImpactNoise> {
     let (club, layout, theta) = b;
-    let (lo, hi) = refine_interval(levels_mm, chosen_mm);
+    let (lo, hi) = refine_interval(levels_mm);
     let steps = ((hi - lo) / REFINE_STEP_MM).round() as usize;
     (0..=steps)
         .into_par_iter()
@@ -210,14 +200,9 @@ pub(super) fn refine_selected(
     noise: ImpactNoise,
 ) -> Result<Option<(ImpactNoise, FitData, DVector<f64>)>, FitError> {
     let model = SpreadModel::new(base_club, shots, &inst)?;
-    let Some(refined) = refine_noise(
-        (club, layout, theta),
-        exact,
-        &model,
-        levels_mm,
-        noise.sigma_z_m * 1e3,
-    )
-    .filter(|r| r != &noise) else {
+    let Some(refined) =
+        refine_noise((club, layout, theta), exact, &model, levels_mm).filter(|r| r != &noise)
+    else {
         return Ok(None);
     };
     let data = exact.clone().with_impact_noise(Some(refined))?;
@@ -274,11 +259,8 @@ mod tests {
     use super::*;
 
     #[test]
-    fn refinement_reaches_the_neighbouring_levels() {
-        let levels = [1.0, 1.5, 2.0, 3.0];
-        assert_eq!(refine_interval(&levels, 2.0), (1.5, 3.0));
-        assert_eq!(refine_interval(&levels, 1.0), (0.5, 1.5));
-        assert_eq!(refine_interval(&levels, 3.0), (2.0, 3.0 * 1.5));
+    fn refinement_spans_the_levels_offered() {
+        assert_eq!(refine_interval(&[1.5, 1.0, 3.0, 2.0]), (0.5, 4.5));
     }
 
     /// The profiled minimum agrees with a brute-force search, and with the closed form
