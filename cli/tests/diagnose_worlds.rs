@@ -304,7 +304,7 @@ fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_
 /// worlds' balls compress 6–9 mm at their peak, the force-weighted mean is ≈ 0.8 of that), and
 /// every implausible value carries its stand-in reading instead of being listed as a finding; a
 /// plausible selected value with a plausible rival is ambiguous, not a finding. (A `com_offset`
-/// with dx of −9 to −20 mm still appears in `compliant_driver` and `compliant_slip_world`, as a
+/// with dx of −6 to −16 mm still appears in `compliant_driver` and `compliant_slip_world`, as a
 /// stand-in aliased with `eg`: it takes the ball's travel over the face during the contact,
 /// which no library form has yet; docs/compliant-worlds.md.)
 #[test]
@@ -323,8 +323,8 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
                 .any(|e| names.contains(&e["effect"].as_str().unwrap()) && e["plausible"] == true)
         };
         assert!(plausibly(SPEED_COR), "{world}: {:?}", selected(&d));
-        // In `compliant_driver` (6 g shaft tip) the greedy path takes `com_offset` (dx −20 mm,
-        // a stand-in) with `eg` near 0 beside it (the two alias, r = 0.93: configs/README.md);
+        // In `compliant_driver` (6 g shaft tip) the greedy path takes `com_offset` (dx −16 mm,
+        // a stand-in) with `eg` near 0 beside it (the two alias, r = 0.94: configs/README.md);
         // in the other two worlds the gear restitution is well inside its plausible range.
         let gear_ok = world != "compliant_driver";
         let params: &[&str] = if gear_ok {
@@ -376,13 +376,11 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
 }
 
 /// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
-/// not hold yet (configs/README.md, "What this shows"). With `compression_lever` the spreads of
-/// `compliant_driver` (1.03–1.08×) and `compliant_slip_world` (0.97–1.04×) are within 1.10× the
-/// noise floor, but `compliant_location_noise` stays at 1.21–1.27× in ball speed, launch and
-/// azimuth (its 2.5 mm location noise is found as 1.5 mm); `hosel_mass` is not named in
-/// `compliant_driver` (`com_offset.dz` takes the tip's heel–toe signature), `contact_time` is
-/// named plausibly only in `compliant_slip_world`; and group means reach 0.24–0.28 σ of the
-/// launch noise in every world, where the standard error of one group's mean is 0.13–0.16 σ
+/// not hold yet (configs/README.md, "What this shows"). With `compression_lever` every spread
+/// is within 1.10× the noise floor (0.97–1.09× in the three worlds), but `hosel_mass` is named
+/// in no world (`com_offset.dz` takes the tip's heel–toe signature, `added_mass` its mass),
+/// `contact_time` plausibly only in `compliant_location_noise`; and group means reach
+/// 0.22–0.30 σ of the launch noise in every world, where the standard error of one group's mean is 0.13–0.16 σ
 /// (docs/compliant-worlds.md, "Group means"). Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]
