@@ -203,3 +203,88 @@ fn outputs_that_are_not_regular_files_are_refused() {
     }
     assert_kept(&target, "mine\n");
 }
+
+/// Copy `from` into `dir` as `name` with `edits` (`(old, new)`) applied; each must apply.
+fn edited(from: &str, dir: &Path, name: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let mut text = std::fs::read_to_string(repo(from)).unwrap();
+    for (old, new) in edits {
+        assert!(text.contains(old), "{old} not in {from}");
+        text = text.replacen(old, new, 1);
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A fixed-length TOML list that is too long is refused with its key and expected length, not
+/// silently cut to length.
+#[test]
+fn over_long_toml_lists_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let drv = "configs/clubs/paper_driver.toml";
+    let one = ["--speed", "100", "--loft", "12"];
+    for (edit, key, want) in [
+        (
+            (
+                "com_mm = [-42.3, 2.9, 1.0]",
+                "com_mm = [-42.3, 2.9, 1.0, 7.0]",
+            ),
+            "key club.com_mm",
+            "expected a list of 3 numbers, got 4",
+        ),
+        (
+            ("0.5, 4085.0]]", "0.5, 4085.0], [1.0, 2.0, 3.0]]"),
+            "key club.inertia_gcm2",
+            "expected a list of 3 rows of 3 numbers, got 4 rows",
+        ),
+        (
+            ("0.5, 4085.0]]", "0.5, 4085.0, 9.0]]"),
+            "key club.inertia_gcm2",
+            "row 3: expected a list of 3 numbers, got 4",
+        ),
+    ] {
+        let club = edited(drv, d, "club.toml", &[edit]);
+        let mut args = vec!["predict", "--club", s(&club)];
+        args.extend(one);
+        common::assert_refused(&smash(&args), &[key, want]);
+    }
+    let club = s(&repo(drv)).to_owned();
+    let study_club = (
+        "club = \"../clubs/paper_driver.toml\"",
+        &*format!("club = {club:?}"),
+    );
+    for (edit, key, want) in [
+        (
+            (
+                "at_mm = [-70.0, -10.0, 0.0]",
+                "at_mm = [-70.0, -10.0, 0.0, 1.0]",
+            ),
+            "key yards.mass.at_mm",
+            "got 4",
+        ),
+        (
+            (
+                "impact_centre_mm = [0.0, 0.0]",
+                "impact_centre_mm = [0.0, 0.0, 3.0]",
+            ),
+            "key distribution.impact_centre_mm",
+            "expected a list of 2 numbers, got 3",
+        ),
+        (
+            ("[-35.0, 35.0]]", "[-35.0, 35.0], [0.0, 1.0]]"),
+            "key yards.mass.bounds_mm",
+            "got 4 rows",
+        ),
+    ] {
+        let study = edited(
+            "configs/studies/yards_driver.toml",
+            d,
+            "study.toml",
+            &[study_club, edit],
+        );
+        let out = d.join("out");
+        let o = smash(&["run", s(&study), "--out", s(&out)]);
+        common::assert_refused(&o, &[key, want]);
+    }
+}
