@@ -288,3 +288,45 @@ fn over_long_toml_lists_are_refused() {
         common::assert_refused(&o, &[key, want]);
     }
 }
+
+/// Flight flags with values no flight needs: a spin-decay constant shorter than 1 s or than ten
+/// steps, a step so small the flight never ends; huge values are printed short.
+#[test]
+fn flight_steps_and_spin_decay_are_bounded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let launch = tmp.path().join("launch.csv");
+    std::fs::write(
+        &launch,
+        "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,12,2600\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("f.csv");
+    for (flags, want) in [
+        (
+            vec!["--spin-decay", "exp:1e-300"],
+            "TAU must be within [3.5, 10000] s",
+        ),
+        (vec!["--spin-decay", "exp:0.1"], "TAU must be within"),
+        (
+            vec!["--spin-decay", "exp:2", "--dt-s", "0.35"],
+            "10 time steps",
+        ),
+        (
+            vec!["--dt-s", "1e-9"],
+            "--dt-s 1e-9: must be within [0.0001, 0.5] s",
+        ),
+        (
+            vec!["--max-time-s", "1e308"],
+            "--max-time-s 1e308: must be within",
+        ),
+    ] {
+        let mut args = vec!["flight", "--shots", s(&launch), "--out", s(&out)];
+        args.extend(flags);
+        common::assert_refused(&smash(&args), &[want]);
+        assert!(!out.exists());
+    }
+    let mut ok = vec!["flight", "--shots", s(&launch), "--out", s(&out)];
+    ok.extend(["--spin-decay", "exp:25"]);
+    let o = smash(&ok);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
