@@ -325,6 +325,19 @@ fn flight_steps_and_spin_decay_are_bounded() {
         common::assert_refused(&smash(&args), &[want]);
         assert!(!out.exists());
     }
+    // A syntax error in the atmosphere file names its line and column.
+    let atm = tmp.path().join("atm.toml");
+    std::fs::write(&atm, "[atmosphere]\ntemperature_c = 20\nwind speed = 3\n").unwrap();
+    let args = [
+        "flight",
+        "--shots",
+        s(&launch),
+        "--out",
+        s(&out),
+        "--atmosphere",
+        s(&atm),
+    ];
+    common::assert_refused(&smash(&args), &["atm.toml:3: column"]);
     let mut ok = vec!["flight", "--shots", s(&launch), "--out", s(&out)];
     ok.extend(["--spin-decay", "exp:25"]);
     let o = smash(&ok);
