@@ -35,13 +35,22 @@ impl Hermite {
             + (-6.0 * t2 + 6.0 * t) * self.y1
             + (3.0 * t2 - 2.0 * t) * self.m1
     }
-    /// The root in [0, 1] given `at(0) ≥ 0 > at(1)`: Newton kept inside a shrinking bracket.
+    /// The downward crossing in [0, 1] given `at(0) ≥ 0 > at(1)`: Newton kept inside a
+    /// shrinking bracket. A step that starts on the ground while rising (the launch step of a
+    /// flight shorter than one step) also has a root at θ = 0, the launch itself; the landing
+    /// is then searched after the step's highest point.
     pub(crate) fn root(&self) -> f64 {
-        let (mut lo, mut hi) = (0.0, 1.0);
-        let mut t = if self.y0 - self.y1 > 0.0 {
-            (self.y0 / (self.y0 - self.y1)).clamp(0.0, 1.0)
+        let lo0 = if self.y0 <= 0.0 && self.m0 > 0.0 {
+            self.argmax().0
         } else {
-            0.5
+            0.0
+        };
+        let (mut lo, mut hi) = (lo0, 1.0);
+        let y_lo = self.at(lo0);
+        let mut t = if y_lo - self.y1 > 0.0 {
+            (lo0 + (1.0 - lo0) * y_lo / (y_lo - self.y1)).clamp(lo0, 1.0)
+        } else {
+            0.5 * (lo0 + 1.0)
         };
         for _ in 0..100 {
             let f = self.at(t);
@@ -68,14 +77,25 @@ impl Hermite {
     }
     /// Largest value over [0, 1].
     pub(crate) fn max(&self) -> f64 {
+        self.argmax().1
+    }
+    /// Where on [0, 1] the interpolant is largest, and its value there.
+    pub(crate) fn argmax(&self) -> (f64, f64) {
         // slope(θ) = A θ² + B θ + C.
         let a = 6.0 * self.y0 + 3.0 * self.m0 - 6.0 * self.y1 + 3.0 * self.m1;
         let b = -6.0 * self.y0 - 4.0 * self.m0 + 6.0 * self.y1 - 2.0 * self.m1;
         let c = self.m0;
-        let mut best = self.y0.max(self.y1);
+        let mut best = if self.y0 >= self.y1 {
+            (0.0, self.y0)
+        } else {
+            (1.0, self.y1)
+        };
         let mut try_t = |t: f64| {
             if (0.0..=1.0).contains(&t) {
-                best = best.max(self.at(t));
+                let y = self.at(t);
+                if y > best.1 {
+                    best = (t, y);
+                }
             }
         };
         if a.abs() < 1e-300 {

@@ -473,6 +473,41 @@ mod tests {
     }
 
     #[test]
+    fn flights_shorter_than_one_step_land_after_their_apex() {
+        // A 5 mph pitch lasts 0.08 s, a quarter of the default step: the step's crossing at
+        // θ = 0 is the launch, not the landing. In vacuum the closed form; in air a fine step
+        // (to 1 mm, a tenth of the step tolerance of the flight's 0.01 yd).
+        let mut vacuum = FlightConfig::default();
+        vacuum.air.density_kg_m3 = 0.0;
+        for (mph, deg) in [(5.0, 10.0), (2.0, 60.0), (0.5, 5.0)] {
+            let l = FlightLaunch::from_file_units(mph, deg, 0.0, 1000.0, 0.0);
+            let f = fly_one(&vacuum, &l).unwrap();
+            let (v, th) = (l.ball_speed_m_s, l.launch_angle_rad);
+            let range = v * v * (2.0 * th).sin() / G_M_S2;
+            assert!(
+                (f.carry_m - range).abs() < 1e-9 * (1.0 + range),
+                "{mph} mph: {f:?}"
+            );
+            assert!((f.land_angle_rad - th).abs() < 1e-9, "{mph} mph: {f:?}");
+            let tof = 2.0 * v * th.sin() / G_M_S2;
+            assert!((f.flight_time_s - tof).abs() < 1e-9, "{mph} mph: {f:?}");
+        }
+        let air = FlightConfig::default();
+        let mut fine = FlightConfig::default();
+        fine.dt_s = Some(0.001);
+        let l = FlightLaunch::from_file_units(5.0, 10.0, 0.0, 1000.0, 0.0);
+        let (f, g) = (fly_one(&air, &l).unwrap(), fly_one(&fine, &l).unwrap());
+        assert!(
+            f.carry_m > 0.15 && (f.carry_m - g.carry_m).abs() < 1e-3,
+            "{f:?} {g:?}"
+        );
+        assert!(
+            (f.land_angle_rad - g.land_angle_rad).abs() < 1e-3,
+            "{f:?} {g:?}"
+        );
+    }
+
+    #[test]
     fn batching_and_threads_do_not_change_results() {
         let cfg = FlightConfig::default();
         let ls: Vec<FlightLaunch> = (0..37)

@@ -291,7 +291,7 @@ impl Flight {
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FlightError {
     /// A launch value out of its physical range.
-    #[error("{field} = {value}: {allowed}")]
+    #[error("{field} = {}: {allowed}", shown(*value))]
     InvalidLaunch {
         /// Column name (file units).
         field: &'static str,
@@ -306,4 +306,14 @@ pub enum FlightError {
         /// The limit, s.
         time_limit_s: f64,
     },
+}
+
+/// A value for a message: plain digits for everyday magnitudes, an exponent for huge or tiny
+/// ones (a launch file's `1e308` must not print as 309 digits).
+fn shown(v: f64) -> String {
+    if v != 0.0 && v.is_finite() && !(1e-4..1e7).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }
