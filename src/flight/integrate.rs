@@ -493,8 +493,10 @@ mod tests {
             assert!((f.flight_time_s - tof).abs() < 1e-9, "{mph} mph: {f:?}");
         }
         let air = FlightConfig::default();
-        let mut fine = FlightConfig::default();
-        fine.dt_s = Some(0.001);
+        let fine = FlightConfig {
+            dt_s: Some(0.001),
+            ..FlightConfig::default()
+        };
         let l = FlightLaunch::from_file_units(5.0, 10.0, 0.0, 1000.0, 0.0);
         let (f, g) = (fly_one(&air, &l).unwrap(), fly_one(&fine, &l).unwrap());
         assert!(
