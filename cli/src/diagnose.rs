@@ -127,6 +127,12 @@ pub struct DiagnoseArgs {
     pub noise: Option<PathBuf>,
 }
 
+/// An impact-location noise in mm as printed: to 1e-6 mm, so that 1.8 mm shows as 1.8 after
+/// the metre round trip.
+fn location_mm(m: f64) -> f64 {
+    (m * 1e9).round() / 1e6
+}
+
 fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
     InstrumentClass::from_name(s).ok_or_else(|| {
         format!(
@@ -300,6 +306,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                     "n_params": c.n_params,
                     "cv_chi2": c.cv_chi2,
                     "gain": c.gain,
+                    "score": if c.spread_gain.is_some() { "spread_likelihood" } else { "cv_chi2" },
                     "penalty": c.penalty,
                     "margin": c.margin(),
                     "eligible": c.eligible(),
@@ -317,8 +324,8 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         "command": "diagnose",
         "selected": d.selected,
         "impact_noise_mm": d.impact_noise.map(|n| json!({
-            "y": n.sigma_y_m * 1e3,
-            "z": n.sigma_z_m * 1e3,
+            "y": location_mm(n.sigma_y_m),
+            "z": location_mm(n.sigma_z_m),
             "estimated": d.impact_noise_estimated,
         })),
         "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
@@ -498,6 +505,9 @@ fn candidates_table(st: &Step) -> String {
         );
         row.push(fmt_params(&c.params));
         let mut note = Vec::new();
+        if c.spread_gain.is_some() {
+            note.push("gain: −2 ln L of the spread".to_owned());
+        }
         if let Some(f) = &c.failure {
             note.push(format!("failed: {f}"));
         } else if !c.converged {
@@ -612,11 +622,11 @@ fn summary_text(d: &Diagnosis) -> String {
         s.push_str(&format!(
             "Measurement model: impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}; \
              calibrate with --impact-noise-mm {},{}\n",
-            n.sigma_y_m * 1e3,
-            n.sigma_z_m * 1e3,
+            location_mm(n.sigma_y_m),
+            location_mm(n.sigma_z_m),
             if d.impact_noise_estimated { ", selected from the data" } else { ", as given" },
-            n.sigma_y_m * 1e3,
-            n.sigma_z_m * 1e3
+            location_mm(n.sigma_y_m),
+            location_mm(n.sigma_z_m)
         ));
     }
     s

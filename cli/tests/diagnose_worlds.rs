@@ -322,8 +322,12 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
         assert!(plausibly(SPEED_COR), "{world}: {:?}", selected(&d));
         // In `compliant_driver` (6 g shaft tip) the greedy path still takes `com_offset`
         // (dx −22 mm) with a negative, implausible `eg` beside it (configs/README.md); in the
-        // other two worlds the gear restitution is plausible and no CoM stand-in is needed.
+        // other two worlds the gear restitution is plausible. No CoM stand-in is needed in
+        // `compliant_slip_world`; in `compliant_location_noise`, once its location noise is
+        // detected (step 4), the greedy path takes `com_offset` with dx +6.1 mm, a stand-in
+        // (configs/README.md).
         let gear_ok = world != "compliant_driver";
+        let no_com_stand_in = world == "compliant_slip_world";
         let params: &[&str] = if gear_ok {
             &["et0", "k_tan", "eg"]
         } else {
@@ -340,7 +344,7 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
         }
         for e in est {
             assert!(
-                !gear_ok || e["effect"] != "com_offset" || e["plausible"] == true,
+                !no_com_stand_in || e["effect"] != "com_offset" || e["plausible"] == true,
                 "{world}: {e}"
             );
             assert!(
@@ -373,8 +377,8 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
 /// not hold yet (configs/README.md, "What this shows"): in `compliant_driver` the `com_offset`
 /// stand-in (dx −22 mm) is still selected, beside an implausible `eg` and an ambiguous
 /// `hosel_mass`; `contact_time` is not named plausibly; spreads stay above 1.10× the noise floor
-/// (`compliant_driver` 1.09–1.14×; ball speed, launch and azimuth 1.23–1.29× in
-/// `compliant_location_noise`, whose 2.5 mm location noise is not detected); and some group
+/// (`compliant_driver` 1.12–1.13×; ball speed, launch and azimuth 1.13–1.20× in
+/// `compliant_location_noise`, whose 2.5 mm location noise is detected but read as 2.0 mm); and some group
 /// means reach 0.20–0.27 σ in every world. Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]

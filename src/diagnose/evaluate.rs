@@ -7,6 +7,7 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
+use super::spread::SpreadModel;
 use super::{honest, CandidateResult, DiagnoseProgress};
 use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
@@ -205,6 +206,9 @@ pub(super) struct StepBase<'a> {
     pub(super) cv: f64,
     pub(super) max_iters: u64,
     pub(super) progress: Option<&'a dyn DiagnoseProgress>,
+    /// With known instrument noise: the base model's covariance model and the base errors'
+    /// `−2 ln L` under it (exact locations), to score impact-noise levels by the spread.
+    pub(super) spread: Option<(&'a SpreadModel, f64)>,
 }
 
 /// An effect candidate after fitting: its scores, its all-shots fit (layout and run) and what
@@ -222,6 +226,7 @@ fn empty_result(label: String, n_params: usize, penalty: f64) -> CandidateResult
         params: Vec::new(),
         cv_chi2: f64::NAN,
         gain: f64::NAN,
+        spread_gain: None,
         penalty,
         rms_reduction: [0.0; 5],
         unidentified: Vec::new(),
@@ -334,6 +339,10 @@ fn read_estimates(res: &mut CandidateResult, layout: &ParamLayout, run: &FitRun,
 /// parameters (`None` when the fit failed).
 pub(super) type NoiseFit = Option<(usize, DVector<f64>)>;
 
+/// A fitted impact-noise level: cross-validated χ², launch errors on all shots (file units)
+/// and the refitted base parameters.
+type NoiseOutcome = (f64, Vec<[f64; 5]>, DVector<f64>);
+
 /// Label of the measurement candidate for impact-location noise `noise`.
 pub fn impact_noise_label(noise: &ImpactNoise) -> String {
     format!(
@@ -344,7 +353,9 @@ pub fn impact_noise_label(noise: &ImpactNoise) -> String {
 }
 
 /// One impact-noise level as a candidate: refit the base effects with the locations treated as
-/// noisy, cross-validate, and score it like a one-parameter effect.
+/// noisy, cross-validate, and score it as a one-parameter candidate: by the gain in `−2 ln L`
+/// of the errors' spread when the instruments' noise is known ([`super::spread`]), else by the
+/// gain in cross-validated χ² like an effect.
 pub(super) fn noise_candidate(
     b: &StepBase,
     (j, noise, data, folds): (usize, &ImpactNoise, &FitData, &Folds),
@@ -352,7 +363,7 @@ pub(super) fn noise_candidate(
 ) -> (CandidateResult, NoiseFit) {
     let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
     res.converged = true;
-    let outcome = (|| -> Result<(f64, [f64; 5], DVector<f64>), FitError> {
+    let outcome = (|| -> Result<NoiseOutcome, FitError> {
         let run = if b.layout.is_empty() {
             None
         } else {
@@ -381,12 +392,25 @@ pub(super) fn noise_candidate(
             b.max_iters,
             b.progress,
         )?;
-        Ok((cv, rms_per_component(&errs), theta))
+        Ok((cv, errs, theta))
     })();
     match outcome {
-        Ok((cv, rms, theta)) => {
+        Ok((cv, errs, theta)) => {
+            let rms = rms_per_component(&errs);
             res.cv_chi2 = cv;
             res.gain = b.cv - cv;
+            if let Some((model, base_dev)) = b.spread {
+                match model.deviance(&errs, Some(*noise)) {
+                    Some(dev) => {
+                        res.spread_gain = Some(base_dev - dev);
+                        res.gain = base_dev - dev;
+                    }
+                    None => {
+                        res.failure =
+                            Some("the spread's covariance is not positive definite".into())
+                    }
+                }
+            }
             res.rms_reduction = std::array::from_fn(|c| (b.rms[c] - rms[c]) / b.rms[c]);
             (res, Some((j, theta)))
         }

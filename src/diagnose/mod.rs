@@ -41,6 +41,7 @@ pub mod honest;
 pub mod noise_floor;
 mod search;
 pub mod select;
+mod spread;
 
 use crate::club::ClubSpec;
 use crate::effects::{EffectId, EffectKind};
@@ -112,8 +113,12 @@ pub struct CandidateResult {
     pub params: Vec<ParamEstimate>,
     /// Cross-validated χ² of the base plus this candidate.
     pub cv_chi2: f64,
-    /// `CV(base) − CV(base + candidate)`.
+    /// `CV(base) − CV(base + candidate)`; for an impact-noise level scored by the spread
+    /// (`spread_gain`), that gain instead.
     pub gain: f64,
+    /// An impact-noise level's gain in `−2 ln L` of the errors' spread (known instrument
+    /// noise, `docs/diagnose-selection.md`); `None` when scored by the cross-validated χ².
+    pub spread_gain: Option<f64>,
     /// `k·ln n`.
     pub penalty: f64,
     /// Relative reduction of the RMS error per launch component on all shots (0.1 = 10 %).

@@ -12,10 +12,12 @@
 //!
 //! with `∂L_c/∂x_j` the model's own Jacobian (central differences of the final club's launch in
 //! file units). For the impact location, when the model averages over where the ball was most
-//! likely struck (regression calibration with assumed noise `σ_m`, see [`crate::measurement`]),
-//! its error is `t − μ_post = k·(t − μ) − (1 − k)·ε` with `k = σ_m²/(σ_T² + σ_m²)`, so
-//! `s_eff² = k²·σ_T² + (1 − k)²·s²` (`σ_T² = var(measured) − s²`, the true spread); without the
-//! correction (`k = 0`) it is the instrument's `s²`.
+//! likely struck (regression calibration with noise `σ_m`, given with `--impact-noise-mm` or
+//! selected by diagnose, see [`crate::measurement`]), `σ_m` is taken as the true noise: the
+//! model's location error is `t − μ_post = k·(t − μ) − (1 − k)·ε` with
+//! `k = σ_m²/(σ_T² + σ_m²)` and `σ_T² = var(measured) − σ_m²` (the true spread), whose variance
+//! `k²·σ_T² + (1 − k)²·σ_m²` simplifies to the posterior variance `(1 − k)·σ_m²`. Without a
+//! location model the instrument's own location SD `s` enters raw (`s_eff = s`).
 //!
 //! The test: under the model, `S_c = Σ_i (r_ic − r̄_c)² / v_ic` is χ² with `n − 1` degrees of
 //! freedom. The report gives the ratio `√(S_c/(n − 1))` (1 when what remains is noise), the
@@ -231,33 +233,37 @@ pub fn chi2_upper_tail(s: f64, nu: f64) -> f64 {
     1.0 - student_t_cdf(z, 1e9)
 }
 
-/// Expected variance of each shot's error per component (see the module docs).
-fn expected_variances(
-    club: &ClubSpec,
-    shots: &[Shot],
-    inst: &InstrumentNoise,
-    location_model: Option<crate::measurement::ImpactNoise>,
-) -> Result<Vec<[f64; 5]>, FitError> {
-    // Effective SD of the location axes (regression-calibrated or not).
-    let mut sd_eff = inst.delivery_sd;
-    for (var, assumed_m) in [
-        (DeliveryVar::ImpactY, location_model.map(|m| m.sigma_y_m)),
-        (DeliveryVar::ImpactZ, location_model.map(|m| m.sigma_z_m)),
-    ] {
-        let j = var.index();
-        let Some(sm) = assumed_m.map(|s| s * 1e3) else {
-            continue;
-        };
+/// Variance of the measured impact location on each axis (`impact_y_mm`, `impact_z_mm`) over
+/// the shots, mm².
+pub(super) fn measured_location_variance(shots: &[Shot]) -> [f64; 2] {
+    [DeliveryVar::ImpactY, DeliveryVar::ImpactZ].map(|var| {
         let x: Vec<f64> = shots
             .iter()
-            .map(|s| delivery_to_file_units(&s.delivery)[j])
+            .map(|s| delivery_to_file_units(&s.delivery)[var.index()])
             .collect();
-        let var_meas = stats::std_dev(&x).powi(2);
-        let s2 = inst.delivery_sd[j].powi(2);
-        let true_var = (var_meas - s2).max(0.0);
-        let k = sm * sm / (true_var + sm * sm).max(f64::MIN_POSITIVE);
-        sd_eff[j] = (k * k * true_var + (1.0 - k).powi(2) * s2).sqrt();
-    }
+        stats::std_dev(&x).powi(2)
+    })
+}
+
+/// Variance (mm²) of the location error that remains in a model that averages over noisy
+/// impact locations with noise `sigma_mm`, when that is the true noise: the posterior variance
+/// `(1 − k)·σ²`, `k = σ²/var(measured)` (see the module docs). Without such a model the raw
+/// noise `σ²` would remain; with `σ = 0`, nothing.
+pub(super) fn corrected_location_variance(sigma_mm: f64, var_measured_mm2: f64) -> f64 {
+    let s2 = sigma_mm * sigma_mm;
+    let k = (s2 / var_measured_mm2.max(f64::MIN_POSITIVE)).min(1.0);
+    (1.0 - k) * s2
+}
+
+/// The model's launch (file units) of each shot and its derivatives with respect to each
+/// delivery variable (file units per file unit): central differences over `±steps[j]`
+/// (one-sided when one side cannot be solved; a zero column when `steps[j]` is 0 or neither
+/// side can be solved).
+pub(super) fn delivery_jacobians(
+    club: &ClubSpec,
+    shots: &[Shot],
+    steps: &[f64; N_DELIVERY],
+) -> Result<Vec<[[f64; 5]; N_DELIVERY]>, FitError> {
     let mut models = std::collections::BTreeMap::new();
     shots
         .iter()
@@ -281,31 +287,61 @@ fn expected_variances(
             let f0 = launch_at(&x0).ok_or_else(|| {
                 FitError::Solver(format!("noise floor: shot '{}' cannot be solved", s.id))
             })?;
-            let mut v: [f64; 5] = std::array::from_fn(|c| inst.launch_sd[c].powi(2));
-            for j in 0..N_DELIVERY {
-                let sd = sd_eff[j];
-                if sd <= 0.0 {
-                    continue;
+            Ok(std::array::from_fn(|j| {
+                let h = steps[j];
+                if h <= 0.0 {
+                    return [0.0; 5];
                 }
-                // Central difference over ±sd/2 (one-sided when one side cannot be solved).
-                let h = 0.5 * sd;
                 let mut xp = x0;
                 xp[j] += h;
                 let mut xm = x0;
                 xm[j] -= h;
-                let d: [f64; 5] = match (launch_at(&xp), launch_at(&xm)) {
+                match (launch_at(&xp), launch_at(&xm)) {
                     (Some(p), Some(m)) => std::array::from_fn(|c| (p[c] - m[c]) / (2.0 * h)),
                     (Some(p), None) => std::array::from_fn(|c| (p[c] - f0[c]) / h),
                     (None, Some(m)) => std::array::from_fn(|c| (f0[c] - m[c]) / h),
-                    (None, None) => continue,
-                };
-                for c in 0..5 {
-                    v[c] += (d[c] * sd).powi(2);
+                    (None, None) => [0.0; 5],
                 }
-            }
-            Ok(v)
+            }))
         })
         .collect()
+}
+
+/// Expected variance of each shot's error per component (see the module docs).
+fn expected_variances(
+    club: &ClubSpec,
+    shots: &[Shot],
+    inst: &InstrumentNoise,
+    location_model: Option<crate::measurement::ImpactNoise>,
+) -> Result<Vec<[f64; 5]>, FitError> {
+    // Effective SD of the location axes: a location model's noise is taken as the true noise,
+    // and only its posterior variance remains; without one, the instrument's raw noise.
+    let mut sd_eff = inst.delivery_sd;
+    if let Some(m) = location_model {
+        let var_meas = measured_location_variance(shots);
+        for (a, (var, sigma_m)) in [
+            (DeliveryVar::ImpactY, m.sigma_y_m),
+            (DeliveryVar::ImpactZ, m.sigma_z_m),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            sd_eff[var.index()] = corrected_location_variance(sigma_m * 1e3, var_meas[a]).sqrt();
+        }
+    }
+    // Central differences over ±sd/2.
+    let jac = delivery_jacobians(club, shots, &sd_eff.map(|sd| 0.5 * sd))?;
+    Ok(jac
+        .iter()
+        .map(|jac| {
+            std::array::from_fn(|c| {
+                inst.launch_sd[c].powi(2)
+                    + (0..N_DELIVERY)
+                        .map(|j| (jac[j][c] * sd_eff[j]).powi(2))
+                        .sum::<f64>()
+            })
+        })
+        .collect())
 }
 
 /// The noise floor of `errors` (model − measured per shot, file units) of the model `club` on

@@ -6,6 +6,7 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::evaluate::{self, cv_chi2, make_folds, EffectFit, Folds, NoiseFit, StepBase};
+use super::spread::{self, SpreadModel};
 use super::{
     default_candidates, honest, noise_floor, select, CandidateResult, DiagnoseOptions,
     DiagnoseProgress, Diagnosis, FoldBy, Step,
@@ -123,6 +124,8 @@ pub(super) struct Search<'a> {
     /// candidates that changed the predictions alike, and the correlation.
     kin_of: Vec<Kin>,
     penalty_per_param: f64,
+    /// Fold of every shot (to make the folds again for a refined impact-noise level).
+    fold_of: Vec<usize>,
 }
 
 /// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.
@@ -173,6 +176,7 @@ impl<'a> Search<'a> {
             theta_base: DVector::zeros(0),
             selected: Vec::new(),
             kin_of: Vec::new(),
+            fold_of: fold_of.to_vec(),
         })
     }
 
@@ -190,21 +194,25 @@ impl<'a> Search<'a> {
         .launch_errors(theta)?)
     }
 
-    /// With a known noise floor: are the base model's errors already at it?
-    fn at_noise_floor(&self, base_errors: &[[f64; 5]]) -> Result<bool, FitError> {
-        let Some(inst) = &self.opts.noise_floor else {
-            return Ok(false);
-        };
+    /// The club with the base effects at their current values.
+    fn base_club(&self) -> Result<ClubSpec, FitError> {
         let mut effects = self.club.effects.clone();
         effects.extend(
             self.base
                 .to_effects(self.theta_base.as_slice())
                 .map_err(|e| FitError::Solver(format!("base effects: {e}")))?,
         );
-        let base_club = self
-            .club
+        self.club
             .with_effects(effects)
-            .map_err(|e| FitError::Solver(format!("base club: {e}")))?;
+            .map_err(|e| FitError::Solver(format!("base club: {e}")))
+    }
+
+    /// With a known noise floor: are the base model's errors already at it?
+    fn at_noise_floor(&self, base_errors: &[[f64; 5]]) -> Result<bool, FitError> {
+        let Some(inst) = &self.opts.noise_floor else {
+            return Ok(false);
+        };
+        let base_club = self.base_club()?;
         let floor = noise_floor::noise_floor_of(
             &base_club,
             self.shots,
@@ -265,6 +273,17 @@ impl<'a> Search<'a> {
             self.opts.max_iters,
             self.progress,
         )?;
+        // With known instrument noise, impact-noise levels are scored by the spread
+        // (`super::spread`); the base is the same model with exact locations.
+        let spread = match &self.opts.noise_floor {
+            Some(inst) if n_noise > 0 => {
+                Some(SpreadModel::new(&self.base_club()?, self.shots, inst)?)
+            }
+            _ => None,
+        };
+        let spread_base = spread
+            .as_ref()
+            .and_then(|m| Some((m, m.deviance(base_errors, None)?)));
         let b = StepBase {
             club: self.club,
             data: &self.data,
@@ -278,6 +297,7 @@ impl<'a> Search<'a> {
             cv: base_cv,
             max_iters: self.opts.max_iters,
             progress: self.progress,
+            spread: spread_base,
         };
         // Choosing the best of `m` physical candidates: a useless candidate's out-of-sample
         // gain has an upper tail of about e^(−g/2), so the best of m clears a threshold c with
@@ -314,6 +334,34 @@ impl<'a> Search<'a> {
         })
     }
 
+    /// Adopt the impact-noise level `noise` (base parameters `theta`) refined by the spread
+    /// ([`spread::refine_selected`]; `exact`: the data with the locations as measured).
+    fn adopt_refined(
+        &mut self,
+        noise: ImpactNoise,
+        exact: &FitData,
+        theta: DVector<f64>,
+        w: Weighting,
+    ) -> Result<(), FitError> {
+        let inst = self.opts.noise_floor.clone();
+        let refined = spread::refine_selected(
+            (self.club, &self.base_club()?, self.shots),
+            inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
+            (&self.base, &theta, w, self.opts.max_iters),
+            exact,
+            &self.opts.impact_noise_candidates_mm,
+            noise,
+        )?;
+        self.theta_base = theta;
+        if let Some((noise, data, theta)) = refined {
+            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
+            self.data = data;
+            self.chosen_noise = Some(noise);
+            self.theta_base = theta;
+        }
+        Ok(())
+    }
+
     /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
     fn adopt(
         &mut self,
@@ -327,11 +375,11 @@ impl<'a> Search<'a> {
                 .clone()
                 .expect("eligible means fitted");
             let (noise, nd, nf) = self.noise_options.swap_remove(j);
-            self.data = nd;
+            let exact = std::mem::replace(&mut self.data, nd);
             self.folds = nf;
             self.chosen_noise = Some(noise);
             self.noise_options.clear();
-            self.theta_base = theta;
+            self.adopt_refined(noise, &exact, theta, w)?;
         } else {
             let (layout, run) = scored.fits[i].fit.as_ref().expect("eligible means fitted");
             self.base = layout.clone();
@@ -460,6 +508,7 @@ impl<'a> Search<'a> {
             cv: f64::NAN,
             max_iters: self.opts.max_iters,
             progress: None,
+            spread: None,
         };
         let mut out = Vec::new();
         for (label, req, kin) in &self.kin_of {
@@ -498,12 +547,20 @@ impl<'a> Search<'a> {
 
     /// Calibrate the selected effects on all shots and read aliases and ambiguities.
     pub(super) fn finish(
-        self,
+        mut self,
         (fold_by, n_folds): (FoldBy, usize),
         steps: Vec<Step>,
         before: ErrorTable,
         warnings: Vec<String>,
     ) -> Result<Diagnosis, FitError> {
+        // A level selected from the data, refined once more on the final model.
+        if let (Some(noise), None) = (self.chosen_noise, self.opts.impact_noise) {
+            let exact = self.data.clone().with_impact_noise(None)?;
+            let w = Weighting::launch(&noise_scales(
+                &self.errors_of(&self.base, self.theta_base.as_slice())?,
+            ));
+            self.adopt_refined(noise, &exact, self.theta_base.clone(), w)?;
+        }
         let (estimates, after, out_club, aliases) = if self.base.is_empty() {
             (Vec::new(), before.clone(), self.club.clone(), Vec::new())
         } else {

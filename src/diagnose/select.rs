@@ -142,6 +142,7 @@ mod tests {
             params: Vec::new(),
             cv_chi2: 0.0,
             gain,
+            spread_gain: None,
             penalty: 6.0,
             rms_reduction: [0.0; 5],
             unidentified: Vec::new(),
