@@ -1,6 +1,7 @@
 //! `smash diagnose --club configs/clubs/paper_driver.toml --shots <world>.csv` with every default
-//! (the default candidates and impact-noise levels, 5-fold CV grouped by golfer, up to 6 steps,
-//! then the noise floor the report prints), in process: the library calls the CLI makes, on the
+//! (`DiagnoseOptions::default()`, which the CLI's defaults build: the default candidates and
+//! impact-noise levels, 5-fold CV grouped by golfer, up to 10 steps, 100 iterations a fit, then
+//! the noise floor the report prints), in process: the library calls the CLI makes, on the
 //! 600-shot paper world and on the same world with 10,020 shots (334 golfers per shaft).
 //! Reading the files and printing the report are left out (a few ms).
 

@@ -1,6 +1,7 @@
 //! `smash flight`: fly launch conditions to landing; options shared with `smash predict
 //! --flight`.
 
+use smash::limits::fmt_value;
 use std::path::PathBuf;
 
 use clap::Args;
@@ -25,7 +26,7 @@ pub struct FlightOptions {
     )]
     pub aero: String,
     /// Spin decay: moment (aerodynamic moment from the model's C_M; default), none, or
-    /// exp:TAU (exponential with time constant TAU seconds).
+    /// exp:TAU (exponential with time constant TAU seconds, at least 1 s and 10 steps).
     #[arg(
         long,
         default_value = "moment",
@@ -190,11 +191,15 @@ impl FlightOptions {
             "moment" => SpinDecay::Moment,
             "none" => SpinDecay::None,
             s => match s.strip_prefix("exp:").map(str::parse::<f64>) {
-                Some(Ok(tau)) if tau > 0.0 && tau.is_finite() => SpinDecay::Exponential {
-                    time_constant_s: tau,
-                },
+                Some(Ok(tau)) if tau.is_finite() => {
+                    check_spin_decay_tau(tau, self.dt_s)?;
+                    SpinDecay::Exponential {
+                        time_constant_s: tau,
+                    }
+                }
                 _ => anyhow::bail!(
-                    "--spin-decay '{s}': allowed are moment, none, exp:TAU with TAU > 0 seconds"
+                    "--spin-decay '{}': allowed are moment, none, exp:TAU with TAU in seconds",
+                    smash::data::escape(s)
                 ),
             },
         };
@@ -213,14 +218,21 @@ impl FlightOptions {
             None
         };
         if let Some(dt_s) = self.dt_s {
-            if !(dt_s > 0.0 && dt_s <= 0.5) {
-                anyhow::bail!("--dt-s {dt_s}: must be within (0, 0.5] s");
+            if !(MIN_DT_S..=0.5).contains(&dt_s) {
+                anyhow::bail!(
+                    "--dt-s {}: must be within [{MIN_DT_S}, 0.5] s (a smaller step only adds \
+                     rounding: a 10 s flight would take over 10^5 steps)",
+                    fmt_value(dt_s)
+                );
             }
         }
         let dt_s = self.dt_s;
         let max_time_s = self.max_time_s.unwrap_or(smash::flight::DEFAULT_MAX_TIME_S);
         if !(max_time_s > 0.0 && max_time_s <= 120.0) {
-            anyhow::bail!("--max-time-s {max_time_s}: must be within (0, 120] s");
+            anyhow::bail!(
+                "--max-time-s {}: must be within (0, 120] s",
+                fmt_value(max_time_s)
+            );
         }
         Ok(FlightConfig {
             aero,
@@ -232,6 +244,39 @@ impl FlightOptions {
             ..FlightConfig::default()
         })
     }
+}
+
+/// Smallest `--dt-s`, s: the default steps (0.35 s, 0.1 s in wind) already keep the carry
+/// within 0.01 yd of a converged flight, so 1e-4 s is 1000 times finer than any need, and a
+/// step of 1e-9 s would make a 7 s flight take 7·10^9 steps (it ran for ever).
+const MIN_DT_S: f64 = 1e-4;
+
+/// Smallest exponential spin-decay time constant, s. Measured golf-ball spin decays slowly:
+/// time constants of roughly 20–30 s (Smits & Smith 1994, "A new aerodynamic model of a golf
+/// ball in flight", Science and Golf II), so 1 s is far below any real ball.
+const MIN_SPIN_DECAY_TAU_S: f64 = 1.0;
+
+/// How many integration steps the spin-decay time constant must span: an explicit integrator
+/// resolves `exp(-t/τ)` only when the step is a small fraction of τ (at 0.35 s and τ = 0.1 s
+/// the flight went silently unstable).
+const STEPS_PER_SPIN_DECAY_TAU: f64 = 10.0;
+
+/// Refuse an exponential spin-decay time constant that is unphysical or not resolved by the
+/// step (`dt_s`: the `--dt-s` given, else the largest default step).
+fn check_spin_decay_tau(tau: f64, dt_s: Option<f64>) -> anyhow::Result<()> {
+    let dt = dt_s.unwrap_or(smash::flight::DEFAULT_DT_S);
+    let least = MIN_SPIN_DECAY_TAU_S.max(STEPS_PER_SPIN_DECAY_TAU * dt);
+    if !(least..=1e4).contains(&tau) {
+        anyhow::bail!(
+            "--spin-decay exp:{}: TAU must be within [{}, 10000] s (at least \
+             {MIN_SPIN_DECAY_TAU_S} s and {STEPS_PER_SPIN_DECAY_TAU} time steps of {} s; \
+             measured golf-ball spin-decay constants are about 20–30 s)",
+            fmt_value(tau),
+            fmt_value(least),
+            fmt_value(dt)
+        );
+    }
+    Ok(())
 }
 
 /// Arguments of `smash flight`.

@@ -210,6 +210,7 @@ impl ShotsFormatArgs {
     ) -> anyhow::Result<smash::data::import::Imported> {
         use smash::data::import::{import, load_mapping, ImportOptions};
         let mapping = load_mapping(format)?;
+        smash::data::safe_write::note_input(path);
         let bytes = std::fs::read(path)
             .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
         let opts = ImportOptions {

@@ -59,12 +59,15 @@ struct RawFile {
 struct RawClub {
     name: String,
     mass_g: Spanned<f64>,
+    #[serde(deserialize_with = "crate::data::toml_check::exact")]
     com_mm: Spanned<[f64; 3]>,
+    #[serde(deserialize_with = "crate::data::toml_check::exact")]
     inertia_gcm2: Spanned<[[f64; 3]; 3]>,
     cor: Spanned<f64>,
     loft_deg: Option<Spanned<f64>>,
     bulge_mm: Spanned<f64>,
     roll_mm: Spanned<f64>,
+    #[serde(default, deserialize_with = "crate::data::toml_check::exact_opt")]
     hosel_mm: Option<Spanned<[f64; 3]>>,
 }
 

@@ -435,8 +435,11 @@ pub fn read_atmosphere(path: &Path) -> Result<Atmosphere, DataError> {
 
 /// [`read_atmosphere`] from text.
 pub fn parse_atmosphere(path: &Path, text: &str) -> Result<Atmosphere, DataError> {
-    let table: toml::Table =
-        toml::from_str(text).map_err(|e| DataError::file(path, e.message().to_string()))?;
+    let table: toml::Table = crate::data::toml_check::parse_toml(
+        path,
+        text,
+        "an atmosphere file holds an [atmosphere] table",
+    )?;
     let Some(a) = table.get("atmosphere") else {
         return Err(DataError::file(path, "no [atmosphere] table"));
     };

@@ -147,6 +147,7 @@ fn stream(
     chunk_bytes: usize,
 ) -> Result<Option<Flown>, DataError> {
     let read_err = |e: std::io::Error| DataError::file(input, format!("cannot read: {e}"));
+    safe_write::note_input(input);
     let mut file = std::fs::File::open(input).map_err(read_err)?;
     let mut buf: Vec<u8> = Vec::with_capacity(chunk_bytes + PIECE_BYTES);
     // The header: the first line.
@@ -445,6 +446,7 @@ impl Temporary {
                 format!("cannot create folder {}: {e}", parent.display()),
             )
         })?;
+        safe_write::check_output(out, false)?;
         safe_write::clean_stale_temporaries(out);
         let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
         let file = std::fs::File::create(&tmp)

@@ -79,6 +79,7 @@ impl std::error::Error for DataError {}
 
 /// Read a whole text file, mapping I/O errors to a [`DataError`].
 pub fn read_text(path: &Path) -> Result<String, DataError> {
+    safe_write::note_input(path);
     std::fs::read_to_string(path).map_err(|e| DataError::file(path, format!("cannot read: {e}")))
 }
 
@@ -100,6 +101,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
         .ok_or_else(|| DataError::file(path, "not a file path"))?
         .to_string_lossy()
         .into_owned();
+    safe_write::check_output(path, false)?;
     safe_write::clean_stale_temporaries(path);
     let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
     let result = (|| {
@@ -135,6 +137,10 @@ pub fn write_files_atomic(files: &[(&Path, &[u8])]) -> Result<(), DataError> {
                 return Err(DataError::file(path, "not a file path"));
             }
         };
+        if let Err(e) = safe_write::check_output(path, false) {
+            cleanup(&staged);
+            return Err(e);
+        }
         safe_write::clean_stale_temporaries(path);
         let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
         let written = (|| {
@@ -207,6 +213,7 @@ pub fn write_folder_atomic_with<T>(
 ) -> Result<T, DataError> {
     let err = |m: String| DataError::file(dir, m);
     let _ = marker;
+    safe_write::check_output(dir, true)?;
     safe_write::clean_stale_temporaries(dir);
     safe_write::check_replaceable(dir)?;
     let name = dir

@@ -4,10 +4,15 @@
 //!   only if every file in it is one the manifest lists, so a user's `notes.md` beside a study's
 //!   outputs is never deleted.
 //! - No output may be one of the command's inputs, or a folder holding one ([`refuse_inputs`]).
+//! - Every file a command reads is recorded ([`note_input`]); every write goes through
+//!   [`check_output`], which refuses a path that is one of those inputs (or a folder holding
+//!   one), so a new input flag cannot forget the check; it also refuses an existing output that
+//!   is not a regular file (a FIFO, device, socket or symbolic link would be replaced by a file).
 //! - Temporaries of a killed run (`.NAME.tmp-PID`) are removed by the next run, but only ours
 //!   and only when that process is gone ([`clean_stale_temporaries`]).
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use super::DataError;
 
@@ -144,10 +149,91 @@ pub fn canonical(path: &Path) -> PathBuf {
     }
 }
 
+/// Canonical paths of every file this process has read as an input.
+static INPUTS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// Record that `path` is an input of this run: no output may then be written over it.
+pub fn note_input(path: &Path) {
+    let c = canonical(path);
+    let mut inputs = INPUTS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if !inputs.contains(&c) {
+        inputs.push(c);
+    }
+}
+
+/// What an existing non-regular path is, in words (`None` for a regular file or a folder).
+fn special_kind(meta: &std::fs::Metadata) -> Option<&'static str> {
+    let t = meta.file_type();
+    if t.is_symlink() {
+        return Some("a symbolic link (writing would replace the link itself, not its target)");
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if t.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if t.is_char_device() || t.is_block_device() {
+            return Some("a device");
+        }
+        if t.is_socket() {
+            return Some("a socket");
+        }
+    }
+    (!t.is_file() && !t.is_dir()).then_some("not a regular file")
+}
+
+/// The one check before any output is written to `out` (a file, or a folder when `folder`):
+/// it must not be one of the inputs this run has read ([`note_input`]) nor, for a folder, hold
+/// one; an existing path must be a regular file (a folder when `folder`).
+pub fn check_output(out: &Path, folder: bool) -> Result<(), DataError> {
+    if let Ok(meta) = std::fs::symlink_metadata(out) {
+        if let Some(kind) = special_kind(&meta) {
+            return Err(DataError::file(
+                out,
+                format!(
+                    "the output exists and is {kind}; outputs replace a regular file only: give a new path"
+                ),
+            ));
+        }
+        if meta.is_dir() && !folder {
+            return Err(DataError::file(
+                out,
+                "the output is a folder; give a file path",
+            ));
+        }
+    }
+    let o = canonical(out);
+    let inputs = INPUTS
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    for input in inputs.iter() {
+        if *input == o {
+            return Err(DataError::file(
+                out,
+                "the output is the same file as one of this command's inputs: writing it would replace the input; give the output a new path",
+            ));
+        }
+        if folder && input.starts_with(&o) {
+            return Err(DataError::file(
+                out,
+                format!(
+                    "the output folder holds an input of this command ({}): writing the outputs would replace it; give another folder",
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Refuse outputs that are inputs. `outputs` and `inputs` are `(flag, path)` pairs (e.g.
 /// `("--out", …)`, `("--shots", …)`); an output folder (`folder = true` in `outputs`) is also
 /// refused when an input lies inside it, since the outputs replace the whole folder. Two
-/// outputs may not be the same path either.
+/// outputs may not be the same path either. Every input read so far is checked too
+/// ([`check_output`]).
 pub fn refuse_inputs(
     outputs: &[(&str, &Path, bool)],
     inputs: &[(&str, &Path)],
@@ -184,6 +270,8 @@ pub fn refuse_inputs(
                 ));
             }
         }
+        check_output(out, *folder)
+            .map_err(|e| DataError::file(out, format!("{oflag}: {}", e.message)))?;
     }
     Ok(())
 }

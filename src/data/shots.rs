@@ -97,6 +97,7 @@ pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
 
 /// Read a shots file.
 pub fn read_shots(path: &Path) -> Result<ShotTable, DataError> {
+    crate::data::safe_write::note_input(path);
     let file = std::fs::File::open(path)
         .map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
     parse_shots(path, file)

@@ -231,6 +231,65 @@ pub fn did_you_mean<'c>(given: &str, candidates: impl Iterator<Item = &'c str>) 
         .map(|(_, c)| c)
 }
 
+/// A list of numbers of fixed shape in a TOML file (`[f64; N]`, or `N` rows of `M`): read with
+/// [`exact`] / [`exact_opt`] so that a list of the wrong length is refused, not truncated (serde's
+/// arrays read the first `N` elements and ignore the rest).
+pub trait FixedShape: Sized {
+    /// What the file holds before the length check.
+    type Raw: serde::de::DeserializeOwned;
+    /// The value when `raw` has this shape; otherwise what was expected and what was found.
+    fn from_raw(raw: Self::Raw) -> Result<Self, String>;
+}
+
+impl<const N: usize> FixedShape for [f64; N] {
+    type Raw = Vec<f64>;
+    fn from_raw(raw: Vec<f64>) -> Result<Self, String> {
+        let n = raw.len();
+        raw.try_into()
+            .map_err(|_| format!("expected a list of {N} numbers, got {n}"))
+    }
+}
+
+impl<const M: usize, const N: usize> FixedShape for [[f64; M]; N] {
+    type Raw = Vec<Vec<f64>>;
+    fn from_raw(raw: Vec<Vec<f64>>) -> Result<Self, String> {
+        let n = raw.len();
+        if n != N {
+            return Err(format!(
+                "expected a list of {N} rows of {M} numbers, got {n} rows"
+            ));
+        }
+        let mut out = [[0.0; M]; N];
+        for (i, row) in raw.into_iter().enumerate() {
+            out[i] = <[f64; M]>::from_raw(row).map_err(|e| format!("row {}: {e}", i + 1))?;
+        }
+        Ok(out)
+    }
+}
+
+/// Serde `deserialize_with` for a `Spanned` list of fixed shape (see [`FixedShape`]).
+pub fn exact<'de, D, S>(d: D) -> Result<Spanned<S>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    S: FixedShape,
+{
+    use serde::Deserialize;
+    let raw = Spanned::<S::Raw>::deserialize(d)?;
+    let span = raw.span();
+    S::from_raw(raw.into_inner())
+        .map(|v| Spanned::new(span, v))
+        .map_err(serde::de::Error::custom)
+}
+
+/// [`exact`] for an optional key (the field also needs `#[serde(default)]`).
+pub fn exact_opt<'de, D, S>(d: D) -> Result<Option<Spanned<S>>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    S: FixedShape,
+{
+    exact(d).map(Some)
+}
+
 /// Deserialize TOML `text` (strict types and keys come from `T`'s serde attributes). A syntax or
 /// schema error names the file, line, column and (when the line has one) the key; an unknown
 /// key gets the nearest allowed one; `layout` (what such a file holds) is appended so the message
@@ -290,7 +349,7 @@ fn unknown_field_hint(message: &str) -> String {
 /// The dotted key written on the line holding byte `offset`: the table header above it and the
 /// key before the line's `=` (or the header itself, on a header line). `None` when the line is
 /// neither (a value continued over several lines).
-fn key_at(text: &str, offset: usize) -> Option<String> {
+pub(crate) fn key_at(text: &str, offset: usize) -> Option<String> {
     let offset = offset.min(text.len());
     let start = text[..offset].rfind('\n').map_or(0, |i| i + 1);
     let line = text[start..].lines().next().unwrap_or("").trim();

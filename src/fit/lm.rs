@@ -8,12 +8,19 @@
 //! ```
 //!
 //! projects the trial point onto the box `[lower, upper]` (the physical bounds of the effect
-//! library), and accepts it when `χ²` falls. The gain ratio
+//! library), and accepts it when `χ²` falls. A parameter on a bound whose descent direction
+//! `−(Jᵀr)_j` points out of the box is *held* for the iteration: its row and column of the
+//! system are replaced by the identity's and its gradient by 0, so the step is the free
+//! parameters' own (with nothing held the system is exactly the one above). Without this, a
+//! fit whose optimum lies on a bound (`cor_radial`, `contact_time` or the gear restitution at
+//! 0) computes each step as if the held parameter could move, then projects it back: the free
+//! parameters' steps are wrong by the coupling and the fit crawls, often for all its iterations. The gain ratio
 //! `ρ = (χ²(θ) − χ²(θ+δ)) / (χ²(θ) − ‖r + Jδ‖²)` updates `λ` as in Nielsen (1999):
 //! accepted → `λ·max(1/3, 1 − (2ρ − 1)³)`, rejected → `λ·ν`, `ν ← 2ν`.
 //!
 //! It stops, converged, when the gradient is orthogonal to the residual to within `gtol`
-//! (`max_j |J_jᵀ r| / (‖J_j‖‖r‖) ≤ gtol`), when an accepted step changes `χ²` by less than
+//! (`max_j |J_jᵀ r| / (‖J_j‖‖r‖) ≤ gtol` over the parameters not held: the bounded problem's
+//! first-order condition), when an accepted step changes `χ²` by less than
 //! `ftol` relative (actual and predicted), when a step is below `xtol` of each parameter's
 //! range, or when no step along the damped direction lowers `χ²` (`λ` past 10¹⁶: a minimum to
 //! numerical precision). Running out of iterations is *not* convergence.
@@ -200,9 +207,18 @@ where
         let n = theta.len();
 
         let a = j.tr_mul(&j);
-        let g = j.tr_mul(&r);
+        let mut g = j.tr_mul(&r);
+        // Parameters held at a bound by the gradient (descent `−g` points out of the box): they
+        // do not move this iteration and their gradient is not a reason to go on.
+        let held: Vec<bool> = (0..n)
+            .map(|k| {
+                (theta[k] <= self.lower[k] && g[k] > 0.0)
+                    || (theta[k] >= self.upper[k] && g[k] < 0.0)
+            })
+            .collect();
         let r_norm = cost.sqrt();
         let cosine = (0..n)
+            .filter(|&k| !held[k])
             .map(|k| {
                 let cn = a[(k, k)].sqrt();
                 if cn > 0.0 && r_norm > 0.0 {
@@ -229,6 +245,14 @@ where
         let mut damped = a.clone();
         for (k, s) in scale.iter().enumerate() {
             damped[(k, k)] += self.lambda * s;
+        }
+        // A held parameter's row and column become the identity's, its gradient 0: the step
+        // solves for the free parameters alone (with none held, the system is untouched).
+        for k in (0..n).filter(|&k| held[k]) {
+            damped.row_mut(k).fill(0.0);
+            damped.column_mut(k).fill(0.0);
+            damped[(k, k)] = 1.0;
+            g[k] = 0.0;
         }
         let step_ok = damped.cholesky().map(|ch| ch.solve(&(-&g)));
         let mut accepted = false;
@@ -457,6 +481,70 @@ mod tests {
         let (given, j_given) = run(true);
         assert_eq!(given, plain);
         assert_eq!(j_given + 1, j_plain);
+    }
+
+    /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
+    struct Coupled {
+        t: Vec<f64>,
+        y: Vec<f64>,
+    }
+
+    impl Operator for Coupled {
+        type Param = DVector<f64>;
+        type Output = DVector<f64>;
+        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+            Ok(DVector::from_iterator(
+                self.t.len(),
+                self.t
+                    .iter()
+                    .zip(&self.y)
+                    .map(|(t, y)| p[0] * t + p[1] * t * t - y),
+            ))
+        }
+    }
+
+    impl Jacobian for Coupled {
+        type Param = DVector<f64>;
+        type Jacobian = DMatrix<f64>;
+        fn jacobian(&self, _: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+            Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
+                self.t[i].powi(k as i32 + 1)
+            }))
+        }
+    }
+
+    /// An optimum on a bound with the columns strongly coupled (`t` and `t²` on `[1, 2]`):
+    /// the fit converges, in a few iterations, to the constrained least-squares solution
+    /// computed independently (`b = 0`, `a = Σty/Σt²`). Projecting the unconstrained step
+    /// instead leaves `a` wrong by the coupling at every step and the fit crawls.
+    #[test]
+    fn an_optimum_on_a_bound_converges_to_the_constrained_solution() {
+        let t: Vec<f64> = (0..21).map(|i| 1.0 + i as f64 * 0.05).collect();
+        let y: Vec<f64> = t
+            .iter()
+            .enumerate()
+            .map(|(i, t)| 3.0 * t - 0.4 * t * t + 0.01 * (3.0 * i as f64).sin())
+            .collect();
+        let a_want = t.iter().zip(&y).map(|(t, y)| t * y).sum::<f64>()
+            / t.iter().map(|t| t * t).sum::<f64>();
+        let solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap();
+        let res = Executor::new(Coupled { t, y }, solver)
+            .configure(|s| s.param(DVector::from_vec(vec![1.0, 1.0])).max_iters(100))
+            .run()
+            .unwrap();
+        assert!(res.solver().converged().is_some());
+        assert!(
+            res.state().get_iter() <= 10,
+            "{} iterations",
+            res.state().get_iter()
+        );
+        let p = res.state().get_best_param().unwrap();
+        assert_eq!(p[1], 0.0);
+        assert_relative_eq!(p[0], a_want, max_relative = 1e-9);
     }
 
     #[test]

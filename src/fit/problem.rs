@@ -14,7 +14,9 @@
 //! The Jacobian is by central differences, `∂r/∂θ_j ≈ (r(θ + h_j e_j) − r(θ − h_j e_j)) /
 //! (2 h_j)`, with `h_j = 1e-4 · (upper_j − lower_j)` (for example 0.03 g of added mass,
 //! 2 µm of ball offset, 3 mdeg of loft bias); at a bound the difference is taken one-sided
-//! inside the bounds. The model for each group is built once per evaluation; the per-shot
+//! inside the bounds. On the lanes all `2p` shifted models are solved in one pass over the
+//! shots, each site's inputs read once for all of them (`problem/jacobian.rs`; the same bits as
+//! two evaluations a column). The model for each group is built once per evaluation; the per-shot
 //! loop does not allocate. A column of a per-group parameter is evaluated on that group's
 //! shots only (the others' differences are exactly zero).
 //!
@@ -46,6 +48,7 @@ use crate::club::ClubSpec;
 use crate::measurement::{expected_over, NODES_PER_SHOT};
 use crate::physics::{ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError};
 
+mod jacobian;
 mod lanes;
 
 /// Relative finite-difference step: `h_j = FD_STEP_OF_RANGE · (upper_j − lower_j)`.
@@ -449,6 +452,15 @@ impl<'a> FitProblem<'a> {
     /// Central-difference Jacobian of the residuals with respect to the active parameters,
     /// at full `theta`. Columns in the order of `active`.
     pub fn jacobian_full(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
+        // All columns in one pass over the shots where the lanes can take them (the same bits).
+        match self.jacobian_on_lanes(theta.as_slice()) {
+            Some(jac) => Ok(jac),
+            None => self.jacobian_by_columns(theta),
+        }
+    }
+
+    /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
+    fn jacobian_by_columns(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
         let m = self.rows();
         let mut jac = DMatrix::zeros(m, self.active.len());
         let column = |(k, col): (usize, &mut [f64])| -> Result<(), EvalError> {

@@ -308,12 +308,8 @@ pub enum FlightError {
     },
 }
 
-/// A value for a message: plain digits for everyday magnitudes, an exponent for huge or tiny
-/// ones (a launch file's `1e308` must not print as 309 digits).
+/// A value for a message: the crate's one rule ([`crate::limits::fmt_value`]), so a launch
+/// file's `1e308` does not print as 309 digits.
 fn shown(v: f64) -> String {
-    if v != 0.0 && v.is_finite() && !(1e-4..1e7).contains(&v.abs()) {
-        format!("{v:e}")
-    } else {
-        format!("{v}")
-    }
+    crate::limits::fmt_value(v)
 }

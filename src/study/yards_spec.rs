@@ -91,7 +91,9 @@ struct RawYards {
 #[serde(deny_unknown_fields)]
 struct RawMass {
     mass_g: Spanned<f64>,
+    #[serde(deserialize_with = "crate::data::toml_check::exact")]
     at_mm: Spanned<[f64; 3]>,
+    #[serde(deserialize_with = "crate::data::toml_check::exact")]
     bounds_mm: Spanned<[[f64; 2]; 3]>,
 }
 
@@ -105,8 +107,10 @@ struct RawOptimise {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawConstraints {
+    #[serde(default, deserialize_with = "crate::data::toml_check::exact_opt")]
     mass_g: Option<Spanned<[f64; 2]>>,
     moi_vertical_max_gcm2: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "crate::data::toml_check::exact_opt")]
     com_box_mm: Option<Spanned<[[f64; 2]; 3]>>,
 }
 
@@ -128,9 +132,12 @@ pub fn parse_yards(
     // in the `[yards]` table's own keys or types.
     let outer: Outer = toml::from_str(text).map_err(|e| {
         let at = e.span().unwrap_or(0..0);
+        let key = crate::data::toml_check::key_at(text, at.start)
+            .filter(|k| k.starts_with("yards"))
+            .unwrap_or_else(|| "yards".to_owned());
         doc.err(
             at,
-            "yards",
+            &key,
             format!(
                 "{} (the [yards] table has static_loft_deg, confidence, model and the tables \
                  atmosphere, mass, optimise, constraints; see configs/README.md)",

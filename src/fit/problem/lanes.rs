@@ -8,15 +8,63 @@ use super::{FitProblem, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
 use crate::lanes::{V, W};
 use crate::physics::impact::ContactInputs;
-use crate::physics::{DeliveryFrame, ImpactModel, Launch};
+use crate::physics::{DeliveryFrame, FaceGeometry, ImpactModel, Launch};
 use crate::sweep::fastmath::{atan2_v, hypot_v};
 use crate::sweep::kernel::{simd_level, SimdLevel};
 
 /// Predicted launch (SI), ball velocity and spin (G) of [`W`] shots, one lane a shot.
-struct LanePrediction {
-    launch: [V; 5],
-    ball_v: [V; 3],
-    ball_w: [V; 3],
+#[derive(Clone, Copy)]
+pub(super) struct LanePrediction {
+    pub(super) launch: [V; 5],
+    pub(super) ball_v: [V; 3],
+    pub(super) ball_w: [V; 3],
+}
+
+impl LanePrediction {
+    pub(super) const ZERO: Self = Self {
+        launch: [V([0.0; W]); 5],
+        ball_v: [V([0.0; W]); 3],
+        ball_w: [V([0.0; W]); 3],
+    };
+
+    /// The launch of lane `l`.
+    #[inline(always)]
+    pub(super) fn launch(&self, l: usize) -> Launch {
+        Launch {
+            ball_speed_m_s: self.launch[0].0[l],
+            launch_angle_rad: self.launch[1].0[l],
+            azimuth_rad: self.launch[2].0[l],
+            backspin_rad_s: self.launch[3].0[l],
+            sidespin_rad_s: self.launch[4].0[l],
+        }
+    }
+
+    /// The ball's velocity (`spin: false`) or spin in `G` of lane `l`.
+    #[inline(always)]
+    pub(super) fn ball(&self, l: usize, spin: bool) -> Vector3<f64> {
+        let v = if spin { &self.ball_w } else { &self.ball_v };
+        Vector3::new(v[0].0[l], v[1].0[l], v[2].0[l])
+    }
+}
+
+/// The delivery-frame inputs of [`W`] shots for one model: clubhead velocities in `F` and the
+/// rotation `R_GF`, one lane a shot.
+#[derive(Clone, Copy)]
+pub(super) struct FrameLanes {
+    v_c: [V; 3],
+    w_c: [V; 3],
+    r_gf: [[V; 3]; 3],
+}
+
+/// The face-frame inputs of one site (impact location or node) of [`W`] shots, and its weight.
+struct SiteLanes {
+    point_m: [V; 3],
+    normal: [V; 3],
+    tangent_y: [V; 3],
+    tangent_z_xz: [V; 2],
+    y_m: V,
+    z_m: V,
+    weight: V,
 }
 
 impl FitProblem<'_> {
@@ -97,16 +145,8 @@ impl FitProblem<'_> {
                     return false;
                 };
                 for (l, &i) in shots.iter().enumerate() {
-                    let launch = Launch {
-                        ball_speed_m_s: p.launch[0].0[l],
-                        launch_angle_rad: p.launch[1].0[l],
-                        azimuth_rad: p.launch[2].0[l],
-                        backspin_rad_s: p.launch[3].0[l],
-                        sidespin_rad_s: p.launch[4].0[l],
-                    };
-                    let lane = |v: &[V; 3]| Vector3::new(v[0].0[l], v[1].0[l], v[2].0[l]);
                     let r = &mut chunk[(i - start) * rows..][..rows];
-                    self.write_rows(i, &launch, &lane(&p.ball_v), &lane(&p.ball_w), r);
+                    self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), r);
                 }
             }
         }
@@ -125,110 +165,199 @@ impl FitProblem<'_> {
         cache: &SiteCache,
         idx: &[usize; W],
     ) -> Option<LanePrediction> {
-        let data = self.data;
-        let frames: [DeliveryFrame; W] = if cache.frames_fit(model) {
-            idx.map(|i| cache.frames[i])
-        } else {
-            idx.map(|i| model.delivery_frame(&data.deliveries[i]))
-        };
-        let lanes = |f: &dyn Fn(&DeliveryFrame) -> f64| V(frames.each_ref().map(f));
-        let v_c: [V; 3] = std::array::from_fn(|a| lanes(&|fr| fr.club_velocity_f_m_s[a]));
-        let w_c: [V; 3] = std::array::from_fn(|a| lanes(&|fr| fr.club_omega_f_rad_s[a]));
-        let r_gf: [[V; 3]; 3] =
-            std::array::from_fn(|a| std::array::from_fn(|b| lanes(&|fr| fr.r_gf[(a, b)])));
-        let rotate = |v: &[V; 3]| -> [V; 3] {
-            std::array::from_fn(|a| r_gf[a][0] * v[0] + r_gf[a][1] * v[1] + r_gf[a][2] * v[2])
-        };
-        let nodes = data.impact_nodes.as_ref();
-        let per = cache.sites_per_shot;
-        let same_face = *model.face() == cache.face;
-        let zero = V::splat(0.0);
-        let mut out = LanePrediction {
-            launch: [zero; 5],
-            ball_v: [zero; 3],
-            ball_w: [zero; 3],
-        };
-        for k in 0..per {
-            let mut x = ContactInputs {
-                club_velocity_f_m_s: v_c,
-                club_omega_f_rad_s: w_c,
-                point_m: [zero; 3],
-                normal: [zero; 3],
-                tangent_y: [zero; 3],
-                tangent_z_xz: [zero; 2],
-                y_m: zero,
-                z_m: zero,
-            };
-            let mut weight = zero;
-            for (l, &i) in idx.iter().enumerate() {
-                let (y, z, w) = match nodes {
-                    Some(n) => (n[i][k].y_m, n[i][k].z_m, n[i][k].weight),
-                    None => {
-                        let d = &data.deliveries[i];
-                        (d.impact_y_m, d.impact_z_m, 1.0)
-                    }
-                };
-                let cf = if same_face {
-                    cache.contacts[i * per + k].ok()?
-                } else {
-                    model.face().contact(y, z).ok()?
-                };
-                for a in 0..3 {
-                    x.point_m[a].0[l] = cf.point_m[a];
-                    x.normal[a].0[l] = cf.normal[a];
-                    x.tangent_y[a].0[l] = cf.tangent_y[a];
-                }
-                x.tangent_z_xz[0].0[l] = cf.tangent_z.x;
-                x.tangent_z_xz[1].0[l] = cf.tangent_z.z;
-                x.y_m.0[l] = y;
-                x.z_m.0[l] = z;
-                weight.0[l] = w;
-            }
-            let s = model.solve_contact(&x);
-            // The scalar solve's checks: the club approaches the ball, and the ball's and the
-            // club's states after impact are finite.
-            let finite = |v: &[V; 3]| v.iter().all(|c| c.0.iter().all(|x| x.is_finite()));
-            let p = &s.impulse_n_s;
-            let club_dv = p.map(|c| c / model.params().club_mass_kg);
-            let r_c = &s.contact_from_club_com_m;
-            let moment = [
-                r_c[1] * p[2] - r_c[2] * p[1],
-                r_c[2] * p[0] - r_c[0] * p[2],
-                r_c[0] * p[1] - r_c[1] * p[0],
-            ];
-            if (!s.normal_approach_speed_m_s.gt(zero)).any()
-                || !(finite(&s.ball_velocity_f_m_s)
-                    && finite(&s.ball_spin_f_rad_s)
-                    && finite(&club_dv)
-                    && finite(&moment))
-            {
-                return None;
-            }
-            let v = rotate(&s.ball_velocity_f_m_s);
-            let w = rotate(&s.ball_spin_f_rad_s);
-            let launch = [
-                (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(),
-                atan2_v(v[1], hypot_v(v[0], v[2])),
-                atan2_v(v[2], v[0]),
-                w[2],
-                -w[1],
-            ];
-            if nodes.is_none() {
-                out = LanePrediction {
-                    launch,
-                    ball_v: v,
-                    ball_w: w,
-                };
-            } else {
-                for (a, c) in out.launch.iter_mut().zip(launch) {
-                    *a = *a + weight * c;
-                }
-                for a in 0..3 {
-                    out.ball_v[a] = out.ball_v[a] + weight * v[a];
-                    out.ball_w[a] = out.ball_w[a] + weight * w[a];
-                }
-            }
+        let frame = self.frame_lanes(model, cache, idx);
+        let face = (*model.face() != cache.face).then(|| model.face());
+        let mut out = LanePrediction::ZERO;
+        for k in 0..cache.sites_per_shot {
+            let site = self.site_lanes(cache, idx, k, face)?;
+            let (launch, v, w) = solve_lanes(model, &frame, &site)?;
+            self.accumulate(&mut out, &site, launch, v, w);
         }
         Some(out)
     }
+
+    /// [`FitProblem::predict_lanes`] for several models of one group at once (`outs[m]` for
+    /// `models[m]`, the same bits as one at a time): each site's inputs are gathered once for all
+    /// of them (the models must share the cache's face). `frames` is scratch. `false` if any lane
+    /// of any model cannot be computed.
+    #[inline(always)]
+    pub(super) fn predict_lanes_multi(
+        &self,
+        models: &[&ImpactModel],
+        cache: &SiteCache,
+        idx: &[usize; W],
+        frames: &mut Vec<FrameLanes>,
+        outs: &mut [LanePrediction],
+    ) -> bool {
+        debug_assert!(models.iter().all(|m| *m.face() == cache.face));
+        frames.clear();
+        let mut shared = None;
+        for m in models {
+            frames.push(if cache.frames_fit(m) {
+                *shared.get_or_insert_with(|| self.frame_lanes(m, cache, idx))
+            } else {
+                self.frame_lanes(m, cache, idx)
+            });
+        }
+        outs.fill(LanePrediction::ZERO);
+        for k in 0..cache.sites_per_shot {
+            let Some(site) = self.site_lanes(cache, idx, k, None) else {
+                return false;
+            };
+            for ((model, frame), out) in models.iter().zip(frames.iter()).zip(outs.iter_mut()) {
+                let Some((launch, v, w)) = solve_lanes(model, frame, &site) else {
+                    return false;
+                };
+                self.accumulate(out, &site, launch, v, w);
+            }
+        }
+        true
+    }
+
+    /// The delivery-frame lanes of the shots `idx` for `model` (cached when its biases are the
+    /// cache's).
+    #[inline(always)]
+    fn frame_lanes(&self, model: &ImpactModel, cache: &SiteCache, idx: &[usize; W]) -> FrameLanes {
+        let frames: [DeliveryFrame; W] = if cache.frames_fit(model) {
+            idx.map(|i| cache.frames[i])
+        } else {
+            idx.map(|i| model.delivery_frame(&self.data.deliveries[i]))
+        };
+        let lanes = |f: &dyn Fn(&DeliveryFrame) -> f64| V(frames.each_ref().map(f));
+        FrameLanes {
+            v_c: std::array::from_fn(|a| lanes(&|fr| fr.club_velocity_f_m_s[a])),
+            w_c: std::array::from_fn(|a| lanes(&|fr| fr.club_omega_f_rad_s[a])),
+            r_gf: std::array::from_fn(|a| std::array::from_fn(|b| lanes(&|fr| fr.r_gf[(a, b)]))),
+        }
+    }
+
+    /// The inputs of site `k` (impact location or node `k`) of the shots `idx`: the cached
+    /// contact frames, or those of `face` when given. `None` if a location is off the face.
+    #[inline(always)]
+    fn site_lanes(
+        &self,
+        cache: &SiteCache,
+        idx: &[usize; W],
+        k: usize,
+        face: Option<&FaceGeometry>,
+    ) -> Option<SiteLanes> {
+        let nodes = self.data.impact_nodes.as_ref();
+        let per = cache.sites_per_shot;
+        let zero = V::splat(0.0);
+        let mut s = SiteLanes {
+            point_m: [zero; 3],
+            normal: [zero; 3],
+            tangent_y: [zero; 3],
+            tangent_z_xz: [zero; 2],
+            y_m: zero,
+            z_m: zero,
+            weight: zero,
+        };
+        for (l, &i) in idx.iter().enumerate() {
+            let (y, z, w) = match nodes {
+                Some(n) => (n[i][k].y_m, n[i][k].z_m, n[i][k].weight),
+                None => {
+                    let d = &self.data.deliveries[i];
+                    (d.impact_y_m, d.impact_z_m, 1.0)
+                }
+            };
+            let cf = match face {
+                None => cache.contacts[i * per + k].ok()?,
+                Some(f) => f.contact(y, z).ok()?,
+            };
+            for a in 0..3 {
+                s.point_m[a].0[l] = cf.point_m[a];
+                s.normal[a].0[l] = cf.normal[a];
+                s.tangent_y[a].0[l] = cf.tangent_y[a];
+            }
+            s.tangent_z_xz[0].0[l] = cf.tangent_z.x;
+            s.tangent_z_xz[1].0[l] = cf.tangent_z.z;
+            s.y_m.0[l] = y;
+            s.z_m.0[l] = z;
+            s.weight.0[l] = w;
+        }
+        Some(s)
+    }
+
+    /// Adds one site's solution to `out`: its weighted share over the impact-location nodes, or
+    /// the solution itself with locations taken as measured (one site a shot).
+    #[inline(always)]
+    fn accumulate(
+        &self,
+        out: &mut LanePrediction,
+        site: &SiteLanes,
+        launch: [V; 5],
+        v: [V; 3],
+        w: [V; 3],
+    ) {
+        if self.data.impact_nodes.is_none() {
+            *out = LanePrediction {
+                launch,
+                ball_v: v,
+                ball_w: w,
+            };
+        } else {
+            let weight = site.weight;
+            for (a, c) in out.launch.iter_mut().zip(launch) {
+                *a = *a + weight * c;
+            }
+            for a in 0..3 {
+                out.ball_v[a] = out.ball_v[a] + weight * v[a];
+                out.ball_w[a] = out.ball_w[a] + weight * w[a];
+            }
+        }
+    }
+}
+
+/// One site of [`W`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
+/// `G`. `None` unless the club approaches the ball and the ball's and club's states after impact
+/// are finite in every lane (the scalar solve's checks).
+#[inline(always)]
+fn solve_lanes(
+    model: &ImpactModel,
+    f: &FrameLanes,
+    site: &SiteLanes,
+) -> Option<([V; 5], [V; 3], [V; 3])> {
+    let x = ContactInputs {
+        club_velocity_f_m_s: f.v_c,
+        club_omega_f_rad_s: f.w_c,
+        point_m: site.point_m,
+        normal: site.normal,
+        tangent_y: site.tangent_y,
+        tangent_z_xz: site.tangent_z_xz,
+        y_m: site.y_m,
+        z_m: site.z_m,
+    };
+    let s = model.solve_contact(&x);
+    let finite = |v: &[V; 3]| v.iter().all(|c| c.0.iter().all(|x| x.is_finite()));
+    let p = &s.impulse_n_s;
+    let club_dv = p.map(|c| c / model.params().club_mass_kg);
+    let r_c = &s.contact_from_club_com_m;
+    let moment = [
+        r_c[1] * p[2] - r_c[2] * p[1],
+        r_c[2] * p[0] - r_c[0] * p[2],
+        r_c[0] * p[1] - r_c[1] * p[0],
+    ];
+    if (!s.normal_approach_speed_m_s.gt(V::splat(0.0))).any()
+        || !(finite(&s.ball_velocity_f_m_s)
+            && finite(&s.ball_spin_f_rad_s)
+            && finite(&club_dv)
+            && finite(&moment))
+    {
+        return None;
+    }
+    let r_gf = &f.r_gf;
+    let rotate = |v: &[V; 3]| -> [V; 3] {
+        std::array::from_fn(|a| r_gf[a][0] * v[0] + r_gf[a][1] * v[1] + r_gf[a][2] * v[2])
+    };
+    let v = rotate(&s.ball_velocity_f_m_s);
+    let w = rotate(&s.ball_spin_f_rad_s);
+    let launch = [
+        (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(),
+        atan2_v(v[1], hypot_v(v[0], v[2])),
+        atan2_v(v[2], v[0]),
+        w[2],
+        -w[1],
+    ];
+    Some((launch, v, w))
 }

@@ -343,6 +343,7 @@ fn read_rows(
     out: &mut ScratchWriter,
 ) -> Result<(), StudyError> {
     let (nv, ny, nz) = (p.variants.len(), p.ys_mm.len(), p.zs_mm.len());
+    crate::data::safe_write::note_input(rp);
     let rf =
         std::fs::File::open(rp).map_err(|e| DataError::file(rp, format!("cannot read: {e}")))?;
     let mut reader = csv_records(

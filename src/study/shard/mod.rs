@@ -56,6 +56,7 @@ pub fn sha256_hex(bytes: &[u8]) -> String {
 /// SHA-256 of the study's club file as it is now.
 fn club_sha256(p: &Prepared) -> Result<String, StudyError> {
     let path = &p.study.club_path;
+    crate::data::safe_write::note_input(path);
     let bytes = std::fs::read(path)
         .map_err(|e| DataError::file(path, format!("cannot read the study's club file: {e}")))?;
     Ok(sha256_hex(&bytes))

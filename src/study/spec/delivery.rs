@@ -16,6 +16,7 @@ pub(super) struct RawDelivery {
     pub club_path_deg: Option<Spanned<f64>>,
     pub face_angle_deg: Option<Spanned<f64>>,
     pub lie_tilt_deg: Option<Spanned<f64>>,
+    #[serde(default, deserialize_with = "crate::data::toml_check::exact_opt")]
     pub club_omega_rad_s: Option<Spanned<[f64; 3]>>,
 }
 

@@ -16,6 +16,7 @@ pub(super) struct RawDistribution {
     pub nodes: Option<Spanned<i64>>,
     pub samples: Option<Spanned<i64>>,
     pub seed: Option<Spanned<i64>>,
+    #[serde(default, deserialize_with = "crate::data::toml_check::exact_opt")]
     pub impact_centre_mm: Option<Spanned<[f64; 2]>>,
     pub sigma_y_mm: Option<Spanned<f64>>,
     pub sigma_z_mm: Option<Spanned<f64>>,

@@ -1,0 +1,345 @@
+//! Defects a hostile tester found: inputs of any flag overwritten by outputs, outputs that are
+//! not regular files, and values the checks let through. One function per theme, to keep the
+//! number of process launches (and CI time) small.
+
+#[path = "../../tests/common/mod.rs"]
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const SMASH: &str = env!("CARGO_BIN_EXE_smash");
+
+fn repo(rel: &str) -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
+}
+
+fn smash(args: &[&str]) -> Output {
+    Command::new(SMASH).args(args).output().unwrap()
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+fn club() -> String {
+    s(&repo("configs/clubs/paper_driver.toml")).to_owned()
+}
+
+/// A shots file with measured launch (the golden deliveries, their reference launch measured).
+fn measured_shots(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(repo("tests/data/golden/nominal.csv")).unwrap();
+    let path = dir.join("shots.csv");
+    std::fs::write(&path, text.replacen("pred_", "", 5)).unwrap();
+    path
+}
+
+/// Copy `from` (relative to the repository) into `dir` as `name`; returns the path and text.
+fn copy(from: &str, dir: &Path, name: &str) -> (PathBuf, String) {
+    let path = dir.join(name);
+    std::fs::copy(repo(from), &path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    (path, text)
+}
+
+fn assert_kept(path: &Path, text: &str) {
+    assert_eq!(
+        std::fs::read_to_string(path).unwrap(),
+        text,
+        "{} was changed",
+        path.display()
+    );
+}
+
+/// Every input a command reads is protected, not only the flags a command's own check lists:
+/// effect definitions, an atmosphere file, an aero table, an import mapping.
+#[test]
+fn no_input_of_any_flag_is_overwritten() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let shots = measured_shots(d);
+    let (defs, defs_text) = copy("configs/effects/example_effects.toml", d, "defs.toml");
+    let (mapping, mapping_text) = copy("configs/import/trackman.toml", d, "map.toml");
+    let atm = d.join("atm.toml");
+    let atm_text = "[atmosphere]\ntemperature_c = 20.0\n";
+    std::fs::write(&atm, atm_text).unwrap();
+    let table = d.join("aero.csv");
+    let table_text = "spin_factor,cd,cl\n0.0,0.25,0.0\n0.2,0.28,0.2\n0.4,0.32,0.3\n";
+    std::fs::write(&table, table_text).unwrap();
+    let launch = d.join("launch.csv");
+    std::fs::write(
+        &launch,
+        "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,12,2600\n",
+    )
+    .unwrap();
+    let refused = |args: &[&str], kept: &Path, text: &str| {
+        let o = smash(args);
+        common::assert_refused(&o, &["same file as one of this command's inputs"]);
+        assert_kept(kept, text);
+    };
+    let (c, sh) = (club(), s(&shots).to_owned());
+    let base = ["--club", c.as_str(), "--shots", sh.as_str()];
+    let with = |cmd: &str, rest: &[&str]| -> Vec<String> {
+        std::iter::once(cmd)
+            .chain(base)
+            .chain(rest.iter().copied())
+            .map(str::to_owned)
+            .collect()
+    };
+    let run = |v: Vec<String>, kept: &Path, text: &str| {
+        let args: Vec<&str> = v.iter().map(String::as_str).collect();
+        refused(&args, kept, text);
+    };
+    let defs_flag = ["--effect-defs", s(&defs)];
+    run(
+        with("predict", &[defs_flag[0], defs_flag[1], "--out", s(&defs)]),
+        &defs,
+        &defs_text,
+    );
+    run(
+        with(
+            "calibrate",
+            &[
+                defs_flag[0],
+                defs_flag[1],
+                "--effects",
+                "added_mass",
+                "--out-club",
+                s(&defs),
+            ],
+        ),
+        &defs,
+        &defs_text,
+    );
+    run(
+        with(
+            "compare",
+            &[defs_flag[0], defs_flag[1], "--report", s(&defs)],
+        ),
+        &defs,
+        &defs_text,
+    );
+    run(
+        with(
+            "predict",
+            &["--flight", "--atmosphere", s(&atm), "--out", s(&atm)],
+        ),
+        &atm,
+        atm_text,
+    );
+    let aero = format!("table:{}", s(&table));
+    refused(
+        &[
+            "flight",
+            "--shots",
+            s(&launch),
+            "--aero",
+            &aero,
+            "--out",
+            s(&table),
+        ],
+        &table,
+        table_text,
+    );
+    let export = d.join("tm.csv");
+    std::fs::write(
+        &export,
+        "Date,Player,Club,Club Speed,Attack Angle,Club Path,Dyn. Loft,Face Angle,Impact Offset,\
+         Impact Height,Ball Speed,Smash Factor,Launch Angle,Launch Direction,Spin Rate,Spin Axis\n\
+         ,,,[mph],[deg],[deg],[deg],[deg],[mm],[mm],[mph],[],[deg],[deg],[rpm],[deg]\n\
+         2026-01-01,G01,Driver,100,-1,0,12,0,0,0,145,1.45,11,0,2600,0\n",
+    )
+    .unwrap();
+    refused(
+        &[
+            "predict",
+            "--club",
+            &c,
+            "--shots",
+            s(&export),
+            "--format",
+            s(&mapping),
+            "--impact-offset-positive",
+            "toe",
+            "--out",
+            s(&mapping),
+        ],
+        &mapping,
+        &mapping_text,
+    );
+}
+
+/// An existing output that is not a regular file (a FIFO, a symbolic link) is refused, named,
+/// and left as it was.
+#[cfg(unix)]
+#[test]
+fn outputs_that_are_not_regular_files_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let shots = measured_shots(d);
+    let fifo = d.join("pipe");
+    assert!(Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap()
+        .success());
+    let target = d.join("target.csv");
+    std::fs::write(&target, "mine\n").unwrap();
+    let link = d.join("link.csv");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    for (out, what) in [(&fifo, "a FIFO"), (&link, "a symbolic link")] {
+        let o = smash(&[
+            "predict",
+            "--club",
+            &club(),
+            "--shots",
+            s(&shots),
+            "--out",
+            s(out),
+        ]);
+        common::assert_refused(&o, &[what]);
+        let t = std::fs::symlink_metadata(out).unwrap().file_type();
+        assert!(!t.is_file(), "{} was replaced by a file", out.display());
+    }
+    assert_kept(&target, "mine\n");
+}
+
+/// Copy `from` into `dir` as `name` with `edits` (`(old, new)`) applied; each must apply.
+fn edited(from: &str, dir: &Path, name: &str, edits: &[(&str, &str)]) -> PathBuf {
+    let mut text = std::fs::read_to_string(repo(from)).unwrap();
+    for (old, new) in edits {
+        assert!(text.contains(old), "{old} not in {from}");
+        text = text.replacen(old, new, 1);
+    }
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+/// A fixed-length TOML list that is too long is refused with its key and expected length, not
+/// silently cut to length.
+#[test]
+fn over_long_toml_lists_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let drv = "configs/clubs/paper_driver.toml";
+    let one = ["--speed", "100", "--loft", "12"];
+    for (edit, key, want) in [
+        (
+            (
+                "com_mm = [-42.3, 2.9, 1.0]",
+                "com_mm = [-42.3, 2.9, 1.0, 7.0]",
+            ),
+            "key club.com_mm",
+            "expected a list of 3 numbers, got 4",
+        ),
+        (
+            ("0.5, 4085.0]]", "0.5, 4085.0], [1.0, 2.0, 3.0]]"),
+            "key club.inertia_gcm2",
+            "expected a list of 3 rows of 3 numbers, got 4 rows",
+        ),
+        (
+            ("0.5, 4085.0]]", "0.5, 4085.0, 9.0]]"),
+            "key club.inertia_gcm2",
+            "row 3: expected a list of 3 numbers, got 4",
+        ),
+    ] {
+        let club = edited(drv, d, "club.toml", &[edit]);
+        let mut args = vec!["predict", "--club", s(&club)];
+        args.extend(one);
+        common::assert_refused(&smash(&args), &[key, want]);
+    }
+    let club = s(&repo(drv)).to_owned();
+    let study_club = (
+        "club = \"../clubs/paper_driver.toml\"",
+        &*format!("club = {club:?}"),
+    );
+    for (edit, key, want) in [
+        (
+            (
+                "at_mm = [-70.0, -10.0, 0.0]",
+                "at_mm = [-70.0, -10.0, 0.0, 1.0]",
+            ),
+            "key yards.mass.at_mm",
+            "got 4",
+        ),
+        (
+            (
+                "impact_centre_mm = [0.0, 0.0]",
+                "impact_centre_mm = [0.0, 0.0, 3.0]",
+            ),
+            "key distribution.impact_centre_mm",
+            "expected a list of 2 numbers, got 3",
+        ),
+        (
+            ("[-35.0, 35.0]]", "[-35.0, 35.0], [0.0, 1.0]]"),
+            "key yards.mass.bounds_mm",
+            "got 4 rows",
+        ),
+    ] {
+        let study = edited(
+            "configs/studies/yards_driver.toml",
+            d,
+            "study.toml",
+            &[study_club, edit],
+        );
+        let out = d.join("out");
+        let o = smash(&["run", s(&study), "--out", s(&out)]);
+        common::assert_refused(&o, &[key, want]);
+    }
+}
+
+/// Flight flags with values no flight needs: a spin-decay constant shorter than 1 s or than ten
+/// steps, a step so small the flight never ends; huge values are printed short.
+#[test]
+fn flight_steps_and_spin_decay_are_bounded() {
+    let tmp = tempfile::tempdir().unwrap();
+    let launch = tmp.path().join("launch.csv");
+    std::fs::write(
+        &launch,
+        "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,12,2600\n",
+    )
+    .unwrap();
+    let out = tmp.path().join("f.csv");
+    for (flags, want) in [
+        (
+            vec!["--spin-decay", "exp:1e-300"],
+            "TAU must be within [3.5, 10000] s",
+        ),
+        (vec!["--spin-decay", "exp:0.1"], "TAU must be within"),
+        (
+            vec!["--spin-decay", "exp:2", "--dt-s", "0.35"],
+            "10 time steps",
+        ),
+        (
+            vec!["--dt-s", "1e-9"],
+            "--dt-s 1e-9: must be within [0.0001, 0.5] s",
+        ),
+        (
+            vec!["--max-time-s", "1e308"],
+            "--max-time-s 1e308: must be within",
+        ),
+    ] {
+        let mut args = vec!["flight", "--shots", s(&launch), "--out", s(&out)];
+        args.extend(flags);
+        common::assert_refused(&smash(&args), &[want]);
+        assert!(!out.exists());
+    }
+    // A syntax error in the atmosphere file names its line and column.
+    let atm = tmp.path().join("atm.toml");
+    std::fs::write(&atm, "[atmosphere]\ntemperature_c = 20\nwind speed = 3\n").unwrap();
+    let args = [
+        "flight",
+        "--shots",
+        s(&launch),
+        "--out",
+        s(&out),
+        "--atmosphere",
+        s(&atm),
+    ];
+    common::assert_refused(&smash(&args), &["atm.toml:3: column"]);
+    let mut ok = vec!["flight", "--shots", s(&launch), "--out", s(&out)];
+    ok.extend(["--spin-decay", "exp:25"]);
+    let o = smash(&ok);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
