@@ -42,6 +42,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod fit;
 pub mod flight;
+pub mod inputs;
 pub mod lanes;
 pub mod limits;
 pub mod measurement;

@@ -11,8 +11,7 @@
 //! - Temporaries of a killed run (`.NAME.tmp-PID`) are removed by the next run, but only ours
 //!   and only when that process is gone ([`clean_stale_temporaries`]).
 
-use std::path::{Path, PathBuf};
-use std::sync::Mutex;
+use std::path::Path;
 
 use super::DataError;
 
@@ -118,50 +117,7 @@ pub fn check_replaceable(dir: &Path) -> Result<(), DataError> {
     Ok(())
 }
 
-/// Canonical form of a path that may not exist yet: its existing ancestor canonicalised, the
-/// rest appended.
-pub fn canonical(path: &Path) -> PathBuf {
-    if let Ok(c) = std::fs::canonicalize(path) {
-        return c;
-    }
-    let abs = if path.is_absolute() {
-        path.to_owned()
-    } else {
-        std::env::current_dir().unwrap_or_default().join(path)
-    };
-    let mut tail = Vec::new();
-    let mut head = abs.as_path();
-    loop {
-        if let Ok(c) = std::fs::canonicalize(head) {
-            let mut out = c;
-            for t in tail.iter().rev() {
-                out.push(t);
-            }
-            return out;
-        }
-        match (head.file_name(), head.parent()) {
-            (Some(name), Some(parent)) => {
-                tail.push(name.to_owned());
-                head = parent;
-            }
-            _ => return abs,
-        }
-    }
-}
-
-/// Canonical paths of every file this process has read as an input.
-static INPUTS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
-
-/// Record that `path` is an input of this run: no output may then be written over it.
-pub fn note_input(path: &Path) {
-    let c = canonical(path);
-    let mut inputs = INPUTS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    if !inputs.contains(&c) {
-        inputs.push(c);
-    }
-}
+pub use crate::inputs::{canonical, note_input};
 
 /// What an existing non-regular path is, in words (`None` for a regular file or a folder).
 fn special_kind(meta: &std::fs::Metadata) -> Option<&'static str> {
@@ -206,10 +162,7 @@ pub fn check_output(out: &Path, folder: bool) -> Result<(), DataError> {
         }
     }
     let o = canonical(out);
-    let inputs = INPUTS
-        .lock()
-        .unwrap_or_else(std::sync::PoisonError::into_inner);
-    for input in inputs.iter() {
+    for input in crate::inputs::recorded().iter() {
         if *input == o {
             return Err(DataError::file(
                 out,

@@ -2,8 +2,6 @@
 //! (base effects plus it, fitted on all shots and on every training fold) and each
 //! impact-location noise level (the base effects refitted with the locations treated as noisy).
 
-use std::sync::Arc;
-
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
@@ -13,8 +11,8 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    run_lm, run_lm_point_from, EffectRequest, FitData, FitError, FitProblem, FitRun, ParamLayout,
-    Progress, Weighting,
+    fit_quietly as fit, run_lm_point_from, EffectRequest, FitData, FitError, FitProblem, FitRun,
+    ParamLayout, Weighting,
 };
 use crate::measurement::ImpactNoise;
 use crate::stats;
@@ -73,18 +71,6 @@ fn fold_rows((r, j): AllShots, idx: &[usize], rows: usize) -> (DVector<f64>, DMa
         DVector::from_fn(n, |k, _| r[row(k)]),
         DMatrix::from_fn(n, j.ncols(), |k, c| j[(row(k), c)]),
     )
-}
-
-pub(super) fn fit(
-    club: &ClubSpec,
-    layout: &ParamLayout,
-    data: &FitData,
-    w: Weighting,
-    start: &DVector<f64>,
-    max_iters: u64,
-) -> Result<FitRun, FitError> {
-    let pr = FitProblem::new(club, layout.clone(), data, w);
-    run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
 }
 
 fn chi2_at(

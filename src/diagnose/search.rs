@@ -486,7 +486,7 @@ impl<'a> Search<'a> {
         let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
         let sigma = noise_scales(&errors);
         let w = Weighting::launch(&sigma);
-        let final_run = evaluate::fit(
+        let final_run = crate::fit::fit_quietly(
             self.club,
             &self.base,
             &self.data,

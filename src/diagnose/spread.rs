@@ -209,7 +209,7 @@ pub(super) fn refine_selected(
     let theta = if layout.is_empty() {
         theta.clone()
     } else {
-        match super::evaluate::fit(club, layout, &data, w, theta, max_iters) {
+        match crate::fit::fit_quietly(club, layout, &data, w, theta, max_iters) {
             Ok(run) if run.converged => run.theta,
             _ => return Ok(None),
         }

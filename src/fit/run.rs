@@ -141,6 +141,20 @@ pub fn run_lm(
     execute(problem, start, max_iters, progress, true, None)
 }
 
+/// [`run_lm`] of the problem `(club, layout, data, w)` from `start`, without progress reports:
+/// the fit diagnose's candidates, folds and refinements all make.
+pub fn fit_quietly(
+    club: &crate::club::ClubSpec,
+    layout: &super::ParamLayout,
+    data: &super::FitData,
+    w: super::Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
+}
+
 /// The solution of a fit without what only its covariance needs.
 #[derive(Debug, Clone)]
 pub struct FitPoint {

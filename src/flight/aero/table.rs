@@ -51,7 +51,7 @@ pub struct TableModel {
 impl TableModel {
     /// Read a table from a CSV file; errors name the file, line and column.
     pub fn from_path(path: &Path) -> Result<Self, String> {
-        crate::data::safe_write::note_input(path);
+        crate::inputs::note_input(path);
         let text = std::fs::read_to_string(path)
             .map_err(|e| format!("{}: cannot read the coefficient table: {e}", path.display()))?;
         Self::parse(&text, &path.display().to_string())
