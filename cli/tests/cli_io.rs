@@ -2,45 +2,17 @@
 //! user's files or the command's own inputs, outputs that appear together or not at all, and
 //! stale temporaries of killed runs.
 
+mod cli_support;
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-const SMASH: &str = env!("CARGO_BIN_EXE_smash");
-
-fn repo(rel: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
-}
-
-fn smash(args: &[&str]) -> Output {
-    Command::new(SMASH).args(args).output().unwrap()
-}
+use cli_support::{assert_kept, club, measured_shots, repo, s, smash, SMASH};
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn club() -> String {
-    repo("configs/clubs/paper_driver.toml")
-        .to_str()
-        .unwrap()
-        .to_owned()
-}
-
-/// A shots file with measured launch: the golden deliveries with their reference launch as the
-/// measurement.
-fn measured_shots(dir: &Path) -> PathBuf {
-    let text = std::fs::read_to_string(repo("tests/data/golden/nominal.csv")).unwrap();
-    let text = text.replacen("pred_", "", 5);
-    let path = dir.join("shots.csv");
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 fn study_file(dir: &Path) -> PathBuf {
@@ -110,15 +82,6 @@ fn a_closed_pipe_ends_the_command_silently_with_the_sigpipe_status() {
 }
 
 // ---- 4. a user's files are never deleted or replaced -----------------------------------------
-
-fn assert_kept(path: &Path, text: &str) {
-    assert_eq!(
-        std::fs::read_to_string(path).unwrap(),
-        text,
-        "{} was changed",
-        path.display()
-    );
-}
 
 #[test]
 fn run_refuses_a_folder_of_its_outputs_beside_a_users_file() {

@@ -2,37 +2,14 @@
 //! not regular files, and values the checks let through. One function per theme, to keep the
 //! number of process launches (and CI time) small.
 
+mod cli_support;
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-const SMASH: &str = env!("CARGO_BIN_EXE_smash");
-
-fn repo(rel: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
-}
-
-fn smash(args: &[&str]) -> Output {
-    Command::new(SMASH).args(args).output().unwrap()
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-fn club() -> String {
-    s(&repo("configs/clubs/paper_driver.toml")).to_owned()
-}
-
-/// A shots file with measured launch (the golden deliveries, their reference launch measured).
-fn measured_shots(dir: &Path) -> PathBuf {
-    let text = std::fs::read_to_string(repo("tests/data/golden/nominal.csv")).unwrap();
-    let path = dir.join("shots.csv");
-    std::fs::write(&path, text.replacen("pred_", "", 5)).unwrap();
-    path
-}
+use cli_support::{assert_kept, club, measured_shots, repo, s, smash};
 
 /// Copy `from` (relative to the repository) into `dir` as `name`; returns the path and text.
 fn copy(from: &str, dir: &Path, name: &str) -> (PathBuf, String) {
@@ -40,15 +17,6 @@ fn copy(from: &str, dir: &Path, name: &str) -> (PathBuf, String) {
     std::fs::copy(repo(from), &path).unwrap();
     let text = std::fs::read_to_string(&path).unwrap();
     (path, text)
-}
-
-fn assert_kept(path: &Path, text: &str) {
-    assert_eq!(
-        std::fs::read_to_string(path).unwrap(),
-        text,
-        "{} was changed",
-        path.display()
-    );
 }
 
 /// Every input a command reads is protected, not only the flags a command's own check lists:

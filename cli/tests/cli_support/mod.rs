@@ -1,0 +1,47 @@
+//! What the command-line tests of users' files share: the binary, the repository's files and a
+//! measured shots file, and the check that a file was left as it was.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The `smash` binary under test.
+pub const SMASH: &str = env!("CARGO_BIN_EXE_smash");
+
+/// A path in the repository.
+pub fn repo(rel: &str) -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
+}
+
+/// Run `smash` with `args`.
+pub fn smash(args: &[&str]) -> Output {
+    Command::new(SMASH).args(args).output().unwrap()
+}
+
+/// A path as an argument.
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The paper's driver, as an argument.
+pub fn club() -> String {
+    s(&repo("configs/clubs/paper_driver.toml")).to_owned()
+}
+
+/// A shots file with measured launch: the golden deliveries with their reference launch as the
+/// measurement.
+pub fn measured_shots(dir: &Path) -> PathBuf {
+    let text = std::fs::read_to_string(repo("tests/data/golden/nominal.csv")).unwrap();
+    let path = dir.join("shots.csv");
+    std::fs::write(&path, text.replacen("pred_", "", 5)).unwrap();
+    path
+}
+
+/// `path` still holds `text`.
+pub fn assert_kept(path: &Path, text: &str) {
+    assert_eq!(
+        std::fs::read_to_string(path).unwrap(),
+        text,
+        "{} was changed",
+        path.display()
+    );
+}
