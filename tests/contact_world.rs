@@ -742,6 +742,25 @@ fn nelder_mead(
     best
 }
 
+/// The default compliant contact on the 40 deliveries of seed 23: the deliveries, the world's
+/// outcomes and its launches (file units).
+fn default_world(
+    m: &ImpactModel,
+) -> (
+    Vec<Delivery>,
+    Vec<smash::synth::ContactOutcome>,
+    Vec<[f64; 5]>,
+) {
+    let ds = random_deliveries(23, 40, false);
+    let cw = ContactWorld::new(m, ContactParams::default()).unwrap();
+    let outcomes: Vec<_> = ds.iter().map(|d| cw.impact(d).unwrap()).collect();
+    let world = outcomes
+        .iter()
+        .map(|o| o.launch().to_file_units())
+        .collect();
+    (ds, outcomes, world)
+}
+
 /// The compression lever (`compression_lever`), checked against the default compliant contact
 /// without a shaft tip (finite Hertz contact, Mindlin spring with μ = 0.35). The momentum model
 /// gets every other ingredient the world has, each fitted: a COR level and slope with speed
@@ -756,13 +775,7 @@ fn nelder_mead(
 #[test]
 fn compression_lever_fits_the_compliant_contact() {
     let m = paper();
-    let ds = random_deliveries(23, 40, false);
-    let cw = ContactWorld::new(&m, ContactParams::default()).unwrap();
-    let outcomes: Vec<_> = ds.iter().map(|d| cw.impact(d).unwrap()).collect();
-    let world: Vec<[f64; 5]> = outcomes
-        .iter()
-        .map(|o| o.launch().to_file_units())
-        .collect();
+    let (ds, outcomes, world) = default_world(&m);
     let peak_mm =
         outcomes.iter().map(|o| o.max_compression_m).sum::<f64>() / outcomes.len() as f64 * 1e3;
     let misfit = |t: &[f64], lever: bool| compliant_misfit(&ds, &world, None, t, lever);
@@ -842,13 +855,7 @@ fn compliant_misfit(
 #[test]
 fn ball_travel_over_the_face_is_what_the_lever_leaves() {
     let m = paper();
-    let ds = random_deliveries(23, 40, false);
-    let cw = ContactWorld::new(&m, ContactParams::default()).unwrap();
-    let outcomes: Vec<_> = ds.iter().map(|d| cw.impact(d).unwrap()).collect();
-    let world: Vec<[f64; 5]> = outcomes
-        .iter()
-        .map(|o| o.launch().to_file_units())
-        .collect();
+    let (ds, outcomes, world) = default_world(&m);
     let u1t: Vec<[f64; 2]> = outcomes
         .iter()
         .map(|o| [o.tangential_before_m_s.y, o.tangential_before_m_s.z])
