@@ -291,7 +291,7 @@ impl Flight {
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FlightError {
     /// A launch value out of its physical range.
-    #[error("{field} = {}: {allowed}", shown(*value))]
+    #[error("{field} = {}: {allowed}", crate::limits::fmt_value(*value))]
     InvalidLaunch {
         /// Column name (file units).
         field: &'static str,
@@ -306,10 +306,4 @@ pub enum FlightError {
         /// The limit, s.
         time_limit_s: f64,
     },
-}
-
-/// A value for a message: the crate's one rule ([`crate::limits::fmt_value`]), so a launch
-/// file's `1e308` does not print as 309 digits.
-fn shown(v: f64) -> String {
-    crate::limits::fmt_value(v)
 }
