@@ -335,7 +335,8 @@ fn add_flight(
     predictions: &[u8],
     outcomes: &[smash::physics::ImpactOutcome],
 ) -> anyhow::Result<Vec<u8>> {
-    use smash::data::flight_files::{flight_csv, parse_raw_csv};
+    use smash::data::flight_files::{flight_csv, parse_raw_csv, OutputLayout};
+    use smash::data::flight_measured::check_measured;
     let cfg = args.flight_options.config()?;
     let launches: Vec<smash::flight::FlightLaunch> = outcomes
         .iter()
@@ -346,6 +347,8 @@ fn add_flight(
         shots_path,
         &smash::data::read_text(shots_path)?.into_bytes(),
     )?;
+    let layout = OutputLayout::new(&shots_raw.headers, cfg.ground.is_some());
+    check_measured(shots_path, &layout, &shots_raw.records, &shots_raw.lines)?;
     let flights = crate::flight::collect(
         shots_path,
         &shots_raw.lines,
