@@ -148,7 +148,12 @@ fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
         let d6 = common::deliveries()[6];
         assert!(
             (model.solve(&d6).unwrap().ball_spin_rad_s
-                - model.clone().without_travel().solve(&d6).unwrap().ball_spin_rad_s)
+                - model
+                    .clone()
+                    .without_travel()
+                    .solve(&d6)
+                    .unwrap()
+                    .ball_spin_rad_s)
                 .norm()
                 > 1.0
         );
@@ -303,7 +308,10 @@ fn contact_time_travel_obeys_its_invariants() {
         moved.dot(&cf.tangent_y) * 1e3,
         u1t.norm()
     );
-    assert!(u1t.dot(&cf.tangent_y) < 0.0, "the face slides down under the ball");
+    assert!(
+        u1t.dot(&cf.tangent_y) < 0.0,
+        "the face slides down under the ball"
+    );
     assert!(
         s > 0.42 && s < 0.5,
         "travel {} mm up the face = {s:.3}·τ·|u1t|",
