@@ -306,14 +306,18 @@ impl DeliveryNoise {
 
     /// Is any variable (other than the impact location) noisy?
     pub fn is_active(&self) -> bool {
-        DeliveryVar::ALL
-            .iter()
-            .any(|&v| !matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ) && self.sd[v.index()] > 0.0)
+        DeliveryVar::ALL.iter().any(|&v| {
+            !matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ) && self.sd[v.index()] > 0.0
+        })
     }
 
     /// The deliveries at the conditional mean of their true values, given every shot's measured
     /// delivery and its golfer (`None` for all: pooled). `golfer_of` has one entry per delivery.
-    pub fn calibrate(&self, deliveries: &[Delivery], golfer_of: &[Option<String>]) -> Vec<Delivery> {
+    pub fn calibrate(
+        &self,
+        deliveries: &[Delivery],
+        golfer_of: &[Option<String>],
+    ) -> Vec<Delivery> {
         let mut out = deliveries.to_vec();
         let n = deliveries.len();
         if n < 3 {
@@ -322,7 +326,9 @@ impl DeliveryNoise {
         let groups = golfer_groups(golfer_of);
         for v in DeliveryVar::ALL {
             let s2 = self.sd[v.index()].powi(2);
-            if matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ) || !(s2.is_finite() && s2 > 0.0) {
+            if matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ)
+                || !(s2.is_finite() && s2 > 0.0)
+            {
                 continue;
             }
             let m: Vec<f64> = deliveries.iter().map(|d| v.file_value(d)).collect();
@@ -350,7 +356,9 @@ fn golfer_groups(golfer_of: &[Option<String>]) -> Vec<Vec<usize>> {
     }
     let mut by: std::collections::BTreeMap<&str, Vec<usize>> = Default::default();
     for (i, g) in golfer_of.iter().enumerate() {
-        by.entry(g.as_deref().unwrap_or_default()).or_default().push(i);
+        by.entry(g.as_deref().unwrap_or_default())
+            .or_default()
+            .push(i);
     }
     by.into_values().collect()
 }
@@ -375,7 +383,11 @@ impl RandomEffects {
         if g >= n {
             // Every shot its own group: no within-golfer replication, pooled variance.
             let var = m.iter().map(|x| (x - mu).powi(2)).sum::<f64>() / (n - 1.0);
-            return Self { mu, tau2: 0.0, a: var };
+            return Self {
+                mu,
+                tau2: 0.0,
+                a: var,
+            };
         }
         let mut ss_within = 0.0;
         let mut ss_between = 0.0;
@@ -469,11 +481,11 @@ mod tests {
         let mut who = Vec::new();
         for g in 0..golfers {
             for s in 0..swings {
-                let mph = 95.0 + 6.0 * ((g * 7 % 11) as f64 - 5.0) / 5.0
+                let mph = 95.0
+                    + 6.0 * ((g * 7 % 11) as f64 - 5.0) / 5.0
                     + 1.5 * ((s * 5 + g) % 7) as f64 / 3.0;
-                let mut d = crate::physics::delivery_vars::delivery_from_file_units(
-                    &[0.0; N_DELIVERY],
-                );
+                let mut d =
+                    crate::physics::delivery_vars::delivery_from_file_units(&[0.0; N_DELIVERY]);
                 DeliveryVar::ClubSpeed.set_file_value(&mut d, mph);
                 ds.push(d);
                 who.push(Some(format!("G{g}")));
@@ -495,16 +507,18 @@ mod tests {
         let (ds, who) = speeds(12, 6);
         let sd = 0.9;
         let got = club_speed_noise(sd).calibrate(&ds, &who);
-        let m: Vec<f64> = ds.iter().map(|d| DeliveryVar::ClubSpeed.file_value(d)).collect();
+        let m: Vec<f64> = ds
+            .iter()
+            .map(|d| DeliveryVar::ClubSpeed.file_value(d))
+            .collect();
         let groups = golfer_groups(&who);
         let c = RandomEffects::estimate(&m, &groups);
         assert!(c.tau2 > 0.0 && c.a > sd * sd);
         let omega2 = c.a - sd * sd;
         for g in &groups {
             let k = g.len();
-            let cov_m = nalgebra::DMatrix::from_fn(k, k, |i, j| {
-                c.tau2 + if i == j { c.a } else { 0.0 }
-            });
+            let cov_m =
+                nalgebra::DMatrix::from_fn(k, k, |i, j| c.tau2 + if i == j { c.a } else { 0.0 });
             let dev = nalgebra::DVector::from_fn(k, |i, _| m[g[i]] - c.mu);
             let sol = cov_m.lu().solve(&dev).unwrap();
             for (i, &shot) in g.iter().enumerate() {
@@ -524,7 +538,10 @@ mod tests {
         let none = vec![None; ds.len()];
         let sd = 0.9;
         let got = club_speed_noise(sd).calibrate(&ds, &none);
-        let m: Vec<f64> = ds.iter().map(|d| DeliveryVar::ClubSpeed.file_value(d)).collect();
+        let m: Vec<f64> = ds
+            .iter()
+            .map(|d| DeliveryVar::ClubSpeed.file_value(d))
+            .collect();
         let n = m.len() as f64;
         let mu = m.iter().sum::<f64>() / n;
         let var = m.iter().map(|x| (x - mu).powi(2)).sum::<f64>() / (n - 1.0);

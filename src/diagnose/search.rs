@@ -6,7 +6,7 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::evaluate::{self, cv_chi2, make_folds, EffectFit, Folds, NoiseFit, StepBase};
-use super::spread::{self, SpreadModel};
+use super::spread::SpreadModel;
 use super::{
     default_candidates, honest, noise_floor, select, CandidateResult, DiagnoseOptions,
     DiagnoseProgress, Diagnosis, FoldBy, Step,
@@ -344,34 +344,6 @@ impl<'a> Search<'a> {
             noise_fits,
             base_cv,
         })
-    }
-
-    /// Adopt the impact-noise level `noise` (base parameters `theta`) refined by the spread
-    /// ([`spread::refine_selected`]; `exact`: the data with the locations as measured).
-    fn adopt_refined(
-        &mut self,
-        noise: ImpactNoise,
-        exact: &FitData,
-        theta: DVector<f64>,
-        w: Weighting,
-    ) -> Result<(), FitError> {
-        let inst = self.opts.noise_floor.clone();
-        let refined = spread::refine_selected(
-            (self.club, &self.base_club()?, self.shots),
-            inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
-            (&self.base, &theta, w, self.opts.max_iters),
-            exact,
-            &self.opts.impact_noise_candidates_mm,
-            noise,
-        )?;
-        self.theta_base = theta;
-        if let Some((noise, data, theta)) = refined {
-            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
-            self.data = data;
-            self.chosen_noise = Some(noise);
-            self.theta_base = theta;
-        }
-        Ok(())
     }
 
     /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.

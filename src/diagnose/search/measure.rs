@@ -8,11 +8,32 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::super::evaluate::{self, make_folds, Folds, NoiseFit, StepBase};
-use super::super::noise_floor::InstrumentClass;
+use super::super::noise_floor::{self, InstrumentClass};
+use super::super::spread;
 use super::super::{CandidateResult, DiagnoseOptions};
 use super::Search;
-use crate::fit::{FitData, FitError};
+use crate::fit::calibrate::noise_scales;
+use crate::fit::{FitData, FitError, FitProblem, Weighting};
 use crate::measurement::{DeliveryNoise, ImpactNoise};
+use crate::physics::delivery_vars::DeliveryVar;
+
+/// The delivery variables whose noise [`Search::refine_delivery`] refines: those the launch
+/// depends on most (lie tilt and the head's rotation keep the level's multiple).
+const REFINED: [DeliveryVar; 5] = [
+    DeliveryVar::ClubSpeed,
+    DeliveryVar::DynamicLoft,
+    DeliveryVar::AttackAngle,
+    DeliveryVar::ClubPath,
+    DeliveryVar::FaceAngle,
+];
+
+/// Multiples of the camera-class SD a refined variable may take (0: measured exactly).
+const REFINE_SCALES: [f64; 7] = [0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0];
+
+/// `Σ_c (e_c/s_c)²`.
+fn weighted(e: &[f64; 5], s: &[f64; 5]) -> f64 {
+    e.iter().zip(s).map(|(e, s)| (e / s).powi(2)).sum()
+}
 
 /// One delivery-noise level offered as a candidate: the multiple of the camera class's delivery
 /// SDs, the noise, and the data calibrated for it with its folds.
@@ -30,7 +51,12 @@ pub fn delivery_noise_label(scale: f64) -> String {
 
 /// The delivery noise `scale` × the camera class's delivery SDs.
 fn scaled_camera(scale: f64) -> DeliveryNoise {
-    DeliveryNoise::new(InstrumentClass::Camera.noise().delivery_sd.map(|s| s * scale))
+    DeliveryNoise::new(
+        InstrumentClass::Camera
+            .noise()
+            .delivery_sd
+            .map(|s| s * scale),
+    )
 }
 
 /// Fold of every shot and the number of folds.
@@ -108,19 +134,122 @@ impl Search<'_> {
             .collect()
     }
 
-    /// Make delivery-noise level `j` (base parameters `theta` refitted under it) the model's.
+    /// Make delivery-noise level `j` (base parameters `theta` refitted under it) the model's,
+    /// its noise refined variable by variable ([`Self::refine_delivery`]).
     pub(super) fn adopt_delivery(&mut self, j: usize, theta: DVector<f64>) {
         let o = self.delivery_options.swap_remove(j);
         self.delivery_options.clear();
-        self.data = o.data;
+        let exact = std::mem::replace(&mut self.data, o.data);
         self.folds = o.folds;
         self.chosen_delivery = Some(o.noise);
         self.theta_base = theta;
+        if let Some(noise) = self.refine_delivery(&exact, o.noise) {
+            let data = exact.with_delivery_noise(Some(noise));
+            let w = Weighting::launch(&noise_scales(
+                &self
+                    .errors_of(&self.base, self.theta_base.as_slice())
+                    .unwrap_or_default(),
+            ));
+            let refit = if self.base.is_empty() {
+                Some(self.theta_base.clone())
+            } else {
+                crate::fit::fit_quietly(
+                    self.club,
+                    &self.base,
+                    &data,
+                    w,
+                    &self.theta_base,
+                    self.opts.max_iters,
+                )
+                .ok()
+                .filter(|r| r.converged)
+                .map(|r| r.theta)
+            };
+            if let Some(theta) = refit {
+                self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
+                self.data = data;
+                self.chosen_delivery = Some(noise);
+                self.theta_base = theta;
+            }
+        }
         if self.chosen_noise.is_none() {
             let plan = (self.fold_of.as_slice(), self.folds.train.len());
             self.noise_options =
                 impact_options(&self.data, self.opts, plan, &mut Vec::new()).unwrap_or_default();
         }
+    }
+
+    /// The selected level `noise` refined one variable at a time: each variable that moves the
+    /// launch ([`REFINED`]) takes the multiple of its camera-class SD in [`REFINE_SCALES`] whose
+    /// calibrated data give the base model (at its current parameters, not refitted) the least
+    /// χ² on all shots, weighted by the base errors' robust scales. A uniform multiple of the
+    /// camera class is a coarse grid: a motion-capture rig may measure speed and loft twice as
+    /// noisily and the angles no worse, and the variables it leaves over- or under-corrected
+    /// bend the slopes as the noise itself does. `exact`: the deliveries as measured. `None`
+    /// when nothing changes.
+    fn refine_delivery(&self, exact: &FitData, noise: DeliveryNoise) -> Option<DeliveryNoise> {
+        let camera = InstrumentClass::Camera.noise().delivery_sd;
+        let scales = noise_scales(
+            &self
+                .errors_of(&self.base, self.theta_base.as_slice())
+                .ok()?,
+        );
+        let chi2 = |n: DeliveryNoise| -> Option<f64> {
+            let data = exact.clone().with_delivery_noise(Some(n));
+            let errs = FitProblem::new(
+                self.club,
+                self.base.clone(),
+                &data,
+                Weighting::launch(&[1.0; 5]),
+            )
+            .launch_errors(self.theta_base.as_slice())
+            .ok()?;
+            Some(errs.iter().map(|e| weighted(e, &scales)).sum())
+        };
+        let mut best = noise;
+        for v in REFINED {
+            let i = v.index();
+            let tried: Vec<(f64, f64)> = REFINE_SCALES
+                .par_iter()
+                .filter_map(|&k| {
+                    let mut n = best;
+                    n.sd[i] = k * camera[i];
+                    Some((chi2(n)?, k * camera[i]))
+                })
+                .collect();
+            if let Some(&(_, sd)) = tried.iter().min_by(|a, b| a.0.total_cmp(&b.0)) {
+                best.sd[i] = sd;
+            }
+        }
+        (best != noise).then_some(best)
+    }
+
+    /// Adopt the impact-noise level `noise` (base parameters `theta`) refined by the spread
+    /// ([`spread::refine_selected`]; `exact`: the data with the locations as measured).
+    pub(super) fn adopt_refined(
+        &mut self,
+        noise: ImpactNoise,
+        exact: &FitData,
+        theta: DVector<f64>,
+        w: Weighting,
+    ) -> Result<(), FitError> {
+        let inst = self.opts.noise_floor.clone();
+        let refined = spread::refine_selected(
+            (self.club, &self.base_club()?, self.shots),
+            inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
+            (&self.base, &theta, w, self.opts.max_iters),
+            exact,
+            &self.opts.impact_noise_candidates_mm,
+            noise,
+        )?;
+        self.theta_base = theta;
+        if let Some((noise, data, theta)) = refined {
+            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
+            self.data = data;
+            self.chosen_noise = Some(noise);
+            self.theta_base = theta;
+        }
+        Ok(())
     }
 
     /// After an impact-noise level is adopted: the open delivery levels, rebuilt on the new data.
