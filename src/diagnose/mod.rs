@@ -29,6 +29,13 @@
 //!    candidates still are) and the selection stops. This is what keeps false discoveries
 //!    rare in worlds whose delivery is measured with noise (`docs/diagnose-selection.md`).
 //!
+//! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
+//! delivery (errors in variables: flatter slopes than the model's), which over thousands of
+//! shots an effect that bends the slopes would absorb. With known instrument noise the fits
+//! evaluate the model at the conditional mean of the true delivery
+//! ([`crate::measurement::DeliveryNoise`]); without it, delivery-noise levels compete as
+//! measurement candidates like the impact-noise ones.
+//!
 //! Once a global effect is selected, its per-group form (`added_mass@group`) stays a candidate
 //! as a *refinement* that replaces it (gaining `groups − 1` parameters); other kinds already
 //! selected are not offered again.

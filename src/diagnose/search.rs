@@ -1,6 +1,7 @@
 //! The state of forward selection and its named steps: folds and candidates offered, then per
 //! step the noise-floor check, scoring every open candidate ([`super::evaluate`]), choosing
 //! ([`super::select`]), adopting the winner, and at the end the calibration of what was selected.
+//! The measurement candidates' data (impact- and delivery-noise levels) are in [`measure`].
 
 use nalgebra::DVector;
 use rayon::prelude::*;
@@ -15,10 +16,10 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions};
 use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
 use crate::measurement::{DeliveryNoise, ImpactNoise};
-
-mod measure;
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
+
+mod measure;
 
 fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
