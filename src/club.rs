@@ -71,6 +71,33 @@ impl ClubSpec {
         groups
     }
 
+    /// `Ok` when `group` (a `--group` flag or a study's `group`) names a group of this club's
+    /// effects, or is `all` (the default: the effects that name no group); otherwise a message
+    /// listing the groups the club has. A group no effect names would silently get the global
+    /// effects only, which is never what a user who typed it meant.
+    pub fn check_group(&self, group: &str) -> Result<(), String> {
+        let groups = self.effect_groups();
+        if group == "all" || groups.iter().any(|g| g == group) {
+            return Ok(());
+        }
+        let have = if groups.is_empty() {
+            "it has no group effects, so only 'all' (the default) applies".to_owned()
+        } else {
+            format!(
+                "its groups are {}, or 'all' (the effects that name no group)",
+                groups
+                    .iter()
+                    .map(|g| format!("'{}'", crate::data::escape(g)))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        Err(format!(
+            "group '{}' is not a group of this club's effects; {have}",
+            crate::data::escape(group)
+        ))
+    }
+
     /// Model parameters for shots of `group`: nominal plus every effect that applies.
     pub fn params_for_group(&self, group: &str) -> ModelParams {
         let mut p = self.nominal.clone();

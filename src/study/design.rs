@@ -286,6 +286,7 @@ impl Design {
             mm(self.get(DesignVar::ComDy)),
             mm(self.get(DesignVar::ComDz)),
         );
+        crate::limits::check_club_com_x_mm(p.club_com_m.x * 1e3).map_err(err)?;
         let s = self.get(DesignVar::InertiaScale);
         if !(s > 0.0) {
             return Err(err(format!("inertia_scale must be > 0, got {s}")));
