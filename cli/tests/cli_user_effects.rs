@@ -3,14 +3,13 @@
 //! writes its definition into the calibrated club, which `predict` and `run` then read alone;
 //! a value out of range at evaluation names the shot; an undefined effect is refused.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use smash::effects::EffectKind;
 
-fn repo(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(p)
-}
+use cli_support::{repo, smash};
 
 fn example_defs() -> PathBuf {
     repo("configs/effects/example_effects.toml")
@@ -18,13 +17,6 @@ fn example_defs() -> PathBuf {
 
 // ---------------------------------------------------------------------------------------------
 // The commands.
-
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn ok(o: &std::process::Output, what: &str) {
     assert!(

@@ -467,29 +467,15 @@ fn groups_steps_and_levels_are_checked() {
         d,
         "[[effect]]\nname = \"cor_level\"\ndcor = 0.01\ngroup = \"A\"\n",
     );
-    let o = smash(&[
-        "predict",
-        "--club",
-        s(&grouped),
-        "--speed",
-        "100",
-        "--loft",
-        "12",
-        "--group",
-        "B",
-    ]);
-    common::assert_refused(&o, &["group 'B' is not a group", "its groups are 'A'"]);
-    let o = smash(&[
-        "predict",
-        "--club",
-        s(&grouped),
-        "--speed",
-        "100",
-        "--loft",
-        "12",
-        "--group",
-        "A",
-    ]);
+    let in_group = |g: &str| {
+        let one = ["--speed", "100", "--loft", "12", "--group", g];
+        smash(&[&["predict", "--club", s(&grouped)][..], &one].concat())
+    };
+    common::assert_refused(
+        &in_group("B"),
+        &["group 'B' is not a group", "its groups are 'A'"],
+    );
+    let o = in_group("A");
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     let club = s(&repo("configs/clubs/paper_driver.toml")).to_owned();
     let study_club = (
@@ -534,20 +520,20 @@ fn groups_steps_and_levels_are_checked() {
     }
     let shots = measured_shots(d);
     let out = d.join("cmp");
-    for (flag, value, want) in [
+    let levels = [
         (
-            "--alpha",
-            "1e-308",
+            "--alpha 1e-308",
             "--alpha 1e-308: must be within [1e-9, 0.5]",
         ),
-        ("--alpha", "2e300", "--alpha 2e300: must be within"),
+        ("--alpha 2e300", "--alpha 2e300: must be within"),
         (
-            "--bin-mm",
-            "1e300",
+            "--bin-mm 1e300",
             "--bin-mm 1e300: must be within [0.5, 100] mm",
         ),
-        ("--bin-mm", "1e-300", "--bin-mm 1e-300: must be within"),
-    ] {
+        ("--bin-mm 1e-300", "--bin-mm 1e-300: must be within"),
+    ];
+    for (flag_value, want) in levels {
+        let (flag, value) = flag_value.split_once(' ').unwrap();
         let o = smash(&[
             "compare",
             "--club",
