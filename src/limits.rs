@@ -208,12 +208,18 @@ pub const CLUB_COM_MM: PhysicalRange =
 /// (a driver's about 40 mm): at or in front of the face plane (`x ≥ 0`) it is not a clubhead.
 /// The far end is [`CLUB_COM_MM`]'s.
 pub fn check_club_com_x_mm(x_mm: f64) -> Result<f64, String> {
+    check_behind_face_mm("club centre of mass", x_mm)
+}
+
+/// [`check_club_com_x_mm`] for any part of the head (`what`: a discretionary mass, …): the
+/// head's mass lies behind its face.
+pub fn check_behind_face_mm(what: &str, x_mm: f64) -> Result<f64, String> {
     if x_mm < 0.0 && CLUB_COM_MM.contains(x_mm) {
         Ok(x_mm)
     } else {
         Err(format!(
-            "club centre of mass x = {} mm is at or in front of the face (x_F points out of the \
-             face, the face is at x = 0); it must be behind the face, in [-500, 0) mm",
+            "{what} x = {} mm is at or in front of the face (x_F points out of the face, the \
+             face is at x = 0); it must be behind the face, in [-500, 0) mm",
             fmt_value(x_mm)
         ))
     }

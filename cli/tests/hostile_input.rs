@@ -388,6 +388,26 @@ fn effects_clubs_and_deliveries_beyond_the_physical_are_refused() {
     );
     let o = smash(&["run", s(&study), "--out", s(&d.join("out"))]);
     common::assert_refused(&o, &["com_dx_mm = 100", "at or in front of the face"]);
+    let yards = edited(
+        "configs/studies/yards_driver.toml",
+        d,
+        "yards.toml",
+        &[
+            (
+                "club = \"../clubs/paper_driver.toml\"",
+                &format!("club = {club:?}"),
+            ),
+            ("at_mm = [-70.0, -10.0, 0.0]", "at_mm = [50.0, -10.0, 0.0]"),
+        ],
+    );
+    let o = smash(&["run", s(&yards), "--out", s(&d.join("out"))]);
+    common::assert_refused(
+        &o,
+        &[
+            "key yards.mass.at_mm",
+            "discretionary mass x = 50 mm is at or in front",
+        ],
+    );
     let o = smash(&["predict", "--club", &club, "--speed", "100", "--loft", "90"]);
     common::assert_refused(
         &o,

@@ -274,6 +274,11 @@ impl Design {
             })?;
             let m = p.club_mass_kg;
             let old_com = p.club_com_m;
+            crate::limits::check_behind_face_mm(
+                "the moved discretionary mass",
+                (md.at_m.x + delta.x) * 1e3,
+            )
+            .map_err(err)?;
             let r0 = md.at_m - old_com;
             let r1 = r0 + delta;
             let shift = delta * (md.mass_kg / m);

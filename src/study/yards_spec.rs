@@ -236,6 +236,8 @@ fn parse_mass(
         ));
     }
     let at = doc.each_ranged(&m.at_mm, "yards.mass.at_mm", limits::CLUB_COM_MM)?;
+    limits::check_behind_face_mm("the discretionary mass", at[0])
+        .map_err(|e| doc.err(m.at_mm.span(), "yards.mass.at_mm", e))?;
     let b = *m.bounds_mm.get_ref();
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         let [lo, hi] = b[k];
@@ -250,6 +252,11 @@ fn parse_mass(
             ));
         }
     }
+    limits::check_behind_face_mm(
+        "the discretionary mass at its upper x bound",
+        at[0] + b[0][1],
+    )
+    .map_err(|e| doc.err(m.bounds_mm.span(), "yards.mass.bounds_mm", e))?;
     let mass = DiscretionaryMass {
         mass_kg: g(mg),
         at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),

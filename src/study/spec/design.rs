@@ -176,6 +176,8 @@ fn parse_mass(
             ))
         }
     };
+    limits::check_behind_face_mm("the discretionary mass", at[0])
+        .map_err(|m| doc.err(v.span(), at_key, m))?;
     Ok(DiscretionaryMass {
         mass_kg: g(m),
         at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),
