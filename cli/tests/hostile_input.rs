@@ -461,6 +461,13 @@ fn import_errors_name_the_exports_line_and_column() {
         common::assert_refused(&import(text, &[]), &[want]);
         assert!(!out.exists());
     }
+    // The same line with CRLF and with CR-only line ends (old Mac exports), a blank line and
+    // an average row before it.
+    let bad = row("999", "12", "2600", "-3");
+    for end in ["\r\n", "\r"] {
+        let text = [head, units, &good, "", &avg, &good, &bad, ""].join(end);
+        common::assert_refused(&import(text, &[]), &["tm.csv:7: column 'Club Speed'"]);
+    }
     for flags in [&[][..], &["--ignore-unknown-columns"][..]] {
         let o = import(
             format!("{head},Club Speed\n{units},[mph]\n{good},100\n"),

@@ -77,6 +77,36 @@ impl fmt::Display for DataError {
 
 impl std::error::Error for DataError {}
 
+/// The byte offsets of the line ends of `bytes`: every `\n`, and every `\r` not followed by
+/// `\n` (old Mac line ends), so that files with LF, CRLF or CR-only line ends are numbered
+/// alike. A position's 1-based line is the number of line ends before it, plus one.
+pub fn line_ends(bytes: &[u8]) -> Vec<usize> {
+    line_ends_of(bytes)
+}
+
+/// The 1-based line of the record the CSV reader says starts at byte `start` of `bytes`, whose
+/// line ends are `ends` ([`line_ends`]). The reader's start may sit on the line end before the
+/// record (the `\n` of a CRLF, or a blank line it skipped): the line is that of the first byte
+/// past those line ends.
+pub fn record_line(bytes: &[u8], ends: &[usize], start: u64) -> usize {
+    let mut at = usize::try_from(start)
+        .unwrap_or(usize::MAX)
+        .min(bytes.len());
+    while at < bytes.len() && matches!(bytes[at], b'\r' | b'\n') {
+        at += 1;
+    }
+    ends.partition_point(|&e| e < at) + 1
+}
+
+fn line_ends_of(bytes: &[u8]) -> Vec<usize> {
+    bytes
+        .iter()
+        .enumerate()
+        .filter(|&(i, &b)| b == b'\n' || (b == b'\r' && bytes.get(i + 1) != Some(&b'\n')))
+        .map(|(i, _)| i)
+        .collect()
+}
+
 /// Read a whole text file, mapping I/O errors to a [`DataError`].
 pub fn read_text(path: &Path) -> Result<String, DataError> {
     safe_write::note_input(path);

@@ -164,26 +164,23 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
 }
 
 /// Lines from byte offsets: the csv crate's own line count is off for CRLF files (as written
-/// by Excel and Python's csv module).
-struct LineIndex {
-    newlines: Vec<usize>,
+/// by Excel and Python's csv module) and for CR-only ones.
+struct LineIndex<'b> {
+    bytes: &'b [u8],
+    ends: Vec<usize>,
 }
 
-impl LineIndex {
-    fn new(bytes: &[u8]) -> Self {
-        let newlines = bytes
-            .iter()
-            .enumerate()
-            .filter(|(_, &b)| b == b'\n')
-            .map(|(i, _)| i)
-            .collect();
-        Self { newlines }
+impl<'b> LineIndex<'b> {
+    fn new(bytes: &'b [u8]) -> Self {
+        Self {
+            bytes,
+            ends: super::line_ends(bytes),
+        }
     }
 
-    /// 1-based line of a position. With CRLF the reported byte is the previous line's `\n`
-    /// itself, hence `<=`.
+    /// 1-based line of the record at a position ([`super::record_line`]).
     fn line_of(&self, p: &csv::Position) -> usize {
-        self.newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1
+        super::record_line(self.bytes, &self.ends, p.byte())
     }
 
     fn csv_error(&self, path: &Path, e: csv::Error) -> DataError {
