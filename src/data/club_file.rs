@@ -108,7 +108,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         return Err(ctx.err(
             c.cor.span(),
             "club.cor",
-            format!("must be in (0, 1], got {cor}"),
+            format!("must be in (0, 1], got {}", crate::limits::fmt_value(cor)),
         ));
     }
     let loft = match &c.loft_deg {

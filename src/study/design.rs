@@ -237,7 +237,7 @@ impl Design {
                 if !s.is_empty() {
                     s.push_str(", ");
                 }
-                let _ = write!(s, "{} = {x}", v.key());
+                let _ = write!(s, "{} = {}", v.key(), crate::limits::fmt_value(x));
             }
         }
         if s.is_empty() {
@@ -294,7 +294,10 @@ impl Design {
         crate::limits::check_club_com_x_mm(p.club_com_m.x * 1e3).map_err(err)?;
         let s = self.get(DesignVar::InertiaScale);
         if !(s > 0.0) {
-            return Err(err(format!("inertia_scale must be > 0, got {s}")));
+            return Err(err(format!(
+                "inertia_scale must be > 0, got {}",
+                crate::limits::fmt_value(s)
+            )));
         }
         p.club_inertia_kgm2 *= s;
         let axis = [
@@ -311,7 +314,7 @@ impl Design {
                     DesignVar::IzzScale
                 ][i]
                     .key(),
-                axis[i]
+                crate::limits::fmt_value(axis[i])
             )));
         }
         if axis != [1.0; 3] {

@@ -153,7 +153,11 @@ fn parse_mass(
         return Err(doc.err(
             v.span(),
             "design.discretionary_mass.mass_g",
-            format!("must be > 0 and below the head mass {head_g} g, got {m}"),
+            format!(
+                "must be > 0 and below the head mass {} g, got {}",
+                crate::limits::fmt_value(head_g),
+                crate::limits::fmt_value(m)
+            ),
         ));
     }
     let at_key = "design.discretionary_mass.at_mm";
