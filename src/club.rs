@@ -87,14 +87,14 @@ impl ClubSpec {
                 "its groups are {}, or 'all' (the effects that name no group)",
                 groups
                     .iter()
-                    .map(|g| format!("'{}'", crate::data::escape(g)))
+                    .map(|g| format!("'{}'", g.escape_debug()))
                     .collect::<Vec<_>>()
                     .join(", ")
             )
         };
         Err(format!(
             "group '{}' is not a group of this club's effects; {have}",
-            crate::data::escape(group)
+            group.escape_debug()
         ))
     }
 
