@@ -59,6 +59,20 @@ impl ClubSpec {
         )
     }
 
+    /// `Ok` when the clubhead's centre of mass is behind the face for every group with its
+    /// effects applied (`com_offset`, `hosel_mass`, … may move it): otherwise the group and
+    /// the position ([`crate::limits::check_club_com_x_mm`]).
+    pub fn check_com_behind_face(&self) -> Result<(), String> {
+        let mut groups = self.effect_groups();
+        groups.push("all".to_owned());
+        for g in groups {
+            let x_mm = self.params_for_group(&g).club_com_m.x * 1e3;
+            crate::limits::check_club_com_x_mm(x_mm)
+                .map_err(|m| format!("with the effects of group '{}': {m}", g.escape_debug()))?;
+        }
+        Ok(())
+    }
+
     /// Groups named by any effect.
     pub fn effect_groups(&self) -> Vec<String> {
         let mut groups: Vec<String> = self

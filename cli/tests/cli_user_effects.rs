@@ -201,7 +201,7 @@ fn a_value_out_of_range_names_the_shot_and_an_undefined_effect_is_refused() {
     let defs = dir.path().join("nan.toml");
     std::fs::write(
         &defs,
-        "[[define_effect]]\nname = \"e_nan\"\nparams = []\ncor = \"cor * ln(club_speed_mph - 100)\"\n",
+        "[[define_effect]]\nname = \"e_nan\"\nparams = []\ncor = \"cor * ln(club_speed_mph - 100) / ln(10)\"\n",
     )
     .unwrap();
     let club = dir.path().join("club.toml");

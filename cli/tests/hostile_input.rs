@@ -373,6 +373,19 @@ fn effects_clubs_and_deliveries_beyond_the_physical_are_refused() {
             ],
         );
     }
+    // Effects that together move the CoM 60 mm forward, past the face.
+    let shift = "[[effect]]\nname = \"com_offset\"\ndx_mm = 30\ndy_mm = 0\ndz_mm = 0\n";
+    let club = club_with(d, &format!("{shift}{shift}"));
+    let mut args = vec!["predict", "--club", s(&club)];
+    args.extend(one);
+    common::assert_refused(
+        &smash(&args),
+        &[
+            "with the effects of group 'all'",
+            "x = 17.",
+            "in front of the face",
+        ],
+    );
     let club = s(&repo("configs/clubs/paper_driver.toml")).to_owned();
     let study = edited(
         "configs/studies/com_sweep.toml",

@@ -174,12 +174,19 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     for (i, table) in raw.effect.iter().enumerate() {
         effects.push(parse_effect(&ctx, "effect", i, table)?);
     }
-    ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
+    let club = ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
         DataError::file(
             path,
             format!("the club with its effects is not physical: {e}"),
         )
-    })
+    })?;
+    club.check_com_behind_face().map_err(|m| {
+        DataError::file(
+            path,
+            format!("the club with its effects is not physical: {m}"),
+        )
+    })?;
+    Ok(club)
 }
 
 /// Parse one effect table shaped like a club file's `[[effect]]` (`name`, optional `group`, the
