@@ -190,9 +190,10 @@ pub const BALL_SPIN_RPM: PhysicalRange =
 /// ceiling as [`BALL_SPIN_RPM`].
 pub const SPIN_RATE_RPM: PhysicalRange = PhysicalRange::closed("spin rate", "rpm", 0.0, 30_000.0);
 
-/// Spin axis tilt of a launch-monitor export, deg (+ tilted right). Past ±90° the axis has
-/// turned over and the ball would carry topspin: no golf launch.
-pub const SPIN_AXIS_DEG: PhysicalRange = PhysicalRange::closed("spin axis", "deg", -90.0, 90.0);
+/// Spin axis tilt of a launch-monitor export, deg (+ tilted right): a direction, so within a
+/// half turn either way. Past ±90° the ball carries topspin, as a topped shot does (the shots
+/// file's backspin may be negative, and the model predicts it for strikes low on the face).
+pub const SPIN_AXIS_DEG: PhysicalRange = PhysicalRange::closed("spin axis", "deg", -180.0, 180.0);
 
 /// Clubhead mass, g: from a toy head to a sledgehammer (drivers weigh about 200 g).
 pub const CLUB_MASS_G: PhysicalRange = PhysicalRange::closed("club mass", "g", 1.0, 10_000.0);

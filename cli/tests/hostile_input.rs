@@ -466,8 +466,8 @@ fn import_errors_name_the_exports_line_and_column() {
             "tm.csv:7: column 'Spin Rate': spin rate -2700 is outside the physical range [0, 30000] rpm",
         ),
         (
-            row("105", "12", "2600", "170"),
-            "tm.csv:7: column 'Spin Axis': spin axis 170 is outside the physical range [-90, 90] deg",
+            row("105", "12", "2600", "200"),
+            "tm.csv:7: column 'Spin Axis': spin axis 200 is outside the physical range [-180, 180] deg",
         ),
     ] {
         let text = format!("{head}\n{units}\n{good}\n\n{avg}\n{good}\n{bad}\n");
