@@ -143,6 +143,20 @@ fn kernel_matches_the_scalar_solve_with_every_library_effect_on() {
             kind.apply(&common::active_values(kind.params()), &mut p);
         }
         let model = ImpactModel::new(p).unwrap();
+        // The finite contact's travel over the face is on (the contact point moves, so the
+        // kernel's per-lane face geometry must follow the scalar solve's).
+        let d6 = common::deliveries()[6];
+        assert!(
+            (model.solve(&d6).unwrap().ball_spin_rad_s
+                - model
+                    .clone()
+                    .without_travel()
+                    .solve(&d6)
+                    .unwrap()
+                    .ball_spin_rad_s)
+                .norm()
+                > 1.0
+        );
         let ys: Vec<f64> = (0..13).map(|i| (-24.0 + 4.0 * i as f64) * 1e-3).collect();
         let zs: Vec<f64> = (0..21).map(|i| (-40.0 + 4.0 * i as f64) * 1e-3).collect();
         for d0 in common::deliveries() {
@@ -233,4 +247,97 @@ fn cor_level_and_hosel_mass_are_recovered_from_their_worlds() {
     recovers(&common::shots(&world, &e), "cor_level", &[-0.02]);
     let world = common::truth(vec![common::fx("hosel_mass", &[8.0], None)]);
     recovers(&common::shots(&world, &e), "hosel_mass", &[8.0]);
+}
+
+/// A driver delivery with the given loft and the ball at the face centre, no head rotation.
+fn centre_delivery(loft_deg: f64) -> Delivery {
+    Delivery {
+        club_speed_m_s: 45.0,
+        attack_angle_rad: 0.0,
+        club_path_rad: 0.0,
+        dynamic_loft_rad: loft_deg.to_radians(),
+        face_angle_rad: 0.0,
+        lie_tilt_rad: 0.0,
+        club_omega_rad_s: Vector3::zeros(),
+        impact_y_m: 0.0,
+        impact_z_m: 0.0,
+        shaft_mass_g: None,
+    }
+}
+
+/// `contact_time`'s travel of the ball over the face (`smash::physics::laws::FiniteContact`),
+/// against the invariants of its derivation. A head-on impact at the face centre of a head whose
+/// CoM lies on the face normal has no tangential approach and no tangential impulse: no travel,
+/// so the finite contact with and without the travel give the same launch. A lofted centre
+/// strike moves the impulse up the face by `s·τ·|u1t|` with `s` between the never-spinning
+/// ball's 1/2 and the gripping ball's 1/2 − 2/63 less the head's share (the contact's velocity
+/// over the face, computed here from the delivery, not from the law). And the law is continuous
+/// at `τ = 0`, where it is the paper's instantaneous impact.
+#[test]
+fn contact_time_travel_obeys_its_invariants() {
+    let tau_ms = 0.45;
+    let with_tau = |mut p: ModelParams| {
+        EffectKind::ContactTime.apply(&[tau_ms], &mut p);
+        ImpactModel::new(p).unwrap()
+    };
+    // Head-on, CoM on the normal through the face centre: no travel.
+    let mut on_axis = ModelParams::paper_driver();
+    on_axis.club_com_m = Vector3::new(on_axis.club_com_m.x, 0.0, 0.0);
+    let m = with_tau(on_axis);
+    let d = centre_delivery(0.0);
+    let (a, b) = (
+        m.solve(&d).unwrap(),
+        m.clone().without_travel().solve(&d).unwrap(),
+    );
+    assert!((a.contact_from_club_com_m - b.contact_from_club_com_m).norm() < 1e-12);
+    assert!((a.ball_velocity_m_s - b.ball_velocity_m_s).norm() < 1e-12);
+    assert!((a.ball_spin_rad_s - b.ball_spin_rad_s).norm() < 1e-9);
+    // Lofted centre strike on the paper's driver: the impulse moves up the face.
+    let m = with_tau(ModelParams::paper_driver());
+    let d = centre_delivery(12.0);
+    let frame = m.delivery_frame(&d);
+    let cf = m.face().contact(0.0, 0.0).unwrap();
+    let r_c = cf.point_m - m.params().club_com_m;
+    let u1 = frame.club_velocity_f_m_s + frame.club_omega_f_rad_s.cross(&r_c);
+    let u1t = u1 - cf.normal * u1.dot(&cf.normal);
+    let o = m.solve(&d).unwrap();
+    let moved = frame.r_gf.transpose() * o.contact_from_club_com_m - r_c;
+    let s = moved.dot(&cf.tangent_y) / (tau_ms * 1e-3 * u1t.norm());
+    println!(
+        "centre strike, 12° loft: travel {:.3} mm up the face = {s:.4}·τ·|u1t| (|u1t| {:.2} m/s)",
+        moved.dot(&cf.tangent_y) * 1e3,
+        u1t.norm()
+    );
+    assert!(
+        u1t.dot(&cf.tangent_y) < 0.0,
+        "the face slides down under the ball"
+    );
+    assert!(
+        s > 0.42 && s < 0.5,
+        "travel {} mm up the face = {s:.3}·τ·|u1t|",
+        moved.dot(&cf.tangent_y) * 1e3
+    );
+    // Along the face, and mostly up it (the CoM's small offset from the normal adds a sideways
+    // gear-effect impulse, so a little heel–toe travel).
+    let up = moved.dot(&cf.tangent_y);
+    assert!(moved.dot(&cf.normal).abs() < 1e-12 * up, "{moved}");
+    assert!(moved.dot(&cf.tangent_z).abs() < 0.1 * up, "{moved}");
+    // Continuous at τ = 0, and exactly the paper's impact there.
+    let paper = ImpactModel::new(ModelParams::paper_driver()).unwrap();
+    let mut p = ModelParams::paper_driver();
+    EffectKind::ContactTime.apply(&[0.0], &mut p);
+    assert_eq!(
+        ImpactModel::new(p).unwrap().solve(&d).unwrap(),
+        paper.solve(&d).unwrap()
+    );
+    let mut p = ModelParams::paper_driver();
+    EffectKind::ContactTime.apply(&[1e-7], &mut p);
+    let tiny = ImpactModel::new(p).unwrap().solve(&d).unwrap();
+    let base = paper.solve(&d).unwrap();
+    assert!(
+        (tiny.ball_velocity_m_s - base.ball_velocity_m_s).norm() < 1e-6,
+        "{} vs {}",
+        tiny.ball_velocity_m_s,
+        base.ball_velocity_m_s
+    );
 }

@@ -296,9 +296,10 @@ fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_
 /// worlds' balls compress 6–9 mm at their peak, the force-weighted mean is ≈ 0.8 of that), and
 /// every implausible value carries its stand-in reading instead of being listed as a finding; a
 /// plausible selected value with a plausible rival is ambiguous, not a finding. (A `com_offset`
-/// with dx of −6 to −16 mm still appears in `compliant_driver` and `compliant_slip_world`, as a
-/// stand-in aliased with `eg`: it takes the ball's travel over the face during the contact,
-/// which no library form has yet; docs/compliant-worlds.md.)
+/// with dx −16 mm still appears in `compliant_driver`, as a stand-in aliased with `eg`: the
+/// greedy path takes it at step 4, where its three parameters take the shaft tip's CoM shift and
+/// the finite contact's gear-effect signature at once, before `hosel_mass` and `contact_time`,
+/// which with `com_offset` left out are named at 6.2 g and 0.46 ms; docs/compliant-worlds.md.)
 #[test]
 fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
     let dir = tempfile::tempdir().unwrap();
@@ -368,11 +369,12 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
 }
 
 /// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
-/// not hold yet (configs/README.md, "What this shows"). With `compression_lever` every spread
-/// is within 1.10× the noise floor (0.97–1.09× in the three worlds), but `hosel_mass` is named
-/// in no world (`com_offset.dz` takes the tip's heel–toe signature, `added_mass` its mass),
-/// `contact_time` plausibly only in `compliant_location_noise`; and group means reach
-/// 0.22–0.30 σ of the launch noise in every world, where the standard error of one group's mean is 0.13–0.16 σ
+/// not hold yet (configs/README.md, "What this shows"). Every spread is within 1.10× the noise
+/// floor (0.97–1.10× in the three worlds) and `contact_time` (with the ball's travel over the
+/// face) is named plausibly in `compliant_slip_world` (0.49 ms), but `hosel_mass` is named in no
+/// world (`com_offset` takes the tip's CoM shift in `compliant_driver` and
+/// `compliant_location_noise`, where `contact_time` is then not selected); and group means reach
+/// 0.2–0.25 σ of the launch noise, where the standard error of one group's mean is 0.13–0.16 σ
 /// (docs/compliant-worlds.md, "Group means"). Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
 #[test]

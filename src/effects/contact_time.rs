@@ -1,10 +1,15 @@
 //! `contact_time`: a finite contact of duration `τ`, to first order in `τ`.
 //!
 //! The paper's impact is instantaneous. During a real driver impact (about half a
-//! millisecond) the head turns under the growing impulse, so the face that delivers the impulse
-//! is not the face at first contact. The law is [`crate::physics::laws::FiniteContact`], derived
-//! there from the one-body Hertz impact: the impulse is delivered, on average, by the face
-//! turned by `θ̄ = τ·(ω₀/2 + Δω/9)`.
+//! millisecond) two things move while the impulse is delivered: the head turns under the
+//! growing impulse, so the face that delivers it is not the face at first contact; and the
+//! ball travels over the face (the face slides beneath the ball with the tangential approach
+//! `u1t` while the ball gathers speed), so the impulse acts on average away from the first
+//! contact point, where the curved face's normal is tilted. The law is
+//! [`crate::physics::laws::FiniteContact`], derived there from the one-body Hertz impact: the
+//! impulse is delivered, on average, by the face turned by `θ̄ = τ·(ω₀/2 + Δω/9)` at the point
+//! `d̄ = −τ·(u1/2 − g/9)_t` from the first contact (`≈ −0.47·τ·u1t` for a gripping ball). One
+//! parameter, `τ`, sets both.
 
 use super::{spec, ParamSpec};
 use crate::physics::ModelParams;
@@ -14,7 +19,7 @@ pub const NAME: &str = "contact_time";
 
 /// One-line description.
 pub const DESCRIPTION: &str =
-    "finite contact of tau_ms: the head turns while the impulse is delivered (face turned by tau*(w0/2 + dw/9))";
+    "finite contact of tau_ms: the head turns (by tau*(w0/2 + dw/9)) and the ball travels over the face (by -tau*(u1/2 - g/9)_t, about -0.47*tau*u1t) while the impulse is delivered";
 
 /// Parameters, in file order. Physical: a duration is not negative; 2 ms is four times a
 /// driver's. Plausible: high-speed films of driver impacts show 0.4–0.5 ms (Cochran & Stobbs,

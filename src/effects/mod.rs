@@ -19,7 +19,7 @@
 //! | `cor_level` | `dcor` | `cor → cor + dcor` (the face's own COR, fitted) |
 //! | `hosel_mass` | `dm_g` | point mass at the club's `hosel_mm`: mass, CoM and inertia (parallel axis) |
 //! | `cor_power` | `q` | `e = cor·(u1n/48.77 m/s)^(−q)` |
-//! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)` |
+//! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)`, at the point the ball has travelled to, `−τ·(u1/2 − g/9)_t` |
 //! | `tangential_compliance` | `et0`, `k_tan`, `eg` | `e_t = et0 + k_tan·|u1t|/u1n` on the approach, `e_g = eg` on the gear-effect drive: `K P = u1 + e·u1n·n + e_t·u1t − e_g·(K·n)_t·P_n0` |
 //! | `compression_lever` | `delta_mm` | spin lever `R − δ̄` of the compressed ball: `I_b → I_b·R/(R − δ̄)` |
 //!

@@ -27,7 +27,8 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, FiniteContact, Laws, Real, Restitution, TangentialLaw, Vec3,
+    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, Laws, Real, Restitution, Sym3,
+    TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
 use super::user_terms::UserEvalError;
@@ -117,9 +118,10 @@ pub struct ImpactOutcome {
     pub club_omega_after_rad_s: Vector3<f64>,
     /// Impulse on the ball, N·s.
     pub impulse_n_s: Vector3<f64>,
-    /// Contact point relative to the clubhead CoM, m.
+    /// Where the impulse acts relative to the clubhead CoM, m (the impact location's point on the
+    /// face, moved by the ball's travel over it during a finite contact, `contact_time`).
     pub contact_from_club_com_m: Vector3<f64>,
-    /// Contact point relative to the ball CoM, m.
+    /// Where the impulse acts relative to the ball CoM, m.
     pub contact_from_ball_com_m: Vector3<f64>,
     /// Unit face normal at the contact point.
     pub normal: Vector3<f64>,
@@ -207,9 +209,10 @@ pub struct ContactInputs<R> {
 /// The contact mechanics of [`ImpactModel::solve_contact`], face frame `F`, SI units.
 #[derive(Debug, Clone, Copy)]
 pub struct ContactSolution<R: Real> {
-    /// Contact point relative to the clubhead CoM, m.
+    /// Where the impulse acts relative to the clubhead CoM, m (the impact location's point on the
+    /// face, moved by the ball's travel over it during a finite contact, `contact_time`).
     pub contact_from_club_com_m: Vec3<R>,
-    /// Contact point relative to the ball CoM, m.
+    /// Where the impulse acts relative to the ball CoM, m.
     pub contact_from_ball_com_m: Vec3<R>,
     /// Normal approach speed `u1·n`, m/s (the impact is valid only where it is > 0).
     pub normal_approach_speed_m_s: R,
@@ -300,6 +303,9 @@ impl ImpactModel {
             },
             contact: FiniteContact {
                 tau_s: p.contact_time_s,
+                bulge_curvature_per_m: 1.0 / p.bulge_m,
+                roll_curvature_per_m: 1.0 / p.roll_m,
+                travel: true,
             },
             user: p.user,
         };
@@ -310,6 +316,14 @@ impl ImpactModel {
             inv_mass_sum,
             laws,
         })
+    }
+
+    /// The same model with a finite contact (`contact_time`) that turns the head but leaves out
+    /// the ball's travel over the face ([`FiniteContact`]): the first-order law before the
+    /// travel was derived, kept to measure what the travel adds (`tests/contact_world.rs`).
+    pub fn without_travel(mut self) -> Self {
+        self.laws.contact.travel = false;
+        self
     }
 
     /// The validated parameters.
@@ -479,24 +493,32 @@ impl ImpactModel {
         let e = laws.restitution.cor(u1n, x.y_m * x.y_m + x.z_m * x.z_m);
         // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
         let r_b = laws.ball.lever(n, &x.tangent_y, &x.tangent_z_xz);
-        let k = laws.collision.matrix(&r_c, &r_b);
         // The instantaneous law, wrapped by the finite contact (`contact_time`; with τ = 0 it is
-        // the law itself, bit for bit).
-        let (impulse, ball_angular_impulse, slipped) = laws.contact.impact(
-            |u: &Vec3<R>, un: R| laws.tangential.impulse::<R, FRICTION>(&k, n, u, un, e),
-            &laws.collision.club_inv_inertia,
-            n,
-            &u1,
-            u1n,
-            &x.club_omega_f_rad_s,
-            &r_c,
-            &r_b,
+        // the law itself at the first contact, bit for bit).
+        let fi = laws.contact.impact(
+            |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {
+                laws.tangential.impulse::<R, FRICTION>(k, n, u, un, e)
+            },
+            &laws.collision,
+            laws.ball.radius_m,
+            &ContactGeometry {
+                normal: *n,
+                tangent_y: x.tangent_y,
+                tangent_z_xz: x.tangent_z_xz,
+                r_c,
+                r_b,
+                u1,
+                u1n,
+                w_c: x.club_omega_f_rad_s,
+            },
         );
+        let (impulse, ball_angular_impulse, slipped) =
+            (fi.impulse, fi.ball_angular_impulse, fi.slipped);
         let v_b = impulse.map(|c| c / p.ball_mass_kg);
         let w_b = ball_angular_impulse.map(|c| c / p.ball_inertia_kgm2);
         ContactSolution {
-            contact_from_club_com_m: r_c,
-            contact_from_ball_com_m: r_b,
+            contact_from_club_com_m: fi.r_c,
+            contact_from_ball_com_m: fi.r_b,
             normal_approach_speed_m_s: u1n,
             cor_effective: e,
             impulse_n_s: impulse,

@@ -12,7 +12,7 @@
 //! | ball lever arm | [`BallContact`] | `ball_offset` |
 //! | collision matrix (masses, inertias) | [`CollisionMatrix`] | `added_mass`, `hosel_mass`, `com_offset`, `inertia_scale`, `compression_lever` (the ball's inertia; composed into [`super::ModelParams`] once, see `crate::effects`) |
 //! | tangential law (approach and gear-effect parts) | [`TangentialLaw`] | `tangential_restitution`, `friction`, `tangential_compliance` |
-//! | finite contact | [`FiniteContact`] | `contact_time` (the head turning while in contact) |
+//! | finite contact | [`FiniteContact`] | `contact_time` (the head turning and the ball travelling over the face while in contact) |
 //!
 //! Geometry biases (`loft_bias`, `face_bias`) act on the delivered angles in
 //! [`super::ImpactModel::face_orientation`], which both paths call.
@@ -21,8 +21,11 @@
 //! multiply–add, so every code path gives the same bits for the same inputs.
 
 pub use super::real::Real;
+
+mod finite_contact;
 #[cfg(test)]
 use crate::lanes::V;
+pub use finite_contact::{ContactGeometry, FiniteContact, FiniteImpact, HERTZ_MEAN_SPIN_UP};
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
@@ -35,7 +38,7 @@ pub type Vec3<R> = [R; 3];
 pub type Sym3<R> = [R; 6];
 
 #[inline(always)]
-fn dot<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> R {
+pub(crate) fn dot<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> R {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
@@ -51,7 +54,7 @@ pub fn cross<R: Real>(a: &Vec3<R>, b: &Vec3<R>) -> Vec3<R> {
 }
 
 #[inline(always)]
-fn sym_mul<R: Real>(k: &Sym3<R>, v: &Vec3<R>) -> Vec3<R> {
+pub(crate) fn sym_mul<R: Real>(k: &Sym3<R>, v: &Vec3<R>) -> Vec3<R> {
     [
         k[0] * v[0] + k[1] * v[1] + k[2] * v[2],
         k[1] * v[0] + k[3] * v[1] + k[4] * v[2],
@@ -316,87 +319,6 @@ impl TangentialLaw {
             ],
             slip,
         )
-    }
-}
-
-/// Impulse-weighted mean, over a Hertz impact of duration `τ`, of `∫₀ᵗ s dt'` where `s(t)` is
-/// the fraction of the impulse delivered by `t`, divided by `τ`: `1/9` (integrating the
-/// one-body Hertz impact `m·δ̈ = −k·δ^1.5` gives 0.11111; a half-sine force pulse would give
-/// 1/8; recomputed in the tests). The head's mean rotation at the
-/// impulse's centroid is `θ̄ = τ·(ω₀/2 + Δω/9)` (see [`FiniteContact`]).
-pub const HERTZ_MEAN_SPIN_UP: f64 = 1.0 / 9.0;
-
-/// A finite contact of duration `τ` (the `contact_time` effect), to first order in `τ`.
-///
-/// The momentum model treats the impact as instantaneous. During a real contact of a few tenths
-/// of a millisecond the head turns while the impulse is delivered: its angular velocity goes
-/// from `ω₀` (the delivered one) to `ω₀ + Δω`, `Δω = −I_c⁻¹(r_c × P)`, as the impulse `P` builds
-/// up. The impulse-weighted mean of the angle turned is `θ̄ = ∫θ dP / P = τ·(ω₀/2 + Δω/9)`: for
-/// the one-body Hertz impact the impulse's centroid is at `τ/2` (the pulse is nearly symmetric)
-/// and the weighted mean of `∫₀ᵗ s dt'` (`s` the fraction of the impulse delivered by `t`) is
-/// `τ/9` ([`HERTZ_MEAN_SPIN_UP`]). To first order the impulse is delivered by the face turned by
-/// `θ̄`: in that face's frame the approach velocity is `u1 − θ̄×u1` (the restitution keeps the
-/// first-contact normal speed, which changes only at second order), the impulse `P_f` follows
-/// from the same tangential law and collision matrix (both fixed to the head), and the impulse
-/// and the ball's angular impulse `r_b × P_f` are turned back by `θ̄` (`v ↦ v + θ̄×v`).
-///
-/// `Δω` is that of the instantaneous impulse (a first pass of the law). Neglected: terms of
-/// order `τ²`, the travel of the contact point over the face while the head turns (`≈ θ̄×r_c`,
-/// a few tenths of a millimetre), the ball's rolling over the face during the contact
-/// (`docs/compliant-worlds.md`, section 4: not yet a library form), and the ball's compression.
-/// The compression shortens the tangential force's lever about the ball centre to `R − δ(t)`;
-/// that is the `compression_lever` effect, a ball of inertia `I_b·R/(R − δ̄)` in the collision
-/// matrix and the spin alike (scaling the angular impulse alone, an earlier first-order model,
-/// moved spin the wrong way), so it is not part of this law. Checked against the compliant
-/// contact of `crate::synth::contact` in `tests/contact_world.rs`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct FiniteContact {
-    /// Contact time `τ`, s (0: the instantaneous impact of the paper).
-    pub tau_s: f64,
-}
-
-impl FiniteContact {
-    /// The impulse on the ball `P` and the ball's angular impulse `r_b × P` (both in the face
-    /// frame at first contact), and whether friction limited the impulse. `impulse(u1, u1n)` is
-    /// the instantaneous law (the tangential law with its collision matrix and COR) for an
-    /// approach velocity; with `τ = 0` it is called once and its result returned as is. `w_c`
-    /// is the head's angular velocity before impact, `j` the symmetrised inverse head inertia
-    /// (as in [`CollisionMatrix`]).
-    #[allow(clippy::too_many_arguments)]
-    #[inline(always)]
-    pub fn impact<R: Real>(
-        &self,
-        impulse: impl Fn(&Vec3<R>, R) -> (Vec3<R>, R::Mask),
-        j: &[f64; 6],
-        n: &Vec3<R>,
-        u1: &Vec3<R>,
-        u1n: R,
-        w_c: &Vec3<R>,
-        r_c: &Vec3<R>,
-        r_b: &Vec3<R>,
-    ) -> (Vec3<R>, Vec3<R>, R::Mask) {
-        let (p, slip) = impulse(u1, u1n);
-        if self.tau_s == 0.0 {
-            return (p, cross(r_b, &p), slip);
-        }
-        let jm: Sym3<R> = j.map(R::splat);
-        let dw = sym_mul(&jm, &cross(r_c, &p));
-        let (a, b) = (0.5 * self.tau_s, HERTZ_MEAN_SPIN_UP * self.tau_s);
-        let theta = [
-            w_c[0] * a - dw[0] * b,
-            w_c[1] * a - dw[1] * b,
-            w_c[2] * a - dw[2] * b,
-        ];
-        let tu = cross(&theta, u1);
-        let u1r = [u1[0] - tu[0], u1[1] - tu[1], u1[2] - tu[2]];
-        let u1nr = dot(&u1r, n);
-        let (pf, slip) = impulse(&u1r, u1nr);
-        let lf = cross(r_b, &pf);
-        let turn = |v: &Vec3<R>| {
-            let t = cross(&theta, v);
-            [v[0] + t[0], v[1] + t[1], v[2] + t[2]]
-        };
-        (turn(&pf), turn(&lf), slip)
     }
 }
 

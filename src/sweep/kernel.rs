@@ -418,22 +418,21 @@ impl FaceMapKernel {
         let tyy = tzz * nx - tzx * nz;
         let tyz = tzx * ny;
         let r_b = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
-        let k = laws.collision.matrix(&a.r_c, &r_b);
         let w_c = self.w_c.map(V::splat);
-        let (p, w_f, _slip) = laws.contact.impact(
-            |u: &[V; 3], un: V| {
+        let fi = laws.contact.impact(
+            |k: &[V; 6], n: &[V; 3], u: &[V; 3], un: V| {
                 if USER {
                     // As the scalar solve: the user's e_t, plus tangential_compliance's rise.
                     let e_t = if laws.tangential.e_t_slope == 0.0 {
                         e_t
                     } else {
-                        crate::physics::laws::tangential_speed(u, &n, un) / un
+                        crate::physics::laws::tangential_speed(u, n, un) / un
                             * laws.tangential.e_t_slope
                             + e_t
                     };
                     TangentialLaw::impulse_with::<V, FRICTION>(
-                        &k,
-                        &n,
+                        k,
+                        n,
                         u,
                         un,
                         e,
@@ -442,17 +441,23 @@ impl FaceMapKernel {
                         mu,
                     )
                 } else {
-                    laws.tangential.impulse::<V, FRICTION>(&k, &n, u, un, e)
+                    laws.tangential.impulse::<V, FRICTION>(k, n, u, un, e)
                 }
             },
-            &laws.collision.club_inv_inertia,
-            &n,
-            &a.u1,
-            a.u1n,
-            &w_c,
-            &a.r_c,
-            &r_b,
+            &laws.collision,
+            laws.ball.radius_m,
+            &crate::physics::laws::ContactGeometry {
+                normal: n,
+                tangent_y: [tyx, tyy, tyz],
+                tangent_z_xz: [tzx, tzz],
+                r_c: a.r_c,
+                r_b,
+                u1: a.u1,
+                u1n: a.u1n,
+                w_c,
+            },
         );
+        let (p, w_f) = (fi.impulse, fi.ball_angular_impulse);
         (p, w_f)
     }
 

@@ -174,42 +174,38 @@ impl ImpactModel {
             &arr(&cf.tangent_y),
             &[cf.tangent_z.x, cf.tangent_z.z],
         );
-        let r_b = Vector3::from(r_b_arr);
-        let k = laws.collision.matrix(&arr(&r_c), &r_b_arr);
-        let jm = &club_inv_inertia;
-        let sym = |a: usize, b: usize| 0.5 * (jm[(a, b)] + jm[(b, a)]);
-        let j = [
-            jm[(0, 0)],
-            sym(0, 1),
-            sym(0, 2),
-            jm[(1, 1)],
-            sym(1, 2),
-            jm[(2, 2)],
-        ];
-        let (n_a, u1_a, w_a, rc_a) = (arr(&n), arr(&u1), arr(&w_c), arr(&r_c));
-        let (impulse, ball_ang, slipped) = if tangential.mu.is_some() {
+        let geometry = laws::ContactGeometry {
+            normal: arr(&n),
+            tangent_y: arr(&cf.tangent_y),
+            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
+            r_c: arr(&r_c),
+            r_b: r_b_arr,
+            u1: arr(&u1),
+            u1n,
+            w_c: arr(&w_c),
+        };
+        let (collision, radius) = (&laws.collision, laws.ball.radius_m);
+        let fi = if tangential.mu.is_some() {
             laws.contact.impact(
-                |u: &[f64; 3], un: f64| tangential.impulse::<f64, true>(&k, &n_a, u, un, e),
-                &j,
-                &n_a,
-                &u1_a,
-                u1n,
-                &w_a,
-                &rc_a,
-                &r_b_arr,
+                |k: &laws::Sym3<f64>, n: &[f64; 3], u: &[f64; 3], un: f64| {
+                    tangential.impulse::<f64, true>(k, n, u, un, e)
+                },
+                collision,
+                radius,
+                &geometry,
             )
         } else {
             laws.contact.impact(
-                |u: &[f64; 3], un: f64| tangential.impulse::<f64, false>(&k, &n_a, u, un, e),
-                &j,
-                &n_a,
-                &u1_a,
-                u1n,
-                &w_a,
-                &rc_a,
-                &r_b_arr,
+                |k: &laws::Sym3<f64>, n: &[f64; 3], u: &[f64; 3], un: f64| {
+                    tangential.impulse::<f64, false>(k, n, u, un, e)
+                },
+                collision,
+                radius,
+                &geometry,
             )
         };
+        let (impulse, ball_ang, slipped) = (fi.impulse, fi.ball_angular_impulse, fi.slipped);
+        let (r_c, r_b) = (Vector3::from(fi.r_c), Vector3::from(fi.r_b));
         let impulse = Vector3::from(impulse);
 
         FaceOutcome {
