@@ -201,6 +201,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
             DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
         },
         noise_floor: known_noise,
+        ..DiagnoseOptions::default()
     };
     let bar = Bar(job_bar(1, "fits"));
     let d = diagnose(&club, &table.shots, &opts, Some(&bar));

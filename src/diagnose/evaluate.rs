@@ -347,7 +347,25 @@ pub(super) fn noise_candidate(
     (j, noise, data, folds): (usize, &ImpactNoise, &FitData, &Folds),
     penalty_per_param: f64,
 ) -> (CandidateResult, NoiseFit) {
-    let mut res = empty_result(impact_noise_label(noise), 1, penalty_per_param);
+    measurement_candidate(
+        b,
+        (j, impact_noise_label(noise), data, folds),
+        Some(noise),
+        penalty_per_param,
+    )
+}
+
+/// A measurement candidate labelled `label` whose data (`data`, `folds`) carry its noise model:
+/// refit the base effects on them and score it as a one-parameter candidate, by the spread when
+/// it is an impact-noise level (`spread_noise`) and the instruments' noise is known, else by
+/// the gain in cross-validated χ².
+pub(super) fn measurement_candidate(
+    b: &StepBase,
+    (j, label, data, folds): (usize, String, &FitData, &Folds),
+    spread_noise: Option<&ImpactNoise>,
+    penalty_per_param: f64,
+) -> (CandidateResult, NoiseFit) {
+    let mut res = empty_result(label, 1, penalty_per_param);
     res.converged = true;
     let outcome = (|| -> Result<NoiseOutcome, FitError> {
         let run = if b.layout.is_empty() {
@@ -358,7 +376,7 @@ pub(super) fn noise_candidate(
                 return Err(FitError::NotConverged {
                     iterations: run.iterations,
                     chi2: run.cost,
-                    stage: "impact-noise candidate".into(),
+                    stage: "measurement candidate".into(),
                 });
             }
             Some(run)
@@ -385,7 +403,7 @@ pub(super) fn noise_candidate(
             let rms = rms_per_component(&errs);
             res.cv_chi2 = cv;
             res.gain = b.cv - cv;
-            if let Some((model, base_dev)) = b.spread {
+            if let (Some((model, base_dev)), Some(noise)) = (b.spread, spread_noise) {
                 match model.deviance(&errs, Some(*noise)) {
                     Some(dev) => {
                         res.spread_gain = Some(base_dev - dev);

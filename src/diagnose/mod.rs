@@ -29,6 +29,13 @@
 //!    candidates still are) and the selection stops. This is what keeps false discoveries
 //!    rare in worlds whose delivery is measured with noise (`docs/diagnose-selection.md`).
 //!
+//! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
+//! delivery (errors in variables: flatter slopes than the model's), which over thousands of
+//! shots an effect that bends the slopes would absorb. With known instrument noise the fits
+//! evaluate the model at the conditional mean of the true delivery
+//! ([`crate::measurement::DeliveryNoise`]); without it, delivery-noise levels compete as
+//! measurement candidates like the impact-noise ones.
+//!
 //! Once a global effect is selected, its per-group form (`added_mass@group`) stays a candidate
 //! as a *refinement* that replaces it (gaining `groups − 1` parameters); other kinds already
 //! selected are not offered again.
@@ -73,11 +80,30 @@ pub struct DiagnoseOptions {
     /// errors show structure above this noise floor (see [`noise_floor`]). `None`: the
     /// penalty alone decides.
     pub noise_floor: Option<noise_floor::InstrumentNoise>,
+    /// When the instruments' noise is unknown (`noise_floor` is `None`), offer delivery-noise
+    /// levels, these multiples of the camera class's delivery SDs, as measurement candidates
+    /// (`docs/diagnose-selection.md`); empty: assume an exact delivery.
+    pub delivery_noise_scales: Vec<f64>,
 }
+
+/// Delivery-noise levels diagnose tries by default when the instruments' noise is unknown:
+/// once and twice the camera class's delivery SDs (a launch monitor's club data to a
+/// motion-capture rig like the paper's, 0.7 mph and 0.8° against 0.4 mph and 0.5°).
+pub const DEFAULT_DELIVERY_NOISE_SCALES: [f64; 2] = [1.0, 2.0];
 
 /// Impact-location noise levels (1σ, mm, both axes) that diagnose tries by default: from a
 /// motion-capture system (about 1 mm) to a launch monitor's face-impact estimate (3 mm).
 pub const DEFAULT_IMPACT_NOISE_CANDIDATES_MM: [f64; 4] = [1.0, 1.5, 2.0, 3.0];
+
+impl DiagnoseOptions {
+    /// The delivery noise the fits calibrate for: the known instruments' delivery SDs
+    /// (`docs/diagnose-selection.md`, errors in the delivery variables); `None` when unknown.
+    pub fn delivery_noise(&self) -> Option<crate::measurement::DeliveryNoise> {
+        self.noise_floor
+            .as_ref()
+            .map(|i| crate::measurement::DeliveryNoise::new(i.delivery_sd))
+    }
+}
 
 impl Default for DiagnoseOptions {
     fn default() -> Self {
@@ -89,6 +115,7 @@ impl Default for DiagnoseOptions {
             impact_noise: None,
             impact_noise_candidates_mm: DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec(),
             noise_floor: None,
+            delivery_noise_scales: DEFAULT_DELIVERY_NOISE_SCALES.to_vec(),
         }
     }
 }
@@ -204,6 +231,11 @@ pub struct Diagnosis {
     pub impact_noise: Option<crate::measurement::ImpactNoise>,
     /// Was `impact_noise` selected from the data (rather than given)?
     pub impact_noise_estimated: bool,
+    /// Delivery noise (other than the impact location) the final model is calibrated for
+    /// ([`crate::measurement::DeliveryNoise`]; `None`: deliveries taken as measured).
+    pub delivery_noise: Option<crate::measurement::DeliveryNoise>,
+    /// Was `delivery_noise` selected from the data (rather than given)?
+    pub delivery_noise_estimated: bool,
     /// Warnings (e.g. folds by shot).
     pub warnings: Vec<String>,
     /// Pairs of final estimates the data cannot tell apart (|correlation| > 0.9).
@@ -267,7 +299,9 @@ pub fn diagnose(
     opts: &DiagnoseOptions,
     progress: Option<&dyn DiagnoseProgress>,
 ) -> Result<Diagnosis, FitError> {
-    let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
+    let data = FitData::from_shots(shots)?
+        .with_delivery_noise(opts.delivery_noise())
+        .with_impact_noise(opts.impact_noise)?;
     let mut warnings = Vec::new();
     let (fold_of, fold_by) = search::fold_assignment(&data, opts.folds, &mut warnings);
     let n_folds = fold_of.iter().max().map_or(1, |m| m + 1);

@@ -414,7 +414,9 @@ pub fn noise_floor(
     shots: &[Shot],
     inst: &InstrumentNoise,
 ) -> Result<NoiseFloor, FitError> {
-    let data = FitData::from_shots(shots)?.with_impact_noise(d.impact_noise)?;
+    let data = FitData::from_shots(shots)?
+        .with_delivery_noise(d.delivery_noise)
+        .with_impact_noise(d.impact_noise)?;
     let errors = FitProblem::new(
         &d.club,
         ParamLayout::new(Vec::new())?,

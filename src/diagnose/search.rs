@@ -1,12 +1,13 @@
 //! The state of forward selection and its named steps: folds and candidates offered, then per
 //! step the noise-floor check, scoring every open candidate ([`super::evaluate`]), choosing
 //! ([`super::select`]), adopting the winner, and at the end the calibration of what was selected.
+//! The measurement candidates' data (impact- and delivery-noise levels) are in [`measure`].
 
 use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::evaluate::{self, cv_chi2, make_folds, EffectFit, Folds, NoiseFit, StepBase};
-use super::spread::{self, SpreadModel};
+use super::spread::SpreadModel;
 use super::{
     default_candidates, honest, noise_floor, select, CandidateResult, DiagnoseOptions,
     DiagnoseProgress, Diagnosis, FoldBy, Step,
@@ -14,9 +15,11 @@ use super::{
 use crate::club::ClubSpec;
 use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions};
 use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
-use crate::measurement::ImpactNoise;
+use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
+
+mod measure;
 
 fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
@@ -117,6 +120,11 @@ pub(super) struct Search<'a> {
     /// Impact-location noise levels offered as measurement candidates, each with its data.
     noise_options: Vec<(ImpactNoise, FitData, Folds)>,
     chosen_noise: Option<ImpactNoise>,
+    /// Delivery-noise levels offered as measurement candidates while the instruments' noise is
+    /// unknown ([`measure`]).
+    delivery_options: Vec<measure::DeliveryOption>,
+    /// Delivery noise the model is calibrated for (given, or selected).
+    chosen_delivery: Option<DeliveryNoise>,
     pub(super) base: ParamLayout,
     theta_base: DVector<f64>,
     selected: Vec<EffectRequest>,
@@ -135,6 +143,8 @@ struct Scored {
     fits: Vec<EffectFit>,
     noise_fits: Vec<NoiseFit>,
     n_effects: usize,
+    /// Impact-noise levels among the measurement candidates (the rest are delivery levels).
+    n_impact: usize,
     base_cv: f64,
 }
 
@@ -148,19 +158,17 @@ impl<'a> Search<'a> {
         (fold_of, n_folds): (&[usize], usize),
         warnings: &mut Vec<String>,
     ) -> Result<Self, FitError> {
-        let mut noise_options = Vec::new();
-        if opts.impact_noise.is_none() {
-            for &s_mm in &opts.impact_noise_candidates_mm {
-                let noise = ImpactNoise::from_mm(s_mm, s_mm)?;
-                match data.clone().with_impact_noise(Some(noise)) {
-                    Ok(d) => {
-                        let f = make_folds(&d, fold_of, n_folds);
-                        noise_options.push((noise, d, f));
-                    }
-                    Err(e) => warnings.push(format!("impact noise {s_mm} mm not tried: {e}")),
-                }
-            }
-        }
+        let noise_options = if opts.impact_noise.is_none() {
+            measure::impact_options(&data, opts, (fold_of, n_folds), warnings)?
+        } else {
+            Vec::new()
+        };
+        let delivery_noise = opts.delivery_noise();
+        let delivery_options = if delivery_noise.is_none() {
+            measure::delivery_options(&data, opts, (fold_of, n_folds))
+        } else {
+            Vec::new()
+        };
         Ok(Self {
             club,
             shots,
@@ -172,6 +180,8 @@ impl<'a> Search<'a> {
             data,
             noise_options,
             chosen_noise: opts.impact_noise,
+            delivery_options,
+            chosen_delivery: delivery_noise,
             base: ParamLayout::new(Vec::new())?,
             theta_base: DVector::zeros(0),
             selected: Vec::new(),
@@ -254,10 +264,11 @@ impl<'a> Search<'a> {
         } else {
             0
         };
+        let n_delivery = self.open_delivery_options().len();
         if let Some(p) = self.progress {
             p.step(
                 step_index + 1,
-                n_folds * (1 + open.len() + n_noise) + open.len(),
+                n_folds * (1 + open.len() + n_noise + n_delivery) + open.len(),
             );
         }
         // One evaluation on all shots at the base point serves every fold's start.
@@ -319,47 +330,21 @@ impl<'a> Search<'a> {
             .collect();
         let mut results: Vec<CandidateResult> = fits.iter().map(|f| f.result.clone()).collect();
         let explained = fits.iter().map(|f| f.explained.clone()).collect();
+        let delivery = self.score_delivery(&b);
         let mut noise_fits = Vec::new();
-        for (r, f) in noise {
+        for (r, f) in noise.into_iter().chain(delivery) {
             results.push(r);
             noise_fits.push(f);
         }
         Ok(Scored {
             n_effects: fits.len(),
+            n_impact: n_noise,
             results,
             explained,
             fits,
             noise_fits,
             base_cv,
         })
-    }
-
-    /// Adopt the impact-noise level `noise` (base parameters `theta`) refined by the spread
-    /// ([`spread::refine_selected`]; `exact`: the data with the locations as measured).
-    fn adopt_refined(
-        &mut self,
-        noise: ImpactNoise,
-        exact: &FitData,
-        theta: DVector<f64>,
-        w: Weighting,
-    ) -> Result<(), FitError> {
-        let inst = self.opts.noise_floor.clone();
-        let refined = spread::refine_selected(
-            (self.club, &self.base_club()?, self.shots),
-            inst.unwrap_or_else(|| noise_floor::InstrumentClass::Camera.noise()),
-            (&self.base, &theta, w, self.opts.max_iters),
-            exact,
-            &self.opts.impact_noise_candidates_mm,
-            noise,
-        )?;
-        self.theta_base = theta;
-        if let Some((noise, data, theta)) = refined {
-            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
-            self.data = data;
-            self.chosen_noise = Some(noise);
-            self.theta_base = theta;
-        }
-        Ok(())
     }
 
     /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
@@ -370,7 +355,12 @@ impl<'a> Search<'a> {
         open: &[&EffectRequest],
         w: Weighting,
     ) -> Result<(String, ErrorTable), FitError> {
-        if i >= scored.n_effects {
+        if i >= scored.n_effects + scored.n_impact {
+            let (j, theta) = scored.noise_fits[i - scored.n_effects]
+                .clone()
+                .expect("eligible means fitted");
+            self.adopt_delivery(j, theta);
+        } else if i >= scored.n_effects {
             let (j, theta) = scored.noise_fits[i - scored.n_effects]
                 .clone()
                 .expect("eligible means fitted");
@@ -380,6 +370,7 @@ impl<'a> Search<'a> {
             self.chosen_noise = Some(noise);
             self.noise_options.clear();
             self.adopt_refined(noise, &exact, theta, w)?;
+            self.rebuild_delivery_options();
         } else {
             let (layout, run) = scored.fits[i].fit.as_ref().expect("eligible means fitted");
             self.base = layout.clone();
@@ -416,7 +407,8 @@ impl<'a> Search<'a> {
         } else {
             self.open(candidates)
         };
-        if open.is_empty() && (self.chosen_noise.is_some() || self.noise_options.is_empty()) {
+        let impact_open = self.chosen_noise.is_none() && !self.noise_options.is_empty();
+        if open.is_empty() && !impact_open && self.open_delivery_options().is_empty() {
             return Ok(at_noise_floor.then(|| Step {
                 base: base_labels,
                 noise_scales: noise_scales(&base_errors),
@@ -590,6 +582,9 @@ impl<'a> Search<'a> {
             club: out_club,
             impact_noise: self.chosen_noise,
             impact_noise_estimated: self.chosen_noise.is_some() && self.opts.impact_noise.is_none(),
+            delivery_noise: self.chosen_delivery,
+            delivery_noise_estimated: self.chosen_delivery.is_some()
+                && self.opts.delivery_noise().is_none(),
             warnings,
             aliases,
             ambiguities,

@@ -7,7 +7,7 @@ use std::sync::{Arc, OnceLock};
 use nalgebra::Vector3;
 
 use super::FitError;
-use crate::measurement::{ImpactNoise, LocationNode, NODES_PER_SHOT};
+use crate::measurement::{DeliveryNoise, ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::model::Shot;
 use crate::physics::{ContactFrame, Delivery, DeliveryFrame, FaceError, FaceGeometry, ImpactModel};
 
@@ -146,6 +146,18 @@ impl FitData {
         self.impact_nodes = noise.map(|n| n.nodes_for(&self.deliveries)).transpose()?;
         self.cache = OnceLock::new();
         Ok(self)
+    }
+
+    /// Correct for noise in the measured delivery variables other than the impact location
+    /// (`None`: none): every delivery is replaced by the conditional mean of its true values
+    /// given all these shots' measured deliveries and golfers ([`DeliveryNoise::calibrate`]).
+    /// Apply before [`Self::with_impact_noise`] or after: the location is left as measured.
+    pub fn with_delivery_noise(mut self, noise: Option<DeliveryNoise>) -> Self {
+        if let Some(n) = noise.filter(DeliveryNoise::is_active) {
+            self.deliveries = n.calibrate(&self.deliveries, &self.golfers);
+            self.cache = OnceLock::new();
+        }
+        self
     }
 
     /// Number of shots.
