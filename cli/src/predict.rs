@@ -244,6 +244,8 @@ fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
             .map_err(|m| anyhow::anyhow!("{}: {m}", flag(v)))?;
     }
     let delivery = delivery_from_file_units(&values);
+    club.check_group(&args.group)
+        .map_err(|m| anyhow::anyhow!("--group: {}: {m}", args.club.display()))?;
     let model = club
         .model_for_group(&args.group)
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;

@@ -2,8 +2,6 @@
 //! atmosphere table, and one clear line (naming file, line and column or key) with a non-zero
 //! exit and no output file for every kind of bad input.
 
-// Each test binary uses its own subset of the shared helpers.
-#[allow(dead_code)]
 mod cli_support;
 
 use std::path::{Path, PathBuf};

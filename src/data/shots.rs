@@ -91,7 +91,14 @@ impl ShotTable {
 pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
     match c {
         LaunchComponent::BallSpeed => limits::BALL_SPEED_MPH,
-        LaunchComponent::LaunchAngle | LaunchComponent::Azimuth => limits::LAUNCH_DIRECTION_DEG,
+        LaunchComponent::LaunchAngle => PhysicalRange {
+            quantity: "measured launch angle",
+            ..limits::LAUNCH_DIRECTION_DEG
+        },
+        LaunchComponent::Azimuth => PhysicalRange {
+            quantity: "measured azimuth",
+            ..limits::LAUNCH_DIRECTION_DEG
+        },
         LaunchComponent::Backspin | LaunchComponent::Sidespin => limits::BALL_SPIN_RPM,
     }
 }
