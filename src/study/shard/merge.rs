@@ -3,7 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::data::{escape, read_text, DataError};
+use crate::data::{csv_error_at, escape, quote_cell, read_text, DataError};
+use crate::line_index::{LineTracker, RecordLines};
 use crate::sweep::kernel::LaunchGrid;
 
 use super::super::metrics::metric_names;
@@ -102,7 +103,7 @@ fn index(
     let at = |m: String| DataError::at(path, Some(line as usize), Some(format!("column {col}")), m);
     let v = s
         .parse::<usize>()
-        .map_err(|_| at(format!("not an index: '{}'", escape(s))))?;
+        .map_err(|_| at(format!("not an index: {}", quote_cell(s))))?;
     if v >= limit {
         return Err(at(format!(
             "{v} is outside the study: it has {limit} {what} (0 to {})",
@@ -124,24 +125,28 @@ fn num(path: &Path, line: u64, col: &str, s: &str) -> Result<f64, DataError> {
                 path,
                 Some(line as usize),
                 Some(format!("column {col}")),
-                format!("not a finite number: '{}'", escape(s)),
+                format!("not a finite number: {}", quote_cell(s)),
             )
         })
 }
 
-/// A CSV reader over `text` whose header must be exactly `header`; records must have as many
+/// A CSV reader whose lines are counted as it reads (any line ends; a few kB of memory).
+type Tracked<R> = csv::Reader<LineTracker<R>>;
+
+/// A CSV reader over `input` whose header must be exactly `header`; records must have as many
 /// fields.
 fn csv_records<R: std::io::Read>(
     path: &Path,
     input: R,
     header: &str,
-) -> Result<csv::Reader<R>, DataError> {
+) -> Result<Tracked<R>, DataError> {
     let mut r = csv::ReaderBuilder::new()
         .has_headers(true)
-        .from_reader(input);
-    let h = r
-        .headers()
-        .map_err(|e| DataError::at(path, Some(1), None, format!("cannot read the header: {e}")))?;
+        .from_reader(LineTracker::new(input));
+    let h = match r.headers() {
+        Ok(h) => h,
+        Err(e) => return Err(csv_error_at(r.get_ref(), path, &e)),
+    };
     if h.iter().collect::<Vec<_>>().join(",") != header {
         return Err(DataError::at(
             path,
@@ -153,15 +158,19 @@ fn csv_records<R: std::io::Read>(
     Ok(r)
 }
 
-fn csv_error(path: &Path, e: &csv::Error) -> DataError {
-    let line = e.position().map(|p| p.line() as usize);
-    let msg = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => format!("{len} fields, expected {expected_len}"),
-        _ => escape(&e.to_string()).into_owned(),
-    };
-    DataError::at(path, line, None, msg)
+/// The next record of `r` into `rec` and its line, `None` at the end.
+fn next_record<R: std::io::Read>(
+    path: &Path,
+    r: &mut Tracked<R>,
+    rec: &mut csv::StringRecord,
+) -> Result<Option<u64>, DataError> {
+    match r.read_record(rec) {
+        Ok(false) => Ok(None),
+        Ok(true) => Ok(Some(
+            rec.position().map_or(0, |p| r.get_ref().line_of(p)) as u64
+        )),
+        Err(e) => Err(csv_error_at(r.get_ref(), path, &e)),
+    }
 }
 
 /// Read the shard folders: the study, each variant's summary metrics, and the face maps into
@@ -369,9 +378,8 @@ fn read_rows(
         out.put_row(b.variant, b.row, &b.grid)?;
         Ok(())
     };
-    for rec in reader.records() {
-        let f = rec.map_err(|e| csv_error(rp, &e))?;
-        let ln = f.position().map_or(0, csv::Position::line);
+    let mut f = csv::StringRecord::new();
+    while let Some(ln) = next_record(rp, &mut reader, &mut f)? {
         let (v, r, c) = (
             index(rp, ln, "variant", &f[0], nv, "variants")?,
             index(rp, ln, "row", &f[1], ny, "grid rows")?,
@@ -425,7 +433,7 @@ fn read_point(
                 rp,
                 Some(ln as usize),
                 Some("column valid".into()),
-                format!("must be 0 or 1, got '{}'", escape(other)),
+                format!("must be 0 or 1, got {}", quote_cell(other)),
             ))
         }
     };
@@ -468,9 +476,8 @@ fn read_metrics(
         metrics[variant] = values;
         Ok(())
     };
-    for rec in reader.records() {
-        let f = rec.map_err(|e| csv_error(mp, &e))?;
-        let ln = f.position().map_or(0, csv::Position::line);
+    let mut f = csv::StringRecord::new();
+    while let Some(ln) = next_record(mp, &mut reader, &mut f)? {
         let v = index(mp, ln, "variant", &f[0], p.variants.len(), "variants")?;
         if cur.as_ref().is_none_or(|c| c.0 != v) {
             push(cur.take())?;
@@ -483,7 +490,7 @@ fn read_metrics(
                 Some(ln as usize),
                 Some("column metric".into()),
                 match names.get(c.1.len()) {
-                    Some(want) => format!("expected metric {want}, got '{}'", escape(&f[1])),
+                    Some(want) => format!("expected metric {want}, got {}", quote_cell(&f[1])),
                     None => format!(
                         "variant {v} has more than the study's {} metrics",
                         names.len()
