@@ -218,3 +218,70 @@ fn shots_of_groups_without_the_clubs_group_effects_are_named_once() {
         assert_eq!(w, "");
     }
 }
+
+/// A shard's point must hold what `smash run --shard` writes: five numbers on a valid point,
+/// empty cells on an invalid one. A damaged file (1e308 m/s, which became an infinite mph and a
+/// smash factor of 307 digits; an empty speed on a valid point, merged as a valid point without
+/// a speed; values on an invalid point) is refused at its line and column.
+#[test]
+fn merge_refuses_points_a_shard_never_writes() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let study = write(
+        d,
+        "tiny.toml",
+        &format!(
+            "[study]\nname = \"tiny\"\nclub = {:?}\n[delivery]\nclub_speed_mph = 100.0\n\
+             dynamic_loft_deg = 12.0\n[grid]\ny_mm = {{ from = -2.0, to = 2.0, count = 3 }}\n\
+             z_mm = {{ from = -2.0, to = 2.0, count = 3 }}\n",
+            s(&repo("configs/clubs/paper_driver.toml"))
+        ),
+    );
+    let shard = d.join("shard");
+    let o = smash(&["run", s(&study), "--shard", "0/1", "--out", s(&shard)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows = std::fs::read_to_string(shard.join("rows.csv")).unwrap();
+    let line3: Vec<&str> = rows.lines().nth(2).unwrap().split(',').collect();
+    assert_eq!(line3[3], "1", "{line3:?}");
+    let out = d.join("merged");
+    for (edit, needles) in [
+        (
+            (4, "1e308"),
+            &[
+                "rows.csv:3: column ball_speed_m_s: '1e308' on a valid point",
+                "±1000000",
+            ][..],
+        ),
+        (
+            (7, ""),
+            &["rows.csv:3: column backspin_rad_s: '' on a valid point"][..],
+        ),
+        (
+            (3, "0"),
+            &[
+                "rows.csv:3: column ball_speed_m_s: '",
+                "on a point marked invalid",
+            ][..],
+        ),
+    ] {
+        let mut cells = line3.clone();
+        cells[edit.0] = edit.1;
+        let edited: Vec<String> = rows
+            .lines()
+            .enumerate()
+            .map(|(i, l)| {
+                if i == 2 {
+                    cells.join(",")
+                } else {
+                    l.to_owned()
+                }
+            })
+            .collect();
+        std::fs::write(shard.join("rows.csv"), edited.join("\n") + "\n").unwrap();
+        common::assert_refused(&smash(&["merge", s(&shard), "--out", s(&out)]), needles);
+        assert!(!out.exists());
+    }
+    std::fs::write(shard.join("rows.csv"), &rows).unwrap();
+    let o = smash(&["merge", s(&shard), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", stderr(&o));
+}

@@ -3,14 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::data::{csv_error_at, escape, quote_cell, read_text, DataError};
-use crate::line_index::{LineTracker, RecordLines};
+use crate::data::{escape, quote_cell, read_text, DataError};
 use crate::sweep::kernel::LaunchGrid;
 
 use super::super::metrics::metric_names;
 use super::super::spec::parse_study;
 use super::super::sweep::Prepared;
 use super::super::StudyError;
+use super::fields::{csv_records, index, launch_value, next_record, num};
 use super::scratch::{DiskGrids, ScratchWriter};
 use super::{check_mergeable, club_sha256, sha256_hex, Hashed, MergeError, ROWS_HEADER};
 
@@ -89,88 +89,6 @@ fn read_meta(path: &Path) -> Result<ShardMeta, DataError> {
         ));
     }
     Ok(meta)
-}
-
-/// `value` of `col` on `line` as an index below `limit` (what it counts is `what`).
-fn index(
-    path: &Path,
-    line: u64,
-    col: &str,
-    s: &str,
-    limit: usize,
-    what: &str,
-) -> Result<usize, DataError> {
-    let at = |m: String| DataError::at(path, Some(line as usize), Some(format!("column {col}")), m);
-    let v = s
-        .parse::<usize>()
-        .map_err(|_| at(format!("not an index: {}", quote_cell(s))))?;
-    if v >= limit {
-        return Err(at(format!(
-            "{v} is outside the study: it has {limit} {what} (0 to {})",
-            limit.saturating_sub(1)
-        )));
-    }
-    Ok(v)
-}
-
-fn num(path: &Path, line: u64, col: &str, s: &str) -> Result<f64, DataError> {
-    if s.is_empty() {
-        return Ok(f64::NAN);
-    }
-    s.parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .ok_or_else(|| {
-            DataError::at(
-                path,
-                Some(line as usize),
-                Some(format!("column {col}")),
-                format!("not a finite number: {}", quote_cell(s)),
-            )
-        })
-}
-
-/// A CSV reader whose lines are counted as it reads (any line ends; a few kB of memory).
-type Tracked<R> = csv::Reader<LineTracker<R>>;
-
-/// A CSV reader over `input` whose header must be exactly `header`; records must have as many
-/// fields.
-fn csv_records<R: std::io::Read>(
-    path: &Path,
-    input: R,
-    header: &str,
-) -> Result<Tracked<R>, DataError> {
-    let mut r = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .from_reader(LineTracker::new(input));
-    let h = match r.headers() {
-        Ok(h) => h,
-        Err(e) => return Err(csv_error_at(r.get_ref(), path, &e)),
-    };
-    if h.iter().collect::<Vec<_>>().join(",") != header {
-        return Err(DataError::at(
-            path,
-            Some(1),
-            None,
-            format!("header must be {header}"),
-        ));
-    }
-    Ok(r)
-}
-
-/// The next record of `r` into `rec` and its line, `None` at the end.
-fn next_record<R: std::io::Read>(
-    path: &Path,
-    r: &mut Tracked<R>,
-    rec: &mut csv::StringRecord,
-) -> Result<Option<u64>, DataError> {
-    match r.read_record(rec) {
-        Ok(false) => Ok(None),
-        Ok(true) => Ok(Some(
-            rec.position().map_or(0, |p| r.get_ref().line_of(p)) as u64
-        )),
-        Err(e) => Err(csv_error_at(r.get_ref(), path, &e)),
-    }
 }
 
 /// Read the shard folders: the study, each variant's summary metrics, and the face maps into
@@ -437,11 +355,13 @@ fn read_point(
             ))
         }
     };
-    g.ball_speed_m_s[c] = num(rp, ln, "ball_speed_m_s", &f[4])?;
-    g.launch_angle_rad[c] = num(rp, ln, "launch_angle_rad", &f[5])?;
-    g.azimuth_rad[c] = num(rp, ln, "azimuth_rad", &f[6])?;
-    g.backspin_rad_s[c] = num(rp, ln, "backspin_rad_s", &f[7])?;
-    g.sidespin_rad_s[c] = num(rp, ln, "sidespin_rad_s", &f[8])?;
+    let valid = g.valid[c];
+    let value = |col: &str, s: &str| launch_value(rp, ln, col, s, valid);
+    g.ball_speed_m_s[c] = value("ball_speed_m_s", &f[4])?;
+    g.launch_angle_rad[c] = value("launch_angle_rad", &f[5])?;
+    g.azimuth_rad[c] = value("azimuth_rad", &f[6])?;
+    g.backspin_rad_s[c] = value("backspin_rad_s", &f[7])?;
+    g.sidespin_rad_s[c] = value("sidespin_rad_s", &f[8])?;
     cur.filled += 1;
     cur.line = ln;
     Ok(())
