@@ -285,3 +285,69 @@ fn merge_refuses_points_a_shard_never_writes() {
     let o = smash(&["merge", s(&shard), "--out", s(&out)]);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// A club name, shot id, group or golfer holding a control character (an escape sequence that
+/// recolours the terminal, a line break that splits a table row) is refused at its key or cell:
+/// these names were printed raw on stdout.
+#[test]
+fn names_with_control_characters_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = std::fs::read_to_string(repo("configs/clubs/paper_driver.toml")).unwrap();
+    let name = text.lines().find(|l| l.starts_with("name = ")).unwrap();
+    let line = text.lines().position(|l| l == name).unwrap() + 1;
+    for bad in ["\\u001b[31mred", "two\\nlines", "tab\\there"] {
+        let club = write(
+            d,
+            "club.toml",
+            &text.replacen(name, &format!("name = \"{bad}\""), 1),
+        );
+        common::assert_refused(
+            &smash(&[
+                "predict",
+                "--club",
+                s(&club),
+                "--speed",
+                "100",
+                "--loft",
+                "12",
+            ]),
+            &[
+                &format!("club.toml:{line}"),
+                "key club.name",
+                "holds a control character",
+            ],
+        );
+    }
+    let c = club();
+    let out = d.join("out.csv");
+    for (col, row) in [
+        ("shot_id", "s\u{1b}[2J,A,g1"),
+        ("group", "s1,A\u{1b}[31m,g1"),
+        ("golfer", "s1,A,\"g\r1\""),
+    ] {
+        let shots = write(
+            d,
+            "shots.csv",
+            &format!("shot_id,group,golfer,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm\n{row},100,0,0,12,0,0,0\n"),
+        );
+        let o = smash(&[
+            "predict",
+            "--club",
+            &c,
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&out),
+        ]);
+        common::assert_refused(
+            &o,
+            &[
+                &format!("shots.csv:2: column '{col}'"),
+                "holds a control character",
+            ],
+        );
+        assert!(!o.stderr.contains(&0x1b), "{}", stderr(&o));
+        assert!(!out.exists());
+    }
+}

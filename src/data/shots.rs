@@ -251,6 +251,28 @@ impl Row<'_> {
         )
     }
 
+    /// The text cells (id, group, golfer) hold no control character: they are printed in tables
+    /// and terminals, where an escape or a line break would act or break the layout.
+    fn printable(&self, cols: &Columns) -> Result<(), DataError> {
+        for i in [Some(cols.id), cols.group, cols.golfer]
+            .into_iter()
+            .flatten()
+        {
+            let t = &self.cells[i];
+            if t.chars().any(char::is_control) {
+                return Err(self.error(
+                    &self.headers[i],
+                    format!(
+                        "{} holds a control character (an escape, a line break, a tab); use \
+                         printable text",
+                        super::quote_cell(t)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// A finite number.
     fn num(&self, i: usize) -> Result<f64, DataError> {
         let s = self.cells[i].as_str();
@@ -273,6 +295,7 @@ impl Row<'_> {
 
     /// The shot of this row; `ids` are those of the rows before (ids must be unique).
     fn shot(&self, cols: &Columns, ids: &mut HashSet<String>) -> Result<Shot, DataError> {
+        self.printable(cols)?;
         let id = self.cells[cols.id].clone();
         if id.is_empty() {
             return Err(self.error("shot_id", "empty shot id"));
