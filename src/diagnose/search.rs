@@ -20,6 +20,7 @@ use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
 mod measure;
+mod swap;
 
 fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
@@ -419,6 +420,7 @@ impl<'a> Search<'a> {
                 at_noise_floor,
                 alias: None,
                 rivals: Vec::new(),
+                swap: None,
             }));
         }
         let sigma = noise_scales(&base_errors);
@@ -462,6 +464,7 @@ impl<'a> Search<'a> {
             at_noise_floor,
             alias,
             rivals,
+            swap: None,
         }))
     }
 
