@@ -59,6 +59,20 @@ impl ClubSpec {
         )
     }
 
+    /// `Ok` when the clubhead's centre of mass is behind the face for every group with its
+    /// effects applied (`com_offset`, `hosel_mass`, … may move it): otherwise the group and
+    /// the position ([`crate::limits::check_club_com_x_mm`]).
+    pub fn check_com_behind_face(&self) -> Result<(), String> {
+        let mut groups = self.effect_groups();
+        groups.push("all".to_owned());
+        for g in groups {
+            let x_mm = self.params_for_group(&g).club_com_m.x * 1e3;
+            crate::limits::check_club_com_x_mm(x_mm)
+                .map_err(|m| format!("with the effects of group '{}': {m}", g.escape_debug()))?;
+        }
+        Ok(())
+    }
+
     /// Groups named by any effect.
     pub fn effect_groups(&self) -> Vec<String> {
         let mut groups: Vec<String> = self
@@ -69,6 +83,33 @@ impl ClubSpec {
         groups.sort();
         groups.dedup();
         groups
+    }
+
+    /// `Ok` when `group` (a `--group` flag or a study's `group`) names a group of this club's
+    /// effects, or is `all` (the default: the effects that name no group); otherwise a message
+    /// listing the groups the club has. A group no effect names would silently get the global
+    /// effects only, which is never what a user who typed it meant.
+    pub fn check_group(&self, group: &str) -> Result<(), String> {
+        let groups = self.effect_groups();
+        if group == "all" || groups.iter().any(|g| g == group) {
+            return Ok(());
+        }
+        let have = if groups.is_empty() {
+            "it has no group effects, so only 'all' (the default) applies".to_owned()
+        } else {
+            format!(
+                "its groups are {}, or 'all' (the effects that name no group)",
+                groups
+                    .iter()
+                    .map(|g| format!("'{}'", g.escape_debug()))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        Err(format!(
+            "group '{}' is not a group of this club's effects; {have}",
+            group.escape_debug()
+        ))
     }
 
     /// Model parameters for shots of `group`: nominal plus every effect that applies.

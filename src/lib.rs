@@ -45,6 +45,7 @@ pub mod flight;
 pub mod inputs;
 pub mod lanes;
 pub mod limits;
+pub mod line_index;
 pub mod measurement;
 pub mod model;
 pub mod physics;

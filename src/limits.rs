@@ -120,6 +120,23 @@ pub const DELIVERY_ANGLE_DEG: PhysicalRange =
 pub const DYNAMIC_LOFT_DEG: PhysicalRange =
     PhysicalRange::closed("dynamic loft", "deg", -90.0, 90.0);
 
+/// Smallest spacing of a study's `{ from, to, count }` or `{ from, to, step }` range, in the
+/// axis's unit (mm for impact locations and CoM moves, g for masses, 1 for scale factors): a
+/// micrometre or a microgram is far below what any face map or design can resolve, and closer
+/// values only repeat each other's result (or print as hundreds of digits).
+pub const MIN_AXIS_SPACING: f64 = 1e-6;
+
+/// Smallest normal approach speed `u1·n` at which the club counts as approaching the ball,
+/// m/s: 0.1 mm/s. The one threshold of the scalar solve (`ImpactModel::solve`), the face-map
+/// kernel's lanes (`sweep::kernel`) and the fits' lanes (`fit::problem`), so that all three
+/// decide validity alike. Why not 0: a face turned exactly along the club's path (a loft of
+/// 90° on a level swing) has `u1·n` of rounding size (≈3e-15 m/s), whose sign is noise. At the
+/// largest allowed speeds (club speed 250 mph, head rotation 200 rad/s about a point 0.5 m
+/// away: |u1| ≲ 250 m/s) that rounding is below 1e-12 m/s, eight orders under the threshold;
+/// and an approach of 0.1 mm/s launches the ball at under 0.2 mm/s, far below what any launch
+/// monitor or golf shot has, so no real impact is refused.
+pub const MIN_NORMAL_APPROACH_M_S: f64 = 1e-4;
+
 /// One component of the clubhead's angular velocity, rad/s. Measured values at impact are a few
 /// tens of rad/s (the face closes at up to about 50 rad/s); 200 leaves a factor of four.
 pub const CLUB_OMEGA_RAD_S: PhysicalRange =
@@ -169,6 +186,15 @@ pub const LAUNCH_DIRECTION_DEG: PhysicalRange =
 pub const BALL_SPIN_RPM: PhysicalRange =
     PhysicalRange::closed("measured spin", "rpm", -30_000.0, 30_000.0);
 
+/// Total spin rate of a launch-monitor export, rpm: a magnitude (never negative), with the same
+/// ceiling as [`BALL_SPIN_RPM`].
+pub const SPIN_RATE_RPM: PhysicalRange = PhysicalRange::closed("spin rate", "rpm", 0.0, 30_000.0);
+
+/// Spin axis tilt of a launch-monitor export, deg (+ tilted right): a direction, so within a
+/// half turn either way. Past ±90° the ball carries topspin, as a topped shot does (the shots
+/// file's backspin may be negative, and the model predicts it for strikes low on the face).
+pub const SPIN_AXIS_DEG: PhysicalRange = PhysicalRange::closed("spin axis", "deg", -180.0, 180.0);
+
 /// Clubhead mass, g: from a toy head to a sledgehammer (drivers weigh about 200 g).
 pub const CLUB_MASS_G: PhysicalRange = PhysicalRange::closed("club mass", "g", 1.0, 10_000.0);
 
@@ -176,6 +202,29 @@ pub const CLUB_MASS_G: PhysicalRange = PhysicalRange::closed("club mass", "g", 1
 /// sits about 40 mm behind the face; no head is half a metre long.
 pub const CLUB_COM_MM: PhysicalRange =
     PhysicalRange::closed("club centre of mass", "mm", -500.0, 500.0);
+
+/// `Err` with the value and the allowed range when a clubhead CoM at `x_mm` along the face
+/// normal `x_F` is not behind the face. `x_F` points out of the face at the ball
+/// (`docs/conventions.md`); the centre of mass of a real head lies inside it, behind the face
+/// (a driver's about 40 mm): at or in front of the face plane (`x ≥ 0`) it is not a clubhead.
+/// The far end is [`CLUB_COM_MM`]'s.
+pub fn check_club_com_x_mm(x_mm: f64) -> Result<f64, String> {
+    check_behind_face_mm("club centre of mass", x_mm)
+}
+
+/// [`check_club_com_x_mm`] for any part of the head (`what`: a discretionary mass, …): the
+/// head's mass lies behind its face.
+pub fn check_behind_face_mm(what: &str, x_mm: f64) -> Result<f64, String> {
+    if x_mm < 0.0 && CLUB_COM_MM.contains(x_mm) {
+        Ok(x_mm)
+    } else {
+        Err(format!(
+            "{what} x = {} mm is at or in front of the face (x_F points out of the face, the \
+             face is at x = 0); it must be behind the face, in [-500, 0) mm",
+            fmt_value(x_mm)
+        ))
+    }
+}
 
 /// One component of the hosel's position (where the shaft joins the head) from the centre of
 /// face, mm: like the CoM, somewhere on a head that is nowhere near half a metre long.

@@ -303,8 +303,8 @@ mod reference {
 
     /// The default law written out from its published and fitted constants (Ferguson et al.
     /// 2022 quadratics, spin factor held at 0.75 from 0.80 on and blended in from 0.70 by a
-    /// parabola tangent to both; drag less 0.20·S, plus 0.20 below Re 4e4 fading as a
-    /// smoothstep to 0 at 1.5e5): `(C_D, C_L, C_M)`.
+    /// parabola tangent to both; lift tapered to 0 at S = 0 below 0.02; drag less 0.20·S, plus
+    /// 0.20 below Re 4e4 fading as a smoothstep to 0 at 1.5e5): `(C_D, C_L, C_M)`.
     fn coefficients(sf: f64, re: f64) -> (f64, f64, f64) {
         // The parabola through (0.70, 0.70) with slope 1 and (0.80, 0.75) with slope 0.
         let s = if sf < 0.7 {
@@ -316,9 +316,11 @@ mod reference {
         };
         let x = ((1.5e5 - re) / 1.1e5).clamp(0.0, 1.0);
         let rise = x * x * (3.0 - 2.0 * x);
+        // No lift without spin: the fitted lift times a smoothstep in S/0.02 below S = 0.02.
+        let u = (sf / 0.02).min(1.0);
         (
             0.1304 + 0.9287 * s - 0.8259 * s * s - 0.20 * s + 0.20 * rise,
-            0.0504 + 1.2031 * s - 1.1490 * s * s,
+            (0.0504 + 1.2031 * s - 1.1490 * s * s) * u * u * (3.0 - 2.0 * u),
             0.01 * s,
         )
     }
@@ -447,8 +449,9 @@ mod reference {
                     }
                 }
                 let horiz = end[3].hypot(end[5]);
+                // Carry: the landing's signed coordinate along the target line.
                 return (
-                    end[0].hypot(end[2]),
+                    end[0],
                     end[2],
                     apex.max(end[1]),
                     (-end[4]).atan2(horiz),

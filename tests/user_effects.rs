@@ -442,6 +442,64 @@ fn a_value_out_of_range_at_evaluation_names_effect_expression_and_shot() {
     assert!(g.valid.iter().all(|v| !v));
 }
 
+/// User-defined values are bounded as the library's laws are (`cor` in (0, 1], `et` in
+/// [−1, 1]), each term's value checked as it is made, and the kernel's lanes decide exactly as
+/// the scalar solve: a COR that rises past 1 toward the toe and falls to 0 toward the heel, a
+/// tangential restitution past ±1 high and low on the face, and a COR pushed past 1 by one
+/// effect and brought back by the next (refused: the first value is already not physical).
+#[test]
+fn user_values_outside_the_laws_limits_are_refused_alike_by_solve_and_kernel() {
+    define(
+        "[[define_effect]]\nname = \"cor_edge\"\nparams = []\ncor = \"cor + impact_z_mm / 20\"\n\
+         [[define_effect]]\nname = \"et_edge\"\nparams = []\net = \"impact_y_mm / 10\"\n\
+         [[define_effect]]\nname = \"cor_up\"\nparams = []\ncor = \"cor + 0.5\"\n\
+         [[define_effect]]\nname = \"cor_down\"\nparams = []\ncor = \"cor - 0.5\"\n",
+    );
+    let ys: Vec<f64> = (0..9).map(|i| (-20.0 + 5.0 * i as f64) * 1e-3).collect();
+    let zs: Vec<f64> = (0..17).map(|i| (-40.0 + 5.0 * i as f64) * 1e-3).collect();
+    for (names, want) in [
+        (&["cor_edge"][..], "must be in (0, 1]"),
+        (&["et_edge"][..], "must be in [-1, 1]"),
+        (&["cor_up", "cor_down"][..], "cor = \"cor + 0.5\" gave 1.33"),
+    ] {
+        let mut p = ModelParams::paper_driver();
+        for n in names {
+            user(n).apply(&[], &mut p);
+        }
+        let model = ImpactModel::new(p).unwrap();
+        let (mut valid, mut refused) = (0, 0);
+        for d0 in common::deliveries() {
+            let grid = face_map(&model, &d0, &ys, &zs);
+            for (iy, &y) in ys.iter().enumerate() {
+                for (iz, &z) in zs.iter().enumerate() {
+                    let d = Delivery {
+                        impact_y_m: y,
+                        impact_z_m: z,
+                        ..d0
+                    };
+                    let solved = model.solve(&d);
+                    assert_eq!(
+                        grid.valid[iy * zs.len() + iz],
+                        solved.is_ok(),
+                        "{names:?} at ({y}, {z})"
+                    );
+                    match solved {
+                        Ok(_) => valid += 1,
+                        Err(e) if e.to_string().contains(want) => refused += 1,
+                        Err(_) => {}
+                    }
+                }
+            }
+        }
+        assert!(refused > 50, "{names:?}: only {refused} points refused");
+        if names.len() == 1 {
+            assert!(valid > 50, "{names:?}: only {valid} points valid");
+        } else {
+            assert_eq!(valid, 0, "{names:?}");
+        }
+    }
+}
+
 #[test]
 fn evaluation_allocates_nothing() {
     define(EVERY_QUANTITY);

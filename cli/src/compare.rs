@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::bail;
 use clap::Args;
+use smash::limits::fmt_value;
 
 use smash::compare::{compare_with_hints, CompareOptions};
 use smash::data::club_file::read_club;
@@ -11,6 +12,13 @@ use smash::data::write_folder_atomic;
 use smash::physics::LaunchComponent;
 use smash::predict::expected_launches;
 use smash::report::compare::{compare_files, compare_json, compare_text};
+
+/// Smallest `--alpha` accepted: a significance level far below any multiple-testing correction
+/// a comparison of a few components needs (and printed short in the report's header).
+const MIN_ALPHA: f64 = 1e-9;
+/// Largest `--alpha` accepted: above one half, a test flags an unbiased component more often
+/// than not.
+const MAX_ALPHA: f64 = 0.5;
 
 /// Arguments of `smash compare`.
 #[derive(Debug, Args)]
@@ -98,11 +106,21 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         smash::data::safe_write::clean_stale_temporaries(dir);
         smash::data::safe_write::check_replaceable(dir)?;
     }
-    if !(args.alpha > 0.0 && args.alpha < 1.0) {
-        bail!("--alpha must be in (0, 1), got {}", args.alpha);
+    if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
+        bail!(
+            "--alpha {}: must be within [{}, {}] (a level above one half flags unbiased \
+             components half the time; one below 1e-9 flags no bias a launch monitor can show)",
+            fmt_value(args.alpha),
+            fmt_value(MIN_ALPHA),
+            fmt_value(MAX_ALPHA)
+        );
     }
     if !smash::compare::FACE_BIN_MM.contains(&args.bin_mm) {
-        bail!("--bin-mm must be from 0.5 to 100 mm (impact locations are measured to about a millimetre), got {}", args.bin_mm);
+        bail!(
+            "--bin-mm {}: must be within [0.5, 100] mm (impact locations are measured to about a \
+             millimetre, and a bin larger than the face holds every shot)",
+            fmt_value(args.bin_mm)
+        );
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;

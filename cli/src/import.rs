@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use smash::data::shots::parse_shots;
 use smash::data::write_atomic;
 
 /// Arguments of `smash import`.
@@ -35,7 +34,11 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
         anyhow::bail!("--format is required: a preset (trackman, foresight, flightscope, uneekor) or a mapping file NAME.toml");
     };
     if format == "shots" {
-        anyhow::bail!("--format shots: the file is already a shots file; nothing to import");
+        anyhow::bail!(
+            "--format shots: `shots` is the shots-file format itself, so there is nothing to \
+             convert; give the export's format: a preset (trackman, foresight, flightscope, \
+             uneekor) or a mapping file NAME.toml"
+        );
     }
     smash::data::safe_write::refuse_inputs(
         &[("--out", &args.out, false)],
@@ -43,12 +46,13 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     )?;
     let imported = args.format.import(&args.input, format)?;
     // The result must read back as a shots file (ranges, ids, launch columns).
-    let table = parse_shots(&args.input, imported.csv.as_slice())?;
+    let table = imported.read_back(&args.input)?;
     write_atomic(&args.out, &imported.csv)?;
+    let (n, groups) = (table.shots.len(), table.groups().len());
     eprintln!(
-        "import: {} shots ({} groups) from {} -> {}",
-        table.shots.len(),
-        table.groups().len(),
+        "import: {n} shot{} ({groups} group{}) from {} -> {}",
+        if n == 1 { "" } else { "s" },
+        if groups == 1 { "" } else { "s" },
         args.input.display(),
         args.out.display()
     );

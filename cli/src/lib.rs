@@ -194,10 +194,7 @@ impl ShotsFormatArgs {
             None | Some("shots") => Ok(smash::data::shots::read_shots(path)?),
             Some(format) => {
                 let imported = self.import(path, format)?;
-                Ok(smash::data::shots::parse_shots(
-                    path,
-                    imported.csv.as_slice(),
-                )?)
+                Ok(imported.read_back(path)?)
             }
         }
     }

@@ -244,6 +244,8 @@ fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
             .map_err(|m| anyhow::anyhow!("{}: {m}", flag(v)))?;
     }
     let delivery = delivery_from_file_units(&values);
+    club.check_group(&args.group)
+        .map_err(|m| anyhow::anyhow!("--group: {}: {m}", args.club.display()))?;
     let model = club
         .model_for_group(&args.group)
         .with_context(|| format!("{}: group '{}'", args.club.display(), args.group))?;
@@ -335,7 +337,8 @@ fn add_flight(
     predictions: &[u8],
     outcomes: &[smash::physics::ImpactOutcome],
 ) -> anyhow::Result<Vec<u8>> {
-    use smash::data::flight_files::{flight_csv, parse_raw_csv};
+    use smash::data::flight_files::{flight_csv, parse_raw_csv, OutputLayout};
+    use smash::data::flight_measured::check_measured;
     let cfg = args.flight_options.config()?;
     let launches: Vec<smash::flight::FlightLaunch> = outcomes
         .iter()
@@ -346,6 +349,8 @@ fn add_flight(
         shots_path,
         &smash::data::read_text(shots_path)?.into_bytes(),
     )?;
+    let layout = OutputLayout::new(&shots_raw.headers, cfg.ground.is_some());
+    check_measured(shots_path, &layout, &shots_raw.records, &shots_raw.lines)?;
     let flights = crate::flight::collect(
         shots_path,
         &shots_raw.lines,

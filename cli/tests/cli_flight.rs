@@ -2,14 +2,25 @@
 //! atmosphere table, and one clear line (naming file, line and column or key) with a non-zero
 //! exit and no output file for every kind of bad input.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod cli_support;
 
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
+use std::path::{Path, PathBuf};
+
+use cli_support::{club, s, smash};
+
+/// The command failed cleanly: exit 1 (not a panic's 101), one line on stderr starting
+/// `error: ` and holding every needle. (A message may quote the user's `NaN` cell.)
+fn assert_refused(o: &std::process::Output, needles: &[&str]) {
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "exit {:?}: {err}", o.status);
+    assert_eq!(err.trim_end().lines().count(), 1, "not one line: {err:?}");
+    assert!(
+        err.starts_with("error: ") && !err.contains("panicked"),
+        "{err}"
+    );
+    for n in needles {
+        assert!(err.contains(n), "missing {n:?} in: {err}");
+    }
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
@@ -127,13 +138,12 @@ fn predict_with_flight_adds_the_flight_columns() {
         "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,carry_yd\n\
          s1,110,2,0,13,0,0,0,280\n",
     );
-    let club = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .join("configs/clubs/paper_driver.toml");
+    let club = club();
     let out = dir.path().join("p.csv");
     let o = smash(&[
         "predict",
         "--club",
-        club.to_str().unwrap(),
+        &club,
         "--shots",
         shots.to_str().unwrap(),
         "--out",
@@ -293,4 +303,245 @@ fn bad_input_is_one_clear_line_and_no_file() {
         assert!(!out.exists(), "case {k}: no output file");
         assert!(!err.contains("NaN") && !err.contains("panicked"));
     }
+}
+
+/// `smash flight` on `text` (written to `dir/name`) with `extra` flags must be refused with one
+/// line holding every needle, and write nothing; the message is returned.
+fn refused(dir: &Path, name: &str, text: &str, extra: &[&str], needles: &[&str]) -> String {
+    let shots = write(dir, name, text);
+    let out = dir.join(format!("{name}.out.csv"));
+    let mut args = vec!["flight", "--shots", s(&shots), "--out", s(&out)];
+    args.extend(extra);
+    let o = smash(&args);
+    assert_refused(&o, needles);
+    assert!(!out.exists(), "{name}: no output file");
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const MEASURED_HEAD: &str =
+    "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm,carry_yd,apex_yd,flight_time_s,land_angle_deg,total_yd\n";
+
+/// Measured flight columns are read for the `err_` columns, so they are checked like the launch
+/// columns: a cell that is not a finite number or not a golf shot is one line naming the file,
+/// line and column, on the streamed path (plain files), the one-piece path (quoted cells) and
+/// `smash predict --flight`. An empty cell is "not measured".
+#[test]
+fn measured_flight_columns_are_checked() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let ok = "d1,167,10.9,2686,275,32,7,38,\n";
+    for (k, (row, needles)) in [
+        ("d2,150,12,2600,abc,,,,", vec![":3: column 'carry_yd': 'abc' is not a finite number", "[-600, 600] yd"]),
+        ("d2,150,12,2600,NaN,,,,", vec![":3: column 'carry_yd': 'NaN' is not a finite number"]),
+        ("d2,150,12,2600,1e308,,,,", vec![":3: column 'carry_yd': measured carry 1e308 is outside the physical range [-600, 600] yd"]),
+        ("d2,150,12,2600,,-3,,,", vec!["column 'apex_yd': measured apex -3 is outside the physical range [0, 700] yd"]),
+        ("d2,150,12,2600,,,0,,", vec!["column 'flight_time_s': measured flight time 0 is outside the physical range (0, 30] s"]),
+        ("d2,150,12,2600,,,,95,", vec!["column 'land_angle_deg': measured land angle 95 is outside the physical range [0, 90] deg"]),
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let text = format!("{MEASURED_HEAD}{ok}{row}\n");
+        let e = refused(d, &format!("m{k}.csv"), &text, &[], &needles);
+        assert!(e.len() < 200, "short: {e}");
+        // The same with a quoted cell (the one-piece reader).
+        let quoted = text.replacen("d1,", "\"d,1\",", 1);
+        refused(d, &format!("q{k}.csv"), &quoted, &[], &needles);
+    }
+    // total_yd is compared (and so checked) only with --total.
+    let text = format!("{MEASURED_HEAD}{ok}d2,150,12,2600,,,,,1e300\n");
+    let shots = write(d, "total.csv", &text);
+    let out = d.join("total.out.csv");
+    let o = smash(&["flight", "--shots", s(&shots), "--out", s(&out)]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    refused(
+        d,
+        "total2.csv",
+        &text,
+        &["--total"],
+        &[":3: column 'total_yd': measured total 1e300"],
+    );
+
+    // smash predict --flight names the shots file and line.
+    let shots = write(
+        d,
+        "shots.csv",
+        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,carry_yd\n\
+         s1,110,2,0,13,0,0,0,280\n\
+         s2,110,2,0,13,0,0,0,1e308\n",
+    );
+    let out = d.join("p.csv");
+    let club = club();
+    let args = [
+        "predict",
+        "--club",
+        &club,
+        "--shots",
+        s(&shots),
+        "--out",
+        s(&out),
+        "--flight",
+    ];
+    assert_refused(
+        &smash(&args),
+        &["shots.csv:3: column 'carry_yd': measured carry 1e308"],
+    );
+    assert!(!out.exists());
+}
+
+/// Line numbers in messages are right whatever the line ends: LF, CRLF (Excel, Python's csv)
+/// or a lone CR, with blank lines before the bad row, in the launch file, a shots file and a
+/// coefficient table.
+#[test]
+fn messages_name_the_right_line_with_any_line_ends() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let club = club();
+    for (k, end) in ["\n", "\r\n", "\r"].into_iter().enumerate() {
+        let launch = [
+            "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm",
+            "d1,150,12,2600",
+            "",
+            "d2,150,95,2600",
+        ]
+        .join(end);
+        refused(
+            d,
+            &format!("l{k}.csv"),
+            &launch,
+            &[],
+            &[&format!("l{k}.csv:4: column 'launch_angle_deg'")],
+        );
+        let bad_cell = launch.replace("95", "x");
+        refused(
+            d,
+            &format!("c{k}.csv"),
+            &bad_cell,
+            &[],
+            &[&format!("c{k}.csv:4: column 'launch_angle_deg'")],
+        );
+        let short = launch.replace("d2,150,95,2600", "d2,150");
+        refused(
+            d,
+            &format!("w{k}.csv"),
+            &short,
+            &[],
+            &[&format!("w{k}.csv:4: found a record with 2 field(s)")],
+        );
+        // A shots file for predict: the bad club speed is on line 4.
+        let shots = [
+            "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm",
+            "s1,110,2,0,13,0,0,0",
+            "",
+            "s2,abc,2,0,13,0,0,0",
+            "",
+        ]
+        .join(end);
+        let shots = write(d, &format!("s{k}.csv"), &shots);
+        let out = d.join(format!("p{k}.csv"));
+        let args = [
+            "predict",
+            "--club",
+            &club,
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&out),
+        ];
+        assert_refused(&smash(&args), &[&format!("s{k}.csv:4:")]);
+        // A coefficient table with a comment and a blank line: the bad cl is on line 5.
+        let table = [
+            "# my ball",
+            "spin_factor,cd,cl",
+            "0.1,0.25,0.15",
+            "",
+            "0.3,0.3,x",
+        ]
+        .join(end);
+        let table = write(d, &format!("t{k}.csv"), &table);
+        let aero = format!("table:{}", s(&table));
+        let launch_ok = write(d, "ok.csv", OK_ROW);
+        let out = d.join("t.csv");
+        let args = [
+            "flight",
+            "--shots",
+            s(&launch_ok),
+            "--out",
+            s(&out),
+            "--aero",
+            &aero,
+        ];
+        assert_refused(&smash(&args), &[&format!("t{k}.csv: line 5, column cl")]);
+    }
+}
+
+/// Carry is the signed distance along the target line: a pop-up blown back by a gale lands
+/// behind the golfer with a negative carry (it used to be the unsigned distance to the landing).
+#[test]
+fn a_ball_blown_back_has_a_negative_carry() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = write(
+        dir.path(),
+        "pop.csv",
+        "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\np,40,80,1000\n",
+    );
+    let out = dir.path().join("f.csv");
+    let o = smash(&[
+        "flight",
+        "--shots",
+        s(&shots),
+        "--out",
+        s(&out),
+        "--wind-speed-m-s",
+        "30",
+        "--wind-direction-deg",
+        "180",
+        "--total",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let (h, rows) = table(&out);
+    let carry: f64 = rows[0][col(&h, "pred_carry_yd")].parse().unwrap();
+    let total: f64 = rows[0][col(&h, "pred_total_yd")].parse().unwrap();
+    assert!(
+        carry < -1.0 && total <= carry,
+        "carry {carry}, total {total}"
+    );
+}
+
+/// Range errors of the atmosphere and ground flags print the value short (never 309 digits).
+#[test]
+fn huge_atmosphere_and_ground_values_are_printed_short() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    for (k, flags) in [
+        vec!["--temperature-c", "1e308"],
+        vec!["--elevation-m", "1e308"],
+        vec!["--pressure-hpa", "-1e308"],
+        vec!["--humidity-pct", "1e308"],
+        vec!["--wind-speed-m-s", "1e308"],
+        vec!["--wind-direction-deg", "1e308"],
+        vec!["--wind-height-m", "1e308"],
+        vec!["--roughness-m", "1e308"],
+        vec!["--total", "--ground-restitution", "1e308"],
+        vec!["--total", "--roll-decel-m-s2", "1e308"],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let e = refused(d, &format!("a{k}.csv"), OK_ROW, &flags, &["e308"]);
+        assert!(e.len() < 200, "{flags:?}: {e}");
+    }
+    let atm = write(
+        d,
+        "atm.toml",
+        "[atmosphere]\nwind_height_m = 5\nroughness_m = 1e-300\n",
+    );
+    let e = refused(
+        d,
+        "b.csv",
+        OK_ROW,
+        &["--atmosphere", s(&atm)],
+        &["atmosphere.roughness_m", "1e-300"],
+    );
+    assert!(e.len() < 200, "{e}");
 }

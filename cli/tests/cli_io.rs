@@ -9,11 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
-use cli_support::{assert_kept, club, measured_shots, repo, s, smash, SMASH};
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use cli_support::{assert_kept, club, measured_shots, repo, s, smash, stderr, SMASH};
 
 fn study_file(dir: &Path) -> PathBuf {
     let path = dir.join("study.toml");

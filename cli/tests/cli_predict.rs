@@ -1,8 +1,11 @@
 //! `smash predict` on real files: the one-shot table, and a clear one-line error with a non-zero
 //! exit and no output file for every kind of bad input.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+
+use cli_support::smash;
 
 fn paper_club_text() -> String {
     std::fs::read_to_string(
@@ -13,13 +16,6 @@ fn paper_club_text() -> String {
 }
 
 const SHOTS_HEADER: &str = "shot_id,group,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm";
-
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 struct Case {
     dir: tempfile::TempDir,

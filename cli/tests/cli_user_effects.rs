@@ -3,14 +3,13 @@
 //! writes its definition into the calibrated club, which `predict` and `run` then read alone;
 //! a value out of range at evaluation names the shot; an undefined effect is refused.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use smash::effects::EffectKind;
 
-fn repo(p: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..").join(p)
-}
+use cli_support::{repo, smash};
 
 fn example_defs() -> PathBuf {
     repo("configs/effects/example_effects.toml")
@@ -18,13 +17,6 @@ fn example_defs() -> PathBuf {
 
 // ---------------------------------------------------------------------------------------------
 // The commands.
-
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn ok(o: &std::process::Output, what: &str) {
     assert!(
@@ -209,7 +201,7 @@ fn a_value_out_of_range_names_the_shot_and_an_undefined_effect_is_refused() {
     let defs = dir.path().join("nan.toml");
     std::fs::write(
         &defs,
-        "[[define_effect]]\nname = \"e_nan\"\nparams = []\ncor = \"cor * ln(club_speed_mph - 100)\"\n",
+        "[[define_effect]]\nname = \"e_nan\"\nparams = []\ncor = \"cor * ln(club_speed_mph - 100) / ln(10)\"\n",
     )
     .unwrap();
     let club = dir.path().join("club.toml");

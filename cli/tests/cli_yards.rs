@@ -1,15 +1,11 @@
 //! `smash run` on a study with a `[yards]` table: the yard maps, robust metrics, constraint
 //! report and the optimisation, and refusals of a bad `[yards]` table.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod cli_support;
 
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::path::{Path, PathBuf};
+
+use cli_support::smash;
 
 fn club() -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))

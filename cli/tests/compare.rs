@@ -1,7 +1,8 @@
 //! `compare` on synthetic worlds whose truth is known, and the `smash compare` command.
 
+mod cli_support;
+
 use std::path::Path;
-use std::process::Command;
 
 use smash::compare::{compare, CompareOptions, CompareReport, Pattern};
 use smash::data::club_file::read_club;
@@ -11,6 +12,8 @@ use smash::predict::predict_shots;
 use smash::report::compare::{compare_files, compare_json, compare_text};
 use smash::stats::{mean, std_dev};
 use smash::synth::{generate, read_config};
+
+use cli_support::smash_in_repo as smash;
 
 /// The repository root (this package is `cli/`); the command runs from there.
 const ROOT: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
@@ -154,14 +157,6 @@ fn no_nan_anywhere_in_the_outputs() {
             }
         }
     }
-}
-
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .current_dir(ROOT)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -2,15 +2,11 @@
 //! diagnose output, text and JSON; the noise-floor verdict is in every diagnose report and says
 //! "noise" when only noise remains and names the structure when the model is wrong.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod cli_support;
 
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::path::{Path, PathBuf};
+
+use cli_support::smash;
 
 fn repo(p: &str) -> String {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))

@@ -4,19 +4,11 @@
 //! effect *family* when the world's physics is not a library form, select nothing in a world
 //! with nothing hidden, and account for impact-location noise instead of blaming physics.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn repo(p: &str) -> PathBuf {
-    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(p)
-}
+use cli_support::{repo, smash};
 
 /// Generate a world from `config` and diagnose it with the nominal paper club.
 fn diagnose_world(dir: &Path, name: &str, config: &Path, extra: &[&str]) -> serde_json::Value {

@@ -311,3 +311,315 @@ fn flight_steps_and_spin_decay_are_bounded() {
     let o = smash(&ok);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// `club.toml` in `dir`: the paper driver with `extra` appended (effect tables).
+fn club_with(dir: &Path, extra: &str) -> PathBuf {
+    let path = dir.join("club.toml");
+    let text = std::fs::read_to_string(repo("configs/clubs/paper_driver.toml")).unwrap();
+    std::fs::write(&path, format!("{text}\n{extra}")).unwrap();
+    path
+}
+
+/// The values a user-defined effect makes are bounded as the library's own are (COR in (0, 1],
+/// e_t in [−1, 1], |loft| < 90°, the club mass range), a clubhead CoM at or in front of the face
+/// is refused in a club file and in a study's variants, and a loft of 90° on a level swing does
+/// not pass as an approach of 3e-15 m/s.
+#[test]
+fn effects_clubs_and_deliveries_beyond_the_physical_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let defs = d.join("defs.toml");
+    let one = ["--speed", "100", "--loft", "12"];
+    for (term, want) in [
+        (
+            "cor = \"cor + 10 * k\"",
+            "cor = \"cor + 10 * k\" gave 5.83; it must be in (0, 1]",
+        ),
+        ("et = \"5\"", "it must be in [-1, 1]"),
+        (
+            "loft_deg = \"loft_deg + 1000\"",
+            "gave 1012; it must be in (-90, 90) deg",
+        ),
+        ("club_mass_g = \"1e-9\"", "it must be in [1, 10000] g"),
+    ] {
+        std::fs::write(
+            &defs,
+            format!(
+                "[[define_effect]]\nname = \"u\"\nparams = [{{ key = \"k\", unit = \"1\", \
+                 default = 0.0, lower = -1.0, upper = 1.0 }}]\n{term}\n"
+            ),
+        )
+        .unwrap();
+        let club = club_with(d, "[[effect]]\nname = \"u\"\nk = 0.5\n");
+        let mut args = vec!["predict", "--club", s(&club), "--effect-defs", s(&defs)];
+        args.extend(one);
+        common::assert_refused(&smash(&args), &["user-defined effect 'u'", want]);
+    }
+    for com in ["[0.0, 2.9, 1.0]", "[10.0, 2.9, 1.0]"] {
+        let club = edited(
+            "configs/clubs/paper_driver.toml",
+            d,
+            "front.toml",
+            &[("[-42.3, 2.9, 1.0]", com)],
+        );
+        let mut args = vec!["predict", "--club", s(&club)];
+        args.extend(one);
+        common::assert_refused(
+            &smash(&args),
+            &[
+                "key club.com_mm",
+                "at or in front of the face",
+                "[-500, 0) mm",
+            ],
+        );
+    }
+    // Effects that together move the CoM 60 mm forward, past the face.
+    let shift = "[[effect]]\nname = \"com_offset\"\ndx_mm = 30\ndy_mm = 0\ndz_mm = 0\n";
+    let club = club_with(d, &format!("{shift}{shift}"));
+    let mut args = vec!["predict", "--club", s(&club)];
+    args.extend(one);
+    common::assert_refused(
+        &smash(&args),
+        &[
+            "with the effects of group 'all'",
+            "x = 17.",
+            "in front of the face",
+        ],
+    );
+    let club = s(&repo("configs/clubs/paper_driver.toml")).to_owned();
+    let study = edited(
+        "configs/studies/com_sweep.toml",
+        d,
+        "study.toml",
+        &[
+            (
+                "club = \"../clubs/paper_driver.toml\"",
+                &format!("club = {club:?}"),
+            ),
+            ("com_dx_mm = [-5.0, 0.0, 5.0]", "com_dx_mm = [0.0, 100.0]"),
+        ],
+    );
+    let o = smash(&["run", s(&study), "--out", s(&d.join("out"))]);
+    common::assert_refused(&o, &["com_dx_mm = 100", "at or in front of the face"]);
+    let yards = edited(
+        "configs/studies/yards_driver.toml",
+        d,
+        "yards.toml",
+        &[
+            (
+                "club = \"../clubs/paper_driver.toml\"",
+                &format!("club = {club:?}"),
+            ),
+            ("at_mm = [-70.0, -10.0, 0.0]", "at_mm = [50.0, -10.0, 0.0]"),
+        ],
+    );
+    let o = smash(&["run", s(&yards), "--out", s(&d.join("out"))]);
+    common::assert_refused(
+        &o,
+        &[
+            "key yards.mass.at_mm",
+            "discretionary mass x = 50 mm is at or in front",
+        ],
+    );
+    let o = smash(&["predict", "--club", &club, "--speed", "100", "--loft", "90"]);
+    common::assert_refused(
+        &o,
+        &["does not approach the ball", "must exceed 0.0001 m/s"],
+    );
+    let o = smash(&["predict", "--club", &club, "--speed", "100", "--loft", "89"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// Import errors name the export's own file line (past blank and average rows) and column
+/// header; spin rate and axis are range-checked; a column named twice is refused as such.
+#[test]
+fn import_errors_name_the_exports_line_and_column() {
+    let tmp = tempfile::tempdir().unwrap();
+    let exp = tmp.path().join("tm.csv");
+    let out = tmp.path().join("shots.csv");
+    let head = "Club,Club Speed,Attack Angle,Club Path,Dyn. Loft,Face Angle,Impact Offset,\
+                Impact Height,Ball Speed,Launch Angle,Launch Direction,Spin Rate,Spin Axis";
+    let units = ",[mph],[deg],[deg],[deg],[deg],[mm],[mm],[mph],[deg],[deg],[rpm],[deg]";
+    let row = |speed: &str, launch: &str, rate: &str, axis: &str| {
+        format!("Driver,{speed},1,2,11,0.5,3,4,155,{launch},1.2,{rate},{axis}")
+    };
+    let good = row("105", "12", "2600", "-3");
+    let import = |text: String, flags: &[&str]| {
+        std::fs::write(&exp, text).unwrap();
+        let mut args = vec!["import", "--format", "trackman", s(&exp), "--out", s(&out)];
+        args.extend(["--impact-offset-positive", "toe"]);
+        args.extend(flags);
+        smash(&args)
+    };
+    let avg = good.replacen("Driver", "Average", 1);
+    for (bad, want) in [
+        (
+            row("999", "12", "2600", "-3"),
+            "tm.csv:7: column 'Club Speed': club speed 999 is outside",
+        ),
+        (
+            row("105", "95", "2600", "-3"),
+            "tm.csv:7: column 'Launch Angle': measured launch angle 95 is outside",
+        ),
+        (
+            row("105", "12", "-2700", "-3"),
+            "tm.csv:7: column 'Spin Rate': spin rate -2700 is outside the physical range [0, 30000] rpm",
+        ),
+        (
+            row("105", "12", "2600", "200"),
+            "tm.csv:7: column 'Spin Axis': spin axis 200 is outside the physical range [-180, 180] deg",
+        ),
+    ] {
+        let text = format!("{head}\n{units}\n{good}\n\n{avg}\n{good}\n{bad}\n");
+        common::assert_refused(&import(text, &[]), &[want]);
+        assert!(!out.exists());
+    }
+    // The same line with CRLF and with CR-only line ends (old Mac exports), a blank line and
+    // an average row before it.
+    let bad = row("999", "12", "2600", "-3");
+    for end in ["\r\n", "\r"] {
+        let text = [head, units, &good, "", &avg, &good, &bad, ""].join(end);
+        common::assert_refused(&import(text, &[]), &["tm.csv:7: column 'Club Speed'"]);
+    }
+    for flags in [&[][..], &["--ignore-unknown-columns"][..]] {
+        let o = import(
+            format!("{head},Club Speed\n{units},[mph]\n{good},100\n"),
+            flags,
+        );
+        common::assert_refused(
+            &o,
+            &["tm.csv:1: column 'Club Speed'", "twice (columns 2 and 14)"],
+        );
+    }
+    std::fs::write(&exp, format!("{head}\n{units}\n{good}\n")).unwrap();
+    let o = smash(&["import", "--format", "shots", s(&exp), "--out", s(&out)]);
+    common::assert_refused(&o, &["nothing to convert", "trackman"]);
+}
+
+/// A group no effect of the club names, a sensitivity step lost in the numbers' precision, a
+/// grid spacing of 1e-300 mm and significance levels or bins of 1e±300 are refused, and the
+/// numbers are printed short.
+#[test]
+fn groups_steps_and_levels_are_checked() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let grouped = club_with(
+        d,
+        "[[effect]]\nname = \"cor_level\"\ndcor = 0.01\ngroup = \"A\"\n",
+    );
+    let in_group = |g: &str| {
+        let one = ["--speed", "100", "--loft", "12", "--group", g];
+        smash(&[&["predict", "--club", s(&grouped)][..], &one].concat())
+    };
+    common::assert_refused(
+        &in_group("B"),
+        &["group 'B' is not a group", "its groups are 'A'"],
+    );
+    let o = in_group("A");
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let club = s(&repo("configs/clubs/paper_driver.toml")).to_owned();
+    let study_club = (
+        "club = \"../clubs/paper_driver.toml\"",
+        &*format!("club = {club:?}"),
+    );
+    for (edit, want) in [
+        (
+            ("outputs = [", "group = \"nosuch\"\noutputs = ["),
+            &["key study.group", "group 'nosuch'", "only 'all'"][..],
+        ),
+        (
+            ("com_dx_mm = 0.5,", "com_dx_mm = 1e-300,"),
+            &[
+                "key sensitivity.steps.com_dx_mm",
+                "1e-300 mm is below the smallest meaningful step 1e-6 mm",
+            ][..],
+        ),
+        (
+            (
+                "y_mm = { from = -15.0, to = 15.0, count = 13 }",
+                "y_mm = { from = 0, to = 1e-300, step = 5e-301 }",
+            ),
+            &["key grid.y_mm", "5e-301 apart", "at least 1e-6 apart"][..],
+        ),
+        (
+            (
+                "y_mm = { from = -15.0, to = 15.0, count = 13 }",
+                "y_mm = { from = 0, to = 1e-300, count = 3 }",
+            ),
+            &["key grid.y_mm", "5e-301 apart"][..],
+        ),
+    ] {
+        let study = edited(
+            "configs/studies/com_sweep.toml",
+            d,
+            "study.toml",
+            &[study_club, edit],
+        );
+        let o = smash(&["run", s(&study), "--out", s(&d.join("out"))]);
+        common::assert_refused(&o, want);
+    }
+    let shots = measured_shots(d);
+    let out = d.join("cmp");
+    let levels = [
+        (
+            "--alpha 1e-308",
+            "--alpha 1e-308: must be within [1e-9, 0.5]",
+        ),
+        ("--alpha 2e300", "--alpha 2e300: must be within"),
+        (
+            "--bin-mm 1e300",
+            "--bin-mm 1e300: must be within [0.5, 100] mm",
+        ),
+        ("--bin-mm 1e-300", "--bin-mm 1e-300: must be within"),
+    ];
+    for (flag_value, want) in levels {
+        let (flag, value) = flag_value.split_once(' ').unwrap();
+        let o = smash(&[
+            "compare",
+            "--club",
+            &club,
+            "--shots",
+            s(&shots),
+            "--out-dir",
+            s(&out),
+            flag,
+            value,
+        ]);
+        common::assert_refused(&o, &[want]);
+        assert!(String::from_utf8_lossy(&o.stderr).len() < 300);
+    }
+}
+
+/// A calibrated club is written with the decimals its file was read with (`mass_g = 204.0`, not
+/// `204.00000000000003` from 0.204 kg × 1000), and reads back to the same club.
+#[test]
+fn a_written_club_keeps_the_decimals_it_was_read_with() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let shots = measured_shots(d);
+    let out = d.join("cal.toml");
+    let o = smash(&[
+        "calibrate",
+        "--club",
+        &club(),
+        "--shots",
+        s(&shots),
+        "--effects",
+        "cor_level",
+        "--out-club",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&out).unwrap();
+    for line in [
+        "mass_g = 204.0",
+        "com_mm = [-42.3, 2.9, 1.0]",
+        "inertia_gcm2 = [[2843.0, -733.0, 530.2], [-733.0, 5679.0, 0.5], [530.2, 0.5, 4085.0]]",
+        "inertia_gcm2 = 83.63",
+    ] {
+        assert!(
+            text.lines().any(|l| l == line),
+            "no line {line:?} in:\n{text}"
+        );
+    }
+}

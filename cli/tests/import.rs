@@ -2,21 +2,17 @@
 //! writers below, from the vendor's column names and conventions) imports to a shots file whose
 //! `compare` output equals the original experiment's; bad exports are refused with one line.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use serde_json::Value;
 
+use cli_support::smash_in_repo as smash;
+
 #[path = "../../tests/common/mod.rs"]
 mod common;
-
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("smash runs")
-}
 
 fn ok(out: &Output) -> String {
     assert!(

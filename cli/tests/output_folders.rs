@@ -2,15 +2,11 @@
 //! files), a folder holding anything else is never overwritten, and merge refuses to write into
 //! one of its shards.
 
-use std::path::Path;
-use std::process::Command;
+mod cli_support;
 
-fn smash(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use std::path::Path;
+
+use cli_support::smash;
 
 fn files_under(dir: &Path) -> Vec<String> {
     let mut out = Vec::new();

@@ -3,18 +3,14 @@
 //! blank, no console errors). The browser test skips loudly when Chromium is absent outside CI
 //! and fails in CI (`CI=true`), where `.ci/run` installs it.
 
+mod cli_support;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use serde_json::Value;
 
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .current_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
-        .output()
-        .expect("smash runs")
-}
+use cli_support::smash_in_repo as smash;
 
 fn ok(out: Output) -> String {
     assert!(

@@ -3,11 +3,15 @@
 //! Every refusal is one line on stderr naming the culprit (file and key or column, the value and
 //! the allowed range) with a non-zero exit, and writes nothing.
 
+mod cli_support;
+
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+use cli_support::smash;
 
 fn root() -> PathBuf {
     PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
@@ -18,13 +22,6 @@ fn club() -> String {
         .join("configs/clubs/paper_driver.toml")
         .to_string_lossy()
         .into_owned()
-}
-
-fn smash(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_smash"))
-        .args(args)
-        .output()
-        .expect("the smash binary runs")
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> String {

@@ -94,6 +94,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let c = &raw.club;
     let mass_g = ctx.ranged(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = ctx.each_ranged(&c.com_mm, "club.com_mm", limits::CLUB_COM_MM)?;
+    limits::check_club_com_x_mm(com[0]).map_err(|m| ctx.err(c.com_mm.span(), "club.com_mm", m))?;
     for x in c.inertia_gcm2.get_ref().iter().flatten() {
         limits::CLUB_INERTIA_GCM2
             .check(*x)
@@ -107,7 +108,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         return Err(ctx.err(
             c.cor.span(),
             "club.cor",
-            format!("must be in (0, 1], got {cor}"),
+            format!("must be in (0, 1], got {}", crate::limits::fmt_value(cor)),
         ));
     }
     let loft = match &c.loft_deg {
@@ -173,12 +174,19 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     for (i, table) in raw.effect.iter().enumerate() {
         effects.push(parse_effect(&ctx, "effect", i, table)?);
     }
-    ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
+    let club = ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
         DataError::file(
             path,
             format!("the club with its effects is not physical: {e}"),
         )
-    })
+    })?;
+    club.check_com_behind_face().map_err(|m| {
+        DataError::file(
+            path,
+            format!("the club with its effects is not physical: {m}"),
+        )
+    })?;
+    Ok(club)
 }
 
 /// Parse one effect table shaped like a club file's `[[effect]]` (`name`, optional `group`, the
@@ -297,14 +305,29 @@ pub fn effect_table(e: &Effect) -> toml::Table {
     t
 }
 
-/// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club.
+/// The shortest decimal (fewest significant digits) of a value `si` in SI units that the
+/// reader's conversion `from_file` turns back into exactly `si`: a club read from a file with
+/// `mass_g = 204` is written back as 204, not as `0.204 kg × 1000 = 204.00000000000003`.
+fn file_value(si: f64, from_file: fn(f64) -> f64, per_si: f64) -> f64 {
+    let plain = si * per_si;
+    (1..=17)
+        .filter_map(|digits| format!("{:.*e}", digits - 1, plain).parse::<f64>().ok())
+        .find(|&d| from_file(d) == si)
+        .unwrap_or(plain)
+}
+
+/// Club-file text for `spec`, with `comment` lines at the top. Reads back to the same club
+/// (bit for bit: every value is the shortest decimal the reader converts back to it).
 /// Written by serde from the reader's own raw structs.
 pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     let p = &spec.nominal;
     let sp = |x| Spanned::new(0..0, x);
-    let c = p.club_com_m * 1e3;
-    let i = p.club_inertia_kgm2 * 1e7;
-    let h = p.hosel_m * 1e3;
+    let in_mm = |v: f64| file_value(v, mm, 1e3);
+    let in_g = |v: f64| file_value(v, g, 1e3);
+    let in_gcm2 = |v: f64| file_value(v, gcm2, 1e7);
+    let c = p.club_com_m.map(in_mm);
+    let i = p.club_inertia_kgm2.map(in_gcm2);
+    let h = p.hosel_m.map(in_mm);
     let hosel = [h.x, h.y, h.z];
     // The definitions of the user-defined effects it uses, so the file stays usable alone.
     let mut define_effect = Vec::new();
@@ -318,22 +341,24 @@ pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     let raw = RawFile {
         club: RawClub {
             name: spec.name.clone(),
-            mass_g: sp(p.club_mass_kg * 1e3),
+            mass_g: sp(in_g(p.club_mass_kg)),
             com_mm: Spanned::new(0..0, [c.x, c.y, c.z]),
             inertia_gcm2: Spanned::new(
                 0..0,
                 std::array::from_fn(|r| std::array::from_fn(|k| i[(r, k)])),
             ),
             cor: sp(p.cor),
-            loft_deg: spec.static_loft_rad.map(|l| sp(l.to_degrees())),
-            bulge_mm: sp(p.bulge_m * 1e3),
-            roll_mm: sp(p.roll_m * 1e3),
+            loft_deg: spec
+                .static_loft_rad
+                .map(|l| sp(file_value(l, deg, 180.0 / std::f64::consts::PI))),
+            bulge_mm: sp(in_mm(p.bulge_m)),
+            roll_mm: sp(in_mm(p.roll_m)),
             hosel_mm: (hosel != DRIVER_HOSEL_MM).then(|| Spanned::new(0..0, hosel)),
         },
         ball: RawBall {
-            mass_g: sp(p.ball_mass_kg * 1e3),
-            radius_mm: sp(p.ball_radius_m * 1e3),
-            inertia_gcm2: sp(p.ball_inertia_kgm2 * 1e7),
+            mass_g: sp(in_g(p.ball_mass_kg)),
+            radius_mm: sp(in_mm(p.ball_radius_m)),
+            inertia_gcm2: sp(in_gcm2(p.ball_inertia_kgm2)),
         },
         define_effect,
         effect: spec

@@ -243,12 +243,17 @@ fn compile_params(
         let (lo, hi, def) = (p.lower, p.upper, p.default);
         if !(lo.is_finite() && hi.is_finite() && lo < hi) {
             return Err(here(format!(
-                "{key}: bounds lower = {lo}, upper = {hi} must be finite with lower < upper"
+                "{key}: bounds lower = {}, upper = {} must be finite with lower < upper",
+                crate::limits::fmt_value(lo),
+                crate::limits::fmt_value(hi)
             )));
         }
         if !(def.is_finite() && lo <= def && def <= hi) {
             return Err(here(format!(
-                "{key}: default = {def} must lie within [lower, upper] = [{lo}, {hi}]"
+                "{key}: default = {} must lie within [lower, upper] = [{}, {}]",
+                crate::limits::fmt_value(def),
+                crate::limits::fmt_value(lo),
+                crate::limits::fmt_value(hi)
             )));
         }
         let plausible = match p.plausible {

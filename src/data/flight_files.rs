@@ -11,6 +11,7 @@ use std::path::Path;
 use crate::data::number::push_cell;
 use crate::data::{read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
+use crate::line_index::LineIndex;
 
 /// The flight outputs (file names without prefix).
 pub const FLIGHT_COLUMNS: [&str; 6] = [
@@ -151,13 +152,14 @@ fn parse_raw_csv_parallel(bytes: &[u8]) -> Option<RawCsv> {
         .zip(&first)
         .map(|(c, &first_line)| {
             let mut rdr = reader(c, false);
+            let index = LineIndex::new(c);
             let mut rec = csv::StringRecord::new();
             let (mut recs, mut lines) = (Vec::new(), Vec::new());
             loop {
                 match rdr.read_record(&mut rec) {
                     Ok(false) => break,
                     Ok(true) if rec.len() == width => {
-                        let l = rec.position().map_or(0, |p| p.line() as usize);
+                        let l = rec.position().map_or(1, |p| index.line_of(p));
                         lines.push(first_line + l - 1);
                         recs.push(rec.clone());
                     }
@@ -181,11 +183,14 @@ fn parse_raw_csv_parallel(bytes: &[u8]) -> Option<RawCsv> {
     })
 }
 
+/// One pass of the `csv` reader; lines from [`LineIndex`] (right for `\n`, `\r\n` and `\r` line
+/// ends alike).
 fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> {
+    let index = LineIndex::new(bytes);
     let mut rdr = reader(bytes, true);
     let headers: Vec<String> = rdr
         .headers()
-        .map_err(|e| DataError::file(path, e.to_string()))?
+        .map_err(|e| csv_error_at(&index, path, &e))?
         .iter()
         .map(str::to_string)
         .collect();
@@ -196,13 +201,10 @@ fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> 
         match rdr.read_record(&mut rec) {
             Ok(false) => break,
             Ok(true) => {
-                lines.push(rec.position().map_or(0, |p| p.line() as usize));
+                lines.push(rec.position().map_or(0, |p| index.line_of(p)));
                 records.push(rec.clone());
             }
-            Err(e) => {
-                let line = e.position().map(|p| p.line() as usize);
-                return Err(DataError::at(path, line, None, e.to_string()));
-            }
+            Err(e) => return Err(csv_error_at(&index, path, &e)),
         }
     }
     Ok(RawCsv {
@@ -210,6 +212,22 @@ fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> 
         records,
         lines,
     })
+}
+
+/// A `csv` reading error as one line at its file line (the crate's own messages quote its
+/// miscounted line).
+fn csv_error_at(index: &LineIndex, path: &Path, e: &csv::Error) -> DataError {
+    let line = e.position().map(|p| index.line_of(p));
+    let message = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => format!("found a record with {len} field(s), but the header has {expected_len}"),
+        csv::ErrorKind::Utf8 { err, .. } => {
+            format!("field {} is not valid UTF-8 text", err.field() + 1)
+        }
+        _ => e.to_string(),
+    };
+    DataError::at(path, line, None, message)
 }
 
 /// The launch columns (file names without prefix), in [`FlightLaunch::from_file_units`] order.

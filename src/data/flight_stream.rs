@@ -11,14 +11,16 @@
 //! [`read_launches`], [`fly`](crate::flight::fly), [`flight_csv`].
 
 use std::io::{Read, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rayon::prelude::*;
 
 use crate::data::flight_files::{
     flight_csv, flight_error_at, flight_value, launch_columns, read_launches, split_at_line_ends,
-    LaunchSource, OutputLayout, LAUNCH_COLUMNS,
+    LaunchSource, OutputLayout, FLIGHT_COLUMNS, LAUNCH_COLUMNS,
 };
+use crate::data::flight_measured::{check_measured, measured_flight_value};
+use crate::data::flight_output::Temporary;
 use crate::data::number::push_cell;
 use crate::data::{safe_write, write_atomic, DataError};
 use crate::flight::integrate::fly_serial;
@@ -65,6 +67,8 @@ fn in_memory(
     source: Option<LaunchSource>,
 ) -> Result<Flown, DataError> {
     let table = read_launches(input, source)?;
+    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
+    check_measured(input, &layout, &table.records, &table.lines)?;
     let results = crate::flight::fly(cfg, &table.launches);
     let prefix = table.source.prefix();
     let flights = results
@@ -105,7 +109,10 @@ enum Stop {
 
 enum Bad {
     Width(usize),
+    /// A launch cell (index into [`LAUNCH_COLUMNS`]) that is not a finite number.
     Cell(usize, String),
+    /// A measured flight cell (index into [`FLIGHT_COLUMNS`]) and what is wrong with it.
+    Measured(usize, String),
     Flight(FlightError),
 }
 
@@ -277,6 +284,12 @@ fn bad_row(input: &Path, plan: &Plan, line: usize, bad: Bad) -> DataError {
             Some(format!("column '{}{}'", plan.prefix, LAUNCH_COLUMNS[k])),
             format!("'{cell}' is not a finite number"),
         ),
+        Bad::Measured(k, message) => DataError::at(
+            input,
+            Some(line),
+            Some(format!("column '{}'", FLIGHT_COLUMNS[k])),
+            message,
+        ),
         Bad::Flight(e) => flight_error_at(input, line, plan.prefix, &e),
     }
 }
@@ -345,6 +358,16 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
                         bad = Some(Bad::Cell(k, text.to_string()));
                         break;
                     }
+                }
+            }
+        }
+        if bad.is_none() {
+            for &(k, i) in &plan.layout.measured {
+                let (s, e) = cells[i];
+                let text = std::str::from_utf8(&bytes[s as usize..e as usize]).unwrap_or("");
+                if let Err(m) = measured_flight_value(k, text) {
+                    bad = Some(Bad::Measured(k, m));
+                    break;
                 }
             }
         }
@@ -418,64 +441,6 @@ fn format_rows(
         out.push(b'\n');
     }
     out
-}
-
-/// A temporary file beside the output that replaces it on [`commit`](Self::commit) and is
-/// removed otherwise.
-struct Temporary {
-    file: std::fs::File,
-    tmp: PathBuf,
-    out: PathBuf,
-    done: bool,
-}
-
-impl Temporary {
-    fn create(out: &Path) -> Result<Self, DataError> {
-        let parent = match out.parent() {
-            Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
-            _ => PathBuf::from("."),
-        };
-        let name = out
-            .file_name()
-            .ok_or_else(|| DataError::file(out, "not a file path"))?
-            .to_string_lossy()
-            .into_owned();
-        std::fs::create_dir_all(&parent).map_err(|e| {
-            DataError::file(
-                out,
-                format!("cannot create folder {}: {e}", parent.display()),
-            )
-        })?;
-        safe_write::check_output(out, false)?;
-        safe_write::clean_stale_temporaries(out);
-        let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
-        let file = std::fs::File::create(&tmp)
-            .map_err(|e| DataError::file(out, format!("cannot write: {e}")))?;
-        Ok(Self {
-            file,
-            tmp,
-            out: out.to_owned(),
-            done: false,
-        })
-    }
-
-    fn commit(mut self) -> Result<(), DataError> {
-        let r = self
-            .file
-            .sync_all()
-            .and_then(|()| std::fs::rename(&self.tmp, &self.out));
-        r.map_err(|e| DataError::file(&self.out, format!("cannot write: {e}")))?;
-        self.done = true;
-        Ok(())
-    }
-}
-
-impl Drop for Temporary {
-    fn drop(&mut self) {
-        if !self.done {
-            let _ = std::fs::remove_file(&self.tmp);
-        }
-    }
 }
 
 #[cfg(test)]

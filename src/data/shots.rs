@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 
 use super::DataError;
 use crate::limits::{self, PhysicalRange};
+use crate::line_index::LineIndex;
 /// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
 /// callers of the reader.
 pub use crate::model::Shot;
@@ -90,7 +91,14 @@ impl ShotTable {
 pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
     match c {
         LaunchComponent::BallSpeed => limits::BALL_SPEED_MPH,
-        LaunchComponent::LaunchAngle | LaunchComponent::Azimuth => limits::LAUNCH_DIRECTION_DEG,
+        LaunchComponent::LaunchAngle => PhysicalRange {
+            quantity: "measured launch angle",
+            ..limits::LAUNCH_DIRECTION_DEG
+        },
+        LaunchComponent::Azimuth => PhysicalRange {
+            quantity: "measured azimuth",
+            ..limits::LAUNCH_DIRECTION_DEG
+        },
         LaunchComponent::Backspin | LaunchComponent::Sidespin => limits::BALL_SPIN_RPM,
     }
 }
@@ -114,7 +122,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         .has_headers(true)
         .trim(csv::Trim::All)
         .from_reader(bytes.as_slice());
-    let csv_err = |e: csv::Error| lines.csv_error(path, e);
+    let csv_err = |e: csv::Error| csv_error(&lines, path, e);
     let headers: Vec<String> = rdr
         .headers()
         .map_err(csv_err)?
@@ -156,41 +164,19 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
     Ok(table)
 }
 
-/// Lines from byte offsets: the csv crate's own line count is off for CRLF files (as written
-/// by Excel and Python's csv module).
-struct LineIndex {
-    newlines: Vec<usize>,
-}
-
-impl LineIndex {
-    fn new(bytes: &[u8]) -> Self {
-        let newlines = bytes
-            .iter()
-            .enumerate()
-            .filter(|(_, &b)| b == b'\n')
-            .map(|(i, _)| i)
-            .collect();
-        Self { newlines }
-    }
-
-    /// 1-based line of a position. With CRLF the reported byte is the previous line's `\n`
-    /// itself, hence `<=`.
-    fn line_of(&self, p: &csv::Position) -> usize {
-        self.newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1
-    }
-
-    fn csv_error(&self, path: &Path, e: csv::Error) -> DataError {
-        let line = e.position().map(|p| self.line_of(p));
-        let msg = match e.kind() {
-            csv::ErrorKind::UnequalLengths {
-                expected_len, len, ..
-            } => {
-                format!("row has {len} fields but the header has {expected_len}")
-            }
-            _ => e.to_string(),
-        };
-        DataError::at(path, line, None, msg)
-    }
+/// A `csv` error as a file error at its line (from [`LineIndex`]: the csv crate's own line count
+/// is off for CRLF and CR-only files).
+fn csv_error(lines: &LineIndex, path: &Path, e: csv::Error) -> DataError {
+    let line = e.position().map(|p| lines.line_of(p));
+    let msg = match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => {
+            format!("row has {len} fields but the header has {expected_len}")
+        }
+        _ => e.to_string(),
+    };
+    DataError::at(path, line, None, msg)
 }
 
 /// Where each column the engine reads sits in the header.

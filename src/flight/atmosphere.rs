@@ -14,6 +14,8 @@
 //! - wind: the neutral-stability logarithmic profile `u(h) = u_ref·ln(h/z₀)/ln(h_ref/z₀)`
 //!   (e.g. J. R. Garratt, *The Atmospheric Boundary Layer*, 1992, §3.2), zero below `z₀`.
 
+use crate::limits::fmt_value;
+
 /// Universal gas constant used by CIPM-2007, J/(mol·K).
 pub const R_GAS_J_MOL_K: f64 = 8.314_472;
 /// Molar mass of dry air at CO₂ mole fraction 0.0004 (CIPM-2007), kg/mol.
@@ -155,7 +157,7 @@ impl Air {
 
 /// Why an atmosphere is not usable: one key, its value, what is allowed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("atmosphere {key} = {value}: {allowed}")]
+#[error("atmosphere {key} = {}: {allowed}", fmt_value(*value))]
 pub struct AtmosphereError {
     /// The key (file name of the quantity).
     pub key: &'static str,
@@ -170,7 +172,11 @@ fn check(key: &'static str, value: f64, range: (f64, f64)) -> Result<(), Atmosph
         return Err(AtmosphereError {
             key,
             value,
-            allowed: format!("must be within [{}, {}]", range.0, range.1),
+            allowed: format!(
+                "must be within [{}, {}]",
+                fmt_value(range.0),
+                fmt_value(range.1)
+            ),
         });
     }
     Ok(())
@@ -217,7 +223,7 @@ impl Atmosphere {
                 value: self.wind_height_m,
                 allowed: format!(
                     "must be above the roughness length ({} m) and at most 100 m",
-                    self.roughness_m
+                    fmt_value(self.roughness_m)
                 ),
             });
         }

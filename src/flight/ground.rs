@@ -50,13 +50,13 @@ impl Ground {
         if !(self.restitution >= 0.0 && self.restitution < 1.0) {
             return Err(format!(
                 "ground restitution = {}: must be within [0, 1)",
-                self.restitution
+                crate::limits::fmt_value(self.restitution)
             ));
         }
         if !(self.roll_decel_m_s2 > 0.0 && self.roll_decel_m_s2 <= 50.0) {
             return Err(format!(
                 "ground roll_decel_m_s2 = {}: must be within (0, 50]",
-                self.roll_decel_m_s2
+                crate::limits::fmt_value(self.roll_decel_m_s2)
             ));
         }
         Ok(())

@@ -403,9 +403,8 @@ fn batch<C: CoefficientModel, const WIND: bool>(
                 let w = s.w.0[i] + th * (ns.w.0[i] - s.w.0[i]);
                 let horiz = vx.hypot(vz);
                 let mut f = Flight {
-                    carry_m: x.hypot(z),
+                    carry_m: x,
                     offline_m: z,
-                    downrange_m: x,
                     apex_m: apex[g].0[i].max(0.0),
                     flight_time_s: t + th * h,
                     land_angle_rad: (-vy).atan2(horiz),
@@ -423,7 +422,7 @@ fn batch<C: CoefficientModel, const WIND: bool>(
                     };
                     let back = w * (axis[g][0].0[i] * -uz + axis[g][2].0[i] * ux);
                     let roll = gr.run_m(horiz, -vy, back, k.radius);
-                    f.total_m = Some((x + roll * ux).hypot(z + roll * uz));
+                    f.total_m = Some(x + roll * ux);
                 }
                 let lane = g * W + i;
                 if lane < n {

@@ -243,12 +243,13 @@ pub const MAX_SPIN_RPM: f64 = 20_000.0;
 /// Where and how the ball lands, SI.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flight {
-    /// Distance along the ground from address to the first landing, m.
+    /// Carry, m: the signed distance of the first landing along the target line (G `x`), so a
+    /// ball blown back behind the golfer has a negative carry; [`Self::offline_m`] is the
+    /// other component. Launch monitors report carry along the target line with "carry side"
+    /// across it, not the straight-line distance to the landing.
     pub carry_m: f64,
     /// Lateral position at landing, m (+ right of target, G `z`).
     pub offline_m: f64,
-    /// Downrange position at landing, m (G `x`).
-    pub downrange_m: f64,
     /// Greatest height of the ball centre above its address height, m.
     pub apex_m: f64,
     /// Time from launch to landing, s.
@@ -259,7 +260,7 @@ pub struct Flight {
     pub land_speed_m_s: f64,
     /// Spin rate at landing, rad/s.
     pub land_spin_rad_s: f64,
-    /// Distance along the ground from address to where the ball stops, m, when a
+    /// Where the ball stops along the target line (signed, like [`Self::carry_m`]), m, when a
     /// [`Ground`] model is given.
     pub total_m: Option<f64>,
 }
@@ -306,4 +307,43 @@ pub enum FlightError {
         /// The limit, s.
         time_limit_s: f64,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn carry_is_signed_along_the_target_line() {
+        // In vacuum, launched 30° right of target: carry is the range times cos 30° (the
+        // distance along the target line), offline the range times sin 30°.
+        let mut vacuum = FlightConfig::default();
+        vacuum.air.density_kg_m3 = 0.0;
+        let l = FlightLaunch::from_file_units(100.0, 30.0, 30.0, 3000.0, 0.0);
+        let f = fly_one(&vacuum, &l).unwrap();
+        let v = l.ball_speed_m_s;
+        let range = v * v * (2.0 * l.launch_angle_rad).sin() / G_M_S2;
+        let (s, c) = l.azimuth_rad.sin_cos();
+        assert!((f.carry_m - range * c).abs() < 1e-9, "{f:?} {range}");
+        assert!((f.offline_m - range * s).abs() < 1e-9, "{f:?} {range}");
+        // A pop-up into a gale is blown back behind the golfer: negative carry, and it rolls on
+        // backwards.
+        let gale = FlightConfig {
+            air: Atmosphere {
+                wind_speed_m_s: 30.0,
+                wind_direction_deg: 180.0,
+                ..Atmosphere::default()
+            }
+            .air()
+            .unwrap(),
+            ground: Some(Ground::default()),
+            ..FlightConfig::default()
+        };
+        let pop = FlightLaunch::from_file_units(40.0, 80.0, 0.0, 1000.0, 0.0);
+        let f = fly_one(&gale, &pop).unwrap();
+        println!("{f:?}");
+        assert!(f.carry_m < -1.0, "{f:?}");
+        assert!(f.offline_m.abs() < 1e-9, "{f:?}");
+        assert!(f.total_m.unwrap() <= f.carry_m, "{f:?}");
+    }
 }

@@ -47,8 +47,10 @@ pub enum ImpactError {
     OffFace(#[from] FaceError),
     /// The clubhead's contact point does not move toward the ball along the face normal.
     #[error(
-        "the club does not approach the ball: normal approach speed is {normal_speed_m_s} m/s \
-         (must be > 0; check club speed, attack angle, path, loft and face angle)"
+        "the club does not approach the ball: normal approach speed is {} m/s (must exceed {} \
+         m/s; check club speed, attack angle, path, loft and face angle)",
+        crate::limits::fmt_value(*normal_speed_m_s),
+        crate::limits::fmt_value(crate::limits::MIN_NORMAL_APPROACH_M_S)
     )]
     NotApproaching {
         /// `u1·n`, m/s.
@@ -426,7 +428,7 @@ impl ImpactModel {
             z_m,
         });
         let u1n = s.normal_approach_speed_m_s;
-        if !(u1n > 0.0) {
+        if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
             return Err(ImpactError::NotApproaching {
                 normal_speed_m_s: u1n,
             });
@@ -459,8 +461,8 @@ impl ImpactModel {
     /// [`ImpactModel::solve_in`]) or on lanes of shots (`R = V`, the fits' batched evaluation):
     /// lever arms, approach velocity, COR, collision matrix, impulse, and the ball's velocity
     /// and spin in `F`. The one definition both paths use. It does not check that the club
-    /// approaches the ball (`normal_approach_speed_m_s > 0`) or that the result is finite: the
-    /// caller does.
+    /// approaches the ball (`normal_approach_speed_m_s` above
+    /// [`crate::limits::MIN_NORMAL_APPROACH_M_S`]) or that the result is finite: the caller does.
     #[inline(always)]
     pub fn solve_contact<R: Real>(&self, x: &ContactInputs<R>) -> ContactSolution<R> {
         if self.laws.tangential.mu.is_some() {

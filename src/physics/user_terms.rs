@@ -96,17 +96,30 @@ impl Quantity {
         matches!(self, Quantity::Cor | Quantity::Et | Quantity::Mu)
     }
 
-    /// What a value must be.
+    /// What a value must be: the library's own limits on the quantity (the club file's `cor`
+    /// in (0, 1] and `tangential_restitution` in [−1, 1], `ModelParams::validate`; the club
+    /// mass range [`crate::limits::CLUB_MASS_G`]; a loft or face angle of ±90° or more turns
+    /// the face away from the ball, [`crate::limits::DYNAMIC_LOFT_DEG`]).
     const fn allowed(self) -> &'static str {
         match self {
-            Quantity::ClubMassG | Quantity::InertiaScale | Quantity::Mu => "finite and > 0",
+            Quantity::Cor => "in (0, 1]",
+            Quantity::Et => "in [-1, 1]",
+            Quantity::ClubMassG => "in [1, 10000] g",
+            Quantity::InertiaScale | Quantity::Mu => "finite and > 0",
+            Quantity::LoftDeg | Quantity::FaceDeg => "in (-90, 90) deg",
             _ => "finite",
         }
     }
 
-    fn ok(self, v: f64) -> bool {
+    /// Whether `v` is allowed ([`Quantity::allowed`]); NaN never is. The face-map kernel's
+    /// lanes make the same decision for `cor`, `et` and `mu` (`sweep::kernel`), to the bit.
+    pub fn ok(self, v: f64) -> bool {
         match self {
-            Quantity::ClubMassG | Quantity::InertiaScale | Quantity::Mu => v.is_finite() && v > 0.0,
+            Quantity::Cor => v > 0.0 && v <= 1.0,
+            Quantity::Et => v.abs() <= 1.0,
+            Quantity::ClubMassG => crate::limits::CLUB_MASS_G.contains(v),
+            Quantity::InertiaScale | Quantity::Mu => v.is_finite() && v > 0.0,
+            Quantity::LoftDeg | Quantity::FaceDeg => v.abs() < 90.0,
             _ => v.is_finite(),
         }
     }
@@ -242,11 +255,12 @@ pub struct PreSolve {
     pub face_deg: f64,
 }
 
-/// A user-defined term gave a value outside what its quantity allows (non-finite, or not
-/// positive for a mass, an inertia factor or a friction coefficient).
+/// A user-defined term gave a value outside what its quantity allows ([`Quantity::allowed`]:
+/// non-finite, or outside the library's own limits on the quantity).
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[error(
-    "user-defined effect '{effect}': {quantity} = \"{expr}\" gave {value}; it must be {allowed}"
+    "user-defined effect '{effect}': {quantity} = \"{expr}\" gave {}; it must be {allowed}",
+    crate::limits::fmt_value(*value)
 )]
 pub struct UserEvalError {
     /// Effect name.
@@ -338,10 +352,25 @@ impl UserTerms {
 
     /// Evaluate the `cor`, `et` and `mu` terms on lanes (or one shot): `vars` holds the
     /// delivery variables, the impact location and the approach speeds; `e`, `et`, `mu` the
-    /// values of the library laws. No allocation.
+    /// values of the library laws. Lanes where any term's value is not allowed
+    /// ([`Quantity::ok`], the decision [`UserTerms::contact_checked`] makes on one shot) are
+    /// cleared from `valid`. No allocation.
     #[inline]
-    pub fn contact<R: Real>(&self, vars: &mut [R; NV], e: R, et: R, mu: R) -> (R, R, R) {
-        match self.contact_with(vars, [e, et, mu], |_, _| Ok::<(), Infallible>(())) {
+    pub fn contact<R: Real>(
+        &self,
+        vars: &mut [R; NV],
+        [e, et, mu]: [R; 3],
+        valid: &mut R::Mask,
+    ) -> (R, R, R) {
+        let checked = self.contact_with(vars, [e, et, mu], |t, value: R| {
+            let q = t.def().quantity;
+            *valid = *valid
+                & value
+                    .map(|x| f64::from(u8::from(q.ok(x))))
+                    .gt(R::splat(0.5));
+            Ok::<(), Infallible>(())
+        });
+        match checked {
             Ok(q) => q,
             Err(never) => match never {},
         }

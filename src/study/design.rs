@@ -237,7 +237,7 @@ impl Design {
                 if !s.is_empty() {
                     s.push_str(", ");
                 }
-                let _ = write!(s, "{} = {x}", v.key());
+                let _ = write!(s, "{} = {}", v.key(), crate::limits::fmt_value(x));
             }
         }
         if s.is_empty() {
@@ -274,6 +274,11 @@ impl Design {
             })?;
             let m = p.club_mass_kg;
             let old_com = p.club_com_m;
+            crate::limits::check_behind_face_mm(
+                "the moved discretionary mass",
+                (md.at_m.x + delta.x) * 1e3,
+            )
+            .map_err(err)?;
             let r0 = md.at_m - old_com;
             let r1 = r0 + delta;
             let shift = delta * (md.mass_kg / m);
@@ -286,9 +291,13 @@ impl Design {
             mm(self.get(DesignVar::ComDy)),
             mm(self.get(DesignVar::ComDz)),
         );
+        crate::limits::check_club_com_x_mm(p.club_com_m.x * 1e3).map_err(err)?;
         let s = self.get(DesignVar::InertiaScale);
         if !(s > 0.0) {
-            return Err(err(format!("inertia_scale must be > 0, got {s}")));
+            return Err(err(format!(
+                "inertia_scale must be > 0, got {}",
+                crate::limits::fmt_value(s)
+            )));
         }
         p.club_inertia_kgm2 *= s;
         let axis = [
@@ -305,7 +314,7 @@ impl Design {
                     DesignVar::IzzScale
                 ][i]
                     .key(),
-                axis[i]
+                crate::limits::fmt_value(axis[i])
             )));
         }
         if axis != [1.0; 3] {

@@ -20,7 +20,7 @@ use nalgebra::Vector3;
 
 use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::distribution::{Distribution, SwingSpec};
-use crate::flight::{fly, FlightConfig, FlightLaunch, M_PER_YD};
+use crate::flight::{fly, FlightConfig, FlightLaunch};
 use crate::physics::{ImpactModel, ModelParams};
 use crate::sweep::kernel::{face_map, FaceMapKernel, LaunchGrid};
 use crate::units::mm;
@@ -156,31 +156,31 @@ pub fn yard_metrics(
         ));
     }
     let flights = fly(flight, &launches);
+    // Carry is the landing's signed coordinate along the target line (`Flight::carry_m`), so
+    // the mean and spread of carry are those of the landing points' `x`.
     let (mut sw, mut sx, mut sz) = (0.0, 0.0, 0.0);
     let mut pts = Vec::with_capacity(flights.len());
     for (f, &w) in flights.iter().zip(&weights) {
         let f = f.as_ref().map_err(|e| format!("flight: {e}"))?;
-        let (x, z) = (f.downrange_m / M_PER_YD, f.offline_m / M_PER_YD);
-        pts.push((f.carry_yd(), x, z, w));
+        let (x, z) = (f.carry_yd(), f.offline_yd());
+        pts.push((x, z, w));
         sw += w;
         sx += w * x;
         sz += w * z;
     }
     let (mx, mz) = (sx / sw, sz / sw);
-    let mc = pts.iter().map(|p| p.3 * p.0).sum::<f64>() / sw;
-    let (mut vc, mut vxx, mut vzz, mut vxz) = (0.0, 0.0, 0.0, 0.0);
-    for &(c, x, z, w) in &pts {
-        vc += w * (c - mc) * (c - mc);
+    let (mut vxx, mut vzz, mut vxz) = (0.0, 0.0, 0.0);
+    for &(x, z, w) in &pts {
         vxx += w * (x - mx) * (x - mx);
         vzz += w * (z - mz) * (z - mz);
         vxz += w * (x - mx) * (z - mz);
     }
-    let (vc, vxx, vzz, vxz) = (vc / sw, vxx / sw, vzz / sw, vxz / sw);
+    let (vxx, vzz, vxz) = (vxx / sw, vzz / sw, vxz / sw);
     let det = (vxx * vzz - vxz * vxz).max(0.0);
     let k2 = -2.0 * (1.0 - confidence).ln();
     Ok(YardMetrics {
-        mean_carry_yd: mc,
-        std_carry_yd: vc.sqrt(),
+        mean_carry_yd: mx,
+        std_carry_yd: vxx.sqrt(),
         mean_offline_yd: mz,
         std_offline_yd: vzz.sqrt(),
         ellipse_area_yd2: std::f64::consts::PI * k2 * det.sqrt(),

@@ -162,7 +162,10 @@ pub fn parse_yards(
         return Err(doc.err(
             raw.static_loft_deg.span(),
             "yards.static_loft_deg",
-            format!("must be in (0, 90) degrees, got {loft}"),
+            format!(
+                "must be in (0, 90) degrees, got {}",
+                crate::limits::fmt_value(loft)
+            ),
         ));
     }
     let confidence = match &raw.confidence {
@@ -170,7 +173,10 @@ pub fn parse_yards(
             return Err(doc.err(
                 c.span(),
                 "yards.confidence",
-                format!("must be in (0, 1) (e.g. 0.95), got {}", c.get_ref()),
+                format!(
+                    "must be in (0, 1) (e.g. 0.95), got {}",
+                    crate::limits::fmt_value(*c.get_ref())
+                ),
             ))
         }
         Some(c) => *c.get_ref(),
@@ -232,10 +238,16 @@ fn parse_mass(
         return Err(doc.err(
             m.mass_g.span(),
             "yards.mass.mass_g",
-            format!("must be > 0 and below the head mass {head_g} g, got {mg}"),
+            format!(
+                "must be > 0 and below the head mass {} g, got {}",
+                crate::limits::fmt_value(head_g),
+                crate::limits::fmt_value(mg)
+            ),
         ));
     }
     let at = doc.each_ranged(&m.at_mm, "yards.mass.at_mm", limits::CLUB_COM_MM)?;
+    limits::check_behind_face_mm("the discretionary mass", at[0])
+        .map_err(|e| doc.err(m.at_mm.span(), "yards.mass.at_mm", e))?;
     let b = *m.bounds_mm.get_ref();
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         let [lo, hi] = b[k];
@@ -250,6 +262,11 @@ fn parse_mass(
             ));
         }
     }
+    limits::check_behind_face_mm(
+        "the discretionary mass at its upper x bound",
+        at[0] + b[0][1],
+    )
+    .map_err(|e| doc.err(m.bounds_mm.span(), "yards.mass.bounds_mm", e))?;
     let mass = DiscretionaryMass {
         mass_kg: g(mg),
         at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),

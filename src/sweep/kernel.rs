@@ -340,20 +340,23 @@ impl FaceMapKernel {
         let u1z = vz + (row.wx_rcy - wy * rcx);
         let (u1n_x, u1n_y, u1n_z) = (u1x * nx, u1y * ny, u1z * nz);
         let u1n = u1n_x + u1n_y + u1n_z;
-        // The club approaches the ball if u1·n > 0. The sign of the fast u1·n is certain unless
-        // it is within 1e-13 of the terms' magnitude (its error is ~1e-15 of it); there, redo
-        // n and u1·n with exactly the operations of the generic path, so that validity agrees
-        // with `ImpactModel::solve` to the last bit. (Lanes decide by their own values only.)
-        let unsure = u1n
+        // The club approaches the ball if u1·n exceeds the threshold `t`
+        // (`limits::MIN_NORMAL_APPROACH_M_S`). The fast u1·n's error is ~1e-15 of the terms'
+        // magnitude, so its decision is certain unless it is within 1e-13 of that magnitude
+        // from `t`; there, redo n and u1·n with exactly the operations of the generic path, so
+        // that validity agrees with `ImpactModel::solve` to the last bit. (Lanes decide by
+        // their own values only.)
+        let t = V::splat(crate::limits::MIN_NORMAL_APPROACH_M_S);
+        let unsure = (u1n - t)
             .abs()
             .le((u1n_x.abs() + u1n_y.abs() + u1n_z.abs()) * 1e-13);
         let approaching = if unsure.any() {
             let nx_exact = row.s * x / row.rho / self.roll_m;
             let nz_exact = row.s * z / row.rho / self.roll_m;
             let u1n_exact = u1x * nx_exact + u1y * ny + u1z * nz_exact;
-            unsure.select_mask(u1n_exact.gt(zero), u1n.gt(zero))
+            unsure.select_mask(u1n_exact.gt(t), u1n.gt(t))
         } else {
-            u1n.gt(zero)
+            u1n.gt(t)
         };
         Approach {
             x,
@@ -376,7 +379,6 @@ impl FaceMapKernel {
         a: &Approach,
     ) -> (V, V, V, M) {
         let laws = &self.laws;
-        let zero = V::splat(0.0);
         let e = laws.restitution.cor_with::<V, POWER>(a.u1n, row.yy + z * z);
         let e_t = V::splat(laws.tangential.e_t);
         let mu = V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY));
@@ -389,14 +391,10 @@ impl FaceMapKernel {
         vars[VAR_IMPACT_Z as usize] = z * 1e3;
         vars[VAR_U1N as usize] = a.u1n;
         vars[VAR_UT as usize] = crate::physics::laws::tangential_speed(&a.u1, &a.n, a.u1n);
-        let (e, e_t, mu) = laws.user.contact(&mut vars, e, e_t, mu);
         // Lanes whose user-defined values are not allowed are invalid (the scalar solve names
-        // the effect for them): e and e_t finite, mu > 0 and finite when set.
-        let finite = |x: V| x.abs().le(V::splat(f64::MAX));
-        let mut valid = a.valid & finite(e) & finite(e_t);
-        if laws.user.sets_mu() {
-            valid = valid & finite(mu) & mu.gt(zero);
-        }
+        // the effect for them), by the scalar solve's own per-term decision.
+        let mut valid = a.valid;
+        let (e, e_t, mu) = laws.user.contact(&mut vars, [e, e_t, mu], &mut valid);
         (e, e_t, mu, valid)
     }
 

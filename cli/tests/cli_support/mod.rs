@@ -1,5 +1,6 @@
-//! What the command-line tests of users' files share: the binary, the repository's files and a
-//! measured shots file, and the check that a file was left as it was.
+//! What the command-line tests share: the binary, the repository's files and a measured shots
+//! file, and the check that a file was left as it was. Each test binary uses a part of it.
+#![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -15,6 +16,20 @@ pub fn repo(rel: &str) -> PathBuf {
 /// Run `smash` with `args`.
 pub fn smash(args: &[&str]) -> Output {
     Command::new(SMASH).args(args).output().unwrap()
+}
+
+/// Run `smash` with `args` from the repository's root (relative paths are the repository's).
+pub fn smash_in_repo(args: &[&str]) -> Output {
+    Command::new(SMASH)
+        .args(args)
+        .current_dir(repo(""))
+        .output()
+        .unwrap()
+}
+
+/// A command's stderr as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// A path as an argument.

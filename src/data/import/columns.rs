@@ -37,6 +37,7 @@ pub(super) fn resolve_columns<'a>(
     opts: &ImportOptions,
 ) -> Result<(Vec<Resolved<'a>>, Vec<String>), DataError> {
     let vendor = &mapping.export.name;
+    refuse_duplicate_headers(path, table)?;
     let find = |names: &[String]| {
         let wanted: Vec<String> = names.iter().map(|n| split_header(n).0).collect();
         table.headers.iter().position(|(h, _)| wanted.contains(h))
@@ -123,6 +124,30 @@ pub(super) fn resolve_columns<'a>(
         ));
     }
     Ok((resolved, notes))
+}
+
+/// Refuse an export whose header names one column twice (case, spacing and a bracketed unit
+/// ignored): which of the two a mapping would read is a guess, and the other would be lost.
+fn refuse_duplicate_headers(path: &Path, table: &Table) -> Result<(), DataError> {
+    for (j, (name, _)) in table.headers.iter().enumerate() {
+        if name.is_empty() {
+            continue;
+        }
+        if let Some(i) = table.headers[..j].iter().position(|(h, _)| h == name) {
+            return Err(DataError::at(
+                path,
+                Some(table.header_line),
+                Some(format!("column '{}'", table.header[j])),
+                format!(
+                    "the header has this column twice (columns {} and {}); each column may \
+                     appear once: remove or rename one",
+                    i + 1,
+                    j + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Export columns neither mapped (`used`) nor listed as ignored or as a skip-rule column.

@@ -31,6 +31,7 @@ use self::rows::write_shots;
 use self::table::read_table;
 use self::target::Target;
 use self::units::Unit;
+use super::shots::{parse_shots, ShotTable};
 use super::DataError;
 
 /// The presets: name and the mapping TOML built into the binary.
@@ -158,6 +159,38 @@ pub struct Imported {
     pub shots: usize,
     /// What was skipped and assumed, one line each.
     pub notes: Vec<String>,
+    /// The export's file line of the header and of each shot written, in order.
+    header_line: usize,
+    lines: Vec<usize>,
+    /// Each shots column fed by the export, with where in the export it came from
+    /// (`column 'Club Speed'`), for messages.
+    places: Vec<(&'static str, String)>,
+}
+
+impl Imported {
+    /// Read the converted shots back as a shots table (ranges, ids, launch columns), every
+    /// error placed at the export's own file line and column (`path` is the export).
+    pub fn read_back(&self, path: &Path) -> Result<ShotTable, DataError> {
+        parse_shots(path, self.csv.as_slice()).map_err(|e| self.in_export(e))
+    }
+
+    /// `e`, about the converted CSV, moved to the export's line and column names.
+    fn in_export(&self, mut e: DataError) -> DataError {
+        e.line = e.line.map(|l| match l {
+            0 | 1 => self.header_line,
+            l => self.lines.get(l - 2).copied().unwrap_or(l),
+        });
+        if let Some(place) = &e.place {
+            if let Some((_, to)) = self
+                .places
+                .iter()
+                .find(|(c, _)| *place == format!("column '{c}'"))
+            {
+                e.place = Some(to.clone());
+            }
+        }
+        e
+    }
 }
 
 /// Resolve `--format`: a preset name or a mapping file path.
@@ -268,11 +301,51 @@ pub fn import(
         vendor,
         &mut notes,
     )?;
+    let places = export_places(&layout);
     Ok(Imported {
         csv: shots.csv,
         shots: shots.count,
         notes,
+        header_line: table.header_line,
+        lines: shots.lines,
+        places,
     })
+}
+
+/// Each shots column `layout` writes from the export, with the export column(s) it comes from.
+fn export_places(layout: &Layout) -> Vec<(&'static str, String)> {
+    let header = |target: &str| {
+        layout
+            .resolved
+            .iter()
+            .find(|r| r.spec.target == target)
+            .map(|r| r.header.as_str())
+    };
+    let mut places = Vec::new();
+    for &c in &layout.numeric {
+        let place = match c {
+            "backspin_rpm" | "sidespin_rpm" if layout.use_rate_axis => header("spin_rate_rpm")
+                .zip(header("spin_axis_deg"))
+                .map(|(r, a)| format!("columns '{r}' and '{a}' (the {c} they give)")),
+            "impact_z_mm" if layout.from_offset => {
+                header("impact_offset_mm").map(|h| format!("column '{h}'"))
+            }
+            c => header(c).map(|h| format!("column '{h}'")),
+        };
+        if let Some(p) = place {
+            places.push((c, p));
+        }
+    }
+    for (c, col) in [
+        ("group", layout.group),
+        ("golfer", layout.golfer),
+        ("shot_id", layout.id),
+    ] {
+        if let Some(r) = col {
+            places.push((c, format!("column '{}'", r.header)));
+        }
+    }
+    places
 }
 
 #[cfg(test)]

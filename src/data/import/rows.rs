@@ -11,10 +11,11 @@ use super::target::is_core;
 use super::{OffsetSide, SkipRule};
 use crate::data::{fmt_f64, DataError};
 
-/// The shots CSV (bytes) and the number of shots written.
+/// The shots CSV (bytes), the number of shots written and the export's file line of each.
 pub(super) struct Shots {
     pub csv: Vec<u8>,
     pub count: usize,
+    pub lines: Vec<usize>,
 }
 
 /// Write the shots of `table` laid out by `layout`; notes on skipped rows go to `notes`.
@@ -33,6 +34,7 @@ pub(super) fn write_shots(
     let mut flagged: Vec<(usize, String)> = Vec::new();
     let mut ids = HashSet::new();
     let mut count = 0usize;
+    let mut lines = Vec::new();
     for (line, cells) in &table.rows {
         let row = RowAt {
             path,
@@ -53,6 +55,7 @@ pub(super) fn write_shots(
         let rec = row.record(layout, &mut ids)?;
         w.write_record(&rec).expect("writing to memory");
         count += 1;
+        lines.push(*line);
     }
     for (label, lines) in &skipped_by_rule {
         notes.push(format!(
@@ -79,6 +82,7 @@ pub(super) fn write_shots(
     Ok(Shots {
         csv: w.into_inner().expect("flushing memory"),
         count,
+        lines,
     })
 }
 
@@ -163,6 +167,9 @@ impl RowAt<'_> {
             let v = from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1));
             if !v.is_finite() {
                 return Err(here(format!("'{raw}' is not a finite number")));
+            }
+            if let Some(range) = r.target.range() {
+                range.check(v).map_err(here)?;
             }
             values.push((r.spec.target.as_str(), Some(v)));
         }

@@ -65,12 +65,7 @@ fn strip_preamble<'t>(
     let mut body = text;
     let mut offset_lines = 0usize;
     let mut delimiter = b',';
-    let first = body
-        .split('\n')
-        .next()
-        .unwrap_or("")
-        .trim_end_matches('\r')
-        .trim();
+    let first = next_line(body).0.trim();
     if let Some(sep) = first.strip_prefix("sep=") {
         let sep = sep.trim_matches('"');
         let [b] = sep.as_bytes() else {
@@ -82,14 +77,23 @@ fn strip_preamble<'t>(
             ));
         };
         delimiter = *b;
-        body = body.split_once('\n').map_or("", |(_, r)| r);
+        body = next_line(body).1;
         offset_lines += 1;
     }
     for _ in 0..skip_lines {
-        body = body.split_once('\n').map_or("", |(_, r)| r);
+        body = next_line(body).1;
         offset_lines += 1;
     }
     Ok((body, offset_lines, delimiter))
+}
+
+/// The first line of `text` (without its line end: LF, CRLF or a lone CR) and the rest.
+fn next_line(text: &str) -> (&str, &str) {
+    match text.find(['\n', '\r']) {
+        Some(i) if text[i..].starts_with("\r\n") => (&text[..i], &text[i + 2..]),
+        Some(i) => (&text[..i], &text[i + 1..]),
+        None => (text, ""),
+    }
 }
 
 /// Parse the CSV body into trimmed cells, each row with its file line (`offset_lines` lines
@@ -100,15 +104,8 @@ fn read_rows(
     offset_lines: usize,
     delimiter: u8,
 ) -> Result<Vec<Row>, DataError> {
-    let newlines: Vec<usize> = body
-        .bytes()
-        .enumerate()
-        .filter(|(_, b)| *b == b'\n')
-        .map(|(i, _)| i)
-        .collect();
-    let line_of = |p: &csv::Position| {
-        newlines.partition_point(|&nl| (nl as u64) <= p.byte()) + 1 + offset_lines
-    };
+    let lines = crate::line_index::LineIndex::new(body.as_bytes());
+    let line_of = |p: &csv::Position| lines.line_of(p) + offset_lines;
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)

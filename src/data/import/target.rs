@@ -1,6 +1,8 @@
 //! What a mapped column feeds: the shots columns an import may write, with their units.
 
 use super::units::{Quantity, Unit};
+use crate::data::shots::measured_range;
+use crate::limits::{self, PhysicalRange};
 use crate::model::DeliveryVar;
 use crate::physics::LaunchComponent;
 
@@ -99,6 +101,28 @@ impl Target {
             _ => return None,
         };
         Unit::parse(name)
+    }
+
+    /// The physical range of the values it feeds (shots-file units), when it has one: the
+    /// delivery's and the launch's, the impact offset's, the spin rate's and axis's (the
+    /// flight columns are checked when the shots are read).
+    pub(super) fn range(self) -> Option<PhysicalRange> {
+        match self {
+            Target::Num(c, _) => {
+                DeliveryVar::from_column(c)
+                    .map(DeliveryVar::range)
+                    .or_else(|| {
+                        LaunchComponent::ALL
+                            .into_iter()
+                            .find(|l| l.column() == c)
+                            .map(measured_range)
+                    })
+            }
+            Target::ImpactOffset => Some(limits::IMPACT_LOCATION_MM),
+            Target::SpinRate => Some(limits::SPIN_RATE_RPM),
+            Target::SpinAxis => Some(limits::SPIN_AXIS_DEG),
+            _ => None,
+        }
     }
 
     pub(super) fn quantity(self) -> Option<Quantity> {

@@ -338,7 +338,8 @@ fn solve_lanes(
         r_c[2] * p[0] - r_c[0] * p[2],
         r_c[0] * p[1] - r_c[1] * p[0],
     ];
-    if (!s.normal_approach_speed_m_s.gt(V::splat(0.0))).any()
+    let min_approach = V::splat(crate::limits::MIN_NORMAL_APPROACH_M_S);
+    if (!s.normal_approach_speed_m_s.gt(min_approach)).any()
         || !(finite(&s.ball_velocity_f_m_s)
             && finite(&s.ball_spin_f_rad_s)
             && finite(&club_dv)

@@ -4,6 +4,18 @@
 use std::path::Path;
 
 use super::{CoefficientModel, Coefficients, SMITS_SMITH_CM_PER_S};
+use crate::limits::fmt_value;
+use crate::line_index::{normalise_line_ends, LineIndex};
+
+/// A `csv` error's message without the crate's own (miscounted) line.
+fn csv_message(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => format!("found a row with {len} field(s), but the header has {expected_len}"),
+        _ => e.to_string(),
+    }
+}
 
 /// One Reynolds-number slice of a table: spin factors ascending with their coefficients.
 #[derive(Debug, Clone, PartialEq)]
@@ -59,6 +71,8 @@ impl TableModel {
 
     /// Parse a table from CSV text; `source` names it in errors.
     pub fn parse(text: &str, source: &str) -> Result<Self, String> {
+        // Comments end only at `\n` in the csv crate: CR-only files are normalised (same lines).
+        let text = &*normalise_line_ends(text);
         let mut rdr = csv::ReaderBuilder::new()
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
@@ -77,9 +91,13 @@ impl TableModel {
         let (is, icd, icl) = (need("spin_factor")?, need("cd")?, need("cl")?);
         let (icm, ire) = (col("cm"), col("reynolds"));
         let mut rows: Vec<(f64, f64, Coefficients)> = Vec::new();
-        for (k, rec) in rdr.records().enumerate() {
-            let line = k + 2;
-            let rec = rec.map_err(|e| format!("{source}: line {line}: {e}"))?;
+        let index = LineIndex::new(text.as_bytes()).with_comments(b'#');
+        for rec in rdr.records() {
+            let rec = rec.map_err(|e| match e.position() {
+                Some(p) => format!("{source}: line {}: {}", index.line_of(p), csv_message(&e)),
+                None => format!("{source}: {}", csv_message(&e)),
+            })?;
+            let line = rec.position().map_or(0, |p| index.line_of(p));
             let num = |i: usize, name: &str, lo: f64, hi: f64| -> Result<f64, String> {
                 let t = rec.get(i).unwrap_or("");
                 let v: f64 = t.parse().map_err(|_| {
@@ -87,7 +105,10 @@ impl TableModel {
                 })?;
                 if !(v >= lo && v <= hi) {
                     return Err(format!(
-                        "{source}: line {line}, column {name}: {v} is outside [{lo}, {hi}]"
+                        "{source}: line {line}, column {name}: {} is outside [{}, {}]",
+                        fmt_value(v),
+                        fmt_value(lo),
+                        fmt_value(hi)
                     ));
                 }
                 Ok(v)
@@ -193,8 +214,8 @@ mod tests {
     #[test]
     fn table_interpolates_and_reproduces_a_model() {
         // A table sampled from fmm2022 at fine S reproduces it between the nodes to the
-        // interpolation error of a quadratic (h²/8·|f''| ≤ 2.9e-5 at h = 0.01), below the blend
-        // into the hold that starts at S = 0.70.
+        // interpolation error of a quadratic (h²/8·|f''| ≤ 2.9e-5 at h = 0.01), above the lift's
+        // taper to zero below S = 0.02 and below the blend into the hold that starts at 0.70.
         let mut csv = String::from("spin_factor,cd,cl,cm\n");
         for k in 0..=75 {
             let s = k as f64 * 0.01;
@@ -202,7 +223,7 @@ mod tests {
             csv.push_str(&format!("{s},{},{},{}\n", c.cd, c.cl, c.cm));
         }
         let t = TableModel::parse(&csv, "t.csv").unwrap();
-        for s in [0.005, 0.237, 0.5, 0.695] {
+        for s in [0.025, 0.237, 0.5, 0.695] {
             let (a, b) = (t.coefficients(s, 1e5), Fmm2022.coefficients(s, 1e5));
             assert!(
                 (a.cd - b.cd).abs() < 4e-5 && (a.cl - b.cl).abs() < 4e-5,

@@ -141,7 +141,7 @@ impl ImpactModel {
 
         let u1 = v_c + w_c.cross(&r_c);
         let u1n = u1.dot(&n);
-        if !(u1n > 0.0) {
+        if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
             return Err(ImpactError::NotApproaching {
                 normal_speed_m_s: u1n,
             });

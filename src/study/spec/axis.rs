@@ -5,7 +5,7 @@ use std::ops::Range;
 use toml::Spanned;
 
 use crate::data::{DataError, TomlDoc};
-use crate::limits::{self, PhysicalRange};
+use crate::limits::{self, fmt_value, PhysicalRange};
 
 /// Values of one axis: an explicit list, or `count` evenly spaced values from `from` to `to`.
 #[derive(Debug, Clone, PartialEq)]
@@ -189,15 +189,38 @@ fn range_axis(
         return Err(doc.err(
             span,
             &format!("{key}.count"),
-            format!("count = 1 needs from = to (got from = {from}, to = {to})"),
+            format!(
+                "count = 1 needs from = to (got from = {}, to = {})",
+                fmt_value(from),
+                fmt_value(to)
+            ),
         ));
     }
     if count > 1 && !(to > from) {
         return Err(doc.err(
             span,
             key,
-            format!("range: `to` ({to}) must exceed `from` ({from})"),
+            format!(
+                "range: `to` ({}) must exceed `from` ({})",
+                fmt_value(to),
+                fmt_value(from)
+            ),
         ));
+    }
+    if count > 1 {
+        let spacing = (to - from) / (count - 1) as f64;
+        if !(spacing >= limits::MIN_AXIS_SPACING) {
+            return Err(doc.err(
+                span,
+                key,
+                format!(
+                    "range: its values are {} apart; they must be at least {} apart (in the \
+                     axis's unit)",
+                    fmt_value(spacing),
+                    fmt_value(limits::MIN_AXIS_SPACING)
+                ),
+            ));
+        }
     }
     Ok(Axis::Range { from, to, count })
 }
@@ -217,8 +240,9 @@ fn step_count(
             span,
             &format!("{key}.step"),
             format!(
-                "must be > 0 and divide to − from = {} into whole steps, got {step}",
-                to - from
+                "must be > 0 and divide to − from = {} into whole steps, got {}",
+                fmt_value(to - from),
+                fmt_value(step)
             ),
         ));
     }
@@ -227,8 +251,9 @@ fn step_count(
             span,
             &format!("{key}.step"),
             format!(
-                "{step} gives {} points; at most {} points an axis",
-                n.round() + 1.0,
+                "{} gives {} points; at most {} points an axis",
+                fmt_value(step),
+                fmt_value(n.round() + 1.0),
                 limits::MAX_AXIS_VALUES
             ),
         ));

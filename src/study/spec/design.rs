@@ -153,7 +153,11 @@ fn parse_mass(
         return Err(doc.err(
             v.span(),
             "design.discretionary_mass.mass_g",
-            format!("must be > 0 and below the head mass {head_g} g, got {m}"),
+            format!(
+                "must be > 0 and below the head mass {} g, got {}",
+                crate::limits::fmt_value(head_g),
+                crate::limits::fmt_value(m)
+            ),
         ));
     }
     let at_key = "design.discretionary_mass.at_mm";
@@ -176,6 +180,8 @@ fn parse_mass(
             ))
         }
     };
+    limits::check_behind_face_mm("the discretionary mass", at[0])
+        .map_err(|m| doc.err(v.span(), at_key, m))?;
     Ok(DiscretionaryMass {
         mass_kg: g(m),
         at_m: Vector3::new(mm(at[0]), mm(at[1]), mm(at[2])),

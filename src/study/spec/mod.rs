@@ -123,6 +123,10 @@ pub fn parse_study(path: &Path, text: &str) -> Result<Study, DataError> {
     let raw: RawStudy = doc.parse(LAYOUT)?;
     let h = header::parse_header(&doc, &raw.study)?;
     let (club_path, club) = load_club(&doc, &raw.study)?;
+    club.check_group(&h.group).map_err(|m| {
+        let span = raw.study.group.as_ref().map_or(0..0, |g| g.span());
+        doc.err(span, "study.group", m)
+    })?;
     let study = Study {
         name: h.name,
         club_path,

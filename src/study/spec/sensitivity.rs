@@ -73,9 +73,35 @@ pub(super) fn parse_sensitivity(
     Ok(steps)
 }
 
-/// A central-difference step of `var`: positive, and both evaluations physical.
+/// Smallest central-difference step, as a fraction of the variable's reference change
+/// (`DesignVar::reference_change`: 1 mm, 0.1, 100 g·cm²). A step `h` moves the launch by about
+/// `h·f'`, which must stand well clear of the launch's rounding (~1e-16 of it) for the
+/// difference quotient to mean anything. Its rounding error is about `1e-16·|f|/h`: with a
+/// millionth of the reference change (1e-6 mm) and a ball speed of 150 mph that is 1.5e-8 mph
+/// per mm, under a millionth of a typical 0.05 mph/mm; a step of, say, 1e-300 mm changes no
+/// bit of the club at all and gives exact-zero derivatives.
+const MIN_STEP_OF_REFERENCE: f64 = 1e-6;
+
+/// A central-difference step of `var`: not below [`MIN_STEP_OF_REFERENCE`] of its reference
+/// change, and both evaluations physical.
 fn step(doc: &TomlDoc<'_>, v: &Spanned<f64>, key: &str, var: DesignVar) -> Result<f64, DataError> {
     let h = doc.positive(v, key, var.unit())?;
+    let min = var.reference_change() * MIN_STEP_OF_REFERENCE;
+    if h < min {
+        return Err(doc.err(
+            v.span(),
+            key,
+            format!(
+                "{} {} is below the smallest meaningful step {} {} (the difference it makes is \
+                 lost in the numbers' precision); the default is {}",
+                limits::fmt_value(h),
+                var.unit(),
+                limits::fmt_value(min),
+                var.unit(),
+                limits::fmt_value(var.default_step())
+            ),
+        ));
+    }
     let r = var.range();
     let n = var.neutral();
     if !(r.contains(n - h) && r.contains(n + h)) {
@@ -83,7 +109,8 @@ fn step(doc: &TomlDoc<'_>, v: &Spanned<f64>, key: &str, var: DesignVar) -> Resul
             v.span(),
             key,
             format!(
-                "the central difference evaluates {n} ± {}, outside the physical range {r}",
+                "the central difference evaluates {} ± {}, outside the physical range {r}",
+                limits::fmt_value(n),
                 limits::fmt_value(h)
             ),
         ));
@@ -98,7 +125,8 @@ fn step(doc: &TomlDoc<'_>, v: &Spanned<f64>, key: &str, var: DesignVar) -> Resul
             key,
             format!(
                 "a scale's central difference evaluates 1 ± step; the step must be below 0.5 \
-                 (typically 0.01), got {h}"
+                 (typically 0.01), got {}",
+                limits::fmt_value(h)
             ),
         ));
     }
