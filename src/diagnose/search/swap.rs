@@ -1,21 +1,65 @@
-//! Swap and prune after forward selection (stepwise refinement, `docs/diagnose-selection.md`):
+//! Swap rounds after forward selection (stepwise refinement, `docs/diagnose-selection.md`):
 //! greedy forward selection cannot undo a step, so an effect that won early as a stand-in
 //! (e.g. a 3-parameter `com_offset` soaking up a mass at the hosel) keeps its place even after
-//! later effects make a plausible 1-parameter reading the better model. Each round tries, for
-//! every selected physical effect, removing it and replacing it with every unselected
-//! candidate (the rest refitted, warm-started), and makes the one change that lowers the
-//! cross-validated χ² plus penalty most. Measurement candidates (impact- and delivery-noise
-//! levels) stay as chosen.
+//! later effects make a plausible reading the better model.
+//!
+//! **Gate.** A round runs only while a selected physical effect is a stand-in (a value outside
+//! its plausible range at the current fit): a selection of plausible values is left as forward
+//! selection made it, so the paper world and the null worlds pay nothing.
+//!
+//! **Options**, each scored against the current model with its noise scales (the rest of the
+//! model refitted, warm-started from its current values; new effects from their defaults):
+//! - removing a stand-in;
+//! - replacing a stand-in by one unselected candidate;
+//! - a **pair exchange**: a stand-in and another selected effect that has kin (candidates that
+//!   changed the predictions alike at its step) out, one of the stand-in's
+//!   [`PAIR_FIRST_CHOICES`] best single replacements and one of that effect's kin in. The
+//!   exchange is fitted from the single replacement's fit (reused, not refitted), with the
+//!   other effect removed and its kin added.
+//!
+//! **Acceptance** is forward selection's rule: gain `CV(current) − CV(new)` against penalty
+//! `(k_in − k_out)·ln n + 2·ln m`, `m` every replacement the round could offer (single
+//! replacements plus all pairs the gate allows, however few of them are fitted). The option
+//! with the largest positive margin (converged, identifiable) is made and reported as a step.
+//! Measurement candidates (impact- and delivery-noise levels) stay as chosen. Ties keep
+//! candidate order, so the rounds are deterministic.
 
 use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::super::evaluate::{self, cv_chi2, EffectFit, StepBase};
-use super::super::{select, CandidateResult, Step, Swap};
+use super::super::{honest, select, CandidateResult, Step, Swap};
 use super::Search;
+use crate::effects::EffectId;
 use crate::fit::calibrate::noise_scales;
-use crate::fit::{fit_quietly, EffectRequest, FitError, ParamLayout, Weighting};
+use crate::fit::{fit_quietly, EffectRequest, FitError, ParamEstimate, ParamLayout, Weighting};
 use crate::stats::launch_error_table;
+
+/// How many of a stand-in's best single replacements a pair exchange starts from: the pair
+/// completes one of them, so only the leading few need the second effect tried (the rest of
+/// the `m` pairs are still charged for in `2·ln m`).
+pub(in crate::diagnose) const PAIR_FIRST_CHOICES: usize = 3;
+
+/// `layout` at `theta` without the effects of `kind`: layout, values, parameters removed.
+fn without(
+    layout: &ParamLayout,
+    theta: &DVector<f64>,
+    kind: EffectId,
+) -> Result<(ParamLayout, DVector<f64>, usize), FitError> {
+    let mut effects = Vec::new();
+    let mut vals = Vec::new();
+    let mut k_out = 0;
+    for (i, e) in layout.effects().iter().enumerate() {
+        let v = &theta.as_slice()[layout.range(i)];
+        if e.kind == kind {
+            k_out += v.len();
+        } else {
+            effects.push(e.clone());
+            vals.extend_from_slice(v);
+        }
+    }
+    Ok((ParamLayout::new(effects)?, DVector::from_vec(vals), k_out))
+}
 
 /// The model without one selected effect: its layout, warm start, errors on all shots and
 /// cross-validated χ².
@@ -28,31 +72,65 @@ struct Reduced {
     k_out: usize,
 }
 
-/// One option of a round: remove selected effect `out`, and add `inn` if any.
+/// One option of a round: selected effects `outs` removed, `ins` added.
 struct Option_ {
-    out: usize,
-    inn: Option<EffectRequest>,
+    outs: Vec<usize>,
+    ins: Vec<EffectRequest>,
+    /// Parameters added net of those removed.
+    k_net: f64,
     result: CandidateResult,
     fit: Option<EffectFit>,
 }
 
+/// What every option of a round is scored against: the current CV χ², noise scales and
+/// weighting, the current rms per component, and `2·ln m`.
+#[derive(Clone, Copy)]
+struct RoundBase {
+    cv: f64,
+    sigma: [f64; 5],
+    w: Weighting,
+    /// Rms per component of the current model.
+    rms: [f64; 5],
+    multiplicity: f64,
+}
+
 impl Search<'_> {
-    fn reduced(&self, out: usize, w: Weighting) -> Result<Reduced, FitError> {
-        let kind = self.selected[out].kind();
-        let mut effects = Vec::new();
-        let mut theta = Vec::new();
-        let mut k_out = 0;
+    /// Selected physical effects (indices into `selected`) with a value outside its plausible
+    /// range at the current fit: the gate of the swap rounds.
+    fn stand_ins(&self) -> Vec<usize> {
+        let mut out = Vec::new();
         for (i, e) in self.base.effects().iter().enumerate() {
-            let vals = &self.theta_base.as_slice()[self.base.range(i)];
-            if e.kind == kind {
-                k_out += vals.len();
-            } else {
-                effects.push(e.clone());
-                theta.extend_from_slice(vals);
+            let implausible = e
+                .kind
+                .params()
+                .iter()
+                .zip(&self.theta_base.as_slice()[self.base.range(i)])
+                .any(|(s, &value)| {
+                    let p = ParamEstimate {
+                        effect: e.kind.name(),
+                        group: e.group.clone(),
+                        param: s.key,
+                        unit: s.unit,
+                        value,
+                        stderr: None,
+                        at_bound: false,
+                    };
+                    honest::is_plausible(&p) == Some(false)
+                });
+            let sel = self.selected.iter().position(|r| r.kind() == e.kind);
+            if let (true, Some(o)) = (implausible, sel) {
+                if !out.contains(&o) {
+                    out.push(o);
+                }
             }
         }
-        let layout = ParamLayout::new(effects)?;
-        let theta = DVector::from_vec(theta);
+        out.sort_unstable();
+        out
+    }
+
+    fn reduced(&self, out: usize, w: Weighting) -> Result<Reduced, FitError> {
+        let (layout, theta, k_out) =
+            without(&self.base, &self.theta_base, self.selected[out].kind())?;
         let errors = self.errors_of(&layout, theta.as_slice())?;
         let cv = cv_chi2(
             self.club,
@@ -73,94 +151,271 @@ impl Search<'_> {
         })
     }
 
-    /// Score every removal and replacement against the current model (CV χ² `current_cv`,
-    /// weighting `w`): gain `current_cv − CV(new)`, penalty `(k_in − k_out)·ln n` plus, for a
-    /// replacement, `2·ln m` over the `m` replacements offered (forward selection's rule).
+    fn step_base<'s>(
+        &'s self,
+        (layout, theta, errors): (&'s ParamLayout, &'s DVector<f64>, &'s [[f64; 5]]),
+        cv: f64,
+        rb: RoundBase,
+    ) -> StepBase<'s> {
+        StepBase {
+            club: self.club,
+            data: &self.data,
+            folds: &self.folds,
+            layout,
+            theta,
+            errors,
+            sigma: rb.sigma,
+            w: rb.w,
+            rms: evaluate::rms_per_component(errors),
+            cv,
+            max_iters: self.opts.max_iters,
+            progress: None,
+            spread: None,
+        }
+    }
+
+    /// Score a fitted option: gain against the current model, penalty for the parameters it
+    /// adds net of those it removes, plus the round's `2·ln m`.
+    /// `base_rms` is the rms of the model the option's last effect was fitted on, which its
+    /// `rms_reduction` is relative to; the result's is made relative to the current model.
+    fn rescore(
+        &self,
+        f: &EffectFit,
+        (label, k_in): (String, usize),
+        (k_net, base_rms): (f64, [f64; 5]),
+        rb: RoundBase,
+    ) -> CandidateResult {
+        let mut result = f.result.clone();
+        result.label = label;
+        result.n_params = k_in;
+        result.rms_reduction = std::array::from_fn(|c| {
+            let after = base_rms[c] * (1.0 - f.result.rms_reduction[c]);
+            (rb.rms[c] - after) / rb.rms[c]
+        });
+        result.gain = rb.cv - result.cv_chi2;
+        result.penalty = k_net * self.penalty_per_param + rb.multiplicity;
+        result
+    }
+
+    /// The selected effects (not stand-ins) a pair exchange may take out, each with its kin
+    /// that are not selected.
+    fn pair_partners(&self, stand_ins: &[usize]) -> Vec<(usize, Vec<EffectRequest>)> {
+        (0..self.selected.len())
+            .filter(|o| !stand_ins.contains(o))
+            .filter_map(|o| {
+                let kind = self.selected[o].kind();
+                let (_, _, kin) = self.kin_of.iter().find(|(_, r, _)| r.kind() == kind)?;
+                let open: Vec<EffectRequest> = kin
+                    .iter()
+                    .map(|(c, _)| c.clone())
+                    .filter(|c| !self.selected.iter().any(|s| s.kind() == c.kind()))
+                    .collect();
+                (!open.is_empty()).then_some((o, open))
+            })
+            .collect()
+    }
+
+    /// Pair exchanges: stand-in `s` → `a` (from its fitted single replacement) and partner `e`
+    /// → `b` (one of its kin), fitted from the single replacement's values.
+    fn pair_options(
+        &self,
+        singles: &[Option_],
+        partners: &[(usize, Vec<EffectRequest>)],
+        rb: RoundBase,
+    ) -> Vec<Option_> {
+        let mut starts: Vec<&Option_> = Vec::new();
+        for s in self.stand_ins() {
+            let mut own: Vec<&Option_> = singles
+                .iter()
+                .filter(|o| o.outs == [s] && !o.ins.is_empty() && o.result.eligible())
+                .filter(|o| o.result.cv_chi2.is_finite())
+                .collect();
+            own.sort_by(|x, y| y.result.margin().total_cmp(&x.result.margin()));
+            starts.extend(own.into_iter().take(PAIR_FIRST_CHOICES));
+        }
+        let jobs: Vec<(&Option_, usize, &EffectRequest)> = starts
+            .iter()
+            .flat_map(|st| {
+                partners.iter().flat_map(move |(e, kin)| {
+                    kin.iter()
+                        .filter(|b| b.kind() != st.ins[0].kind())
+                        .map(move |b| (*st, *e, b))
+                })
+            })
+            .collect();
+        jobs.par_iter()
+            .filter_map(|&(st, e, b)| {
+                let (layout, run) = st.fit.as_ref()?.fit.as_ref()?;
+                let (l2, t2, k_e) = without(layout, &run.theta, self.selected[e].kind()).ok()?;
+                let errors = self.errors_of(&l2, t2.as_slice()).ok()?;
+                let base = self.step_base((&l2, &t2, &errors), f64::NAN, rb);
+                let f = evaluate::evaluate_effect(&base, b, self.penalty_per_param, 0.0);
+                let s = st.outs[0];
+                let k_net = st.k_net + f.result.n_params as f64 - k_e as f64;
+                let label = format!(
+                    "{} + {} → {} + {}",
+                    self.selected[s].label(),
+                    self.selected[e].label(),
+                    st.ins[0].label(),
+                    b.label()
+                );
+                let k_in = st.result.n_params + f.result.n_params;
+                let result = self.rescore(&f, (label, k_in), (k_net, base.rms), rb);
+                Some(Option_ {
+                    outs: vec![s, e],
+                    ins: vec![st.ins[0].clone(), b.clone()],
+                    k_net,
+                    result,
+                    fit: Some(f),
+                })
+            })
+            .collect()
+    }
+
+    /// Every option of a round for the stand-ins `stand_ins` (see the module docs).
     fn swap_options(
         &self,
         candidates: &[EffectRequest],
+        stand_ins: &[usize],
         (current_cv, sigma, w): (f64, [f64; 5], Weighting),
         rms_now: [f64; 5],
     ) -> Result<Vec<Option_>, FitError> {
-        let reduced: Vec<Reduced> = (0..self.selected.len())
-            .into_par_iter()
-            .map(|o| self.reduced(o, w))
+        let reduced: Vec<Reduced> = stand_ins
+            .par_iter()
+            .map(|&o| self.reduced(o, w))
             .collect::<Result<_, _>>()?;
         let unselected: Vec<&EffectRequest> = candidates
             .iter()
             .filter(|c| !self.selected.iter().any(|s| s.kind() == c.kind()))
             .collect();
-        let n_replace = self.selected.len() * unselected.len();
-        let multiplicity = 2.0 * (n_replace.max(1) as f64).ln();
-        let pairs: Vec<(usize, &EffectRequest)> = (0..self.selected.len())
-            .flat_map(|o| unselected.iter().map(move |c| (o, *c)))
+        let partners = self.pair_partners(stand_ins);
+        let n_pairs: usize = partners.iter().map(|(_, k)| k.len()).sum::<usize>()
+            * stand_ins.len()
+            * unselected.len();
+        let n_options = stand_ins.len() * unselected.len() + n_pairs;
+        let rb = RoundBase {
+            cv: current_cv,
+            sigma,
+            w,
+            rms: rms_now,
+            multiplicity: 2.0 * (n_options.max(1) as f64).ln(),
+        };
+        let jobs: Vec<(usize, &EffectRequest)> = (0..stand_ins.len())
+            .flat_map(|r| unselected.iter().map(move |c| (r, *c)))
             .collect();
-        let replaced: Vec<Option_> = pairs
+        let singles: Vec<Option_> = jobs
             .par_iter()
-            .map(|&(o, c)| {
-                let r = &reduced[o];
-                let b = StepBase {
-                    club: self.club,
-                    data: &self.data,
-                    folds: &self.folds,
-                    layout: &r.layout,
-                    theta: &r.theta,
-                    errors: &r.errors,
-                    sigma,
-                    w,
-                    rms: evaluate::rms_per_component(&r.errors),
-                    cv: r.cv,
-                    max_iters: self.opts.max_iters,
-                    progress: None,
-                    spread: None,
-                };
-                let f = evaluate::evaluate_effect(&b, c, self.penalty_per_param, multiplicity);
-                let mut result = f.result.clone();
-                result.label = format!("{} → {}", self.selected[o].label(), c.label());
-                result.gain = current_cv - result.cv_chi2;
-                result.penalty = (result.n_params as f64 - r.k_out as f64) * self.penalty_per_param
-                    + multiplicity;
+            .map(|&(r, c)| {
+                let red = &reduced[r];
+                let base = self.step_base((&red.layout, &red.theta, &red.errors), red.cv, rb);
+                let f = evaluate::evaluate_effect(&base, c, self.penalty_per_param, 0.0);
+                let o = stand_ins[r];
+                let label = format!("{} → {}", self.selected[o].label(), c.label());
+                let k_net = f.result.n_params as f64 - red.k_out as f64;
                 Option_ {
-                    out: o,
-                    inn: Some(c.clone()),
-                    result,
+                    outs: vec![o],
+                    ins: vec![c.clone()],
+                    k_net,
+                    result: self.rescore(&f, (label, f.result.n_params), (k_net, base.rms), rb),
                     fit: Some(f),
                 }
             })
             .collect();
-        let removals = reduced.iter().enumerate().map(|(o, r)| {
-            let mut result = CandidateResult {
-                label: format!("remove {}", self.selected[o].label()),
-                n_params: 0,
-                params: Vec::new(),
-                cv_chi2: r.cv,
-                gain: current_cv - r.cv,
-                spread_gain: None,
-                penalty: -(r.k_out as f64) * self.penalty_per_param,
-                rms_reduction: [0.0; 5],
-                unidentified: Vec::new(),
-                converged: true,
-                failure: None,
-            };
+        let pairs = self.pair_options(&singles, &partners, rb);
+        let removals = reduced.iter().zip(stand_ins).map(|(r, &o)| {
             let rms = evaluate::rms_per_component(&r.errors);
-            result.rms_reduction = std::array::from_fn(|c| (rms_now[c] - rms[c]) / rms_now[c]);
             Option_ {
-                out: o,
-                inn: None,
-                result,
+                outs: vec![o],
+                ins: Vec::new(),
+                k_net: -(r.k_out as f64),
+                result: CandidateResult {
+                    label: format!("remove {}", self.selected[o].label()),
+                    n_params: 0,
+                    params: Vec::new(),
+                    cv_chi2: r.cv,
+                    gain: current_cv - r.cv,
+                    spread_gain: None,
+                    penalty: -(r.k_out as f64) * self.penalty_per_param,
+                    rms_reduction: std::array::from_fn(|c| (rms_now[c] - rms[c]) / rms_now[c]),
+                    unidentified: Vec::new(),
+                    converged: true,
+                    failure: None,
+                },
                 fit: None,
             }
         });
-        Ok(removals.chain(replaced).collect())
+        Ok(removals.chain(singles).chain(pairs).collect())
+    }
+
+    /// Make option `chosen`: the model, the selection and the kin bookkeeping.
+    fn make_swap(&mut self, chosen: Option_, w: Weighting) -> Result<(), FitError> {
+        let out_kinds: Vec<EffectId> = chosen
+            .outs
+            .iter()
+            .map(|&o| self.selected[o].kind())
+            .collect();
+        // A partner's kin stay kin of what replaces it (they changed the predictions alike).
+        let mut inherited: Vec<(EffectRequest, f64)> = Vec::new();
+        if let [_, e] = chosen.outs[..] {
+            let kind = self.selected[e].kind();
+            if let Some((_, req, kin)) = self.kin_of.iter().find(|(_, r, _)| r.kind() == kind) {
+                let r_in = kin
+                    .iter()
+                    .find(|(c, _)| Some(c) == chosen.ins.get(1))
+                    .map_or(1.0, |(_, r)| *r);
+                inherited.push((req.clone(), r_in));
+                inherited.extend(
+                    kin.iter()
+                        .filter(|(c, _)| Some(c) != chosen.ins.get(1))
+                        .cloned(),
+                );
+            }
+        }
+        match chosen.fit {
+            Some(EffectFit {
+                fit: Some((layout, run)),
+                ..
+            }) => {
+                self.base = layout;
+                self.theta_base = run.theta;
+            }
+            _ => {
+                let r = self.reduced(chosen.outs[0], w)?;
+                let run = fit_quietly(
+                    self.club,
+                    &r.layout,
+                    &self.data,
+                    w,
+                    &r.theta,
+                    self.opts.max_iters,
+                )?;
+                self.base = r.layout;
+                self.theta_base = run.theta;
+            }
+        }
+        self.selected.retain(|s| !out_kinds.contains(&s.kind()));
+        self.kin_of
+            .retain(|(_, req, _)| !out_kinds.contains(&req.kind()));
+        for (j, inn) in chosen.ins.iter().enumerate() {
+            self.selected.push(inn.clone());
+            let kin = if j == 1 {
+                std::mem::take(&mut inherited)
+            } else {
+                Vec::new()
+            };
+            self.kin_of.push((inn.label(), inn.clone(), kin));
+        }
+        Ok(())
     }
 
     /// One round of swaps: the change that lowers CV χ² + penalty most, made and reported as a
-    /// step; `None` when no removal or replacement improves (or nothing is selected).
+    /// step; `None` when no selected value is a stand-in or no option improves.
     pub(in crate::diagnose) fn swap_round(
         &mut self,
         candidates: &[EffectRequest],
     ) -> Result<Option<Step>, FitError> {
-        if self.selected.is_empty() {
+        let stand_ins = self.stand_ins();
+        if stand_ins.is_empty() {
             return Ok(None);
         }
         let base_labels: Vec<String> = self.selected.iter().map(|r| r.label()).collect();
@@ -178,7 +433,8 @@ impl Search<'_> {
             None,
         )?;
         let rms_now = evaluate::rms_per_component(&errors);
-        let mut options = self.swap_options(candidates, (current_cv, sigma, w), rms_now)?;
+        let mut options =
+            self.swap_options(candidates, &stand_ins, (current_cv, sigma, w), rms_now)?;
         let results: Vec<CandidateResult> = options.iter().map(|o| o.result.clone()).collect();
         let order = select::by_margin(&results);
         let Some(&best) = order
@@ -188,37 +444,15 @@ impl Search<'_> {
             return Ok(None);
         };
         let chosen = options.swap_remove(best);
-        let out_label = self.selected[chosen.out].label();
-        let out_kind = self.selected[chosen.out].kind();
-        match (&chosen.inn, chosen.fit) {
-            (
-                Some(inn),
-                Some(EffectFit {
-                    fit: Some((layout, run)),
-                    ..
-                }),
-            ) => {
-                self.base = layout;
-                self.theta_base = run.theta;
-                self.selected[chosen.out] = inn.clone();
-                self.kin_of.push((inn.label(), inn.clone(), Vec::new()));
-            }
-            _ => {
-                let r = self.reduced(chosen.out, w)?;
-                let run = fit_quietly(
-                    self.club,
-                    &r.layout,
-                    &self.data,
-                    w,
-                    &r.theta,
-                    self.opts.max_iters,
-                )?;
-                self.base = r.layout;
-                self.theta_base = run.theta;
-                self.selected.remove(chosen.out);
-            }
-        }
-        self.kin_of.retain(|(_, req, _)| req.kind() != out_kind);
+        let label_of = |v: Vec<String>| (!v.is_empty()).then(|| v.join(" + "));
+        let out_label = chosen
+            .outs
+            .iter()
+            .map(|&o| self.selected[o].label())
+            .collect::<Vec<_>>()
+            .join(" + ");
+        let in_label = label_of(chosen.ins.iter().map(EffectRequest::label).collect());
+        self.make_swap(chosen, w)?;
         let after_errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
         Ok(Some(Step {
             base: base_labels,
@@ -232,7 +466,7 @@ impl Search<'_> {
             rivals: Vec::new(),
             swap: Some(Swap {
                 out: out_label,
-                inn: chosen.inn.as_ref().map(EffectRequest::label),
+                inn: in_label,
                 cv_before: current_cv,
                 cv_after: results[best].cv_chi2,
             }),
