@@ -360,8 +360,9 @@ pub fn diagnose(
     let nominal = search.errors_of(&search.base, &[])?;
     let before = launch_error_table(&search.groups, &nominal);
     let mut steps = Vec::new();
-    // Forward steps (at most `max_steps`), then swap rounds while one improves, then forward
-    // again; swaps are capped so that the whole is bounded even if scores drift with σ.
+    // Forward steps (at most `max_steps`), then swap rounds (or a re-selection) while one
+    // improves, then forward again; rounds are capped so that the whole is bounded even if
+    // scores drift with σ.
     let mut forward = 0;
     for _swap in 0..=2 * candidates.len() {
         while forward < opts.max_steps {
@@ -375,10 +376,15 @@ pub fn diagnose(
                 break;
             }
         }
-        let Some(step) = search.swap_round(&candidates)? else {
+        if let Some(step) = search.swap_round(&candidates)? {
+            steps.push(step);
+            continue;
+        }
+        // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
+        let Some(more) = search.reselect(&candidates, steps.len())? else {
             break;
         };
-        steps.push(step);
+        steps.extend(more);
     }
     search.finish((fold_by, n_folds), steps, before, warnings)
 }

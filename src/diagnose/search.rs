@@ -20,6 +20,7 @@ use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
 mod measure;
+mod reselect;
 mod swap;
 
 fn group_names(data: &FitData) -> Vec<String> {
@@ -109,6 +110,7 @@ pub(super) fn offered_candidates(
 type Kin = (String, EffectRequest, Vec<(EffectRequest, f64)>);
 
 /// The state of forward selection between steps.
+#[derive(Clone)]
 pub(super) struct Search<'a> {
     club: &'a ClubSpec,
     shots: &'a [Shot],
@@ -135,6 +137,8 @@ pub(super) struct Search<'a> {
     penalty_per_param: f64,
     /// Fold of every shot (to make the folds again for a refined impact-noise level).
     fold_of: Vec<usize>,
+    /// Has a re-selection been tried (`reselect.rs`)? It is tried at most once.
+    reselected: bool,
 }
 
 /// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.
@@ -188,6 +192,7 @@ impl<'a> Search<'a> {
             selected: Vec::new(),
             kin_of: Vec::new(),
             fold_of: fold_of.to_vec(),
+            reselected: false,
         })
     }
 

@@ -31,7 +31,8 @@ use super::super::evaluate::{self, cv_chi2, EffectFit, StepBase};
 use super::super::{honest, select, CandidateResult, Step, Swap};
 use super::Search;
 use crate::effects::EffectId;
-use crate::fit::calibrate::noise_scales;
+use crate::fit::calibrate::{noise_scales, STRONG_CORRELATION};
+use crate::fit::covariance;
 use crate::fit::{fit_quietly, EffectRequest, FitError, ParamEstimate, ParamLayout, Weighting};
 use crate::stats::launch_error_table;
 
@@ -63,9 +64,9 @@ fn without(
 
 /// The model without one selected effect: its layout, warm start, errors on all shots and
 /// cross-validated χ².
-struct Reduced {
-    layout: ParamLayout,
-    theta: DVector<f64>,
+pub(in crate::diagnose) struct Reduced {
+    pub(in crate::diagnose) layout: ParamLayout,
+    pub(in crate::diagnose) theta: DVector<f64>,
     errors: Vec<[f64; 5]>,
     cv: f64,
     /// Parameters the removed effect had.
@@ -128,9 +129,68 @@ impl Search<'_> {
         out
     }
 
-    fn reduced(&self, out: usize, w: Weighting) -> Result<Reduced, FitError> {
-        let (layout, theta, k_out) =
-            without(&self.base, &self.theta_base, self.selected[out].kind())?;
+    /// Pairs of selected effects (indices into `selected`, first < second) with parameters
+    /// whose estimates correlate beyond [`STRONG_CORRELATION`] at the current fit, weighted by
+    /// `w`: the data cannot tell them apart, so the pair is questioned like a stand-in.
+    fn aliased(&self, w: Weighting) -> Vec<(usize, usize)> {
+        let Some((_, jac)) =
+            evaluate::all_shots_at(self.club, &self.base, &self.data, w, &self.theta_base)
+        else {
+            return Vec::new();
+        };
+        let (lo, hi) = (self.base.lower(), self.base.upper());
+        let ranges: Vec<f64> = (0..self.base.len()).map(|j| hi[j] - lo[j]).collect();
+        let Some(corr) = covariance(&jac, 1.0, &ranges).correlation else {
+            return Vec::new();
+        };
+        let owner: Vec<Option<usize>> = self
+            .base
+            .params()
+            .map(|(i, _)| {
+                let kind = self.base.effects()[i].kind;
+                self.selected.iter().position(|r| r.kind() == kind)
+            })
+            .collect();
+        let mut pairs = Vec::new();
+        for a in 0..corr.nrows() {
+            for b in a + 1..corr.ncols() {
+                if let (Some(x), Some(y)) = (owner[a], owner[b]) {
+                    let pair = (x.min(y), x.max(y));
+                    if x != y && corr[(a, b)].abs() > STRONG_CORRELATION && !pairs.contains(&pair) {
+                        pairs.push(pair);
+                    }
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs
+    }
+
+    /// The model without the selected effects `outs`.
+    /// The gate: selected effects that are stand-ins or aliased with another selected effect
+    /// (sorted indices into `selected`), and the aliased pairs.
+    pub(in crate::diagnose) fn questioned(
+        &self,
+        w: Weighting,
+    ) -> (Vec<usize>, Vec<(usize, usize)>) {
+        let alias_pairs = self.aliased(w);
+        let mut questioned = self.stand_ins();
+        questioned.extend(alias_pairs.iter().flat_map(|&(x, y)| [x, y]));
+        questioned.sort_unstable();
+        questioned.dedup();
+        (questioned, alias_pairs)
+    }
+
+    pub(in crate::diagnose) fn reduced_by(
+        &self,
+        outs: &[usize],
+        w: Weighting,
+    ) -> Result<Reduced, FitError> {
+        let (mut layout, mut theta, mut k_out) = (self.base.clone(), self.theta_base.clone(), 0);
+        for &o in outs {
+            let (l, t, k) = without(&layout, &theta, self.selected[o].kind())?;
+            (layout, theta, k_out) = (l, t, k_out + k);
+        }
         let errors = self.errors_of(&layout, theta.as_slice())?;
         let cv = cv_chi2(
             self.club,
@@ -197,11 +257,10 @@ impl Search<'_> {
         result
     }
 
-    /// The selected effects (not stand-ins) a pair exchange may take out, each with its kin
-    /// that are not selected.
-    fn pair_partners(&self, stand_ins: &[usize]) -> Vec<(usize, Vec<EffectRequest>)> {
+    /// The selected effects a pair exchange may take out beside a questioned one, each with
+    /// its kin that are not selected.
+    fn pair_partners(&self) -> Vec<(usize, Vec<EffectRequest>)> {
         (0..self.selected.len())
-            .filter(|o| !stand_ins.contains(o))
             .filter_map(|o| {
                 let kind = self.selected[o].kind();
                 let (_, _, kin) = self.kin_of.iter().find(|(_, r, _)| r.kind() == kind)?;
@@ -215,92 +274,161 @@ impl Search<'_> {
             .collect()
     }
 
-    /// Pair exchanges: stand-in `s` → `a` (from its fitted single replacement) and partner `e`
-    /// → `b` (one of its kin), fitted from the single replacement's values.
+    /// Pair exchanges (see the module docs): questioned `q` → `a` (from its fitted single
+    /// replacement) and `e` → `b`, where `e` is a partner with kin and `b` one of them, or `q`'s
+    /// alias and `b` one of its best single replacements; fitted from the single
+    /// replacement's values.
     fn pair_options(
         &self,
         singles: &[Option_],
-        partners: &[(usize, Vec<EffectRequest>)],
+        (questioned, partners, alias_pairs): (
+            &[usize],
+            &[(usize, Vec<EffectRequest>)],
+            &[(usize, usize)],
+        ),
         rb: RoundBase,
     ) -> Vec<Option_> {
-        let mut starts: Vec<&Option_> = Vec::new();
-        for s in self.stand_ins() {
+        let top = |q: usize| -> Vec<&Option_> {
             let mut own: Vec<&Option_> = singles
                 .iter()
-                .filter(|o| o.outs == [s] && !o.ins.is_empty() && o.result.eligible())
+                .filter(|o| o.outs == [q] && !o.ins.is_empty() && o.result.eligible())
                 .filter(|o| o.result.cv_chi2.is_finite())
                 .collect();
             own.sort_by(|x, y| y.result.margin().total_cmp(&x.result.margin()));
-            starts.extend(own.into_iter().take(PAIR_FIRST_CHOICES));
+            own.truncate(PAIR_FIRST_CHOICES);
+            own
+        };
+        let mut jobs: Vec<(&Option_, usize, EffectRequest)> = Vec::new();
+        for &q in questioned {
+            for st in top(q) {
+                for (e, kin) in partners.iter().filter(|(e, _)| *e != q) {
+                    for b in kin.iter().filter(|b| b.kind() != st.ins[0].kind()) {
+                        jobs.push((st, *e, b.clone()));
+                    }
+                }
+            }
         }
-        let jobs: Vec<(&Option_, usize, &EffectRequest)> = starts
-            .iter()
-            .flat_map(|st| {
-                partners.iter().flat_map(move |(e, kin)| {
-                    kin.iter()
-                        .filter(|b| b.kind() != st.ins[0].kind())
-                        .map(move |b| (*st, *e, b))
-                })
-            })
-            .collect();
+        for &(x, y) in alias_pairs {
+            for st in top(x) {
+                for sb in top(y) {
+                    let b = &sb.ins[0];
+                    let seen = jobs
+                        .iter()
+                        .any(|(s2, e2, b2)| std::ptr::eq(*s2, st) && *e2 == y && b2 == b);
+                    if b.kind() != st.ins[0].kind() && !seen {
+                        jobs.push((st, y, b.clone()));
+                    }
+                }
+            }
+        }
         jobs.par_iter()
-            .filter_map(|&(st, e, b)| {
-                let (layout, run) = st.fit.as_ref()?.fit.as_ref()?;
-                let (l2, t2, k_e) = without(layout, &run.theta, self.selected[e].kind()).ok()?;
-                let errors = self.errors_of(&l2, t2.as_slice()).ok()?;
-                let base = self.step_base((&l2, &t2, &errors), f64::NAN, rb);
-                let f = evaluate::evaluate_effect(&base, b, self.penalty_per_param, 0.0);
-                let s = st.outs[0];
-                let k_net = st.k_net + f.result.n_params as f64 - k_e as f64;
-                let label = format!(
-                    "{} + {} → {} + {}",
-                    self.selected[s].label(),
-                    self.selected[e].label(),
-                    st.ins[0].label(),
-                    b.label()
-                );
-                let k_in = st.result.n_params + f.result.n_params;
-                let result = self.rescore(&f, (label, k_in), (k_net, base.rms), rb);
-                Some(Option_ {
-                    outs: vec![s, e],
-                    ins: vec![st.ins[0].clone(), b.clone()],
-                    k_net,
-                    result,
-                    fit: Some(f),
-                })
-            })
+            .filter_map(|(st, e, b)| self.pair_option(st, *e, b, rb))
             .collect()
     }
 
-    /// Every option of a round for the stand-ins `stand_ins` (see the module docs).
+    /// One pair exchange: single replacement `st` of a questioned effect, then `e` removed and
+    /// `b` added.
+    fn pair_option(
+        &self,
+        st: &Option_,
+        e: usize,
+        b: &EffectRequest,
+        rb: RoundBase,
+    ) -> Option<Option_> {
+        let (layout, run) = st.fit.as_ref()?.fit.as_ref()?;
+        let (l2, t2, k_e) = without(layout, &run.theta, self.selected[e].kind()).ok()?;
+        let errors = self.errors_of(&l2, t2.as_slice()).ok()?;
+        let base = self.step_base((&l2, &t2, &errors), f64::NAN, rb);
+        let f = evaluate::evaluate_effect(&base, b, self.penalty_per_param, 0.0);
+        let s = st.outs[0];
+        let k_net = st.k_net + f.result.n_params as f64 - k_e as f64;
+        let label = format!(
+            "{} + {} → {} + {}",
+            self.selected[s].label(),
+            self.selected[e].label(),
+            st.ins[0].label(),
+            b.label()
+        );
+        let k_in = st.result.n_params + f.result.n_params;
+        let result = self.rescore(&f, (label, k_in), (k_net, base.rms), rb);
+        Some(Option_ {
+            outs: vec![s, e],
+            ins: vec![st.ins[0].clone(), b.clone()],
+            k_net,
+            result,
+            fit: Some(f),
+        })
+    }
+
+    /// Removing the selected effects `outs` (model `r`), as an option of the round.
+    fn removal(&self, outs: Vec<usize>, r: &Reduced, rb: RoundBase) -> Option_ {
+        let rms = evaluate::rms_per_component(&r.errors);
+        let label = outs
+            .iter()
+            .map(|&o| self.selected[o].label())
+            .collect::<Vec<_>>()
+            .join(" + ");
+        Option_ {
+            outs,
+            ins: Vec::new(),
+            k_net: -(r.k_out as f64),
+            result: CandidateResult {
+                label: format!("remove {label}"),
+                n_params: 0,
+                params: Vec::new(),
+                cv_chi2: r.cv,
+                gain: rb.cv - r.cv,
+                spread_gain: None,
+                penalty: -(r.k_out as f64) * self.penalty_per_param,
+                rms_reduction: std::array::from_fn(|c| (rb.rms[c] - rms[c]) / rb.rms[c]),
+                unidentified: Vec::new(),
+                converged: true,
+                failure: None,
+            },
+            fit: None,
+        }
+    }
+
+    /// Every option of a round for the questioned effects and aliased pairs (module docs).
     fn swap_options(
         &self,
         candidates: &[EffectRequest],
-        stand_ins: &[usize],
-        (current_cv, sigma, w): (f64, [f64; 5], Weighting),
-        rms_now: [f64; 5],
+        (questioned, alias_pairs): (&[usize], &[(usize, usize)]),
+        rb: RoundBase,
     ) -> Result<Vec<Option_>, FitError> {
-        let reduced: Vec<Reduced> = stand_ins
+        let outs: Vec<Vec<usize>> = questioned
+            .iter()
+            .map(|&q| vec![q])
+            .chain(alias_pairs.iter().map(|&(x, y)| vec![x, y]))
+            .collect();
+        let reduced: Vec<Reduced> = outs
             .par_iter()
-            .map(|&o| self.reduced(o, w))
+            .map(|o| self.reduced_by(o, rb.w))
             .collect::<Result<_, _>>()?;
         let unselected: Vec<&EffectRequest> = candidates
             .iter()
             .filter(|c| !self.selected.iter().any(|s| s.kind() == c.kind()))
             .collect();
-        let partners = self.pair_partners(stand_ins);
-        let n_pairs: usize = partners.iter().map(|(_, k)| k.len()).sum::<usize>()
-            * stand_ins.len()
-            * unselected.len();
-        let n_options = stand_ins.len() * unselected.len() + n_pairs;
+        let partners = self.pair_partners();
+        // Every replacement the round could offer: singles, pairs with a partner's kin, and
+        // an aliased pair's two effects each replaced by any unselected candidate.
+        let u = unselected.len();
+        let kin_pairs: usize = questioned
+            .iter()
+            .map(|q| {
+                partners
+                    .iter()
+                    .filter(|(e, _)| e != q)
+                    .map(|(_, k)| k.len() * u)
+                    .sum::<usize>()
+            })
+            .sum();
+        let n_options = questioned.len() * u + kin_pairs + alias_pairs.len() * u * u;
         let rb = RoundBase {
-            cv: current_cv,
-            sigma,
-            w,
-            rms: rms_now,
             multiplicity: 2.0 * (n_options.max(1) as f64).ln(),
+            ..rb
         };
-        let jobs: Vec<(usize, &EffectRequest)> = (0..stand_ins.len())
+        let jobs: Vec<(usize, &EffectRequest)> = (0..questioned.len())
             .flat_map(|r| unselected.iter().map(move |c| (r, *c)))
             .collect();
         let singles: Vec<Option_> = jobs
@@ -309,7 +437,7 @@ impl Search<'_> {
                 let red = &reduced[r];
                 let base = self.step_base((&red.layout, &red.theta, &red.errors), red.cv, rb);
                 let f = evaluate::evaluate_effect(&base, c, self.penalty_per_param, 0.0);
-                let o = stand_ins[r];
+                let o = questioned[r];
                 let label = format!("{} → {}", self.selected[o].label(), c.label());
                 let k_net = f.result.n_params as f64 - red.k_out as f64;
                 Option_ {
@@ -321,30 +449,13 @@ impl Search<'_> {
                 }
             })
             .collect();
-        let pairs = self.pair_options(&singles, &partners, rb);
-        let removals = reduced.iter().zip(stand_ins).map(|(r, &o)| {
-            let rms = evaluate::rms_per_component(&r.errors);
-            Option_ {
-                outs: vec![o],
-                ins: Vec::new(),
-                k_net: -(r.k_out as f64),
-                result: CandidateResult {
-                    label: format!("remove {}", self.selected[o].label()),
-                    n_params: 0,
-                    params: Vec::new(),
-                    cv_chi2: r.cv,
-                    gain: current_cv - r.cv,
-                    spread_gain: None,
-                    penalty: -(r.k_out as f64) * self.penalty_per_param,
-                    rms_reduction: std::array::from_fn(|c| (rms_now[c] - rms[c]) / rms_now[c]),
-                    unidentified: Vec::new(),
-                    converged: true,
-                    failure: None,
-                },
-                fit: None,
-            }
-        });
-        Ok(removals.chain(singles).chain(pairs).collect())
+        let pairs = self.pair_options(&singles, (questioned, &partners, alias_pairs), rb);
+        let removals: Vec<Option_> = outs
+            .into_iter()
+            .zip(&reduced)
+            .map(|(o, r)| self.removal(o, r, rb))
+            .collect();
+        Ok(removals.into_iter().chain(singles).chain(pairs).collect())
     }
 
     /// Make option `chosen`: the model, the selection and the kin bookkeeping.
@@ -380,7 +491,7 @@ impl Search<'_> {
                 self.theta_base = run.theta;
             }
             _ => {
-                let r = self.reduced(chosen.outs[0], w)?;
+                let r = self.reduced_by(&chosen.outs, w)?;
                 let run = fit_quietly(
                     self.club,
                     &r.layout,
@@ -414,14 +525,20 @@ impl Search<'_> {
         &mut self,
         candidates: &[EffectRequest],
     ) -> Result<Option<Step>, FitError> {
-        let stand_ins = self.stand_ins();
-        if stand_ins.is_empty() {
+        if self.selected.is_empty() {
             return Ok(None);
         }
-        let base_labels: Vec<String> = self.selected.iter().map(|r| r.label()).collect();
         let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
         let sigma = noise_scales(&errors);
         let w = Weighting::launch(&sigma);
+        // Swap rounds question the stand-ins only; effects merely aliased with each other
+        // are left to the re-selection (`reselect.rs`), which costs one forward run, not a
+        // round per alias.
+        let (questioned, alias_pairs) = (self.stand_ins(), Vec::new());
+        if questioned.is_empty() {
+            return Ok(None);
+        }
+        let base_labels: Vec<String> = self.selected.iter().map(|r| r.label()).collect();
         let current_cv = cv_chi2(
             self.club,
             &self.base,
@@ -432,9 +549,14 @@ impl Search<'_> {
             self.opts.max_iters,
             None,
         )?;
-        let rms_now = evaluate::rms_per_component(&errors);
-        let mut options =
-            self.swap_options(candidates, &stand_ins, (current_cv, sigma, w), rms_now)?;
+        let rb = RoundBase {
+            cv: current_cv,
+            sigma,
+            w,
+            rms: evaluate::rms_per_component(&errors),
+            multiplicity: 0.0,
+        };
+        let mut options = self.swap_options(candidates, (&questioned, &alias_pairs), rb)?;
         let results: Vec<CandidateResult> = options.iter().map(|o| o.result.clone()).collect();
         let order = select::by_margin(&results);
         let Some(&best) = order
