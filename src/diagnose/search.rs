@@ -137,8 +137,7 @@ pub(super) struct Search<'a> {
     penalty_per_param: f64,
     /// Fold of every shot (to make the folds again for a refined impact-noise level).
     fold_of: Vec<usize>,
-    /// Has a re-selection been tried (`reselect.rs`)? It is tried at most once.
-    reselected: bool,
+    reselected: bool, // a re-selection (`reselect.rs`) has been tried: at most once
 }
 
 /// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.

@@ -100,11 +100,29 @@ impl Search<'_> {
         if !gain.is_finite() || gain - penalty <= 0.0 || trial.selected == self.selected {
             return Ok(None);
         }
+        let decision = self.decision(
+            &trial,
+            &questioned,
+            (sigma, cv_now, cv_new),
+            (gain, penalty),
+        )?;
+        *self = trial;
+        Ok(Some(std::iter::once(decision).chain(steps).collect()))
+    }
+
+    /// The reported step of an accepted re-selection from this model to `trial`.
+    fn decision(
+        &self,
+        trial: &Search,
+        questioned: &[usize],
+        (sigma, cv_now, cv_new): ([f64; 5], f64, f64),
+        (gain, penalty): (f64, f64),
+    ) -> Result<Step, FitError> {
         let kind_in = |s: &Search, r: &EffectRequest| s.selected.iter().any(|x| x == r);
         let gone: Vec<&EffectRequest> = self
             .selected
             .iter()
-            .filter(|r| !kind_in(&trial, r))
+            .filter(|r| !kind_in(trial, r))
             .collect();
         let new: Vec<&EffectRequest> = trial
             .selected
@@ -112,7 +130,7 @@ impl Search<'_> {
             .filter(|r| !kind_in(self, r))
             .collect();
         let after_errors = trial.errors_of(&trial.base, trial.theta_base.as_slice())?;
-        let decision = Step {
+        Ok(Step {
             base: self.selected.iter().map(EffectRequest::label).collect(),
             noise_scales: sigma,
             base_cv_chi2: cv_now,
@@ -148,8 +166,6 @@ impl Search<'_> {
                 cv_before: cv_now,
                 cv_after: cv_new,
             }),
-        };
-        *self = trial;
-        Ok(Some(std::iter::once(decision).chain(steps).collect()))
+        })
     }
 }

@@ -5,7 +5,8 @@
 //!
 //! **Gate.** A round runs only while a selected physical effect is a stand-in (a value outside
 //! its plausible range at the current fit): a selection of plausible values is left as forward
-//! selection made it, so the paper world and the null worlds pay nothing.
+//! selection made it, so the paper world and the null worlds pay nothing. (Effects aliased
+//! with each other are questioned by the re-selection, [`super::reselect`], not here.)
 //!
 //! **Options**, each scored against the current model with its noise scales (the rest of the
 //! model refitted, warm-started from its current values; new effects from their defaults):
@@ -19,10 +20,11 @@
 //!
 //! **Acceptance** is forward selection's rule: gain `CV(current) − CV(new)` against penalty
 //! `(k_in − k_out)·ln n + 2·ln m`, `m` every replacement the round could offer (single
-//! replacements plus all pairs the gate allows, however few of them are fitted). The option
-//! with the largest positive margin (converged, identifiable) is made and reported as a step.
-//! Measurement candidates (impact- and delivery-noise levels) stay as chosen. Ties keep
-//! candidate order, so the rounds are deterministic.
+//! replacements plus all pairs the gate allows, however few of them are fitted); a removal
+//! gives its parameters' `k_out·ln n` back. The option with the largest positive margin
+//! (converged, identifiable) is made and reported as a step. Measurement candidates (impact-
+//! and delivery-noise levels) stay as chosen. Ties keep candidate order, so the rounds are
+//! deterministic.
 
 use nalgebra::DVector;
 use rayon::prelude::*;
@@ -281,11 +283,8 @@ impl Search<'_> {
     fn pair_options(
         &self,
         singles: &[Option_],
-        (questioned, partners, alias_pairs): (
-            &[usize],
-            &[(usize, Vec<EffectRequest>)],
-            &[(usize, usize)],
-        ),
+        questioned: &[usize],
+        partners: &[(usize, Vec<EffectRequest>)],
         rb: RoundBase,
     ) -> Vec<Option_> {
         let top = |q: usize| -> Vec<&Option_> {
@@ -304,19 +303,6 @@ impl Search<'_> {
                 for (e, kin) in partners.iter().filter(|(e, _)| *e != q) {
                     for b in kin.iter().filter(|b| b.kind() != st.ins[0].kind()) {
                         jobs.push((st, *e, b.clone()));
-                    }
-                }
-            }
-        }
-        for &(x, y) in alias_pairs {
-            for st in top(x) {
-                for sb in top(y) {
-                    let b = &sb.ins[0];
-                    let seen = jobs
-                        .iter()
-                        .any(|(s2, e2, b2)| std::ptr::eq(*s2, st) && *e2 == y && b2 == b);
-                    if b.kind() != st.ins[0].kind() && !seen {
-                        jobs.push((st, y, b.clone()));
                     }
                 }
             }
@@ -393,14 +379,10 @@ impl Search<'_> {
     fn swap_options(
         &self,
         candidates: &[EffectRequest],
-        (questioned, alias_pairs): (&[usize], &[(usize, usize)]),
+        questioned: &[usize],
         rb: RoundBase,
     ) -> Result<Vec<Option_>, FitError> {
-        let outs: Vec<Vec<usize>> = questioned
-            .iter()
-            .map(|&q| vec![q])
-            .chain(alias_pairs.iter().map(|&(x, y)| vec![x, y]))
-            .collect();
+        let outs: Vec<Vec<usize>> = questioned.iter().map(|&q| vec![q]).collect();
         let reduced: Vec<Reduced> = outs
             .par_iter()
             .map(|o| self.reduced_by(o, rb.w))
@@ -410,8 +392,8 @@ impl Search<'_> {
             .filter(|c| !self.selected.iter().any(|s| s.kind() == c.kind()))
             .collect();
         let partners = self.pair_partners();
-        // Every replacement the round could offer: singles, pairs with a partner's kin, and
-        // an aliased pair's two effects each replaced by any unselected candidate.
+        // Every replacement the round could offer: singles, and pairs with a partner's kin
+        // (the first effect any unselected candidate).
         let u = unselected.len();
         let kin_pairs: usize = questioned
             .iter()
@@ -423,7 +405,7 @@ impl Search<'_> {
                     .sum::<usize>()
             })
             .sum();
-        let n_options = questioned.len() * u + kin_pairs + alias_pairs.len() * u * u;
+        let n_options = questioned.len() * u + kin_pairs;
         let rb = RoundBase {
             multiplicity: 2.0 * (n_options.max(1) as f64).ln(),
             ..rb
@@ -449,7 +431,7 @@ impl Search<'_> {
                 }
             })
             .collect();
-        let pairs = self.pair_options(&singles, (questioned, &partners, alias_pairs), rb);
+        let pairs = self.pair_options(&singles, questioned, &partners, rb);
         let removals: Vec<Option_> = outs
             .into_iter()
             .zip(&reduced)
@@ -534,7 +516,7 @@ impl Search<'_> {
         // Swap rounds question the stand-ins only; effects merely aliased with each other
         // are left to the re-selection (`reselect.rs`), which costs one forward run, not a
         // round per alias.
-        let (questioned, alias_pairs) = (self.stand_ins(), Vec::new());
+        let questioned = self.stand_ins();
         if questioned.is_empty() {
             return Ok(None);
         }
@@ -556,7 +538,7 @@ impl Search<'_> {
             rms: evaluate::rms_per_component(&errors),
             multiplicity: 0.0,
         };
-        let mut options = self.swap_options(candidates, (&questioned, &alias_pairs), rb)?;
+        let mut options = self.swap_options(candidates, &questioned, rb)?;
         let results: Vec<CandidateResult> = options.iter().map(|o| o.result.clone()).collect();
         let order = select::by_margin(&results);
         let Some(&best) = order
