@@ -28,13 +28,16 @@
 //!    instruments explain; when they do not, no physical effect is offered (measurement
 //!    candidates still are) and the selection stops. This is what keeps false discoveries
 //!    rare in worlds whose delivery is measured with noise (`docs/diagnose-selection.md`).
-//! 7. When forward selection stops, swap rounds ([`Step::swap`]): for each selected physical
-//!    effect, removing it and replacing it with each unselected candidate are scored against
-//!    the current model with the same rule (gain in CV χ² against `(k_in − k_out)·ln n`, plus
-//!    `2·ln m` for a replacement); the best change with a positive margin is made, and rounds
-//!    repeat until none is, then forward selection resumes (within `max_steps` forward
-//!    steps). Greedy order can leave a stand-in that won early (more parameters, more gain)
-//!    where a plausible effect fits better once later effects are in; the swap corrects it.
+//! 7. When forward selection stops, swap rounds ([`Step::swap`], `search/swap.rs`) while a
+//!    selected value is a stand-in: removing it, replacing it by an unselected candidate, or
+//!    exchanging it and an effect with kin for a pair, scored against the current model by the
+//!    forward rule (gain in CV χ² against `(k_in − k_out)·ln n + 2·ln m`); the best change
+//!    with a positive margin is made, then forward selection resumes (within `max_steps`
+//!    forward steps). When no round pays, a re-selection (`search/reselect.rs`, once) takes the
+//!    questioned effects (stand-ins and cross-effect aliases) out together and reruns forward
+//!    selection, kept when CV χ² + `k·ln n` drops. Greedy order can leave a stand-in that won
+//!    early (more parameters, more gain) where a plausible set fits better once later effects
+//!    are in; these steps correct it.
 //!
 //! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
 //! delivery (errors in variables: flatter slopes than the model's), which over thousands of
@@ -220,9 +223,9 @@ pub struct Step {
 /// A change the swap phase made to the selected effects.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Swap {
-    /// The effect taken out.
+    /// The effects taken out (labels joined by ` + `).
     pub out: String,
-    /// The effect put in its place; `None`: removed.
+    /// The effects put in their place (joined by ` + `); `None`: removed.
     pub inn: Option<String>,
     /// Cross-validated χ² before and after the change (the same noise scales).
     pub cv_before: f64,
