@@ -44,6 +44,9 @@ pub enum Converged {
     CostChange,
     /// Step below `xtol` of every parameter's range.
     Step,
+    /// No step with the kept starting Jacobian lowers χ² any more
+    /// ([`LevenbergMarquardt::with_kept_start_jacobian`]).
+    KeptJacobian,
     /// No step lowers χ² any more (a minimum to numerical precision).
     NoDescent,
 }
@@ -55,6 +58,9 @@ impl Converged {
             Self::Gradient => "converged: gradient orthogonal to the residuals (gtol)",
             Self::CostChange => "converged: relative change of chi2 below ftol",
             Self::Step => "converged: step below xtol of every parameter's range",
+            Self::KeptJacobian => {
+                "converged: no step with the kept starting Jacobian lowers chi2 further"
+            }
             Self::NoDescent => "converged: no step lowers chi2 further (minimum to precision)",
         }
     }
@@ -78,7 +84,25 @@ pub struct LevenbergMarquardt {
     /// Residuals and Jacobian at the starting point, when the caller already has them
     /// ([`LevenbergMarquardt::with_start_evaluation`]); taken by the first `init`.
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+    /// Steps left that keep the starting Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]);
+    /// 0: every accepted point gets its own.
+    keep_start_jacobian: u32,
+    /// The point has moved since the kept Jacobian was evaluated (it is no longer the point's
+    /// own).
+    kept_moved: bool,
 }
+
+/// A step with a kept Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]) that is
+/// rejected although it predicted a fall of `χ²` below this (relative) ends the fit: the point
+/// is the kept Jacobian's solution, where the predicted fall is its error `(J − J₀)ᵀr` and not
+/// a step still to take. A rejected step that predicted more takes the point's own Jacobian.
+const KEPT_JACOBIAN_STOP: f64 = 1e-6;
+
+/// Most accepted steps a fit takes with its starting Jacobian
+/// ([`LevenbergMarquardt::with_kept_start_jacobian`]) before it computes its own again: near
+/// the solution the chord steps shrink by a constant factor each, so more would mean the
+/// starting point was not close enough for them to pay.
+const KEPT_JACOBIAN_STEPS: u32 = 8;
 
 impl LevenbergMarquardt {
     /// A solver for parameters within `[lower, upper]` (finite, `lower < upper`).
@@ -105,6 +129,8 @@ impl LevenbergMarquardt {
             converged: None,
             final_jacobian: true,
             at_start: None,
+            keep_start_jacobian: 0,
+            kept_moved: false,
         })
     }
 
@@ -134,6 +160,27 @@ impl LevenbergMarquardt {
     /// independently of the others).
     pub fn with_start_evaluation(mut self, r: DVector<f64>, j: DMatrix<f64>) -> Self {
         self.at_start = Some((r, j));
+        self
+    }
+
+    /// With a start evaluation given ([`LevenbergMarquardt::with_start_evaluation`]), keep its
+    /// Jacobian `J₀` for the steps instead of computing one at every accepted point (the chord,
+    /// or simplified Gauss–Newton, method), for at most [`KEPT_JACOBIAN_STEPS`] accepted steps.
+    /// The first step is the plain one (`J₀` is the start's own). Once the point has moved, a
+    /// rejected step that predicted a fall of `χ²` below [`KEPT_JACOBIAN_STOP`] (relative) ends
+    /// the fit ([`Converged::KeptJacobian`]); a rejected step that predicted more, or running
+    /// out of kept steps, computes the Jacobian at the point and goes on as plain
+    /// Levenberg–Marquardt.
+    ///
+    /// For a fit started close to its solution whose point alone is wanted (a cross-validation
+    /// fold started from the all-shots solution), this saves the `2p` shifted model evaluations
+    /// of every step after the first. The kept steps head for where the residuals are
+    /// orthogonal to `J₀`'s columns, which is off the fit's own minimum by
+    /// `(JᵀJ)⁻¹ (J − J₀)ᵀ r`: first order in the distance from the start, so `χ²` there exceeds
+    /// the minimum by a second-order amount. It is not the same point as without, only as good
+    /// to that order.
+    pub fn with_kept_start_jacobian(mut self) -> Self {
+        self.keep_start_jacobian = KEPT_JACOBIAN_STEPS;
         self
     }
 
@@ -185,12 +232,17 @@ where
         self.project(&mut theta);
         let (r, j) = match self.at_start.take() {
             Some(rj) => rj,
-            None => (problem.apply(&theta)?, problem.jacobian(&theta)?),
+            None => {
+                // Nothing given to keep: a Jacobian at every accepted point.
+                self.keep_start_jacobian = 0;
+                (problem.apply(&theta)?, problem.jacobian(&theta)?)
+            }
         };
         // With Marquardt's diagonal scaling the damping is dimensionless.
         self.lambda = self.tau;
         self.nu = 2.0;
         self.converged = None;
+        self.kept_moved = false;
         let cost = norm2(&r);
         Ok((state.param(theta).residuals(r).jacobian(j).cost(cost), None))
     }
@@ -256,6 +308,8 @@ where
         }
         let step_ok = damped.cholesky().map(|ch| ch.solve(&(-&g)));
         let mut accepted = false;
+        // The step's predicted fall of χ² is below [`KEPT_JACOBIAN_STOP`] (relative).
+        let mut small_prediction = false;
         let mut new_state = None;
         if let Some(delta) = step_ok {
             let mut trial = &theta + &delta;
@@ -272,6 +326,7 @@ where
             }
             let predicted_r = &r + &j * &step;
             let predicted = cost - norm2(&predicted_r);
+            small_prediction = predicted <= KEPT_JACOBIAN_STOP * cost;
             // A trial point where the model cannot be evaluated is a rejected step.
             if let Ok(r_trial) = problem.apply(&trial) {
                 let cost_trial = norm2(&r_trial);
@@ -279,10 +334,13 @@ where
                 if cost_trial.is_finite() && actual > 0.0 && predicted > 0.0 {
                     let rho = actual / predicted;
                     let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
-                    let j_trial = if small && !self.final_jacobian {
-                        j.clone()
+                    let keep = self.keep_start_jacobian > 0;
+                    let j_trial = if (small && !self.final_jacobian) || keep {
+                        self.keep_start_jacobian = self.keep_start_jacobian.saturating_sub(1);
+                        self.kept_moved = keep;
+                        None
                     } else {
-                        problem.jacobian(&trial)?
+                        Some(problem.jacobian(&trial)?)
                     };
                     self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     self.nu = 2.0;
@@ -294,12 +352,27 @@ where
         let kv = argmin::kv!("lambda" => self.lambda; "accepted" => accepted;);
         match new_state {
             Some((trial, r_trial, j_trial, cost_trial, small)) => {
+                let j_trial = j_trial.unwrap_or(j);
                 let state = keep(state, trial, r_trial, j_trial, cost_trial);
                 if small {
                     Ok((self.stop(state, Converged::CostChange), Some(kv)))
                 } else {
                     Ok((state, Some(kv)))
                 }
+            }
+            None if self.kept_moved && small_prediction => {
+                // At the kept Jacobian's solution, within a second-order amount of the fit's
+                // own minimum: its steps no longer lower χ².
+                let state = keep(state, theta, r, j, cost);
+                Ok((self.stop(state, Converged::KeptJacobian), Some(kv)))
+            }
+            None if self.kept_moved => {
+                // The kept Jacobian may be what failed: take the point's own and go on as
+                // plain Levenberg–Marquardt from the same damping.
+                self.keep_start_jacobian = 0;
+                self.kept_moved = false;
+                let j_here = problem.jacobian(&theta)?;
+                Ok((keep(state, theta, r, j_here, cost), Some(kv)))
             }
             None => {
                 self.lambda *= self.nu;
@@ -481,6 +554,67 @@ mod tests {
         let (given, j_given) = run(true);
         assert_eq!(given, plain);
         assert_eq!(j_given + 1, j_plain);
+    }
+
+    /// Keeping the start's Jacobian (chord steps) from a start near the solution, as a
+    /// cross-validation fold starts: no Jacobian is computed and the fit ends far closer to the
+    /// solution than it started (second order: the excess χ² falls by more than 10⁴); from a
+    /// start far away the kept Jacobian fails, the fit computes its own and ends where the plain
+    /// fit does.
+    #[test]
+    fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
+        let mut inner = decay();
+        for (i, y) in inner.y.iter_mut().enumerate() {
+            *y += 0.01 * (5.0 * i as f64).cos();
+        }
+        let bounds = || {
+            LevenbergMarquardt::new(
+                DVector::from_vec(vec![-10.0, 0.0]),
+                DVector::from_vec(vec![10.0, 5.0]),
+            )
+            .unwrap()
+        };
+        let run = |start: &DVector<f64>, inner: Decay, kept: bool| {
+            let mut solver = bounds();
+            if kept {
+                let (r, j) = (inner.apply(start).unwrap(), inner.jacobian(start).unwrap());
+                solver = solver
+                    .with_start_evaluation(r, j)
+                    .with_kept_start_jacobian();
+            }
+            let problem = Counted {
+                inner,
+                jacobians: std::cell::Cell::new(0),
+            };
+            let res = Executor::new(problem, solver)
+                .configure(|s| s.param(start.clone()).max_iters(100))
+                .run()
+                .unwrap();
+            assert!(res.solver().converged().is_some());
+            let p = res.state().get_best_param().unwrap().clone();
+            let cost = res.state().get_cost();
+            (p, cost, res.problem.problem.unwrap().jacobians.get())
+        };
+        let copy = |d: &Decay| Decay {
+            t: d.t.clone(),
+            y: d.y.clone(),
+        };
+        let far = DVector::from_vec(vec![1.0, 2.0]);
+        let (p_full, cost_full, _) = run(&far, copy(&inner), false);
+        let near = &p_full + DVector::from_vec(vec![0.02, -0.01]);
+        let cost_near = inner.apply(&near).unwrap().norm_squared();
+        let (p_kept, cost_kept, jacobians) = run(&near, copy(&inner), true);
+        assert_eq!(jacobians, 0);
+        assert!(cost_kept >= cost_full * (1.0 - 1e-12));
+        assert!(
+            cost_kept - cost_full <= 1e-4 * (cost_near - cost_full),
+            "{cost_kept} {cost_full} {cost_near}"
+        );
+        assert_relative_eq!(p_kept, p_full, max_relative = 1e-4);
+        let (p_far, cost_far, jacobians) = run(&far, inner, true);
+        assert!(jacobians > 0);
+        assert_relative_eq!(p_far, p_full, max_relative = 1e-7);
+        assert_relative_eq!(cost_far, cost_full, max_relative = 1e-9);
     }
 
     /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
