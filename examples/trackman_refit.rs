@@ -10,6 +10,13 @@
 //! 0–0.40 by 0.01, `LL` 0–1 by 0.05, `DS` −0.40–0.40 by 0.05, `RE_LOW` 2–8·10⁴ and `RE_HIGH`
 //! 8·10⁴–2·10⁵ by 10⁴. Objective on the 11 LPGA rows, default atmosphere:
 //! Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)².
+//!
+//! `-- --floor` fits the same family with the spin part of the drag held above the still-air
+//! super-critical drag of modern balls (`C_D ≥ 0.212 + 0.15·S`, Lyu et al. 2018 as Nathan's
+//! calculator takes it; a smooth maximum), the Reynolds rise added on top: the refit examined
+//! for issue 11 and not adopted (README, "Ball flight"). `-- --wide` widens the window grid
+//! (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
+//! `RE_LOW` edge. Every run ends with the fitted point's PGA rows, club by club.
 
 use rayon::prelude::*;
 use smash::flight::aero::Fmm2022ReFamily;
@@ -31,6 +38,38 @@ fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
             ]
         })
         .collect()
+}
+
+/// The fitted model's PGA rows, club by club, at the default step and a 16 times finer one.
+fn clubs(m: &Fmm2022ReFamily) {
+    let ls: Vec<_> = PGA_TOUR.iter().map(|r| r.launch()).collect();
+    let fine = FlightConfig {
+        dt_s: Some(0.35 / 16.0),
+        ..FlightConfig::default()
+    };
+    let (coarse, fine) = (
+        fly_with(&FlightConfig::default(), m, &ls),
+        fly_with(&fine, m, &ls),
+    );
+    println!(
+        "PGA club: carry yd (TM), land ° (TM), apex yd (TM); at a 16x finer step: carry, land"
+    );
+    for ((r, c), f) in PGA_TOUR.iter().zip(&coarse).zip(&fine) {
+        let (c, f) = (c.as_ref().expect("lands"), f.as_ref().expect("lands"));
+        println!(
+            "{:8} {:6.2} ({:3}) {:+5.1} %  {:5.2} ({:2})  {:4.1} ({:2});  {:6.2} {:5.2}",
+            r.club,
+            c.carry_yd(),
+            r.carry_yd,
+            100.0 * (c.carry_yd() / r.carry_yd - 1.0),
+            c.land_angle_deg(),
+            r.land_angle_deg,
+            c.apex_yd(),
+            r.max_height_yd,
+            f.carry_yd(),
+            f.land_angle_deg()
+        );
+    }
 }
 
 fn objective(e: &[[f64; 3]]) -> f64 {
@@ -57,10 +96,11 @@ fn report(name: &str, e: &[[f64; 3]]) {
     );
 }
 
-fn main() {
+/// The grid the fit searches (see the module documentation), with or without the floor.
+fn grid(drag_floor: bool, lo_max: u32, hi_max: u32) -> Vec<Fmm2022ReFamily> {
     let mut grid = Vec::new();
-    for lo in 2..=8 {
-        for hi in 8..=20 {
+    for lo in 2..=lo_max {
+        for hi in 8..=hi_max {
             if hi < lo + 2 {
                 continue;
             }
@@ -73,12 +113,24 @@ fn main() {
                             cd_per_s: 0.05 * ds as f64,
                             re_low: lo as f64 * 1e4,
                             re_high: hi as f64 * 1e4,
+                            drag_floor,
                         });
                     }
                 }
             }
         }
     }
+    grid
+}
+
+fn main() {
+    let drag_floor = std::env::args().any(|a| a == "--floor");
+    let wide = std::env::args().any(|a| a == "--wide");
+    let grid = if wide {
+        grid(drag_floor, 14, 24)
+    } else {
+        grid(drag_floor, 8, 20)
+    };
     let best = grid
         .par_iter()
         .map(|m| (objective(&errors(m, &LPGA_TOUR_2023)), *m))
@@ -96,23 +148,17 @@ fn main() {
         cd_per_s: 0.0,
         re_low: 4e4,
         re_high: 1e5,
+        drag_floor: false,
     };
-    report(
-        "fmm2022    LPGA 2023 (fitted)",
-        &errors(&none, &LPGA_TOUR_2023),
-    );
-    report(
-        "fmm2022-re LPGA 2023 (fitted)",
-        &errors(&best.1, &LPGA_TOUR_2023),
-    );
-    report("fmm2022    PGA (validation) ", &errors(&none, &PGA_TOUR));
-    report("fmm2022-re PGA (validation) ", &errors(&best.1, &PGA_TOUR));
-    report(
-        "fmm2022    PGA 2023         ",
-        &errors(&none, &PGA_TOUR_2023),
-    );
-    report(
-        "fmm2022-re PGA 2023         ",
-        &errors(&best.1, &PGA_TOUR_2023),
-    );
+    let name = if drag_floor { "floored" } else { "fmm2022-re" };
+    let tables: [(&str, &[TourAverage]); 3] = [
+        ("LPGA 2023 (fitted)", &LPGA_TOUR_2023),
+        ("PGA (validation) ", &PGA_TOUR),
+        ("PGA 2023         ", &PGA_TOUR_2023),
+    ];
+    for (table, rows) in tables {
+        report(&format!("fmm2022    {table}"), &errors(&none, rows));
+        report(&format!("{name:10} {table}"), &errors(&best.1, rows));
+    }
+    clubs(&best.1);
 }

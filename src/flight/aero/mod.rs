@@ -39,7 +39,9 @@ use std::path::Path;
 
 use crate::lanes::{V, W};
 
+mod floor;
 mod table;
+pub use floor::DragFloor;
 pub use table::TableModel;
 
 /// Drag, lift and moment coefficients (dimensionless).
@@ -238,7 +240,9 @@ impl Fmm2022Re {
 /// window: `C_D = C_D,fmm(S) + cd_per_s·S + cd_low_re·r(Re)`, `C_L = C_L,fmm(S)·(1 −
 /// lift_loss·r(Re))`, `r` the smoothstep of [`Fmm2022Re`]. [`Fmm2022Re`] is this family at
 /// [`Fmm2022ReFamily::FITTED`]; `examples/trackman_refit.rs` searches it and `tests/flight.rs`
-/// checks that the fitted point is a minimum of the fit's objective.
+/// checks that the fitted point is a minimum of the fit's objective. With
+/// [`Fmm2022ReFamily::drag_floor`] the spin part of the drag is first held above the still-air
+/// drag of modern balls ([`DragFloor`]; examined, not adopted).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fmm2022ReFamily {
     /// Drag added below `re_low` (`DR`).
@@ -251,6 +255,12 @@ pub struct Fmm2022ReFamily {
     pub re_high: f64,
     /// Fraction of the lift lost below `re_low` (`LL`; the fit put it at 0).
     pub lift_loss: f64,
+    /// Whether the spin part of the drag, `C_D,fmm(S) + DS·S`, is held above the still-air
+    /// super-critical drag of modern balls ([`DragFloor`], a smooth maximum) before the
+    /// Reynolds rise is added: `C_D = smax(C_D,fmm(S) + DS·S, 0.212 + 0.15·S) + DR·r(Re)`.
+    /// Off in [`Fmm2022Re`]; the floored LPGA fit was examined and not adopted (README, "Ball
+    /// flight": PGA median carry error 2.20 %, over the 2 % target).
+    pub drag_floor: bool,
 }
 
 impl Fmm2022ReFamily {
@@ -261,6 +271,7 @@ impl Fmm2022ReFamily {
         re_low: Fmm2022Re::RE_LOW,
         re_high: Fmm2022Re::RE_HIGH,
         lift_loss: 0.0,
+        drag_floor: false,
     };
 }
 
@@ -270,7 +281,13 @@ impl CoefficientModel for Fmm2022ReFamily {
         let mut c = Fmm2022.coefficients(s, re);
         let t = ((self.re_high - re) / (self.re_high - self.re_low)).clamp(0.0, 1.0);
         let r = t * t * (3.0 - 2.0 * t);
-        c.cd += self.cd_per_s * Fmm2022::held_spin_factor(s) + self.cd_low_re * r;
+        let s = Fmm2022::held_spin_factor(s);
+        if self.drag_floor {
+            let spin_part = c.cd + self.cd_per_s * s;
+            c.cd = DragFloor::smooth_max(spin_part, DragFloor::cd(s)) + self.cd_low_re * r;
+        } else {
+            c.cd += self.cd_per_s * s + self.cd_low_re * r;
+        }
         c.cl *= 1.0 - self.lift_loss * r;
         c
     }
