@@ -18,6 +18,7 @@ use crate::measurement::ImpactNoise;
 use crate::stats;
 
 /// Training and held-out subsets of the data, one pair per fold.
+#[derive(Clone)]
 pub(super) struct Folds {
     pub(super) train: Vec<FitData>,
     pub(super) test: Vec<FitData>,
