@@ -300,6 +300,13 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                 "noise_scales": comp_map(&s.noise_scales),
                 "base_cv_chi2": s.base_cv_chi2,
                 "selected": s.selected,
+                "swap": s.swap.as_ref().map(|w| json!({
+                    "out": w.out,
+                    "in": w.inn,
+                    "cv_chi2_before": w.cv_before,
+                    "cv_chi2_after": w.cv_after,
+                    "text": w.text(),
+                })),
                 "at_noise_floor": s.at_noise_floor,
                 "alias": s.alias.as_ref().map(|a| a.to_json()),
                 "rivals": s.rivals.iter().map(honest::Rival::to_json).collect::<Vec<_>>(),
@@ -416,7 +423,8 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
         .filter(|c| c.structure)
         .map(|c| c.component.column())
         .collect();
-    let last = d.steps.last();
+    // The last forward step (swap steps follow forward selection).
+    let last = d.steps.iter().rfind(|s| s.swap.is_none());
     let stopped_by_limit = last.is_none_or(|s| s.selected.is_some());
     if stopped_by_limit {
         format!(
@@ -549,6 +557,15 @@ fn step_text(i: usize, st: &Step) -> String {
     s.push_str(&candidates_table(st));
     if let Some(a) = &st.alias {
         s.push_str(&format!("-> aliases: {}\n", a.text()));
+    }
+    if let Some(w) = &st.swap {
+        s.push_str(&format!(
+            "-> step {}: {} (forward selection had stopped; errors after:)\n",
+            i + 1,
+            w.text()
+        ));
+        s.push_str(&error_table_text(&st.after));
+        return s;
     }
     match &st.selected {
         Some(l) => {

@@ -11,13 +11,14 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    fit_quietly as fit, run_lm_point_from, EffectRequest, FitData, FitError, FitProblem, FitRun,
+    fit_quietly as fit, run_lm_point_near, EffectRequest, FitData, FitError, FitProblem, FitRun,
     ParamLayout, Weighting,
 };
 use crate::measurement::ImpactNoise;
 use crate::stats;
 
 /// Training and held-out subsets of the data, one pair per fold.
+#[derive(Clone)]
 pub(super) struct Folds {
     pub(super) train: Vec<FitData>,
     pub(super) test: Vec<FitData>,
@@ -86,7 +87,11 @@ fn chi2_at(
 
 /// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ². `at` is the
 /// residuals and Jacobian on all shots (those the folds were made from) at `start`, when known:
-/// each fold's fit then starts from its rows of them (the same fit, [`run_lm_point_from`]).
+/// each fold's fit then starts from its rows of them and keeps that Jacobian for its steps
+/// ([`run_lm_point_near`]: `start`, the all-shots solution, is close to each fold's, so the
+/// chord steps reach it without the `2p` shifted evaluations a step; the cross-validated χ²
+/// agrees with the folds' own fits' to 1e-5 relative in the tests, 7e-7 measured, a few 0.01
+/// of χ² on the paper world, where a candidate's penalty is about 12).
 #[allow(clippy::too_many_arguments)]
 pub(super) fn cv_chi2(
     club: &ClubSpec,
@@ -107,7 +112,7 @@ pub(super) fn cv_chi2(
                 // Only the fold's solution is needed: no Jacobian at it.
                 let pr = FitProblem::new(club, layout.clone(), &folds.train[f], w);
                 let rows = at.map(|a| fold_rows(a, &folds.train_idx[f], w.rows_per_shot()));
-                run_lm_point_from(pr, start, max_iters, rows)
+                run_lm_point_near(pr, start, max_iters, rows)
                     .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
             };
             if let Some(p) = progress {
@@ -488,10 +493,14 @@ mod tests {
         (club, run.shots.iter().map(|s| s.to_shot()).collect())
     }
 
-    /// Folds started from the rows of the all-shots fit's residuals and Jacobian give the same
-    /// cross-validated χ², bit for bit, as folds that evaluate their own start: with exact
-    /// locations (one site a shot, serial evaluation) and with impact-location noise (nine
-    /// sites a shot, evaluated in parallel chunks), and for a base point evaluated afresh.
+    /// A fold's fit given the rows of the all-shots fit's residuals and Jacobian is the same
+    /// fit, bit for bit, as one that evaluates its own start; cross-validation, which keeps
+    /// those rows' Jacobian for the folds' steps ([`run_lm_point_near`]), gives the
+    /// cross-validated χ² of the folds' own fits to 1e-5 relative (7e-7 measured: 0.001 of a
+    /// χ² of 1541, where a candidate's penalty is about 12): with exact locations (one
+    /// site a shot, serial evaluation) and with impact-location noise (nine sites a shot,
+    /// evaluated in parallel chunks), from the all-shots solution and from a base point
+    /// evaluated afresh.
     #[test]
     fn folds_started_from_the_all_shots_rows_give_the_same_cv() {
         let (club, shots) = world(10);
@@ -530,17 +539,18 @@ mod tests {
                 given.evaluations + 1 + 2 * layout.len() as u64,
                 own.evaluations
             );
+            let close = |own: f64, near: f64| {
+                assert!(
+                    (near - own).abs() <= 1e-5 * own,
+                    "noise {noise:?}: {near} against {own}"
+                );
+            };
             let plain = cv(&run.theta, None);
-            let reused = cv(&run.theta, Some((&run.residuals, &run.jacobian)));
-            assert_eq!(plain.to_bits(), reused.to_bits(), "noise {noise:?}");
+            close(plain, cv(&run.theta, Some((&run.residuals, &run.jacobian))));
             // A point that is not a fit's solution, evaluated on all shots.
             let start = layout.defaults();
             let at = all_shots_at(&club, &layout, &data, w, &start).unwrap();
-            assert_eq!(
-                cv(&start, None).to_bits(),
-                cv(&start, Some((&at.0, &at.1))).to_bits(),
-                "noise {noise:?}"
-            );
+            close(cv(&start, None), cv(&start, Some((&at.0, &at.1))));
         }
     }
 

@@ -28,6 +28,16 @@
 //!    instruments explain; when they do not, no physical effect is offered (measurement
 //!    candidates still are) and the selection stops. This is what keeps false discoveries
 //!    rare in worlds whose delivery is measured with noise (`docs/diagnose-selection.md`).
+//! 7. When forward selection stops, swap rounds ([`Step::swap`], `search/swap.rs`) while a
+//!    selected value is a stand-in: removing it, replacing it by an unselected candidate, or
+//!    exchanging it and an effect with kin for a pair, scored against the current model by the
+//!    forward rule (gain in CV χ² against `(k_in − k_out)·ln n + 2·ln m`); the best change
+//!    with a positive margin is made, then forward selection resumes (within `max_steps`
+//!    forward steps). When no round pays, a re-selection (`search/reselect.rs`, once) takes the
+//!    questioned effects (stand-ins and cross-effect aliases) out together and reruns forward
+//!    selection, kept when CV χ² + `k·ln n` drops. Greedy order can leave a stand-in that won
+//!    early (more parameters, more gain) where a plausible set fits better once later effects
+//!    are in; these steps correct it.
 //!
 //! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
 //! delivery (errors in variables: flatter slopes than the model's), which over thousands of
@@ -203,6 +213,35 @@ pub struct Step {
     /// Unselected candidates that explained nearly the same signal as the selected effect
     /// ([`select::rivals`]), best first.
     pub rivals: Vec<honest::Rival>,
+    /// For a swap step (after forward selection stopped, see [`diagnose`]): the change made.
+    /// Its `candidates` are then the removals (`remove name`) and replacements (`out → in`)
+    /// tried, with gain `CV(current) − CV(changed)` and penalty `(k_in − k_out)·ln n` (plus
+    /// `2·ln m` for a replacement); `selected` is `None`.
+    pub swap: Option<Swap>,
+}
+
+/// A change the swap phase made to the selected effects.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Swap {
+    /// The effects taken out (labels joined by ` + `).
+    pub out: String,
+    /// The effects put in their place (joined by ` + `); `None`: removed.
+    pub inn: Option<String>,
+    /// Cross-validated χ² before and after the change (the same noise scales).
+    pub cv_before: f64,
+    /// See `cv_before`.
+    pub cv_after: f64,
+}
+
+impl Swap {
+    /// "swap com_offset → hosel_mass, CV χ² 3019.7 → 2990.1" or "remove ...".
+    pub fn text(&self) -> String {
+        let what = match &self.inn {
+            Some(inn) => format!("swap {} → {inn}", self.out),
+            None => format!("remove {}", self.out),
+        };
+        format!("{what}, CV χ² {:.1} → {:.1}", self.cv_before, self.cv_after)
+    }
 }
 
 /// The outcome of a diagnosis.
@@ -324,15 +363,31 @@ pub fn diagnose(
     let nominal = search.errors_of(&search.base, &[])?;
     let before = launch_error_table(&search.groups, &nominal);
     let mut steps = Vec::new();
-    for step_index in 0..opts.max_steps {
-        let Some(step) = search.step(step_index, &candidates)? else {
+    // Forward steps (at most `max_steps`), then swap rounds (or a re-selection) while one
+    // improves, then forward again; rounds are capped so that the whole is bounded even if
+    // scores drift with σ.
+    let mut forward = 0;
+    for _swap in 0..=2 * candidates.len() {
+        while forward < opts.max_steps {
+            forward += 1;
+            let Some(step) = search.step(steps.len(), &candidates)? else {
+                break;
+            };
+            let stop = step.selected.is_none();
+            steps.push(step);
+            if stop {
+                break;
+            }
+        }
+        if let Some(step) = search.swap_round(&candidates)? {
+            steps.push(step);
+            continue;
+        }
+        // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
+        let Some(more) = search.reselect(&candidates, steps.len())? else {
             break;
         };
-        let stop = step.selected.is_none();
-        steps.push(step);
-        if stop {
-            break;
-        }
+        steps.extend(more);
     }
     search.finish((fold_by, n_folds), steps, before, warnings)
 }

@@ -20,6 +20,8 @@ use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
 mod measure;
+mod reselect;
+mod swap;
 
 fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
@@ -108,6 +110,7 @@ pub(super) fn offered_candidates(
 type Kin = (String, EffectRequest, Vec<(EffectRequest, f64)>);
 
 /// The state of forward selection between steps.
+#[derive(Clone)]
 pub(super) struct Search<'a> {
     club: &'a ClubSpec,
     shots: &'a [Shot],
@@ -134,6 +137,7 @@ pub(super) struct Search<'a> {
     penalty_per_param: f64,
     /// Fold of every shot (to make the folds again for a refined impact-noise level).
     fold_of: Vec<usize>,
+    reselected: bool, // a re-selection (`reselect.rs`) has been tried: at most once
 }
 
 /// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.
@@ -187,6 +191,7 @@ impl<'a> Search<'a> {
             selected: Vec::new(),
             kin_of: Vec::new(),
             fold_of: fold_of.to_vec(),
+            reselected: false,
         })
     }
 
@@ -419,6 +424,7 @@ impl<'a> Search<'a> {
                 at_noise_floor,
                 alias: None,
                 rivals: Vec::new(),
+                swap: None,
             }));
         }
         let sigma = noise_scales(&base_errors);
@@ -462,6 +468,7 @@ impl<'a> Search<'a> {
             at_noise_floor,
             alias,
             rivals,
+            swap: None,
         }))
     }
 

@@ -44,6 +44,9 @@ pub enum Converged {
     CostChange,
     /// Step below `xtol` of every parameter's range.
     Step,
+    /// No step with the kept starting Jacobian lowers χ² any more
+    /// ([`LevenbergMarquardt::with_kept_start_jacobian`]).
+    KeptJacobian,
     /// No step lowers χ² any more (a minimum to numerical precision).
     NoDescent,
 }
@@ -55,6 +58,9 @@ impl Converged {
             Self::Gradient => "converged: gradient orthogonal to the residuals (gtol)",
             Self::CostChange => "converged: relative change of chi2 below ftol",
             Self::Step => "converged: step below xtol of every parameter's range",
+            Self::KeptJacobian => {
+                "converged: no step with the kept starting Jacobian lowers chi2 further"
+            }
             Self::NoDescent => "converged: no step lowers chi2 further (minimum to precision)",
         }
     }
@@ -78,7 +84,25 @@ pub struct LevenbergMarquardt {
     /// Residuals and Jacobian at the starting point, when the caller already has them
     /// ([`LevenbergMarquardt::with_start_evaluation`]); taken by the first `init`.
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+    /// Steps left that keep the starting Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]);
+    /// 0: every accepted point gets its own.
+    keep_start_jacobian: u32,
+    /// The point has moved since the kept Jacobian was evaluated (it is no longer the point's
+    /// own).
+    kept_moved: bool,
 }
+
+/// A step with a kept Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]) that is
+/// rejected although it predicted a fall of `χ²` below this (relative) ends the fit: the point
+/// is the kept Jacobian's solution, where the predicted fall is its error `(J − J₀)ᵀr` and not
+/// a step still to take. A rejected step that predicted more takes the point's own Jacobian.
+const KEPT_JACOBIAN_STOP: f64 = 1e-6;
+
+/// Most accepted steps a fit takes with its starting Jacobian
+/// ([`LevenbergMarquardt::with_kept_start_jacobian`]) before it computes its own again: near
+/// the solution the chord steps shrink by a constant factor each, so more would mean the
+/// starting point was not close enough for them to pay.
+const KEPT_JACOBIAN_STEPS: u32 = 8;
 
 impl LevenbergMarquardt {
     /// A solver for parameters within `[lower, upper]` (finite, `lower < upper`).
@@ -105,6 +129,8 @@ impl LevenbergMarquardt {
             converged: None,
             final_jacobian: true,
             at_start: None,
+            keep_start_jacobian: 0,
+            kept_moved: false,
         })
     }
 
@@ -137,6 +163,27 @@ impl LevenbergMarquardt {
         self
     }
 
+    /// With a start evaluation given ([`LevenbergMarquardt::with_start_evaluation`]), keep its
+    /// Jacobian `J₀` for the steps instead of computing one at every accepted point (the chord,
+    /// or simplified Gauss–Newton, method), for at most [`KEPT_JACOBIAN_STEPS`] accepted steps.
+    /// The first step is the plain one (`J₀` is the start's own). Once the point has moved, a
+    /// rejected step that predicted a fall of `χ²` below [`KEPT_JACOBIAN_STOP`] (relative) ends
+    /// the fit ([`Converged::KeptJacobian`]); a rejected step that predicted more, or running
+    /// out of kept steps, computes the Jacobian at the point and goes on as plain
+    /// Levenberg–Marquardt.
+    ///
+    /// For a fit started close to its solution whose point alone is wanted (a cross-validation
+    /// fold started from the all-shots solution), this saves the `2p` shifted model evaluations
+    /// of every step after the first. The kept steps head for where the residuals are
+    /// orthogonal to `J₀`'s columns, which is off the fit's own minimum by
+    /// `(JᵀJ)⁻¹ (J − J₀)ᵀ r`: first order in the distance from the start, so `χ²` there exceeds
+    /// the minimum by a second-order amount. It is not the same point as without, only as good
+    /// to that order.
+    pub fn with_kept_start_jacobian(mut self) -> Self {
+        self.keep_start_jacobian = KEPT_JACOBIAN_STEPS;
+        self
+    }
+
     /// Why it stopped, when it converged (`None` when it ran out of iterations).
     pub fn converged(&self) -> Option<Converged> {
         self.converged
@@ -146,6 +193,63 @@ impl LevenbergMarquardt {
         for ((v, l), u) in x.iter_mut().zip(self.lower.iter()).zip(self.upper.iter()) {
             *v = v.clamp(*l, *u);
         }
+    }
+
+    /// Which parameters the gradient `g = Jᵀr` holds at a bound (descent `−g` points out of
+    /// the box: they do not move this iteration and their gradient is not a reason to go on),
+    /// and the largest cosine between a free parameter's column and the residuals (`a = JᵀJ`).
+    fn held_and_cosine(
+        &self,
+        theta: &DVector<f64>,
+        a: &DMatrix<f64>,
+        g: &DVector<f64>,
+        cost: f64,
+    ) -> (Vec<bool>, f64) {
+        let n = theta.len();
+        let held: Vec<bool> = (0..n)
+            .map(|k| {
+                (theta[k] <= self.lower[k] && g[k] > 0.0)
+                    || (theta[k] >= self.upper[k] && g[k] < 0.0)
+            })
+            .collect();
+        let r_norm = cost.sqrt();
+        let cosine = (0..n)
+            .filter(|&k| !held[k])
+            .map(|k| {
+                let cn = a[(k, k)].sqrt();
+                if cn > 0.0 && r_norm > 0.0 {
+                    g[k].abs() / (cn * r_norm)
+                } else {
+                    0.0
+                }
+            })
+            .fold(0.0, f64::max);
+        (held, cosine)
+    }
+
+    /// The damped normal matrix `JᵀJ + λ·diag(JᵀJ)` with the `held` parameters' rows and
+    /// columns made the identity's and their gradient entries in `g` zeroed.
+    fn damped_system(&self, a: &DMatrix<f64>, g: &mut DVector<f64>, held: &[bool]) -> DMatrix<f64> {
+        let n = a.nrows();
+        // Marquardt scaling; a column with no sensitivity gets a unit scale so the step
+        // along it stays zero instead of the system becoming singular.
+        let diag_max = (0..n).map(|k| a[(k, k)]).fold(0.0, f64::max);
+        let scale: Vec<f64> = (0..n)
+            .map(|k| a[(k, k)].max(1e-12 * diag_max).max(f64::MIN_POSITIVE))
+            .collect();
+        let mut damped = a.clone();
+        for (k, s) in scale.iter().enumerate() {
+            damped[(k, k)] += self.lambda * s;
+        }
+        // A held parameter's row and column become the identity's, its gradient 0: the step
+        // solves for the free parameters alone (with none held, the system is untouched).
+        for k in (0..n).filter(|&k| held[k]) {
+            damped.row_mut(k).fill(0.0);
+            damped.column_mut(k).fill(0.0);
+            damped[(k, k)] = 1.0;
+            g[k] = 0.0;
+        }
+        damped
     }
 
     fn stop(&mut self, state: LmState, why: Converged) -> LmState {
@@ -185,12 +289,17 @@ where
         self.project(&mut theta);
         let (r, j) = match self.at_start.take() {
             Some(rj) => rj,
-            None => (problem.apply(&theta)?, problem.jacobian(&theta)?),
+            None => {
+                // Nothing given to keep: a Jacobian at every accepted point.
+                self.keep_start_jacobian = 0;
+                (problem.apply(&theta)?, problem.jacobian(&theta)?)
+            }
         };
         // With Marquardt's diagonal scaling the damping is dimensionless.
         self.lambda = self.tau;
         self.nu = 2.0;
         self.converged = None;
+        self.kept_moved = false;
         let cost = norm2(&r);
         Ok((state.param(theta).residuals(r).jacobian(j).cost(cost), None))
     }
@@ -204,30 +313,10 @@ where
         let r = state.take_residuals().expect("set in init");
         let j = state.take_jacobian().expect("set in init");
         let cost = state.get_cost();
-        let n = theta.len();
 
         let a = j.tr_mul(&j);
         let mut g = j.tr_mul(&r);
-        // Parameters held at a bound by the gradient (descent `−g` points out of the box): they
-        // do not move this iteration and their gradient is not a reason to go on.
-        let held: Vec<bool> = (0..n)
-            .map(|k| {
-                (theta[k] <= self.lower[k] && g[k] > 0.0)
-                    || (theta[k] >= self.upper[k] && g[k] < 0.0)
-            })
-            .collect();
-        let r_norm = cost.sqrt();
-        let cosine = (0..n)
-            .filter(|&k| !held[k])
-            .map(|k| {
-                let cn = a[(k, k)].sqrt();
-                if cn > 0.0 && r_norm > 0.0 {
-                    g[k].abs() / (cn * r_norm)
-                } else {
-                    0.0
-                }
-            })
-            .fold(0.0, f64::max);
+        let (held, cosine) = self.held_and_cosine(&theta, &a, &g, cost);
         let keep = |state: LmState, theta, r, j, cost| {
             state.param(theta).residuals(r).jacobian(j).cost(cost)
         };
@@ -236,26 +325,11 @@ where
             return Ok((self.stop(state, Converged::Gradient), None));
         }
 
-        // Marquardt scaling; a column with no sensitivity gets a unit scale so the step
-        // along it stays zero instead of the system becoming singular.
-        let diag_max = (0..n).map(|k| a[(k, k)]).fold(0.0, f64::max);
-        let scale: Vec<f64> = (0..n)
-            .map(|k| a[(k, k)].max(1e-12 * diag_max).max(f64::MIN_POSITIVE))
-            .collect();
-        let mut damped = a.clone();
-        for (k, s) in scale.iter().enumerate() {
-            damped[(k, k)] += self.lambda * s;
-        }
-        // A held parameter's row and column become the identity's, its gradient 0: the step
-        // solves for the free parameters alone (with none held, the system is untouched).
-        for k in (0..n).filter(|&k| held[k]) {
-            damped.row_mut(k).fill(0.0);
-            damped.column_mut(k).fill(0.0);
-            damped[(k, k)] = 1.0;
-            g[k] = 0.0;
-        }
+        let damped = self.damped_system(&a, &mut g, &held);
         let step_ok = damped.cholesky().map(|ch| ch.solve(&(-&g)));
         let mut accepted = false;
+        // The step's predicted fall of χ² is below [`KEPT_JACOBIAN_STOP`] (relative).
+        let mut small_prediction = false;
         let mut new_state = None;
         if let Some(delta) = step_ok {
             let mut trial = &theta + &delta;
@@ -272,6 +346,7 @@ where
             }
             let predicted_r = &r + &j * &step;
             let predicted = cost - norm2(&predicted_r);
+            small_prediction = predicted <= KEPT_JACOBIAN_STOP * cost;
             // A trial point where the model cannot be evaluated is a rejected step.
             if let Ok(r_trial) = problem.apply(&trial) {
                 let cost_trial = norm2(&r_trial);
@@ -279,10 +354,13 @@ where
                 if cost_trial.is_finite() && actual > 0.0 && predicted > 0.0 {
                     let rho = actual / predicted;
                     let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
-                    let j_trial = if small && !self.final_jacobian {
-                        j.clone()
+                    let keep = self.keep_start_jacobian > 0;
+                    let j_trial = if (small && !self.final_jacobian) || keep {
+                        self.keep_start_jacobian = self.keep_start_jacobian.saturating_sub(1);
+                        self.kept_moved = keep;
+                        None
                     } else {
-                        problem.jacobian(&trial)?
+                        Some(problem.jacobian(&trial)?)
                     };
                     self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     self.nu = 2.0;
@@ -294,12 +372,27 @@ where
         let kv = argmin::kv!("lambda" => self.lambda; "accepted" => accepted;);
         match new_state {
             Some((trial, r_trial, j_trial, cost_trial, small)) => {
+                let j_trial = j_trial.unwrap_or(j);
                 let state = keep(state, trial, r_trial, j_trial, cost_trial);
                 if small {
                     Ok((self.stop(state, Converged::CostChange), Some(kv)))
                 } else {
                     Ok((state, Some(kv)))
                 }
+            }
+            None if self.kept_moved && small_prediction => {
+                // At the kept Jacobian's solution, within a second-order amount of the fit's
+                // own minimum: its steps no longer lower χ².
+                let state = keep(state, theta, r, j, cost);
+                Ok((self.stop(state, Converged::KeptJacobian), Some(kv)))
+            }
+            None if self.kept_moved => {
+                // The kept Jacobian may be what failed: take the point's own and go on as
+                // plain Levenberg–Marquardt from the same damping.
+                self.keep_start_jacobian = 0;
+                self.kept_moved = false;
+                let j_here = problem.jacobian(&theta)?;
+                Ok((keep(state, theta, r, j_here, cost), Some(kv)))
             }
             None => {
                 self.lambda *= self.nu;
@@ -320,262 +413,4 @@ where
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use approx::assert_relative_eq;
-    use argmin::core::Executor;
-
-    /// `y = a·exp(−b·t)` sampled without noise: a nonlinear least-squares test problem.
-    struct Decay {
-        t: Vec<f64>,
-        y: Vec<f64>,
-    }
-
-    impl Operator for Decay {
-        type Param = DVector<f64>;
-        type Output = DVector<f64>;
-        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
-            Ok(DVector::from_iterator(
-                self.t.len(),
-                self.t
-                    .iter()
-                    .zip(&self.y)
-                    .map(|(t, y)| p[0] * (-p[1] * t).exp() - y),
-            ))
-        }
-    }
-
-    impl Jacobian for Decay {
-        type Param = DVector<f64>;
-        type Jacobian = DMatrix<f64>;
-        fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
-            Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
-                let e = (-p[1] * self.t[i]).exp();
-                if k == 0 {
-                    e
-                } else {
-                    -p[0] * self.t[i] * e
-                }
-            }))
-        }
-    }
-
-    fn decay() -> Decay {
-        let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
-        let y = t.iter().map(|t| 3.0 * (-0.7 * t).exp()).collect();
-        Decay { t, y }
-    }
-
-    #[test]
-    fn solves_a_nonlinear_problem_through_the_executor() {
-        let solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap();
-        let res = Executor::new(decay(), solver)
-            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
-            .run()
-            .unwrap();
-        let p = res.state().get_best_param().unwrap();
-        assert_relative_eq!(p[0], 3.0, epsilon = 1e-7);
-        assert_relative_eq!(p[1], 0.7, epsilon = 1e-7);
-        assert!(res.solver().converged().is_some());
-    }
-
-    /// Counts Jacobian evaluations of [`Decay`].
-    struct Counted {
-        inner: Decay,
-        jacobians: std::cell::Cell<u32>,
-    }
-
-    impl Operator for Counted {
-        type Param = DVector<f64>;
-        type Output = DVector<f64>;
-        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
-            self.inner.apply(p)
-        }
-    }
-
-    impl Jacobian for Counted {
-        type Param = DVector<f64>;
-        type Jacobian = DMatrix<f64>;
-        fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
-            self.jacobians.set(self.jacobians.get() + 1);
-            self.inner.jacobian(p)
-        }
-    }
-
-    #[test]
-    fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
-        let run = |skip: bool| {
-            let mut solver = LevenbergMarquardt::new(
-                DVector::from_vec(vec![-10.0, 0.0]),
-                DVector::from_vec(vec![10.0, 5.0]),
-            )
-            .unwrap()
-            .with_ftol(1e-6)
-            .unwrap();
-            if skip {
-                solver = solver.without_final_jacobian();
-            }
-            // Measurements off the curve, so that χ² stops falling at a positive minimum.
-            let mut inner = decay();
-            for (i, y) in inner.y.iter_mut().enumerate() {
-                *y += 0.01 * (7.0 * i as f64).sin();
-            }
-            let problem = Counted {
-                inner,
-                jacobians: std::cell::Cell::new(0),
-            };
-            let res = Executor::new(problem, solver)
-                .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
-                .run()
-                .unwrap();
-            let why = res.solver().converged();
-            let p = res.state().get_best_param().unwrap().clone();
-            let iters = res.state().get_iter();
-            (p, why, iters, res.problem.problem.unwrap().jacobians.get())
-        };
-        let (p_full, why_full, it_full, j_full) = run(false);
-        let (p_skip, why_skip, it_skip, j_skip) = run(true);
-        assert_eq!(why_full, Some(Converged::CostChange));
-        assert_eq!(why_skip, why_full);
-        assert_eq!(it_skip, it_full);
-        assert_eq!(p_skip, p_full);
-        assert_eq!(j_skip + 1, j_full);
-    }
-
-    #[test]
-    fn a_start_evaluation_given_gives_the_same_fit_one_evaluation_cheaper() {
-        let start = DVector::from_vec(vec![1.0, 2.0]);
-        let run = |given: bool| {
-            let mut solver = LevenbergMarquardt::new(
-                DVector::from_vec(vec![-10.0, 0.0]),
-                DVector::from_vec(vec![10.0, 5.0]),
-            )
-            .unwrap();
-            let mut inner = decay();
-            for (i, y) in inner.y.iter_mut().enumerate() {
-                *y += 0.01 * (5.0 * i as f64).cos();
-            }
-            if given {
-                solver = solver.with_start_evaluation(
-                    inner.apply(&start).unwrap(),
-                    inner.jacobian(&start).unwrap(),
-                );
-            }
-            let problem = Counted {
-                inner,
-                jacobians: std::cell::Cell::new(0),
-            };
-            let res = Executor::new(problem, solver)
-                .configure(|s| s.param(start.clone()).max_iters(100))
-                .run()
-                .unwrap();
-            let p = res.state().get_best_param().unwrap().clone();
-            let out = (p, res.state().get_cost(), res.state().get_iter());
-            (out, res.problem.problem.unwrap().jacobians.get())
-        };
-        let (plain, j_plain) = run(false);
-        let (given, j_given) = run(true);
-        assert_eq!(given, plain);
-        assert_eq!(j_given + 1, j_plain);
-    }
-
-    /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
-    struct Coupled {
-        t: Vec<f64>,
-        y: Vec<f64>,
-    }
-
-    impl Operator for Coupled {
-        type Param = DVector<f64>;
-        type Output = DVector<f64>;
-        fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
-            Ok(DVector::from_iterator(
-                self.t.len(),
-                self.t
-                    .iter()
-                    .zip(&self.y)
-                    .map(|(t, y)| p[0] * t + p[1] * t * t - y),
-            ))
-        }
-    }
-
-    impl Jacobian for Coupled {
-        type Param = DVector<f64>;
-        type Jacobian = DMatrix<f64>;
-        fn jacobian(&self, _: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
-            Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
-                self.t[i].powi(k as i32 + 1)
-            }))
-        }
-    }
-
-    /// An optimum on a bound with the columns strongly coupled (`t` and `t²` on `[1, 2]`):
-    /// the fit converges, in a few iterations, to the constrained least-squares solution
-    /// computed independently (`b = 0`, `a = Σty/Σt²`). Projecting the unconstrained step
-    /// instead leaves `a` wrong by the coupling at every step and the fit crawls.
-    #[test]
-    fn an_optimum_on_a_bound_converges_to_the_constrained_solution() {
-        let t: Vec<f64> = (0..21).map(|i| 1.0 + i as f64 * 0.05).collect();
-        let y: Vec<f64> = t
-            .iter()
-            .enumerate()
-            .map(|(i, t)| 3.0 * t - 0.4 * t * t + 0.01 * (3.0 * i as f64).sin())
-            .collect();
-        let a_want = t.iter().zip(&y).map(|(t, y)| t * y).sum::<f64>()
-            / t.iter().map(|t| t * t).sum::<f64>();
-        let solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap();
-        let res = Executor::new(Coupled { t, y }, solver)
-            .configure(|s| s.param(DVector::from_vec(vec![1.0, 1.0])).max_iters(100))
-            .run()
-            .unwrap();
-        assert!(res.solver().converged().is_some());
-        assert!(
-            res.state().get_iter() <= 10,
-            "{} iterations",
-            res.state().get_iter()
-        );
-        let p = res.state().get_best_param().unwrap();
-        assert_eq!(p[1], 0.0);
-        assert_relative_eq!(p[0], a_want, max_relative = 1e-9);
-    }
-
-    #[test]
-    fn respects_bounds_and_reports_max_iters() {
-        // The optimum b = 0.7 lies outside [0, 0.5]: the solution sits on the bound.
-        let solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 0.5]),
-        )
-        .unwrap();
-        let res = Executor::new(decay(), solver)
-            .configure(|s| s.param(DVector::from_vec(vec![1.0, 0.1])).max_iters(200))
-            .run()
-            .unwrap();
-        let p = res.state().get_best_param().unwrap();
-        assert!(p[1] <= 0.5 && p[1] > 0.49, "{p}");
-        // One iteration is not enough: no convergence claimed.
-        let solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap();
-        let res = Executor::new(decay(), solver)
-            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(1))
-            .run()
-            .unwrap();
-        assert!(res.solver().converged().is_none());
-        assert!(LevenbergMarquardt::new(
-            DVector::from_vec(vec![1.0]),
-            DVector::from_vec(vec![0.0])
-        )
-        .is_err());
-    }
-}
+mod tests;

@@ -198,6 +198,27 @@ pub fn run_lm_point_from(
     })
 }
 
+/// [`run_lm_point_from`] keeping the Jacobian given at the start for the steps
+/// ([`LevenbergMarquardt::with_kept_start_jacobian`]): for a fit started close to its solution
+/// (a cross-validation fold started from the all-shots solution) it saves the `2p` shifted
+/// model evaluations of each step, and stops at a point whose `χ²` is above the fit's own
+/// minimum by a second-order amount (not the same point as [`run_lm_point_from`]). Without
+/// `at_start` (or when it is not used) it is [`run_lm_point_from`].
+pub fn run_lm_point_near(
+    problem: FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+    at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+) -> Result<FitPoint, FitError> {
+    let run = execute_with(problem, start, max_iters, None, (false, true), at_start)?;
+    Ok(FitPoint {
+        theta: run.theta,
+        cost: run.cost,
+        iterations: run.iterations,
+        converged: run.converged,
+    })
+}
+
 /// [`run_lm`], with the Jacobian at a solution reached by a small `χ²` change computed or not
 /// (`final_jacobian`; when not, [`FitRun::jacobian`] is that of the point before).
 pub(crate) fn execute(
@@ -206,6 +227,26 @@ pub(crate) fn execute(
     max_iters: u64,
     progress: Option<(&Arc<dyn Progress>, &str)>,
     final_jacobian: bool,
+    at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+) -> Result<FitRun, FitError> {
+    execute_with(
+        problem,
+        start,
+        max_iters,
+        progress,
+        (final_jacobian, false),
+        at_start,
+    )
+}
+
+/// [`execute`]; `keep_start_jacobian` keeps a given start's Jacobian for the steps
+/// ([`run_lm_point_near`]).
+fn execute_with(
+    problem: FitProblem<'_>,
+    start: &DVector<f64>,
+    max_iters: u64,
+    progress: Option<(&Arc<dyn Progress>, &str)>,
+    (final_jacobian, keep_start_jacobian): (bool, bool),
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
 ) -> Result<FitRun, FitError> {
     let n_active = problem.active().len();
@@ -224,6 +265,9 @@ pub(crate) fn execute(
                 .all(|(v, (l, u))| l <= v && v <= u);
         if unmoved && r.len() == problem.rows() && j.shape() == (problem.rows(), n_active) {
             solver = solver.with_start_evaluation(r, j);
+            if keep_start_jacobian {
+                solver = solver.with_kept_start_jacobian();
+            }
         }
     }
     let template = problem.clone();

@@ -37,6 +37,7 @@ fn weighted(e: &[f64; 5], s: &[f64; 5]) -> f64 {
 
 /// One delivery-noise level offered as a candidate: the multiple of the camera class's delivery
 /// SDs, the noise, and the data calibrated for it with its folds.
+#[derive(Clone)]
 pub(in crate::diagnose) struct DeliveryOption {
     scale: f64,
     noise: DeliveryNoise,

@@ -154,7 +154,10 @@ pub fn diagnose_page(d: &serde_json::Value, title: &str) -> Result<String, Strin
             .map(|c| c["penalty"].as_f64().unwrap_or(f64::NAN))
             .collect();
         let step = s["step"].as_u64().unwrap_or(0);
-        let chosen = s["selected"].as_str().unwrap_or("none");
+        let chosen = match s["swap"]["text"].as_str() {
+            Some(swap) => format!("none (a swap step: {swap})"),
+            None => s["selected"].as_str().unwrap_or("none").to_owned(),
+        };
         let svg = crate::report::charts::bars_with_line_svg(
             &format!("Step {step}: cross-validated gain per candidate"),
             "CV χ² gain",

@@ -1,0 +1,319 @@
+//! Tests of the bounded Levenberg–Marquardt solver on small problems with known solutions.
+
+use super::*;
+use approx::assert_relative_eq;
+use argmin::core::Executor;
+
+/// `y = a·exp(−b·t)` sampled without noise: a nonlinear least-squares test problem.
+struct Decay {
+    t: Vec<f64>,
+    y: Vec<f64>,
+}
+
+impl Operator for Decay {
+    type Param = DVector<f64>;
+    type Output = DVector<f64>;
+    fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+        Ok(DVector::from_iterator(
+            self.t.len(),
+            self.t
+                .iter()
+                .zip(&self.y)
+                .map(|(t, y)| p[0] * (-p[1] * t).exp() - y),
+        ))
+    }
+}
+
+impl Jacobian for Decay {
+    type Param = DVector<f64>;
+    type Jacobian = DMatrix<f64>;
+    fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+        Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
+            let e = (-p[1] * self.t[i]).exp();
+            if k == 0 {
+                e
+            } else {
+                -p[0] * self.t[i] * e
+            }
+        }))
+    }
+}
+
+fn decay() -> Decay {
+    let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
+    let y = t.iter().map(|t| 3.0 * (-0.7 * t).exp()).collect();
+    Decay { t, y }
+}
+
+#[test]
+fn solves_a_nonlinear_problem_through_the_executor() {
+    let solver = LevenbergMarquardt::new(
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 5.0]),
+    )
+    .unwrap();
+    let res = Executor::new(decay(), solver)
+        .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
+        .run()
+        .unwrap();
+    let p = res.state().get_best_param().unwrap();
+    assert_relative_eq!(p[0], 3.0, epsilon = 1e-7);
+    assert_relative_eq!(p[1], 0.7, epsilon = 1e-7);
+    assert!(res.solver().converged().is_some());
+}
+
+/// Counts Jacobian evaluations of [`Decay`].
+struct Counted {
+    inner: Decay,
+    jacobians: std::cell::Cell<u32>,
+}
+
+impl Operator for Counted {
+    type Param = DVector<f64>;
+    type Output = DVector<f64>;
+    fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+        self.inner.apply(p)
+    }
+}
+
+impl Jacobian for Counted {
+    type Param = DVector<f64>;
+    type Jacobian = DMatrix<f64>;
+    fn jacobian(&self, p: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+        self.jacobians.set(self.jacobians.get() + 1);
+        self.inner.jacobian(p)
+    }
+}
+
+#[test]
+fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
+    let run = |skip: bool| {
+        let mut solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap()
+        .with_ftol(1e-6)
+        .unwrap();
+        if skip {
+            solver = solver.without_final_jacobian();
+        }
+        // Measurements off the curve, so that χ² stops falling at a positive minimum.
+        let mut inner = decay();
+        for (i, y) in inner.y.iter_mut().enumerate() {
+            *y += 0.01 * (7.0 * i as f64).sin();
+        }
+        let problem = Counted {
+            inner,
+            jacobians: std::cell::Cell::new(0),
+        };
+        let res = Executor::new(problem, solver)
+            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
+            .run()
+            .unwrap();
+        let why = res.solver().converged();
+        let p = res.state().get_best_param().unwrap().clone();
+        let iters = res.state().get_iter();
+        (p, why, iters, res.problem.problem.unwrap().jacobians.get())
+    };
+    let (p_full, why_full, it_full, j_full) = run(false);
+    let (p_skip, why_skip, it_skip, j_skip) = run(true);
+    assert_eq!(why_full, Some(Converged::CostChange));
+    assert_eq!(why_skip, why_full);
+    assert_eq!(it_skip, it_full);
+    assert_eq!(p_skip, p_full);
+    assert_eq!(j_skip + 1, j_full);
+}
+
+#[test]
+fn a_start_evaluation_given_gives_the_same_fit_one_evaluation_cheaper() {
+    let start = DVector::from_vec(vec![1.0, 2.0]);
+    let run = |given: bool| {
+        let mut solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap();
+        let mut inner = decay();
+        for (i, y) in inner.y.iter_mut().enumerate() {
+            *y += 0.01 * (5.0 * i as f64).cos();
+        }
+        if given {
+            solver = solver.with_start_evaluation(
+                inner.apply(&start).unwrap(),
+                inner.jacobian(&start).unwrap(),
+            );
+        }
+        let problem = Counted {
+            inner,
+            jacobians: std::cell::Cell::new(0),
+        };
+        let res = Executor::new(problem, solver)
+            .configure(|s| s.param(start.clone()).max_iters(100))
+            .run()
+            .unwrap();
+        let p = res.state().get_best_param().unwrap().clone();
+        let out = (p, res.state().get_cost(), res.state().get_iter());
+        (out, res.problem.problem.unwrap().jacobians.get())
+    };
+    let (plain, j_plain) = run(false);
+    let (given, j_given) = run(true);
+    assert_eq!(given, plain);
+    assert_eq!(j_given + 1, j_plain);
+}
+
+/// Keeping the start's Jacobian (chord steps) from a start near the solution, as a
+/// cross-validation fold starts: no Jacobian is computed and the fit ends far closer to the
+/// solution than it started (second order: the excess χ² falls by more than 10⁴); from a
+/// start far away the kept Jacobian fails, the fit computes its own and ends where the plain
+/// fit does.
+#[test]
+fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
+    let mut inner = decay();
+    for (i, y) in inner.y.iter_mut().enumerate() {
+        *y += 0.01 * (5.0 * i as f64).cos();
+    }
+    let bounds = || {
+        LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap()
+    };
+    let run = |start: &DVector<f64>, inner: Decay, kept: bool| {
+        let mut solver = bounds();
+        if kept {
+            let (r, j) = (inner.apply(start).unwrap(), inner.jacobian(start).unwrap());
+            solver = solver
+                .with_start_evaluation(r, j)
+                .with_kept_start_jacobian();
+        }
+        let problem = Counted {
+            inner,
+            jacobians: std::cell::Cell::new(0),
+        };
+        let res = Executor::new(problem, solver)
+            .configure(|s| s.param(start.clone()).max_iters(100))
+            .run()
+            .unwrap();
+        assert!(res.solver().converged().is_some());
+        let p = res.state().get_best_param().unwrap().clone();
+        let cost = res.state().get_cost();
+        (p, cost, res.problem.problem.unwrap().jacobians.get())
+    };
+    let copy = |d: &Decay| Decay {
+        t: d.t.clone(),
+        y: d.y.clone(),
+    };
+    let far = DVector::from_vec(vec![1.0, 2.0]);
+    let (p_full, cost_full, _) = run(&far, copy(&inner), false);
+    let near = &p_full + DVector::from_vec(vec![0.02, -0.01]);
+    let cost_near = inner.apply(&near).unwrap().norm_squared();
+    let (p_kept, cost_kept, jacobians) = run(&near, copy(&inner), true);
+    assert_eq!(jacobians, 0);
+    assert!(cost_kept >= cost_full * (1.0 - 1e-12));
+    assert!(
+        cost_kept - cost_full <= 1e-4 * (cost_near - cost_full),
+        "{cost_kept} {cost_full} {cost_near}"
+    );
+    assert_relative_eq!(p_kept, p_full, max_relative = 1e-4);
+    let (p_far, cost_far, jacobians) = run(&far, inner, true);
+    assert!(jacobians > 0);
+    assert_relative_eq!(p_far, p_full, max_relative = 1e-7);
+    assert_relative_eq!(cost_far, cost_full, max_relative = 1e-9);
+}
+
+/// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
+struct Coupled {
+    t: Vec<f64>,
+    y: Vec<f64>,
+}
+
+impl Operator for Coupled {
+    type Param = DVector<f64>;
+    type Output = DVector<f64>;
+    fn apply(&self, p: &DVector<f64>) -> Result<DVector<f64>, ArgminError> {
+        Ok(DVector::from_iterator(
+            self.t.len(),
+            self.t
+                .iter()
+                .zip(&self.y)
+                .map(|(t, y)| p[0] * t + p[1] * t * t - y),
+        ))
+    }
+}
+
+impl Jacobian for Coupled {
+    type Param = DVector<f64>;
+    type Jacobian = DMatrix<f64>;
+    fn jacobian(&self, _: &DVector<f64>) -> Result<DMatrix<f64>, ArgminError> {
+        Ok(DMatrix::from_fn(self.t.len(), 2, |i, k| {
+            self.t[i].powi(k as i32 + 1)
+        }))
+    }
+}
+
+/// An optimum on a bound with the columns strongly coupled (`t` and `t²` on `[1, 2]`):
+/// the fit converges, in a few iterations, to the constrained least-squares solution
+/// computed independently (`b = 0`, `a = Σty/Σt²`). Projecting the unconstrained step
+/// instead leaves `a` wrong by the coupling at every step and the fit crawls.
+#[test]
+fn an_optimum_on_a_bound_converges_to_the_constrained_solution() {
+    let t: Vec<f64> = (0..21).map(|i| 1.0 + i as f64 * 0.05).collect();
+    let y: Vec<f64> = t
+        .iter()
+        .enumerate()
+        .map(|(i, t)| 3.0 * t - 0.4 * t * t + 0.01 * (3.0 * i as f64).sin())
+        .collect();
+    let a_want =
+        t.iter().zip(&y).map(|(t, y)| t * y).sum::<f64>() / t.iter().map(|t| t * t).sum::<f64>();
+    let solver = LevenbergMarquardt::new(
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 5.0]),
+    )
+    .unwrap();
+    let res = Executor::new(Coupled { t, y }, solver)
+        .configure(|s| s.param(DVector::from_vec(vec![1.0, 1.0])).max_iters(100))
+        .run()
+        .unwrap();
+    assert!(res.solver().converged().is_some());
+    assert!(
+        res.state().get_iter() <= 10,
+        "{} iterations",
+        res.state().get_iter()
+    );
+    let p = res.state().get_best_param().unwrap();
+    assert_eq!(p[1], 0.0);
+    assert_relative_eq!(p[0], a_want, max_relative = 1e-9);
+}
+
+#[test]
+fn respects_bounds_and_reports_max_iters() {
+    // The optimum b = 0.7 lies outside [0, 0.5]: the solution sits on the bound.
+    let solver = LevenbergMarquardt::new(
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 0.5]),
+    )
+    .unwrap();
+    let res = Executor::new(decay(), solver)
+        .configure(|s| s.param(DVector::from_vec(vec![1.0, 0.1])).max_iters(200))
+        .run()
+        .unwrap();
+    let p = res.state().get_best_param().unwrap();
+    assert!(p[1] <= 0.5 && p[1] > 0.49, "{p}");
+    // One iteration is not enough: no convergence claimed.
+    let solver = LevenbergMarquardt::new(
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 5.0]),
+    )
+    .unwrap();
+    let res = Executor::new(decay(), solver)
+        .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(1))
+        .run()
+        .unwrap();
+    assert!(res.solver().converged().is_none());
+    assert!(
+        LevenbergMarquardt::new(DVector::from_vec(vec![1.0]), DVector::from_vec(vec![0.0]))
+            .is_err()
+    );
+}
