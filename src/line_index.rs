@@ -4,8 +4,42 @@
 //! The `csv` crate ends a record at any of the three, but its positions' `line()` counts only
 //! `\n`: a CRLF file is reported a line off after a blank line, and every record of a CR-only
 //! file is on "line 1". Every CSV reader that names a line in its messages takes the line from
-//! the record's byte offset through [`LineIndex`] instead. A bottom layer: the data readers and
-//! the flight's coefficient tables both use it.
+//! the record's byte offset through [`LineIndex`] (a whole file in memory) or [`LineTracker`] (a
+//! file streamed through the reader) instead, and words the crate's errors through
+//! [`csv_message`]. A bottom layer: the data readers, the shard merge and the flight's coefficient
+//! tables all use it (`data::csv_error_at` turns the pair into a file error).
+
+use std::cell::RefCell;
+use std::collections::VecDeque;
+use std::io::Read;
+
+/// The 1-based line of a record the `csv` crate reports at a position.
+pub trait RecordLines {
+    /// Line of the record (or error) at `p`, counting `\n`, `\r\n` and lone `\r` alike.
+    fn line_of(&self, p: &csv::Position) -> usize;
+}
+
+/// The one wording of a `csv` reading error, without the crate's own (miscounted) line: a row
+/// whose field count differs from the header's, or a field that is not UTF-8 text.
+pub fn csv_message(e: &csv::Error) -> String {
+    match e.kind() {
+        csv::ErrorKind::UnequalLengths {
+            expected_len, len, ..
+        } => field_count_message(*len, *expected_len),
+        csv::ErrorKind::Utf8 { err, .. } => format!(
+            "field {} is not valid UTF-8 text (save the file as UTF-8)",
+            err.field() + 1
+        ),
+        csv::ErrorKind::Io(err) => format!("cannot read: {err}"),
+        _ => e.to_string(),
+    }
+}
+
+/// A row with `len` fields under a header of `header` fields (also for readers that count the
+/// fields themselves).
+pub fn field_count_message(len: u64, header: u64) -> String {
+    format!("found a row with {len} field(s), but the header has {header} (one per column)")
+}
 
 /// Where the line breaks of a text are.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -69,6 +103,117 @@ impl<'a> LineIndex<'a> {
     /// Number of line breaks.
     pub fn breaks(&self) -> usize {
         self.ends.len()
+    }
+}
+
+impl RecordLines for LineIndex<'_> {
+    fn line_of(&self, p: &csv::Position) -> usize {
+        LineIndex::line_of(self, p)
+    }
+}
+
+/// `bytes` as text; otherwise the 1-based line of the first byte that is not UTF-8 and a message
+/// naming its place on the line (a file saved as Latin-1 or UTF-16, say).
+pub fn utf8_text(bytes: Vec<u8>) -> Result<String, (usize, String)> {
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        let index = LineIndex::new(bytes);
+        let line = index.ends.partition_point(|&b| b < at) + 1;
+        let line_start = match line {
+            1 => 0,
+            _ => index.ends[line - 2] + 1,
+        };
+        (
+            line,
+            format!(
+                "byte {} of the line is not valid UTF-8 text (save the file as UTF-8)",
+                at - line_start + 1
+            ),
+        )
+    })
+}
+
+/// A reader that notes the line breaks of what passes through it, for files too large to hold
+/// (a shard's face maps): the same lines as [`LineIndex`] (no comment lines), in memory only the
+/// breaks not yet passed. Positions must be asked in ascending order, as a `csv` reader meets
+/// its records.
+pub struct LineTracker<R> {
+    inner: R,
+    state: RefCell<Breaks>,
+}
+
+/// The line breaks read so far.
+#[derive(Default)]
+struct Breaks {
+    /// Bytes read.
+    read: u64,
+    /// Breaks dropped: they end before the last position asked.
+    passed: usize,
+    /// First and last byte of each break kept, ascending.
+    kept: VecDeque<(u64, u64)>,
+    /// A `\r` as the last byte read: a break, whether `\r\n` is decided by the next byte.
+    cr: Option<u64>,
+}
+
+impl<R: Read> LineTracker<R> {
+    /// Track the lines of `inner`.
+    pub fn new(inner: R) -> Self {
+        Self {
+            inner,
+            state: RefCell::new(Breaks::default()),
+        }
+    }
+}
+
+impl<R: Read> Read for LineTracker<R> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        let n = self.inner.read(buf)?;
+        let st = self.state.get_mut();
+        if n == 0 {
+            if let Some(c) = st.cr.take() {
+                st.kept.push_back((c, c));
+            }
+        }
+        for (i, &b) in buf[..n].iter().enumerate() {
+            let at = st.read + i as u64;
+            if let Some(c) = st.cr.take() {
+                if b == b'\n' {
+                    st.kept.push_back((c, at));
+                    continue;
+                }
+                st.kept.push_back((c, c));
+            }
+            match b {
+                b'\r' => st.cr = Some(at),
+                b'\n' => st.kept.push_back((at, at)),
+                _ => {}
+            }
+        }
+        st.read += n as u64;
+        Ok(n)
+    }
+}
+
+impl<R> RecordLines for LineTracker<R> {
+    fn line_of(&self, p: &csv::Position) -> usize {
+        let mut st = self.state.borrow_mut();
+        let at = p.byte();
+        while st.kept.front().is_some_and(|&(_, last)| last < at) {
+            st.kept.pop_front();
+            st.passed += 1;
+        }
+        // Skip the line breaks (blank lines) the reader passed over to reach the record.
+        let (mut pos, mut line) = (at, st.passed + 1);
+        let pending = st.cr.map(|c| (c, c));
+        for &(first, last) in st.kept.iter().chain(pending.iter()) {
+            if first > pos {
+                break;
+            }
+            pos = last + 1;
+            line += 1;
+        }
+        line
     }
 }
 
@@ -158,5 +303,68 @@ mod tests {
         let got: Vec<usize> = record_lines(text).iter().map(|g| g.1).collect();
         assert_eq!(got, [1, 2, 3, 4, 6]);
         assert_eq!(LineIndex::new(text.as_bytes()).breaks(), 5);
+    }
+
+    /// Reads at most `k` bytes at a time: breaks split across reads.
+    struct Trickle<'a>(&'a [u8], usize);
+    impl Read for Trickle<'_> {
+        fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+            let n = self.1.min(buf.len()).min(self.0.len());
+            buf[..n].copy_from_slice(&self.0[..n]);
+            self.0 = &self.0[n..];
+            Ok(n)
+        }
+    }
+
+    #[test]
+    fn a_streamed_file_has_the_lines_of_the_whole_one() {
+        let lines = [
+            "h,x", "l2,1", "", "l4,2", "", "", "l7,\"3\"", "l8,4,5", "l9,6",
+        ];
+        for end in ["\n", "\r\n", "\r"] {
+            for last in ["", end] {
+                let text = lines.join(end) + last;
+                let whole = LineIndex::new(text.as_bytes());
+                for k in [1, 2, 3, 64] {
+                    let mut rdr = csv::ReaderBuilder::new()
+                        .has_headers(false)
+                        .from_reader(LineTracker::new(Trickle(text.as_bytes(), k)));
+                    let mut rec = csv::StringRecord::new();
+                    let mut got = Vec::new();
+                    loop {
+                        match rdr.read_record(&mut rec) {
+                            Ok(false) => break,
+                            Ok(true) => {
+                                let p = rec.position().unwrap();
+                                got.push(rdr.get_ref().line_of(p));
+                                assert_eq!(got.last(), Some(&whole.line_of(p)));
+                            }
+                            Err(e) => {
+                                let p = e.position().unwrap();
+                                got.push(rdr.get_ref().line_of(p));
+                                assert!(csv_message(&e).starts_with("found a row with 3 field(s)"));
+                            }
+                        }
+                    }
+                    assert_eq!(got, [1, 2, 4, 7, 8, 9], "{end:?} {last:?} {k}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_bad_byte_names_its_field() {
+        let bytes = b"a,b\r\n1,x\xff\r\n";
+        let idx = LineIndex::new(bytes);
+        let mut rdr = csv::Reader::from_reader(&bytes[..]);
+        // The header first, as every reader does (a record read before it would be reported
+        // at the header's position).
+        assert_eq!(rdr.headers().unwrap().len(), 2);
+        let e = rdr.records().next().unwrap().unwrap_err();
+        assert_eq!(idx.line_of(e.position().unwrap()), 2);
+        assert_eq!(
+            csv_message(&e),
+            "field 2 is not valid UTF-8 text (save the file as UTF-8)"
+        );
     }
 }

@@ -905,3 +905,22 @@ fn ball_travel_over_the_face_fits_the_compliant_contact() {
         t1[5]
     );
 }
+
+/// A swing whose contact point barely moves toward the ball (below
+/// `limits::MIN_NORMAL_APPROACH_M_S`) is refused by the contact world as by the momentum solve,
+/// with the same words: not integrated into a contact of almost unbounded duration.
+#[test]
+fn contact_world_refuses_the_swings_the_momentum_solve_refuses() {
+    let m = paper();
+    let cw = ContactWorld::new(&m, ContactParams::default()).unwrap();
+    for speed in [5e-5, 0.0, -1.0] {
+        let d = delivery(speed, 12.0, 0.0, 0.0);
+        let want = m.solve(&d).unwrap_err().to_string();
+        assert!(want.contains("does not approach"), "{want}");
+        assert_eq!(cw.impact(&d).unwrap_err(), want, "speed {speed}");
+        assert!(cw.rigid_limit_cor(&d).is_err(), "speed {speed}");
+    }
+    // Just above the threshold both compute.
+    let d = delivery(1e-3, 12.0, 0.0, 0.0);
+    assert!(m.solve(&d).is_ok());
+}

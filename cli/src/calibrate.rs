@@ -105,6 +105,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
+    super::warn_groups_without_effects(&args.club, &club, &table.shots);
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
     }

@@ -124,6 +124,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
+    super::warn_groups_without_effects(&args.club, &club, &table.shots);
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(

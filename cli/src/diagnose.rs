@@ -170,6 +170,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     }
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
+    super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let known_noise = match (&args.noise, args.instrument) {
         (Some(p), _) => Some(read_noise_file(p)?),
         (None, Some(c)) => Some(c.noise()),

@@ -109,6 +109,76 @@ pub fn locate_shot_error(
     .into()
 }
 
+/// Stack of each worker thread, bytes. Rayon's default is the platform's 2 MiB; unoptimised
+/// (`cargo run`, dev profile), the face-map kernel's row function, whose SIMD variants are
+/// inlined into one frame for speed, needs about 2 MiB of stack by itself, and `smash run
+/// configs/studies/face_map.toml` overflowed it. The stack is reserved address space, touched
+/// only as deep as it is used.
+pub const WORKER_STACK_BYTES: usize = 16 << 20;
+
+/// The worker threads every command runs its parallel work on (installed as the global pool by
+/// the binary's `main`).
+pub fn thread_pool() -> rayon::ThreadPoolBuilder {
+    rayon::ThreadPoolBuilder::new()
+        .stack_size(WORKER_STACK_BYTES)
+        .thread_name(|i| format!("smash-worker-{i}"))
+}
+
+/// The message for shots whose group none of the club's per-group effects (`group = "A"`) names,
+/// or `None`. Such shots get the nominal club with only the effects that name no group: right
+/// for a new group measured with a club calibrated on others (so a warning, not a refusal), but
+/// easy to miss when a group was renamed or a file has no `group` column.
+pub fn groups_without_effects(
+    club_path: &std::path::Path,
+    club: &smash::club::ClubSpec,
+    shots: &[smash::model::Shot],
+) -> Option<String> {
+    let have = club.effect_groups();
+    if have.is_empty() {
+        return None;
+    }
+    let mut missing: Vec<&str> = shots
+        .iter()
+        .map(|s| s.group.as_str())
+        .filter(|g| !have.iter().any(|h| h == g))
+        .collect();
+    missing.sort_unstable();
+    missing.dedup();
+    if missing.is_empty() {
+        return None;
+    }
+    let quote = |v: &[&str]| {
+        v.iter()
+            .map(|g| format!("'{}'", g.escape_debug()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let have: Vec<&str> = have.iter().map(String::as_str).collect();
+    Some(format!(
+        "warning: {}: the club's per-group effects are for group(s) {}; shots of group(s) {} get \
+         none of them (the nominal club with the effects that name no group){}",
+        club_path.display(),
+        quote(&have),
+        quote(&missing),
+        if missing.contains(&"all") {
+            " ('all' is the group of shots in a file without a `group` column)"
+        } else {
+            ""
+        }
+    ))
+}
+
+/// Print [`groups_without_effects`]' warning, if any, once on stderr.
+pub fn warn_groups_without_effects(
+    club_path: &std::path::Path,
+    club: &smash::club::ClubSpec,
+    shots: &[smash::model::Shot],
+) {
+    if let Some(w) = groups_without_effects(club_path, club, shots) {
+        eprintln!("{}", smash::data::escape(&w));
+    }
+}
+
 /// One line: the error and its causes, joined by `: `, with control characters from the input
 /// (ESC, CR, …) escaped so that they cannot act on the terminal.
 pub fn error_chain(e: &anyhow::Error) -> String {
@@ -130,6 +200,19 @@ mod tests {
     #[test]
     fn command_line_is_well_formed() {
         Cli::command().debug_assert();
+    }
+
+    /// A frame the size of the unoptimised face-map kernel's (about 2 MiB) and then some fits
+    /// on every worker: on rayon's default 2 MiB stacks this aborts the test binary.
+    #[test]
+    fn workers_have_room_for_the_unoptimised_kernel() {
+        fn deep(n: usize) -> u8 {
+            let buf = std::hint::black_box([n as u8; 3 << 20]);
+            buf[n % buf.len()]
+        }
+        let pool = thread_pool().num_threads(2).build().unwrap();
+        let got = pool.broadcast(|c| deep(c.index() + 7));
+        assert_eq!(got, [7, 8]);
     }
 }
 

@@ -6,6 +6,8 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let cli = smash_cli::Cli::parse();
+    // Fails only if a pool was already installed, which nothing before this line does.
+    let _ = smash_cli::thread_pool().build_global();
     match smash_cli::run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         // A reader that closed the pipe (`smash effects | head -n 1`) ends us silently, with the

@@ -190,6 +190,7 @@ fn predict_file(
         &[("--shots", shots_path), ("--club", &args.club)],
     )?;
     let table = args.shots_format.read(shots_path)?;
+    super::warn_groups_without_effects(&args.club, club, &table.shots);
     let outcomes = predict_table(club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
     for (shot, o) in table.shots.iter().zip(&outcomes) {
         if !(o.launch().is_finite() && o.smash_factor().is_finite()) {

@@ -426,7 +426,9 @@ fn messages_name_the_right_line_with_any_line_ends() {
             &format!("w{k}.csv"),
             &short,
             &[],
-            &[&format!("w{k}.csv:4: found a record with 2 field(s)")],
+            &[&format!(
+                "w{k}.csv:4: found a row with 2 field(s), but the header has 4"
+            )],
         );
         // A shots file for predict: the bad club speed is on line 4.
         let shots = [

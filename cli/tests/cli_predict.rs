@@ -208,7 +208,7 @@ fn bad_shots_files_name_the_row_and_column() {
         ),
         (
             format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0\n"),
-            vec![":2", "fields"],
+            vec![":2", "found a row with 7 field(s), but the header has 9"],
         ),
         (
             format!("{SHOTS_HEADER}\ns1,A,-100,0,0,12,0,0,0\n"),
@@ -286,7 +286,10 @@ fn crlf_shots_files_report_the_right_line() {
     );
     let short = format!("{SHOTS_HEADER}\r\ns1,A,100,0,0,12,0,0,0\r\ns2,A,100\r\n");
     let err = case.fails(&paper_club_text(), &short);
-    assert_has(&err, &["shots.csv:3", "fields"]);
+    assert_has(
+        &err,
+        &["shots.csv:3: found a row with 3 field(s), but the header has 9 (one per column)"],
+    );
 }
 
 #[test]

@@ -57,7 +57,7 @@ struct RawFile {
 #[derive(Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 struct RawClub {
-    name: String,
+    name: Spanned<String>,
     mass_g: Spanned<f64>,
     #[serde(deserialize_with = "crate::data::toml_check::exact")]
     com_mm: Spanned<[f64; 3]>,
@@ -174,7 +174,19 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     for (i, table) in raw.effect.iter().enumerate() {
         effects.push(parse_effect(&ctx, "effect", i, table)?);
     }
-    let club = ClubSpec::new(c.name.clone(), loft, nominal, effects).map_err(|e| {
+    let name = c.name.get_ref();
+    if name.chars().any(char::is_control) {
+        return Err(ctx.err(
+            c.name.span(),
+            "club.name",
+            format!(
+                "'{}' holds a control character (an escape, a line break, a tab); the name is \
+                 printed in tables and terminals: use printable text",
+                super::escape(name)
+            ),
+        ));
+    }
+    let club = ClubSpec::new(name.clone(), loft, nominal, effects).map_err(|e| {
         DataError::file(
             path,
             format!("the club with its effects is not physical: {e}"),
@@ -340,7 +352,7 @@ pub fn club_toml(spec: &ClubSpec, comment: &str) -> String {
     }
     let raw = RawFile {
         club: RawClub {
-            name: spec.name.clone(),
+            name: Spanned::new(0..0, spec.name.clone()),
             mass_g: sp(in_g(p.club_mass_kg)),
             com_mm: Spanned::new(0..0, [c.x, c.y, c.z]),
             inertia_gcm2: Spanned::new(

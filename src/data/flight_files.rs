@@ -9,7 +9,7 @@
 use std::path::Path;
 
 use crate::data::number::push_cell;
-use crate::data::{read_text, DataError};
+use crate::data::{csv_error_at, read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
 use crate::line_index::LineIndex;
 
@@ -214,22 +214,6 @@ fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> 
     })
 }
 
-/// A `csv` reading error as one line at its file line (the crate's own messages quote its
-/// miscounted line).
-fn csv_error_at(index: &LineIndex, path: &Path, e: &csv::Error) -> DataError {
-    let line = e.position().map(|p| index.line_of(p));
-    let message = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => format!("found a record with {len} field(s), but the header has {expected_len}"),
-        csv::ErrorKind::Utf8 { err, .. } => {
-            format!("field {} is not valid UTF-8 text", err.field() + 1)
-        }
-        _ => e.to_string(),
-    };
-    DataError::at(path, line, None, message)
-}
-
 /// The launch columns (file names without prefix), in [`FlightLaunch::from_file_units`] order.
 pub const LAUNCH_COLUMNS: [&str; 5] = [
     "ball_speed_mph",
@@ -299,7 +283,7 @@ pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<Launch
                                 path,
                                 Some(line),
                                 Some(format!("column '{p}{}'", names[k])),
-                                format!("'{cell}' is not a finite number"),
+                                format!("{} is not a finite number", crate::data::quote_cell(cell)),
                             )
                         })?;
                 }

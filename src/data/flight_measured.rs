@@ -66,8 +66,8 @@ pub fn measured_flight_value(k: usize, cell: &str) -> Result<Option<f64>, String
     match cell.parse::<f64>() {
         Ok(x) if x.is_finite() => range.check(x).map(Some),
         _ => Err(format!(
-            "'{}' is not a finite number ({} must be a number within {}, or empty)",
-            crate::data::escape(cell),
+            "{} is not a finite number ({} must be a number within {}, or empty)",
+            crate::data::quote_cell(cell),
             FLIGHT_COLUMNS[k],
             range
         )),

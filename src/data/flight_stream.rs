@@ -273,16 +273,13 @@ fn bad_row(input: &Path, plan: &Plan, line: usize, bad: Bad) -> DataError {
             input,
             Some(line),
             None,
-            format!(
-                "found a record with {n} field(s), but the header has {}",
-                plan.width
-            ),
+            crate::line_index::field_count_message(n as u64, plan.width as u64),
         ),
         Bad::Cell(k, cell) => DataError::at(
             input,
             Some(line),
             Some(format!("column '{}{}'", plan.prefix, LAUNCH_COLUMNS[k])),
-            format!("'{cell}' is not a finite number"),
+            format!("{} is not a finite number", crate::data::quote_cell(&cell)),
         ),
         Bad::Measured(k, message) => DataError::at(
             input,

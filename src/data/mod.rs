@@ -20,6 +20,8 @@ pub mod toml_check;
 
 pub use toml_check::{parse_toml, toml_key_error, TomlDoc};
 
+use crate::line_index::csv_message;
+
 use std::fmt;
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -79,10 +81,45 @@ impl fmt::Display for DataError {
 
 impl std::error::Error for DataError {}
 
+/// A `csv` crate error in `path` as one file error: the line from `lines` (a [`LineIndex`] or a
+/// [`LineTracker`]: the crate's own count is off for CRLF and CR-only line ends), the wording of
+/// [`csv_message`] (field counts, a field that is not UTF-8). Every CSV reader of the library
+/// reports its `csv` errors through here (the flight's coefficient tables, below this module,
+/// through the same two pieces).
+///
+/// [`LineIndex`]: crate::line_index::LineIndex
+/// [`LineTracker`]: crate::line_index::LineTracker
+pub fn csv_error_at(
+    lines: &impl crate::line_index::RecordLines,
+    path: &Path,
+    e: &csv::Error,
+) -> DataError {
+    let line = e.position().map(|p| lines.line_of(p));
+    DataError::at(path, line, None, escape(&csv_message(e)).into_owned())
+}
+
+/// Characters of a cell an error message quotes in full; a longer cell is cut.
+const QUOTED_CHARS: usize = 48;
+
+/// A cell as an error message quotes it: in single quotes, control characters escaped, and cut
+/// after [`QUOTED_CHARS`] characters with its length given (a 100 kB cell once made a 100 kB
+/// error line).
+pub fn quote_cell(text: &str) -> String {
+    let n = text.chars().count();
+    if n <= QUOTED_CHARS {
+        return format!("'{}'", escape(text));
+    }
+    let head: String = text.chars().take(QUOTED_CHARS).collect();
+    format!("'{}…' ({n} characters)", escape(&head))
+}
+
 /// Read a whole text file, mapping I/O errors to a [`DataError`].
 pub fn read_text(path: &Path) -> Result<String, DataError> {
     safe_write::note_input(path);
-    std::fs::read_to_string(path).map_err(|e| DataError::file(path, format!("cannot read: {e}")))
+    let bytes =
+        std::fs::read(path).map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
+    crate::line_index::utf8_text(bytes)
+        .map_err(|(line, m)| DataError::at(path, Some(line), None, m))
 }
 
 /// Write `bytes` to `path` atomically: a temporary file beside it, flushed, then renamed.

@@ -18,7 +18,7 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
-use super::DataError;
+use super::{csv_error_at, DataError};
 use crate::limits::{self, PhysicalRange};
 use crate::line_index::LineIndex;
 /// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
@@ -122,7 +122,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         .has_headers(true)
         .trim(csv::Trim::All)
         .from_reader(bytes.as_slice());
-    let csv_err = |e: csv::Error| csv_error(&lines, path, e);
+    let csv_err = |e: csv::Error| csv_error_at(&lines, path, &e);
     let headers: Vec<String> = rdr
         .headers()
         .map_err(csv_err)?
@@ -162,21 +162,6 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         ));
     }
     Ok(table)
-}
-
-/// A `csv` error as a file error at its line (from [`LineIndex`]: the csv crate's own line count
-/// is off for CRLF and CR-only files).
-fn csv_error(lines: &LineIndex, path: &Path, e: csv::Error) -> DataError {
-    let line = e.position().map(|p| lines.line_of(p));
-    let msg = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => {
-            format!("row has {len} fields but the header has {expected_len}")
-        }
-        _ => e.to_string(),
-    };
-    DataError::at(path, line, None, msg)
 }
 
 /// Where each column the engine reads sits in the header.
@@ -266,6 +251,28 @@ impl Row<'_> {
         )
     }
 
+    /// The text cells (id, group, golfer) hold no control character: they are printed in tables
+    /// and terminals, where an escape or a line break would act or break the layout.
+    fn printable(&self, cols: &Columns) -> Result<(), DataError> {
+        for i in [Some(cols.id), cols.group, cols.golfer]
+            .into_iter()
+            .flatten()
+        {
+            let t = &self.cells[i];
+            if t.chars().any(char::is_control) {
+                return Err(self.error(
+                    &self.headers[i],
+                    format!(
+                        "{} holds a control character (an escape, a line break, a tab); use \
+                         printable text",
+                        super::quote_cell(t)
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// A finite number.
     fn num(&self, i: usize) -> Result<f64, DataError> {
         let s = self.cells[i].as_str();
@@ -276,7 +283,7 @@ impl Row<'_> {
                 "value {v} is not finite; a finite number is required"
             ))),
             Err(_) if s.is_empty() => Err(here("empty cell; a number is required".into())),
-            Err(_) => Err(here(format!("'{s}' is not a number"))),
+            Err(_) => Err(here(format!("{} is not a number", super::quote_cell(s)))),
         }
     }
 
@@ -288,6 +295,7 @@ impl Row<'_> {
 
     /// The shot of this row; `ids` are those of the rows before (ids must be unique).
     fn shot(&self, cols: &Columns, ids: &mut HashSet<String>) -> Result<Shot, DataError> {
+        self.printable(cols)?;
         let id = self.cells[cols.id].clone();
         if id.is_empty() {
             return Err(self.error("shot_id", "empty shot id"));

@@ -313,8 +313,31 @@ pub fn parse_toml<T: serde::de::DeserializeOwned>(
             }
             None => (None, None),
         };
+        let message = short_floats(message);
         DataError::at(path, line, place, format!("{message}{hint} ({layout})"))
     })
+}
+
+/// `message` with the floats serde quotes (`floating point \`1000…000.0\``, every digit of 1e308
+/// written out) in their shortest form.
+fn short_floats(message: &str) -> String {
+    const TAG: &str = "floating point `";
+    let Some(at) = message.find(TAG) else {
+        return message.to_owned();
+    };
+    let start = at + TAG.len();
+    let Some(len) = message[start..].find('`') else {
+        return message.to_owned();
+    };
+    match message[start..start + len].parse::<f64>() {
+        Ok(v) => format!(
+            "{}{}{}",
+            &message[..start],
+            crate::limits::fmt_value(v),
+            &message[start + len..]
+        ),
+        Err(_) => message.to_owned(),
+    }
 }
 
 /// An error about the TOML key `key` whose value sits at byte `offset` of `text`.

@@ -544,9 +544,14 @@ impl ContactWorld {
             .try_inverse()
             .ok_or("the collision matrix is singular")?;
         let (u1n, v_star) = (u1.dot(&n), (kinv * u1).dot(&n) / n.dot(&(kinv * n)));
-        if !(u1n > 0.0 && v_star > 0.0) {
+        let min = crate::limits::MIN_NORMAL_APPROACH_M_S;
+        if !(u1n > min && v_star > min) {
             return Err(format!(
-                "the club does not approach the ball: normal approach {u1n} m/s, after the grip {v_star} m/s"
+                "the club does not approach the ball: normal approach {} m/s, after the grip {} \
+                 m/s (both must exceed {} m/s)",
+                crate::limits::fmt_value(u1n),
+                crate::limits::fmt_value(v_star),
+                crate::limits::fmt_value(min)
             ));
         }
         Ok(self.cor_at(v_star) * v_star / u1n)
@@ -636,10 +641,12 @@ impl ContactWorld {
         let r_c = cf.point_m - p.club_com_m;
         let u1 = v_c + w_c.cross(&r_c);
         let u1n = u1.dot(&n0);
-        if !(u1n > 0.0) {
-            return Err(format!(
-                "the club does not approach the ball: normal approach speed is {u1n} m/s"
-            ));
+        // The momentum solve's threshold and words: the two worlds refuse the same deliveries.
+        if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
+            return Err(crate::physics::ImpactError::NotApproaching {
+                normal_speed_m_s: u1n,
+            }
+            .to_string());
         }
         let r_b0 = -p.ball_radius_m * n0;
         let kmat = self.model.k_matrix(&r_c, &r_b0);

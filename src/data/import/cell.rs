@@ -49,7 +49,7 @@ pub(super) fn parse_cell(raw: &str, unit: Unit, direction: Option<&str>) -> Resu
     let number = &rest[..end];
     let v: f64 = number
         .parse()
-        .map_err(|_| format!("'{raw}' is not a number"))?;
+        .map_err(|_| format!("{} is not a number", crate::data::quote_cell(raw)))?;
     let tail = rest[end..].trim();
     if !tail.is_empty() {
         if letter.is_none() && matches!(tail, "L" | "R" | "l" | "r") {
@@ -63,7 +63,7 @@ pub(super) fn parse_cell(raw: &str, unit: Unit, direction: Option<&str>) -> Resu
                         u.name, unit.name
                     ))
                 }
-                None => return Err(format!("'{raw}' is not a number")),
+                None => return Err(format!("{} is not a number", crate::data::quote_cell(raw))),
             }
         }
     }

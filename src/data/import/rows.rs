@@ -166,7 +166,10 @@ impl RowAt<'_> {
             let v = parse_cell(raw, from, r.spec.direction.as_deref()).map_err(here)?;
             let v = from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1));
             if !v.is_finite() {
-                return Err(here(format!("'{raw}' is not a finite number")));
+                return Err(here(format!(
+                    "{} is not a finite number",
+                    crate::data::quote_cell(raw)
+                )));
             }
             if let Some(range) = r.target.range() {
                 range.check(v).map_err(here)?;

@@ -5,15 +5,14 @@ use std::path::Path;
 
 use super::{CoefficientModel, Coefficients, SMITS_SMITH_CM_PER_S};
 use crate::limits::fmt_value;
-use crate::line_index::{normalise_line_ends, LineIndex};
+use crate::line_index::{csv_message, normalise_line_ends, LineIndex};
 
-/// A `csv` error's message without the crate's own (miscounted) line.
-fn csv_message(e: &csv::Error) -> String {
-    match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => format!("found a row with {len} field(s), but the header has {expected_len}"),
-        _ => e.to_string(),
+/// A `csv` error as `source: line N: message` (the line from [`LineIndex`], the wording every
+/// CSV reader shares).
+fn csv_fault(source: &str, index: &LineIndex, e: &csv::Error) -> String {
+    match e.position() {
+        Some(p) => format!("{source}: line {}: {}", index.line_of(p), csv_message(e)),
+        None => format!("{source}: {}", csv_message(e)),
     }
 }
 
@@ -64,8 +63,10 @@ impl TableModel {
     /// Read a table from a CSV file; errors name the file, line and column.
     pub fn from_path(path: &Path) -> Result<Self, String> {
         crate::inputs::note_input(path);
-        let text = std::fs::read_to_string(path)
+        let bytes = std::fs::read(path)
             .map_err(|e| format!("{}: cannot read the coefficient table: {e}", path.display()))?;
+        let text = crate::line_index::utf8_text(bytes)
+            .map_err(|(line, m)| format!("{}: line {line}: {m}", path.display()))?;
         Self::parse(&text, &path.display().to_string())
     }
 
@@ -77,7 +78,11 @@ impl TableModel {
             .trim(csv::Trim::All)
             .comment(Some(b'#'))
             .from_reader(text.as_bytes());
-        let headers = rdr.headers().map_err(|e| format!("{source}: {e}"))?.clone();
+        let index = LineIndex::new(text.as_bytes()).with_comments(b'#');
+        let headers = rdr
+            .headers()
+            .map_err(|e| csv_fault(source, &index, &e))?
+            .clone();
         let col = |name: &str| headers.iter().position(|h| h == name);
         for h in headers.iter() {
             if !["spin_factor", "reynolds", "cd", "cl", "cm"].contains(&h) {
@@ -91,12 +96,8 @@ impl TableModel {
         let (is, icd, icl) = (need("spin_factor")?, need("cd")?, need("cl")?);
         let (icm, ire) = (col("cm"), col("reynolds"));
         let mut rows: Vec<(f64, f64, Coefficients)> = Vec::new();
-        let index = LineIndex::new(text.as_bytes()).with_comments(b'#');
         for rec in rdr.records() {
-            let rec = rec.map_err(|e| match e.position() {
-                Some(p) => format!("{source}: line {}: {}", index.line_of(p), csv_message(&e)),
-                None => format!("{source}: {}", csv_message(&e)),
-            })?;
+            let rec = rec.map_err(|e| csv_fault(source, &index, &e))?;
             let line = rec.position().map_or(0, |p| index.line_of(p));
             let num = |i: usize, name: &str, lo: f64, hi: f64| -> Result<f64, String> {
                 let t = rec.get(i).unwrap_or("");

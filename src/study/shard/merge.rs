@@ -3,13 +3,14 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::data::{escape, read_text, DataError};
+use crate::data::{escape, quote_cell, read_text, DataError};
 use crate::sweep::kernel::LaunchGrid;
 
 use super::super::metrics::metric_names;
 use super::super::spec::parse_study;
 use super::super::sweep::Prepared;
 use super::super::StudyError;
+use super::fields::{csv_records, index, launch_value, next_record, num};
 use super::scratch::{DiskGrids, ScratchWriter};
 use super::{check_mergeable, club_sha256, sha256_hex, Hashed, MergeError, ROWS_HEADER};
 
@@ -88,80 +89,6 @@ fn read_meta(path: &Path) -> Result<ShardMeta, DataError> {
         ));
     }
     Ok(meta)
-}
-
-/// `value` of `col` on `line` as an index below `limit` (what it counts is `what`).
-fn index(
-    path: &Path,
-    line: u64,
-    col: &str,
-    s: &str,
-    limit: usize,
-    what: &str,
-) -> Result<usize, DataError> {
-    let at = |m: String| DataError::at(path, Some(line as usize), Some(format!("column {col}")), m);
-    let v = s
-        .parse::<usize>()
-        .map_err(|_| at(format!("not an index: '{}'", escape(s))))?;
-    if v >= limit {
-        return Err(at(format!(
-            "{v} is outside the study: it has {limit} {what} (0 to {})",
-            limit.saturating_sub(1)
-        )));
-    }
-    Ok(v)
-}
-
-fn num(path: &Path, line: u64, col: &str, s: &str) -> Result<f64, DataError> {
-    if s.is_empty() {
-        return Ok(f64::NAN);
-    }
-    s.parse::<f64>()
-        .ok()
-        .filter(|v| v.is_finite())
-        .ok_or_else(|| {
-            DataError::at(
-                path,
-                Some(line as usize),
-                Some(format!("column {col}")),
-                format!("not a finite number: '{}'", escape(s)),
-            )
-        })
-}
-
-/// A CSV reader over `text` whose header must be exactly `header`; records must have as many
-/// fields.
-fn csv_records<R: std::io::Read>(
-    path: &Path,
-    input: R,
-    header: &str,
-) -> Result<csv::Reader<R>, DataError> {
-    let mut r = csv::ReaderBuilder::new()
-        .has_headers(true)
-        .from_reader(input);
-    let h = r
-        .headers()
-        .map_err(|e| DataError::at(path, Some(1), None, format!("cannot read the header: {e}")))?;
-    if h.iter().collect::<Vec<_>>().join(",") != header {
-        return Err(DataError::at(
-            path,
-            Some(1),
-            None,
-            format!("header must be {header}"),
-        ));
-    }
-    Ok(r)
-}
-
-fn csv_error(path: &Path, e: &csv::Error) -> DataError {
-    let line = e.position().map(|p| p.line() as usize);
-    let msg = match e.kind() {
-        csv::ErrorKind::UnequalLengths {
-            expected_len, len, ..
-        } => format!("{len} fields, expected {expected_len}"),
-        _ => escape(&e.to_string()).into_owned(),
-    };
-    DataError::at(path, line, None, msg)
 }
 
 /// Read the shard folders: the study, each variant's summary metrics, and the face maps into
@@ -369,9 +296,8 @@ fn read_rows(
         out.put_row(b.variant, b.row, &b.grid)?;
         Ok(())
     };
-    for rec in reader.records() {
-        let f = rec.map_err(|e| csv_error(rp, &e))?;
-        let ln = f.position().map_or(0, csv::Position::line);
+    let mut f = csv::StringRecord::new();
+    while let Some(ln) = next_record(rp, &mut reader, &mut f)? {
         let (v, r, c) = (
             index(rp, ln, "variant", &f[0], nv, "variants")?,
             index(rp, ln, "row", &f[1], ny, "grid rows")?,
@@ -425,15 +351,17 @@ fn read_point(
                 rp,
                 Some(ln as usize),
                 Some("column valid".into()),
-                format!("must be 0 or 1, got '{}'", escape(other)),
+                format!("must be 0 or 1, got {}", quote_cell(other)),
             ))
         }
     };
-    g.ball_speed_m_s[c] = num(rp, ln, "ball_speed_m_s", &f[4])?;
-    g.launch_angle_rad[c] = num(rp, ln, "launch_angle_rad", &f[5])?;
-    g.azimuth_rad[c] = num(rp, ln, "azimuth_rad", &f[6])?;
-    g.backspin_rad_s[c] = num(rp, ln, "backspin_rad_s", &f[7])?;
-    g.sidespin_rad_s[c] = num(rp, ln, "sidespin_rad_s", &f[8])?;
+    let valid = g.valid[c];
+    let value = |col: &str, s: &str| launch_value(rp, ln, col, s, valid);
+    g.ball_speed_m_s[c] = value("ball_speed_m_s", &f[4])?;
+    g.launch_angle_rad[c] = value("launch_angle_rad", &f[5])?;
+    g.azimuth_rad[c] = value("azimuth_rad", &f[6])?;
+    g.backspin_rad_s[c] = value("backspin_rad_s", &f[7])?;
+    g.sidespin_rad_s[c] = value("sidespin_rad_s", &f[8])?;
     cur.filled += 1;
     cur.line = ln;
     Ok(())
@@ -468,9 +396,8 @@ fn read_metrics(
         metrics[variant] = values;
         Ok(())
     };
-    for rec in reader.records() {
-        let f = rec.map_err(|e| csv_error(mp, &e))?;
-        let ln = f.position().map_or(0, csv::Position::line);
+    let mut f = csv::StringRecord::new();
+    while let Some(ln) = next_record(mp, &mut reader, &mut f)? {
         let v = index(mp, ln, "variant", &f[0], p.variants.len(), "variants")?;
         if cur.as_ref().is_none_or(|c| c.0 != v) {
             push(cur.take())?;
@@ -483,7 +410,7 @@ fn read_metrics(
                 Some(ln as usize),
                 Some("column metric".into()),
                 match names.get(c.1.len()) {
-                    Some(want) => format!("expected metric {want}, got '{}'", escape(&f[1])),
+                    Some(want) => format!("expected metric {want}, got {}", quote_cell(&f[1])),
                     None => format!(
                         "variant {v} has more than the study's {} metrics",
                         names.len()

@@ -19,6 +19,7 @@ use super::spec::resolved_toml;
 use super::sweep::{ItemResult, Prepared};
 use super::StudyError;
 
+mod fields;
 mod merge;
 mod scratch;
 

@@ -80,6 +80,12 @@ pub(super) fn parse_optimise(
     })
 }
 
+/// Largest size of an objective weight. The metrics are at most ~1e4 in their units (rpm), so
+/// each term of the objective stays below ~1e10: far from overflow (a weight of 1e308 made the
+/// objective infinite), and a sum of opposite-signed terms still resolves a change of the
+/// smaller one.
+const MAX_WEIGHT: f64 = 1e6;
+
 fn parse_objective(
     doc: &TomlDoc<'_>,
     objective: &Spanned<BTreeMap<Spanned<String>, Spanned<f64>>>,
@@ -103,7 +109,21 @@ fn parse_objective(
                 format!("unknown metric{hint}; allowed: {}", names.join(", ")),
             ));
         }
+        let span = w.span();
         let w = doc.finite(w, &key, "weight")?;
+        if w.abs() > MAX_WEIGHT {
+            return Err(doc.err(
+                span,
+                &key,
+                format!(
+                    "weight {} is too large: allowed within [-{max}, {max}] (the objective adds \
+                     weight × metric in the metrics' own units, mph and rpm; a larger weight \
+                     overflows it)",
+                    crate::limits::fmt_value(w),
+                    max = crate::limits::fmt_value(MAX_WEIGHT)
+                ),
+            ));
+        }
         if w != 0.0 {
             out.push((name.clone(), w));
         }
