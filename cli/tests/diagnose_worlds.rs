@@ -424,7 +424,8 @@ fn a_swap_replaces_the_greedy_stand_in_with_the_worlds_physics() {
 /// not hold yet (configs/README.md, "What this shows"): with the pair exchange
 /// `compliant_driver` names all four ingredients (tangential compliance, the speed-dependent
 /// COR, `hosel_mass` 6.3 g, `contact_time` 0.48 ms), but `compliant_location_noise` names the
-/// shaft tip as `added_mass` (ambiguous with `cor_level`), not `hosel_mass`, and group means
+/// shaft tip as `added_mass` (ambiguous with `cor_level`), not `hosel_mass`, lists the absent
+/// `ball_offset` and `loft_bias` among its findings, and group means
 /// can reach 0.2 σ of the launch noise, where the standard error of one group's mean is
 /// 0.13–0.16 σ (docs/compliant-worlds.md, "Group means"). Run with
 /// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
