@@ -15,7 +15,7 @@ use super::super::evaluate::cv_chi2;
 use super::super::{CandidateResult, Step, Swap};
 use super::Search;
 use crate::fit::calibrate::noise_scales;
-use crate::fit::{fit_quietly, EffectRequest, FitError, Weighting};
+use crate::fit::{EffectRequest, FitError, Weighting};
 use crate::stats::launch_error_table;
 
 impl Search<'_> {
@@ -47,21 +47,7 @@ impl Search<'_> {
         }
         let mut trial = self.clone();
         trial.progress = None;
-        let reduced = self.reduced_by(&questioned, w)?;
-        if reduced.layout.is_empty() {
-            trial.theta_base = reduced.theta;
-        } else {
-            let run = fit_quietly(
-                self.club,
-                &reduced.layout,
-                &self.data,
-                w,
-                &reduced.theta,
-                self.opts.max_iters,
-            )?;
-            trial.theta_base = run.theta;
-        }
-        trial.base = reduced.layout;
+        (trial.base, trial.theta_base) = self.refit_without(&questioned, w)?;
         let out_kinds: Vec<_> = questioned
             .iter()
             .map(|&o| self.selected[o].kind())

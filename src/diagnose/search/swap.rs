@@ -168,7 +168,6 @@ impl Search<'_> {
         pairs
     }
 
-    /// The model without the selected effects `outs`.
     /// The gate: selected effects that are stand-ins or aliased with another selected effect
     /// (sorted indices into `selected`), and the aliased pairs.
     pub(in crate::diagnose) fn questioned(
@@ -183,16 +182,47 @@ impl Search<'_> {
         (questioned, alias_pairs)
     }
 
-    pub(in crate::diagnose) fn reduced_by(
-        &self,
-        outs: &[usize],
-        w: Weighting,
-    ) -> Result<Reduced, FitError> {
+    /// The current layout and values without the selected effects `outs` (indices into
+    /// `selected`), not refitted, and the number of parameters dropped.
+    fn dropped(&self, outs: &[usize]) -> Result<(ParamLayout, DVector<f64>, usize), FitError> {
         let (mut layout, mut theta, mut k_out) = (self.base.clone(), self.theta_base.clone(), 0);
         for &o in outs {
             let (l, t, k) = without(&layout, &theta, self.selected[o].kind())?;
             (layout, theta, k_out) = (l, t, k_out + k);
         }
+        Ok((layout, theta, k_out))
+    }
+
+    /// The model without the selected effects `outs`, refitted on all shots (warm-started from
+    /// the current values): the layout and its values.
+    pub(in crate::diagnose) fn refit_without(
+        &self,
+        outs: &[usize],
+        w: Weighting,
+    ) -> Result<(ParamLayout, DVector<f64>), FitError> {
+        let (layout, theta, _) = self.dropped(outs)?;
+        if layout.is_empty() {
+            return Ok((layout, theta));
+        }
+        let run = fit_quietly(
+            self.club,
+            &layout,
+            &self.data,
+            w,
+            &theta,
+            self.opts.max_iters,
+        )?;
+        Ok((layout, run.theta))
+    }
+
+    /// The model without the selected effects `outs`, not refitted, with its errors and
+    /// cross-validated χ² (a removal option of a round).
+    pub(in crate::diagnose) fn reduced_by(
+        &self,
+        outs: &[usize],
+        w: Weighting,
+    ) -> Result<Reduced, FitError> {
+        let (layout, theta, k_out) = self.dropped(outs)?;
         let errors = self.errors_of(&layout, theta.as_slice())?;
         let cv = cv_chi2(
             self.club,
@@ -472,19 +502,7 @@ impl Search<'_> {
                 self.base = layout;
                 self.theta_base = run.theta;
             }
-            _ => {
-                let r = self.reduced_by(&chosen.outs, w)?;
-                let run = fit_quietly(
-                    self.club,
-                    &r.layout,
-                    &self.data,
-                    w,
-                    &r.theta,
-                    self.opts.max_iters,
-                )?;
-                self.base = r.layout;
-                self.theta_base = run.theta;
-            }
+            _ => (self.base, self.theta_base) = self.refit_without(&chosen.outs, w)?,
         }
         self.selected.retain(|s| !out_kinds.contains(&s.kind()));
         self.kin_of
