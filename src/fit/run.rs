@@ -168,6 +168,18 @@ pub struct FitPoint {
     pub converged: bool,
 }
 
+impl From<FitRun> for FitPoint {
+    /// The solution of a run, without its covariance.
+    fn from(run: FitRun) -> Self {
+        Self {
+            theta: run.theta,
+            cost: run.cost,
+            iterations: run.iterations,
+            converged: run.converged,
+        }
+    }
+}
+
 /// [`run_lm`] when only the solution is wanted (cross-validation folds): the same point,
 /// iterations and `χ²`, without the Jacobian at the solution when the fit stops on a small
 /// change of `χ²` ([`LevenbergMarquardt::without_final_jacobian`]).
@@ -189,13 +201,7 @@ pub fn run_lm_point_from(
     max_iters: u64,
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
 ) -> Result<FitPoint, FitError> {
-    let run = execute(problem, start, max_iters, None, false, at_start)?;
-    Ok(FitPoint {
-        theta: run.theta,
-        cost: run.cost,
-        iterations: run.iterations,
-        converged: run.converged,
-    })
+    execute(problem, start, max_iters, None, false, at_start).map(FitPoint::from)
 }
 
 /// [`run_lm_point_from`] keeping the Jacobian given at the start for the steps
@@ -210,13 +216,7 @@ pub fn run_lm_point_near(
     max_iters: u64,
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
 ) -> Result<FitPoint, FitError> {
-    let run = execute_with(problem, start, max_iters, None, (false, true), at_start)?;
-    Ok(FitPoint {
-        theta: run.theta,
-        cost: run.cost,
-        iterations: run.iterations,
-        converged: run.converged,
-    })
+    execute_with(problem, start, max_iters, None, (false, true), at_start).map(FitPoint::from)
 }
 
 /// [`run_lm`], with the Jacobian at a solution reached by a small `χ²` change computed or not
