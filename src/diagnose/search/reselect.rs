@@ -115,43 +115,59 @@ impl Search<'_> {
             .iter()
             .filter(|r| !kind_in(self, r))
             .collect();
-        let after_errors = trial.errors_of(&trial.base, trial.theta_base.as_slice())?;
+        let candidate = CandidateResult {
+            label: format!(
+                "re-select without {}",
+                self.labels_of(
+                    &questioned
+                        .iter()
+                        .map(|&o| &self.selected[o])
+                        .collect::<Vec<_>>()
+                )
+            ),
+            n_params: trial.base.len(),
+            params: Vec::new(),
+            cv_chi2: cv_new,
+            gain,
+            spread_gain: None,
+            penalty,
+            rms_reduction: [0.0; 5],
+            unidentified: Vec::new(),
+            converged: true,
+            failure: None,
+        };
+        let swap = Swap {
+            out: self.labels_of(&gone),
+            inn: (!new.is_empty()).then(|| self.labels_of(&new)),
+            cv_before: cv_now,
+            cv_after: cv_new,
+        };
+        let base = self.selected.iter().map(EffectRequest::label).collect();
+        trial.swap_step(base, sigma, vec![candidate], swap)
+    }
+
+    /// The reported step of a change `swap` already made to this model (a swap round's or a
+    /// re-selection's): `base` the effects before it, `candidates` the options weighed, and the
+    /// errors after it.
+    pub(in crate::diagnose) fn swap_step(
+        &self,
+        base: Vec<String>,
+        noise_scales: [f64; 5],
+        candidates: Vec<CandidateResult>,
+        swap: Swap,
+    ) -> Result<Step, FitError> {
+        let after_errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
         Ok(Step {
-            base: self.selected.iter().map(EffectRequest::label).collect(),
-            noise_scales: sigma,
-            base_cv_chi2: cv_now,
-            candidates: vec![CandidateResult {
-                label: format!(
-                    "re-select without {}",
-                    self.labels_of(
-                        &questioned
-                            .iter()
-                            .map(|&o| &self.selected[o])
-                            .collect::<Vec<_>>()
-                    )
-                ),
-                n_params: trial.base.len(),
-                params: Vec::new(),
-                cv_chi2: cv_new,
-                gain,
-                spread_gain: None,
-                penalty,
-                rms_reduction: [0.0; 5],
-                unidentified: Vec::new(),
-                converged: true,
-                failure: None,
-            }],
+            base,
+            noise_scales,
+            base_cv_chi2: swap.cv_before,
+            candidates,
             selected: None,
             after: launch_error_table(&self.groups, &after_errors),
             at_noise_floor: false,
             alias: None,
             rivals: Vec::new(),
-            swap: Some(Swap {
-                out: self.labels_of(&gone),
-                inn: (!new.is_empty()).then(|| self.labels_of(&new)),
-                cv_before: cv_now,
-                cv_after: cv_new,
-            }),
+            swap: Some(swap),
         })
     }
 }

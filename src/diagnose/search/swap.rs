@@ -36,7 +36,6 @@ use crate::effects::EffectId;
 use crate::fit::calibrate::{noise_scales, STRONG_CORRELATION};
 use crate::fit::covariance;
 use crate::fit::{fit_quietly, EffectRequest, FitError, ParamEstimate, ParamLayout, Weighting};
-use crate::stats::launch_error_table;
 
 /// How many of a stand-in's best single replacements a pair exchange starts from: the pair
 /// completes one of them, so only the leading few need the second effect tried (the rest of
@@ -575,23 +574,14 @@ impl Search<'_> {
             .join(" + ");
         let in_label = label_of(chosen.ins.iter().map(EffectRequest::label).collect());
         self.make_swap(chosen, w)?;
-        let after_errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
-        Ok(Some(Step {
-            base: base_labels,
-            noise_scales: sigma,
-            base_cv_chi2: current_cv,
-            candidates: order.iter().map(|&i| results[i].clone()).collect(),
-            selected: None,
-            after: launch_error_table(&self.groups, &after_errors),
-            at_noise_floor: false,
-            alias: None,
-            rivals: Vec::new(),
-            swap: Some(Swap {
-                out: out_label,
-                inn: in_label,
-                cv_before: current_cv,
-                cv_after: results[best].cv_chi2,
-            }),
-        }))
+        let candidates = order.iter().map(|&i| results[i].clone()).collect();
+        let swap = Swap {
+            out: out_label,
+            inn: in_label,
+            cv_before: current_cv,
+            cv_after: results[best].cv_chi2,
+        };
+        self.swap_step(base_labels, sigma, candidates, swap)
+            .map(Some)
     }
 }
