@@ -174,6 +174,16 @@ pub struct Alias {
 }
 
 impl Alias {
+    /// Are the two parameters of different effects (not two parameters of one effect, nor one
+    /// effect's values in two groups)?
+    pub fn across_effects(&self) -> bool {
+        let effect = |label: &str| {
+            let name = label.split('.').next().unwrap_or(label);
+            name.split('@').next().unwrap_or(name).to_owned()
+        };
+        effect(&self.a) != effect(&self.b)
+    }
+
     /// The machine-readable form.
     pub fn to_json(&self) -> serde_json::Value {
         json!({"a": self.a, "b": self.b, "r": self.r, "separate_by": self.separate_by})

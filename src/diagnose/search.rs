@@ -19,6 +19,7 @@ use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
+mod alias;
 mod measure;
 mod reselect;
 mod swap;
