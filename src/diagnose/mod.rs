@@ -37,7 +37,10 @@
 //!    questioned effects (stand-ins and cross-effect aliases) out together and reruns forward
 //!    selection, kept when CV χ² + `k·ln n` drops. Greedy order can leave a stand-in that won
 //!    early (more parameters, more gain) where a plausible set fits better once later effects
-//!    are in; these steps correct it.
+//!    are in; these steps correct it. A stand-in may also give way to a plausible alias of the
+//!    same size whose CV χ² is worse by less than `ln n` (`search/alias.rs`: the stand-in's
+//!    model is charged one parameter for the physics its value stands for). The rounds run
+//!    after a forward phase capped by `max_steps` too, and make at most `max_steps` changes.
 //!
 //! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
 //! delivery (errors in variables: flatter slopes than the model's), which over thousands of
@@ -298,13 +301,17 @@ impl Diagnosis {
             && !self.cross_aliased(p)
     }
 
-    /// Is this final estimate aliased (|r| above [`crate::fit::calibrate::STRONG_CORRELATION`])
-    /// with a parameter of another selected effect?
+    /// Is this final estimate's effect aliased (a parameter's |r| above
+    /// [`crate::fit::calibrate::STRONG_CORRELATION`]) with a parameter of another selected
+    /// effect? The question is which effect carries the signal, so every parameter of both
+    /// effects is in doubt, not only the correlated pair.
     pub fn cross_aliased(&self, p: &ParamEstimate) -> bool {
-        let label = p.label();
-        self.aliases
-            .iter()
-            .any(|a| a.across_effects() && (a.a == label || a.b == label))
+        self.aliases.iter().any(|a| {
+            a.across_effects()
+                && [&a.a, &a.b]
+                    .iter()
+                    .any(|l| honest::effect_of_label(l) == p.effect)
+        })
     }
 }
 
