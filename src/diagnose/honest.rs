@@ -35,6 +35,18 @@ pub fn is_plausible(p: &ParamEstimate) -> Option<bool> {
     Some(p.value >= lo && p.value <= hi)
 }
 
+/// Does the fit leave this parameter *absent*: stopped on a physical bound that is also its
+/// neutral (no-effect) value, as `cor_radial.c_per_mm2 = 0` (COR does not fall off the centre
+/// at all)? Such a value says the effect is not there at the optimum, so it is not a finding;
+/// `docs/diagnose-selection.md`, "Absent at a bound".
+pub fn is_absent(p: &ParamEstimate) -> bool {
+    p.at_bound
+        && spec_of(p).is_some_and(|s| {
+            let on_neutral = (p.value - s.default).abs() <= 1e-9 * (s.upper - s.lower);
+            on_neutral && (s.default == s.lower || s.default == s.upper)
+        })
+}
+
 /// Which physics an implausible value behaves like (`None` when the value is plausible or the
 /// parameter unknown). The reasons are the model's own sensitivities: what else moves the same
 /// launch components the same way.
