@@ -640,7 +640,7 @@ fn summary_text(d: &Diagnosis) -> String {
         for p in d.estimates.iter().filter(|p| honest::is_absent(p)) {
             s.push_str(&format!(
                 "  absent, not a finding: {} = {:.4} {} sits on its no-effect bound (the fit \
-                 found none of this effect)\n",
+                 found none of what it adds)\n",
                 p.label(),
                 p.value,
                 p.unit

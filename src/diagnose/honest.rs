@@ -476,6 +476,25 @@ mod tests {
         }
     }
 
+    /// `cor_radial.c_per_mm2 = 0` on its lower bound (3000-shot `compliant_driver`): no COR
+    /// fall-off at all, absent rather than found; a small positive value off the bound is a
+    /// reading, and so is a value on a bound that is not the no-effect one.
+    #[test]
+    fn a_value_on_its_no_effect_bound_is_absent() {
+        let mut zero = est("cor_radial", "c_per_mm2", 0.0);
+        assert!(!is_absent(&zero), "not flagged on a bound by the fit");
+        zero.at_bound = true;
+        assert!(is_absent(&zero));
+        assert!(!is_absent(&est("cor_radial", "c_per_mm2", 2e-5)));
+        let spec = spec_of(&est("inertia_scale", "s", 1.0)).unwrap();
+        let mut low = est("inertia_scale", "s", spec.lower);
+        low.at_bound = true;
+        assert!(
+            !is_absent(&low),
+            "s at its lower bound is not s = 1 (no effect)"
+        );
+    }
+
     #[test]
     fn a_negative_shaft_mass_is_a_stand_in_and_a_small_positive_one_is_not() {
         let neg = est("added_mass", "dm_g", -5.2);

@@ -422,6 +422,11 @@ pub fn diagnose(
             // The selection stands unless its final fit shows a stand-in the rounds did not
             // see: then the rounds run on that fit (`search/final_fit.rs`).
             if search.adopt_final_stand_ins(&mut checked)? {
+                warnings.push(
+                    "the final fit (started afresh) showed a stand-in the rounds' fit did not: \
+                     the swap rounds ran again on the final fit"
+                        .to_owned(),
+                );
                 continue;
             }
             break;
