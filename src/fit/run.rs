@@ -155,6 +155,23 @@ pub fn fit_quietly(
     run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
 }
 
+/// [`fit_quietly`] given the residuals and Jacobian at `start` (all parameters active) when the
+/// caller has them (`at_start`): used unless the friction scan moves the start or `start` lies
+/// outside the bounds, and the fit is then the same, one residual and one Jacobian evaluation
+/// cheaper ([`LevenbergMarquardt::with_start_evaluation`]).
+pub fn fit_quietly_from(
+    club: &crate::club::ClubSpec,
+    layout: &super::ParamLayout,
+    data: &super::FitData,
+    w: super::Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+    at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    execute(pr, start, max_iters, None, true, at_start)
+}
+
 /// The solution of a fit without what only its covariance needs.
 #[derive(Debug, Clone)]
 pub struct FitPoint {
