@@ -118,6 +118,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         max_iters: args.max_iters,
         parallel: true,
         impact_noise: args.measurement.impact_noise_mm,
+        delivery_noise: None,
     };
     let line = Arc::new(IterationLine::new());
     let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));

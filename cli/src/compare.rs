@@ -105,6 +105,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         )?;
         smash::data::safe_write::clean_stale_temporaries(dir);
         smash::data::safe_write::check_replaceable(dir)?;
+        smash::data::safe_write::check_folder_writable(dir)?;
     }
     if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
         bail!(

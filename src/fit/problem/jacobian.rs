@@ -18,10 +18,11 @@ use crate::measurement::NODES_PER_SHOT;
 use crate::physics::ImpactModel;
 use crate::sweep::kernel::{simd_level, SimdLevel};
 
-/// The two shifted models of one Jacobian column, per group, and the groups it touches.
+/// The two shifted models of one Jacobian column, per group it touches (`None` for the
+/// others), and the groups it touches.
 struct Column {
-    plus: Vec<ImpactModel>,
-    minus: Vec<ImpactModel>,
+    plus: Vec<Option<ImpactModel>>,
+    minus: Vec<Option<ImpactModel>>,
     /// `θ_j⁺ − θ_j⁻`.
     span: f64,
     /// Per group: does the parameter change the group's model? (The other groups' rows are 0.)
@@ -38,27 +39,30 @@ impl FitProblem<'_> {
         if self.active.is_empty() {
             return Some(DMatrix::zeros(self.rows(), 0));
         }
+        // Every group's model at `theta` must exist, as the column-by-column Jacobian needs.
+        self.models(theta).ok()?;
         let mut columns = Vec::with_capacity(self.active.len());
         for &j in &self.active {
             let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
             let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
             plus[j] = (theta[j] + h).min(self.upper[j]);
             minus[j] = (theta[j] - h).max(self.lower[j]);
+            let touched: Vec<bool> = self
+                .applies
+                .iter()
+                .map(|a| a.contains(&self.owner[j]))
+                .collect();
             columns.push(Column {
                 span: plus[j] - minus[j],
-                plus: self.models(&plus).ok()?,
-                minus: self.models(&minus).ok()?,
-                touched: self
-                    .applies
-                    .iter()
-                    .map(|a| a.contains(&self.owner[j]))
-                    .collect(),
+                plus: self.models_of(&plus, &touched).ok()?,
+                minus: self.models_of(&minus, &touched).ok()?,
+                touched,
             });
         }
         let usable = |m: &ImpactModel| m.laws().user.is_empty() && *m.face() == cache.face;
         if !columns
             .iter()
-            .all(|c| c.plus.iter().chain(&c.minus).all(usable))
+            .all(|c| c.plus.iter().chain(&c.minus).flatten().all(usable))
         {
             return None;
         }
@@ -150,8 +154,8 @@ impl FitProblem<'_> {
             which.clear();
             for (k, c) in columns.iter().enumerate().filter(|(_, c)| c.touched[g]) {
                 which.push(k);
-                models.push(&c.plus[g]);
-                models.push(&c.minus[g]);
+                models.push(c.plus[g].as_ref()?);
+                models.push(c.minus[g].as_ref()?);
             }
             if which.is_empty() {
                 continue;
