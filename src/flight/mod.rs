@@ -314,30 +314,37 @@ pub enum FlightError {
 mod tests {
     use super::*;
 
-    /// A launch out of range is named with its value in file units as given: a tiny ball
-    /// speed is not rounded to 0, and 120° is not 119.99999999999999 after the SI round trip.
+    /// A launch out of range is named with its value in file units as given: a tiny value is
+    /// not rounded to 0 (a ball speed of -2.5e-12 mph once read "= 0", and 1e-300 mph was
+    /// refused as "= 0: must be > 0"), and 120° is not 119.99999999999999 after the SI round
+    /// trip. A tiny positive speed is a speed: it flies (nowhere), with finite numbers.
     #[test]
     fn bad_launch_values_print_as_given() {
         let msg = |l: FlightLaunch| l.check().unwrap_err().to_string();
-        let tiny = msg(FlightLaunch::from_file_units(
-            1e-300, 10.0, 0.0, 2500.0, 0.0,
-        ));
-        assert!(tiny.starts_with("ball_speed_mph = 1e-300:"), "{tiny}");
-        let negative = msg(FlightLaunch::from_file_units(
-            -2.5e-12, 10.0, 0.0, 2500.0, 0.0,
-        ));
+        let launch = |mph, deg, rpm| FlightLaunch::from_file_units(mph, deg, 0.0, rpm, 0.0);
+        let negative = msg(launch(-2.5e-12, 10.0, 2500.0));
         assert!(
             negative.starts_with("ball_speed_mph = -2.5e-12:"),
             "{negative}"
         );
-        let steep = msg(FlightLaunch::from_file_units(
-            150.0, 120.0, 0.0, 2500.0, 0.0,
-        ));
+        let huge = msg(launch(1e300, 10.0, 2500.0));
+        assert!(huge.starts_with("ball_speed_mph = 1e300:"), "{huge}");
+        let steep = msg(launch(150.0, 120.0, 2500.0));
         assert!(steep.starts_with("launch_angle_deg = 120:"), "{steep}");
-        let spin = msg(FlightLaunch::from_file_units(
-            150.0, 10.0, 0.0, 25_000.7, 0.0,
-        ));
+        let spin = msg(launch(150.0, 10.0, 25_000.7));
         assert!(spin.starts_with("backspin_rpm = 25000.7:"), "{spin}");
+        let tiny = launch(1e-300, 10.0, 2500.0);
+        assert_eq!(tiny.check(), Ok(()));
+        for ground in [None, Some(Ground::default())] {
+            let cfg = FlightConfig {
+                ground,
+                ..FlightConfig::default()
+            };
+            match fly_one(&cfg, &tiny) {
+                Ok(f) => assert!(f.carry_m.abs() < 1e-6 && f.apex_m.is_finite(), "{f:?}"),
+                Err(e) => assert!(!e.to_string().contains("= 0:"), "{e}"),
+            }
+        }
     }
 
     #[test]
