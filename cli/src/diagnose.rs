@@ -417,6 +417,21 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
             ambiguous.join(", ")
         )
     };
+    let aliased: Vec<String> = d
+        .aliases
+        .iter()
+        .filter(|a| a.across_effects())
+        .map(|a| format!("{} and {}", a.a, a.b))
+        .collect();
+    let stand_in_note = if aliased.is_empty() {
+        stand_in_note
+    } else {
+        format!(
+            "{stand_in_note}; aliased, not findings (the data cannot tell which effect carries \
+             the signal): {}",
+            aliased.join("; ")
+        )
+    };
     if !floor.structure_remains() {
         return format!(
             "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
@@ -616,7 +631,8 @@ fn summary_text(d: &Diagnosis) -> String {
             .map(|p| p.label())
             .collect();
         s.push_str(&format!(
-            "Findings (values inside their plausible ranges, no plausible rival): {}\n",
+            "Findings (values inside their plausible ranges, no plausible rival, not aliased with \
+             another effect): {}\n",
             if findings.is_empty() {
                 "none".to_owned()
             } else {

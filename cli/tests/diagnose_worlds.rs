@@ -249,42 +249,37 @@ const COMPLIANT: [(&str, &[&[&str]]); 3] = [
 ];
 
 /// The shaft-less `compliant_slip_world` has a livelier face (`cor_ref` 0.85 against the
-/// file's 0.83), and diagnose selects `added_mass` for it (+10.9 g, just beyond its plausible
-/// range: a stand-in; formerly a plausible +8.7 g). Swapped into the final model, `cor_level`
-/// fits as well: the report must list it as a rival, call the pair ambiguous when the added
-/// mass is plausible, and never list the added mass among the findings.
-fn a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(d: &serde_json::Value) {
+/// file's 0.83). Forward selection takes `added_mass` for it first (+12.7 g, beyond its
+/// plausible range: a stand-in), with `cor_level` as its kin (the same change to the
+/// predictions, r = 1.00). The swap round's plausible-alias rule (docs/diagnose-selection.md)
+/// must replace the stand-in by `cor_level` at the world's +0.02 (same size, CV χ² worse by
+/// less than ln n), and `added_mass` must not be left among the selected effects or findings.
+fn a_stand_in_gives_way_to_its_plausible_alias(d: &serde_json::Value) {
+    let sel = selected(d);
+    assert!(!sel.contains(&"added_mass".to_owned()), "{sel:?}");
+    let swap = d["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter_map(|s| s["swap"].as_object())
+        .find(|s| s["out"] == "added_mass")
+        .unwrap_or_else(|| panic!("no swap of added_mass: {sel:?}"));
+    assert_eq!(swap["in"], "cor_level", "{swap:?}");
+    let cor = d["estimates"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|e| e["effect"] == "cor_level")
+        .unwrap_or_else(|| panic!("cor_level not selected: {sel:?}"));
+    let v = cor["value"].as_f64().unwrap();
     assert!(
-        selected(d).contains(&"added_mass".to_owned()),
-        "{:?}",
-        selected(d)
+        (0.012..=0.028).contains(&v) && cor["plausible"] == true,
+        "{cor}"
     );
     let findings = d["findings"].as_array().unwrap();
     assert!(
         !findings.iter().any(|f| f == "added_mass.dm_g"),
         "{findings:?}"
-    );
-    let amb = d["ambiguous"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .find(|a| a["selected"] == "added_mass")
-        .unwrap_or_else(|| panic!("no ambiguity for added_mass: {}", d["ambiguous"]));
-    let stand_in = d["estimates"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .any(|e| e["effect"] == "added_mass" && e["status"] == "stand_in");
-    assert!(amb["ambiguous"] == true || stand_in, "{amb}");
-    assert!(
-        amb["rivals"]
-            .as_array()
-            .unwrap()
-            .iter()
-            .any(|r| r["effect"] == "cor_level"
-                && r["plausible"] == true
-                && r["params"][0]["value"].as_f64().unwrap() > 0.0),
-        "{amb}"
     );
 }
 
@@ -366,7 +361,7 @@ fn compliant_worlds_name_the_cor_law_and_flag_stand_ins() {
             }
         }
         if world == "compliant_slip_world" {
-            a_plausible_stand_in_with_a_plausible_rival_is_ambiguous_not_found(&d);
+            a_stand_in_gives_way_to_its_plausible_alias(&d);
         }
     }
 }
@@ -420,15 +415,15 @@ fn a_swap_replaces_the_greedy_stand_in_with_the_worlds_physics() {
     }
 }
 
-/// Issue 9's first done-when line, asserted in full on every shipped compliant world. It does
-/// not hold yet (configs/README.md, "What this shows"): with the pair exchange
-/// `compliant_driver` names all four ingredients (tangential compliance, the speed-dependent
-/// COR, `hosel_mass` 6.3 g, `contact_time` 0.48 ms), but `compliant_location_noise` names the
-/// shaft tip as `added_mass` (ambiguous with `cor_level`), not `hosel_mass`, lists the absent
-/// `ball_offset` and `loft_bias` among its findings, and group means
-/// can reach 0.2 σ of the launch noise, where the standard error of one group's mean is
-/// 0.13–0.16 σ (docs/compliant-worlds.md, "Group means"). Run with
-/// `cargo test --test diagnose_worlds -- --ignored` to see the current failures.
+/// Issue 9's first done-when line, asserted in full on every shipped compliant world. At the
+/// shipped 600 shots it fails only on the group means (configs/README.md, "What this shows"):
+/// every world names its ingredients plausibly (`compliant_location_noise` and
+/// `compliant_driver` the shaft tip as `hosel_mass`, `compliant_slip_world` its livelier face
+/// as `cor_level`), spreads are within 1.10×, but a group's mean reaches 0.23–0.25 σ of the
+/// launch noise in the location and slip worlds, where the standard error of one group's mean
+/// is 0.13–0.16 σ (docs/compliant-worlds.md, "Group means"). With 50 swings a golfer (3000
+/// shots) every condition holds (largest group mean 0.12 σ; measured on the release binary's
+/// JSON). Run with `cargo test --test diagnose_worlds -- --ignored` to see the failures.
 #[test]
 #[ignore = "known to fail: see configs/README.md, compliant-contact worlds"]
 fn compliant_worlds_meet_the_issue_9_done_when() {

@@ -174,6 +174,12 @@ pub struct Alias {
 }
 
 impl Alias {
+    /// Are the two parameters of different effects (not two parameters of one effect, nor one
+    /// effect's values in two groups)?
+    pub fn across_effects(&self) -> bool {
+        effect_of_label(&self.a) != effect_of_label(&self.b)
+    }
+
     /// The machine-readable form.
     pub fn to_json(&self) -> serde_json::Value {
         json!({"a": self.a, "b": self.b, "r": self.r, "separate_by": self.separate_by})
@@ -186,6 +192,12 @@ impl Alias {
             self.a, self.b, self.r, self.separate_by
         )
     }
+}
+
+/// The effect name of an estimate's label, `effect[@group].param`.
+pub fn effect_of_label(label: &str) -> &str {
+    let name = label.split('.').next().unwrap_or(label);
+    name.split('@').next().unwrap_or(name)
 }
 
 /// Pairs of `params` whose estimates correlate beyond [`STRONG_CORRELATION`] in `correlation`
@@ -534,5 +546,22 @@ mod tests {
         let t = a.text();
         assert!(t.contains("selected value is implausible"), "{t}");
         assert!(!t.contains("alternatives' values are implausible"), "{t}");
+    }
+
+    #[test]
+    fn an_alias_across_effects_is_told_from_one_within_an_effect() {
+        let params = [
+            est("ball_offset", "dy_mm", 0.8),
+            est("ball_offset", "dz_mm", 0.0),
+            est("loft_bias", "deg", 1.9),
+        ];
+        let c = DMatrix::from_row_slice(3, 3, &[1.0, 0.95, 0.98, 0.95, 1.0, 0.1, 0.98, 0.1, 1.0]);
+        let a = aliases(&params, Some(&c));
+        assert_eq!(a.len(), 2);
+        // dy and dz of one effect: the effect is still read; dy and the loft bias: which effect
+        // carries the signal is the question.
+        assert!(!a[0].across_effects() && a[1].across_effects());
+        assert_eq!(effect_of_label("added_mass@A.dm_g"), "added_mass");
+        assert_eq!(effect_of_label("loft_bias.deg"), "loft_bias");
     }
 }

@@ -37,7 +37,10 @@
 //!    questioned effects (stand-ins and cross-effect aliases) out together and reruns forward
 //!    selection, kept when CV χ² + `k·ln n` drops. Greedy order can leave a stand-in that won
 //!    early (more parameters, more gain) where a plausible set fits better once later effects
-//!    are in; these steps correct it.
+//!    are in; these steps correct it. A stand-in may also give way to a plausible alias of the
+//!    same size whose CV χ² is worse by less than `ln n` (`search/alias.rs`: the stand-in's
+//!    model is charged one parameter for the physics its value stands for). The rounds run
+//!    after a forward phase capped by `max_steps` too, and make at most `max_steps` changes.
 //!
 //! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
 //! delivery (errors in variables: flatter slopes than the model's), which over thousands of
@@ -285,14 +288,30 @@ pub struct Diagnosis {
 }
 
 impl Diagnosis {
-    /// Is this final estimate a finding: plausible (or of unknown range) and not part of an
-    /// ambiguous selection?
+    /// Is this final estimate a finding: plausible (or of unknown range), not part of an
+    /// ambiguous selection, and not aliased with another selected effect's parameter (the
+    /// data cannot tell which of the two effects carries the signal, so neither value is a
+    /// reading of the physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
     pub fn is_finding(&self, p: &ParamEstimate) -> bool {
         honest::is_plausible(p) != Some(false)
             && !self
                 .ambiguities
                 .iter()
                 .any(|a| a.is_ambiguous() && a.estimates.contains(p))
+            && !self.cross_aliased(p)
+    }
+
+    /// Is this final estimate's effect aliased (a parameter's |r| above
+    /// [`crate::fit::calibrate::STRONG_CORRELATION`]) with a parameter of another selected
+    /// effect? The question is which effect carries the signal, so every parameter of both
+    /// effects is in doubt, not only the correlated pair.
+    pub fn cross_aliased(&self, p: &ParamEstimate) -> bool {
+        self.aliases.iter().any(|a| {
+            a.across_effects()
+                && [&a.a, &a.b]
+                    .iter()
+                    .any(|l| honest::effect_of_label(l) == p.effect)
+        })
     }
 }
 
@@ -364,10 +383,12 @@ pub fn diagnose(
     let before = launch_error_table(&search.groups, &nominal);
     let mut steps = Vec::new();
     // Forward steps (at most `max_steps`), then swap rounds (or a re-selection) while one
-    // improves, then forward again; rounds are capped so that the whole is bounded even if
-    // scores drift with σ.
+    // improves, then forward again while steps are left. The step cap bounds run time, not the
+    // selection: the rounds run after a capped forward phase too, and are themselves bounded
+    // by `max_steps` changes (each round fits every questioned effect against every candidate).
     let mut forward = 0;
-    for _swap in 0..=2 * candidates.len() {
+    let mut changes = 0;
+    loop {
         while forward < opts.max_steps {
             forward += 1;
             let Some(step) = search.step(steps.len(), &candidates)? else {
@@ -379,8 +400,18 @@ pub fn diagnose(
                 break;
             }
         }
+        if changes >= opts.max_steps {
+            if search.has_stand_in() {
+                warnings.push(format!(
+                "the swap rounds stopped after {changes} changes (--max-steps bounds them too): \
+                 a further round might still change the selection"
+                ));
+            }
+            break;
+        }
         if let Some(step) = search.swap_round(&candidates)? {
             steps.push(step);
+            changes += 1;
             continue;
         }
         // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
@@ -388,6 +419,7 @@ pub fn diagnose(
             break;
         };
         steps.extend(more);
+        changes += 1;
     }
     search.finish((fold_by, n_folds), steps, before, warnings)
 }

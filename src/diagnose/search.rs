@@ -19,6 +19,7 @@ use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
+mod alias;
 mod measure;
 mod reselect;
 mod swap;
@@ -28,10 +29,6 @@ fn group_names(data: &FitData) -> Vec<String> {
         .iter()
         .map(|&g| data.groups[g].clone())
         .collect()
-}
-
-fn request_label(r: &EffectRequest) -> String {
-    r.label()
 }
 
 /// Fold of every shot and how the folds were formed: by golfer when there are at least two,
@@ -403,7 +400,7 @@ impl<'a> Search<'a> {
         step_index: usize,
         candidates: &[EffectRequest],
     ) -> Result<Option<Step>, FitError> {
-        let base_labels: Vec<String> = self.selected.iter().map(request_label).collect();
+        let base_labels: Vec<String> = self.selected.iter().map(EffectRequest::label).collect();
         let base_errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
         // With a known noise floor, physics is offered only while structure remains above it.
         let at_noise_floor = self.at_noise_floor(&base_errors)?;
@@ -582,7 +579,7 @@ impl<'a> Search<'a> {
             folds: n_folds,
             n_shots: self.data.len(),
             steps,
-            selected: self.selected.iter().map(request_label).collect(),
+            selected: self.selected.iter().map(EffectRequest::label).collect(),
             estimates,
             before,
             after,

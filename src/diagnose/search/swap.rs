@@ -30,12 +30,12 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::super::evaluate::{self, cv_chi2, EffectFit, StepBase};
-use super::super::{honest, select, CandidateResult, Step, Swap};
+use super::super::{select, CandidateResult, Step, Swap};
 use super::Search;
 use crate::effects::EffectId;
 use crate::fit::calibrate::{noise_scales, STRONG_CORRELATION};
 use crate::fit::covariance;
-use crate::fit::{fit_quietly, EffectRequest, FitError, ParamEstimate, ParamLayout, Weighting};
+use crate::fit::{fit_quietly, EffectRequest, FitError, ParamLayout, Weighting};
 
 /// How many of a stand-in's best single replacements a pair exchange starts from: the pair
 /// completes one of them, so only the leading few need the second effect tried (the rest of
@@ -100,32 +100,10 @@ impl Search<'_> {
     /// Selected physical effects (indices into `selected`) with a value outside its plausible
     /// range at the current fit: the gate of the swap rounds.
     fn stand_ins(&self) -> Vec<usize> {
-        let mut out = Vec::new();
-        for (i, e) in self.base.effects().iter().enumerate() {
-            let implausible = e
-                .kind
-                .params()
-                .iter()
-                .zip(&self.theta_base.as_slice()[self.base.range(i)])
-                .any(|(s, &value)| {
-                    let p = ParamEstimate {
-                        effect: e.kind.name(),
-                        group: e.group.clone(),
-                        param: s.key,
-                        unit: s.unit,
-                        value,
-                        stderr: None,
-                        at_bound: false,
-                    };
-                    honest::is_plausible(&p) == Some(false)
-                });
-            let sel = self.selected.iter().position(|r| r.kind() == e.kind);
-            if let (true, Some(o)) = (implausible, sel) {
-                if !out.contains(&o) {
-                    out.push(o);
-                }
-            }
-        }
+        let kinds = Self::implausible_kinds(&self.base, &self.theta_base);
+        let mut out: Vec<usize> = (0..self.selected.len())
+            .filter(|&o| kinds.contains(&self.selected[o].kind()))
+            .collect();
         out.sort_unstable();
         out
     }
@@ -451,11 +429,19 @@ impl Search<'_> {
                 let o = questioned[r];
                 let label = format!("{} → {}", self.selected[o].label(), c.label());
                 let k_net = f.result.n_params as f64 - red.k_out as f64;
+                let mut result =
+                    self.rescore(&f, (label, f.result.n_params), (k_net, base.rms), rb);
+                // A stand-in against its plausible alias (`alias.rs`): the stand-in's model is
+                // charged one parameter for the physics its value stands for.
+                if let Some(r) = self.plausible_alias(o, c, &f, k_net) {
+                    result.label = format!("{} (plausible alias, r = {r:.2})", result.label);
+                    result.penalty = (k_net - 1.0) * self.penalty_per_param;
+                }
                 Option_ {
                     outs: vec![o],
                     ins: vec![c.clone()],
                     k_net,
-                    result: self.rescore(&f, (label, f.result.n_params), (k_net, base.rms), rb),
+                    result,
                     fit: Some(f),
                 }
             })
