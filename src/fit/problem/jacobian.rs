@@ -167,7 +167,12 @@ impl FitProblem<'_> {
                 continue;
             }
             let outs = &mut outs[..models.len()];
-            for shots in run.chunks(W) {
+            self.prefetch_shots(cache, &run[..run.len().min(W)]);
+            for (v, shots) in run.chunks(W).enumerate() {
+                let next = run
+                    .get((v + 1) * W..)
+                    .map_or(&[][..], |r| &r[..r.len().min(W)]);
+                self.prefetch_shots(cache, next);
                 let mut idx = [shots[shots.len() - 1]; W];
                 idx[..shots.len()].copy_from_slice(shots);
                 if !self.predict_lanes_multi(&models, cache, &idx, &mut frames, outs) {
