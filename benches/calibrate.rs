@@ -24,6 +24,7 @@ fn cli_options(impact_noise: Option<ImpactNoise>) -> CalibrateOptions {
         max_iters: 100,
         parallel: true,
         impact_noise,
+        delivery_noise: None,
     }
 }
 

@@ -86,6 +86,21 @@ pub struct CalibrateArgs {
     /// Measurement noise of the inputs.
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
+
+    /// 1σ noise of the measured delivery variables other than the impact location: the model
+    /// is then evaluated at each shot's expected true delivery given all the shots' measured
+    /// ones and golfers (regression calibration). An instrument class (camera, radar) or a
+    /// multiple of one (2xcamera), and/or column=SD entries in the shots file's units (e.g.
+    /// club_speed_mph=0.8,dynamic_loft_deg=1); variables not named are exact. `smash diagnose`
+    /// prints the value it selected.
+    #[arg(
+        long,
+        value_name = "SPEC",
+        value_parser = super::delivery_noise::parse,
+        allow_hyphen_values = true,
+        help_heading = "Measurement noise"
+    )]
+    pub delivery_noise: Option<smash::measurement::DeliveryNoise>,
 }
 
 /// Run `smash calibrate`.
@@ -118,6 +133,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         max_iters: args.max_iters,
         parallel: true,
         impact_noise: args.measurement.impact_noise_mm,
+        delivery_noise: args.delivery_noise,
     };
     let line = Arc::new(IterationLine::new());
     let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
@@ -153,9 +169,22 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         eprintln!("calibrated club -> {}", out.display());
     }
     if let Some(path) = &args.report {
+        // The calibrated model under the fit's measurement model: at the expected true
+        // deliveries, averaged over the likely impact locations.
+        let mut expected = table.shots.clone();
+        if let Some(noise) = cal.delivery_noise {
+            let deliveries: Vec<_> = expected.iter().map(|s| s.delivery).collect();
+            let golfers: Vec<_> = expected.iter().map(|s| s.golfer.clone()).collect();
+            for (s, d) in expected
+                .iter_mut()
+                .zip(noise.calibrate(&deliveries, &golfers))
+            {
+                s.delivery = d;
+            }
+        }
         let launches = smash::predict::expected_launches(
             &cal.club,
-            &table.shots,
+            &expected,
             args.measurement.impact_noise_mm,
         )
         .with_context(|| args.shots.display().to_string())?;
@@ -277,7 +306,44 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         "after": cal.after.to_json(),
         "shaft_relation": shaft,
         "paper_stages": stages,
+        "measurement_model": measurement_json(cal),
     })
+}
+
+/// The impact-location (mm, to 1e-6) and delivery noise the fit assumed (`null`: as measured).
+fn measurement_json(cal: &Calibration) -> serde_json::Value {
+    let mm = |m: f64| (m * 1e9).round() / 1e6;
+    json!({
+        "impact_noise_mm": cal.impact_noise.map(|n| json!({
+            "y": mm(n.sigma_y_m),
+            "z": mm(n.sigma_z_m),
+        })),
+        "delivery_noise": cal.delivery_noise.as_ref().map(super::delivery_noise::to_json),
+    })
+}
+
+/// The "Measurement model:" line: what the fit took as noisy, and how much.
+pub fn measurement_line(cal: &Calibration) -> String {
+    let mm = |m: f64| (m * 1e9).round() / 1e6;
+    let mut parts = Vec::new();
+    if let Some(n) = cal.impact_noise {
+        parts.push(format!(
+            "impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe)",
+            mm(n.sigma_y_m),
+            mm(n.sigma_z_m)
+        ));
+    }
+    if let Some(n) = &cal.delivery_noise {
+        parts.push(format!(
+            "delivery with 1σ noise {} (model at the expected true delivery)",
+            super::delivery_noise::describe(n)
+        ));
+    }
+    if parts.is_empty() {
+        "Measurement model: delivery and impact locations as measured (exact)\n".into()
+    } else {
+        format!("Measurement model: {}\n", parts.join("; "))
+    }
 }
 
 /// The human-readable report: the parameter table, correlations, warnings (stand-ins, aliases,
@@ -291,6 +357,8 @@ pub fn text_report(cal: &Calibration, n_shots: usize) -> String {
         cal.params.len(),
         n_shots
     );
+    s.push_str(&measurement_line(cal));
+    s.push('\n');
     s.push_str(&parameter_table(cal, &labels, &unidentified));
     s.push_str(&correlation_table(cal, &labels));
     s.push_str(&warnings(cal, &labels, &unidentified));
@@ -461,8 +529,11 @@ fn shaft_relation_text(cal: &Calibration) -> String {
         ));
     }
     s.push_str(&format!(
-        "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({} groups)\n",
-        r.line.slope, r.line.intercept, r.line.r, r.line.n
+        "  dm = {:.4} g/g × shaft mass {:+.3} g, r = {:.3} ({})\n",
+        r.line.slope,
+        r.line.intercept,
+        r.line.r,
+        super::counted(r.line.n, "group")
     ));
     s
 }

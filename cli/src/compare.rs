@@ -105,6 +105,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         )?;
         smash::data::safe_write::clean_stale_temporaries(dir);
         smash::data::safe_write::check_replaceable(dir)?;
+        smash::data::safe_write::check_folder_writable(dir)?;
     }
     if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
         bail!(
@@ -164,10 +165,10 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     );
     let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
     let title = format!(
-        "{} vs {} ({} groups)",
+        "{} vs {} ({})",
         club.name,
         args.shots.display(),
-        table.groups().len()
+        super::counted(table.groups().len(), "group")
     );
     let text = compare_text(&report, &title);
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));

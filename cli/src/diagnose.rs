@@ -340,6 +340,11 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
             "z": location_mm(n.sigma_z_m),
             "estimated": d.impact_noise_estimated,
         })),
+        "delivery_noise": d.delivery_noise.filter(|n| n.is_active()).map(|n| json!({
+            "sd": crate::delivery_noise::to_json(&n),
+            "estimated": d.delivery_noise_estimated,
+        })),
+        "calibrate_flags": calibrate_flags(d),
         "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
         "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
         "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
@@ -665,18 +670,68 @@ fn summary_text(d: &Diagnosis) -> String {
     for a in &d.aliases {
         s.push_str(&format!("  alias: {}\n", a.text()));
     }
+    s.push_str(&measurement_model_line(d));
+    s
+}
+
+/// The measurement model's line, when it has noise: what was taken as noisy and how much, with
+/// the `smash calibrate` flags that fit the same model.
+fn measurement_model_line(d: &Diagnosis) -> String {
+    let how = |estimated: bool| {
+        if estimated {
+            ", selected from the data"
+        } else {
+            ", as given"
+        }
+    };
+    let mut parts = Vec::new();
     if let Some(n) = d.impact_noise {
-        s.push_str(&format!(
-            "Measurement model: impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}; \
-             calibrate with --impact-noise-mm {},{}\n",
+        parts.push(format!(
+            "impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}",
             location_mm(n.sigma_y_m),
             location_mm(n.sigma_z_m),
-            if d.impact_noise_estimated { ", selected from the data" } else { ", as given" },
+            how(d.impact_noise_estimated)
+        ));
+    }
+    if let Some(n) = d.delivery_noise.filter(|n| n.is_active()) {
+        parts.push(format!(
+            "delivery with 1σ noise {}{}",
+            crate::delivery_noise::describe(&n),
+            how(d.delivery_noise_estimated)
+        ));
+    }
+    if parts.is_empty() {
+        return String::new();
+    }
+    format!(
+        "Measurement model: {}; calibrate with {}\n",
+        parts.join("; "),
+        calibrate_flags(d)
+    )
+}
+
+/// The `smash calibrate` flags that fit the diagnosis's final model: its effects and its
+/// measurement model.
+fn calibrate_flags(d: &Diagnosis) -> String {
+    let mut flags = Vec::new();
+    if !d.selected.is_empty() {
+        flags.push(format!("--effects {}", d.selected.join(",")));
+    }
+    if let Some(n) = d.impact_noise {
+        flags.push(format!(
+            "--impact-noise-mm {},{}",
             location_mm(n.sigma_y_m),
             location_mm(n.sigma_z_m)
         ));
     }
-    s
+    if let Some(spec) = d
+        .delivery_noise
+        .as_ref()
+        .and_then(crate::delivery_noise::spec)
+    {
+        flags.push(format!("--delivery-noise {spec}"));
+    }
+    flags.join(" ")
 }
 
 /// The noise-floor table and the conclusion.

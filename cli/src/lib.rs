@@ -5,6 +5,7 @@ use clap::{Parser, Subcommand};
 
 pub mod calibrate;
 pub mod compare;
+pub mod delivery_noise;
 pub mod diagnose;
 pub mod effects;
 pub mod flight;
@@ -213,6 +214,15 @@ mod tests {
         let pool = thread_pool().num_threads(2).build().unwrap();
         let got = pool.broadcast(|c| deep(c.index() + 7));
         assert_eq!(got, [7, 8]);
+    }
+}
+
+/// `n` and the noun, plural unless `n` is 1: "1 group", "3 groups".
+pub fn counted(n: usize, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
     }
 }
 

@@ -66,12 +66,12 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
     }
     write_files_atomic(&files)?;
     eprintln!(
-        "synth: {} shots ({} groups × {} golfers × {} swings), seed {}, {} swing(s) redrawn, \
+        "synth: {} ({} × {} × {}), seed {}, {} swing(s) redrawn, \
          {} hidden effect(s){} -> {}",
-        run.shots.len(),
-        cfg.groups.len(),
-        cfg.golfers,
-        cfg.swings_per_golfer,
+        super::counted(run.shots.len(), "shot"),
+        super::counted(cfg.groups.len(), "group"),
+        super::counted(cfg.golfers, "golfer"),
+        super::counted(cfg.swings_per_golfer, "swing"),
         cfg.seed,
         run.redrawn,
         cfg.hidden.len(),

@@ -209,6 +209,36 @@ fn bad_input_gets_one_clear_line_and_writes_nothing() {
         "did not converge",
     );
     cal(&good, "added_mass@Z", &[], "no shot is in group 'Z'");
+    // A bad --delivery-noise is refused by the argument parser: its one error line (then
+    // clap's pointer to --help), before any work.
+    for (spec, expect) in [
+        ("club_speed=1", "allowed: club_speed_mph"),
+        ("impact_y_mm=2", "given with --impact-noise-mm"),
+        ("club_speed_mph=-0.5", "within [0, 10000] mph"),
+        ("sonar", "neither an instrument class"),
+    ] {
+        let (ok, stdout, stderr) = smash(&[
+            "calibrate",
+            "--club",
+            club,
+            "--shots",
+            &good,
+            "--effects",
+            "ball_offset",
+            "--delivery-noise",
+            spec,
+            "--out-club",
+            o,
+        ]);
+        assert!(!ok && stdout.is_empty(), "{spec}: {stdout}");
+        let first = stderr.lines().next().unwrap_or_default();
+        assert!(
+            first.starts_with("error: ") && first.contains(expect),
+            "{spec}: {stderr}"
+        );
+        assert!(first.contains("--delivery-noise"), "{stderr}");
+        assert!(!out.exists());
+    }
     fails(
         &[
             "diagnose",
@@ -221,5 +251,112 @@ fn bad_input_gets_one_clear_line_and_writes_nothing() {
         ],
         &out,
         "no measured launch columns",
+    );
+}
+
+fn field_f64(v: &serde_json::Value) -> f64 {
+    v.as_f64().expect("a number")
+}
+
+/// `smash diagnose` on the paper world (delivery noise 1× the camera class and 3 mm of location
+/// noise in its measured inputs) selects a delivery-noise level and an impact-location noise,
+/// and prints the `smash calibrate` flags of that model; `smash calibrate` with them says so in
+/// its "Measurement model:" line and JSON, and reproduces diagnose's final values (both are
+/// the same whitened fit on the same corrected data: to the fit's tolerance).
+#[test]
+fn calibrate_takes_the_measurement_model_diagnose_selected() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
+    let shots = dir.path().join("paper.csv");
+    let shots = shots.to_str().unwrap();
+    let world = root.join("configs/synth/paper_world.toml");
+    let (ok, _, stderr) = smash(&["synth", "--config", world.to_str().unwrap(), "--out", shots]);
+    assert!(ok, "{stderr}");
+    let club = paper_club_path();
+    let club = club.to_str().unwrap();
+    let (ok, stdout, stderr) = smash(&["diagnose", "--club", club, "--shots", shots, "--json"]);
+    assert!(ok, "{stderr}");
+    let d: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let sd = &d["delivery_noise"]["sd"];
+    assert!(
+        sd["club_speed_mph"].is_number(),
+        "no delivery noise selected: {}",
+        d["delivery_noise"]
+    );
+    assert_eq!(d["delivery_noise"]["estimated"], true);
+    let flags = d["calibrate_flags"].as_str().unwrap().to_owned();
+    assert!(
+        flags.contains("--delivery-noise club_speed_mph="),
+        "{flags}"
+    );
+    assert!(flags.contains("--impact-noise-mm "), "{flags}");
+    assert!(d["conclusion"].is_string());
+
+    let mut args = vec!["calibrate", "--club", club, "--shots", shots, "--json"];
+    args.extend(flags.split_whitespace());
+    let (ok, stdout, stderr) = smash(&args);
+    assert!(ok, "{stderr}");
+    let c: serde_json::Value = serde_json::from_str(&stdout).unwrap();
+    let m = &c["measurement_model"];
+    let (used, selected) = (
+        m["delivery_noise"].as_object().unwrap(),
+        sd.as_object().unwrap(),
+    );
+    assert_eq!(used.len(), selected.len(), "{m}");
+    for (k, v) in selected {
+        let (a, b) = (field_f64(&used[k]), field_f64(v));
+        assert!((a - b).abs() <= 1e-12 * b, "{k}: {a} vs {b}");
+    }
+    assert_eq!(m["impact_noise_mm"]["y"], d["impact_noise_mm"]["y"]);
+    let label = |p: &serde_json::Value| format!("{}@{}.{}", p["effect"], p["group"], p["param"]);
+    let want = d["estimates"].as_array().unwrap();
+    let got = c["params"].as_array().unwrap();
+    assert_eq!(got.len(), want.len());
+    assert!(!want.is_empty());
+    for w in want {
+        let g = got
+            .iter()
+            .find(|g| label(g) == label(w))
+            .expect("same parameters");
+        let (a, b) = (field_f64(&g["value"]), field_f64(&w["value"]));
+        let se = field_f64(&w["stderr"]);
+        assert!(
+            (a - b).abs() <= 1e-6 * se.max(b.abs()),
+            "{}: {a} vs {b}",
+            label(w)
+        );
+        let (sa, sb) = (field_f64(&g["stderr"]), se);
+        assert!(
+            (sa - sb).abs() <= 1e-6 * sb,
+            "{} stderr: {sa} vs {sb}",
+            label(w)
+        );
+    }
+
+    // The text says what the fit assumed; without the flags it says the inputs are exact.
+    args.retain(|a| *a != "--json");
+    let (ok, text, stderr) = smash(&args);
+    assert!(ok, "{stderr}");
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("Measurement model:"))
+        .unwrap();
+    assert!(
+        line.contains("impact locations with 1σ noise") && line.contains("club_speed_mph"),
+        "{line}"
+    );
+    let (ok, text, stderr) = smash(&[
+        "calibrate",
+        "--club",
+        club,
+        "--shots",
+        shots,
+        "--effects",
+        "ball_offset",
+    ]);
+    assert!(ok, "{stderr}");
+    assert!(
+        text.contains("Measurement model: delivery and impact locations as measured (exact)"),
+        "{text}"
     );
 }

@@ -250,3 +250,36 @@ fn cli_synth_bad_config_names_the_key_and_writes_nothing() {
     );
     assert!(!out.exists());
 }
+
+/// An output folder that cannot be written (a pseudo file system) is refused before any work:
+/// one error line naming it, nothing printed on stdout (the report is not shown first).
+#[test]
+fn cli_compare_refuses_an_unwritable_out_dir_before_the_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = cli_support::measured_shots(dir.path());
+    let club = cli_support::club();
+    for out in ["/proc/smash-compare-outputs", "/proc/self/smash-outputs"] {
+        let o = smash(&[
+            "compare",
+            "--club",
+            &club,
+            "--shots",
+            shots.to_str().unwrap(),
+            "--out-dir",
+            out,
+        ]);
+        assert!(!o.status.success(), "{out}");
+        assert!(
+            o.stdout.is_empty(),
+            "{}",
+            String::from_utf8_lossy(&o.stdout)
+        );
+        let err = cli_support::stderr(&o);
+        let lines: Vec<&str> = err.lines().filter(|l| !l.trim().is_empty()).collect();
+        assert_eq!(lines.len(), 1, "{err}");
+        assert!(
+            lines[0].starts_with("error: ") && lines[0].contains(out),
+            "{err}"
+        );
+    }
+}

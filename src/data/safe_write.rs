@@ -229,6 +229,39 @@ pub fn refuse_inputs(
     Ok(())
 }
 
+/// Before any work: can the outputs folder `dir` be written where [`super::write_folder_atomic`]
+/// writes it? Its parent is created if missing, and the temporary sibling folder it fills first
+/// is made and removed again, so a read-only or pseudo-file-system location (`/proc/x`) fails
+/// here, with one line, rather than after the command has printed its report.
+pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
+    let err = |m: String| DataError::file(dir, m);
+    let name = dir
+        .file_name()
+        .ok_or_else(|| err("not a folder path".into()))?
+        .to_string_lossy()
+        .into_owned();
+    let parent = match dir.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
+        _ => Path::new(".").to_owned(),
+    };
+    std::fs::create_dir_all(&parent).map_err(|e| {
+        err(format!(
+            "cannot create the folder {} to hold it: {e}",
+            parent.display()
+        ))
+    })?;
+    let probe = parent.join(format!(".{name}.tmp-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&probe);
+    std::fs::create_dir(&probe).map_err(|e| {
+        err(format!(
+            "cannot write in {}: {e}; choose a folder you can write to",
+            parent.display()
+        ))
+    })?;
+    let _ = std::fs::remove_dir(&probe);
+    Ok(())
+}
+
 /// Whether process `pid` is certainly gone (Linux `/proc`); `false` where that cannot be known.
 fn process_gone(pid: u32) -> bool {
     Path::new("/proc/self").exists() && !Path::new("/proc").join(pid.to_string()).exists()

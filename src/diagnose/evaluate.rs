@@ -11,11 +11,14 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    fit_quietly as fit, run_lm_point_near, EffectRequest, FitData, FitError, FitProblem, FitRun,
-    ParamLayout, Weighting,
+    fit_quietly as fit, fit_quietly_from as fit_from, run_lm_point_near, EffectRequest, FitData,
+    FitError, FitProblem, FitRun, ParamLayout, Weighting,
 };
 use crate::measurement::ImpactNoise;
 use crate::stats;
+
+mod start;
+use start::start_evaluation;
 
 /// Training and held-out subsets of the data, one pair per fold.
 #[derive(Clone)]
@@ -195,6 +198,9 @@ pub(super) struct StepBase<'a> {
     pub(super) rms: [f64; 5],
     /// Cross-validated χ² of the base.
     pub(super) cv: f64,
+    /// The base's residuals and Jacobian on all shots at `theta` with `w`, when known: an
+    /// effect candidate's fit starts from them ([`start_evaluation`]).
+    pub(super) at: Option<AllShots<'a>>,
     pub(super) max_iters: u64,
     pub(super) progress: Option<&'a dyn DiagnoseProgress>,
     /// With known instrument noise: the base model's covariance model and the base errors'
@@ -236,7 +242,16 @@ pub(super) fn evaluate_effect(
 ) -> EffectFit {
     let n_folds = b.folds.train.len();
     let fitted = candidate_layout(b.layout, b.theta, cand, &b.data.groups).and_then(|l| {
-        let run = fit(b.club, &l.layout, b.data, b.w, &l.start, b.max_iters);
+        let at_start = start_evaluation(b, &l);
+        let run = fit_from(
+            b.club,
+            &l.layout,
+            b.data,
+            b.w,
+            &l.start,
+            b.max_iters,
+            at_start,
+        );
         if let Some(p) = b.progress {
             p.job_done();
         }
@@ -482,7 +497,7 @@ mod tests {
     use crate::fit::spec::parse_effect_list;
 
     /// The paper world with `golfers` golfers per shaft, as shots.
-    fn world(golfers: usize) -> (ClubSpec, Vec<crate::model::Shot>) {
+    pub(super) fn world(golfers: usize) -> (ClubSpec, Vec<crate::model::Shot>) {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         let mut cfg = crate::synth::read_config(&root.join("configs/synth/paper_world.toml"))
             .expect("paper world reads");

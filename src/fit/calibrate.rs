@@ -21,13 +21,16 @@ use nalgebra::{DMatrix, DVector};
 
 use super::covariance::{covariance, Covariance, Identifiability};
 use super::problem::{FitData, FitProblem, Weighting};
-use super::run::{run_lm, FitRun, Progress};
+use super::run::{execute, FitRun, Progress};
 use super::spec::{EffectRequest, ParamLayout};
 use super::FitError;
 use crate::club::ClubSpec;
 use crate::effects::EffectKind;
+use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable, LineFit};
+
+mod paper;
 
 /// Correlation magnitude beyond which a pair of estimates is flagged.
 pub const STRONG_CORRELATION: f64 = 0.9;
@@ -67,7 +70,10 @@ pub struct CalibrateOptions {
     /// Compute Jacobian columns in parallel.
     pub parallel: bool,
     /// Noise of the measured impact locations, corrected by regression calibration.
-    pub impact_noise: Option<crate::measurement::ImpactNoise>,
+    pub impact_noise: Option<ImpactNoise>,
+    /// Noise of the other measured delivery variables (club speed, angles, the head's
+    /// rotation), corrected by regression calibration ([`FitData::with_delivery_noise`]).
+    pub delivery_noise: Option<DeliveryNoise>,
 }
 
 impl Default for CalibrateOptions {
@@ -77,6 +83,7 @@ impl Default for CalibrateOptions {
             max_iters: 100,
             parallel: true,
             impact_noise: None,
+            delivery_noise: None,
         }
     }
 }
@@ -199,6 +206,10 @@ pub struct Calibration {
     pub paper_stages: Vec<PaperStageAssignment>,
     /// The calibrated club: the input club's effects plus the fitted ones.
     pub club: ClubSpec,
+    /// The measurement model's impact-location noise (`None`: locations as measured).
+    pub impact_noise: Option<ImpactNoise>,
+    /// The measurement model's delivery noise (`None`: deliveries as measured).
+    pub delivery_noise: Option<DeliveryNoise>,
 }
 
 /// Noise scale of each launch component: the robust scale of the errors (falling back to the
@@ -237,7 +248,10 @@ fn ensure_converged(run: &FitRun, stage: &str) -> Result<(), FitError> {
 }
 
 /// Fit `requests` (expanded over the groups of `shots`) to the measured launch of `shots`,
-/// starting from the effects' defaults, on top of `club` (its own effects stay fixed).
+/// starting from the effects' defaults, on top of `club` (its own effects stay fixed). With
+/// `opts.delivery_noise` and `opts.impact_noise` the model is evaluated at the expected true
+/// deliveries and averaged over the likely impact locations (regression calibration,
+/// [`crate::measurement`]), the measurement model `smash diagnose` selects.
 pub fn calibrate(
     club: &ClubSpec,
     shots: &[Shot],
@@ -245,7 +259,9 @@ pub fn calibrate(
     opts: &CalibrateOptions,
     progress: Option<Arc<dyn Progress>>,
 ) -> Result<Calibration, FitError> {
-    let data = FitData::from_shots(shots)?.with_impact_noise(opts.impact_noise)?;
+    let data = FitData::from_shots(shots)?
+        .with_delivery_noise(opts.delivery_noise)
+        .with_impact_noise(opts.impact_noise)?;
     let layout = ParamLayout::from_requests(requests, &data.groups)?;
     // Fewer shots than the whole layout's parameters is reported by `calibrate_data`.
     if data.len() > layout.len() {
@@ -256,7 +272,9 @@ pub fn calibrate(
     calibrate_data(club, &data, layout, opts, progress)
 }
 
-/// [`calibrate`] on prepared data and layout.
+/// [`calibrate`] on prepared data and layout. `opts.impact_noise` and `opts.delivery_noise`
+/// are not applied here (the caller prepared `data`); they are recorded in the result as the
+/// measurement model the data were prepared for.
 pub fn calibrate_data(
     club: &ClubSpec,
     data: &FitData,
@@ -278,35 +296,42 @@ pub fn calibrate_data(
     let before = launch_error_table(&group_names(data), &errors_before);
     let sink = progress.as_ref();
 
-    let mut iterations = 0;
-    let mut evaluations = 0;
-    let mut paper_stages = Vec::new();
-    let (theta, termination) = match opts.method {
-        Method::Lm => {
-            let (run1, run2) = two_lm_fits(&problem, &start, &errors_before, opts.max_iters, sink)?;
-            iterations += run1.iterations + run2.iterations;
-            evaluations += run1.evaluations + run2.evaluations;
-            (run2.theta, run2.termination)
-        }
+    let solved = match opts.method {
+        Method::Lm => two_lm_fits(&problem, &start, &errors_before, opts.max_iters, sink)?,
         Method::Paper => {
-            let (theta, its, evals, stages, why) =
-                paper_procedure(&problem, &start, opts.max_iters, sink)?;
-            iterations += its;
-            evaluations += evals;
-            paper_stages = stages;
-            (theta, why)
+            let (theta, iterations, evaluations, stages, termination) =
+                paper::paper_procedure(&problem, &start, opts.max_iters, sink)?;
+            Solved {
+                theta,
+                iterations,
+                evaluations,
+                termination,
+                paper_stages: stages,
+                jacobian: None,
+            }
         }
     };
+    let theta = &solved.theta;
 
-    // Statistics at the solution, with noise scales from its own errors.
+    // Statistics at the solution, with noise scales from its own errors. The whitened residuals
+    // are the errors times 1/σ (the same bits as evaluating them); the Jacobian is the last
+    // fit's, at this point, re-weighted to these scales, when the procedure has it.
     let errors_after = problem.launch_errors(theta.as_slice())?;
     let sigma = noise_scales(&errors_after);
-    let whitened = problem.clone().with_weighting(Weighting::launch(&sigma));
-    let residuals = whitened.residuals(theta.as_slice())?;
-    let jac = whitened.jacobian_full(&theta)?;
-    evaluations += 1 + 2 * p as u64;
+    let residuals = whiten(&errors_after, &sigma);
+    let mut evaluations = solved.evaluations + 1;
+    let jac = match &solved.jacobian {
+        Some((j, sigma_j)) => reweight(j, sigma_j, &sigma),
+        None => {
+            evaluations += 2 * p as u64;
+            problem
+                .clone()
+                .with_weighting(Weighting::launch(&sigma))
+                .jacobian_full(theta)?
+        }
+    };
     let chi2 = residuals.norm_squared();
-    let chi2_before = whitened.residuals(start.as_slice())?.norm_squared();
+    let chi2_before = whiten(&errors_before, &sigma).norm_squared();
     let n_residuals = residuals.len();
     let dof = n_residuals - p;
     let reduced_chi2 = chi2 / dof as f64;
@@ -314,7 +339,7 @@ pub fn calibrate_data(
     let ranges: Vec<f64> = (0..p).map(|j| upper[j] - lower[j]).collect();
     let cov = covariance(&jac, reduced_chi2, &ranges);
 
-    let params = estimates(&layout, &theta, &cov);
+    let params = estimates(&layout, theta, &cov);
     let strongly_correlated = correlated_pairs(cov.correlation.as_ref());
     let shaft_relation = shaft_relation(data, &params);
     let mut effects = club.effects.clone();
@@ -340,47 +365,106 @@ pub fn calibrate_data(
         bic: chi2 + p as f64 * (n_residuals as f64).ln(),
         chi2_before,
         evaluations,
-        iterations,
-        termination,
+        iterations: solved.iterations,
+        termination: solved.termination,
         noise_scales: sigma,
         before,
         after: launch_error_table(&group_names(data), &errors_after),
         shaft_relation,
-        paper_stages,
+        paper_stages: solved.paper_stages,
         club: calibrated,
         layout,
+        impact_noise: opts.impact_noise,
+        delivery_noise: opts.delivery_noise.filter(DeliveryNoise::is_active),
     })
+}
+
+/// What a procedure found: the point, its work, and the Jacobian there when it has one.
+struct Solved {
+    theta: DVector<f64>,
+    iterations: u64,
+    evaluations: u64,
+    termination: String,
+    paper_stages: Vec<PaperStageAssignment>,
+    /// Jacobian of the launch residuals at `theta` whitened with the noise scales given.
+    jacobian: Option<(DMatrix<f64>, [f64; 5])>,
+}
+
+/// Whitened launch residuals `e_c / σ_c` from errors `e` (model − measured, file units): the
+/// same bits as [`FitProblem::residuals`] with [`Weighting::launch`]`(sigma)`, which computes
+/// `(ŷ − y)·(1/σ_c)` from the same difference.
+fn whiten(errors: &[[f64; 5]], sigma: &[f64; 5]) -> DVector<f64> {
+    let Weighting::Launch { inv_scale } = Weighting::launch(sigma) else {
+        unreachable!("launch weighting")
+    };
+    DVector::from_iterator(
+        errors.len() * 5,
+        errors
+            .iter()
+            .flat_map(|e| std::array::from_fn::<f64, 5, _>(|c| e[c] * inv_scale[c])),
+    )
+}
+
+/// A Jacobian of launch residuals whitened with scales `from`, re-weighted to scales `to`: row
+/// `5i + c` times `σ_from,c / σ_to,c` (equal to evaluating it with `to` up to rounding).
+fn reweight(j: &DMatrix<f64>, from: &[f64; 5], to: &[f64; 5]) -> DMatrix<f64> {
+    let factor: [f64; 5] = std::array::from_fn(|c| from[c] / to[c]);
+    DMatrix::from_fn(j.nrows(), j.ncols(), |r, k| j[(r, k)] * factor[r % 5])
 }
 
 /// The whitened Levenberg–Marquardt procedure ([`Method::Lm`]): a fit with noise scales from
 /// the nominal errors `errors_before`, then one with scales re-estimated from that fit's errors,
-/// started from its solution. Both runs, each checked for convergence.
+/// started from its solution, each checked for convergence. What each run starts from is known
+/// already and handed to it rather than evaluated again: the first run's residuals are the
+/// nominal errors whitened, the second's its own errors whitened and the first run's final
+/// Jacobian (at the same point) re-weighted.
 fn two_lm_fits(
     problem: &FitProblem<'_>,
     start: &DVector<f64>,
     errors_before: &[[f64; 5]],
     max_iters: u64,
     sink: Option<&Arc<dyn Progress>>,
-) -> Result<(FitRun, FitRun), FitError> {
+) -> Result<Solved, FitError> {
+    let p = start.len() as u64;
     let sigma0 = noise_scales(errors_before);
     let stage = "fit 1/2 (noise from nominal errors)";
-    let run1 = run_lm(
-        problem.clone().with_weighting(Weighting::launch(&sigma0)),
+    let pr1 = problem.clone().with_weighting(Weighting::launch(&sigma0));
+    let j0 = pr1.jacobian_full(start)?;
+    let at_start = (whiten(errors_before, &sigma0), j0);
+    let run1 = execute(
+        pr1,
         start,
         max_iters,
         sink.map(|s| (s, stage)),
+        true,
+        Some(at_start),
     )?;
     ensure_converged(&run1, stage)?;
-    let sigma1 = noise_scales(&problem.launch_errors(run1.theta.as_slice())?);
+    let errors1 = problem.launch_errors(run1.theta.as_slice())?;
+    let sigma1 = noise_scales(&errors1);
     let stage = "fit 2/2 (noise re-estimated)";
-    let run2 = run_lm(
+    let at_start = (
+        whiten(&errors1, &sigma1),
+        reweight(&run1.jacobian, &sigma0, &sigma1),
+    );
+    let run2 = execute(
         problem.clone().with_weighting(Weighting::launch(&sigma1)),
         &run1.theta,
         max_iters,
         sink.map(|s| (s, stage)),
+        true,
+        Some(at_start),
     )?;
     ensure_converged(&run2, stage)?;
-    Ok((run1, run2))
+    Ok(Solved {
+        theta: run2.theta,
+        iterations: run1.iterations + run2.iterations,
+        // The start evaluations handed over: the first run's Jacobian, the second's errors.
+        evaluations: run1.evaluations + run2.evaluations + 2 * p + 1,
+        termination: run2.termination,
+        paper_stages: Vec::new(),
+        jacobian: Some((run2.jacobian, sigma1)),
+    })
 }
 
 /// One [`ParamEstimate`] per parameter of `layout` at `theta`, with the standard errors of
@@ -419,90 +503,6 @@ fn correlated_pairs(correlation: Option<&DMatrix<f64>>) -> Vec<CorrelatedPair> {
         }
     }
     pairs
-}
-
-type PaperResult = (DVector<f64>, u64, u64, Vec<PaperStageAssignment>, String);
-
-/// The paper's alternating `W = ∞` / `W = 0` procedure (see the module docs).
-fn paper_procedure(
-    problem: &FitProblem<'_>,
-    start: &DVector<f64>,
-    max_iters: u64,
-    sink: Option<&Arc<dyn Progress>>,
-) -> Result<PaperResult, FitError> {
-    let p = start.len();
-    let linear = problem.clone().with_weighting(Weighting::PaperLinear);
-    let angular = problem.clone().with_weighting(Weighting::PaperAngular);
-    let sensitivity = |pr: &FitProblem<'_>| -> Result<Vec<f64>, FitError> {
-        let r = pr.residuals(start.as_slice())?.norm();
-        let j = pr.jacobian_full(start)?;
-        Ok((0..p).map(|k| j.column(k).norm() / r).collect())
-    };
-    let s_lin = sensitivity(&linear)?;
-    let s_ang = sensitivity(&angular)?;
-    let mut evaluations = 2 * (1 + 2 * p as u64);
-    let stages: Vec<PaperStageAssignment> = (0..p)
-        .map(|j| PaperStageAssignment {
-            param: j,
-            linear_sensitivity: s_lin[j],
-            angular_sensitivity: s_ang[j],
-            stage: if s_lin[j] >= s_ang[j] {
-                Stage::Linear
-            } else {
-                Stage::Angular
-            },
-        })
-        .collect();
-    let pick = |st: Stage| -> Vec<usize> {
-        stages
-            .iter()
-            .filter(|a| a.stage == st)
-            .map(|a| a.param)
-            .collect()
-    };
-    let (lin_idx, ang_idx) = (pick(Stage::Linear), pick(Stage::Angular));
-    let lower = problem.layout().lower();
-    let upper = problem.layout().upper();
-    let mut theta = start.clone();
-    let mut iterations = 0;
-    let mut termination = String::new();
-    for round in 1..=PAPER_MAX_ROUNDS {
-        let before = theta.clone();
-        for (idx, pr, name) in [(&lin_idx, &linear, "W=inf"), (&ang_idx, &angular, "W=0")] {
-            if idx.is_empty() {
-                continue;
-            }
-            let stage = format!("paper {name} round {round}");
-            let run = run_lm(
-                pr.clone().with_active(idx.clone(), theta.clone()),
-                &theta,
-                max_iters,
-                sink.map(|s| (s, stage.as_str())),
-            )?;
-            ensure_converged(&run, &stage)?;
-            iterations += run.iterations;
-            evaluations += run.evaluations;
-            termination = run.termination;
-            theta = run.theta;
-        }
-        let change = (0..p)
-            .map(|j| (theta[j] - before[j]).abs() / (upper[j] - lower[j]))
-            .fold(0.0, f64::max);
-        if change <= 1e-9 {
-            return Ok((
-                theta,
-                iterations,
-                evaluations,
-                stages,
-                format!("{termination}; stages stable after {round} round(s)"),
-            ));
-        }
-    }
-    Err(FitError::NotConverged {
-        iterations,
-        chi2: f64::NAN,
-        stage: format!("paper: stages still moving after {PAPER_MAX_ROUNDS} rounds"),
-    })
 }
 
 /// Added mass per group against the group's shaft mass, when at least two groups have both.

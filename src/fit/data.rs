@@ -105,9 +105,13 @@ impl FitData {
                 params: 0,
             });
         }
-        let mut groups: Vec<String> = shots.iter().map(|s| s.group.clone()).collect();
-        groups.sort();
-        groups.dedup();
+        let groups: Vec<String> = shots
+            .iter()
+            .map(|s| s.group.as_str())
+            .collect::<std::collections::BTreeSet<_>>()
+            .into_iter()
+            .map(str::to_owned)
+            .collect();
         let mut d = Self {
             ids: Vec::with_capacity(shots.len()),
             groups,

@@ -250,22 +250,36 @@ impl<'a> FitProblem<'a> {
 
     /// One validated model per group for full parameters `theta`.
     pub fn models(&self, theta: &[f64]) -> Result<Vec<ImpactModel>, EvalError> {
-        self.base_params
+        (0..self.data.groups.len())
+            .map(|g| self.model_of(theta, g))
+            .collect()
+    }
+
+    /// The validated model of group `g` for full parameters `theta`.
+    fn model_of(&self, theta: &[f64], g: usize) -> Result<ImpactModel, EvalError> {
+        let mut p = self.base_params[g].clone();
+        for &i in &self.applies[g] {
+            self.layout.effects()[i]
+                .kind
+                .apply(&theta[self.layout.range(i)], &mut p);
+        }
+        ImpactModel::new(p).map_err(|source| EvalError::Model {
+            group: self.data.groups[g].clone(),
+            source,
+        })
+    }
+
+    /// [`FitProblem::models`] for the groups flagged in `groups` only (`None` for the others):
+    /// a Jacobian column of a per-group parameter needs its group's models alone.
+    fn models_of(
+        &self,
+        theta: &[f64],
+        groups: &[bool],
+    ) -> Result<Vec<Option<ImpactModel>>, EvalError> {
+        groups
             .iter()
-            .zip(&self.applies)
-            .zip(&self.data.groups)
-            .map(|((base, applies), group)| {
-                let mut p = base.clone();
-                for &i in applies {
-                    self.layout.effects()[i]
-                        .kind
-                        .apply(&theta[self.layout.range(i)], &mut p);
-                }
-                ImpactModel::new(p).map_err(|source| EvalError::Model {
-                    group: group.clone(),
-                    source,
-                })
-            })
+            .enumerate()
+            .map(|(g, &on)| on.then(|| self.model_of(theta, g)).transpose())
             .collect()
     }
 

@@ -155,6 +155,23 @@ pub fn fit_quietly(
     run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
 }
 
+/// [`fit_quietly`] given the residuals and Jacobian at `start` (all parameters active) when the
+/// caller has them (`at_start`): used unless the friction scan moves the start or `start` lies
+/// outside the bounds, and the fit is then the same, one residual and one Jacobian evaluation
+/// cheaper ([`LevenbergMarquardt::with_start_evaluation`]).
+pub fn fit_quietly_from(
+    club: &crate::club::ClubSpec,
+    layout: &super::ParamLayout,
+    data: &super::FitData,
+    w: super::Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+    at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    execute(pr, start, max_iters, None, true, at_start)
+}
+
 /// The solution of a fit without what only its covariance needs.
 #[derive(Debug, Clone)]
 pub struct FitPoint {
@@ -208,8 +225,10 @@ pub fn run_lm_point_from(
 /// ([`LevenbergMarquardt::with_kept_start_jacobian`]): for a fit started close to its solution
 /// (a cross-validation fold started from the all-shots solution) it saves the `2p` shifted
 /// model evaluations of each step, and stops at a point whose `χ²` is above the fit's own
-/// minimum by a second-order amount (not the same point as [`run_lm_point_from`]). Without
-/// `at_start` (or when it is not used) it is [`run_lm_point_from`].
+/// minimum by a second-order amount (not the same point as [`run_lm_point_from`]). With
+/// `at_start` it starts at `start` without the friction scan ([`scan_nonsmooth_starts`]: the
+/// fit that found `start` scanned); without `at_start` (or when `start` lies outside the
+/// bounds) it is [`run_lm_point_from`].
 pub fn run_lm_point_near(
     problem: FitProblem<'_>,
     start: &DVector<f64>,
@@ -255,7 +274,16 @@ fn execute_with(
     if !final_jacobian {
         solver = solver.without_final_jacobian();
     }
-    let init = problem.active_part(&scan_nonsmooth_starts(&problem, start));
+    // A fit started near its solution with the evaluation there given (a cross-validation
+    // fold started from the all-shots solution, whose fit scanned the friction already) starts
+    // there: a scan on the fold's shots would move a never-identifiable `mu` to a grid value
+    // and crawl back along its flat valley, step by step with new Jacobians.
+    let near = keep_start_jacobian && at_start.is_some();
+    let init = if near {
+        problem.active_part(start)
+    } else {
+        problem.active_part(&scan_nonsmooth_starts(&problem, start))
+    };
     if let Some((r, j)) = at_start {
         let (lo, hi) = (problem.active_lower(), problem.active_upper());
         let unmoved = init == problem.active_part(start)

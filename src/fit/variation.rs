@@ -57,9 +57,14 @@ pub fn check_variation(
              another; use shots whose deliveries differ"
         )));
     }
-    let mut groups: Vec<String> = shots.iter().map(|s| s.group.clone()).collect();
-    groups.sort();
-    groups.dedup();
+    // The distinct groups, sorted (without a copy of every shot's name).
+    let groups: Vec<String> = shots
+        .iter()
+        .map(|s| s.group.as_str())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .map(str::to_owned)
+        .collect();
     let mut out = Vec::new();
     for r in requests {
         let params: usize = r

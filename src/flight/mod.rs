@@ -191,10 +191,11 @@ impl FlightLaunch {
             })
         };
         // File units back from SI: drop the last-digit noise of the round trip (120° must not
-        // read 119.99999999999999 in a message).
+        // read 119.99999999999999 in a message) by rounding to 12 significant digits, which
+        // keeps a tiny value as given (1e-300 mph is not 0).
         let tidy = |x: f64| {
-            if x.is_finite() && x.abs() < 1e6 {
-                (x * 1e9).round() / 1e9
+            if x.is_finite() && x != 0.0 {
+                format!("{x:.11e}").parse().unwrap_or(x)
             } else {
                 x
             }
@@ -312,6 +313,39 @@ pub enum FlightError {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A launch out of range is named with its value in file units as given: a tiny value is
+    /// not rounded to 0 (a ball speed of -2.5e-12 mph once read "= 0", and 1e-300 mph was
+    /// refused as "= 0: must be > 0"), and 120° is not 119.99999999999999 after the SI round
+    /// trip. A tiny positive speed is a speed: it flies (nowhere), with finite numbers.
+    #[test]
+    fn bad_launch_values_print_as_given() {
+        let msg = |l: FlightLaunch| l.check().unwrap_err().to_string();
+        let launch = |mph, deg, rpm| FlightLaunch::from_file_units(mph, deg, 0.0, rpm, 0.0);
+        let negative = msg(launch(-2.5e-12, 10.0, 2500.0));
+        assert!(
+            negative.starts_with("ball_speed_mph = -2.5e-12:"),
+            "{negative}"
+        );
+        let huge = msg(launch(1e300, 10.0, 2500.0));
+        assert!(huge.starts_with("ball_speed_mph = 1e300:"), "{huge}");
+        let steep = msg(launch(150.0, 120.0, 2500.0));
+        assert!(steep.starts_with("launch_angle_deg = 120:"), "{steep}");
+        let spin = msg(launch(150.0, 10.0, 25_000.7));
+        assert!(spin.starts_with("backspin_rpm = 25000.7:"), "{spin}");
+        let tiny = launch(1e-300, 10.0, 2500.0);
+        assert_eq!(tiny.check(), Ok(()));
+        for ground in [None, Some(Ground::default())] {
+            let cfg = FlightConfig {
+                ground,
+                ..FlightConfig::default()
+            };
+            match fly_one(&cfg, &tiny) {
+                Ok(f) => assert!(f.carry_m.abs() < 1e-6 && f.apex_m.is_finite(), "{f:?}"),
+                Err(e) => assert!(!e.to_string().contains("= 0:"), "{e}"),
+            }
+        }
+    }
 
     #[test]
     fn carry_is_signed_along_the_target_line() {

@@ -231,6 +231,12 @@ fn check(
     }
 }
 
+/// A moment of inertia given in kg·m², as printed in messages: in g·cm² (the unit of the
+/// files' `inertia_gcm2` keys), to 6 significant digits.
+fn gcm2(kgm2: f64) -> String {
+    crate::units::Num(format!("{:.5e}", kgm2 * 1e7).parse().unwrap_or(kgm2 * 1e7)).to_string()
+}
+
 /// Check that `inertia` is a physical inertia tensor: finite, symmetric, positive definite, and
 /// its principal moments satisfy the triangle inequality (each at most the sum of the others).
 pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Result<(), ParamError> {
@@ -250,16 +256,20 @@ pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Resul
     let (min, max) = (eig.min(), eig.max());
     check(min > 0.0, quantity, || {
         format!(
-            "the tensor must be positive definite (principal moments {:.6e}, {:.6e}, {:.6e})",
-            eig[0], eig[1], eig[2]
+            "the tensor must be positive definite (principal moments {}, {}, {} g·cm²)",
+            gcm2(eig[0]),
+            gcm2(eig[1]),
+            gcm2(eig[2])
         )
     })?;
     let sum = eig.sum();
     check(max <= sum - max + 1e-9 * sum, quantity, || {
         format!(
-            "principal moments {:.6e}, {:.6e}, {:.6e} violate the triangle inequality \
+            "principal moments {}, {}, {} g·cm² violate the triangle inequality \
              (the largest must not exceed the sum of the other two)",
-            eig[0], eig[1], eig[2]
+            gcm2(eig[0]),
+            gcm2(eig[1]),
+            gcm2(eig[2])
         )
     })
 }
@@ -267,6 +277,29 @@ pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Resul
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The files give inertia in g·cm² (`club.inertia_gcm2`): the principal moments in its
+    /// messages are in that unit, not in the kg·m² held inside.
+    #[test]
+    fn inertia_messages_are_in_the_keys_unit() {
+        let gcm2 = |v: f64| v * 1e-7;
+        let triangle =
+            Matrix3::from_diagonal(&Vector3::new(gcm2(1000.0), gcm2(1000.0), gcm2(3000.0)));
+        let e = validate_inertia(&triangle, "club.inertia_gcm2").unwrap_err();
+        assert!(e.problem.contains("g·cm²"), "{e}");
+        for m in ["1000", "3000"] {
+            assert!(e.problem.contains(m), "{m} missing: {e}");
+        }
+        assert!(!e.problem.contains("e-4"), "{e}");
+        let indefinite =
+            Matrix3::from_diagonal(&Vector3::new(gcm2(2843.5), gcm2(-12.25), gcm2(4085.0)));
+        let e = validate_inertia(&indefinite, "club.inertia_gcm2").unwrap_err();
+        assert!(
+            e.problem.contains("-12.25") && e.problem.contains("2843.5"),
+            "{e}"
+        );
+        assert!(e.problem.contains("g·cm²"), "{e}");
+    }
 
     #[test]
     fn inertia_validation_rejects_unphysical_tensors() {

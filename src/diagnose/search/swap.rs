@@ -237,6 +237,7 @@ impl Search<'_> {
             w: rb.w,
             rms: evaluate::rms_per_component(errors),
             cv,
+            at: None,
             max_iters: self.opts.max_iters,
             progress: None,
             spread: None,

@@ -18,10 +18,11 @@ use crate::measurement::NODES_PER_SHOT;
 use crate::physics::ImpactModel;
 use crate::sweep::kernel::{simd_level, SimdLevel};
 
-/// The two shifted models of one Jacobian column, per group, and the groups it touches.
+/// The two shifted models of one Jacobian column, per group it touches (`None` for the
+/// others), and the groups it touches.
 struct Column {
-    plus: Vec<ImpactModel>,
-    minus: Vec<ImpactModel>,
+    plus: Vec<Option<ImpactModel>>,
+    minus: Vec<Option<ImpactModel>>,
     /// `θ_j⁺ − θ_j⁻`.
     span: f64,
     /// Per group: does the parameter change the group's model? (The other groups' rows are 0.)
@@ -38,71 +39,79 @@ impl FitProblem<'_> {
         if self.active.is_empty() {
             return Some(DMatrix::zeros(self.rows(), 0));
         }
+        // Every group's model at `theta` must exist, as the column-by-column Jacobian needs.
+        self.models(theta).ok()?;
         let mut columns = Vec::with_capacity(self.active.len());
         for &j in &self.active {
             let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
             let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
             plus[j] = (theta[j] + h).min(self.upper[j]);
             minus[j] = (theta[j] - h).max(self.lower[j]);
+            let touched: Vec<bool> = self
+                .applies
+                .iter()
+                .map(|a| a.contains(&self.owner[j]))
+                .collect();
             columns.push(Column {
                 span: plus[j] - minus[j],
-                plus: self.models(&plus).ok()?,
-                minus: self.models(&minus).ok()?,
-                touched: self
-                    .applies
-                    .iter()
-                    .map(|a| a.contains(&self.owner[j]))
-                    .collect(),
+                plus: self.models_of(&plus, &touched).ok()?,
+                minus: self.models_of(&minus, &touched).ok()?,
+                touched,
             });
         }
         let usable = |m: &ImpactModel| m.laws().user.is_empty() && *m.face() == cache.face;
         if !columns
             .iter()
-            .all(|c| c.plus.iter().chain(&c.minus).all(usable))
+            .all(|c| c.plus.iter().chain(&c.minus).flatten().all(usable))
         {
             return None;
         }
         let n = self.data.len();
-        let tasks = n.div_ceil(SHOTS_PER_TASK);
-        let task = |t: usize| self.jacobian_block(&columns, cache, t * SHOTS_PER_TASK);
         let sites = n * if self.data.impact_nodes.is_some() {
             NODES_PER_SHOT
         } else {
             1
         };
-        let blocks: Vec<Option<Vec<f64>>> = if self.parallel_jacobian || sites >= PARALLEL_MIN_SITES
-        {
-            (0..tasks).into_par_iter().map(task).collect()
-        } else {
-            (0..tasks).map(task).collect()
-        };
-        let rows = self.weighting.rows_per_shot();
-        let mut jac = DMatrix::zeros(self.rows(), columns.len());
-        for (t, block) in blocks.into_iter().enumerate() {
-            let block = block?;
-            let len = block.len() / columns.len();
-            let first = t * SHOTS_PER_TASK * rows;
-            for (k, col) in block.chunks_exact(len).enumerate() {
-                jac.column_mut(k).rows_mut(first, len).copy_from_slice(col);
+        // Each task writes its shots' rows of every column in place: column k's rows of task t
+        // are `parts[t][k]`.
+        let (m, seg) = (self.rows(), SHOTS_PER_TASK * self.weighting.rows_per_shot());
+        let mut jac = DMatrix::zeros(m, columns.len());
+        let mut parts: Vec<Vec<&mut [f64]>> = (0..n.div_ceil(SHOTS_PER_TASK))
+            .map(|_| Vec::with_capacity(columns.len()))
+            .collect();
+        for col in jac.as_mut_slice().chunks_mut(m) {
+            for (t, rows) in col.chunks_mut(seg).enumerate() {
+                parts[t].push(rows);
             }
         }
-        Some(jac)
+        let task = |(t, mut out): (usize, Vec<&mut [f64]>)| {
+            self.jacobian_block(&columns, cache, t * SHOTS_PER_TASK, &mut out)
+        };
+        let done = if self.parallel_jacobian || sites >= PARALLEL_MIN_SITES {
+            parts.into_par_iter().enumerate().all(task)
+        } else {
+            parts.into_iter().enumerate().all(task)
+        };
+        done.then_some(jac)
     }
 
-    /// The Jacobian rows of the shots `start..` (at most [`SHOTS_PER_TASK`]), column after
-    /// column; `None` if a shot cannot be computed. Runs the AVX2 build where the CPU has it, as
-    /// the residuals do (the same bits either way).
+    /// The Jacobian rows of the shots `start..` (at most [`SHOTS_PER_TASK`]) into `out` (one
+    /// slice a column, zero on entry); `false` if a shot cannot be computed. Runs the AVX2 build
+    /// where the CPU has it, as the residuals do (the same bits either way).
     fn jacobian_block(
         &self,
         columns: &[Column],
         cache: &SiteCache,
         start: usize,
-    ) -> Option<Vec<f64>> {
+        out: &mut [&mut [f64]],
+    ) -> bool {
         match simd_level() {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: `simd_level` reports AVX2 and FMA only when the CPU has both.
-            SimdLevel::Avx2 => unsafe { self.jacobian_block_avx2(columns, cache, start) },
-            _ => self.jacobian_block_impl(columns, cache, start),
+            SimdLevel::Avx2 => unsafe { self.jacobian_block_avx2(columns, cache, start, out) },
+            _ => self
+                .jacobian_block_impl(columns, cache, start, out)
+                .is_some(),
         }
     }
 
@@ -113,8 +122,10 @@ impl FitProblem<'_> {
         columns: &[Column],
         cache: &SiteCache,
         start: usize,
-    ) -> Option<Vec<f64>> {
-        self.jacobian_block_impl(columns, cache, start)
+        out: &mut [&mut [f64]],
+    ) -> bool {
+        self.jacobian_block_impl(columns, cache, start, out)
+            .is_some()
     }
 
     /// The body of [`FitProblem::jacobian_block`]: shots taken group by group as the residuals
@@ -126,11 +137,10 @@ impl FitProblem<'_> {
         columns: &[Column],
         cache: &SiteCache,
         start: usize,
-    ) -> Option<Vec<f64>> {
+        block: &mut [&mut [f64]],
+    ) -> Option<()> {
         let rows = self.weighting.rows_per_shot();
         let end = (start + SHOTS_PER_TASK).min(self.data.len());
-        let len = (end - start) * rows;
-        let mut block = vec![0.0; len * columns.len()];
         let group_of = &self.data.group_of;
         let mut order = [0usize; SHOTS_PER_TASK];
         let order = &mut order[..end - start];
@@ -150,14 +160,19 @@ impl FitProblem<'_> {
             which.clear();
             for (k, c) in columns.iter().enumerate().filter(|(_, c)| c.touched[g]) {
                 which.push(k);
-                models.push(&c.plus[g]);
-                models.push(&c.minus[g]);
+                models.push(c.plus[g].as_ref()?);
+                models.push(c.minus[g].as_ref()?);
             }
             if which.is_empty() {
                 continue;
             }
             let outs = &mut outs[..models.len()];
-            for shots in run.chunks(W) {
+            self.prefetch_shots(cache, &run[..run.len().min(W)]);
+            for (v, shots) in run.chunks(W).enumerate() {
+                let next = run
+                    .get((v + 1) * W..)
+                    .map_or(&[][..], |r| &r[..r.len().min(W)]);
+                self.prefetch_shots(cache, next);
                 let mut idx = [shots[shots.len() - 1]; W];
                 idx[..shots.len()].copy_from_slice(shots);
                 if !self.predict_lanes_multi(&models, cache, &idx, &mut frames, outs) {
@@ -172,7 +187,7 @@ impl FitProblem<'_> {
                         let rm = &mut r_minus[..rows];
                         self.write_rows(i, &m.launch(l), &m.ball(l, false), &m.ball(l, true), rm);
                         let span = columns[k].span;
-                        let out = &mut block[k * len + (i - start) * rows..][..rows];
+                        let out = &mut block[k][(i - start) * rows..][..rows];
                         for ((o, a), b) in out.iter_mut().zip(rp.iter()).zip(rm.iter()) {
                             *o = (a - b) / span;
                         }
@@ -180,7 +195,7 @@ impl FitProblem<'_> {
                 }
             }
         }
-        Some(block)
+        Some(())
     }
 }
 

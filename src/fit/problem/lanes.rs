@@ -138,7 +138,12 @@ impl FitProblem<'_> {
         order.sort_unstable_by_key(|&i| (group_of[i], i));
         for run in order.chunk_by(|&a, &b| group_of[a] == group_of[b]) {
             let model = &models[group_of[run[0]]];
-            for shots in run.chunks(W) {
+            self.prefetch_shots(cache, &run[..run.len().min(W)]);
+            for (v, shots) in run.chunks(W).enumerate() {
+                self.prefetch_shots(
+                    cache,
+                    run.get((v + 1) * W..).map_or(&[], |r| &r[..r.len().min(W)]),
+                );
                 let mut idx = [shots[shots.len() - 1]; W];
                 idx[..shots.len()].copy_from_slice(shots);
                 let Some(p) = self.predict_lanes(model, cache, &idx) else {
@@ -151,6 +156,24 @@ impl FitProblem<'_> {
             }
         }
         true
+    }
+
+    /// Asks the CPU to bring the cached inputs of the shots `shots` (their contact frames,
+    /// location nodes, delivery frames and measurements) into its cache while the lanes solve
+    /// the shots before them: an evaluation streams about 130 bytes a site from memory
+    /// (9 MB on 10,000 shots with location noise), and waiting for those loads was a fifth
+    /// of the residual evaluation's time. A hint only: it changes no result.
+    #[inline(always)]
+    pub(super) fn prefetch_shots(&self, cache: &SiteCache, shots: &[usize]) {
+        let per = cache.sites_per_shot;
+        for &i in shots {
+            prefetch(&cache.contacts[i * per..][..per]);
+            if let Some(n) = &self.data.impact_nodes {
+                prefetch(std::slice::from_ref(&n[i]));
+            }
+            prefetch(std::slice::from_ref(&cache.frames[i]));
+            prefetch(std::slice::from_ref(&self.data.measured[i]));
+        }
     }
 
     /// [`FitProblem::predict`] for the [`W`] shots `idx` of one group (model `model`) at once:
@@ -307,6 +330,31 @@ impl FitProblem<'_> {
             }
         }
     }
+}
+
+/// Prefetch hint for every cache line of `items` (no effect off x86-64).
+#[inline(always)]
+fn prefetch<T>(items: &[T]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        const LINE: usize = 64;
+        let start = items.as_ptr().cast::<i8>();
+        let bytes = std::mem::size_of_val(items);
+        let mut off = 0;
+        while off < bytes {
+            // SAFETY: a prefetch never faults; the address is inside `items`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(off)) };
+            off += LINE;
+        }
+        if bytes > 0 {
+            // The last line, when `items` does not start on a line boundary.
+            // SAFETY: as above, the last byte of `items`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(bytes - 1)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = items;
 }
 
 /// One site of [`W`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
