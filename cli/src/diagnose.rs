@@ -269,10 +269,13 @@ fn estimates_json_with(
         .collect()
 }
 
-/// `finding`, `stand_in` or `ambiguous` (a plausible value with a plausible rival).
+/// `finding`, `stand_in`, `absent` (on its no-effect bound) or `ambiguous` (a plausible value
+/// with a plausible rival, or aliased with another effect).
 fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
     if honest::is_plausible(p) == Some(false) {
         "stand_in"
+    } else if honest::is_absent(p) {
+        "absent"
     } else if d.is_finding(p) {
         "finding"
     } else {
@@ -639,6 +642,15 @@ fn summary_text(d: &Diagnosis) -> String {
                 findings.join(", ")
             }
         ));
+        for p in d.estimates.iter().filter(|p| honest::is_absent(p)) {
+            s.push_str(&format!(
+                "  absent, not a finding: {} = {:.4} {} sits on its no-effect bound (the fit \
+                 found none of what it adds)\n",
+                p.label(),
+                p.value,
+                p.unit
+            ));
+        }
         for p in &d.estimates {
             if let Some(w) = honest::stand_in(p) {
                 s.push_str(&format!(

@@ -35,6 +35,18 @@ pub fn is_plausible(p: &ParamEstimate) -> Option<bool> {
     Some(p.value >= lo && p.value <= hi)
 }
 
+/// Does the fit leave this parameter *absent*: stopped on a physical bound that is also its
+/// neutral (no-effect) value, as `cor_radial.c_per_mm2 = 0` (COR does not fall off the centre
+/// at all)? Such a value says the effect is not there at the optimum, so it is not a finding;
+/// `docs/diagnose-selection.md`, "Absent at a bound".
+pub fn is_absent(p: &ParamEstimate) -> bool {
+    p.at_bound
+        && spec_of(p).is_some_and(|s| {
+            let on_neutral = (p.value - s.default).abs() <= 1e-9 * (s.upper - s.lower);
+            on_neutral && (s.default == s.lower || s.default == s.upper)
+        })
+}
+
 /// Which physics an implausible value behaves like (`None` when the value is plausible or the
 /// parameter unknown). The reasons are the model's own sensitivities: what else moves the same
 /// launch components the same way.
@@ -462,6 +474,25 @@ mod tests {
             stderr: Some(0.1),
             at_bound: false,
         }
+    }
+
+    /// `cor_radial.c_per_mm2 = 0` on its lower bound (3000-shot `compliant_driver`): no COR
+    /// fall-off at all, absent rather than found; a small positive value off the bound is a
+    /// reading, and so is a value on a bound that is not the no-effect one.
+    #[test]
+    fn a_value_on_its_no_effect_bound_is_absent() {
+        let mut zero = est("cor_radial", "c_per_mm2", 0.0);
+        assert!(!is_absent(&zero), "not flagged on a bound by the fit");
+        zero.at_bound = true;
+        assert!(is_absent(&zero));
+        assert!(!is_absent(&est("cor_radial", "c_per_mm2", 2e-5)));
+        let spec = spec_of(&est("inertia_scale", "s", 1.0)).unwrap();
+        let mut low = est("inertia_scale", "s", spec.lower);
+        low.at_bound = true;
+        assert!(
+            !is_absent(&low),
+            "s at its lower bound is not s = 1 (no effect)"
+        );
     }
 
     #[test]

@@ -288,12 +288,14 @@ pub struct Diagnosis {
 }
 
 impl Diagnosis {
-    /// Is this final estimate a finding: plausible (or of unknown range), not part of an
-    /// ambiguous selection, and not aliased with another selected effect's parameter (the
-    /// data cannot tell which of the two effects carries the signal, so neither value is a
-    /// reading of the physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
+    /// Is this final estimate a finding: plausible (or of unknown range), not absent (on a
+    /// bound that means "no effect", [`honest::is_absent`]), not part of an ambiguous
+    /// selection, and not aliased with another selected effect's parameter (the data cannot
+    /// tell which of the two effects carries the signal, so neither value is a reading of the
+    /// physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
     pub fn is_finding(&self, p: &ParamEstimate) -> bool {
         honest::is_plausible(p) != Some(false)
+            && !honest::is_absent(p)
             && !self
                 .ambiguities
                 .iter()
@@ -388,6 +390,7 @@ pub fn diagnose(
     // by `max_steps` changes (each round fits every questioned effect against every candidate).
     let mut forward = 0;
     let mut changes = 0;
+    let mut checked = Vec::new();
     loop {
         while forward < opts.max_steps {
             forward += 1;
@@ -416,6 +419,16 @@ pub fn diagnose(
         }
         // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
         let Some(more) = search.reselect(&candidates, steps.len())? else {
+            // The selection stands unless its final fit shows a stand-in the rounds did not
+            // see: then the rounds run on that fit (`search/final_fit.rs`).
+            if search.adopt_final_stand_ins(&mut checked)? {
+                warnings.push(
+                    "the final fit (started afresh) showed a stand-in the rounds' fit did not: \
+                     the swap rounds ran again on the final fit"
+                        .to_owned(),
+                );
+                continue;
+            }
             break;
         };
         steps.extend(more);

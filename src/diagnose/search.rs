@@ -13,13 +13,14 @@ use super::{
     DiagnoseProgress, Diagnosis, FoldBy, Step,
 };
 use crate::club::ClubSpec;
-use crate::fit::calibrate::{calibrate_data, noise_scales, CalibrateOptions};
+use crate::fit::calibrate::noise_scales;
 use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
 use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
 mod alias;
+mod final_fit;
 mod measure;
 mod reselect;
 mod swap;
@@ -559,21 +560,12 @@ impl<'a> Search<'a> {
             ));
             self.adopt_refined(noise, &exact, self.theta_base.clone(), w)?;
         }
-        let (estimates, after, out_club, aliases) = if self.base.is_empty() {
-            (Vec::new(), before.clone(), self.club.clone(), Vec::new())
-        } else {
-            let cal = calibrate_data(
-                self.club,
-                &self.data,
-                self.base.clone(),
-                &CalibrateOptions {
-                    max_iters: self.opts.max_iters,
-                    ..CalibrateOptions::default()
-                },
-                None,
-            )?;
-            let aliases = honest::aliases(&cal.params, cal.correlation.as_ref());
-            (cal.params, cal.after, cal.club, aliases)
+        let (estimates, after, out_club, aliases) = match self.final_calibration()? {
+            None => (Vec::new(), before.clone(), self.club.clone(), Vec::new()),
+            Some(cal) => {
+                let aliases = honest::aliases(&cal.params, cal.correlation.as_ref());
+                (cal.params, cal.after, cal.club, aliases)
+            }
         };
         let ambiguities = self.ambiguities(&estimates)?;
         Ok(Diagnosis {
