@@ -255,15 +255,7 @@ pub fn write_folder_atomic_with<T>(
     safe_write::check_output(dir, true)?;
     safe_write::clean_stale_temporaries(dir);
     safe_write::check_replaceable(dir)?;
-    let name = dir
-        .file_name()
-        .ok_or_else(|| err("not a folder path".into()))?
-        .to_string_lossy()
-        .into_owned();
-    let parent = match dir.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
-        _ => PathBuf::from("."),
-    };
+    let (name, parent) = safe_write::folder_name_and_parent(dir)?;
     std::fs::create_dir_all(&parent)
         .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));

@@ -229,21 +229,28 @@ pub fn refuse_inputs(
     Ok(())
 }
 
-/// Before any work: can the outputs folder `dir` be written where [`super::write_folder_atomic`]
-/// writes it? Its parent is created if missing, and the temporary sibling folder it fills first
-/// is made and removed again, so a read-only or pseudo-file-system location (`/proc/x`) fails
-/// here, with one line, rather than after the command has printed its report.
-pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
-    let err = |m: String| DataError::file(dir, m);
+/// The last component of the outputs folder `dir` and the folder that holds it (`.` for a bare
+/// name), where [`super::write_folder_atomic`] makes its temporary sibling.
+pub fn folder_name_and_parent(dir: &Path) -> Result<(String, std::path::PathBuf), DataError> {
     let name = dir
         .file_name()
-        .ok_or_else(|| err("not a folder path".into()))?
+        .ok_or_else(|| DataError::file(dir, "not a folder path"))?
         .to_string_lossy()
         .into_owned();
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_owned(),
         _ => Path::new(".").to_owned(),
     };
+    Ok((name, parent))
+}
+
+/// Before any work: can the outputs folder `dir` be written where [`super::write_folder_atomic`]
+/// writes it? Its parent is created if missing, and the temporary sibling folder it fills first
+/// is made and removed again, so a read-only or pseudo-file-system location (`/proc/x`) fails
+/// here, with one line, rather than after the command has printed its report.
+pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
+    let err = |m: String| DataError::file(dir, m);
+    let (name, parent) = folder_name_and_parent(dir)?;
     std::fs::create_dir_all(&parent).map_err(|e| {
         err(format!(
             "cannot create the folder {} to hold it: {e}",
