@@ -96,6 +96,17 @@ impl SiteCache {
     }
 }
 
+/// The distinct group names of `shots`, sorted (without a copy of every shot's name).
+pub(crate) fn distinct_groups(shots: &[Shot]) -> Vec<String> {
+    shots
+        .iter()
+        .map(|s| s.group.as_str())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .map(str::to_owned)
+        .collect()
+}
+
 impl FitData {
     /// Flatten shots that carry measured launch conditions.
     pub fn from_shots(shots: &[Shot]) -> Result<Self, FitError> {
@@ -105,13 +116,8 @@ impl FitData {
                 params: 0,
             });
         }
-        let groups: Vec<String> = shots
-            .iter()
-            .map(|s| s.group.as_str())
-            .collect::<std::collections::BTreeSet<_>>()
-            .into_iter()
-            .map(str::to_owned)
-            .collect();
+        let groups = distinct_groups(shots);
+
         let mut d = Self {
             ids: Vec::with_capacity(shots.len()),
             groups,

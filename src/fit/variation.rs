@@ -57,14 +57,7 @@ pub fn check_variation(
              another; use shots whose deliveries differ"
         )));
     }
-    // The distinct groups, sorted (without a copy of every shot's name).
-    let groups: Vec<String> = shots
-        .iter()
-        .map(|s| s.group.as_str())
-        .collect::<std::collections::BTreeSet<_>>()
-        .into_iter()
-        .map(str::to_owned)
-        .collect();
+    let groups = super::data::distinct_groups(shots);
     let mut out = Vec::new();
     for r in requests {
         let params: usize = r
