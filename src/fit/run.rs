@@ -151,8 +151,7 @@ pub fn fit_quietly(
     start: &DVector<f64>,
     max_iters: u64,
 ) -> Result<FitRun, FitError> {
-    let pr = FitProblem::new(club, layout.clone(), data, w);
-    run_lm(pr, start, max_iters, None::<(&Arc<dyn Progress>, &str)>)
+    fit_quietly_from(club, layout, data, w, start, max_iters, None)
 }
 
 /// [`fit_quietly`] given the residuals and Jacobian at `start` (all parameters active) when the
