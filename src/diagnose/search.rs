@@ -13,7 +13,7 @@ use super::{
     DiagnoseProgress, Diagnosis, FoldBy, Step,
 };
 use crate::club::ClubSpec;
-use crate::fit::calibrate::noise_scales;
+use crate::fit::calibrate::{noise_scales, Calibration};
 use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
 use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
@@ -136,6 +136,8 @@ pub(super) struct Search<'a> {
     /// Fold of every shot (to make the folds again for a refined impact-noise level).
     fold_of: Vec<usize>,
     reselected: bool, // a re-selection (`reselect.rs`) has been tried: at most once
+    /// The final fit made by the check of `final_fit.rs`, kept for the report (its selection).
+    checked_fit: Option<(Vec<String>, Calibration)>,
 }
 
 /// The scored candidates of one step: effects first (`n_effects` of them), then noise levels.
@@ -190,6 +192,7 @@ impl<'a> Search<'a> {
             kin_of: Vec::new(),
             fold_of: fold_of.to_vec(),
             reselected: false,
+            checked_fit: None,
         })
     }
 
@@ -559,8 +562,9 @@ impl<'a> Search<'a> {
                 &self.errors_of(&self.base, self.theta_base.as_slice())?,
             ));
             self.adopt_refined(noise, &exact, self.theta_base.clone(), w)?;
+            self.checked_fit = None; // the data may have changed
         }
-        let (estimates, after, out_club, aliases) = match self.final_calibration()? {
+        let (estimates, after, out_club, aliases) = match self.take_final_calibration()? {
             None => (Vec::new(), before.clone(), self.club.clone(), Vec::new()),
             Some(cal) => {
                 let aliases = honest::aliases(&cal.params, cal.correlation.as_ref());

@@ -44,7 +44,7 @@ impl Search<'_> {
         if checked.contains(&labels) {
             return Ok(false);
         }
-        checked.push(labels);
+        checked.push(labels.clone());
         let Some(cal) = self.final_calibration()? else {
             return Ok(false);
         };
@@ -52,8 +52,20 @@ impl Search<'_> {
         let unseen = Self::unseen_stand_in(&self.base, &self.theta_base, &theta);
         if unseen {
             self.theta_base = theta;
+        } else {
+            self.checked_fit = Some((labels, cal));
         }
         Ok(unseen)
+    }
+
+    /// The final calibration for the report: the one the check made when the selection and the
+    /// data are still those it fitted (the same calibration from the same start), else made now.
+    pub(super) fn take_final_calibration(&mut self) -> Result<Option<Calibration>, FitError> {
+        let labels: Vec<String> = self.selected.iter().map(EffectRequest::label).collect();
+        match self.checked_fit.take() {
+            Some((checked, cal)) if checked == labels => Ok(Some(cal)),
+            _ => self.final_calibration(),
+        }
     }
 
     /// Does the final fit (`final_theta`) hold a stand-in effect the rounds' fit
