@@ -211,12 +211,18 @@ impl FitProblem<'_> {
     ) -> bool {
         debug_assert!(models.iter().all(|m| *m.face() == cache.face));
         frames.clear();
-        let mut shared = None;
-        for m in models {
-            frames.push(if cache.frames_fit(m) {
-                *shared.get_or_insert_with(|| self.frame_lanes(m, cache, idx))
-            } else {
-                self.frame_lanes(m, cache, idx)
+        // A delivery frame depends on the model only through its loft and face biases: models
+        // that share them share the frame (the shifted models of a fit with a bias parameter
+        // have at most three pairs between them, each made once instead of once a model).
+        let biases = |m: &ImpactModel| {
+            let p = m.params();
+            (p.loft_bias_rad.to_bits(), p.face_bias_rad.to_bits())
+        };
+        for (k, m) in models.iter().enumerate() {
+            let same = models[..k].iter().position(|o| biases(o) == biases(m));
+            frames.push(match same {
+                Some(o) => frames[o],
+                None => self.frame_lanes(m, cache, idx),
             });
         }
         outs.fill(LanePrediction::ZERO);
