@@ -1,6 +1,5 @@
 //! The shots of a fit, flattened for the inner loop ([`FitData`]), and what every evaluation
-//! of them shares ([`SiteCache`]: per-shot delivery frames and per-site contact frames, built
-//! once per data set).
+//! of them shares ([`SiteCache`]: per-shot delivery frames, built once per data set).
 
 use std::sync::{Arc, OnceLock};
 
@@ -9,7 +8,7 @@ use nalgebra::Vector3;
 use super::FitError;
 use crate::measurement::{DeliveryNoise, ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::model::Shot;
-use crate::physics::{ContactFrame, Delivery, DeliveryFrame, FaceError, FaceGeometry, ImpactModel};
+use crate::physics::{Delivery, DeliveryFrame, FaceGeometry, ImpactModel};
 
 /// The shots a fit uses, flattened for the inner loop.
 #[derive(Debug, Clone, PartialEq)]
@@ -41,16 +40,15 @@ pub struct FitData {
 }
 
 /// What every evaluation of a [`FitData`] shares: per shot the delivery frame for one pair of
-/// loft and face biases, per evaluation site (shot, or shot × location node) the face's contact
-/// frame for one face geometry.
+/// loft and face biases, and the face geometry the evaluations compute each site's contact
+/// frame on (an evaluation site is a shot, or shot × location node). The contact frames are not
+/// stored: computing one on the lanes costs less than reading it from memory.
 #[derive(Debug, PartialEq)]
 pub(crate) struct SiteCache {
     pub(crate) face: FaceGeometry,
     pub(crate) loft_bias_rad: f64,
     pub(crate) face_bias_rad: f64,
     pub(crate) frames: Vec<DeliveryFrame>,
-    /// `sites_per_shot` entries a shot.
-    pub(crate) contacts: Vec<Result<ContactFrame, FaceError>>,
     pub(crate) sites_per_shot: usize,
 }
 
@@ -61,31 +59,17 @@ impl SiteCache {
             .iter()
             .map(|d| model.delivery_frame(d))
             .collect();
-        let face = *model.face();
-        let (contacts, sites_per_shot) = match &data.impact_nodes {
-            None => (
-                data.deliveries
-                    .iter()
-                    .map(|d| face.contact(d.impact_y_m, d.impact_z_m))
-                    .collect(),
-                1,
-            ),
-            Some(nodes) => (
-                nodes
-                    .iter()
-                    .flat_map(|ns| ns.iter().map(move |n| face.contact(n.y_m, n.z_m)))
-                    .collect(),
-                NODES_PER_SHOT,
-            ),
-        };
         let p = model.params();
         Self {
-            face,
+            face: *model.face(),
             loft_bias_rad: p.loft_bias_rad,
             face_bias_rad: p.face_bias_rad,
             frames,
-            contacts,
-            sites_per_shot,
+            sites_per_shot: if data.impact_nodes.is_some() {
+                NODES_PER_SHOT
+            } else {
+                1
+            },
         }
     }
 

@@ -22,11 +22,13 @@
 //!
 //! Everything that does not depend on the fitted parameters is computed once per data set
 //! ([`FitData`] keeps it): each shot's face orientation and clubhead velocities in the face frame
-//! ([`ImpactModel::delivery_frame`], reused while the loft and face biases are those of the club),
-//! and the face's contact frame at every impact location or quadrature node. An evaluation then
-//! runs only the second half of [`ImpactModel::solve`], on [`crate::lanes::W`] shots of one group
-//! at a time: [`ImpactModel::solve_contact`] (the contact mechanics the scalar solve itself runs,
-//! generic over the lane type) on the lanes, the rotation to `G`, and the launch angles by the
+//! ([`ImpactModel::delivery_frame`], reused while the loft and face biases are those of the club).
+//! An evaluation then runs only the second half of [`ImpactModel::solve`], on [`crate::lanes::W`]
+//! shots of one group at a time: the contact frame at each impact location or quadrature node
+//! ([`crate::physics::FaceGeometry::contact_on`], the face equations of the scalar solve, generic
+//! over the lane type: computing it costs less than reading a stored one from memory),
+//! [`ImpactModel::solve_contact`] (the contact mechanics the scalar solve itself runs, generic
+//! over the lane type) on the lanes, the rotation to `G`, and the launch angles by the
 //! branch-free [`crate::sweep::fastmath::atan2_v`] and [`crate::sweep::fastmath::hypot_v`] instead
 //! of libm's. That evaluation (`problem/lanes.rs`) is compiled for AVX2 as well as for the portable
 //! baseline and picked at run time, as the face-map kernel is; both give the same bits. The
@@ -325,29 +327,16 @@ impl<'a> FitProblem<'a> {
             None => (d.impact_y_m, d.impact_z_m),
         };
         let fresh;
-        let (frame, contacts) = match cache {
-            Some(c) => {
-                let frame = if c.frames_fit(model) {
-                    &c.frames[i]
-                } else {
-                    fresh = model.delivery_frame(d);
-                    &fresh
-                };
-                let per = c.sites_per_shot;
-                let contacts = (*model.face() == c.face).then(|| &c.contacts[i * per..][..per]);
-                (frame, contacts)
-            }
-            None => {
+        let frame = match cache {
+            Some(c) if c.frames_fit(model) => &c.frames[i],
+            _ => {
                 fresh = model.delivery_frame(d);
-                (&fresh, None)
+                &fresh
             }
         };
         expected_over(nodes, |k| {
             let (y, z) = at(k);
-            let cf = match contacts {
-                Some(c) => c[k]?,
-                None => model.face().contact(y, z)?,
-            };
+            let cf = model.face().contact(y, z)?;
             model.solve_in(frame, &cf, y, z)
         })
         .map_err(|source| EvalError::Shot {

@@ -18,6 +18,8 @@
 
 use nalgebra::Vector3;
 
+use super::real::Real;
+
 /// Why an impact location cannot be placed on the face.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum FaceError {
@@ -37,6 +39,19 @@ pub enum FaceError {
         /// Roll radius, mm.
         roll_mm: f64,
     },
+}
+
+/// [`ContactFrame`] on any number type ([`FaceGeometry::contact_on`]), components as arrays.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactFrameOf<R> {
+    /// Contact point relative to the centre of face, m.
+    pub point_m: [R; 3],
+    /// Unit outward face normal `x_I`.
+    pub normal: [R; 3],
+    /// Unit tangent up the face `y_I`.
+    pub tangent_y: [R; 3],
+    /// Unit horizontal heel–toe tangent `z_I`.
+    pub tangent_z: [R; 3],
 }
 
 /// Face geometry: a torus with given bulge and roll radii at the face centre. Valid by construction.
@@ -94,35 +109,56 @@ impl FaceGeometry {
     /// Contact point and impact frame at `(y_m, z_m)` (m up the face and toward the toe).
     #[inline]
     pub fn contact(&self, y_m: f64, z_m: f64) -> Result<ContactFrame, FaceError> {
-        let r = self.roll_m;
-        let big_r = self.major_m;
-        let s2 = r * r - y_m * y_m;
-        let off = || FaceError::OffFace {
-            y_mm: y_m * 1e3,
-            z_mm: z_m * 1e3,
-            bulge_mm: self.bulge_m * 1e3,
-            roll_mm: self.roll_m * 1e3,
-        };
-        // `!(a > 0)` also rejects NaN inputs.
-        if !(s2 > 0.0) {
-            return Err(off());
+        let (on_face, f) = self.contact_on(y_m, z_m);
+        if !on_face {
+            return Err(FaceError::OffFace {
+                y_mm: y_m * 1e3,
+                z_mm: z_m * 1e3,
+                bulge_mm: self.bulge_m * 1e3,
+                roll_mm: self.roll_m * 1e3,
+            });
         }
-        let s = s2.sqrt();
-        let rho = big_r + s;
-        let x2 = rho * rho - z_m * z_m;
-        if !(rho > 0.0 && x2 > 0.0) {
-            return Err(off());
-        }
-        let x = x2.sqrt();
-        let point_m = Vector3::new(x - self.bulge_m, y_m, z_m);
-        let normal = Vector3::new(s * x / rho, y_m, s * z_m / rho) / r;
-        let tangent_z = Vector3::new(-z_m, 0.0, x) / rho;
-        let tangent_y = tangent_z.cross(&normal);
+        let v = |a: [f64; 3]| Vector3::new(a[0], a[1], a[2]);
         Ok(ContactFrame {
-            point_m,
+            point_m: v(f.point_m),
+            normal: v(f.normal),
+            tangent_y: v(f.tangent_y),
+            tangent_z: v(f.tangent_z),
+        })
+    }
+
+    /// The face equations of the module docs on any number type ([`Real`]: one location, or
+    /// one a lane): the contact frame at `(y_m, z_m)` and whether the location is on the face
+    /// (false, with NaN or meaningless components, where [`FaceGeometry::contact`] reports
+    /// [`FaceError::OffFace`]; also for NaN inputs). [`FaceGeometry::contact`] is this on
+    /// `f64`, so the fits' lanes, which compute each site's frame here rather than reading a
+    /// stored one, get the same bits.
+    #[inline(always)]
+    pub fn contact_on<R: Real>(&self, y_m: R, z_m: R) -> (R::Mask, ContactFrameOf<R>) {
+        let r = self.roll_m;
+        let zero = R::splat(0.0);
+        let s2 = R::splat(r * r) - y_m * y_m;
+        let s = s2.sqrt();
+        let rho = s + self.major_m;
+        let x2 = rho * rho - z_m * z_m;
+        let x = x2.sqrt();
+        let on_face = s2.gt(zero) & rho.gt(zero) & x2.gt(zero);
+        let normal = [s * x / rho / r, y_m / r, s * z_m / rho / r];
+        // `z_I = (−z, 0, X)/ρ`; its `y` component is `0/ρ`, +0 wherever the location is on the
+        // face.
+        let tangent_z = [-z_m / rho, zero, x / rho];
+        let (a, b) = (&tangent_z, &normal);
+        let tangent_y = [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ];
+        let frame = ContactFrameOf {
+            point_m: [x - self.bulge_m, y_m, z_m],
             normal,
             tangent_y,
             tangent_z,
-        })
+        };
+        (on_face, frame)
     }
 }

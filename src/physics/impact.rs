@@ -27,8 +27,8 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, Laws, Real, Restitution, Sym3,
-    TangentialLaw, Vec3,
+    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, Laws, Real,
+    Restitution, Sym3, TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
 use super::user_terms::UserEvalError;
@@ -495,23 +495,39 @@ impl ImpactModel {
         let r_b = laws.ball.lever(n, &x.tangent_y, &x.tangent_z_xz);
         // The instantaneous law, wrapped by the finite contact (`contact_time`; with τ = 0 it is
         // the law itself at the first contact, bit for bit).
-        let fi = laws.contact.impact(
-            |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {
-                laws.tangential.impulse::<R, FRICTION>(k, n, u, un, e)
-            },
-            &laws.collision,
-            laws.ball.radius_m,
-            &ContactGeometry {
-                normal: *n,
-                tangent_y: x.tangent_y,
-                tangent_z_xz: x.tangent_z_xz,
+        let fi = if laws.contact.tau_s == 0.0 {
+            // What `FiniteContact::impact` returns for τ = 0, the same operations, written out
+            // so that the tangential law is inlined here (through the wrapper's closure, called
+            // twice there, the compiler keeps it out of line: a call with every argument spilled
+            // to the stack for each lane vector the fits solve).
+            let k = laws.collision.matrix(&r_c, &r_b);
+            let (impulse, slipped) = laws.tangential.impulse::<R, FRICTION>(&k, n, &u1, u1n, e);
+            FiniteImpact {
+                impulse,
+                ball_angular_impulse: cross(&r_b, &impulse),
+                slipped,
                 r_c,
                 r_b,
-                u1,
-                u1n,
-                w_c: x.club_omega_f_rad_s,
-            },
-        );
+            }
+        } else {
+            laws.contact.impact(
+                |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {
+                    laws.tangential.impulse::<R, FRICTION>(k, n, u, un, e)
+                },
+                &laws.collision,
+                laws.ball.radius_m,
+                &ContactGeometry {
+                    normal: *n,
+                    tangent_y: x.tangent_y,
+                    tangent_z_xz: x.tangent_z_xz,
+                    r_c,
+                    r_b,
+                    u1,
+                    u1n,
+                    w_c: x.club_omega_f_rad_s,
+                },
+            )
+        };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);
         let v_b = impulse.map(|c| c / p.ball_mass_kg);

@@ -18,7 +18,7 @@ pub mod real;
 pub mod user_terms;
 
 pub use delivery::{face_orientation, Delivery};
-pub use face::{ContactFrame, FaceError, FaceGeometry};
+pub use face::{ContactFrame, ContactFrameOf, FaceError, FaceGeometry};
 pub use impact::{
     solve_spd3, validate_inertia, DeliveryFrame, ImpactError, ImpactModel, ImpactOutcome,
     ModelParams, ParamError,

@@ -1,11 +1,10 @@
 //! The central-difference Jacobian on the lanes in one pass over the shots: for each vector of
-//! [`W`] shots of one group, each evaluation site's inputs (the cached contact frames, the
-//! location nodes, the delivery frames) are gathered once and solved by all `2p` shifted models
+//! [`W`] shots of one group, each evaluation site's inputs (the location nodes and the contact
+//! frames there, the delivery frames) are gathered once and solved by all `2p` shifted models
 //! (`θ ± h_j e_j`) before the next site is read. Each model's solution is the same operations on
 //! the same inputs as its own evaluation ([`FitProblem::residuals_into`]), so every column is
-//! the same bits as from two separate evaluations; what is saved is reading and arranging the
-//! inputs `2p − 1` times more per site (with impact-location noise, nine sites a shot of about
-//! 100 bytes each, streamed from memory on large data sets).
+//! the same bits as from two separate evaluations; what is saved is reading, arranging and
+//! computing the inputs `2p − 1` times more per site.
 
 use nalgebra::DMatrix;
 use rayon::prelude::*;

@@ -158,16 +158,13 @@ impl FitProblem<'_> {
         true
     }
 
-    /// Asks the CPU to bring the cached inputs of the shots `shots` (their contact frames,
-    /// location nodes, delivery frames and measurements) into its cache while the lanes solve
-    /// the shots before them: an evaluation streams about 130 bytes a site from memory
-    /// (9 MB on 10,000 shots with location noise), and waiting for those loads was a fifth
-    /// of the residual evaluation's time. A hint only: it changes no result.
+    /// Asks the CPU to bring the inputs of the shots `shots` (their location nodes, delivery
+    /// frames and measurements) into its cache while the lanes solve the shots before them: on
+    /// large data sets an evaluation streams them from memory (about 24 bytes a site and 160 a
+    /// shot). A hint only: it changes no result.
     #[inline(always)]
     pub(super) fn prefetch_shots(&self, cache: &SiteCache, shots: &[usize]) {
-        let per = cache.sites_per_shot;
         for &i in shots {
-            prefetch(&cache.contacts[i * per..][..per]);
             if let Some(n) = &self.data.impact_nodes {
                 prefetch(std::slice::from_ref(&n[i]));
             }
@@ -214,12 +211,18 @@ impl FitProblem<'_> {
     ) -> bool {
         debug_assert!(models.iter().all(|m| *m.face() == cache.face));
         frames.clear();
-        let mut shared = None;
-        for m in models {
-            frames.push(if cache.frames_fit(m) {
-                *shared.get_or_insert_with(|| self.frame_lanes(m, cache, idx))
-            } else {
-                self.frame_lanes(m, cache, idx)
+        // A delivery frame depends on the model only through its loft and face biases: models
+        // that share them share the frame (the shifted models of a fit with a bias parameter
+        // have at most three pairs between them, each made once instead of once a model).
+        let biases = |m: &ImpactModel| {
+            let p = m.params();
+            (p.loft_bias_rad.to_bits(), p.face_bias_rad.to_bits())
+        };
+        for (k, m) in models.iter().enumerate() {
+            let same = models[..k].iter().position(|o| biases(o) == biases(m));
+            frames.push(match same {
+                Some(o) => frames[o],
+                None => self.frame_lanes(m, cache, idx),
             });
         }
         outs.fill(LanePrediction::ZERO);
@@ -254,8 +257,12 @@ impl FitProblem<'_> {
         }
     }
 
-    /// The inputs of site `k` (impact location or node `k`) of the shots `idx`: the cached
-    /// contact frames, or those of `face` when given. `None` if a location is off the face.
+    /// The inputs of site `k` (impact location or node `k`) of the shots `idx`: the location,
+    /// its weight, and the contact frame there on `face` (the cache's when `None`), computed
+    /// on the lanes by [`FaceGeometry::contact_on`], the scalar [`FaceGeometry::contact`]'s
+    /// own equations (the same bits; two square roots and seven divisions a vector are cheaper
+    /// than reading a stored frame of 104 bytes a site from memory). `None` if a location is
+    /// off the face.
     #[inline(always)]
     fn site_lanes(
         &self,
@@ -264,42 +271,35 @@ impl FitProblem<'_> {
         k: usize,
         face: Option<&FaceGeometry>,
     ) -> Option<SiteLanes> {
-        let nodes = self.data.impact_nodes.as_ref();
-        let per = cache.sites_per_shot;
         let zero = V::splat(0.0);
-        let mut s = SiteLanes {
-            point_m: [zero; 3],
-            normal: [zero; 3],
-            tangent_y: [zero; 3],
-            tangent_z_xz: [zero; 2],
-            y_m: zero,
-            z_m: zero,
-            weight: zero,
-        };
-        for (l, &i) in idx.iter().enumerate() {
-            let (y, z, w) = match nodes {
-                Some(n) => (n[i][k].y_m, n[i][k].z_m, n[i][k].weight),
-                None => {
-                    let d = &self.data.deliveries[i];
-                    (d.impact_y_m, d.impact_z_m, 1.0)
+        let (mut y_m, mut z_m, mut weight) = (zero, zero, zero);
+        match self.data.impact_nodes.as_ref() {
+            Some(n) => {
+                for (l, &i) in idx.iter().enumerate() {
+                    let node = &n[i][k];
+                    (y_m.0[l], z_m.0[l], weight.0[l]) = (node.y_m, node.z_m, node.weight);
                 }
-            };
-            let cf = match face {
-                None => cache.contacts[i * per + k].ok()?,
-                Some(f) => f.contact(y, z).ok()?,
-            };
-            for a in 0..3 {
-                s.point_m[a].0[l] = cf.point_m[a];
-                s.normal[a].0[l] = cf.normal[a];
-                s.tangent_y[a].0[l] = cf.tangent_y[a];
             }
-            s.tangent_z_xz[0].0[l] = cf.tangent_z.x;
-            s.tangent_z_xz[1].0[l] = cf.tangent_z.z;
-            s.y_m.0[l] = y;
-            s.z_m.0[l] = z;
-            s.weight.0[l] = w;
+            None => {
+                for (l, &i) in idx.iter().enumerate() {
+                    let d = &self.data.deliveries[i];
+                    (y_m.0[l], z_m.0[l], weight.0[l]) = (d.impact_y_m, d.impact_z_m, 1.0);
+                }
+            }
         }
-        Some(s)
+        let (on_face, cf) = face.unwrap_or(&cache.face).contact_on(y_m, z_m);
+        if (!on_face).any() {
+            return None;
+        }
+        Some(SiteLanes {
+            point_m: cf.point_m,
+            normal: cf.normal,
+            tangent_y: cf.tangent_y,
+            tangent_z_xz: [cf.tangent_z[0], cf.tangent_z[2]],
+            y_m,
+            z_m,
+            weight,
+        })
     }
 
     /// Adds one site's solution to `out`: its weighted share over the impact-location nodes, or
@@ -409,4 +409,61 @@ fn solve_lanes(
         -w[1],
     ];
     Some((launch, v, w))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The contact frames the lanes compute are the scalar [`FaceGeometry::contact`]'s, bit for
+    /// bit, across the face and just off it (where a lane off the face must be flagged), for
+    /// the paper driver's face and a flatter and a rounder one.
+    #[test]
+    fn lane_contact_frames_are_the_scalar_ones() {
+        let faces = [(0.3048, 0.2540), (0.5, 0.4), (0.12, 0.1)]
+            .map(|(b, r)| FaceGeometry::new(b, r).expect("valid face"));
+        let mut checked = (0, 0);
+        for face in &faces {
+            let roll = face.roll_m();
+            let bulge = face.bulge_m();
+            // Up to 10 % beyond the roll radius and the heel–toe radius, and some NaN.
+            let ys: Vec<f64> = (-44..=44).map(|k| roll * 1.1 * k as f64 / 40.0).collect();
+            let zs: Vec<f64> = (-44..=44).map(|k| bulge * 1.1 * k as f64 / 40.0).collect();
+            let mut pts: Vec<(f64, f64)> = ys
+                .iter()
+                .flat_map(|&y| zs.iter().map(move |&z| (y, z)))
+                .collect();
+            pts.extend([(f64::NAN, 0.0), (0.0, f64::NAN), (0.01, -0.02)]);
+            for quad in pts.chunks(W) {
+                let mut y = V::splat(0.0);
+                let mut z = V::splat(0.0);
+                for (l, &(a, b)) in quad.iter().enumerate() {
+                    (y.0[l], z.0[l]) = (a, b);
+                }
+                let (on_face, cf) = face.contact_on(y, z);
+                for (l, &(a, b)) in quad.iter().enumerate() {
+                    let on = on_face.0[l] != 0;
+                    match face.contact(a, b) {
+                        Err(_) => {
+                            assert!(!on, "({a}, {b}) is off the face");
+                            checked.1 += 1;
+                        }
+                        Ok(want) => {
+                            assert!(on, "({a}, {b}) is on the face");
+                            let got = [cf.point_m, cf.normal, cf.tangent_y, cf.tangent_z];
+                            let want = [want.point_m, want.normal, want.tangent_y, want.tangent_z];
+                            for (g, w) in got.iter().zip(&want) {
+                                for c in 0..3 {
+                                    assert_eq!(g[c].0[l].to_bits(), w[c].to_bits(), "({a}, {b})");
+                                }
+                            }
+                            checked.0 += 1;
+                        }
+                    }
+                }
+            }
+        }
+        // Both kinds of location were seen.
+        assert!(checked.0 > 10_000 && checked.1 > 100, "{checked:?}");
+    }
 }
