@@ -41,6 +41,9 @@
 //!    same size whose CV χ² is worse by less than `ln n` (`search/alias.rs`: the stand-in's
 //!    model is charged one parameter for the physics its value stands for). The rounds run
 //!    after a forward phase capped by `max_steps` too, and make at most `max_steps` changes.
+//!    When nothing else changes the selection, backward elimination (`search/earned.rs`)
+//!    removes an effect whose removal raises the held-out χ² by no more than its `k·ln n`
+//!    (the one that falls shortest), and the rounds run again.
 //!
 //! Delivery noise (club speed, loft, path, face, ...) biases a model evaluated at the measured
 //! delivery (errors in variables: flatter slopes than the model's), which over thousands of
@@ -419,6 +422,13 @@ pub fn diagnose(
         }
         // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
         let Some(more) = search.reselect(&candidates, steps.len())? else {
+            // Backward elimination: an effect the final model does not need is removed, and
+            // the rounds run again on the smaller model (`search/earned.rs`).
+            if let Some(step) = search.prune()? {
+                steps.push(step);
+                changes += 1;
+                continue;
+            }
             // The selection stands unless its final fit shows a stand-in the rounds did not
             // see: then the rounds run on that fit (`search/final_fit.rs`).
             if search.adopt_final_stand_ins(&mut checked)? {

@@ -20,6 +20,7 @@ use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
 
 mod alias;
+mod earned;
 mod final_fit;
 mod measure;
 mod reselect;
