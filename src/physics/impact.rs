@@ -502,13 +502,7 @@ impl ImpactModel {
             // to the stack for each lane vector the fits solve).
             let k = laws.collision.matrix(&r_c, &r_b);
             let (impulse, slipped) = laws.tangential.impulse::<R, FRICTION>(&k, n, &u1, u1n, e);
-            FiniteImpact {
-                impulse,
-                ball_angular_impulse: cross(&r_b, &impulse),
-                slipped,
-                r_c,
-                r_b,
-            }
+            FiniteImpact::at_first_contact(impulse, slipped, r_c, r_b)
         } else {
             laws.contact.impact(
                 |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {

@@ -48,6 +48,21 @@ pub struct FiniteImpact<R: Real> {
     pub r_b: Vec3<R>,
 }
 
+impl<R: Real> FiniteImpact<R> {
+    /// The instantaneous impact (`τ = 0`): the law's impulse `p` (and whether it slipped) at the
+    /// first contact, levers `r_c` (head) and `r_b` (ball) unmoved.
+    #[inline(always)]
+    pub fn at_first_contact(p: Vec3<R>, slipped: R::Mask, r_c: Vec3<R>, r_b: Vec3<R>) -> Self {
+        FiniteImpact {
+            impulse: p,
+            ball_angular_impulse: cross(&r_b, &p),
+            slipped,
+            r_c,
+            r_b,
+        }
+    }
+}
+
 /// A finite contact of duration `τ` (the `contact_time` effect), to first order in `τ`.
 ///
 /// The momentum model treats the impact as instantaneous. During a real contact of a few tenths
@@ -137,13 +152,7 @@ impl FiniteContact {
         let k = collision.matrix(&g.r_c, &g.r_b);
         let (p, slip) = impulse(&k, n, &g.u1, g.u1n);
         if self.tau_s == 0.0 {
-            return FiniteImpact {
-                impulse: p,
-                ball_angular_impulse: cross(&g.r_b, &p),
-                slipped: slip,
-                r_c: g.r_c,
-                r_b: g.r_b,
-            };
+            return FiniteImpact::at_first_contact(p, slip, g.r_c, g.r_b);
         }
         let jm: Sym3<R> = collision.club_inv_inertia.map(R::splat);
         let dw = sym_mul(&jm, &cross(&g.r_c, &p));
