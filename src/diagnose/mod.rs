@@ -175,6 +175,30 @@ pub struct CandidateResult {
 }
 
 impl CandidateResult {
+    /// A removal row of a step table (a swap round's or backward elimination's): the model
+    /// without `label`'s effects has CV χ² `cv_chi2`, `gain` against the current model, saves
+    /// `penalty` (negative), and RMS errors `rms_after` against the current model's `rms_now`.
+    pub(crate) fn removal(
+        label: &str,
+        (cv_chi2, gain, penalty): (f64, f64, f64),
+        rms_now: &[f64; 5],
+        rms_after: &[f64; 5],
+    ) -> Self {
+        CandidateResult {
+            label: format!("remove {label}"),
+            n_params: 0,
+            params: Vec::new(),
+            cv_chi2,
+            gain,
+            spread_gain: None,
+            penalty,
+            rms_reduction: std::array::from_fn(|c| (rms_now[c] - rms_after[c]) / rms_now[c]),
+            unidentified: Vec::new(),
+            converged: true,
+            failure: None,
+        }
+    }
+
     /// `gain − penalty`.
     pub fn margin(&self) -> f64 {
         self.gain - self.penalty

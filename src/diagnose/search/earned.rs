@@ -20,6 +20,7 @@ use nalgebra::DVector;
 use rayon::prelude::*;
 
 use super::super::evaluate::{self, cv_chi2};
+use super::super::select::by_margin;
 use super::super::{CandidateResult, Step, Swap};
 use super::Search;
 use crate::fit::calibrate::noise_scales;
@@ -125,22 +126,14 @@ impl Search<'_> {
         for t in &tests {
             let after = self.errors_of(&t.without.0, t.without.1.as_slice())?;
             let rms_after = evaluate::rms_per_component(&after);
-            candidates.push(CandidateResult {
-                label: format!("remove {}", self.selected[t.index].label()),
-                n_params: 0,
-                params: Vec::new(),
-                cv_chi2: t.cv_without,
-                gain: -t.cv_loss,
-                spread_gain: None,
-                penalty: -t.penalty,
-                rms_reduction: std::array::from_fn(|c| (rms[c] - rms_after[c]) / rms[c]),
-                unidentified: Vec::new(),
-                converged: true,
-                failure: None,
-            });
+            candidates.push(CandidateResult::removal(
+                &self.selected[t.index].label(),
+                (t.cv_without, -t.cv_loss, -t.penalty),
+                &rms,
+                &rms_after,
+            ));
         }
-        let mut order: Vec<usize> = (0..candidates.len()).collect();
-        order.sort_by(|&a, &b| candidates[b].margin().total_cmp(&candidates[a].margin()));
+        let order = by_margin(&candidates);
         let base_labels: Vec<String> = self.selected.iter().map(|r| r.label()).collect();
         let t = &tests[worst];
         let out = self.selected[t.index].clone();

@@ -366,19 +366,16 @@ impl Search<'_> {
             outs,
             ins: Vec::new(),
             k_net: -(r.k_out as f64),
-            result: CandidateResult {
-                label: format!("remove {label}"),
-                n_params: 0,
-                params: Vec::new(),
-                cv_chi2: r.cv,
-                gain: rb.cv - r.cv,
-                spread_gain: None,
-                penalty: -(r.k_out as f64) * self.penalty_per_param,
-                rms_reduction: std::array::from_fn(|c| (rb.rms[c] - rms[c]) / rb.rms[c]),
-                unidentified: Vec::new(),
-                converged: true,
-                failure: None,
-            },
+            result: CandidateResult::removal(
+                &label,
+                (
+                    r.cv,
+                    rb.cv - r.cv,
+                    -(r.k_out as f64) * self.penalty_per_param,
+                ),
+                &rb.rms,
+                &rms,
+            ),
             fit: None,
         }
     }
