@@ -17,12 +17,23 @@
 //! for issue 11 and not adopted (README, "Ball flight"). `-- --wide` widens the window grid
 //! (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
 //! `RE_LOW` edge. Every run ends with the fitted point's PGA rows, club by club.
+//!
+//! `-- --joint` is the calibration on all three TrackMan tables (issue 11), its family and
+//! objective fixed before any of its results were seen: the floored family above with the
+//! Reynolds window confined to the measured drag-crisis region (`RE_HIGH` ≤ 10⁵, as in Lyu et
+//! al. 2018, Nathan's calculator and Bearman & Harvey 1976), i.e. `C_D = smax(C_D,fmm(S) +
+//! DS·S, 0.212 + 0.15·S) + DR·r(Re)`, `C_L = C_L,fmm(S)·(1 − LL·r(Re))`, five free constants on
+//! the grid above (`RE_LOW` 2–8·10⁴, `RE_HIGH` 8·10⁴–10⁵, at least 2·10⁴ apart); objective the
+//! same Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)², summed over the 35
+//! rows of the PGA, PGA 2023 and LPGA 2023 tables (default atmosphere, default step). It then
+//! validates by leave-one-table-out: refit on two tables (same grid, same objective), predict
+//! the third, for each of the three.
 
 use rayon::prelude::*;
 use smash::flight::aero::Fmm2022ReFamily;
 use smash::flight::integrate::fly_with;
 use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
-use smash::flight::FlightConfig;
+use smash::flight::{FlightConfig, FlightLaunch};
 
 fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
     let ls: Vec<_> = rows.iter().map(|r| r.launch()).collect();
@@ -123,7 +134,90 @@ fn grid(drag_floor: bool, lo_max: u32, hi_max: u32) -> Vec<Fmm2022ReFamily> {
     grid
 }
 
+/// The three TrackMan tables the project has.
+const TABLES: [(&str, &[TourAverage]); 3] = [
+    ("PGA", &PGA_TOUR),
+    ("PGA 2023", &PGA_TOUR_2023),
+    ("LPGA 2023", &LPGA_TOUR_2023),
+];
+
+/// The objective of `m` on each of [`TABLES`] (one flight call over all their rows).
+fn table_objectives(m: &Fmm2022ReFamily, launches: &[FlightLaunch]) -> [f64; 3] {
+    let flights = fly_with(&FlightConfig::default(), m, launches);
+    let mut out = [0.0; 3];
+    let mut k = 0;
+    for (t, (_, rows)) in TABLES.iter().enumerate() {
+        for r in rows.iter() {
+            let f = flights[k].as_ref().expect("the table's launches land");
+            let c = 100.0 * (f.carry_yd() / r.carry_yd - 1.0);
+            let l = (f.land_angle_deg() - r.land_angle_deg) / 2.0;
+            let a = (f.apex_yd() - r.max_height_yd) / 2.0;
+            out[t] += c * c + l * l + a * a;
+            k += 1;
+        }
+    }
+    out
+}
+
+/// The grid point minimising the summed objective over the tables `fit` marks (the first
+/// such point in grid order on a tie).
+fn best_on(grid: &[Fmm2022ReFamily], scores: &[[f64; 3]], fit: [bool; 3]) -> (usize, f64) {
+    let sum = |s: &[f64; 3]| (0..3).filter(|&t| fit[t]).map(|t| s[t]).sum::<f64>();
+    let mut best = (0, f64::INFINITY);
+    for (i, s) in scores.iter().enumerate() {
+        if sum(s) < best.1 {
+            best = (i, sum(s));
+        }
+    }
+    assert!(best.0 < grid.len());
+    best
+}
+
+/// `--joint`: the fit on all three tables and its leave-one-table-out validation.
+fn joint() {
+    let grid = grid(true, 8, 10);
+    let launches: Vec<FlightLaunch> = TABLES
+        .iter()
+        .flat_map(|(_, rows)| rows.iter().map(|r| r.launch()))
+        .collect();
+    let scores: Vec<[f64; 3]> = grid
+        .par_iter()
+        .map(|m| table_objectives(m, &launches))
+        .collect();
+    let (i, f) = best_on(&grid, &scores, [true; 3]);
+    println!(
+        "{} candidates; joint fit (all three tables): {:?}, objective {f:.2} (per table {:.2?})",
+        grid.len(),
+        grid[i],
+        scores[i]
+    );
+    for (table, rows) in TABLES {
+        report(
+            &format!("joint fit, {table:9} (in sample)"),
+            &errors(&grid[i], rows),
+        );
+    }
+    for held in 0..3 {
+        let mut fit = [true; 3];
+        fit[held] = false;
+        let (j, f) = best_on(&grid, &scores, fit);
+        println!(
+            "leave out {}: fit {:?}, objective {f:.2}",
+            TABLES[held].0, grid[j]
+        );
+        for (t, (table, rows)) in TABLES.iter().enumerate() {
+            let tag = if t == held { "held out" } else { "in sample" };
+            report(&format!("  {table:9} ({tag})"), &errors(&grid[j], rows));
+        }
+    }
+    clubs(&grid[i]);
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "--joint") {
+        joint();
+        return;
+    }
     let drag_floor = std::env::args().any(|a| a == "--floor");
     let wide = std::env::args().any(|a| a == "--wide");
     let grid = if wide {
