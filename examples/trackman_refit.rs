@@ -1,33 +1,32 @@
-//! The fit behind the default aerodynamic model `fmm2022-re`: Ferguson, McNally & McPhee's
-//! (2022) quadratics with a low-Reynolds drag rise, fitted to TrackMan's 2023 LPGA Tour
-//! averages only, then validated on the PGA Tour tables (which the fit never sees).
-//!
-//! `cargo run --release --example trackman_refit` (about a minute on two cores).
+//! The fits behind the built-in models: `fmm2022-tour` (the default, `-- --joint`) and
+//! `fmm2022-re` (no flag), both in one family around Ferguson, McNally & McPhee's (2022)
+//! quadratics.
 //!
 //! Family: `C_D = C_D,fmm(S) + DS·S + DR·r(Re)`, `C_L = C_L,fmm(S)·(1 − LL·r(Re))`, with
 //! `r` the smoothstep `3t² − 2t³` of `t = clamp((RE_HIGH − Re)/(RE_HIGH − RE_LOW), 0, 1)` (a
-//! ramp with a continuous slope, so fixed-step RK4 keeps its accuracy through it). Grid: `DR`
+//! ramp with a continuous slope, so fixed-step RK4 keeps its accuracy through it); with the
+//! floor (`--floor`, `--joint`) the spin part of the drag is held above the still-air
+//! super-critical drag of modern balls, `C_D = smax(C_D,fmm(S) + DS·S, 0.212 + 0.15·S) +
+//! DR·r(Re)` (Lyu et al. 2018 as Nathan's calculator takes it; a smooth maximum). Grid: `DR`
 //! 0–0.40 by 0.01, `LL` 0–1 by 0.05, `DS` −0.40–0.40 by 0.05, `RE_LOW` 2–8·10⁴ and `RE_HIGH`
-//! 8·10⁴–2·10⁵ by 10⁴. Objective on the 11 LPGA rows, default atmosphere:
-//! Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)².
+//! 8·10⁴–2·10⁵ by 10⁴ (the window at least 2·10⁴ wide). Objective, default atmosphere and
+//! step: Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)² over a set of
+//! TrackMan rows.
 //!
-//! `-- --floor` fits the same family with the spin part of the drag held above the still-air
-//! super-critical drag of modern balls (`C_D ≥ 0.212 + 0.15·S`, Lyu et al. 2018 as Nathan's
-//! calculator takes it; a smooth maximum), the Reynolds rise added on top: the refit examined
-//! for issue 11 and not adopted (README, "Ball flight"). `-- --wide` widens the window grid
-//! (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
-//! `RE_LOW` edge. Every run ends with the fitted point's PGA rows, club by club.
-//!
-//! `-- --joint` is the calibration on all three TrackMan tables (issue 11), its family and
-//! objective fixed before any of its results were seen: the floored family above with the
-//! Reynolds window confined to the measured drag-crisis region (`RE_HIGH` ≤ 10⁵, as in Lyu et
-//! al. 2018, Nathan's calculator and Bearman & Harvey 1976), i.e. `C_D = smax(C_D,fmm(S) +
-//! DS·S, 0.212 + 0.15·S) + DR·r(Re)`, `C_L = C_L,fmm(S)·(1 − LL·r(Re))`, five free constants on
-//! the grid above (`RE_LOW` 2–8·10⁴, `RE_HIGH` 8·10⁴–10⁵, at least 2·10⁴ apart); objective the
-//! same Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)², summed over the 35
-//! rows of the PGA, PGA 2023 and LPGA 2023 tables (default atmosphere, default step). It then
-//! validates by leave-one-table-out: refit on two tables (same grid, same objective), predict
-//! the third, for each of the three.
+//! - `-- --joint` (about a minute on two cores): `fmm2022-tour`, the calibration on all three
+//!   TrackMan tables (issue 11), its family and objective fixed before any of its results were
+//!   seen: the floored family with the Reynolds window confined to the measured drag-crisis
+//!   region (`RE_HIGH` ≤ 10⁵, as in Lyu et al. 2018, Nathan's calculator and Bearman & Harvey
+//!   1976; 263,466 candidates), the objective summed over the 35 rows of the PGA, PGA 2023 and
+//!   LPGA 2023 tables. It then validates by leave-one-table-out: refit on two tables (same
+//!   grid, same objective), predict the third, for each of the three; and prints every
+//!   table's rows club by club.
+//! - no flag: `fmm2022-re`, the floorless family fitted to the 11 LPGA rows only, then flown
+//!   on the PGA tables.
+//! - `-- --floor`: the floored family fitted to the LPGA rows only, the refit examined for
+//!   issue 11 and not adopted (README, "Ball flight"); `-- --wide` widens the window grid
+//!   (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
+//!   `RE_LOW` edge. These runs end with the fitted point's PGA rows, club by club.
 
 use rayon::prelude::*;
 use smash::flight::aero::Fmm2022ReFamily;
@@ -51,9 +50,10 @@ fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The fitted model's PGA rows, club by club, at the default step and a 16 times finer one.
-fn clubs(m: &Fmm2022ReFamily) {
-    let ls: Vec<_> = PGA_TOUR.iter().map(|r| r.launch()).collect();
+/// The fitted model's rows of a table, club by club, at the default step and a 16 times finer
+/// one.
+fn clubs(m: &Fmm2022ReFamily, table: &str, rows: &[TourAverage]) {
+    let ls: Vec<_> = rows.iter().map(|r| r.launch()).collect();
     let fine = FlightConfig {
         dt_s: Some(0.35 / 16.0),
         ..FlightConfig::default()
@@ -63,9 +63,9 @@ fn clubs(m: &Fmm2022ReFamily) {
         fly_with(&fine, m, &ls),
     );
     println!(
-        "PGA club: carry yd (TM), land ° (TM), apex yd (TM); at a 16x finer step: carry, land"
+        "{table} club: carry yd (TM), land ° (TM), apex yd (TM); at a 16x finer step: carry, land"
     );
-    for ((r, c), f) in PGA_TOUR.iter().zip(&coarse).zip(&fine) {
+    for ((r, c), f) in rows.iter().zip(&coarse).zip(&fine) {
         let (c, f) = (c.as_ref().expect("lands"), f.as_ref().expect("lands"));
         println!(
             "{:8} {:6.2} ({:3}) {:+5.1} %  {:5.2} ({:2})  {:4.1} ({:2});  {:6.2} {:5.2}",
@@ -210,7 +210,9 @@ fn joint() {
             report(&format!("  {table:9} ({tag})"), &errors(&grid[j], rows));
         }
     }
-    clubs(&grid[i]);
+    for (table, rows) in TABLES {
+        clubs(&grid[i], table, rows);
+    }
 }
 
 fn main() {
@@ -254,5 +256,5 @@ fn main() {
         report(&format!("fmm2022    {table}"), &errors(&none, rows));
         report(&format!("{name:10} {table}"), &errors(&best.1, rows));
     }
-    clubs(&best.1);
+    clubs(&best.1, "PGA", &PGA_TOUR);
 }
