@@ -213,7 +213,7 @@ impl CoefficientModel for Fmm2022 {
 /// A caveat found since: Bearman & Harvey's spinning-ball data show no Reynolds rise of `C_D`
 /// above `Re` ≈ 6·10⁴ once the spin factor is accounted for, and a drag slope in `S` close to
 /// `fmm2022`'s, so this window (reaching 1.5·10⁵) is an empirical correction fitted to
-/// TrackMan's descents rather than the measured crisis (README, "Why the driver lands steep").
+/// TrackMan's descents rather than the measured crisis (README, "Ball flight", earlier attempts).
 /// `fmm2022` has no Reynolds term, so its steep drag slope in spin factor (0.93 per unit `S`,
 /// where still-air measurements give about 0.15) stands in for it: high `S` and low speed come
 /// together late in flight. Here part of that slope is moved onto `Re`:
