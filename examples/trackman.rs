@@ -1,7 +1,7 @@
 //! Fly TrackMan's PGA Tour averages and print the per-club errors (the README table).
 //!
 //! `cargo run --release --example trackman -- [MODEL] [TEMPERATURE_C] [ELEVATION_M] [RH_PCT]`
-//! (defaults: fmm2022-re and the default atmosphere).
+//! (defaults: fmm2022-tour and the default atmosphere).
 
 use smash::flight::trackman::PGA_TOUR;
 use smash::flight::{fly, AeroModel, Atmosphere, FlightConfig};
@@ -20,7 +20,7 @@ fn main() {
         atm.humidity_pct = rh;
     }
     let mut cfg = FlightConfig {
-        aero: AeroModel::from_name(args.first().map(String::as_str).unwrap_or("fmm2022-re"))
+        aero: AeroModel::from_name(args.first().map(String::as_str).unwrap_or("fmm2022-tour"))
             .expect("a model name"),
         air: atm.air().expect("a valid atmosphere"),
         ..FlightConfig::default()

@@ -1,28 +1,38 @@
-//! The fit behind the default aerodynamic model `fmm2022-re`: Ferguson, McNally & McPhee's
-//! (2022) quadratics with a low-Reynolds drag rise, fitted to TrackMan's 2023 LPGA Tour
-//! averages only, then validated on the PGA Tour tables (which the fit never sees).
-//!
-//! `cargo run --release --example trackman_refit` (about a minute on two cores).
+//! The fits behind the built-in models: `fmm2022-tour` (the default, `-- --joint`) and
+//! `fmm2022-re` (no flag), both in one family around Ferguson, McNally & McPhee's (2022)
+//! quadratics.
 //!
 //! Family: `C_D = C_D,fmm(S) + DS·S + DR·r(Re)`, `C_L = C_L,fmm(S)·(1 − LL·r(Re))`, with
 //! `r` the smoothstep `3t² − 2t³` of `t = clamp((RE_HIGH − Re)/(RE_HIGH − RE_LOW), 0, 1)` (a
-//! ramp with a continuous slope, so fixed-step RK4 keeps its accuracy through it). Grid: `DR`
+//! ramp with a continuous slope, so fixed-step RK4 keeps its accuracy through it); with the
+//! floor (`--floor`, `--joint`) the spin part of the drag is held above the still-air
+//! super-critical drag of modern balls, `C_D = smax(C_D,fmm(S) + DS·S, 0.212 + 0.15·S) +
+//! DR·r(Re)` (Lyu et al. 2018 as Nathan's calculator takes it; a smooth maximum). Grid: `DR`
 //! 0–0.40 by 0.01, `LL` 0–1 by 0.05, `DS` −0.40–0.40 by 0.05, `RE_LOW` 2–8·10⁴ and `RE_HIGH`
-//! 8·10⁴–2·10⁵ by 10⁴. Objective on the 11 LPGA rows, default atmosphere:
-//! Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)².
+//! 8·10⁴–2·10⁵ by 10⁴ (the window at least 2·10⁴ wide). Objective, default atmosphere and
+//! step: Σ (carry error %)² + (land-angle error °/2)² + (apex error yd/2)² over a set of
+//! TrackMan rows.
 //!
-//! `-- --floor` fits the same family with the spin part of the drag held above the still-air
-//! super-critical drag of modern balls (`C_D ≥ 0.212 + 0.15·S`, Lyu et al. 2018 as Nathan's
-//! calculator takes it; a smooth maximum), the Reynolds rise added on top: the refit examined
-//! for issue 11 and not adopted (README, "Ball flight"). `-- --wide` widens the window grid
-//! (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
-//! `RE_LOW` edge. Every run ends with the fitted point's PGA rows, club by club.
+//! - `-- --joint` (about a minute on two cores): `fmm2022-tour`, the calibration on all three
+//!   TrackMan tables (issue 11), its family and objective fixed before any of its results were
+//!   seen: the floored family with the Reynolds window confined to the measured drag-crisis
+//!   region (`RE_HIGH` ≤ 10⁵, as in Lyu et al. 2018, Nathan's calculator and Bearman & Harvey
+//!   1976; 263,466 candidates), the objective summed over the 35 rows of the PGA, PGA 2023 and
+//!   LPGA 2023 tables. It then validates by leave-one-table-out: refit on two tables (same
+//!   grid, same objective), predict the third, for each of the three; and prints every
+//!   table's rows club by club.
+//! - no flag: `fmm2022-re`, the floorless family fitted to the 11 LPGA rows only, then flown
+//!   on the PGA tables.
+//! - `-- --floor`: the floored family fitted to the LPGA rows only, the refit examined for
+//!   issue 11 and not adopted (README, "Ball flight"); `-- --wide` widens the window grid
+//!   (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
+//!   `RE_LOW` edge. These runs end with the fitted point's PGA rows, club by club.
 
 use rayon::prelude::*;
 use smash::flight::aero::Fmm2022ReFamily;
 use smash::flight::integrate::fly_with;
 use smash::flight::trackman::{TourAverage, LPGA_TOUR_2023, PGA_TOUR, PGA_TOUR_2023};
-use smash::flight::FlightConfig;
+use smash::flight::{FlightConfig, FlightLaunch};
 
 fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
     let ls: Vec<_> = rows.iter().map(|r| r.launch()).collect();
@@ -40,9 +50,10 @@ fn errors(m: &Fmm2022ReFamily, rows: &[TourAverage]) -> Vec<[f64; 3]> {
         .collect()
 }
 
-/// The fitted model's PGA rows, club by club, at the default step and a 16 times finer one.
-fn clubs(m: &Fmm2022ReFamily) {
-    let ls: Vec<_> = PGA_TOUR.iter().map(|r| r.launch()).collect();
+/// The fitted model's rows of a table, club by club, at the default step and a 16 times finer
+/// one.
+fn clubs(m: &Fmm2022ReFamily, table: &str, rows: &[TourAverage]) {
+    let ls: Vec<_> = rows.iter().map(|r| r.launch()).collect();
     let fine = FlightConfig {
         dt_s: Some(0.35 / 16.0),
         ..FlightConfig::default()
@@ -52,9 +63,9 @@ fn clubs(m: &Fmm2022ReFamily) {
         fly_with(&fine, m, &ls),
     );
     println!(
-        "PGA club: carry yd (TM), land ° (TM), apex yd (TM); at a 16x finer step: carry, land"
+        "{table} club: carry yd (TM), land ° (TM), apex yd (TM); at a 16x finer step: carry, land"
     );
-    for ((r, c), f) in PGA_TOUR.iter().zip(&coarse).zip(&fine) {
+    for ((r, c), f) in rows.iter().zip(&coarse).zip(&fine) {
         let (c, f) = (c.as_ref().expect("lands"), f.as_ref().expect("lands"));
         println!(
             "{:8} {:6.2} ({:3}) {:+5.1} %  {:5.2} ({:2})  {:4.1} ({:2});  {:6.2} {:5.2}",
@@ -123,7 +134,92 @@ fn grid(drag_floor: bool, lo_max: u32, hi_max: u32) -> Vec<Fmm2022ReFamily> {
     grid
 }
 
+/// The three TrackMan tables the project has.
+const TABLES: [(&str, &[TourAverage]); 3] = [
+    ("PGA", &PGA_TOUR),
+    ("PGA 2023", &PGA_TOUR_2023),
+    ("LPGA 2023", &LPGA_TOUR_2023),
+];
+
+/// The objective of `m` on each of [`TABLES`] (one flight call over all their rows).
+fn table_objectives(m: &Fmm2022ReFamily, launches: &[FlightLaunch]) -> [f64; 3] {
+    let flights = fly_with(&FlightConfig::default(), m, launches);
+    let mut out = [0.0; 3];
+    let mut k = 0;
+    for (t, (_, rows)) in TABLES.iter().enumerate() {
+        for r in rows.iter() {
+            let f = flights[k].as_ref().expect("the table's launches land");
+            let c = 100.0 * (f.carry_yd() / r.carry_yd - 1.0);
+            let l = (f.land_angle_deg() - r.land_angle_deg) / 2.0;
+            let a = (f.apex_yd() - r.max_height_yd) / 2.0;
+            out[t] += c * c + l * l + a * a;
+            k += 1;
+        }
+    }
+    out
+}
+
+/// The grid point minimising the summed objective over the tables `fit` marks (the first
+/// such point in grid order on a tie).
+fn best_on(grid: &[Fmm2022ReFamily], scores: &[[f64; 3]], fit: [bool; 3]) -> (usize, f64) {
+    let sum = |s: &[f64; 3]| (0..3).filter(|&t| fit[t]).map(|t| s[t]).sum::<f64>();
+    let mut best = (0, f64::INFINITY);
+    for (i, s) in scores.iter().enumerate() {
+        if sum(s) < best.1 {
+            best = (i, sum(s));
+        }
+    }
+    assert!(best.0 < grid.len());
+    best
+}
+
+/// `--joint`: the fit on all three tables and its leave-one-table-out validation.
+fn joint() {
+    let grid = grid(true, 8, 10);
+    let launches: Vec<FlightLaunch> = TABLES
+        .iter()
+        .flat_map(|(_, rows)| rows.iter().map(|r| r.launch()))
+        .collect();
+    let scores: Vec<[f64; 3]> = grid
+        .par_iter()
+        .map(|m| table_objectives(m, &launches))
+        .collect();
+    let (i, f) = best_on(&grid, &scores, [true; 3]);
+    println!(
+        "{} candidates; joint fit (all three tables): {:?}, objective {f:.2} (per table {:.2?})",
+        grid.len(),
+        grid[i],
+        scores[i]
+    );
+    for (table, rows) in TABLES {
+        report(
+            &format!("joint fit, {table:9} (in sample)"),
+            &errors(&grid[i], rows),
+        );
+    }
+    for held in 0..3 {
+        let mut fit = [true; 3];
+        fit[held] = false;
+        let (j, f) = best_on(&grid, &scores, fit);
+        println!(
+            "leave out {}: fit {:?}, objective {f:.2}",
+            TABLES[held].0, grid[j]
+        );
+        for (t, (table, rows)) in TABLES.iter().enumerate() {
+            let tag = if t == held { "held out" } else { "in sample" };
+            report(&format!("  {table:9} ({tag})"), &errors(&grid[j], rows));
+        }
+    }
+    for (table, rows) in TABLES {
+        clubs(&grid[i], table, rows);
+    }
+}
+
 fn main() {
+    if std::env::args().any(|a| a == "--joint") {
+        joint();
+        return;
+    }
     let drag_floor = std::env::args().any(|a| a == "--floor");
     let wide = std::env::args().any(|a| a == "--wide");
     let grid = if wide {
@@ -160,5 +256,5 @@ fn main() {
         report(&format!("fmm2022    {table}"), &errors(&none, rows));
         report(&format!("{name:10} {table}"), &errors(&best.1, rows));
     }
-    clubs(&best.1);
+    clubs(&best.1, "PGA", &PGA_TOUR);
 }

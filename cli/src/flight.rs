@@ -14,13 +14,15 @@ use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
 pub struct FlightOptions {
-    /// Aerodynamic coefficient model: fmm2022-re (default: Ferguson, McNally & McPhee 2022 with
-    /// a low-Reynolds drag rise fitted to TrackMan's LPGA averages), fmm2022 (as published),
-    /// nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with spin_factor, cd,
-    /// cl and optionally cm, reynolds).
+    /// Aerodynamic coefficient model: fmm2022-tour (default: Ferguson, McNally & McPhee 2022
+    /// held above the still-air drag, with a drag rise and lift loss across the drag crisis,
+    /// calibrated on TrackMan's PGA, PGA 2023 and LPGA 2023 averages), fmm2022-re (the same
+    /// quadratics with a low-Reynolds drag rise fitted to the LPGA averages), fmm2022 (as
+    /// published), nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with
+    /// spin_factor, cd, cl and optionally cm, reynolds).
     #[arg(
         long,
-        default_value = "fmm2022-re",
+        default_value = "fmm2022-tour",
         value_name = "NAME",
         help_heading = "Flight"
     )]

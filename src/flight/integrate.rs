@@ -19,7 +19,7 @@
 
 use rayon::prelude::*;
 
-use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, NathanLyu};
+use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, Fmm2022Tour, NathanLyu};
 use super::hermite::Hermite;
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use crate::lanes::{V, W};
@@ -67,6 +67,7 @@ pub fn fly_serial(
 ) {
     let wind = cfg.air.has_wind();
     match &cfg.aero {
+        AeroModel::Fmm2022Tour => dispatch(cfg, &Fmm2022Tour, wind, launches, out),
         AeroModel::Fmm2022Re => dispatch(cfg, &Fmm2022Re, wind, launches, out),
         AeroModel::Fmm2022 => dispatch(cfg, &Fmm2022, wind, launches, out),
         AeroModel::NathanLyu => dispatch(cfg, &NathanLyu, wind, launches, out),

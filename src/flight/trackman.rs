@@ -1,5 +1,7 @@
-//! TrackMan's PGA Tour averages, driver to pitching wedge: the validation data of the flight
-//! model.
+//! TrackMan's tour averages, driver to pitching wedge (PGA Tour, 2023 PGA Tour, 2023 LPGA
+//! Tour): the data the default aerodynamic model `fmm2022-tour` is calibrated on, all three
+//! tables, and validated on leave-one-table-out (README, "Ball flight"; `fmm2022-re` was
+//! fitted to the LPGA table only).
 //!
 //! Source: TrackMan's "Tour averages" table for the PGA Tour (the updated table of about 2014,
 //! published by TrackMan as an image on trackman.com and reproduced widely, e.g. Golf Monthly,
@@ -105,8 +107,7 @@ pub const PGA_TOUR: [TourAverage; 12] = [
 /// Tour averages", TrackMan blog (trackman.com/blog/introducing-updated-tour-averages, 2024;
 /// 2023 season, 200+ PGA Tour and DP World Tour players), published as an image; the rows
 /// below are a transcription of it (cross-checked against a second, independent
-/// transcription for driver to 4-iron). A newer edition of the validation table: not used to
-/// fit anything, a second validation.
+/// transcription for driver to 4-iron). A newer edition of [`PGA_TOUR`].
 pub const PGA_TOUR_2023: [TourAverage; 12] = [
     row(
         "Driver",
@@ -160,8 +161,7 @@ pub const PGA_TOUR_2023: [TourAverage; 12] = [
 
 /// TrackMan's 2023 LPGA Tour averages (same source as [`PGA_TOUR_2023`]; 150+ LPGA and Ladies
 /// European Tour players; the table has no 3-iron). Ball speeds 88–143 mph, so lower Reynolds
-/// numbers than the PGA rows: the data set the Reynolds correction of `fmm2022-re` is fitted
-/// to (see `super::aero`).
+/// numbers than the PGA rows (the only table `fmm2022-re` is fitted to; see `super::aero`).
 pub const LPGA_TOUR_2023: [TourAverage; 11] = [
     row(
         "Driver",

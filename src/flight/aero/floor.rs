@@ -1,11 +1,12 @@
 //! The still-air drag floor: the super-critical drag of modern golf balls measured in still
 //! air, as a law in spin factor, and the smooth maximum that holds a fitted drag above it.
 //!
-//! No built-in model uses it: it is the floor of the examined, not adopted, refit of
-//! `fmm2022-re`'s family ([`super::Fmm2022ReFamily::drag_floor`];
-//! `cargo run --release --example trackman_refit -- --floor`; README, "Ball flight").
+//! The default model `fmm2022-tour` ([`super::Fmm2022Tour`]) holds its spin drag above it; in
+//! the family both it and `fmm2022-re` come from it is [`super::Fmm2022ReFamily::drag_floor`]
+//! (`cargo run --release --example trackman_refit -- --joint`; README, "Ball flight").
 
 use super::NathanLyu;
+use crate::lanes::V;
 
 /// The still-air super-critical drag of modern golf balls, `C_D = 0.212 + 0.15·S`: the
 /// high-Reynolds branch of A. M. Nathan's trajectory calculator (and libgolf), built on the
@@ -43,6 +44,17 @@ impl DragFloor {
     pub fn smooth_max(a: f64, b: f64) -> f64 {
         let k = Self::BLEND;
         let h = (0.5 + 0.5 * (a - b) / k).clamp(0.0, 1.0);
+        b + (a - b) * h + k * h * (1.0 - h)
+    }
+
+    /// [`Self::smooth_max`] on lanes (same operations, same bits).
+    #[inline(always)]
+    pub fn smooth_max_v(a: V, b: V) -> V {
+        let k = Self::BLEND;
+        let h = 0.5 + 0.5 * (a - b) / k;
+        let (zero, one) = (V::splat(0.0), V::splat(1.0));
+        let h = h.lt(zero).select(zero, h);
+        let h = h.gt(one).select(one, h);
         b + (a - b) * h + k * h * (1.0 - h)
     }
 }

@@ -16,11 +16,17 @@
 //!   blend with a continuous slope ([`Fmm2022::held_spin_factor`]); below the start of the
 //!   range (`S` = 0.02) the lift is tapered smoothly to zero at `S` = 0, since a ball that
 //!   does not spin has no Magnus lift ([`Fmm2022::lift_taper`]).
-//! - `fmm2022-re` (default): `fmm2022` with its drag split into a spin part and a low-Reynolds
-//!   part, `C_D = C_D,fmm(S) − 0.20·S + 0.20·r(Re)` with `r` = 1 below `Re` = 4·10⁴ falling
-//!   smoothly to 0 at `Re` = 1.5·10⁵; lift and moment as `fmm2022` ([`Fmm2022Re`]). The
-//!   constants are fitted to TrackMan's 2023 LPGA Tour averages, not to the PGA Tour table it
-//!   is validated on (`examples/trackman_refit.rs` reproduces the fit).
+//! - `fmm2022-tour` (default): `fmm2022` with the spin part of its drag held above the
+//!   still-air drag of modern balls, `C_D = smax(C_D,fmm(S) − 0.15·S, 0.212 + 0.15·S) +
+//!   0.04·r(Re)`, `C_L = C_L,fmm(S)·(1 − 0.60·r(Re))`, `r` = 1 below `Re` = 7·10⁴ falling
+//!   smoothly to 0 at `Re` = 10⁵ (the measured drag crisis); moment as `fmm2022`
+//!   ([`Fmm2022Tour`]). The constants are calibrated on all three TrackMan tour tables,
+//!   disclosed, and validated leave-one-table-out (`examples/trackman_refit.rs --joint`).
+//! - `fmm2022-re` (the default before): `fmm2022` with its drag split into a spin part and a
+//!   low-Reynolds part, `C_D = C_D,fmm(S) − 0.20·S + 0.20·r(Re)` with `r` = 1 below `Re` =
+//!   4·10⁴ falling smoothly to 0 at `Re` = 1.5·10⁵; lift and moment as `fmm2022`
+//!   ([`Fmm2022Re`]). The constants are fitted to TrackMan's 2023 LPGA Tour averages only
+//!   (`examples/trackman_refit.rs` reproduces the fit).
 //! - `nathan-lyu`: a Reynolds-dependent law with a drag crisis: `C_D` 0.500 below
 //!   `Re` = 5·10⁴ falling linearly to 0.212 at `Re` = 10⁵ (and above), plus 0.15·`S`;
 //!   `C_L = 1.99·S − 3.25·S²` up to `S` = 0.3, 0.305 above. This is the form of A. M. Nathan's
@@ -41,8 +47,10 @@ use crate::lanes::{V, W};
 
 mod floor;
 mod table;
+mod tour;
 pub use floor::DragFloor;
 pub use table::TableModel;
+pub use tour::Fmm2022Tour;
 
 /// Drag, lift and moment coefficients (dimensionless).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,7 +204,8 @@ impl CoefficientModel for Fmm2022 {
     }
 }
 
-/// [`Fmm2022`] with a low-Reynolds drag rise (the `fmm2022-re` model, the default).
+/// [`Fmm2022`] with a low-Reynolds drag rise (the `fmm2022-re` model, the default before
+/// [`Fmm2022Tour`]).
 ///
 /// Why: every ball lands at `Re` ≈ 5–8·10⁴, where dimpled balls' drag rises as the flow
 /// nears the drag crisis (P. W. Bearman & J. K. Harvey, "Golf ball aerodynamics", Aeronautical
@@ -204,7 +213,7 @@ impl CoefficientModel for Fmm2022 {
 /// A caveat found since: Bearman & Harvey's spinning-ball data show no Reynolds rise of `C_D`
 /// above `Re` ≈ 6·10⁴ once the spin factor is accounted for, and a drag slope in `S` close to
 /// `fmm2022`'s, so this window (reaching 1.5·10⁵) is an empirical correction fitted to
-/// TrackMan's descents rather than the measured crisis (README, "Why the driver lands steep").
+/// TrackMan's descents rather than the measured crisis (README, "Ball flight", earlier attempts).
 /// `fmm2022` has no Reynolds term, so its steep drag slope in spin factor (0.93 per unit `S`,
 /// where still-air measurements give about 0.15) stands in for it: high `S` and low speed come
 /// together late in flight. Here part of that slope is moved onto `Re`:
@@ -242,7 +251,8 @@ impl Fmm2022Re {
 /// [`Fmm2022ReFamily::FITTED`]; `examples/trackman_refit.rs` searches it and `tests/flight.rs`
 /// checks that the fitted point is a minimum of the fit's objective. With
 /// [`Fmm2022ReFamily::drag_floor`] the spin part of the drag is first held above the still-air
-/// drag of modern balls ([`DragFloor`]; examined, not adopted).
+/// drag of modern balls ([`DragFloor`]): the family of the default [`Fmm2022Tour`]
+/// ([`Fmm2022Tour::FAMILY`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fmm2022ReFamily {
     /// Drag added below `re_low` (`DR`).
@@ -258,8 +268,7 @@ pub struct Fmm2022ReFamily {
     /// Whether the spin part of the drag, `C_D,fmm(S) + DS·S`, is held above the still-air
     /// super-critical drag of modern balls ([`DragFloor`], a smooth maximum) before the
     /// Reynolds rise is added: `C_D = smax(C_D,fmm(S) + DS·S, 0.212 + 0.15·S) + DR·r(Re)`.
-    /// Off in [`Fmm2022Re`]; the floored LPGA fit was examined and not adopted (README, "Ball
-    /// flight": PGA median carry error 2.20 %, over the 2 % target).
+    /// Off in [`Fmm2022Re`], on in [`Fmm2022Tour`].
     pub drag_floor: bool,
 }
 
@@ -370,8 +379,10 @@ impl CoefficientModel for NathanLyu {
 /// A coefficient model chosen by name (what files and the command line select).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum AeroModel {
-    /// [`Fmm2022Re`] (the default).
+    /// [`Fmm2022Tour`] (the default).
     #[default]
+    Fmm2022Tour,
+    /// [`Fmm2022Re`].
     Fmm2022Re,
     /// [`Fmm2022`].
     Fmm2022,
@@ -381,13 +392,15 @@ pub enum AeroModel {
     Table(std::sync::Arc<TableModel>),
 }
 
-/// Names of the built-in models.
-pub const MODEL_NAMES: [&str; 3] = ["fmm2022-re", "fmm2022", "nathan-lyu"];
+/// Names of the built-in models, the default first.
+pub const MODEL_NAMES: [&str; 4] = ["fmm2022-tour", "fmm2022-re", "fmm2022", "nathan-lyu"];
 
 impl AeroModel {
-    /// `fmm2022-re`, `fmm2022`, `nathan-lyu`, or `table:PATH` (a CSV file, see [`TableModel`]).
+    /// `fmm2022-tour`, `fmm2022-re`, `fmm2022`, `nathan-lyu`, or `table:PATH` (a CSV file, see
+    /// [`TableModel`]).
     pub fn from_name(name: &str) -> Result<Self, String> {
         match name {
+            "fmm2022-tour" => Ok(Self::Fmm2022Tour),
             "fmm2022-re" => Ok(Self::Fmm2022Re),
             "fmm2022" => Ok(Self::Fmm2022),
             "nathan-lyu" => Ok(Self::NathanLyu),
@@ -396,7 +409,7 @@ impl AeroModel {
                     Path::new(p),
                 )?))),
                 None => Err(format!(
-                    "unknown aerodynamic model '{name}' (allowed: fmm2022-re, fmm2022, nathan-lyu, table:PATH)"
+                    "unknown aerodynamic model '{name}' (allowed: fmm2022-tour, fmm2022-re, fmm2022, nathan-lyu, table:PATH)"
                 )),
             },
         }
@@ -405,6 +418,7 @@ impl AeroModel {
     /// The name as selected (tables: `table:` and a description).
     pub fn name(&self) -> String {
         match self {
+            Self::Fmm2022Tour => "fmm2022-tour".into(),
             Self::Fmm2022Re => "fmm2022-re".into(),
             Self::Fmm2022 => "fmm2022".into(),
             Self::NathanLyu => "nathan-lyu".into(),
@@ -415,6 +429,7 @@ impl AeroModel {
     /// Coefficients (dispatching on the model; the integrator dispatches once per batch).
     pub fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         match self {
+            Self::Fmm2022Tour => Fmm2022Tour.coefficients(s, re),
             Self::Fmm2022Re => Fmm2022Re.coefficients(s, re),
             Self::Fmm2022 => Fmm2022.coefficients(s, re),
             Self::NathanLyu => NathanLyu.coefficients(s, re),
@@ -461,7 +476,12 @@ mod tests {
     fn no_spin_no_lift() {
         // A ball that does not spin has no Magnus lift under every built-in model, at every
         // Reynolds number; the drag stays.
-        for m in [&Fmm2022 as &dyn CoefficientModel, &Fmm2022Re, &NathanLyu] {
+        for m in [
+            &Fmm2022 as &dyn CoefficientModel,
+            &Fmm2022Tour,
+            &Fmm2022Re,
+            &NathanLyu,
+        ] {
             for re in [2e4, 7e4, 1.2e5, 3e5] {
                 let c = m.coefficients(0.0, re);
                 assert_eq!(c.cl, 0.0, "re {re}");
@@ -486,14 +506,14 @@ mod tests {
         assert_eq!(Fmm2022Re.coefficients(0.01, 9e4).cl, cl(0.01));
     }
 
-    /// `fmm2022-re`'s drag with no lift at all.
+    /// The default model's drag with no lift at all.
     struct DragOnly;
 
     impl CoefficientModel for DragOnly {
         fn coefficients(&self, s: f64, re: f64) -> Coefficients {
             Coefficients {
                 cl: 0.0,
-                ..Fmm2022Re.coefficients(s, re)
+                ..Fmm2022Tour.coefficients(s, re)
             }
         }
     }
