@@ -47,6 +47,7 @@ pub use super::data::FitData;
 use super::data::SiteCache;
 use super::spec::ParamLayout;
 use crate::club::ClubSpec;
+use crate::lanes::{simd_level, SimdLevel};
 use crate::measurement::{expected_over, NODES_PER_SHOT};
 use crate::physics::{ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError};
 
@@ -136,6 +137,9 @@ pub struct FitProblem<'a> {
     /// Effect index of each parameter of `θ`.
     owner: Vec<usize>,
     parallel_jacobian: bool,
+    /// The lane code path of the batched evaluations ([`crate::lanes::simd_level`] unless a
+    /// test chose another; every path gives the same bits).
+    level: SimdLevel,
 }
 
 impl<'a> FitProblem<'a> {
@@ -175,6 +179,7 @@ impl<'a> FitProblem<'a> {
             upper,
             owner,
             parallel_jacobian: false,
+            level: simd_level(),
         }
     }
 
@@ -191,6 +196,13 @@ impl<'a> FitProblem<'a> {
     /// parallel jobs).
     pub fn with_parallel_jacobian(mut self, on: bool) -> Self {
         self.parallel_jacobian = on;
+        self
+    }
+
+    /// Evaluate on the lanes of `level` (or the widest level below it this machine runs):
+    /// every level gives the same bits, which tests check by running each.
+    pub fn with_simd_level(mut self, level: SimdLevel) -> Self {
+        self.level = level.or_supported();
         self
     }
 

@@ -51,6 +51,7 @@ mod jobs;
 mod located;
 
 use super::fastmath::atan2_v;
+pub use crate::lanes::{simd_level, SimdLevel};
 use crate::lanes::{M, V, W};
 use crate::physics::laws::{Laws, TangentialLaw};
 use crate::physics::{Delivery, ImpactModel, ModelParams};
@@ -527,13 +528,17 @@ impl FaceMapKernel {
     ) {
         match level {
             #[cfg(target_arch = "x86_64")]
-            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER, USER>(job, out) },
+            // SAFETY: `level` is at most `simd_level()` (the callers' `or_supported`), so the
+            // CPU has AVX2.
+            SimdLevel::Avx2 | SimdLevel::Avx512 => unsafe {
+                self.avx2::<FRICTION, POWER, USER>(job, out)
+            },
             _ => job.run::<FRICTION, POWER, USER>(self, out),
         }
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
+    #[target_feature(enable = "avx2")]
     unsafe fn avx2<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         job: &impl Job,
@@ -541,25 +546,4 @@ impl FaceMapKernel {
     ) {
         job.run::<FRICTION, POWER, USER>(self, out)
     }
-}
-
-/// Which code path the kernel runs on this machine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SimdLevel {
-    /// Portable code (baseline x86-64 SSE2, or any other architecture).
-    Portable,
-    /// AVX2 + FMA (x86-64), detected at run time. FMA is enabled for the compiler but never
-    /// used to contract operations: results are identical to the portable path.
-    Avx2,
-}
-
-/// The code path [`FaceMapKernel`] uses on this machine (detected once, cached).
-pub fn simd_level() -> SimdLevel {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            return SimdLevel::Avx2;
-        }
-    }
-    SimdLevel::Portable
 }
