@@ -36,6 +36,21 @@ pub use real::Real;
 #[cfg(target_arch = "x86_64")]
 pub(crate) use x86::{F64x4, F64x8};
 
+/// `[f(0), f(1)]`, always inlined into the caller. Lane code builds its small arrays with this
+/// and [`each3`] rather than `std::array::from_fn` or `<[T; N]>::map`, which the compiler may keep
+/// out of line: the explicit vector types' operations there would not be compiled with the
+/// caller's instruction set (`target_feature`), but called one by one.
+#[inline(always)]
+pub fn each2<T>(mut f: impl FnMut(usize) -> T) -> [T; 2] {
+    [f(0), f(1)]
+}
+
+/// `[f(0), f(1), f(2)]`, always inlined into the caller (see [`each2`]).
+#[inline(always)]
+pub fn each3<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
 /// The most lanes any vector type has (stack buffers of lane indices are this long).
 pub const MAX_LANES: usize = 8;
 

@@ -23,15 +23,16 @@
 //! Everything that does not depend on the fitted parameters is computed once per data set
 //! ([`FitData`] keeps it): each shot's face orientation and clubhead velocities in the face frame
 //! ([`ImpactModel::delivery_frame`], reused while the loft and face biases are those of the club).
-//! An evaluation then runs only the second half of [`ImpactModel::solve`], on [`crate::lanes::W`]
-//! shots of one group at a time: the contact frame at each impact location or quadrature node
+//! An evaluation then runs only the second half of [`ImpactModel::solve`], on a lane vector of
+//! shots of one group at a time (8 with AVX-512, 4 otherwise): the contact frame at each impact location or quadrature node
 //! ([`crate::physics::FaceGeometry::contact_on`], the face equations of the scalar solve, generic
 //! over the lane type: computing it costs less than reading a stored one from memory),
 //! [`ImpactModel::solve_contact`] (the contact mechanics the scalar solve itself runs, generic
 //! over the lane type) on the lanes, the rotation to `G`, and the launch angles by the
 //! branch-free [`crate::sweep::fastmath::atan2_v`] and [`crate::sweep::fastmath::hypot_v`] instead
-//! of libm's. That evaluation (`problem/lanes.rs`) is compiled for AVX2 as well as for the portable
-//! baseline and picked at run time, as the face-map kernel is; both give the same bits. The
+//! of libm's. That evaluation (`problem/lanes.rs`) is written once over
+//! [`crate::lanes::Lanes`] and compiled for AVX-512 (`__m512d`), AVX2 (`__m256d`) and the portable
+//! lanes, the widest this machine runs picked at run time; all give the same bits. The
 //! residuals agree with solving each shot afresh to rounding (`tests/fit_batched.rs` holds them to
 //! 1e-9 relative; in practice a few ulp), and a shot's result does not depend on its lane or
 //! neighbours. Large data sets are evaluated in parallel chunks of shots; when any shot of a chunk

@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, NathanLyu};
 use super::hermite::Hermite;
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
-use crate::lanes::{simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
+use crate::lanes::{each2, each3, simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 
@@ -292,7 +292,8 @@ fn axpy<L: Lanes>(s: &St<L>, h: f64, v: &[L; 3], r: &Rate<L>) -> St<L> {
 }
 
 /// Independent lane groups integrated together, so that the out-of-order core overlaps one
-/// group's long dependency chain (square roots, divisions) with the other's.
+/// group's long dependency chain (square roots, divisions) with the other's. (`rk4` is written
+/// out for two.)
 const G: usize = 2;
 
 #[inline(always)]
@@ -303,18 +304,30 @@ fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
     axis: &[[L; 3]; G],
     s: &[St<L>; G],
 ) -> [St<L>; G] {
+    // Written out for the two groups (no closures around `rate`: see `crate::lanes::each2`).
     let h = k.dt;
-    let rate = |g: usize, s: &St<L>| rate::<L, C, WIND>(k, cfg, model, &axis[g], s);
-    let r1: [Rate<L>; G] = std::array::from_fn(|g| rate(g, &s[g]));
-    let s2: [St<L>; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s[g].v, &r1[g]));
-    let r2: [Rate<L>; G] = std::array::from_fn(|g| rate(g, &s2[g]));
-    let s3: [St<L>; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s2[g].v, &r2[g]));
-    let r3: [Rate<L>; G] = std::array::from_fn(|g| rate(g, &s3[g]));
-    let s4: [St<L>; G] = std::array::from_fn(|g| axpy(&s[g], h, &s3[g].v, &r3[g]));
-    let r4: [Rate<L>; G] = std::array::from_fn(|g| rate(g, &s4[g]));
+    let (a0, a1) = (&axis[0], &axis[1]);
+    let r1 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s[1]),
+    ];
+    let s2 = each2(|g| axpy(&s[g], 0.5 * h, &s[g].v, &r1[g]));
+    let r2 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s2[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s2[1]),
+    ];
+    let s3 = each2(|g| axpy(&s[g], 0.5 * h, &s2[g].v, &r2[g]));
+    let r3 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s3[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s3[1]),
+    ];
+    let s4 = each2(|g| axpy(&s[g], h, &s3[g].v, &r3[g]));
+    let r4 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s4[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s4[1]),
+    ];
     let h6 = h / 6.0;
-    let comb = |a: L, b: L, c: L, d: L| a + (b + c) * 2.0 + d;
-    std::array::from_fn(|g| {
+    each2(|g| {
         let mut n = s[g];
         for j in 0..3 {
             n.p[j] = s[g].p[j] + comb(s[g].v[j], s2[g].v[j], s3[g].v[j], s4[g].v[j]) * h6;
@@ -323,6 +336,12 @@ fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
         n.w = s[g].w + comb(r1[g].dw, r2[g].dw, r3[g].dw, r4[g].dw) * h6;
         n
     })
+}
+
+/// RK4's weighted sum of the four stages' values (before the factor `h/6`).
+#[inline(always)]
+fn comb<L: Lanes>(a: L, b: L, c: L, d: L) -> L {
+    a + (b + c) * 2.0 + d
 }
 
 /// Most launches a batch takes (`G` vectors of the widest lane type).
@@ -382,12 +401,12 @@ fn start<L: Lanes>(launches: &[FlightLaunch], idx: &[usize]) -> ([St<L>; G], [[L
     let part = |a: &[f64; MAX_B], g: usize| L::load(&a[g * L::N..]);
     let zero = L::splat(0.0);
     (
-        std::array::from_fn(|g| St {
+        each2(|g| St {
             p: [zero; 3],
-            v: std::array::from_fn(|j| part(&v[j], g)),
+            v: each3(|j| part(&v[j], g)),
             w: part(&w, g),
         }),
-        std::array::from_fn(|g| std::array::from_fn(|j| part(&ax[j], g))),
+        each2(|g| each3(|j| part(&ax[j], g))),
     )
 }
 
@@ -402,8 +421,8 @@ impl<L: Lanes> St<L> {
     #[inline(always)]
     fn lanewise(&self) -> Lanewise<L> {
         Lanewise {
-            p: self.p.map(L::to_array),
-            v: self.v.map(L::to_array),
+            p: each3(|j| self.p[j].to_array()),
+            v: each3(|j| self.v[j].to_array()),
             w: self.w.to_array(),
         }
     }
@@ -442,7 +461,7 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
             }
             let (a, b) = (s.lanewise(), ns.lanewise());
             let mut top = apex[g].to_array();
-            let ax = axis[g].map(L::to_array);
+            let ax = each3(|j| axis[g][j].to_array());
             for i in 0..L::N {
                 if done[g][i] || !event.get(i) {
                     continue;

@@ -276,8 +276,8 @@ impl Lanes for V {
     const N: usize = W;
     type Array = [f64; W];
     #[inline(always)]
-    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
-        V(std::array::from_fn(f))
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        V([f(0), f(1), f(2), f(3)])
     }
     #[inline(always)]
     fn load(s: &[f64]) -> Self {

@@ -137,7 +137,7 @@ impl LaneMask for M4 {
     }
     #[inline(always)]
     fn get(self, i: usize) -> bool {
-        simd!(_mm256_movemask_pd(self.0)) >> i & 1 != 0
+        (simd!(_mm256_movemask_pd(self.0)) >> i) & 1 != 0
     }
     #[inline(always)]
     fn select_mask(self, a: M4, b: M4) -> M4 {
@@ -180,7 +180,7 @@ impl LaneMask for M8 {
     }
     #[inline(always)]
     fn get(self, i: usize) -> bool {
-        self.0 >> i & 1 != 0
+        (self.0 >> i) & 1 != 0
     }
     #[inline(always)]
     fn select_mask(self, a: M8, b: M8) -> M8 {
@@ -236,8 +236,8 @@ impl Lanes for F64x4 {
     const N: usize = 4;
     type Array = [f64; 4];
     #[inline(always)]
-    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
-        Self::load(&std::array::from_fn::<f64, 4, _>(f))
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        Self::load(&[f(0), f(1), f(2), f(3)])
     }
     #[inline(always)]
     fn load(s: &[f64]) -> Self {
@@ -344,8 +344,8 @@ impl Lanes for F64x8 {
     const N: usize = 8;
     type Array = [f64; 8];
     #[inline(always)]
-    fn from_fn(f: impl FnMut(usize) -> f64) -> Self {
-        Self::load(&std::array::from_fn::<f64, 8, _>(f))
+    fn from_fn(mut f: impl FnMut(usize) -> f64) -> Self {
+        Self::load(&[f(0), f(1), f(2), f(3), f(4), f(5), f(6), f(7)])
     }
     #[inline(always)]
     fn load(s: &[f64]) -> Self {

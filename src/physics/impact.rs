@@ -27,11 +27,12 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, Laws, Real,
-    Restitution, Sym3, TangentialLaw, Vec3,
+    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, InstantLaw, Laws,
+    Real, Restitution, Sym3, TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
 use super::user_terms::UserEvalError;
+use crate::lanes::each3;
 
 mod user;
 pub use user::{pre_solve_base, ShotModel};
@@ -226,6 +227,20 @@ pub struct ContactSolution<R: Real> {
     pub ball_velocity_f_m_s: Vec3<R>,
     /// Ball angular velocity after impact, rad/s.
     pub ball_spin_f_rad_s: Vec3<R>,
+}
+
+/// The tangential law with the impact's COR `e`: the instantaneous law a finite contact wraps
+/// (a type rather than a closure so that it is always inlined, see [`InstantLaw`]).
+struct LawWithCor<'a, R, const FRICTION: bool> {
+    law: &'a TangentialLaw,
+    e: R,
+}
+
+impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithCor<'_, R, FRICTION> {
+    #[inline(always)]
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
+        self.law.impulse::<R, FRICTION>(k, n, u, un, self.e)
+    }
 }
 
 /// `a × b`, in the component order nalgebra uses (so the scalar solve keeps its bits).
@@ -505,8 +520,9 @@ impl ImpactModel {
             FiniteImpact::at_first_contact(impulse, slipped, r_c, r_b)
         } else {
             laws.contact.impact(
-                |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {
-                    laws.tangential.impulse::<R, FRICTION>(k, n, u, un, e)
+                LawWithCor::<R, FRICTION> {
+                    law: &laws.tangential,
+                    e,
                 },
                 &laws.collision,
                 laws.ball.radius_m,
@@ -524,8 +540,8 @@ impl ImpactModel {
         };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);
-        let v_b = impulse.map(|c| c / p.ball_mass_kg);
-        let w_b = ball_angular_impulse.map(|c| c / p.ball_inertia_kgm2);
+        let v_b = each3(|i| impulse[i] / p.ball_mass_kg);
+        let w_b = each3(|i| ball_angular_impulse[i] / p.ball_inertia_kgm2);
         ContactSolution {
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,

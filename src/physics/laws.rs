@@ -25,7 +25,9 @@ pub use super::real::Real;
 mod finite_contact;
 #[cfg(test)]
 use crate::lanes::V;
-pub use finite_contact::{ContactGeometry, FiniteContact, FiniteImpact, HERTZ_MEAN_SPIN_UP};
+pub use finite_contact::{
+    ContactGeometry, FiniteContact, FiniteImpact, InstantLaw, HERTZ_MEAN_SPIN_UP,
+};
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).

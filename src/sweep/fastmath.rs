@@ -80,16 +80,15 @@ pub fn atan2_v<L: Lanes>(y: L, x: L) -> L {
     let den = L::select(big, ay, L::select(small, ax, ay + ax));
     // atan2(±0, ±0): 0/0 would be NaN; the answer is the constant alone.
     let den = L::select(den.eq(L::splat(0.0)), L::splat(1.0), den);
-    let c = |a: f64, b: f64| L::select(x_neg, L::splat(a), L::splat(b));
     let hi = L::select(
         big,
         L::splat(PIO2_HI),
-        L::select(mid, c(PI3O4_HI, PIO4_HI), c(PI_HI, 0.0)),
+        L::select(mid, pick(x_neg, PI3O4_HI, PIO4_HI), pick(x_neg, PI_HI, 0.0)),
     );
     let lo = L::select(
         big,
         L::splat(PIO2_LO),
-        L::select(mid, c(PI3O4_LO, PIO4_LO), c(PI_LO, 0.0)),
+        L::select(mid, pick(x_neg, PI3O4_LO, PIO4_LO), pick(x_neg, PI_LO, 0.0)),
     );
     let xr = num / den;
     let z = xr * xr;
@@ -101,6 +100,12 @@ pub fn atan2_v<L: Lanes>(y: L, x: L) -> L {
     let angle = hi + (r + lo);
     // Copy the sign of y (also gives ±0 and ±π for y = ±0).
     angle.copysign(y)
+}
+
+/// `a` where `m`, else `b`.
+#[inline(always)]
+fn pick<L: Lanes>(m: L::Mask, a: f64, b: f64) -> L {
+    L::select(m, L::splat(a), L::splat(b))
 }
 
 /// `√(x² + y²)` on any lane type, correctly rounded operations only (so it vectorises).

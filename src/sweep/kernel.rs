@@ -10,8 +10,8 @@
 //! [`atan2`](super::fastmath::atan2); the one branch is a rarely taken exact recheck of the
 //! sign of `u1·n` near zero), evaluated over structure-of-arrays chunks of
 //! [`LANES`] points that the compiler turns into packed AVX2 code (selected at run time, with a
-//! portable fallback). An AVX-512 path would need `target_feature(enable = "avx512f")`, stable
-//! only from Rust 1.89 (the crate's MSRV is 1.85).
+//! portable fallback; AVX-512 machines run the AVX2 path: unlike the fits and the flight
+//! integrator, the kernel still runs the portable lane type [`V`], vectorised by the compiler).
 //!
 //! # Same results as [`ImpactModel::solve`]
 //!

@@ -6,9 +6,9 @@ use nalgebra::Vector3;
 
 use super::{FitProblem, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
+use crate::lanes::{each3, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
-use crate::lanes::{LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 use crate::physics::impact::ContactInputs;
 use crate::physics::{DeliveryFrame, FaceGeometry, ImpactModel, Launch};
 use crate::sweep::fastmath::{atan2_v, hypot_v};
@@ -36,10 +36,17 @@ impl<L: Lanes> LanePrediction<L> {
     /// The lanes as arrays, to read shot by shot.
     #[inline(always)]
     pub(super) fn to_arrays(&self) -> PredictionArrays<L> {
+        let l = &self.launch;
         PredictionArrays {
-            launch: self.launch.map(L::to_array),
-            ball_v: self.ball_v.map(L::to_array),
-            ball_w: self.ball_w.map(L::to_array),
+            launch: [
+                l[0].to_array(),
+                l[1].to_array(),
+                l[2].to_array(),
+                l[3].to_array(),
+                l[4].to_array(),
+            ],
+            ball_v: each3(|a| self.ball_v[a].to_array()),
+            ball_w: each3(|a| self.ball_w[a].to_array()),
         }
     }
 }
@@ -398,11 +405,10 @@ impl FitProblem<'_> {
 /// The delivery-frame lanes of the frames `frame(l)` of the lanes `l`.
 #[inline(always)]
 fn gather_frames<'a, L: Lanes>(frame: impl Fn(usize) -> &'a DeliveryFrame) -> FrameLanes<L> {
-    let lanes = |f: &dyn Fn(&DeliveryFrame) -> f64| L::from_fn(|l| f(frame(l)));
     FrameLanes {
-        v_c: std::array::from_fn(|a| lanes(&|fr| fr.club_velocity_f_m_s[a])),
-        w_c: std::array::from_fn(|a| lanes(&|fr| fr.club_omega_f_rad_s[a])),
-        r_gf: std::array::from_fn(|a| std::array::from_fn(|b| lanes(&|fr| fr.r_gf[(a, b)]))),
+        v_c: each3(|a| L::from_fn(|l| frame(l).club_velocity_f_m_s[a])),
+        w_c: each3(|a| L::from_fn(|l| frame(l).club_omega_f_rad_s[a])),
+        r_gf: each3(|a| each3(|b| L::from_fn(|l| frame(l).r_gf[(a, b)]))),
     }
 }
 
@@ -451,9 +457,9 @@ fn solve_lanes<L: Lanes>(
         z_m: site.z_m,
     };
     let s = model.solve_contact(&x);
-    let finite = |v: &[L; 3]| (v[0].finite() & v[1].finite() & v[2].finite()).all();
+
     let p = &s.impulse_n_s;
-    let club_dv = p.map(|c| c / model.params().club_mass_kg);
+    let club_dv = each3(|a| p[a] / model.params().club_mass_kg);
     let r_c = &s.contact_from_club_com_m;
     let moment = [
         r_c[1] * p[2] - r_c[2] * p[1],
@@ -469,12 +475,8 @@ fn solve_lanes<L: Lanes>(
     {
         return None;
     }
-    let r_gf = &f.r_gf;
-    let rotate = |v: &[L; 3]| -> [L; 3] {
-        std::array::from_fn(|a| r_gf[a][0] * v[0] + r_gf[a][1] * v[1] + r_gf[a][2] * v[2])
-    };
-    let v = rotate(&s.ball_velocity_f_m_s);
-    let w = rotate(&s.ball_spin_f_rad_s);
+    let v = rotate(&f.r_gf, &s.ball_velocity_f_m_s);
+    let w = rotate(&f.r_gf, &s.ball_spin_f_rad_s);
     let launch = [
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(),
         atan2_v(v[1], hypot_v(v[0], v[2])),
@@ -483,6 +485,18 @@ fn solve_lanes<L: Lanes>(
         -w[1],
     ];
     Some((launch, v, w))
+}
+
+/// Whether every lane of every component of `v` is finite.
+#[inline(always)]
+fn finite<L: Lanes>(v: &[L; 3]) -> bool {
+    (v[0].finite() & v[1].finite() & v[2].finite()).all()
+}
+
+/// `r v` (a rotation of lane vectors).
+#[inline(always)]
+fn rotate<L: Lanes>(r: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
+    each3(|a| r[a][0] * v[0] + r[a][1] * v[1] + r[a][2] * v[2])
 }
 
 #[cfg(test)]
