@@ -311,31 +311,55 @@ fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
         rate::<L, C, WIND>(k, cfg, model, a0, &s[0]),
         rate::<L, C, WIND>(k, cfg, model, a1, &s[1]),
     ];
-    let s2 = each2(|g| axpy(&s[g], 0.5 * h, &s[g].v, &r1[g]));
+    let s2 = [
+        axpy(&s[0], 0.5 * h, &s[0].v, &r1[0]),
+        axpy(&s[1], 0.5 * h, &s[1].v, &r1[1]),
+    ];
     let r2 = [
         rate::<L, C, WIND>(k, cfg, model, a0, &s2[0]),
         rate::<L, C, WIND>(k, cfg, model, a1, &s2[1]),
     ];
-    let s3 = each2(|g| axpy(&s[g], 0.5 * h, &s2[g].v, &r2[g]));
+    let s3 = [
+        axpy(&s[0], 0.5 * h, &s2[0].v, &r2[0]),
+        axpy(&s[1], 0.5 * h, &s2[1].v, &r2[1]),
+    ];
     let r3 = [
         rate::<L, C, WIND>(k, cfg, model, a0, &s3[0]),
         rate::<L, C, WIND>(k, cfg, model, a1, &s3[1]),
     ];
-    let s4 = each2(|g| axpy(&s[g], h, &s3[g].v, &r3[g]));
+    let s4 = [
+        axpy(&s[0], h, &s3[0].v, &r3[0]),
+        axpy(&s[1], h, &s3[1].v, &r3[1]),
+    ];
     let r4 = [
         rate::<L, C, WIND>(k, cfg, model, a0, &s4[0]),
         rate::<L, C, WIND>(k, cfg, model, a1, &s4[1]),
     ];
     let h6 = h / 6.0;
-    each2(|g| {
-        let mut n = s[g];
-        for j in 0..3 {
-            n.p[j] = s[g].p[j] + comb(s[g].v[j], s2[g].v[j], s3[g].v[j], s4[g].v[j]) * h6;
-            n.v[j] = s[g].v[j] + comb(r1[g].a[j], r2[g].a[j], r3[g].a[j], r4[g].a[j]) * h6;
-        }
-        n.w = s[g].w + comb(r1[g].dw, r2[g].dw, r3[g].dw, r4[g].dw) * h6;
-        n
-    })
+    [
+        combine(
+            h6,
+            [&s[0], &s2[0], &s3[0], &s4[0]],
+            [&r1[0], &r2[0], &r3[0], &r4[0]],
+        ),
+        combine(
+            h6,
+            [&s[1], &s2[1], &s3[1], &s4[1]],
+            [&r1[1], &r2[1], &r3[1], &r4[1]],
+        ),
+    ]
+}
+
+/// The RK4 step from the stages' states `s` and rates `r`, `h6 = h/6`.
+#[inline(always)]
+fn combine<L: Lanes>(h6: f64, s: [&St<L>; 4], r: [&Rate<L>; 4]) -> St<L> {
+    let mut n = *s[0];
+    for j in 0..3 {
+        n.p[j] = s[0].p[j] + comb(s[0].v[j], s[1].v[j], s[2].v[j], s[3].v[j]) * h6;
+        n.v[j] = s[0].v[j] + comb(r[0].a[j], r[1].a[j], r[2].a[j], r[3].a[j]) * h6;
+    }
+    n.w = s[0].w + comb(r[0].dw, r[1].dw, r[2].dw, r[3].dw) * h6;
+    n
 }
 
 /// RK4's weighted sum of the four stages' values (before the factor `h/6`).

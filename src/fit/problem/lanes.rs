@@ -405,11 +405,29 @@ impl FitProblem<'_> {
 /// The delivery-frame lanes of the frames `frame(l)` of the lanes `l`.
 #[inline(always)]
 fn gather_frames<'a, L: Lanes>(frame: impl Fn(usize) -> &'a DeliveryFrame) -> FrameLanes<L> {
+    let f = &frame;
+    let v = |a| move |fr: &DeliveryFrame| fr.club_velocity_f_m_s[a];
+    let w = |a| move |fr: &DeliveryFrame| fr.club_omega_f_rad_s[a];
+    let r = |a, b| move |fr: &DeliveryFrame| fr.r_gf[(a, b)];
     FrameLanes {
-        v_c: each3(|a| L::from_fn(|l| frame(l).club_velocity_f_m_s[a])),
-        w_c: each3(|a| L::from_fn(|l| frame(l).club_omega_f_rad_s[a])),
-        r_gf: each3(|a| each3(|b| L::from_fn(|l| frame(l).r_gf[(a, b)]))),
+        v_c: [gather(f, v(0)), gather(f, v(1)), gather(f, v(2))],
+        w_c: [gather(f, w(0)), gather(f, w(1)), gather(f, w(2))],
+        r_gf: [
+            [gather(f, r(0, 0)), gather(f, r(0, 1)), gather(f, r(0, 2))],
+            [gather(f, r(1, 0)), gather(f, r(1, 1)), gather(f, r(1, 2))],
+            [gather(f, r(2, 0)), gather(f, r(2, 1)), gather(f, r(2, 2))],
+        ],
     }
+}
+
+/// The lanes `field(frame(l))`. (Written out per field by the caller rather than through
+/// `each3`, whose closure the compiler may keep out of line with the vector loads in it.)
+#[inline(always)]
+fn gather<'a, L: Lanes>(
+    frame: &impl Fn(usize) -> &'a DeliveryFrame,
+    field: impl Fn(&DeliveryFrame) -> f64,
+) -> L {
+    L::from_fn(|l| field(frame(l)))
 }
 
 /// Prefetch hint for every cache line of `items` (no effect off x86-64).
