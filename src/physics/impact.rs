@@ -540,8 +540,11 @@ impl ImpactModel {
         };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);
-        let v_b = each3(|i| impulse[i] / p.ball_mass_kg);
-        let w_b = each3(|i| ball_angular_impulse[i] / p.ball_inertia_kgm2);
+        // Multiplied by the reciprocals (one scalar division a call, none a lane): the ball's
+        // velocity and spin are a rounding of the quotient away from dividing by m_b and I_b.
+        let inv_mb = 1.0 / p.ball_mass_kg;
+        let v_b = each3(|i| impulse[i] * inv_mb);
+        let w_b = each3(|i| ball_angular_impulse[i] * laws.collision.ball_inv_inertia);
         ContactSolution {
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,

@@ -477,7 +477,9 @@ fn solve_lanes<L: Lanes>(
     let s = model.solve_contact(&x);
 
     let p = &s.impulse_n_s;
-    let club_dv = each3(|a| p[a] / model.params().club_mass_kg);
+    // Only its finiteness is read (the scalar solve's check of the club's state after impact).
+    let inv_mc = 1.0 / model.params().club_mass_kg;
+    let club_dv = each3(|a| p[a] * inv_mc);
     let r_c = &s.contact_from_club_com_m;
     let moment = [
         r_c[1] * p[2] - r_c[2] * p[1],
