@@ -27,8 +27,8 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, InstantLaw, Laws,
-    Real, Restitution, Sym3, TangentialLaw, Vec3,
+    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, LawWithCor, Laws,
+    Real, Restitution, TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
 use super::user_terms::UserEvalError;
@@ -227,20 +227,6 @@ pub struct ContactSolution<R: Real> {
     pub ball_velocity_f_m_s: Vec3<R>,
     /// Ball angular velocity after impact, rad/s.
     pub ball_spin_f_rad_s: Vec3<R>,
-}
-
-/// The tangential law with the impact's COR `e`: the instantaneous law a finite contact wraps
-/// (a type rather than a closure so that it is always inlined, see [`InstantLaw`]).
-struct LawWithCor<'a, R, const FRICTION: bool> {
-    law: &'a TangentialLaw,
-    e: R,
-}
-
-impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithCor<'_, R, FRICTION> {
-    #[inline(always)]
-    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
-        self.law.impulse::<R, FRICTION>(k, n, u, un, self.e)
-    }
 }
 
 /// `a × b`, in the component order nalgebra uses (so the scalar solve keeps its bits).

@@ -324,6 +324,23 @@ impl TangentialLaw {
     }
 }
 
+/// The tangential law with the impact's COR `e`: the instantaneous law a finite contact wraps
+/// (a type rather than a closure so that it is always inlined, see [`InstantLaw`]). `FRICTION`
+/// must be `law.mu.is_some()`.
+pub struct LawWithCor<'a, R, const FRICTION: bool> {
+    /// The law.
+    pub law: &'a TangentialLaw,
+    /// The COR.
+    pub e: R,
+}
+
+impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithCor<'_, R, FRICTION> {
+    #[inline(always)]
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
+        self.law.impulse::<R, FRICTION>(k, n, u, un, self.e)
+    }
+}
+
 /// The tangential approach speed `|u1 − u1n·n|` (the `ut_m_s` of user-defined effects), with
 /// the operations of [`TangentialLaw::impulse`].
 #[inline(always)]
