@@ -112,8 +112,6 @@ struct Row {
     yy: V,
     /// `s = sqrt(r² − y²)`, m.
     s: V,
-    /// `ρ = R + s`, m.
-    rho: V,
     /// `ρ²`, m².
     rho2: V,
     /// `1/ρ`, 1/m.
@@ -292,7 +290,6 @@ impl FaceMapKernel {
             y,
             yy: y * y,
             s,
-            rho,
             rho2: rho * rho,
             inv_rho: 1.0 / rho,
             ny: y / r,
@@ -352,8 +349,8 @@ impl FaceMapKernel {
             .abs()
             .le((u1n_x.abs() + u1n_y.abs() + u1n_z.abs()) * 1e-13);
         let approaching = if unsure.any() {
-            let nx_exact = row.s * x / row.rho / self.roll_m;
-            let nz_exact = row.s * z / row.rho / self.roll_m;
+            let s_n = row.s * row.inv_rho * (1.0 / self.roll_m);
+            let (nx_exact, nz_exact) = (x * s_n, z * s_n);
             let u1n_exact = u1x * nx_exact + u1y * ny + u1z * nz_exact;
             unsure.select_mask(u1n_exact.gt(t), u1n.gt(t))
         } else {
