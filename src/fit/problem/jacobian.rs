@@ -204,7 +204,7 @@ impl FitProblem<'_> {
                     return None;
                 }
                 for (q, &k) in which.iter().enumerate() {
-                    let (p, m) = (outs[2 * q].to_arrays(), outs[2 * q + 1].to_arrays());
+                    let (p, m) = (outs[2 * q].lanewise(), outs[2 * q + 1].lanewise());
                     for (l, &i) in shots.iter().enumerate() {
                         let (mut r_plus, mut r_minus) = ([0.0; 5], [0.0; 5]);
                         let rp = &mut r_plus[..rows];

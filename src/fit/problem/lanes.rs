@@ -35,7 +35,7 @@ impl<L: Lanes> LanePrediction<L> {
 
     /// The lanes as arrays, to read shot by shot.
     #[inline(always)]
-    pub(super) fn to_arrays(&self) -> PredictionArrays<L> {
+    pub(super) fn lanewise(&self) -> PredictionArrays<L> {
         let l = &self.launch;
         PredictionArrays {
             launch: [
@@ -215,7 +215,7 @@ impl FitProblem<'_> {
                 let Some(p) = self.predict_lanes::<L>(model, cache, &idx[..n]) else {
                     return false;
                 };
-                let p = p.to_arrays();
+                let p = p.lanewise();
                 for (l, &i) in shots.iter().enumerate() {
                     let r = &mut chunk[(i - start) * rows..][..rows];
                     self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), r);
