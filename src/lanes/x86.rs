@@ -8,10 +8,10 @@
 //! because of one invariant of this crate: **a value of [`F64x4`] or [`M4`] exists only on a
 //! machine with AVX2, and a value of [`F64x8`] or [`M8`] only on one with AVX-512F.** The types
 //! are private to the crate, and they are named only by the dispatching functions (the
-//! `*_avx2` and `*_avx512` functions of the fits, the flight integrator and the face-map
-//! kernel), each an `unsafe fn` with `#[target_feature]` called only after
-//! [`super::simd_level`] reported its level: every generic lane function instantiated with one
-//! of these types runs inside such a call. The operations are `#[inline(always)]`, so they are
+//! `*_avx2` and `*_avx512` functions of the fits and of the flight integrator), each an
+//! `unsafe fn` with `#[target_feature]` called only where the level is at most
+//! [`super::simd_level`]'s (`SimdLevel::or_supported`): every generic lane function
+//! instantiated with one of these types runs inside such a call. The operations are `#[inline(always)]`, so they are
 //! compiled into those functions with their instruction set.
 //!
 //! Only correctly rounded `+ − × ÷ √`, ordered quiet comparisons, blends and bit operations are
