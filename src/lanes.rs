@@ -1,248 +1,133 @@
-//! A tiny portable SIMD type: [`W`] doubles processed lane-wise.
+//! The number types the model is evaluated on, and the lane vectors the batched code runs on.
 //!
-//! Every operation is a fixed-length loop over a `[f64; W]` (or `[u64; W]` mask), marked
-//! `#[inline(always)]`, which LLVM's SLP vectoriser turns into one packed instruction when the
-//! caller is compiled with AVX2 (`vaddpd ymm`, `vsqrtpd ymm`, `vblendvpd`, …) and into pairs
-//! of SSE2 instructions otherwise. Only IEEE-754 correctly rounded operations (`+ − × ÷ √`) and
-//! bit operations are used, and never fused multiply–add, so all code paths give the same bits.
+//! [`Real`] is what the physics is written against once: `f64` (one shot) or a vector of lanes.
+//! [`Lanes`] adds what batched code needs of a vector (its width, gathering and scattering
+//! lanes, comparisons, `|x|`, sign bits). Three vector types implement it:
+//!
+//! | type | lanes | where it runs |
+//! |---|---:|---|
+//! | [`V`] (`[f64; 4]`, every operation a fixed-length loop) | 4 | anywhere (the portable path) |
+//! | `F64x4` (`__m256d`, `x86` module) | 4 | x86-64 with AVX2, chosen at run time |
+//! | `F64x8` (`__m512d`, `x86` module) | 8 | x86-64 with AVX-512F, chosen at run time |
+//!
+//! [`simd_level`] says which this machine runs. Code that evaluates lanes is written once,
+//! generic over [`Lanes`], and instantiated per level inside a `#[target_feature]` function
+//! entered only after [`simd_level`] reported that level (see [`SimdLevel`]).
+//!
+//! **Same bits on every path.** Only IEEE-754 correctly rounded operations (`+ − × ÷ √`),
+//! ordered quiet comparisons, blends and bit operations are used, never a fused multiply–add
+//! (the explicit types call the separate multiply and add instructions; Rust never contracts
+//! them), so a lane's result is the same on the portable, AVX2 and AVX-512 paths and the same as
+//! the scalar `f64` evaluation of the same code. `powf` and the libm functions of user-defined
+//! effects run lane by lane on the scalar function.
 
-// Fixed-length index loops over several arrays are the clearest form here (and vectorise).
-#![allow(clippy::needless_range_loop)]
+use std::fmt::Debug;
+use std::ops::{BitAnd, BitOr, IndexMut, Not};
 
-use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+mod level;
+mod portable;
+mod real;
+#[cfg(target_arch = "x86_64")]
+mod x86;
 
-/// Lanes per vector (one AVX2 register of doubles).
-pub const W: usize = 4;
+pub use level::{simd_level, SimdLevel};
+pub use portable::{M, V, W};
+pub use real::Real;
+#[cfg(target_arch = "x86_64")]
+pub(crate) use x86::{F64x4, F64x8};
 
-const SIGN: u64 = 1 << 63;
-
-/// `W` doubles.
-#[derive(Debug, Clone, Copy, PartialEq)]
-#[repr(transparent)]
-pub struct V(pub [f64; W]);
-
-/// `W` lane masks: all ones (true) or all zeros (false), like the result of `vcmppd`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[repr(transparent)]
-pub struct M(pub [u64; W]);
-
-macro_rules! lanewise {
-    ($a:expr, $b:expr, |$x:ident, $y:ident| $e:expr) => {{
-        let (a, b) = ($a, $b);
-        let mut r = a;
-        for i in 0..W {
-            let ($x, $y) = (a[i], b[i]);
-            r[i] = $e;
-        }
-        r
-    }};
-}
-
-impl V {
-    /// All lanes `v`.
-    #[inline(always)]
-    pub fn splat(v: f64) -> Self {
-        Self([v; W])
-    }
-
-    /// Load from the first `W` entries of `s`.
-    #[inline(always)]
-    pub fn load(s: &[f64; W]) -> Self {
-        Self(*s)
-    }
-
-    /// Lane-wise square root (correctly rounded).
-    #[inline(always)]
-    pub fn sqrt(self) -> Self {
-        let mut r = self.0;
-        for v in &mut r {
-            *v = v.sqrt();
-        }
-        Self(r)
-    }
-
-    /// Lane-wise `self^e` (libm `pow` per lane: the same bits as the scalar `f64::powf`).
-    #[inline(always)]
-    pub fn powf(self, e: f64) -> Self {
-        let mut r = self.0;
-        for v in &mut r {
-            *v = v.powf(e);
-        }
-        Self(r)
-    }
-
-    /// Raw bits.
-    #[inline(always)]
-    pub fn to_bits(self) -> [u64; W] {
-        let mut r = [0u64; W];
-        for i in 0..W {
-            r[i] = self.0[i].to_bits();
-        }
-        r
-    }
-
-    /// From raw bits.
-    #[inline(always)]
-    pub fn from_bits(b: [u64; W]) -> Self {
-        let mut r = [0.0; W];
-        for i in 0..W {
-            r[i] = f64::from_bits(b[i]);
-        }
-        Self(r)
-    }
-
-    /// Lane-wise `|x|`.
-    #[inline(always)]
-    pub fn abs(self) -> Self {
-        Self::from_bits(lanewise!(self.to_bits(), [0u64; W], |a, _b| a & !SIGN))
-    }
-
-    /// `|self|` with the sign bit of `sign`.
-    #[inline(always)]
-    pub fn copysign(self, sign: Self) -> Self {
-        Self::from_bits(lanewise!(self.to_bits(), sign.to_bits(), |a, b| (a
-            & !SIGN)
-            | (b & SIGN)))
-    }
-
-    /// Lanes whose sign bit is set (including −0 and negative NaNs).
-    #[inline(always)]
-    pub fn sign_bit(self) -> M {
-        M(lanewise!(
-            self.to_bits(),
-            [0u64; W],
-            |a, _b| if a & SIGN != 0 { !0 } else { 0 }
-        ))
-    }
-
-    /// Lane-wise `self < o`.
-    #[inline(always)]
-    pub fn lt(self, o: Self) -> M {
-        M(cmp(self, o, |a, b| a < b))
-    }
-
-    /// Lane-wise `self <= o`.
-    #[inline(always)]
-    pub fn le(self, o: Self) -> M {
-        M(cmp(self, o, |a, b| a <= b))
-    }
-
-    /// Lane-wise `self > o`.
-    #[inline(always)]
-    pub fn gt(self, o: Self) -> M {
-        M(cmp(self, o, |a, b| a > b))
-    }
-
-    /// Lane-wise `self == o`.
-    #[inline(always)]
-    pub fn eq(self, o: Self) -> M {
-        M(cmp(self, o, |a, b| a == b))
-    }
-}
-
+/// `[f(0), f(1)]`, always inlined into the caller. Lane code builds its small arrays with this
+/// and [`each3`] rather than `std::array::from_fn` or `<[T; N]>::map`, which the compiler may keep
+/// out of line: the explicit vector types' operations there would not be compiled with the
+/// caller's instruction set (`target_feature`), but called one by one.
 #[inline(always)]
-fn cmp(a: V, b: V, f: impl Fn(f64, f64) -> bool) -> [u64; W] {
-    let mut r = [0u64; W];
-    for i in 0..W {
-        r[i] = if f(a.0[i], b.0[i]) { !0 } else { 0 };
-    }
-    r
+pub fn each2<T>(mut f: impl FnMut(usize) -> T) -> [T; 2] {
+    [f(0), f(1)]
 }
 
-impl M {
+/// `[f(0), f(1), f(2)]`, always inlined into the caller (see [`each2`]).
+#[inline(always)]
+pub fn each3<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
+/// The most lanes any vector type has (stack buffers of lane indices are this long).
+pub const MAX_LANES: usize = 8;
+
+/// Per-lane truth values of a [`Real`] (`bool` for `f64`).
+pub trait LaneMask:
+    Copy + Debug + BitAnd<Output = Self> + BitOr<Output = Self> + Not<Output = Self>
+{
+    /// Whether any lane is true.
+    fn any(self) -> bool;
+    /// Whether every lane is true.
+    fn all(self) -> bool;
+    /// Lane `i`.
+    fn get(self, i: usize) -> bool;
     /// Lane-wise `if self { a } else { b }`.
+    fn select_mask(self, a: Self, b: Self) -> Self;
+}
+
+impl LaneMask for bool {
     #[inline(always)]
-    pub fn select(self, a: V, b: V) -> V {
-        let (a, b) = (a.to_bits(), b.to_bits());
-        let mut r = [0u64; W];
-        for i in 0..W {
-            r[i] = (a[i] & self.0[i]) | (b[i] & !self.0[i]);
+    fn any(self) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn all(self) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn get(self, _i: usize) -> bool {
+        self
+    }
+    #[inline(always)]
+    fn select_mask(self, a: Self, b: Self) -> Self {
+        if self {
+            a
+        } else {
+            b
         }
-        V::from_bits(r)
-    }
-
-    /// Lane-wise `if self { a } else { b }` on masks.
-    #[inline(always)]
-    pub fn select_mask(self, a: M, b: M) -> M {
-        (self & a) | (!self & b)
-    }
-
-    /// Whether any lane is set.
-    #[inline(always)]
-    pub fn any(self) -> bool {
-        let mut r = 0;
-        for i in 0..W {
-            r |= self.0[i];
-        }
-        r != 0
-    }
-
-    /// Lane `i` as a `bool`.
-    #[inline(always)]
-    pub fn get(self, i: usize) -> bool {
-        self.0[i] != 0
     }
 }
 
-impl BitAnd for M {
-    type Output = M;
+/// A vector of [`Lanes::N`] doubles: [`Real`] plus what batched code needs. Constants combine
+/// with a vector on its right only (`x * 2.0`, `L::splat(1.0) / x`): multiplication and
+/// addition commute exactly in IEEE 754, so this is the same bits as the constant on the left.
+pub trait Lanes: Real + Debug + Send + Sync + 'static {
+    /// Number of lanes.
+    const N: usize;
+    /// `[f64; N]`.
+    type Array: Copy + Debug + AsRef<[f64]> + AsMut<[f64]> + IndexMut<usize, Output = f64>;
+    /// Lane `i` is `f(i)`.
+    fn from_fn(f: impl FnMut(usize) -> f64) -> Self;
+    /// The first [`Lanes::N`] entries of `s`.
+    ///
+    /// # Panics
+    /// If `s` is shorter.
+    fn load(s: &[f64]) -> Self;
+    /// The lanes as an array.
+    fn to_array(self) -> Self::Array;
+    /// Lane `i`.
     #[inline(always)]
-    fn bitand(self, o: M) -> M {
-        M(lanewise!(self.0, o.0, |a, b| a & b))
+    fn lane(self, i: usize) -> f64 {
+        self.to_array()[i]
     }
-}
-
-impl BitOr for M {
-    type Output = M;
+    /// Lane-wise `|x|`.
+    fn abs(self) -> Self;
+    /// `|self|` with the sign bit of `sign`.
+    fn copysign(self, sign: Self) -> Self;
+    /// Lanes whose sign bit is set (including −0 and negative NaNs).
+    fn sign_bit(self) -> Self::Mask;
+    /// Lane-wise `self < o` (false for NaN).
+    fn lt(self, o: Self) -> Self::Mask;
+    /// Lane-wise `self <= o` (false for NaN).
+    fn le(self, o: Self) -> Self::Mask;
+    /// Lane-wise `self == o` (false for NaN).
+    fn eq(self, o: Self) -> Self::Mask;
+    /// Lanes that are finite (neither infinite nor NaN).
     #[inline(always)]
-    fn bitor(self, o: M) -> M {
-        M(lanewise!(self.0, o.0, |a, b| a | b))
-    }
-}
-
-impl Not for M {
-    type Output = M;
-    #[inline(always)]
-    fn not(self) -> M {
-        M(lanewise!(self.0, self.0, |a, _b| !a))
-    }
-}
-
-macro_rules! arith {
-    ($tr:ident, $f:ident, $op:tt) => {
-        impl $tr for V {
-            type Output = V;
-            #[inline(always)]
-            fn $f(self, o: V) -> V {
-                V(lanewise!(self.0, o.0, |a, b| a $op b))
-            }
-        }
-        impl $tr<f64> for V {
-            type Output = V;
-            #[inline(always)]
-            fn $f(self, o: f64) -> V {
-                V(lanewise!(self.0, [o; W], |a, b| a $op b))
-            }
-        }
-        impl $tr<V> for f64 {
-            type Output = V;
-            #[inline(always)]
-            fn $f(self, o: V) -> V {
-                V(lanewise!([self; W], o.0, |a, b| a $op b))
-            }
-        }
-    };
-}
-
-arith!(Add, add, +);
-arith!(Sub, sub, -);
-arith!(Mul, mul, *);
-arith!(Div, div, /);
-
-impl Neg for V {
-    type Output = V;
-    #[inline(always)]
-    fn neg(self) -> V {
-        V(lanewise!(self.0, self.0, |a, _b| -a))
+    fn finite(self) -> Self::Mask {
+        self.abs().lt(Self::splat(f64::INFINITY))
     }
 }

@@ -23,15 +23,16 @@
 //! Everything that does not depend on the fitted parameters is computed once per data set
 //! ([`FitData`] keeps it): each shot's face orientation and clubhead velocities in the face frame
 //! ([`ImpactModel::delivery_frame`], reused while the loft and face biases are those of the club).
-//! An evaluation then runs only the second half of [`ImpactModel::solve`], on [`crate::lanes::W`]
-//! shots of one group at a time: the contact frame at each impact location or quadrature node
+//! An evaluation then runs only the second half of [`ImpactModel::solve`], on a lane vector of
+//! shots of one group at a time (8 with AVX-512, 4 otherwise): the contact frame at each impact location or quadrature node
 //! ([`crate::physics::FaceGeometry::contact_on`], the face equations of the scalar solve, generic
 //! over the lane type: computing it costs less than reading a stored one from memory),
 //! [`ImpactModel::solve_contact`] (the contact mechanics the scalar solve itself runs, generic
 //! over the lane type) on the lanes, the rotation to `G`, and the launch angles by the
 //! branch-free [`crate::sweep::fastmath::atan2_v`] and [`crate::sweep::fastmath::hypot_v`] instead
-//! of libm's. That evaluation (`problem/lanes.rs`) is compiled for AVX2 as well as for the portable
-//! baseline and picked at run time, as the face-map kernel is; both give the same bits. The
+//! of libm's. That evaluation (`problem/lanes.rs`) is written once over
+//! [`crate::lanes::Lanes`] and compiled for AVX-512 (`__m512d`), AVX2 (`__m256d`) and the portable
+//! lanes, the widest this machine runs picked at run time; all give the same bits. The
 //! residuals agree with solving each shot afresh to rounding (`tests/fit_batched.rs` holds them to
 //! 1e-9 relative; in practice a few ulp), and a shot's result does not depend on its lane or
 //! neighbours. Large data sets are evaluated in parallel chunks of shots; when any shot of a chunk
@@ -47,6 +48,7 @@ pub use super::data::FitData;
 use super::data::SiteCache;
 use super::spec::ParamLayout;
 use crate::club::ClubSpec;
+use crate::lanes::{simd_level, SimdLevel};
 use crate::measurement::{expected_over, NODES_PER_SHOT};
 use crate::physics::{ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError};
 
@@ -136,6 +138,9 @@ pub struct FitProblem<'a> {
     /// Effect index of each parameter of `θ`.
     owner: Vec<usize>,
     parallel_jacobian: bool,
+    /// The lane code path of the batched evaluations ([`crate::lanes::simd_level`] unless a
+    /// test chose another; every path gives the same bits).
+    level: SimdLevel,
 }
 
 impl<'a> FitProblem<'a> {
@@ -175,6 +180,7 @@ impl<'a> FitProblem<'a> {
             upper,
             owner,
             parallel_jacobian: false,
+            level: simd_level(),
         }
     }
 
@@ -191,6 +197,13 @@ impl<'a> FitProblem<'a> {
     /// parallel jobs).
     pub fn with_parallel_jacobian(mut self, on: bool) -> Self {
         self.parallel_jacobian = on;
+        self
+    }
+
+    /// Evaluate on the lanes of `level` (or the widest level below it this machine runs):
+    /// every level gives the same bits, which tests check by running each.
+    pub fn with_simd_level(mut self, level: SimdLevel) -> Self {
+        self.level = level.or_supported();
         self
     }
 

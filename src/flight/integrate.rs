@@ -1,6 +1,6 @@
 //! The batched flight integrator: classic fourth-order Runge–Kutta with a fixed step over
-//! `2·W` trajectories at once (two groups of [`W`]) (lanes of `f64`, AVX2 when the machine has it), rayon across
-//! batches.
+//! `2·N` trajectories at once (two lane vectors of [`Lanes::N`]: AVX-512, AVX2 or portable lanes,
+//! the widest this machine runs, [`crate::lanes::simd_level`]), rayon across batches.
 //!
 //! State per trajectory: position and velocity in G and the spin rate. The spin axis is
 //! constant (the decay moment is antiparallel to the spin), so spin is one number. Each step
@@ -22,14 +22,15 @@ use rayon::prelude::*;
 use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, Fmm2022Tour, NathanLyu};
 use super::hermite::Hermite;
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
-use crate::lanes::{V, W};
-use crate::sweep::kernel::{simd_level, SimdLevel};
+use crate::lanes::{each2, each3, simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{F64x4, F64x8};
 
 /// Launches one rayon task takes.
 const PER_TASK: usize = 64;
 
 /// Fly every launch; results in input order. Invalid launches give their error, the others are
-/// integrated in batches of `2·W` in parallel.
+/// integrated in batches of `2·N` in parallel.
 pub fn fly(cfg: &FlightConfig, launches: &[FlightLaunch]) -> Vec<Result<Flight, FlightError>> {
     let mut out = vec![
         Err(FlightError::NeverLands {
@@ -102,37 +103,67 @@ fn dispatch<C: CoefficientModel>(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let k = Consts::new(cfg);
-    #[cfg(target_arch = "x86_64")]
-    if simd_level() == SimdLevel::Avx2 {
-        // SAFETY: AVX2 and FMA were detected at run time.
-        unsafe {
-            if wind {
-                batches_avx2::<C, true>(cfg, &k, model, launches, out)
-            } else {
-                batches_avx2::<C, false>(cfg, &k, model, launches, out)
-            }
-        }
-        return;
-    }
-    let _ = simd_level;
-    if wind {
-        batches::<C, true>(cfg, &k, model, launches, out)
-    } else {
-        batches::<C, false>(cfg, &k, model, launches, out)
-    }
+    dispatch_on(simd_level(), cfg, model, wind, launches, out)
 }
 
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma")]
-unsafe fn batches_avx2<C: CoefficientModel, const WIND: bool>(
+/// [`dispatch`] on the lanes of `level` (the widest level at most `level` this machine runs):
+/// every level gives the same bits.
+fn dispatch_on<C: CoefficientModel>(
+    level: SimdLevel,
     cfg: &FlightConfig,
-    k: &Consts,
     model: &C,
+    wind: bool,
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    batches::<C, WIND>(cfg, k, model, launches, out)
+    let k = Consts::new(cfg);
+    let (k, args) = (&k, (cfg, model, launches, out));
+    match (level.or_supported(), wind) {
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: `or_supported` keeps a level only where `simd_level()` reports it, which it
+        // does only when the CPU (and operating system) have AVX-512F.
+        (SimdLevel::Avx512, true) => unsafe { batches_avx512::<C, true>(k, args) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above.
+        (SimdLevel::Avx512, false) => unsafe { batches_avx512::<C, false>(k, args) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above, AVX2.
+        (SimdLevel::Avx2, true) => unsafe { batches_avx2::<C, true>(k, args) },
+        #[cfg(target_arch = "x86_64")]
+        // SAFETY: as above, AVX2.
+        (SimdLevel::Avx2, false) => unsafe { batches_avx2::<C, false>(k, args) },
+        (_, true) => batches::<V, C, true>(k, args),
+        (_, false) => batches::<V, C, false>(k, args),
+    }
+}
+
+/// What [`batches`] integrates: the configuration, the coefficient model, the launches and
+/// their results.
+type Args<'a, C> = (
+    &'a FlightConfig,
+    &'a C,
+    &'a [FlightLaunch],
+    &'a mut [Result<Flight, FlightError>],
+);
+
+/// [`batches`] on [`F64x8`], compiled for AVX-512F.
+///
+/// # Safety
+/// The CPU must have AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+unsafe fn batches_avx512<C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
+    batches::<F64x8, C, WIND>(k, args)
+}
+
+/// [`batches`] on [`F64x4`], compiled for AVX2.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+unsafe fn batches_avx2<C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
+    batches::<F64x4, C, WIND>(k, args)
 }
 
 /// Constants of the equations of motion for one configuration.
@@ -176,46 +207,47 @@ impl Consts {
     }
 }
 
-/// State of [`W`] trajectories.
+/// State of [`Lanes::N`] trajectories.
 #[derive(Clone, Copy)]
-struct St {
-    p: [V; 3],
-    v: [V; 3],
-    w: V,
+struct St<L> {
+    p: [L; 3],
+    v: [L; 3],
+    w: L,
 }
 
 /// Time derivative of velocity and spin.
 #[derive(Clone, Copy)]
-struct Rate {
-    a: [V; 3],
-    dw: V,
+struct Rate<L> {
+    a: [L; 3],
+    dw: L,
 }
 
 #[inline(always)]
-fn rate<C: CoefficientModel, const WIND: bool>(
+fn rate<L: Lanes, C: CoefficientModel, const WIND: bool>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
-    axis: &[V; 3],
-    s: &St,
-) -> Rate {
+    axis: &[L; 3],
+    s: &St<L>,
+) -> Rate<L> {
     let mut vr = s.v;
     if WIND {
-        let (mut wx, mut wz) = ([0.0; W], [0.0; W]);
-        for i in 0..W {
-            let w = cfg.air.wind_at(s.p[1].0[i] + k.radius);
+        let y = s.p[1].to_array();
+        let (mut wx, mut wz) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
+        for i in 0..L::N {
+            let w = cfg.air.wind_at(y[i] + k.radius);
             wx[i] = w[0];
             wz[i] = w[1];
         }
-        vr[0] = vr[0] - V(wx);
-        vr[2] = vr[2] - V(wz);
+        vr[0] = vr[0] - L::load(&wx);
+        vr[2] = vr[2] - L::load(&wz);
     }
     let v2 = vr[0] * vr[0] + vr[1] * vr[1] + vr[2] * vr[2];
     let vm = v2.sqrt();
-    let tiny = V::splat(1e-300);
-    let inv_v = 1.0 / vm.lt(tiny).select(tiny, vm);
-    let sf = k.radius * s.w * inv_v;
-    let re = k.re_per_speed * vm;
+    let tiny = L::splat(1e-300);
+    let inv_v = L::splat(1.0) / L::select(vm.lt(tiny), tiny, vm);
+    let sf = s.w * k.radius * inv_v;
+    let re = vm * k.re_per_speed;
     let (cd, cl, cm) = model.coefficients_v(sf, re);
     // Lift direction: axis × v_rel, normalised.
     let c = [
@@ -225,83 +257,126 @@ fn rate<C: CoefficientModel, const WIND: bool>(
     ];
     let c2 = c[0] * c[0] + c[1] * c[1] + c[2] * c[2];
     let cn = c2.sqrt();
-    let zero = V::splat(0.0);
-    let inv_c = cn
-        .gt(zero)
-        .select(1.0 / cn.gt(zero).select(cn, V::splat(1.0)), zero);
-    let drag = k.k_force * cd * vm;
-    let lift = k.k_force * cl * v2 * inv_c;
+    let zero = L::splat(0.0);
+    let positive = cn.gt(zero);
+    let inv_c = L::select(
+        positive,
+        L::splat(1.0) / L::select(positive, cn, L::splat(1.0)),
+        zero,
+    );
+    let drag = cd * k.k_force * vm;
+    let lift = cl * k.k_force * v2 * inv_c;
     let a = [
         lift * c[0] - drag * vr[0],
         lift * c[1] - drag * vr[1] - G_M_S2,
         lift * c[2] - drag * vr[2],
     ];
     let dw = if k.moment {
-        -(k.k_moment * cm * v2)
+        -(cm * k.k_moment * v2)
     } else {
-        -(k.inv_tau * s.w)
+        -(s.w * k.inv_tau)
     };
     Rate { a, dw }
 }
 
 #[inline(always)]
-fn axpy(s: &St, h: f64, v: &[V; 3], r: &Rate) -> St {
+fn axpy<L: Lanes>(s: &St<L>, h: f64, v: &[L; 3], r: &Rate<L>) -> St<L> {
     St {
-        p: [s.p[0] + h * v[0], s.p[1] + h * v[1], s.p[2] + h * v[2]],
+        p: [s.p[0] + v[0] * h, s.p[1] + v[1] * h, s.p[2] + v[2] * h],
         v: [
-            s.v[0] + h * r.a[0],
-            s.v[1] + h * r.a[1],
-            s.v[2] + h * r.a[2],
+            s.v[0] + r.a[0] * h,
+            s.v[1] + r.a[1] * h,
+            s.v[2] + r.a[2] * h,
         ],
-        w: s.w + h * r.dw,
+        w: s.w + r.dw * h,
     }
 }
 
 /// Independent lane groups integrated together, so that the out-of-order core overlaps one
-/// group's long dependency chain (square roots, divisions) with the other's.
+/// group's long dependency chain (square roots, divisions) with the other's. (`rk4` is written
+/// out for two.)
 const G: usize = 2;
 
-/// Launches per batch.
-const B: usize = G * W;
-
 #[inline(always)]
-fn rk4<C: CoefficientModel, const WIND: bool>(
+fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
-    axis: &[[V; 3]; G],
-    s: &[St; G],
-) -> [St; G] {
+    axis: &[[L; 3]; G],
+    s: &[St<L>; G],
+) -> [St<L>; G] {
+    // Written out for the two groups (no closures around `rate`: see `crate::lanes::each2`).
     let h = k.dt;
-    let r1: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s[g]));
-    let s2: [St; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s[g].v, &r1[g]));
-    let r2: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s2[g]));
-    let s3: [St; G] = std::array::from_fn(|g| axpy(&s[g], 0.5 * h, &s2[g].v, &r2[g]));
-    let r3: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s3[g]));
-    let s4: [St; G] = std::array::from_fn(|g| axpy(&s[g], h, &s3[g].v, &r3[g]));
-    let r4: [Rate; G] = std::array::from_fn(|g| rate::<C, WIND>(k, cfg, model, &axis[g], &s4[g]));
+    let (a0, a1) = (&axis[0], &axis[1]);
+    let r1 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s[1]),
+    ];
+    let s2 = [
+        axpy(&s[0], 0.5 * h, &s[0].v, &r1[0]),
+        axpy(&s[1], 0.5 * h, &s[1].v, &r1[1]),
+    ];
+    let r2 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s2[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s2[1]),
+    ];
+    let s3 = [
+        axpy(&s[0], 0.5 * h, &s2[0].v, &r2[0]),
+        axpy(&s[1], 0.5 * h, &s2[1].v, &r2[1]),
+    ];
+    let r3 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s3[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s3[1]),
+    ];
+    let s4 = [
+        axpy(&s[0], h, &s3[0].v, &r3[0]),
+        axpy(&s[1], h, &s3[1].v, &r3[1]),
+    ];
+    let r4 = [
+        rate::<L, C, WIND>(k, cfg, model, a0, &s4[0]),
+        rate::<L, C, WIND>(k, cfg, model, a1, &s4[1]),
+    ];
     let h6 = h / 6.0;
-    let comb = |a: V, b: V, c: V, d: V| a + 2.0 * (b + c) + d;
-    std::array::from_fn(|g| {
-        let mut n = s[g];
-        for j in 0..3 {
-            n.p[j] = s[g].p[j] + h6 * comb(s[g].v[j], s2[g].v[j], s3[g].v[j], s4[g].v[j]);
-            n.v[j] = s[g].v[j] + h6 * comb(r1[g].a[j], r2[g].a[j], r3[g].a[j], r4[g].a[j]);
-        }
-        n.w = s[g].w + h6 * comb(r1[g].dw, r2[g].dw, r3[g].dw, r4[g].dw);
-        n
-    })
+    [
+        combine(
+            h6,
+            [&s[0], &s2[0], &s3[0], &s4[0]],
+            [&r1[0], &r2[0], &r3[0], &r4[0]],
+        ),
+        combine(
+            h6,
+            [&s[1], &s2[1], &s3[1], &s4[1]],
+            [&r1[1], &r2[1], &r3[1], &r4[1]],
+        ),
+    ]
 }
 
+/// The RK4 step from the stages' states `s` and rates `r`, `h6 = h/6`.
 #[inline(always)]
-fn batches<C: CoefficientModel, const WIND: bool>(
-    cfg: &FlightConfig,
-    k: &Consts,
-    model: &C,
-    launches: &[FlightLaunch],
-    out: &mut [Result<Flight, FlightError>],
-) {
-    let mut idx = [0usize; B];
+fn combine<L: Lanes>(h6: f64, s: [&St<L>; 4], r: [&Rate<L>; 4]) -> St<L> {
+    let mut n = *s[0];
+    for j in 0..3 {
+        n.p[j] = s[0].p[j] + comb(s[0].v[j], s[1].v[j], s[2].v[j], s[3].v[j]) * h6;
+        n.v[j] = s[0].v[j] + comb(r[0].a[j], r[1].a[j], r[2].a[j], r[3].a[j]) * h6;
+    }
+    n.w = s[0].w + comb(r[0].dw, r[1].dw, r[2].dw, r[3].dw) * h6;
+    n
+}
+
+/// RK4's weighted sum of the four stages' values (before the factor `h/6`).
+#[inline(always)]
+fn comb<L: Lanes>(a: L, b: L, c: L, d: L) -> L {
+    a + (b + c) * 2.0 + d
+}
+
+/// Most launches a batch takes (`G` vectors of the widest lane type).
+const MAX_B: usize = G * MAX_LANES;
+
+#[inline(always)]
+fn batches<L: Lanes, C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
+    let (cfg, model, launches, out) = args;
+    let b = G * L::N;
+    let mut idx = [0usize; MAX_B];
     let mut n = 0;
     for (i, l) in launches.iter().enumerate() {
         match l.check() {
@@ -309,136 +384,132 @@ fn batches<C: CoefficientModel, const WIND: bool>(
             Ok(()) => {
                 idx[n] = i;
                 n += 1;
-                if n == B {
-                    batch::<C, WIND>(cfg, k, model, launches, &idx, B, out);
+                if n == b {
+                    batch::<L, C, WIND>(cfg, k, model, launches, &idx[..b], b, out);
                     n = 0;
                 }
             }
         }
     }
     if n > 0 {
-        for j in n..B {
+        for j in n..b {
             idx[j] = idx[n - 1];
         }
-        batch::<C, WIND>(cfg, k, model, launches, &idx, n, out);
+        batch::<L, C, WIND>(cfg, k, model, launches, &idx[..b], n, out);
+    }
+}
+
+/// The start of the trajectories of the launches `idx` (one a lane; lane `L` is lane
+/// `L % N` of group `L / N`): the states and the unit spin axes.
+#[inline(always)]
+fn start<L: Lanes>(launches: &[FlightLaunch], idx: &[usize]) -> ([St<L>; G], [[L; 3]; G]) {
+    let (mut v, mut w, mut ax) = ([[0.0; MAX_B]; 3], [0.0; MAX_B], [[0.0; MAX_B]; 3]);
+    for (lane, &i) in idx.iter().enumerate() {
+        let l = &launches[i];
+        let (sl, cl) = l.launch_angle_rad.sin_cos();
+        let (sa, ca) = l.azimuth_rad.sin_cos();
+        let sp = l.ball_speed_m_s;
+        v[0][lane] = sp * cl * ca;
+        v[1][lane] = sp * sl;
+        v[2][lane] = sp * cl * sa;
+        // ω = (0, −sidespin, backspin) in G.
+        let (wy, wz) = (-l.sidespin_rad_s, l.backspin_rad_s);
+        let wm = wy.hypot(wz);
+        w[lane] = wm;
+        if wm > 0.0 {
+            ax[1][lane] = wy / wm;
+            ax[2][lane] = wz / wm;
+        } else {
+            ax[2][lane] = 1.0;
+        }
+    }
+    let part = |a: &[f64; MAX_B], g: usize| L::load(&a[g * L::N..]);
+    let zero = L::splat(0.0);
+    (
+        each2(|g| St {
+            p: [zero; 3],
+            v: each3(|j| part(&v[j], g)),
+            w: part(&w, g),
+        }),
+        each2(|g| each3(|j| part(&ax[j], g))),
+    )
+}
+
+/// A state's lanes as arrays (to follow one lane through an event).
+struct Lanewise<L: Lanes> {
+    p: [L::Array; 3],
+    v: [L::Array; 3],
+    w: L::Array,
+}
+
+impl<L: Lanes> St<L> {
+    #[inline(always)]
+    fn lanewise(&self) -> Lanewise<L> {
+        Lanewise {
+            p: each3(|j| self.p[j].to_array()),
+            v: each3(|j| self.v[j].to_array()),
+            w: self.w.to_array(),
+        }
     }
 }
 
 /// Integrate the launches `idx` (the first `n` are real, the rest padding copies). Lane `L` is
-/// lane `L % W` of group `L / W`.
+/// lane `L % N` of group `L / N`.
 #[inline(always)]
-fn batch<C: CoefficientModel, const WIND: bool>(
+fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     cfg: &FlightConfig,
     k: &Consts,
     model: &C,
     launches: &[FlightLaunch],
-    idx: &[usize; B],
+    idx: &[usize],
     n: usize,
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let zero = V::splat(0.0);
-    let mut s = [St {
-        p: [zero; 3],
-        v: [zero; 3],
-        w: zero,
-    }; G];
-    let mut axis = [[zero; 3]; G];
-    for lane in 0..B {
-        let (g, i) = (lane / W, lane % W);
-        let l = &launches[idx[lane]];
-        let (sl, cl) = l.launch_angle_rad.sin_cos();
-        let (sa, ca) = l.azimuth_rad.sin_cos();
-        let sp = l.ball_speed_m_s;
-        s[g].v[0].0[i] = sp * cl * ca;
-        s[g].v[1].0[i] = sp * sl;
-        s[g].v[2].0[i] = sp * cl * sa;
-        // ω = (0, −sidespin, backspin) in G.
-        let (wy, wz) = (-l.sidespin_rad_s, l.backspin_rad_s);
-        let w = wy.hypot(wz);
-        s[g].w.0[i] = w;
-        if w > 0.0 {
-            axis[g][1].0[i] = wy / w;
-            axis[g][2].0[i] = wz / w;
-        } else {
-            axis[g][2].0[i] = 1.0;
-        }
-    }
+    let (mut s, axis) = start::<L>(launches, idx);
+    let zero = L::splat(0.0);
     let h = k.dt;
     let mut apex = [zero; G];
-    let mut done = [[false; W]; G];
-    let mut left = B;
+    let mut done = [[false; MAX_LANES]; G];
+    let mut left = G * L::N;
     let mut t = 0.0;
     let mut steps = 0u64;
     while left > 0 && t < k.max_time {
-        let ns = rk4::<C, WIND>(k, cfg, model, &axis, &s);
+        let ns = rk4::<L, C, WIND>(k, cfg, model, &axis, &s);
         for g in 0..G {
             let (s, ns) = (&s[g], &ns[g]);
-            apex[g] = ns.p[1].gt(apex[g]).select(ns.p[1], apex[g]);
+            apex[g] = L::select(ns.p[1].gt(apex[g]), ns.p[1], apex[g]);
             // Lanes that cross the ground or pass the apex this step (done lanes included:
             // the scalar code below skips them).
             let event = ns.p[1].lt(zero) | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
             if !event.any() {
                 continue;
             }
-            for i in 0..W {
+            let (a, b) = (s.lanewise(), ns.lanewise());
+            let mut top = apex[g].to_array();
+            let ax = each3(|j| axis[g][j].to_array());
+            for i in 0..L::N {
                 if done[g][i] || !event.get(i) {
                     continue;
                 }
-                let (y0, y1) = (s.p[1].0[i], ns.p[1].0[i]);
-                let (vy0, vy1) = (s.v[1].0[i], ns.v[1].0[i]);
-                let hy = Hermite::new(y0, y1, vy0, vy1, h);
-                if vy0 > 0.0 && vy1 <= 0.0 {
-                    apex[g].0[i] = apex[g].0[i].max(hy.max());
-                }
-                if y1 >= 0.0 {
+                let axis = [ax[0][i], ax[1][i], ax[2][i]];
+                let Some(f) = land::<L>(cfg, k, (&a, &b), i, &axis, &mut top[i], t) else {
                     continue;
-                }
-                let th = hy.root();
-                let interp = |j: usize| {
-                    let hj = Hermite::new(s.p[j].0[i], ns.p[j].0[i], s.v[j].0[i], ns.v[j].0[i], h);
-                    (hj.at(th), hj.slope(th) / h)
                 };
-                let (x, vx) = interp(0);
-                let (z, vz) = interp(2);
-                let vy = hy.slope(th) / h;
-                let w = s.w.0[i] + th * (ns.w.0[i] - s.w.0[i]);
-                let horiz = vx.hypot(vz);
-                let mut f = Flight {
-                    carry_m: x,
-                    offline_m: z,
-                    apex_m: apex[g].0[i].max(0.0),
-                    flight_time_s: t + th * h,
-                    land_angle_rad: (-vy).atan2(horiz),
-                    land_speed_m_s: (horiz * horiz + vy * vy).sqrt(),
-                    land_spin_rad_s: w,
-                    total_m: None,
-                };
-                if let Some(gr) = &cfg.ground {
-                    // Backspin component about the horizontal axis across the direction of
-                    // travel: ω·(ĥ × ŷ) with ĥ the unit horizontal velocity, ĥ × ŷ = (−uz, 0, ux).
-                    let (ux, uz) = if horiz > 0.0 {
-                        (vx / horiz, vz / horiz)
-                    } else {
-                        (1.0, 0.0)
-                    };
-                    let back = w * (axis[g][0].0[i] * -uz + axis[g][2].0[i] * ux);
-                    let roll = gr.run_m(horiz, -vy, back, k.radius);
-                    f.total_m = Some(x + roll * ux);
-                }
-                let lane = g * W + i;
+                let lane = g * L::N + i;
                 if lane < n {
                     out[idx[lane]] = Ok(f);
                 }
                 done[g][i] = true;
                 left -= 1;
             }
+            apex[g] = L::load(top.as_ref());
         }
         s = ns;
         steps += 1;
         t = steps as f64 * h;
     }
     for lane in 0..n {
-        if !done[lane / W][lane % W] {
+        if !done[lane / L::N][lane % L::N] {
             out[idx[lane]] = Err(FlightError::NeverLands {
                 time_limit_s: k.max_time,
             });
@@ -446,151 +517,62 @@ fn batch<C: CoefficientModel, const WIND: bool>(
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::flight::{Atmosphere, FlightLaunch};
-
-    fn drive() -> FlightLaunch {
-        FlightLaunch::from_file_units(167.0, 10.9, 0.0, 2686.0, 0.0)
+/// Lane `i`'s event in the step from `s` to `ns` (from time `t`): its apex `apex` raised to the
+/// interpolant's maximum if it passed it, and its landing if it came down through `y = 0`.
+#[inline(always)]
+fn land<L: Lanes>(
+    cfg: &FlightConfig,
+    k: &Consts,
+    (s, ns): (&Lanewise<L>, &Lanewise<L>),
+    i: usize,
+    axis: &[f64; 3],
+    apex: &mut f64,
+    t: f64,
+) -> Option<Flight> {
+    let h = k.dt;
+    let (y0, y1) = (s.p[1][i], ns.p[1][i]);
+    let (vy0, vy1) = (s.v[1][i], ns.v[1][i]);
+    let hy = Hermite::new(y0, y1, vy0, vy1, h);
+    if vy0 > 0.0 && vy1 <= 0.0 {
+        *apex = apex.max(hy.max());
     }
-
-    #[test]
-    fn vacuum_flight_matches_closed_form() {
-        // No air: the range of a projectile v²·sin 2θ / g, apex v²sin²θ/(2g).
-        let mut cfg = FlightConfig::default();
-        cfg.air.density_kg_m3 = 0.0;
-        let l = FlightLaunch::from_file_units(100.0, 30.0, 0.0, 3000.0, 0.0);
-        let f = fly_one(&cfg, &l).unwrap();
-        let v = l.ball_speed_m_s;
-        let range = v * v * (2.0 * l.launch_angle_rad).sin() / G_M_S2;
-        let apex = (v * l.launch_angle_rad.sin()).powi(2) / (2.0 * G_M_S2);
-        assert!((f.carry_m - range).abs() < 1e-9, "{} {}", f.carry_m, range);
-        assert!((f.apex_m - apex).abs() < 1e-9);
-        assert!((f.land_angle_rad - l.launch_angle_rad).abs() < 1e-9);
-        let tof = 2.0 * v * l.launch_angle_rad.sin() / G_M_S2;
-        assert!((f.flight_time_s - tof).abs() < 1e-9);
+    if y1 >= 0.0 {
+        return None;
     }
-
-    #[test]
-    fn flights_shorter_than_one_step_land_after_their_apex() {
-        // A 5 mph pitch lasts 0.08 s, a quarter of the default step: the step's crossing at
-        // θ = 0 is the launch, not the landing. In vacuum the closed form; in air a fine step
-        // (to 1 mm, a tenth of the step tolerance of the flight's 0.01 yd).
-        let mut vacuum = FlightConfig::default();
-        vacuum.air.density_kg_m3 = 0.0;
-        for (mph, deg) in [(5.0, 10.0), (2.0, 60.0), (0.5, 5.0)] {
-            let l = FlightLaunch::from_file_units(mph, deg, 0.0, 1000.0, 0.0);
-            let f = fly_one(&vacuum, &l).unwrap();
-            let (v, th) = (l.ball_speed_m_s, l.launch_angle_rad);
-            let range = v * v * (2.0 * th).sin() / G_M_S2;
-            assert!(
-                (f.carry_m - range).abs() < 1e-9 * (1.0 + range),
-                "{mph} mph: {f:?}"
-            );
-            assert!((f.land_angle_rad - th).abs() < 1e-9, "{mph} mph: {f:?}");
-            let tof = 2.0 * v * th.sin() / G_M_S2;
-            assert!((f.flight_time_s - tof).abs() < 1e-9, "{mph} mph: {f:?}");
-        }
-        let air = FlightConfig::default();
-        let fine = FlightConfig {
-            dt_s: Some(0.001),
-            ..FlightConfig::default()
+    let th = hy.root();
+    let interp = |j: usize| {
+        let hj = Hermite::new(s.p[j][i], ns.p[j][i], s.v[j][i], ns.v[j][i], h);
+        (hj.at(th), hj.slope(th) / h)
+    };
+    let (x, vx) = interp(0);
+    let (z, vz) = interp(2);
+    let vy = hy.slope(th) / h;
+    let w = s.w[i] + th * (ns.w[i] - s.w[i]);
+    let horiz = vx.hypot(vz);
+    let mut f = Flight {
+        carry_m: x,
+        offline_m: z,
+        apex_m: apex.max(0.0),
+        flight_time_s: t + th * h,
+        land_angle_rad: (-vy).atan2(horiz),
+        land_speed_m_s: (horiz * horiz + vy * vy).sqrt(),
+        land_spin_rad_s: w,
+        total_m: None,
+    };
+    if let Some(gr) = &cfg.ground {
+        // Backspin component about the horizontal axis across the direction of
+        // travel: ω·(ĥ × ŷ) with ĥ the unit horizontal velocity, ĥ × ŷ = (−uz, 0, ux).
+        let (ux, uz) = if horiz > 0.0 {
+            (vx / horiz, vz / horiz)
+        } else {
+            (1.0, 0.0)
         };
-        let l = FlightLaunch::from_file_units(5.0, 10.0, 0.0, 1000.0, 0.0);
-        let (f, g) = (fly_one(&air, &l).unwrap(), fly_one(&fine, &l).unwrap());
-        let (dc, da) = (f.carry_m - g.carry_m, f.land_angle_rad - g.land_angle_rad);
-        let close = dc.abs() < 1e-3 && da.abs() < 1e-3;
-        assert!(f.carry_m > 0.15 && close, "{f:?} {g:?}");
+        let back = w * (axis[0] * -uz + axis[2] * ux);
+        let roll = gr.run_m(horiz, -vy, back, k.radius);
+        f.total_m = Some(x + roll * ux);
     }
-
-    #[test]
-    fn batching_and_threads_do_not_change_results() {
-        let cfg = FlightConfig::default();
-        let ls: Vec<FlightLaunch> = (0..37)
-            .map(|k| {
-                FlightLaunch::from_file_units(
-                    100.0 + k as f64,
-                    8.0 + 0.3 * k as f64,
-                    -3.0 + 0.2 * k as f64,
-                    2000.0 + 150.0 * k as f64,
-                    -800.0 + 40.0 * k as f64,
-                )
-            })
-            .collect();
-        let all = fly(&cfg, &ls);
-        for (k, l) in ls.iter().enumerate() {
-            assert_eq!(all[k], fly_one(&cfg, l), "launch {k}");
-        }
-        let mut serial = vec![Ok(fly_one(&cfg, &ls[0]).unwrap()); ls.len()];
-        fly_serial(&cfg, &ls, &mut serial);
-        assert_eq!(all, serial);
-    }
-
-    #[test]
-    fn slice_spin_curves_right_and_wind_pushes() {
-        let cfg = FlightConfig::default();
-        let mut l = drive();
-        l.sidespin_rad_s = crate::units::rpm(800.0);
-        let f = fly_one(&cfg, &l).unwrap();
-        assert!(f.offline_m > 5.0, "{}", f.offline_m);
-        let straight = fly_one(&cfg, &drive()).unwrap();
-        assert!(straight.offline_m.abs() < 1e-9);
-        let tail = FlightConfig {
-            air: Atmosphere {
-                wind_speed_m_s: 5.0,
-                ..Atmosphere::default()
-            }
-            .air()
-            .unwrap(),
-            ..FlightConfig::default()
-        };
-        let head = FlightConfig {
-            air: Atmosphere {
-                wind_speed_m_s: 5.0,
-                wind_direction_deg: 180.0,
-                ..Atmosphere::default()
-            }
-            .air()
-            .unwrap(),
-            ..FlightConfig::default()
-        };
-        let ft = fly_one(&tail, &drive()).unwrap();
-        let fh = fly_one(&head, &drive()).unwrap();
-        assert!(ft.carry_m > straight.carry_m + 3.0 && fh.carry_m < straight.carry_m - 3.0);
-    }
-
-    #[test]
-    fn bad_launches_and_time_limit() {
-        let cfg = FlightConfig::default();
-        let mut l = drive();
-        l.ball_speed_m_s = -1.0;
-        assert!(matches!(
-            fly_one(&cfg, &l),
-            Err(FlightError::InvalidLaunch {
-                field: "ball_speed_mph",
-                ..
-            })
-        ));
-        let mut l = drive();
-        l.launch_angle_rad = 1.7;
-        assert!(matches!(
-            fly_one(&cfg, &l),
-            Err(FlightError::InvalidLaunch {
-                field: "launch_angle_deg",
-                ..
-            })
-        ));
-        let mut l = drive();
-        l.backspin_rad_s = crate::units::rpm(50_000.0);
-        assert!(fly_one(&cfg, &l).is_err());
-        let short = FlightConfig {
-            max_time_s: 2.0,
-            ..FlightConfig::default()
-        };
-        assert_eq!(
-            fly_one(&short, &drive()),
-            Err(FlightError::NeverLands { time_limit_s: 2.0 })
-        );
-    }
+    Some(f)
 }
+
+#[cfg(test)]
+mod tests;

@@ -143,10 +143,13 @@ impl FaceGeometry {
         let x2 = rho * rho - z_m * z_m;
         let x = x2.sqrt();
         let on_face = s2.gt(zero) & rho.gt(zero) & x2.gt(zero);
-        let normal = [s * x / rho / r, y_m / r, s * z_m / rho / r];
-        // `z_I = (−z, 0, X)/ρ`; its `y` component is `0/ρ`, +0 wherever the location is on the
-        // face.
-        let tangent_z = [-z_m / rho, zero, x / rho];
+        // Two divisions, by ρ (per location) and by the roll radius (a constant), instead of
+        // seven: the frame is a rounding or two away from dividing each component.
+        let inv_rho = R::splat(1.0) / rho;
+        let s_n = s * inv_rho * (1.0 / r);
+        let normal = [x * s_n, y_m / r, z_m * s_n];
+        // `z_I = (−z, 0, X)/ρ`; its `y` component is exactly 0.
+        let tangent_z = [-z_m * inv_rho, zero, x * inv_rho];
         let (a, b) = (&tangent_z, &normal);
         let tangent_y = [
             a[1] * b[2] - a[2] * b[1],

@@ -27,11 +27,12 @@ use super::delivery::{face_orientation, Delivery};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, Laws, Real,
-    Restitution, Sym3, TangentialLaw, Vec3,
+    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, LawWithCor, Laws,
+    Real, Restitution, TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
 use super::user_terms::UserEvalError;
+use crate::lanes::each3;
 
 mod user;
 pub use user::{pre_solve_base, ShotModel};
@@ -505,8 +506,9 @@ impl ImpactModel {
             FiniteImpact::at_first_contact(impulse, slipped, r_c, r_b)
         } else {
             laws.contact.impact(
-                |k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R| {
-                    laws.tangential.impulse::<R, FRICTION>(k, n, u, un, e)
+                LawWithCor::<R, FRICTION> {
+                    law: &laws.tangential,
+                    e,
                 },
                 &laws.collision,
                 laws.ball.radius_m,
@@ -524,8 +526,11 @@ impl ImpactModel {
         };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);
-        let v_b = impulse.map(|c| c / p.ball_mass_kg);
-        let w_b = ball_angular_impulse.map(|c| c / p.ball_inertia_kgm2);
+        // Multiplied by the reciprocals (one scalar division a call, none a lane): the ball's
+        // velocity and spin are a rounding of the quotient away from dividing by m_b and I_b.
+        let inv_mb = 1.0 / p.ball_mass_kg;
+        let v_b = each3(|i| impulse[i] * inv_mb);
+        let w_b = each3(|i| ball_angular_impulse[i] * laws.collision.ball_inv_inertia);
         ContactSolution {
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,

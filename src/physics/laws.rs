@@ -25,7 +25,9 @@ pub use super::real::Real;
 mod finite_contact;
 #[cfg(test)]
 use crate::lanes::V;
-pub use finite_contact::{ContactGeometry, FiniteContact, FiniteImpact, HERTZ_MEAN_SPIN_UP};
+pub use finite_contact::{
+    ContactGeometry, FiniteContact, FiniteImpact, InstantLaw, HERTZ_MEAN_SPIN_UP,
+};
 
 /// Reference normal approach speed of the speed-dependent COR laws, m/s: 109 mph, the
 /// reference speed of `docs/conventions.md` (`cor_speed`, `cor_power`).
@@ -319,6 +321,23 @@ impl TangentialLaw {
             ],
             slip,
         )
+    }
+}
+
+/// The tangential law with the impact's COR `e`: the instantaneous law a finite contact wraps
+/// (a type rather than a closure so that it is always inlined, see [`InstantLaw`]). `FRICTION`
+/// must be `law.mu.is_some()`.
+pub struct LawWithCor<'a, R, const FRICTION: bool> {
+    /// The law.
+    pub law: &'a TangentialLaw,
+    /// The COR.
+    pub e: R,
+}
+
+impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithCor<'_, R, FRICTION> {
+    #[inline(always)]
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
+        self.law.impulse::<R, FRICTION>(k, n, u, un, self.e)
     }
 }
 

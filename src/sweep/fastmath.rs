@@ -24,7 +24,7 @@
 //! Special values: `atan2(±0, +0) = ±0`, `atan2(±0, −0) = ±π`, NaN in → NaN out. Infinite
 //! arguments are not supported (the kernel never produces them for valid impacts).
 
-use crate::lanes::V;
+use crate::lanes::{Lanes, V};
 
 /// `tan(3π/8)`.
 const T3P8: f64 = 2.414_213_562_373_095;
@@ -62,51 +62,58 @@ const Q: [f64; 5] = [
 /// lane 0 of [`atan2_v`]: the same operations, so the same bits.
 #[inline]
 pub fn atan2(y: f64, x: f64) -> f64 {
-    atan2_v(V::splat(y), V::splat(x)).0[0]
+    atan2_v::<V>(V::splat(y), V::splat(x)).0[0]
 }
 
-/// [`atan2`] on [`W`](crate::lanes::W) lanes.
+/// [`atan2`] on any lane type (the same operations on every lane, so the same bits).
 #[inline(always)]
-pub fn atan2_v(y: V, x: V) -> V {
+pub fn atan2_v<L: Lanes>(y: L, x: L) -> L {
     let ax = x.abs();
     let ay = y.abs();
     let x_neg = x.sign_bit();
-    let big = ay.gt(T3P8 * ax);
-    let small = ay.le(0.66 * ax) & !big;
+    let big = ay.gt(ax * T3P8);
+    let small = ay.le(ax * 0.66) & !big;
     let mid = !(big | small);
     // Reduced argument x_r = num/den and the constant hi + lo that the octant contributes,
     // with π − · already folded in for x < 0.
-    let num = big.select(-ax, small.select(ay, ay - ax));
-    let den = big.select(ay, small.select(ax, ay + ax));
+    let num = L::select(big, -ax, L::select(small, ay, ay - ax));
+    let den = L::select(big, ay, L::select(small, ax, ay + ax));
     // atan2(±0, ±0): 0/0 would be NaN; the answer is the constant alone.
-    let den = den.eq(V::splat(0.0)).select(V::splat(1.0), den);
-    let c = |a: f64, b: f64| x_neg.select(V::splat(a), V::splat(b));
-    let hi = big.select(
-        V::splat(PIO2_HI),
-        mid.select(c(PI3O4_HI, PIO4_HI), c(PI_HI, 0.0)),
+    let den = L::select(den.eq(L::splat(0.0)), L::splat(1.0), den);
+    let hi = L::select(
+        big,
+        L::splat(PIO2_HI),
+        L::select(mid, pick(x_neg, PI3O4_HI, PIO4_HI), pick(x_neg, PI_HI, 0.0)),
     );
-    let lo = big.select(
-        V::splat(PIO2_LO),
-        mid.select(c(PI3O4_LO, PIO4_LO), c(PI_LO, 0.0)),
+    let lo = L::select(
+        big,
+        L::splat(PIO2_LO),
+        L::select(mid, pick(x_neg, PI3O4_LO, PIO4_LO), pick(x_neg, PI_LO, 0.0)),
     );
     let xr = num / den;
     let z = xr * xr;
-    let p = (((P[0] * z + P[1]) * z + P[2]) * z + P[3]) * z + P[4];
+    let p = (((z * P[0] + P[1]) * z + P[2]) * z + P[3]) * z + P[4];
     let q = ((((z + Q[0]) * z + Q[1]) * z + Q[2]) * z + Q[3]) * z + Q[4];
     // atan(x_r) = x_r + x_r·z·P/Q; for x < 0 the angle is the constant minus it.
     let r = xr * (z * p / q) + xr;
-    let r = x_neg.select(-r, r);
+    let r = L::select(x_neg, -r, r);
     let angle = hi + (r + lo);
     // Copy the sign of y (also gives ±0 and ±π for y = ±0).
     angle.copysign(y)
 }
 
-/// `√(x² + y²)` on [`W`](crate::lanes::W) lanes, correctly rounded operations only (so it
-/// vectorises). Within 2 ulp of `f64::hypot` while `x²` and `y²` neither overflow nor underflow
+/// `a` where `m`, else `b`.
+#[inline(always)]
+fn pick<L: Lanes>(m: L::Mask, a: f64, b: f64) -> L {
+    L::select(m, L::splat(a), L::splat(b))
+}
+
+/// `√(x² + y²)` on any lane type, correctly rounded operations only (so it vectorises).
+/// Within 2 ulp of `f64::hypot` while `x²` and `y²` neither overflow nor underflow
 /// (|x|, |y| between about 1e-150 and 1e150; ball velocities are far inside), which libm's
 /// scaling guards against and this does not.
 #[inline(always)]
-pub fn hypot_v(x: V, y: V) -> V {
+pub fn hypot_v<L: Lanes>(x: L, y: L) -> L {
     (x * x + y * y).sqrt()
 }
 

@@ -10,8 +10,8 @@
 //! [`atan2`](super::fastmath::atan2); the one branch is a rarely taken exact recheck of the
 //! sign of `u1·n` near zero), evaluated over structure-of-arrays chunks of
 //! [`LANES`] points that the compiler turns into packed AVX2 code (selected at run time, with a
-//! portable fallback). An AVX-512 path would need `target_feature(enable = "avx512f")`, stable
-//! only from Rust 1.89 (the crate's MSRV is 1.85).
+//! portable fallback; AVX-512 machines run the AVX2 path: unlike the fits and the flight
+//! integrator, the kernel still runs the portable lane type [`V`], vectorised by the compiler).
 //!
 //! # Same results as [`ImpactModel::solve`]
 //!
@@ -51,6 +51,7 @@ mod jobs;
 mod located;
 
 use super::fastmath::atan2_v;
+pub use crate::lanes::{simd_level, SimdLevel};
 use crate::lanes::{M, V, W};
 use crate::physics::laws::{Laws, TangentialLaw};
 use crate::physics::{Delivery, ImpactModel, ModelParams};
@@ -111,8 +112,6 @@ struct Row {
     yy: V,
     /// `s = sqrt(r² − y²)`, m.
     s: V,
-    /// `ρ = R + s`, m.
-    rho: V,
     /// `ρ²`, m².
     rho2: V,
     /// `1/ρ`, 1/m.
@@ -291,7 +290,6 @@ impl FaceMapKernel {
             y,
             yy: y * y,
             s,
-            rho,
             rho2: rho * rho,
             inv_rho: 1.0 / rho,
             ny: y / r,
@@ -351,8 +349,8 @@ impl FaceMapKernel {
             .abs()
             .le((u1n_x.abs() + u1n_y.abs() + u1n_z.abs()) * 1e-13);
         let approaching = if unsure.any() {
-            let nx_exact = row.s * x / row.rho / self.roll_m;
-            let nz_exact = row.s * z / row.rho / self.roll_m;
+            let s_n = row.s * row.inv_rho * (1.0 / self.roll_m);
+            let (nx_exact, nz_exact) = (x * s_n, z * s_n);
             let u1n_exact = u1x * nx_exact + u1y * ny + u1z * nz_exact;
             unsure.select_mask(u1n_exact.gt(t), u1n.gt(t))
         } else {
@@ -527,13 +525,17 @@ impl FaceMapKernel {
     ) {
         match level {
             #[cfg(target_arch = "x86_64")]
-            SimdLevel::Avx2 => unsafe { self.avx2::<FRICTION, POWER, USER>(job, out) },
+            // SAFETY: `level` is at most `simd_level()` (the callers' `or_supported`), so the
+            // CPU has AVX2.
+            SimdLevel::Avx2 | SimdLevel::Avx512 => unsafe {
+                self.avx2::<FRICTION, POWER, USER>(job, out)
+            },
             _ => job.run::<FRICTION, POWER, USER>(self, out),
         }
     }
 
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
+    #[target_feature(enable = "avx2")]
     unsafe fn avx2<const FRICTION: bool, const POWER: bool, const USER: bool>(
         &self,
         job: &impl Job,
@@ -541,25 +543,4 @@ impl FaceMapKernel {
     ) {
         job.run::<FRICTION, POWER, USER>(self, out)
     }
-}
-
-/// Which code path the kernel runs on this machine.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SimdLevel {
-    /// Portable code (baseline x86-64 SSE2, or any other architecture).
-    Portable,
-    /// AVX2 + FMA (x86-64), detected at run time. FMA is enabled for the compiler but never
-    /// used to contract operations: results are identical to the portable path.
-    Avx2,
-}
-
-/// The code path [`FaceMapKernel`] uses on this machine (detected once, cached).
-pub fn simd_level() -> SimdLevel {
-    #[cfg(target_arch = "x86_64")]
-    {
-        if std::is_x86_feature_detected!("avx2") && std::is_x86_feature_detected!("fma") {
-            return SimdLevel::Avx2;
-        }
-    }
-    SimdLevel::Portable
 }

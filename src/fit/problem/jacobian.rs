@@ -1,5 +1,5 @@
 //! The central-difference Jacobian on the lanes in one pass over the shots: for each vector of
-//! [`W`] shots of one group, each evaluation site's inputs (the location nodes and the contact
+//! [`Lanes::N`](crate::lanes::Lanes::N) shots of one group, each evaluation site's inputs (the location nodes and the contact
 //! frames there, the delivery frames) are gathered once and solved by all `2p` shifted models
 //! (`θ ± h_j e_j`) before the next site is read. Each model's solution is the same operations on
 //! the same inputs as its own evaluation ([`FitProblem::residuals_into`]), so every column is
@@ -9,13 +9,14 @@
 use nalgebra::DMatrix;
 use rayon::prelude::*;
 
-use super::lanes::{FrameLanes, LanePrediction};
+use super::lanes::{padded, FrameLanes, LanePrediction};
 use super::{FitProblem, FD_STEP_OF_RANGE, PARALLEL_MIN_SITES, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
-use crate::lanes::W;
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{F64x4, F64x8};
+use crate::lanes::{Lanes, SimdLevel, V};
 use crate::measurement::NODES_PER_SHOT;
 use crate::physics::ImpactModel;
-use crate::sweep::kernel::{simd_level, SimdLevel};
 
 /// The two shifted models of one Jacobian column, per group it touches (`None` for the
 /// others), and the groups it touches.
@@ -95,8 +96,8 @@ impl FitProblem<'_> {
     }
 
     /// The Jacobian rows of the shots `start..` (at most [`SHOTS_PER_TASK`]) into `out` (one
-    /// slice a column, zero on entry); `false` if a shot cannot be computed. Runs the AVX2 build
-    /// where the CPU has it, as the residuals do (the same bits either way).
+    /// slice a column, zero on entry); `false` if a shot cannot be computed. Runs the lane type
+    /// of the problem's [`SimdLevel`], as the residuals do (the same bits on every path).
     fn jacobian_block(
         &self,
         columns: &[Column],
@@ -104,18 +105,43 @@ impl FitProblem<'_> {
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
-        match simd_level() {
+        match self.level {
             #[cfg(target_arch = "x86_64")]
-            // SAFETY: `simd_level` reports AVX2 and FMA only when the CPU has both.
+            // SAFETY: `self.level` is at most `simd_level()`, which reports AVX-512F only when
+            // the CPU (and operating system) have it.
+            SimdLevel::Avx512 => unsafe { self.jacobian_block_avx512(columns, cache, start, out) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above, AVX2.
             SimdLevel::Avx2 => unsafe { self.jacobian_block_avx2(columns, cache, start, out) },
             _ => self
-                .jacobian_block_impl(columns, cache, start, out)
+                .jacobian_block_impl::<V>(columns, cache, start, out)
                 .is_some(),
         }
     }
 
+    /// [`FitProblem::jacobian_block_impl`] on [`F64x8`], compiled for AVX-512F.
+    ///
+    /// # Safety
+    /// The CPU must have AVX-512F.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn jacobian_block_avx512(
+        &self,
+        columns: &[Column],
+        cache: &SiteCache,
+        start: usize,
+        out: &mut [&mut [f64]],
+    ) -> bool {
+        self.jacobian_block_impl::<F64x8>(columns, cache, start, out)
+            .is_some()
+    }
+
+    /// [`FitProblem::jacobian_block_impl`] on [`F64x4`], compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
     unsafe fn jacobian_block_avx2(
         &self,
         columns: &[Column],
@@ -123,15 +149,15 @@ impl FitProblem<'_> {
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
-        self.jacobian_block_impl(columns, cache, start, out)
+        self.jacobian_block_impl::<F64x4>(columns, cache, start, out)
             .is_some()
     }
 
     /// The body of [`FitProblem::jacobian_block`]: shots taken group by group as the residuals
-    /// take them, each vector of [`W`] shots solved by the shifted models of the columns that
+    /// take them, each vector of [`Lanes::N`] shots solved by the shifted models of the columns that
     /// touch its group, then `(r⁺ − r⁻) / span` per row.
     #[inline(always)]
-    fn jacobian_block_impl(
+    fn jacobian_block_impl<L: Lanes>(
         &self,
         columns: &[Column],
         cache: &SiteCache,
@@ -151,8 +177,8 @@ impl FitProblem<'_> {
         order.sort_unstable_by_key(|&i| (group_of[i], i));
         let mut models: Vec<&ImpactModel> = Vec::with_capacity(2 * columns.len());
         let mut which = Vec::with_capacity(columns.len());
-        let mut frames: Vec<FrameLanes> = Vec::with_capacity(2 * columns.len());
-        let mut outs = vec![LanePrediction::ZERO; 2 * columns.len()];
+        let mut frames: Vec<FrameLanes<L>> = Vec::with_capacity(2 * columns.len());
+        let mut outs = vec![LanePrediction::<L>::zero(); 2 * columns.len()];
         for run in order.chunk_by(|&a, &b| group_of[a] == group_of[b]) {
             let g = group_of[run[0]];
             models.clear();
@@ -166,21 +192,21 @@ impl FitProblem<'_> {
                 continue;
             }
             let outs = &mut outs[..models.len()];
-            self.prefetch_shots(cache, &run[..run.len().min(W)]);
-            for (v, shots) in run.chunks(W).enumerate() {
+            let n = L::N;
+            self.prefetch_shots(cache, &run[..run.len().min(n)]);
+            for (v, shots) in run.chunks(n).enumerate() {
                 let next = run
-                    .get((v + 1) * W..)
-                    .map_or(&[][..], |r| &r[..r.len().min(W)]);
+                    .get((v + 1) * n..)
+                    .map_or(&[][..], |r| &r[..r.len().min(n)]);
                 self.prefetch_shots(cache, next);
-                let mut idx = [shots[shots.len() - 1]; W];
-                idx[..shots.len()].copy_from_slice(shots);
-                if !self.predict_lanes_multi(&models, cache, &idx, &mut frames, outs) {
+                let idx = padded(shots);
+                if !self.predict_lanes_multi(&models, cache, &idx[..n], &mut frames, outs) {
                     return None;
                 }
-                for (l, &i) in shots.iter().enumerate() {
-                    for (q, &k) in which.iter().enumerate() {
+                for (q, &k) in which.iter().enumerate() {
+                    let (p, m) = (outs[2 * q].lanewise(), outs[2 * q + 1].lanewise());
+                    for (l, &i) in shots.iter().enumerate() {
                         let (mut r_plus, mut r_minus) = ([0.0; 5], [0.0; 5]);
-                        let (p, m) = (&outs[2 * q], &outs[2 * q + 1]);
                         let rp = &mut r_plus[..rows];
                         self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), rp);
                         let rm = &mut r_minus[..rows];
@@ -244,6 +270,68 @@ mod tests {
                 assert!(one.iter().any(|v| *v != 0.0));
                 for (a, b) in one.iter().zip(cols.iter()) {
                     assert_eq!(a.to_bits(), b.to_bits(), "noise {noise:?}");
+                }
+            }
+        }
+    }
+
+    /// Every lane type this machine runs (portable, AVX2, AVX-512) gives the same residuals and
+    /// Jacobians, bit for bit, with the laws' optional branches switched on (friction slip, the
+    /// power-law COR, the tangential compliance, a finite contact), with and without location
+    /// noise, away from the defaults.
+    #[test]
+    fn every_lane_type_gives_the_same_bits() {
+        use crate::lanes::{simd_level, SimdLevel};
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut cfg = crate::synth::read_config(&root.join("configs/synth/paper_world.toml"))
+            .expect("paper world reads");
+        cfg.golfers = 5;
+        let club = crate::data::club_file::read_club(&root.join("configs/clubs/paper_driver.toml"))
+            .expect("club reads");
+        let run = crate::synth::generate(&cfg, &club).expect("world generates");
+        let shots: Vec<_> = run.shots.iter().map(|s| s.to_shot()).collect();
+        eprintln!("this machine runs {:?}", simd_level());
+        for effects in [
+            "added_mass@group,ball_offset,face_bias",
+            "friction,cor_power,tangential_compliance,contact_time,com_offset",
+        ] {
+            let list = parse_effect_list(effects).unwrap();
+            for noise in [None, Some(ImpactNoise::from_mm(2.0, 2.0).unwrap())] {
+                let data = FitData::from_shots(&shots)
+                    .unwrap()
+                    .with_impact_noise(noise)
+                    .unwrap();
+                let layout = ParamLayout::from_requests(&list, &data.groups).unwrap();
+                let theta = DVector::from_fn(layout.len(), |j, _| {
+                    let (lo, hi) = (layout.lower()[j], layout.upper()[j]);
+                    layout.defaults()[j] + 0.013 * (j as f64 + 1.0) * (hi - lo) / 7.0
+                });
+                let w = Weighting::launch(&[1.4, 1.0, 0.7, 400.0, 190.0]);
+                let at = |level: SimdLevel| {
+                    let pr =
+                        FitProblem::new(&club, layout.clone(), &data, w).with_simd_level(level);
+                    let r = pr.residuals(theta.as_slice()).expect("residuals");
+                    let j = pr
+                        .jacobian_on_lanes(theta.as_slice())
+                        .expect("lanes take it");
+                    (r, j)
+                };
+                let (r0, j0) = at(SimdLevel::Portable);
+                assert!(j0.iter().any(|v| *v != 0.0));
+                for level in SimdLevel::ALL {
+                    let (r, j) = at(level);
+                    let same = |a: &[f64], b: &[f64]| {
+                        a.len() == b.len()
+                            && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+                    };
+                    assert!(
+                        same(r.as_slice(), r0.as_slice()),
+                        "{effects} {noise:?} {level:?}"
+                    );
+                    assert!(
+                        same(j.as_slice(), j0.as_slice()),
+                        "{effects} {noise:?} {level:?}"
+                    );
                 }
             }
         }

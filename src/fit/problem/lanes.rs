@@ -1,41 +1,73 @@
-//! The batched residual evaluation: [`W`] shots of one group at a time on the lanes (see the
-//! module docs of [`super`]), compiled twice, for AVX2 and for the portable baseline, and
-//! dispatched at run time as the face-map kernel is ([`crate::sweep::kernel::simd_level`]).
+//! The batched residual evaluation: the shots of one group [`Lanes::N`] at a time on the lanes
+//! (see the module docs of [`super`]), written once, generic over the lane type, and compiled
+//! for each code path of [`SimdLevel`] (AVX-512, AVX2, portable), picked at run time.
 
 use nalgebra::Vector3;
 
 use super::{FitProblem, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
-use crate::lanes::{V, W};
+use crate::lanes::{each3, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
+#[cfg(target_arch = "x86_64")]
+use crate::lanes::{F64x4, F64x8};
 use crate::physics::impact::ContactInputs;
 use crate::physics::{DeliveryFrame, FaceGeometry, ImpactModel, Launch};
 use crate::sweep::fastmath::{atan2_v, hypot_v};
-use crate::sweep::kernel::{simd_level, SimdLevel};
 
-/// Predicted launch (SI), ball velocity and spin (G) of [`W`] shots, one lane a shot.
+/// Predicted launch (SI), ball velocity and spin (G) of [`Lanes::N`] shots, one lane a shot.
 #[derive(Clone, Copy)]
-pub(super) struct LanePrediction {
-    pub(super) launch: [V; 5],
-    pub(super) ball_v: [V; 3],
-    pub(super) ball_w: [V; 3],
+pub(super) struct LanePrediction<L> {
+    pub(super) launch: [L; 5],
+    pub(super) ball_v: [L; 3],
+    pub(super) ball_w: [L; 3],
 }
 
-impl LanePrediction {
-    pub(super) const ZERO: Self = Self {
-        launch: [V([0.0; W]); 5],
-        ball_v: [V([0.0; W]); 3],
-        ball_w: [V([0.0; W]); 3],
-    };
+impl<L: Lanes> LanePrediction<L> {
+    /// All zero.
+    #[inline(always)]
+    pub(super) fn zero() -> Self {
+        let z = L::splat(0.0);
+        Self {
+            launch: [z; 5],
+            ball_v: [z; 3],
+            ball_w: [z; 3],
+        }
+    }
 
+    /// The lanes as arrays, to read shot by shot.
+    #[inline(always)]
+    pub(super) fn lanewise(&self) -> PredictionArrays<L> {
+        let l = &self.launch;
+        PredictionArrays {
+            launch: [
+                l[0].to_array(),
+                l[1].to_array(),
+                l[2].to_array(),
+                l[3].to_array(),
+                l[4].to_array(),
+            ],
+            ball_v: each3(|a| self.ball_v[a].to_array()),
+            ball_w: each3(|a| self.ball_w[a].to_array()),
+        }
+    }
+}
+
+/// [`LanePrediction`] as arrays of lanes.
+pub(super) struct PredictionArrays<L: Lanes> {
+    launch: [L::Array; 5],
+    ball_v: [L::Array; 3],
+    ball_w: [L::Array; 3],
+}
+
+impl<L: Lanes> PredictionArrays<L> {
     /// The launch of lane `l`.
     #[inline(always)]
     pub(super) fn launch(&self, l: usize) -> Launch {
         Launch {
-            ball_speed_m_s: self.launch[0].0[l],
-            launch_angle_rad: self.launch[1].0[l],
-            azimuth_rad: self.launch[2].0[l],
-            backspin_rad_s: self.launch[3].0[l],
-            sidespin_rad_s: self.launch[4].0[l],
+            ball_speed_m_s: self.launch[0][l],
+            launch_angle_rad: self.launch[1][l],
+            azimuth_rad: self.launch[2][l],
+            backspin_rad_s: self.launch[3][l],
+            sidespin_rad_s: self.launch[4][l],
         }
     }
 
@@ -43,40 +75,50 @@ impl LanePrediction {
     #[inline(always)]
     pub(super) fn ball(&self, l: usize, spin: bool) -> Vector3<f64> {
         let v = if spin { &self.ball_w } else { &self.ball_v };
-        Vector3::new(v[0].0[l], v[1].0[l], v[2].0[l])
+        Vector3::new(v[0][l], v[1][l], v[2][l])
     }
 }
 
-/// The delivery-frame inputs of [`W`] shots for one model: clubhead velocities in `F` and the
-/// rotation `R_GF`, one lane a shot.
+/// The delivery-frame inputs of [`Lanes::N`] shots for one model: clubhead velocities in `F` and
+/// the rotation `R_GF`, one lane a shot.
 #[derive(Clone, Copy)]
-pub(super) struct FrameLanes {
-    v_c: [V; 3],
-    w_c: [V; 3],
-    r_gf: [[V; 3]; 3],
+pub(super) struct FrameLanes<L> {
+    v_c: [L; 3],
+    w_c: [L; 3],
+    r_gf: [[L; 3]; 3],
 }
 
-/// The face-frame inputs of one site (impact location or node) of [`W`] shots, and its weight.
-struct SiteLanes {
-    point_m: [V; 3],
-    normal: [V; 3],
-    tangent_y: [V; 3],
-    tangent_z_xz: [V; 2],
-    y_m: V,
-    z_m: V,
-    weight: V,
+/// The face-frame inputs of one site (impact location or node) of [`Lanes::N`] shots, and its
+/// weight.
+struct SiteLanes<L> {
+    point_m: [L; 3],
+    normal: [L; 3],
+    tangent_y: [L; 3],
+    tangent_z_xz: [L; 2],
+    y_m: L,
+    z_m: L,
+    weight: L,
+}
+
+/// The shots of `shots` (one lane vector's, at most [`Lanes::N`]) padded to [`Lanes::N`] with
+/// copies of the last.
+#[inline(always)]
+pub(super) fn padded(shots: &[usize]) -> [usize; MAX_LANES] {
+    let mut idx = [shots[shots.len() - 1]; MAX_LANES];
+    idx[..shots.len()].copy_from_slice(shots);
+    idx
 }
 
 impl FitProblem<'_> {
     /// Residual rows of the shots `start..` of `chunk` (those of the groups flagged in `groups`)
-    /// evaluated [`W`] shots at a time on the lanes ([`FitProblem::predict_lanes`]). Shots are
+    /// evaluated [`Lanes::N`] shots at a time on the lanes ([`FitProblem::predict_lanes`]). Shots are
     /// taken group by group (a lane vector shares one model), the last vector of a group padded
     /// with copies of its last shot. Returns `false`, with `chunk` partly written, when a shot
     /// cannot be computed (off the face, not approaching, not finite) or a model has
     /// user-defined effects: the caller then evaluates the chunk one shot at a time.
     ///
-    /// Runs the AVX2 build of the evaluation where the CPU has it (the same operations, so the
-    /// same bits: no fused multiply–add is formed), the portable one otherwise.
+    /// Runs the widest lane type the problem's [`SimdLevel`] allows (the same operations on
+    /// every path, so the same bits: no fused multiply–add is formed).
     pub(super) fn residuals_on_lanes(
         &self,
         models: &[ImpactModel],
@@ -85,18 +127,42 @@ impl FitProblem<'_> {
         chunk: &mut [f64],
         groups: Option<&[bool]>,
     ) -> bool {
-        match simd_level() {
+        match self.level {
             #[cfg(target_arch = "x86_64")]
-            // SAFETY: `simd_level` reports AVX2 and FMA only when the CPU has both.
+            // SAFETY: `self.level` is at most `simd_level()`, which reports AVX-512F only when
+            // the CPU (and operating system) have it.
+            SimdLevel::Avx512 => unsafe { self.lanes_avx512(models, cache, start, chunk, groups) },
+            #[cfg(target_arch = "x86_64")]
+            // SAFETY: as above, AVX2.
             SimdLevel::Avx2 => unsafe { self.lanes_avx2(models, cache, start, chunk, groups) },
-            _ => self.lanes_impl(models, cache, start, chunk, groups),
+            _ => self.lanes_impl::<V>(models, cache, start, chunk, groups),
         }
     }
 
-    /// [`FitProblem::lanes_impl`] compiled for AVX2 (everything it calls in the inner loop is
-    /// `#[inline(always)]`, so it is compiled with this instruction set).
+    /// [`FitProblem::lanes_impl`] on [`F64x8`], compiled for AVX-512F (everything it calls in
+    /// the inner loop is `#[inline(always)]`, so it is compiled with this instruction set).
+    ///
+    /// # Safety
+    /// The CPU must have AVX-512F.
     #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma")]
+    #[target_feature(enable = "avx512f")]
+    unsafe fn lanes_avx512(
+        &self,
+        models: &[ImpactModel],
+        cache: &SiteCache,
+        start: usize,
+        chunk: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> bool {
+        self.lanes_impl::<F64x8>(models, cache, start, chunk, groups)
+    }
+
+    /// [`FitProblem::lanes_impl`] on [`F64x4`], compiled for AVX2.
+    ///
+    /// # Safety
+    /// The CPU must have AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
     unsafe fn lanes_avx2(
         &self,
         models: &[ImpactModel],
@@ -105,12 +171,12 @@ impl FitProblem<'_> {
         chunk: &mut [f64],
         groups: Option<&[bool]>,
     ) -> bool {
-        self.lanes_impl(models, cache, start, chunk, groups)
+        self.lanes_impl::<F64x4>(models, cache, start, chunk, groups)
     }
 
     /// The body of [`FitProblem::residuals_on_lanes`].
     #[inline(always)]
-    fn lanes_impl(
+    fn lanes_impl<L: Lanes>(
         &self,
         models: &[ImpactModel],
         cache: &SiteCache,
@@ -138,17 +204,18 @@ impl FitProblem<'_> {
         order.sort_unstable_by_key(|&i| (group_of[i], i));
         for run in order.chunk_by(|&a, &b| group_of[a] == group_of[b]) {
             let model = &models[group_of[run[0]]];
-            self.prefetch_shots(cache, &run[..run.len().min(W)]);
-            for (v, shots) in run.chunks(W).enumerate() {
+            let n = L::N;
+            self.prefetch_shots(cache, &run[..run.len().min(n)]);
+            for (v, shots) in run.chunks(n).enumerate() {
                 self.prefetch_shots(
                     cache,
-                    run.get((v + 1) * W..).map_or(&[], |r| &r[..r.len().min(W)]),
+                    run.get((v + 1) * n..).map_or(&[], |r| &r[..r.len().min(n)]),
                 );
-                let mut idx = [shots[shots.len() - 1]; W];
-                idx[..shots.len()].copy_from_slice(shots);
-                let Some(p) = self.predict_lanes(model, cache, &idx) else {
+                let idx = padded(shots);
+                let Some(p) = self.predict_lanes::<L>(model, cache, &idx[..n]) else {
                     return false;
                 };
+                let p = p.lanewise();
                 for (l, &i) in shots.iter().enumerate() {
                     let r = &mut chunk[(i - start) * rows..][..rows];
                     self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), r);
@@ -173,21 +240,21 @@ impl FitProblem<'_> {
         }
     }
 
-    /// [`FitProblem::predict`] for the [`W`] shots `idx` of one group (model `model`) at once:
+    /// [`FitProblem::predict`] for the [`Lanes::N`] shots `idx` of one group (model `model`) at once:
     /// [`ImpactModel::solve_contact`] on the lanes (the scalar solve's own contact mechanics),
     /// rotated to `G`, the launch angles by [`atan2_v`] and [`hypot_v`], averaged over the
     /// impact-location nodes as [`crate::measurement::expected_over`] does. Agrees with the
     /// scalar path to rounding (a few ulp). `None` if any lane cannot be computed.
     #[inline(always)]
-    fn predict_lanes(
+    fn predict_lanes<L: Lanes>(
         &self,
         model: &ImpactModel,
         cache: &SiteCache,
-        idx: &[usize; W],
-    ) -> Option<LanePrediction> {
-        let frame = self.frame_lanes(model, cache, idx);
+        idx: &[usize],
+    ) -> Option<LanePrediction<L>> {
+        let frame = self.frame_lanes::<L>(model, cache, idx);
         let face = (*model.face() != cache.face).then(|| model.face());
-        let mut out = LanePrediction::ZERO;
+        let mut out = LanePrediction::zero();
         for k in 0..cache.sites_per_shot {
             let site = self.site_lanes(cache, idx, k, face)?;
             let (launch, v, w) = solve_lanes(model, &frame, &site)?;
@@ -201,13 +268,13 @@ impl FitProblem<'_> {
     /// of them (the models must share the cache's face). `frames` is scratch. `false` if any lane
     /// of any model cannot be computed.
     #[inline(always)]
-    pub(super) fn predict_lanes_multi(
+    pub(super) fn predict_lanes_multi<L: Lanes>(
         &self,
         models: &[&ImpactModel],
         cache: &SiteCache,
-        idx: &[usize; W],
-        frames: &mut Vec<FrameLanes>,
-        outs: &mut [LanePrediction],
+        idx: &[usize],
+        frames: &mut Vec<FrameLanes<L>>,
+        outs: &mut [LanePrediction<L>],
     ) -> bool {
         debug_assert!(models.iter().all(|m| *m.face() == cache.face));
         frames.clear();
@@ -225,7 +292,7 @@ impl FitProblem<'_> {
                 None => self.frame_lanes(m, cache, idx),
             });
         }
-        outs.fill(LanePrediction::ZERO);
+        outs.fill(LanePrediction::zero());
         for k in 0..cache.sites_per_shot {
             let Some(site) = self.site_lanes(cache, idx, k, None) else {
                 return false;
@@ -243,17 +310,21 @@ impl FitProblem<'_> {
     /// The delivery-frame lanes of the shots `idx` for `model` (cached when its biases are the
     /// cache's).
     #[inline(always)]
-    fn frame_lanes(&self, model: &ImpactModel, cache: &SiteCache, idx: &[usize; W]) -> FrameLanes {
-        let frames: [DeliveryFrame; W] = if cache.frames_fit(model) {
-            idx.map(|i| cache.frames[i])
+    fn frame_lanes<L: Lanes>(
+        &self,
+        model: &ImpactModel,
+        cache: &SiteCache,
+        idx: &[usize],
+    ) -> FrameLanes<L> {
+        if cache.frames_fit(model) {
+            gather_frames(|l| &cache.frames[idx[l]])
         } else {
-            idx.map(|i| model.delivery_frame(&self.data.deliveries[i]))
-        };
-        let lanes = |f: &dyn Fn(&DeliveryFrame) -> f64| V(frames.each_ref().map(f));
-        FrameLanes {
-            v_c: std::array::from_fn(|a| lanes(&|fr| fr.club_velocity_f_m_s[a])),
-            w_c: std::array::from_fn(|a| lanes(&|fr| fr.club_omega_f_rad_s[a])),
-            r_gf: std::array::from_fn(|a| std::array::from_fn(|b| lanes(&|fr| fr.r_gf[(a, b)]))),
+            // Only the lanes' own frames are made (a frame costs a face orientation).
+            let mut made = [cache.frames[idx[0]]; MAX_LANES];
+            for (f, &i) in made.iter_mut().zip(&idx[..L::N]) {
+                *f = model.delivery_frame(&self.data.deliveries[i]);
+            }
+            gather_frames(|l| &made[l])
         }
     }
 
@@ -264,29 +335,28 @@ impl FitProblem<'_> {
     /// than reading a stored frame of 104 bytes a site from memory). `None` if a location is
     /// off the face.
     #[inline(always)]
-    fn site_lanes(
+    fn site_lanes<L: Lanes>(
         &self,
         cache: &SiteCache,
-        idx: &[usize; W],
+        idx: &[usize],
         k: usize,
         face: Option<&FaceGeometry>,
-    ) -> Option<SiteLanes> {
-        let zero = V::splat(0.0);
-        let (mut y_m, mut z_m, mut weight) = (zero, zero, zero);
-        match self.data.impact_nodes.as_ref() {
-            Some(n) => {
-                for (l, &i) in idx.iter().enumerate() {
-                    let node = &n[i][k];
-                    (y_m.0[l], z_m.0[l], weight.0[l]) = (node.y_m, node.z_m, node.weight);
-                }
-            }
+    ) -> Option<SiteLanes<L>> {
+        let (y_m, z_m, weight) = match self.data.impact_nodes.as_ref() {
+            Some(n) => (
+                L::from_fn(|l| n[idx[l]][k].y_m),
+                L::from_fn(|l| n[idx[l]][k].z_m),
+                L::from_fn(|l| n[idx[l]][k].weight),
+            ),
             None => {
-                for (l, &i) in idx.iter().enumerate() {
-                    let d = &self.data.deliveries[i];
-                    (y_m.0[l], z_m.0[l], weight.0[l]) = (d.impact_y_m, d.impact_z_m, 1.0);
-                }
+                let d = &self.data.deliveries;
+                (
+                    L::from_fn(|l| d[idx[l]].impact_y_m),
+                    L::from_fn(|l| d[idx[l]].impact_z_m),
+                    L::splat(1.0),
+                )
             }
-        }
+        };
         let (on_face, cf) = face.unwrap_or(&cache.face).contact_on(y_m, z_m);
         if (!on_face).any() {
             return None;
@@ -305,13 +375,13 @@ impl FitProblem<'_> {
     /// Adds one site's solution to `out`: its weighted share over the impact-location nodes, or
     /// the solution itself with locations taken as measured (one site a shot).
     #[inline(always)]
-    fn accumulate(
+    fn accumulate<L: Lanes>(
         &self,
-        out: &mut LanePrediction,
-        site: &SiteLanes,
-        launch: [V; 5],
-        v: [V; 3],
-        w: [V; 3],
+        out: &mut LanePrediction<L>,
+        site: &SiteLanes<L>,
+        launch: [L; 5],
+        v: [L; 3],
+        w: [L; 3],
     ) {
         if self.data.impact_nodes.is_none() {
             *out = LanePrediction {
@@ -330,6 +400,34 @@ impl FitProblem<'_> {
             }
         }
     }
+}
+
+/// The delivery-frame lanes of the frames `frame(l)` of the lanes `l`.
+#[inline(always)]
+fn gather_frames<'a, L: Lanes>(frame: impl Fn(usize) -> &'a DeliveryFrame) -> FrameLanes<L> {
+    let f = &frame;
+    let v = |a| move |fr: &DeliveryFrame| fr.club_velocity_f_m_s[a];
+    let w = |a| move |fr: &DeliveryFrame| fr.club_omega_f_rad_s[a];
+    let r = |a, b| move |fr: &DeliveryFrame| fr.r_gf[(a, b)];
+    FrameLanes {
+        v_c: [gather(f, v(0)), gather(f, v(1)), gather(f, v(2))],
+        w_c: [gather(f, w(0)), gather(f, w(1)), gather(f, w(2))],
+        r_gf: [
+            [gather(f, r(0, 0)), gather(f, r(0, 1)), gather(f, r(0, 2))],
+            [gather(f, r(1, 0)), gather(f, r(1, 1)), gather(f, r(1, 2))],
+            [gather(f, r(2, 0)), gather(f, r(2, 1)), gather(f, r(2, 2))],
+        ],
+    }
+}
+
+/// The lanes `field(frame(l))`. (Written out per field by the caller rather than through
+/// `each3`, whose closure the compiler may keep out of line with the vector loads in it.)
+#[inline(always)]
+fn gather<'a, L: Lanes>(
+    frame: &impl Fn(usize) -> &'a DeliveryFrame,
+    field: impl Fn(&DeliveryFrame) -> f64,
+) -> L {
+    L::from_fn(|l| field(frame(l)))
 }
 
 /// Prefetch hint for every cache line of `items` (no effect off x86-64).
@@ -357,15 +455,15 @@ fn prefetch<T>(items: &[T]) {
     let _ = items;
 }
 
-/// One site of [`W`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
+/// One site of [`Lanes::N`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
 /// `G`. `None` unless the club approaches the ball and the ball's and club's states after impact
 /// are finite in every lane (the scalar solve's checks).
 #[inline(always)]
-fn solve_lanes(
+fn solve_lanes<L: Lanes>(
     model: &ImpactModel,
-    f: &FrameLanes,
-    site: &SiteLanes,
-) -> Option<([V; 5], [V; 3], [V; 3])> {
+    f: &FrameLanes<L>,
+    site: &SiteLanes<L>,
+) -> Option<([L; 5], [L; 3], [L; 3])> {
     let x = ContactInputs {
         club_velocity_f_m_s: f.v_c,
         club_omega_f_rad_s: f.w_c,
@@ -377,16 +475,18 @@ fn solve_lanes(
         z_m: site.z_m,
     };
     let s = model.solve_contact(&x);
-    let finite = |v: &[V; 3]| v.iter().all(|c| c.0.iter().all(|x| x.is_finite()));
+
     let p = &s.impulse_n_s;
-    let club_dv = p.map(|c| c / model.params().club_mass_kg);
+    // Only its finiteness is read (the scalar solve's check of the club's state after impact).
+    let inv_mc = 1.0 / model.params().club_mass_kg;
+    let club_dv = each3(|a| p[a] * inv_mc);
     let r_c = &s.contact_from_club_com_m;
     let moment = [
         r_c[1] * p[2] - r_c[2] * p[1],
         r_c[2] * p[0] - r_c[0] * p[2],
         r_c[0] * p[1] - r_c[1] * p[0],
     ];
-    let min_approach = V::splat(crate::limits::MIN_NORMAL_APPROACH_M_S);
+    let min_approach = L::splat(crate::limits::MIN_NORMAL_APPROACH_M_S);
     if (!s.normal_approach_speed_m_s.gt(min_approach)).any()
         || !(finite(&s.ball_velocity_f_m_s)
             && finite(&s.ball_spin_f_rad_s)
@@ -395,12 +495,8 @@ fn solve_lanes(
     {
         return None;
     }
-    let r_gf = &f.r_gf;
-    let rotate = |v: &[V; 3]| -> [V; 3] {
-        std::array::from_fn(|a| r_gf[a][0] * v[0] + r_gf[a][1] * v[1] + r_gf[a][2] * v[2])
-    };
-    let v = rotate(&s.ball_velocity_f_m_s);
-    let w = rotate(&s.ball_spin_f_rad_s);
+    let v = rotate(&f.r_gf, &s.ball_velocity_f_m_s);
+    let w = rotate(&f.r_gf, &s.ball_spin_f_rad_s);
     let launch = [
         (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt(),
         atan2_v(v[1], hypot_v(v[0], v[2])),
@@ -411,9 +507,22 @@ fn solve_lanes(
     Some((launch, v, w))
 }
 
+/// Whether every lane of every component of `v` is finite.
+#[inline(always)]
+fn finite<L: Lanes>(v: &[L; 3]) -> bool {
+    (v[0].finite() & v[1].finite() & v[2].finite()).all()
+}
+
+/// `r v` (a rotation of lane vectors).
+#[inline(always)]
+fn rotate<L: Lanes>(r: &[[L; 3]; 3], v: &[L; 3]) -> [L; 3] {
+    each3(|a| r[a][0] * v[0] + r[a][1] * v[1] + r[a][2] * v[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::lanes::W;
 
     /// The contact frames the lanes compute are the scalar [`FaceGeometry::contact`]'s, bit for
     /// bit, across the face and just off it (where a lane off the face must be flagged), for

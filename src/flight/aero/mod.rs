@@ -43,6 +43,8 @@
 
 use std::path::Path;
 
+use crate::lanes::Lanes;
+#[cfg(test)]
 use crate::lanes::{V, W};
 
 mod floor;
@@ -78,17 +80,25 @@ pub trait CoefficientModel: Send + Sync {
         true
     }
 
-    /// The same, [`W`] lanes at once: `(C_D, C_L, C_M)`.
+    /// The same on lanes (any [`Lanes`] type, one lane a point): `(C_D, C_L, C_M)`.
     #[inline(always)]
-    fn coefficients_v(&self, s: V, re: V) -> (V, V, V) {
-        let (mut cd, mut cl, mut cm) = ([0.0; W], [0.0; W], [0.0; W]);
-        for i in 0..W {
-            let c = self.coefficients(s.0[i], re.0[i]);
+    fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L)
+    where
+        Self: Sized,
+    {
+        let (s, re) = (s.to_array(), re.to_array());
+        let (mut cd, mut cl, mut cm) = (s, s, s);
+        for i in 0..L::N {
+            let c = self.coefficients(s[i], re[i]);
             cd[i] = c.cd;
             cl[i] = c.cl;
             cm[i] = c.cm;
         }
-        (V(cd), V(cl), V(cm))
+        (
+            L::load(cd.as_ref()),
+            L::load(cl.as_ref()),
+            L::load(cm.as_ref()),
+        )
     }
 }
 
@@ -132,14 +142,14 @@ impl Fmm2022 {
         t * t * (3.0 - 2.0 * t)
     }
 
-    /// [`Self::lift_taper`] on [`W`] lanes (same operations, same bits).
+    /// [`Self::lift_taper`] on lanes (same operations, same bits).
     #[inline(always)]
-    pub fn lift_taper_v(s: V) -> V {
+    pub fn lift_taper_v<L: Lanes>(s: L) -> L {
         let t = s * (1.0 / Self::S_MIN);
-        let (zero, one) = (V::splat(0.0), V::splat(1.0));
-        let t = t.lt(zero).select(zero, t);
-        let t = t.gt(one).select(one, t);
-        t * t * (3.0 - 2.0 * t)
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let t = L::select(t.lt(zero), zero, t);
+        let t = L::select(t.gt(one), one, t);
+        t * t * (L::splat(3.0) - t * 2.0)
     }
 
     /// The spin factor the quadratics are evaluated at: `S` up to `S_MAX − S_BLEND`, `S_MAX`
@@ -165,14 +175,14 @@ impl Fmm2022 {
         }
     }
 
-    /// [`Self::held_spin_factor`] on [`W`] lanes (same operations, same bits).
+    /// [`Self::held_spin_factor`] on lanes (same operations, same bits).
     #[inline(always)]
-    pub fn held_spin_factor_v(s: V) -> V {
+    pub fn held_spin_factor_v<L: Lanes>(s: L) -> L {
         let (a, d) = (Self::S_MAX, Self::S_BLEND);
         let x = s - (a - d);
         let blend = s - x * x * (0.25 / d);
-        let s_in = s.gt(V::splat(a - d)).select(blend, s);
-        s.lt(V::splat(a + d)).select(s_in, V::splat(a))
+        let s_in = L::select(s.gt(L::splat(a - d)), blend, s);
+        L::select(s.lt(L::splat(a + d)), s_in, L::splat(a))
     }
 }
 
@@ -193,13 +203,14 @@ impl CoefficientModel for Fmm2022 {
     }
 
     #[inline(always)]
-    fn coefficients_v(&self, s: V, _re: V) -> (V, V, V) {
+    fn coefficients_v<L: Lanes>(&self, s: L, _re: L) -> (L, L, L) {
         let taper = Self::lift_taper_v(s);
         let s = Self::held_spin_factor_v(s);
+        // The scalar form's constants on the right (the same bits: + and × commute exactly).
         (
-            Self::CD[0] + s * (Self::CD[1] + s * Self::CD[2]),
-            (Self::CL[0] + s * (Self::CL[1] + s * Self::CL[2])) * taper,
-            Self::CM_PER_S * s,
+            s * (s * Self::CD[2] + Self::CD[1]) + Self::CD[0],
+            (s * (s * Self::CL[2] + Self::CL[1]) + Self::CL[0]) * taper,
+            s * Self::CM_PER_S,
         )
     }
 }
@@ -309,15 +320,15 @@ impl CoefficientModel for Fmm2022Re {
     }
 
     #[inline(always)]
-    fn coefficients_v(&self, s: V, re: V) -> (V, V, V) {
+    fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L) {
         let (cd, cl, cm) = Fmm2022.coefficients_v(s, re);
         let s = Fmm2022::held_spin_factor_v(s);
-        let t = (Self::RE_HIGH - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
-        let (zero, one) = (V::splat(0.0), V::splat(1.0));
-        let t = t.lt(zero).select(zero, t);
-        let t = t.gt(one).select(one, t);
-        let r = t * t * (3.0 - 2.0 * t);
-        (cd + Self::CD_PER_S * s + Self::CD_LOW_RE * r, cl, cm)
+        let t = (L::splat(Self::RE_HIGH) - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let t = L::select(t.lt(zero), zero, t);
+        let t = L::select(t.gt(one), one, t);
+        let r = t * t * (L::splat(3.0) - t * 2.0);
+        (cd + s * Self::CD_PER_S + r * Self::CD_LOW_RE, cl, cm)
     }
 }
 
@@ -363,16 +374,18 @@ impl CoefficientModel for NathanLyu {
     }
 
     #[inline(always)]
-    fn coefficients_v(&self, s: V, re: V) -> (V, V, V) {
+    fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L) {
         let t = (re - Self::RE_LOW) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
-        let (zero, one) = (V::splat(0.0), V::splat(1.0));
-        let t = t.lt(zero).select(zero, t);
-        let t = t.gt(one).select(one, t);
-        let cd = Self::CD_LOW + t * (Self::CD_HIGH - Self::CD_LOW) + Self::CD_PER_S * s;
-        let cl = s
-            .lt(V::splat(Self::S_LIFT_MAX))
-            .select(s * (Self::CL[0] + s * Self::CL[1]), V::splat(Self::CL_MAX));
-        (cd, cl, SMITS_SMITH_CM_PER_S * s)
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let t = L::select(t.lt(zero), zero, t);
+        let t = L::select(t.gt(one), one, t);
+        let cd = t * (Self::CD_HIGH - Self::CD_LOW) + Self::CD_LOW + s * Self::CD_PER_S;
+        let cl = L::select(
+            s.lt(L::splat(Self::S_LIFT_MAX)),
+            s * (s * Self::CL[1] + Self::CL[0]),
+            L::splat(Self::CL_MAX),
+        );
+        (cd, cl, s * SMITS_SMITH_CM_PER_S)
     }
 }
 
@@ -556,14 +569,18 @@ mod tests {
     }
 
     fn lanes_agree(s: V, re: V) {
-        for m in [&Fmm2022 as &dyn CoefficientModel, &NathanLyu, &Fmm2022Re] {
-            let (cd, cl, cm) = m.coefficients_v(s, re);
-            for i in 0..W {
-                let c = m.coefficients(s.0[i], re.0[i]);
-                assert!((c.cd - cd.0[i]).abs() < 1e-15);
-                assert!((c.cl - cl.0[i]).abs() < 1e-15);
-                assert!((c.cm - cm.0[i]).abs() < 1e-15);
-            }
+        lanes_agree_for(&Fmm2022, s, re);
+        lanes_agree_for(&NathanLyu, s, re);
+        lanes_agree_for(&Fmm2022Re, s, re);
+    }
+
+    fn lanes_agree_for(m: &impl CoefficientModel, s: V, re: V) {
+        let (cd, cl, cm) = m.coefficients_v(s, re);
+        for i in 0..W {
+            let c = m.coefficients(s.0[i], re.0[i]);
+            assert!((c.cd - cd.0[i]).abs() < 1e-15);
+            assert!((c.cl - cl.0[i]).abs() < 1e-15);
+            assert!((c.cm - cm.0[i]).abs() < 1e-15);
         }
     }
 

@@ -2,6 +2,24 @@
 //! while the impulse is delivered, to first order in the contact time. See [`FiniteContact`].
 
 use super::{cross, dot, sym_mul, CollisionMatrix, Real, Sym3, Vec3};
+use crate::lanes::each3;
+
+/// The instantaneous law [`FiniteContact::impact`] wraps: the impulse on the ball (and whether
+/// friction limited it) for a collision matrix `k`, a unit normal `n`, an approach velocity `u`
+/// and its normal part `un`. A closure of that signature is one; the model's own law is a type
+/// whose method is always inlined, so that on the lanes it is compiled with the caller's
+/// instruction set (a closure called twice may be kept out of line).
+pub trait InstantLaw<R: Real> {
+    /// The impulse and the slip mask.
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask);
+}
+
+impl<R: Real, F: Fn(&Sym3<R>, &Vec3<R>, &Vec3<R>, R) -> (Vec3<R>, R::Mask)> InstantLaw<R> for F {
+    #[inline(always)]
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
+        self(k, n, u, un)
+    }
+}
 
 /// Impulse-weighted mean, over a Hertz impact of duration `τ`, of `∫₀ᵗ s dt'` where `s(t)` is
 /// the fraction of the impulse delivered by `t`, divided by `τ`: `1/9` (integrating the
@@ -143,18 +161,20 @@ impl FiniteContact {
     #[inline(always)]
     pub fn impact<R: Real>(
         &self,
-        impulse: impl Fn(&Sym3<R>, &Vec3<R>, &Vec3<R>, R) -> (Vec3<R>, R::Mask),
+        law: impl InstantLaw<R>,
         collision: &CollisionMatrix,
         radius_m: f64,
         g: &ContactGeometry<R>,
     ) -> FiniteImpact<R> {
         let n = &g.normal;
         let k = collision.matrix(&g.r_c, &g.r_b);
-        let (p, slip) = impulse(&k, n, &g.u1, g.u1n);
+        let (p, slip) = law.impulse(&k, n, &g.u1, g.u1n);
         if self.tau_s == 0.0 {
             return FiniteImpact::at_first_contact(p, slip, g.r_c, g.r_b);
         }
-        let jm: Sym3<R> = collision.club_inv_inertia.map(R::splat);
+        let j = &collision.club_inv_inertia;
+        let s = R::splat;
+        let jm: Sym3<R> = [s(j[0]), s(j[1]), s(j[2]), s(j[3]), s(j[4]), s(j[5])];
         let dw = sym_mul(&jm, &cross(&g.r_c, &p));
         let (a, b) = (0.5 * self.tau_s, HERTZ_MEAN_SPIN_UP * self.tau_s);
         let theta = [
@@ -175,15 +195,11 @@ impl FiniteContact {
         } else {
             k
         };
-        let (pf, slip) = impulse(&k, &n, &u1r, u1nr);
+        let (pf, slip) = law.impulse(&k, &n, &u1r, u1nr);
         let lf = cross(&r_b, &pf);
-        let turn = |v: &Vec3<R>| {
-            let t = cross(&theta, v);
-            [v[0] + t[0], v[1] + t[1], v[2] + t[2]]
-        };
         FiniteImpact {
-            impulse: turn(&pf),
-            ball_angular_impulse: turn(&lf),
+            impulse: turned(&theta, &pf),
+            ball_angular_impulse: turned(&theta, &lf),
             slipped: slip,
             r_c,
             r_b,
@@ -207,9 +223,9 @@ impl FiniteContact {
         let (a, b) = (0.5 * self.tau_s, HERTZ_MEAN_SPIN_UP * self.tau_s);
         // The face's mean travel under the ball, τ·(u1/2 − g/9), and the ball's: minus its
         // tangential part.
-        let f: Vec3<R> = std::array::from_fn(|i| g.u1[i] * a - (p[i] * inv_mass_sum + wr[i]) * b);
+        let f: Vec3<R> = each3(|i| g.u1[i] * a - (p[i] * inv_mass_sum + wr[i]) * b);
         let fn_ = dot(&f, n);
-        let d: Vec3<R> = std::array::from_fn(|i| fn_ * n[i] - f[i]);
+        let d: Vec3<R> = each3(|i| fn_ * n[i] - f[i]);
         // Tilt of the normal over d on the face's curvature.
         let [tzx, tzz] = g.tangent_z_xz;
         let ty = &g.tangent_y;
@@ -218,14 +234,21 @@ impl FiniteContact {
         let dn = [ty[0] * cy + tzx * cz, ty[1] * cy, ty[2] * cy + tzz * cz];
         let m = [n[0] + dn[0], n[1] + dn[1], n[2] + dn[2]];
         let inv = R::splat(1.0) / dot(&m, &m).sqrt();
-        let n2 = m.map(|c| c * inv);
+        let n2 = each3(|i| m[i] * inv);
         // The ball's lever: the radius along the new normal, its offset turned by φ = n × dn.
-        let o: Vec3<R> = std::array::from_fn(|i| g.r_b[i] + n[i] * radius_m);
+        let o: Vec3<R> = each3(|i| g.r_b[i] + n[i] * radius_m);
         let po = cross(&cross(n, &dn), &o);
-        let r_b: Vec3<R> = std::array::from_fn(|i| o[i] + po[i] - n2[i] * radius_m);
-        let r_c: Vec3<R> = std::array::from_fn(|i| g.r_c[i] + d[i]);
+        let r_b: Vec3<R> = each3(|i| o[i] + po[i] - n2[i] * radius_m);
+        let r_c: Vec3<R> = each3(|i| g.r_c[i] + d[i]);
         let wd = cross(&g.w_c, &d);
-        let u1: Vec3<R> = std::array::from_fn(|i| g.u1[i] + wd[i]);
+        let u1: Vec3<R> = each3(|i| g.u1[i] + wd[i]);
         (r_c, r_b, n2, u1)
     }
+}
+
+/// `v` turned by the small angle `theta`: `v + θ×v`.
+#[inline(always)]
+fn turned<R: Real>(theta: &Vec3<R>, v: &Vec3<R>) -> Vec3<R> {
+    let t = cross(theta, v);
+    [v[0] + t[0], v[1] + t[1], v[2] + t[2]]
 }

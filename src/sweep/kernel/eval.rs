@@ -25,11 +25,7 @@ impl FaceMapKernel {
     pub fn eval_row_on(&self, level: SimdLevel, y_m: f64, zs_m: &[f64], out: RowOut<'_>) {
         out.assert_len(zs_m.len());
         let row = self.row(V::splat(y_m));
-        let level = if level == SimdLevel::Avx2 {
-            simd_level()
-        } else {
-            level
-        };
+        let level = level.or_supported();
         self.dispatch(
             level,
             &RowJob {
@@ -62,11 +58,7 @@ impl FaceMapKernel {
             zs_m.len()
         );
         out.assert_len(zs_m.len());
-        let level = if level == SimdLevel::Avx2 {
-            simd_level()
-        } else {
-            level
-        };
+        let level = level.or_supported();
         self.dispatch(level, &PointsJob { ys: ys_m, zs: zs_m }, out);
     }
 

@@ -1,0 +1,216 @@
+//! Tests of the batched integrator (`super`).
+
+use super::*;
+use crate::flight::{Atmosphere, FlightLaunch};
+
+fn drive() -> FlightLaunch {
+    FlightLaunch::from_file_units(167.0, 10.9, 0.0, 2686.0, 0.0)
+}
+
+#[test]
+fn vacuum_flight_matches_closed_form() {
+    // No air: the range of a projectile v²·sin 2θ / g, apex v²sin²θ/(2g).
+    let mut cfg = FlightConfig::default();
+    cfg.air.density_kg_m3 = 0.0;
+    let l = FlightLaunch::from_file_units(100.0, 30.0, 0.0, 3000.0, 0.0);
+    let f = fly_one(&cfg, &l).unwrap();
+    let v = l.ball_speed_m_s;
+    let range = v * v * (2.0 * l.launch_angle_rad).sin() / G_M_S2;
+    let apex = (v * l.launch_angle_rad.sin()).powi(2) / (2.0 * G_M_S2);
+    assert!((f.carry_m - range).abs() < 1e-9, "{} {}", f.carry_m, range);
+    assert!((f.apex_m - apex).abs() < 1e-9);
+    assert!((f.land_angle_rad - l.launch_angle_rad).abs() < 1e-9);
+    let tof = 2.0 * v * l.launch_angle_rad.sin() / G_M_S2;
+    assert!((f.flight_time_s - tof).abs() < 1e-9);
+}
+
+#[test]
+fn flights_shorter_than_one_step_land_after_their_apex() {
+    // A 5 mph pitch lasts 0.08 s, a quarter of the default step: the step's crossing at
+    // θ = 0 is the launch, not the landing. In vacuum the closed form; in air a fine step
+    // (to 1 mm, a tenth of the step tolerance of the flight's 0.01 yd).
+    let mut vacuum = FlightConfig::default();
+    vacuum.air.density_kg_m3 = 0.0;
+    for (mph, deg) in [(5.0, 10.0), (2.0, 60.0), (0.5, 5.0)] {
+        let l = FlightLaunch::from_file_units(mph, deg, 0.0, 1000.0, 0.0);
+        let f = fly_one(&vacuum, &l).unwrap();
+        let (v, th) = (l.ball_speed_m_s, l.launch_angle_rad);
+        let range = v * v * (2.0 * th).sin() / G_M_S2;
+        assert!(
+            (f.carry_m - range).abs() < 1e-9 * (1.0 + range),
+            "{mph} mph: {f:?}"
+        );
+        assert!((f.land_angle_rad - th).abs() < 1e-9, "{mph} mph: {f:?}");
+        let tof = 2.0 * v * th.sin() / G_M_S2;
+        assert!((f.flight_time_s - tof).abs() < 1e-9, "{mph} mph: {f:?}");
+    }
+    let air = FlightConfig::default();
+    let fine = FlightConfig {
+        dt_s: Some(0.001),
+        ..FlightConfig::default()
+    };
+    let l = FlightLaunch::from_file_units(5.0, 10.0, 0.0, 1000.0, 0.0);
+    let (f, g) = (fly_one(&air, &l).unwrap(), fly_one(&fine, &l).unwrap());
+    let (dc, da) = (f.carry_m - g.carry_m, f.land_angle_rad - g.land_angle_rad);
+    let close = dc.abs() < 1e-3 && da.abs() < 1e-3;
+    assert!(f.carry_m > 0.15 && close, "{f:?} {g:?}");
+}
+
+#[test]
+fn batching_and_threads_do_not_change_results() {
+    let cfg = FlightConfig::default();
+    let ls: Vec<FlightLaunch> = (0..37)
+        .map(|k| {
+            FlightLaunch::from_file_units(
+                100.0 + k as f64,
+                8.0 + 0.3 * k as f64,
+                -3.0 + 0.2 * k as f64,
+                2000.0 + 150.0 * k as f64,
+                -800.0 + 40.0 * k as f64,
+            )
+        })
+        .collect();
+    let all = fly(&cfg, &ls);
+    for (k, l) in ls.iter().enumerate() {
+        assert_eq!(all[k], fly_one(&cfg, l), "launch {k}");
+    }
+    let mut serial = vec![Ok(fly_one(&cfg, &ls[0]).unwrap()); ls.len()];
+    fly_serial(&cfg, &ls, &mut serial);
+    assert_eq!(all, serial);
+}
+
+/// Every lane type this machine runs (portable, AVX2, AVX-512) flies the same bits, with
+/// and without wind (and the ground roll), under every built-in model.
+#[test]
+fn every_lane_type_flies_the_same_bits() {
+    let ls: Vec<FlightLaunch> = (0..53)
+        .map(|k| {
+            let k = k as f64;
+            FlightLaunch::from_file_units(
+                40.0 + 2.7 * k,
+                4.0 + 0.9 * k,
+                -6.0 + 0.25 * k,
+                300.0 + 160.0 * k,
+                -1500.0 + 55.0 * k,
+            )
+        })
+        .collect();
+    let windy = FlightConfig {
+        air: Atmosphere {
+            wind_speed_m_s: 7.0,
+            wind_direction_deg: 70.0,
+            ..Atmosphere::default()
+        }
+        .air()
+        .unwrap(),
+        ground: Some(Default::default()),
+        ..FlightConfig::default()
+    };
+    for cfg in [FlightConfig::default(), windy] {
+        for level in SimdLevel::ALL {
+            let (a, b) = (
+                bits(level, &cfg, &Fmm2022Re, &ls),
+                bits(SimdLevel::Portable, &cfg, &Fmm2022Re, &ls),
+            );
+            assert_eq!(a, b, "{level:?}");
+            let (a, b) = (
+                bits(level, &cfg, &NathanLyu, &ls),
+                bits(SimdLevel::Portable, &cfg, &NathanLyu, &ls),
+            );
+            assert_eq!(a, b, "{level:?}");
+        }
+    }
+}
+
+/// The bits of the flights of `ls` on the lanes of `level`.
+fn bits<C: CoefficientModel>(
+    level: SimdLevel,
+    cfg: &FlightConfig,
+    model: &C,
+    ls: &[FlightLaunch],
+) -> Vec<u64> {
+    let mut out = vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); ls.len()];
+    dispatch_on(level, cfg, model, cfg.air.has_wind(), ls, &mut out);
+    out.iter()
+        .flat_map(|f| {
+            let f = f.as_ref().expect("lands");
+            [
+                f.carry_m,
+                f.offline_m,
+                f.apex_m,
+                f.land_angle_rad,
+                f.flight_time_s,
+            ]
+            .into_iter()
+            .chain(f.total_m)
+            .map(f64::to_bits)
+        })
+        .collect()
+}
+
+#[test]
+fn slice_spin_curves_right_and_wind_pushes() {
+    let cfg = FlightConfig::default();
+    let mut l = drive();
+    l.sidespin_rad_s = crate::units::rpm(800.0);
+    let f = fly_one(&cfg, &l).unwrap();
+    assert!(f.offline_m > 5.0, "{}", f.offline_m);
+    let straight = fly_one(&cfg, &drive()).unwrap();
+    assert!(straight.offline_m.abs() < 1e-9);
+    let tail = FlightConfig {
+        air: Atmosphere {
+            wind_speed_m_s: 5.0,
+            ..Atmosphere::default()
+        }
+        .air()
+        .unwrap(),
+        ..FlightConfig::default()
+    };
+    let head = FlightConfig {
+        air: Atmosphere {
+            wind_speed_m_s: 5.0,
+            wind_direction_deg: 180.0,
+            ..Atmosphere::default()
+        }
+        .air()
+        .unwrap(),
+        ..FlightConfig::default()
+    };
+    let ft = fly_one(&tail, &drive()).unwrap();
+    let fh = fly_one(&head, &drive()).unwrap();
+    assert!(ft.carry_m > straight.carry_m + 3.0 && fh.carry_m < straight.carry_m - 3.0);
+}
+
+#[test]
+fn bad_launches_and_time_limit() {
+    let cfg = FlightConfig::default();
+    let mut l = drive();
+    l.ball_speed_m_s = -1.0;
+    assert!(matches!(
+        fly_one(&cfg, &l),
+        Err(FlightError::InvalidLaunch {
+            field: "ball_speed_mph",
+            ..
+        })
+    ));
+    let mut l = drive();
+    l.launch_angle_rad = 1.7;
+    assert!(matches!(
+        fly_one(&cfg, &l),
+        Err(FlightError::InvalidLaunch {
+            field: "launch_angle_deg",
+            ..
+        })
+    ));
+    let mut l = drive();
+    l.backspin_rad_s = crate::units::rpm(50_000.0);
+    assert!(fly_one(&cfg, &l).is_err());
+    let short = FlightConfig {
+        max_time_s: 2.0,
+        ..FlightConfig::default()
+    };
+    assert_eq!(
+        fly_one(&short, &drive()),
+        Err(FlightError::NeverLands { time_limit_s: 2.0 })
+    );
+}
