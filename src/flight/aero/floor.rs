@@ -6,7 +6,7 @@
 //! (`cargo run --release --example trackman_refit -- --joint`; README, "Ball flight").
 
 use super::NathanLyu;
-use crate::lanes::V;
+use crate::lanes::Lanes;
 
 /// The still-air super-critical drag of modern golf balls, `C_D = 0.212 + 0.15·S`: the
 /// high-Reynolds branch of A. M. Nathan's trajectory calculator (and libgolf), built on the
@@ -47,15 +47,16 @@ impl DragFloor {
         b + (a - b) * h + k * h * (1.0 - h)
     }
 
-    /// [`Self::smooth_max`] on lanes (same operations, same bits).
+    /// [`Self::smooth_max`] on lanes (any [`Lanes`] type; the same operations, so the same
+    /// bits: `+` and `×` commute exactly, so a lane operand may stand on either side).
     #[inline(always)]
-    pub fn smooth_max_v(a: V, b: V) -> V {
+    pub fn smooth_max_v<L: Lanes>(a: L, b: L) -> L {
         let k = Self::BLEND;
-        let h = 0.5 + 0.5 * (a - b) / k;
-        let (zero, one) = (V::splat(0.0), V::splat(1.0));
-        let h = h.lt(zero).select(zero, h);
-        let h = h.gt(one).select(one, h);
-        b + (a - b) * h + k * h * (1.0 - h)
+        let h = (a - b) * 0.5 / k + 0.5;
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let h = L::select(h.lt(zero), zero, h);
+        let h = L::select(h.gt(one), one, h);
+        b + (a - b) * h + h * k * (one - h)
     }
 }
 

@@ -5,7 +5,7 @@
 //! table it is validated on is one of them; README, "Ball flight").
 
 use super::{CoefficientModel, Coefficients, DragFloor, Fmm2022, Fmm2022ReFamily};
-use crate::lanes::V;
+use crate::lanes::Lanes;
 
 /// [`Fmm2022`] held above the still-air drag floor, with a drag rise and a lift loss across
 /// the drag-crisis window (the `fmm2022-tour` model, the default):
@@ -67,24 +67,26 @@ impl CoefficientModel for Fmm2022Tour {
     }
 
     #[inline(always)]
-    fn coefficients_v(&self, s: V, re: V) -> (V, V, V) {
+    fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L) {
         let (cd, cl, cm) = Fmm2022.coefficients_v(s, re);
         let s = Fmm2022::held_spin_factor_v(s);
-        let t = (Self::RE_HIGH - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
-        let (zero, one) = (V::splat(0.0), V::splat(1.0));
-        let t = t.lt(zero).select(zero, t);
-        let t = t.gt(one).select(one, t);
-        let r = t * t * (3.0 - 2.0 * t);
-        let floor = DragFloor::CD + DragFloor::CD_PER_S * s;
-        let cd = DragFloor::smooth_max_v(cd + Self::CD_PER_S * s, floor) + Self::CD_LOW_RE * r;
-        (cd, cl * (1.0 - Self::LIFT_LOSS * r), cm)
+        // The scalar form's operations, a lane operand on the left where the scalar form has a
+        // constant there (the same bits: `+` and `×` commute exactly).
+        let t = (L::splat(Self::RE_HIGH) - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
+        let (zero, one) = (L::splat(0.0), L::splat(1.0));
+        let t = L::select(t.lt(zero), zero, t);
+        let t = L::select(t.gt(one), one, t);
+        let r = t * t * (L::splat(3.0) - t * 2.0);
+        let floor = s * DragFloor::CD_PER_S + DragFloor::CD;
+        let cd = DragFloor::smooth_max_v(cd + s * Self::CD_PER_S, floor) + r * Self::CD_LOW_RE;
+        (cd, cl * (one - r * Self::LIFT_LOSS), cm)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::lanes::W;
+    use crate::lanes::{V, W};
 
     #[test]
     fn lanes_form_equals_scalar_form() {
