@@ -21,7 +21,7 @@ use crate::data::flight_files::{
 };
 use crate::data::flight_measured::{check_measured, measured_flight_value};
 use crate::data::flight_output::Temporary;
-use crate::data::number::push_cell;
+use crate::data::number::{parse_f64, push_cell};
 use crate::data::{safe_write, write_atomic, DataError};
 use crate::flight::integrate::fly_serial;
 use crate::flight::{Flight, FlightConfig, FlightError, FlightLaunch};
@@ -349,8 +349,8 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
                 let cell = &bytes[s as usize..e as usize];
                 // Valid UTF-8 (checked above) split at ASCII bytes.
                 let text = std::str::from_utf8(cell).unwrap_or("");
-                match text.parse::<f64>() {
-                    Ok(x) if x.is_finite() => v[k] = x,
+                match parse_f64(text) {
+                    Some(x) if x.is_finite() => v[k] = x,
                     _ => {
                         bad = Some(Bad::Cell(k, text.to_string()));
                         break;
@@ -426,9 +426,7 @@ fn format_rows(
         }
         for &(k, i) in &l.measured {
             sep(&mut out);
-            let m = std::str::from_utf8(cell(i))
-                .ok()
-                .and_then(|c| c.parse::<f64>().ok());
+            let m = std::str::from_utf8(cell(i)).ok().and_then(parse_f64);
             if let (Some(p), Some(m)) = (flight_value(f, k), m) {
                 if m.is_finite() {
                     push_cell(&mut out, p - m);
