@@ -133,14 +133,13 @@ fn trim(b: &[u8]) -> &[u8] {
 }
 
 /// Read from `f` until `buf` holds at least `want` bytes or the file ends; `true` at the end.
+/// Reads straight into `buf`'s spare capacity.
 fn fill(f: &mut impl Read, buf: &mut Vec<u8>, want: usize) -> std::io::Result<bool> {
-    let mut block = [0u8; 1 << 16];
     while buf.len() < want {
-        let n = f.read(&mut block)?;
-        if n == 0 {
+        let need = (want - buf.len()) as u64;
+        if f.by_ref().take(need).read_to_end(buf)? == 0 {
             return Ok(true);
         }
-        buf.extend_from_slice(&block[..n]);
     }
     Ok(false)
 }
@@ -414,9 +413,28 @@ fn format_rows(
             }
             first = false;
         };
+        // Kept cells that follow one another in the input with one comma between them (no
+        // padding) are copied as one run of bytes, commas included.
+        let mut run: Option<(usize, u32, u32)> = None;
         for &i in &l.keep {
+            let (s, e) = cells[i];
+            match &mut run {
+                Some((last, _, end)) if i == *last + 1 && s == *end + 1 => {
+                    *last = i;
+                    *end = e;
+                }
+                _ => {
+                    if let Some((_, rs, re)) = run {
+                        sep(&mut out);
+                        out.extend_from_slice(&bytes[rs as usize..re as usize]);
+                    }
+                    run = Some((i, s, e));
+                }
+            }
+        }
+        if let Some((_, rs, re)) = run {
             sep(&mut out);
-            out.extend_from_slice(cell(i));
+            out.extend_from_slice(&bytes[rs as usize..re as usize]);
         }
         for &k in &l.outs {
             sep(&mut out);
