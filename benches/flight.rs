@@ -1,8 +1,11 @@
 //! Ball flight throughput: 100,000 drives (ball speed 150–180 mph, launch 8–14°, spin
 //! 2000–3200 rpm, sidespin ±600 rpm, azimuth ±3°) to landing with the default model and
-//! atmosphere, all threads (rayon), and the same on one thread.
+//! atmosphere, all threads (rayon), and the same on one thread; and what `smash flight` does
+//! with them: the same drives as a launch CSV (cells as a launch monitor writes them, 2
+//! decimals, spins in whole rpm), read, parsed, flown, formatted and written to a flight CSV.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
+use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
 use smash::flight::integrate::fly_serial;
 use smash::flight::{fly, Flight, FlightConfig, FlightError, FlightLaunch};
 
@@ -22,6 +25,25 @@ pub fn drives(n: usize) -> Vec<FlightLaunch> {
         .collect()
 }
 
+/// The drives of [`drives`] as a launch CSV, as `smash flight --shots` reads it.
+fn drives_csv(n: usize) -> String {
+    let frac = |k: usize, a: f64| (k as f64 * a).fract();
+    let mut t = String::from(
+        "shot_id,ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm\n",
+    );
+    for k in 0..n {
+        t.push_str(&format!(
+            "s{k},{:.2},{:.2},{:.2},{:.0},{:.0}\n",
+            150.0 + 30.0 * frac(k, 0.618_033_988_7),
+            8.0 + 6.0 * frac(k, 0.754_877_666_2),
+            -3.0 + 6.0 * frac(k, 0.569_840_290_9),
+            2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
+            -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
+        ));
+    }
+    t
+}
+
 fn bench(c: &mut Criterion) {
     let cfg = FlightConfig::default();
     let n = 100_000;
@@ -36,6 +58,12 @@ fn bench(c: &mut Criterion) {
         vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); n];
     g.bench_function("drives_100k_one_thread", |b| {
         b.iter(|| fly_serial(&cfg, black_box(&ls), &mut out))
+    });
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let (shots, out) = (dir.path().join("drives.csv"), dir.path().join("f.csv"));
+    std::fs::write(&shots, drives_csv(n)).expect("writing the launch file");
+    g.bench_function("smash_flight_csv_100k", |b| {
+        b.iter(|| fly_csv_file(&shots, &out, &cfg, None, CHUNK_BYTES).expect("flies"))
     });
     g.finish();
 }

@@ -8,7 +8,7 @@
 
 use std::path::Path;
 
-use crate::data::number::push_cell;
+use crate::data::number::{parse_f64, push_cell};
 use crate::data::{csv_error_at, read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
 use crate::line_index::LineIndex;
@@ -274,18 +274,14 @@ pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<Launch
             for k in 0..5 {
                 if let Some(i) = idx[k] {
                     let cell = rec.get(i).unwrap_or("");
-                    v[k] = cell
-                        .parse::<f64>()
-                        .ok()
-                        .filter(|x| x.is_finite())
-                        .ok_or_else(|| {
-                            DataError::at(
-                                path,
-                                Some(line),
-                                Some(format!("column '{p}{}'", names[k])),
-                                format!("{} is not a finite number", crate::data::quote_cell(cell)),
-                            )
-                        })?;
+                    v[k] = parse_f64(cell).filter(|x| x.is_finite()).ok_or_else(|| {
+                        DataError::at(
+                            path,
+                            Some(line),
+                            Some(format!("column '{p}{}'", names[k])),
+                            format!("{} is not a finite number", crate::data::quote_cell(cell)),
+                        )
+                    })?;
                 }
             }
             Ok(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]))
@@ -407,7 +403,7 @@ pub fn flight_csv(
                     w.write_field(&num).expect("writing to memory");
                 }
                 for &(k, i) in measured {
-                    let m = rec.get(i).and_then(|c| c.parse::<f64>().ok());
+                    let m = rec.get(i).and_then(parse_f64);
                     num.clear();
                     if let (Some(p), Some(m)) = (flight_value(f, k), m) {
                         if m.is_finite() {

@@ -63,8 +63,8 @@ pub fn measured_flight_value(k: usize, cell: &str) -> Result<Option<f64>, String
         return Ok(None);
     }
     let range = &MEASURED_FLIGHT_RANGES[k];
-    match cell.parse::<f64>() {
-        Ok(x) if x.is_finite() => range.check(x).map(Some),
+    match crate::data::number::parse_f64(cell) {
+        Some(x) if x.is_finite() => range.check(x).map(Some),
         _ => Err(format!(
             "{} is not a finite number ({} must be a number within {}, or empty)",
             crate::data::quote_cell(cell),

@@ -21,7 +21,7 @@ use crate::data::flight_files::{
 };
 use crate::data::flight_measured::{check_measured, measured_flight_value};
 use crate::data::flight_output::Temporary;
-use crate::data::number::push_cell;
+use crate::data::number::{parse_f64, push_cell};
 use crate::data::{safe_write, write_atomic, DataError};
 use crate::flight::integrate::fly_serial;
 use crate::flight::{Flight, FlightConfig, FlightError, FlightLaunch};
@@ -133,14 +133,13 @@ fn trim(b: &[u8]) -> &[u8] {
 }
 
 /// Read from `f` until `buf` holds at least `want` bytes or the file ends; `true` at the end.
+/// Reads straight into `buf`'s spare capacity.
 fn fill(f: &mut impl Read, buf: &mut Vec<u8>, want: usize) -> std::io::Result<bool> {
-    let mut block = [0u8; 1 << 16];
     while buf.len() < want {
-        let n = f.read(&mut block)?;
-        if n == 0 {
+        let need = (want - buf.len()) as u64;
+        if f.by_ref().take(need).read_to_end(buf)? == 0 {
             return Ok(true);
         }
-        buf.extend_from_slice(&block[..n]);
     }
     Ok(false)
 }
@@ -349,8 +348,8 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
                 let cell = &bytes[s as usize..e as usize];
                 // Valid UTF-8 (checked above) split at ASCII bytes.
                 let text = std::str::from_utf8(cell).unwrap_or("");
-                match text.parse::<f64>() {
-                    Ok(x) if x.is_finite() => v[k] = x,
+                match parse_f64(text) {
+                    Some(x) if x.is_finite() => v[k] = x,
                     _ => {
                         bad = Some(Bad::Cell(k, text.to_string()));
                         break;
@@ -414,9 +413,28 @@ fn format_rows(
             }
             first = false;
         };
+        // Kept cells that follow one another in the input with one comma between them (no
+        // padding) are copied as one run of bytes, commas included.
+        let mut run: Option<(usize, u32, u32)> = None;
         for &i in &l.keep {
+            let (s, e) = cells[i];
+            match &mut run {
+                Some((last, _, end)) if i == *last + 1 && s == *end + 1 => {
+                    *last = i;
+                    *end = e;
+                }
+                _ => {
+                    if let Some((_, rs, re)) = run {
+                        sep(&mut out);
+                        out.extend_from_slice(&bytes[rs as usize..re as usize]);
+                    }
+                    run = Some((i, s, e));
+                }
+            }
+        }
+        if let Some((_, rs, re)) = run {
             sep(&mut out);
-            out.extend_from_slice(cell(i));
+            out.extend_from_slice(&bytes[rs as usize..re as usize]);
         }
         for &k in &l.outs {
             sep(&mut out);
@@ -426,9 +444,7 @@ fn format_rows(
         }
         for &(k, i) in &l.measured {
             sep(&mut out);
-            let m = std::str::from_utf8(cell(i))
-                .ok()
-                .and_then(|c| c.parse::<f64>().ok());
+            let m = std::str::from_utf8(cell(i)).ok().and_then(parse_f64);
             if let (Some(p), Some(m)) = (flight_value(f, k), m) {
                 if m.is_finite() {
                     push_cell(&mut out, p - m);

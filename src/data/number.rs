@@ -126,6 +126,61 @@ fn push_plain(out: &mut Vec<u8>, mantissa: &[u8], exp: &[u8]) {
     }
 }
 
+/// `s.parse::<f64>().ok()`, faster on the plain decimals of data files.
+///
+/// A cell of the form `[+-]digits[.digits]` with at most 19 digits, a digit string `m` of at
+/// most 2^53 and at most 22 digits after the point is `m / 10^k` with `m` and `10^k` both exact
+/// `f64`s, so one IEEE division gives the correctly rounded value, which is what std's parser
+/// returns (Clinger's fast path, the first thing std's parser tries too; std's generality cost
+/// more than the division on cells of a few digits). Anything else (exponents, `inf`, long or
+/// malformed cells) is std's to parse or refuse, so the same cells are accepted.
+#[inline]
+pub fn parse_f64(s: &str) -> Option<f64> {
+    match plain_decimal(s.as_bytes()) {
+        Some(v) => Some(v),
+        None => s.parse().ok(),
+    }
+}
+
+/// Powers of ten that are exact `f64`s.
+const EXACT_POW10: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The value of `[+-]digits[.digits]` when [`parse_f64`]'s exact division applies, else
+/// `None`.
+#[inline]
+fn plain_decimal(b: &[u8]) -> Option<f64> {
+    let (neg, b) = match b.split_first() {
+        Some((b'-', rest)) => (true, rest),
+        Some((b'+', rest)) => (false, rest),
+        _ => (false, b),
+    };
+    if b.is_empty() || b.len() > 20 {
+        return None;
+    }
+    let (mut m, mut digits, mut point) = (0u64, 0usize, None);
+    for (i, &c) in b.iter().enumerate() {
+        let d = c.wrapping_sub(b'0');
+        if d < 10 {
+            // Wraps only past 19 digits, which are refused below.
+            m = m.wrapping_mul(10).wrapping_add(u64::from(d));
+            digits += 1;
+        } else if c == b'.' && point.is_none() {
+            point = Some(i);
+        } else {
+            return None;
+        }
+    }
+    let frac = point.map_or(0, |p| b.len() - p - 1);
+    if digits == 0 || digits > 19 || m > 1 << 53 {
+        return None;
+    }
+    let v = m as f64 / EXACT_POW10[frac];
+    Some(if neg { -v } else { v })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -211,5 +266,94 @@ mod tests {
         push_cell(&mut out, f64::NAN);
         push_cell(&mut out, f64::INFINITY);
         assert!(out.is_empty());
+    }
+
+    /// `parse_f64` is `str::parse` on every cell: plain decimals of every length around the
+    /// fast path's limits (2^53, 19 digits, 22 decimals), signs, zeros, points at either end,
+    /// and what std refuses or reads another way.
+    #[test]
+    fn parse_f64_is_std_parse() {
+        let same = |s: &str| {
+            let (fast, std) = (parse_f64(s), s.parse::<f64>().ok());
+            assert_eq!(fast.map(f64::to_bits), std.map(f64::to_bits), "{s:?}");
+        };
+        for s in [
+            "",
+            "+",
+            "-",
+            ".",
+            "+.",
+            "-.",
+            "0",
+            "-0",
+            "+0",
+            "-0.0",
+            "0.",
+            ".0",
+            "-.5",
+            "+.5",
+            "5.",
+            "1..2",
+            "1.2.3",
+            "--1",
+            "+-1",
+            "1-",
+            " 1",
+            "1 ",
+            "1e5",
+            "1E-5",
+            "1e",
+            "e1",
+            "inf",
+            "-inf",
+            "Infinity",
+            "NaN",
+            "nan",
+            "0x10",
+            "1_0",
+            "١",
+            "9007199254740992",
+            "9007199254740993",
+            "9007199254740991",
+            "900719925474099.3",
+            "9007199254740993.0",
+            "1234567890123456789",
+            "12345678901234567890",
+            "99999999999999999999",
+            "0.0000000000000000000001",
+            "0.00000000000000000000001",
+            "1.0000000000000000000",
+            "00000000000000000001",
+            "0000000000000000001.5",
+            "159.71",
+            "-600",
+            "2087",
+            "8.91",
+        ] {
+            same(s);
+        }
+        let mut x: u64 = 0x853c_49e6_748f_ea9b;
+        for _ in 0..300_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let digits = (x % 21) as usize + 1;
+            let mantissa = (x >> 8) % 10u64.pow(digits.min(19) as u32);
+            let mut t = format!("{mantissa:0digits$}");
+            let point = ((x >> 40) % (digits as u64 + 2)) as usize;
+            if point <= t.len() {
+                t.insert(point, '.');
+            }
+            match (x >> 50) % 3 {
+                0 => same(&t),
+                1 => same(&format!("-{t}")),
+                _ => same(&format!("+{t}")),
+            }
+            same(&format!("{}", f64::from_bits(x)));
+            same(&format!(
+                "{:.3}",
+                (x >> 11) as f64 / (1u64 << 53) as f64 * 600.0 - 300.0
+            ));
+        }
     }
 }

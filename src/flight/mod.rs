@@ -193,7 +193,11 @@ impl FlightLaunch {
         };
         // File units back from SI: drop the last-digit noise of the round trip (120° must not
         // read 119.99999999999999 in a message) by rounding to 12 significant digits, which
-        // keeps a tiny value as given (1e-300 mph is not 0).
+        // keeps a tiny value as given (1e-300 mph is not 0). That rounding moves a value by
+        // less than 1e-11 of itself, so a value inside its range by more than 1e-9 of the
+        // limit is accepted without it (formatting five numbers per launch to 12 digits was
+        // a tenth of `smash flight`'s time); any other value is rounded and checked as before,
+        // so the same launches are accepted and every message is unchanged.
         let tidy = |x: f64| {
             if x.is_finite() && x != 0.0 {
                 format!("{x:.11e}").parse().unwrap_or(x)
@@ -201,37 +205,41 @@ impl FlightLaunch {
                 x
             }
         };
-        let mph = tidy(self.ball_speed_m_s / units::M_S_PER_MPH);
-        if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
-            return bad(
-                "ball_speed_mph",
-                mph,
-                "must be > 0 and at most 250 mph (beyond the long-drive record)",
-            );
+        let clearly_within = |x: f64, limit: f64| x.abs() <= limit * (1.0 - 1e-9);
+        let mph = self.ball_speed_m_s / units::M_S_PER_MPH;
+        if !(mph >= 1e-6 && clearly_within(mph, MAX_BALL_SPEED_MPH)) {
+            let mph = tidy(mph);
+            if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
+                return bad(
+                    "ball_speed_mph",
+                    mph,
+                    "must be > 0 and at most 250 mph (beyond the long-drive record)",
+                );
+            }
         }
-        let la = tidy(self.launch_angle_rad.to_degrees());
-        if !(la.abs() <= 90.0) {
-            return bad("launch_angle_deg", la, "must be within [-90, 90] degrees");
+        let angles = [
+            ("launch_angle_deg", self.launch_angle_rad),
+            ("azimuth_deg", self.azimuth_rad),
+        ];
+        for (field, rad) in angles {
+            let deg = rad.to_degrees();
+            if !clearly_within(deg, 90.0) && !(tidy(deg).abs() <= 90.0) {
+                return bad(field, tidy(deg), "must be within [-90, 90] degrees");
+            }
         }
-        let az = tidy(self.azimuth_rad.to_degrees());
-        if !(az.abs() <= 90.0) {
-            return bad("azimuth_deg", az, "must be within [-90, 90] degrees");
-        }
-        let b = tidy(self.backspin_rad_s / units::RAD_S_PER_RPM);
-        if !(b.abs() <= MAX_SPIN_RPM) {
-            return bad(
-                "backspin_rpm",
-                b,
-                "must be within ±20000 rpm (about twice a wedge's spin)",
-            );
-        }
-        let s = tidy(self.sidespin_rad_s / units::RAD_S_PER_RPM);
-        if !(s.abs() <= MAX_SPIN_RPM) {
-            return bad(
-                "sidespin_rpm",
-                s,
-                "must be within ±20000 rpm (about twice a wedge's spin)",
-            );
+        let spins = [
+            ("backspin_rpm", self.backspin_rad_s),
+            ("sidespin_rpm", self.sidespin_rad_s),
+        ];
+        for (field, rad_s) in spins {
+            let rpm = rad_s / units::RAD_S_PER_RPM;
+            if !clearly_within(rpm, MAX_SPIN_RPM) && !(tidy(rpm).abs() <= MAX_SPIN_RPM) {
+                return bad(
+                    field,
+                    tidy(rpm),
+                    "must be within ±20000 rpm (about twice a wedge's spin)",
+                );
+            }
         }
         Ok(())
     }
@@ -346,6 +354,130 @@ mod tests {
                 Err(e) => assert!(!e.to_string().contains("= 0:"), "{e}"),
             }
         }
+    }
+
+    /// The check as it was before its fast path: every value rounded to 12 significant
+    /// digits, then compared.
+    fn check_by_rounding(l: &FlightLaunch) -> Result<(), FlightError> {
+        let tidy = |x: f64| {
+            if x.is_finite() && x != 0.0 {
+                format!("{x:.11e}").parse().unwrap_or(x)
+            } else {
+                x
+            }
+        };
+        let bad = |field, value, allowed| {
+            Err(FlightError::InvalidLaunch {
+                field,
+                value,
+                allowed,
+            })
+        };
+        let mph = tidy(l.ball_speed_m_s / units::M_S_PER_MPH);
+        if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
+            return bad(
+                "ball_speed_mph",
+                mph,
+                "must be > 0 and at most 250 mph (beyond the long-drive record)",
+            );
+        }
+        for (field, rad) in [
+            ("launch_angle_deg", l.launch_angle_rad),
+            ("azimuth_deg", l.azimuth_rad),
+        ] {
+            let deg = tidy(rad.to_degrees());
+            if !(deg.abs() <= 90.0) {
+                return bad(field, deg, "must be within [-90, 90] degrees");
+            }
+        }
+        for (field, w) in [
+            ("backspin_rpm", l.backspin_rad_s),
+            ("sidespin_rpm", l.sidespin_rad_s),
+        ] {
+            let rpm = tidy(w / units::RAD_S_PER_RPM);
+            if !(rpm.abs() <= MAX_SPIN_RPM) {
+                return bad(
+                    field,
+                    rpm,
+                    "must be within ±20000 rpm (about twice a wedge's spin)",
+                );
+            }
+        }
+        Ok(())
+    }
+
+    /// The check's fast path accepts and refuses exactly what rounding every value did, with
+    /// the same messages: values at, just inside and just outside every limit and the fast
+    /// path's own edges (ulp by ulp), zeros, tiny, huge and non-finite values.
+    #[test]
+    fn launch_check_equals_the_rounding_check() {
+        let mut edges = vec![
+            0.0,
+            1e-300,
+            1e-6,
+            1e-6 * (1.0 - 1e-12),
+            f64::MIN_POSITIVE,
+            5e-324,
+            1e300,
+            f64::MAX,
+            f64::INFINITY,
+            f64::NAN,
+        ];
+        for limit in [MAX_BALL_SPEED_MPH, 90.0, MAX_SPIN_RPM] {
+            for centre in [limit, limit * (1.0 - 1e-9), limit * (1.0 - 5e-12)] {
+                let mut up = centre;
+                let mut down = centre;
+                for _ in 0..40 {
+                    edges.extend([up, down]);
+                    up = f64::from_bits(up.to_bits() + 1);
+                    down = f64::from_bits(down.to_bits() - 1);
+                }
+                for k in -30..=30 {
+                    edges.push(centre * (1.0 + f64::from(k) * 1e-13));
+                }
+            }
+        }
+        let values: Vec<f64> = edges.iter().flat_map(|&v| [v, -v]).collect();
+        let fine = FlightLaunch::from_file_units(150.0, 10.0, 1.0, 2500.0, 100.0);
+        let mut n = 0;
+        for &v in &values {
+            // Each field in turn, in file units and converted from them.
+            let as_given = [
+                FlightLaunch {
+                    ball_speed_m_s: v * units::M_S_PER_MPH,
+                    ..fine
+                },
+                FlightLaunch {
+                    launch_angle_rad: units::deg(v),
+                    ..fine
+                },
+                FlightLaunch {
+                    azimuth_rad: units::deg(v),
+                    ..fine
+                },
+                FlightLaunch {
+                    backspin_rad_s: units::rpm(v),
+                    ..fine
+                },
+                FlightLaunch {
+                    sidespin_rad_s: units::rpm(v),
+                    ..fine
+                },
+                FlightLaunch::from_file_units(v, v, v, v, v),
+            ];
+            for l in as_given {
+                let (fast, slow) = (l.check(), check_by_rounding(&l));
+                // NaN values compare unequal: compare the messages too.
+                assert_eq!(
+                    format!("{fast:?}"),
+                    format!("{slow:?}"),
+                    "{v:e} ({:#x})",
+                    v.to_bits()
+                );
+                n += usize::from(fast.is_ok());
+            }
+        }
+        assert!(n > 100, "some launches pass: {n}");
     }
 
     #[test]
