@@ -526,11 +526,12 @@ impl ImpactModel {
         };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);
-        // Multiplied by the reciprocals (one scalar division a call, none a lane): the ball's
-        // velocity and spin are a rounding of the quotient away from dividing by m_b and I_b.
-        let inv_mb = 1.0 / p.ball_mass_kg;
-        let v_b = each3(|i| impulse[i] * inv_mb);
-        let w_b = each3(|i| ball_angular_impulse[i] * laws.collision.ball_inv_inertia);
+        let (v_b, w_b) = ball_response(
+            p.ball_mass_kg,
+            laws.collision.ball_inv_inertia,
+            &impulse,
+            &ball_angular_impulse,
+        );
         ContactSolution {
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,
@@ -571,6 +572,25 @@ pub fn solve_spd3(k: &Matrix3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
         (c00 * b.x + c01 * b.y + c02 * b.z) * inv_det,
         (c01 * b.x + c11 * b.y + c12 * b.z) * inv_det,
         (c02 * b.x + c12 * b.y + c22 * b.z) * inv_det,
+    )
+}
+
+/// The ball's velocity and spin from the impulse and the angular impulse about its centre of
+/// mass, in whatever frame they are given: the one definition the built-in and the user-defined
+/// solves share, so that both give the same bits. Multiplied by the reciprocals (one scalar
+/// division a call, none a lane), a rounding of the quotient away from dividing by `m_b` and
+/// `I_b`.
+#[inline(always)]
+pub(crate) fn ball_response<R: Real>(
+    ball_mass_kg: f64,
+    ball_inv_inertia_per_kgm2: f64,
+    impulse_n_s: &[R; 3],
+    angular_impulse_n_m_s: &[R; 3],
+) -> ([R; 3], [R; 3]) {
+    let inv_mb = 1.0 / ball_mass_kg;
+    (
+        each3(|i| impulse_n_s[i] * inv_mb),
+        each3(|i| angular_impulse_n_m_s[i] * ball_inv_inertia_per_kgm2),
     )
 }
 

@@ -208,9 +208,15 @@ impl ImpactModel {
         let (r_c, r_b) = (Vector3::from(fi.r_c), Vector3::from(fi.r_b));
         let impulse = Vector3::from(impulse);
 
+        let (v_b, w_b) = super::ball_response(
+            p.ball_mass_kg,
+            laws.collision.ball_inv_inertia,
+            &fi.impulse,
+            &ball_ang,
+        );
         FaceOutcome {
-            ball_velocity_m_s: impulse / p.ball_mass_kg,
-            ball_spin_rad_s: Vector3::from(ball_ang) / p.ball_inertia_kgm2,
+            ball_velocity_m_s: Vector3::from(v_b),
+            ball_spin_rad_s: Vector3::from(w_b),
             club_velocity_after_m_s: v_c - impulse / club_mass_kg,
             club_omega_after_rad_s: w_c - club_inv_inertia * r_c.cross(&impulse),
             impulse_n_s: impulse,
