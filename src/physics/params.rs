@@ -240,6 +240,26 @@ fn gcm2(kgm2: f64) -> String {
 /// Check that `inertia` is a physical inertia tensor: finite, symmetric, positive definite, and
 /// its principal moments satisfy the triangle inequality (each at most the sum of the others).
 pub fn validate_inertia(inertia: &Matrix3<f64>, quantity: &'static str) -> Result<(), ParamError> {
+    // A fit builds many models a second from the same few tensors: the last tensor that passed
+    // on this thread is remembered by its bits, and the same bits pass again without another
+    // eigen-decomposition (the outcome is a function of the bits, so nothing changes).
+    thread_local! {
+        static LAST_VALID: std::cell::Cell<Option<[u64; 9]>> = const { std::cell::Cell::new(None) };
+    }
+    let bits: [u64; 9] = std::array::from_fn(|k| inertia.as_slice()[k].to_bits());
+    if LAST_VALID.with(|c| c.get()) == Some(bits) {
+        return Ok(());
+    }
+    validate_inertia_afresh(inertia, quantity)?;
+    LAST_VALID.with(|c| c.set(Some(bits)));
+    Ok(())
+}
+
+/// [`validate_inertia`] without the memory of the last tensor that passed.
+fn validate_inertia_afresh(
+    inertia: &Matrix3<f64>,
+    quantity: &'static str,
+) -> Result<(), ParamError> {
     check(inertia.iter().all(|v| v.is_finite()), quantity, || {
         "every entry must be a finite number".into()
     })?;
