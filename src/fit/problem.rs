@@ -258,6 +258,22 @@ impl<'a> FitProblem<'a> {
         DVector::from_iterator(self.active.len(), self.active.iter().map(|&j| theta[j]))
     }
 
+    /// Evaluation sites of one residual evaluation: shots × impact-location nodes.
+    pub fn sites(&self) -> usize {
+        self.data.len()
+            * if self.data.impact_nodes.is_some() {
+                NODES_PER_SHOT
+            } else {
+                1
+            }
+    }
+
+    /// Whether an evaluation of this size is worth splitting over threads
+    /// ([`PARALLEL_MIN_SITES`]).
+    pub fn worth_splitting(&self) -> bool {
+        self.sites() >= PARALLEL_MIN_SITES
+    }
+
     /// Number of residual rows.
     pub fn rows(&self) -> usize {
         self.data.len() * self.weighting.rows_per_shot()
@@ -394,13 +410,7 @@ impl<'a> FitProblem<'a> {
             }
             Ok(())
         };
-        let sites = self.data.len()
-            * if self.data.impact_nodes.is_some() {
-                NODES_PER_SHOT
-            } else {
-                1
-            };
-        if sites >= PARALLEL_MIN_SITES {
+        if self.worth_splitting() {
             // Collected in order, so the error reported is the first failing shot's.
             let done: Vec<Result<(), EvalError>> = out
                 .par_chunks_mut(SHOTS_PER_TASK * rows)

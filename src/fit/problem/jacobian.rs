@@ -10,12 +10,11 @@ use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::lanes::{padded, FrameLanes, LanePrediction};
-use super::{FitProblem, FD_STEP_OF_RANGE, PARALLEL_MIN_SITES, SHOTS_PER_TASK};
+use super::{FitProblem, FD_STEP_OF_RANGE, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 use crate::lanes::{Lanes, SimdLevel, V};
-use crate::measurement::NODES_PER_SHOT;
 use crate::physics::ImpactModel;
 
 /// The two shifted models of one Jacobian column, per group it touches (`None` for the
@@ -67,11 +66,6 @@ impl FitProblem<'_> {
             return None;
         }
         let n = self.data.len();
-        let sites = n * if self.data.impact_nodes.is_some() {
-            NODES_PER_SHOT
-        } else {
-            1
-        };
         // Each task writes its shots' rows of every column in place: column k's rows of task t
         // are `parts[t][k]`.
         let (m, seg) = (self.rows(), SHOTS_PER_TASK * self.weighting.rows_per_shot());
@@ -87,7 +81,7 @@ impl FitProblem<'_> {
         let task = |(t, mut out): (usize, Vec<&mut [f64]>)| {
             self.jacobian_block(&columns, cache, t * SHOTS_PER_TASK, &mut out)
         };
-        let done = if self.parallel_jacobian || sites >= PARALLEL_MIN_SITES {
+        let done = if self.parallel_jacobian || self.worth_splitting() {
             parts.into_par_iter().enumerate().all(task)
         } else {
             parts.into_iter().enumerate().all(task)
