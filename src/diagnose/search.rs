@@ -281,16 +281,6 @@ impl<'a> Search<'a> {
         // One evaluation on all shots at the base point serves every fold's start.
         let at_base =
             evaluate::all_shots_at(self.club, &self.base, &self.data, w, &self.theta_base);
-        let base_cv = cv_chi2(
-            self.club,
-            &self.base,
-            &self.folds,
-            w,
-            &self.theta_base,
-            at_base.as_ref().map(|(r, j)| (r, j)),
-            self.opts.max_iters,
-            self.progress,
-        )?;
         // With known instrument noise, impact-noise levels are scored by the spread
         // (`super::spread`); the base is the same model with exact locations.
         let spread = match &self.opts.noise_floor {
@@ -302,6 +292,9 @@ impl<'a> Search<'a> {
         let spread_base = spread
             .as_ref()
             .and_then(|m| Some((m, m.deviance(base_errors, None)?)));
+        // The base's cross-validation runs beside the candidates' (no barrier between them on
+        // two cores): the candidates score against a base χ² not yet known (`cv` NaN) and
+        // their gains are completed below, the same subtraction as before.
         let b = StepBase {
             club: self.club,
             data: &self.data,
@@ -312,7 +305,7 @@ impl<'a> Search<'a> {
             sigma,
             w,
             rms: evaluate::rms_per_component(base_errors),
-            cv: base_cv,
+            cv: f64::NAN,
             at: at_base.as_ref().map(|(r, j)| (r, j)),
             max_iters: self.opts.max_iters,
             progress: self.progress,
@@ -325,20 +318,67 @@ impl<'a> Search<'a> {
         // docs/diagnose-selection.md). The impact-noise levels are one measurement question
         // asked at several sizes, not m physical claims, and keep the plain penalty.
         let multiplicity = 2.0 * (open.len().max(1) as f64).ln();
-        let fits: Vec<EffectFit> = open
-            .par_iter()
-            .map(|c| evaluate::evaluate_effect(&b, c, self.penalty_per_param, multiplicity))
-            .collect();
-        let noise: Vec<(CandidateResult, NoiseFit)> = self.noise_options[..n_noise]
-            .par_iter()
-            .enumerate()
-            .map(|(j, (n, d, f))| {
-                evaluate::noise_candidate(&b, (j, n, d, f), self.penalty_per_param)
-            })
-            .collect();
+        let (base_cv, (mut fits, (mut noise, mut delivery))) = rayon::join(
+            || {
+                cv_chi2(
+                    self.club,
+                    &self.base,
+                    &self.folds,
+                    w,
+                    &self.theta_base,
+                    at_base.as_ref().map(|(r, j)| (r, j)),
+                    self.opts.max_iters,
+                    self.progress,
+                )
+            },
+            || {
+                rayon::join(
+                    || -> Vec<EffectFit> {
+                        open.par_iter()
+                            .map(|c| {
+                                evaluate::evaluate_effect(
+                                    &b,
+                                    c,
+                                    self.penalty_per_param,
+                                    multiplicity,
+                                )
+                            })
+                            .collect()
+                    },
+                    || {
+                        rayon::join(
+                            || -> Vec<(CandidateResult, NoiseFit)> {
+                                self.noise_options[..n_noise]
+                                    .par_iter()
+                                    .enumerate()
+                                    .map(|(j, (n, d, f))| {
+                                        evaluate::noise_candidate(
+                                            &b,
+                                            (j, n, d, f),
+                                            self.penalty_per_param,
+                                        )
+                                    })
+                                    .collect()
+                            },
+                            || self.score_delivery(&b),
+                        )
+                    },
+                )
+            },
+        );
+        let base_cv = base_cv?;
+        let complete = |r: &mut CandidateResult| {
+            if r.spread_gain.is_none() && !r.cv_chi2.is_nan() {
+                r.gain = base_cv - r.cv_chi2;
+            }
+        };
+        fits.iter_mut().for_each(|f| complete(&mut f.result));
+        noise
+            .iter_mut()
+            .chain(delivery.iter_mut())
+            .for_each(|(r, _)| complete(r));
         let mut results: Vec<CandidateResult> = fits.iter().map(|f| f.result.clone()).collect();
         let explained = fits.iter().map(|f| f.explained.clone()).collect();
-        let delivery = self.score_delivery(&b);
         let mut noise_fits = Vec::new();
         for (r, f) in noise.into_iter().chain(delivery) {
             results.push(r);
