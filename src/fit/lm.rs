@@ -90,6 +90,9 @@ pub struct LevenbergMarquardt {
     /// The point has moved since the kept Jacobian was evaluated (it is no longer the point's
     /// own).
     kept_moved: bool,
+    /// `JᵀJ` of the Jacobian the state holds, while that Jacobian is carried to the next
+    /// iteration unchanged (a rejected step, a kept Jacobian): made once, not every iteration.
+    gram: Option<DMatrix<f64>>,
 }
 
 /// A step with a kept Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]) that is
@@ -131,6 +134,7 @@ impl LevenbergMarquardt {
             at_start: None,
             keep_start_jacobian: 0,
             kept_moved: false,
+            gram: None,
         })
     }
 
@@ -258,6 +262,22 @@ impl LevenbergMarquardt {
     }
 }
 
+/// `JᵀJ`, the upper triangle by column dot products and mirrored: the same bits as
+/// `j.tr_mul(&j)` (nalgebra forms each entry as the dot of two columns, and a dot product's
+/// terms and their order are the same either way round) in a little over half the work.
+pub(crate) fn gram(j: &DMatrix<f64>) -> DMatrix<f64> {
+    let p = j.ncols();
+    let mut a = DMatrix::zeros(p, p);
+    for c in 0..p {
+        for k in c..p {
+            let v = j.column(c).dot(&j.column(k));
+            a[(c, k)] = v;
+            a[(k, c)] = v;
+        }
+    }
+    a
+}
+
 fn norm2(r: &DVector<f64>) -> f64 {
     r.norm_squared()
 }
@@ -300,6 +320,7 @@ where
         self.nu = 2.0;
         self.converged = None;
         self.kept_moved = false;
+        self.gram = None;
         let cost = norm2(&r);
         Ok((state.param(theta).residuals(r).jacobian(j).cost(cost), None))
     }
@@ -314,7 +335,7 @@ where
         let j = state.take_jacobian().expect("set in init");
         let cost = state.get_cost();
 
-        let a = j.tr_mul(&j);
+        let a = self.gram.take().unwrap_or_else(|| gram(&j));
         let mut g = j.tr_mul(&r);
         let (held, cosine) = self.held_and_cosine(&theta, &a, &g, cost);
         let keep = |state: LmState, theta, r, j, cost| {
@@ -372,6 +393,9 @@ where
         let kv = argmin::kv!("lambda" => self.lambda; "accepted" => accepted;);
         match new_state {
             Some((trial, r_trial, j_trial, cost_trial, small)) => {
+                if j_trial.is_none() {
+                    self.gram = Some(a);
+                }
                 let j_trial = j_trial.unwrap_or(j);
                 let state = keep(state, trial, r_trial, j_trial, cost_trial);
                 if small {
@@ -381,6 +405,7 @@ where
                 }
             }
             None if self.kept_moved && small_prediction => {
+                self.gram = Some(a);
                 // At the kept Jacobian's solution, within a second-order amount of the fit's
                 // own minimum: its steps no longer lower χ².
                 let state = keep(state, theta, r, j, cost);
@@ -397,6 +422,7 @@ where
             None => {
                 self.lambda *= self.nu;
                 self.nu *= 2.0;
+                self.gram = Some(a);
                 let state = keep(state, theta, r, j, cost);
                 if self.lambda > 1e16 {
                     Ok((self.stop(state, Converged::NoDescent), Some(kv)))

@@ -317,3 +317,26 @@ fn respects_bounds_and_reports_max_iters() {
             .is_err()
     );
 }
+
+/// The symmetric `JᵀJ` gives the bits of nalgebra's `tr_mul`, on tall matrices of every
+/// small width with entries of mixed signs and scales (so that rounding differs by order).
+#[test]
+fn gram_is_tr_mul_bit_for_bit() {
+    let mut x = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    for p in 1..=7 {
+        for n in [1, 7, 8, 9, 64, 1001] {
+            let j = DMatrix::from_fn(n, p, |_, c| next() * 10f64.powi(c as i32 - 3));
+            let (a, b) = (super::gram(&j), j.tr_mul(&j));
+            assert!(a
+                .iter()
+                .zip(b.iter())
+                .all(|(u, v)| u.to_bits() == v.to_bits()));
+        }
+    }
+}
