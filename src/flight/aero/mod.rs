@@ -325,13 +325,21 @@ impl CoefficientModel for Fmm2022Re {
     fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L) {
         let (cd, cl, cm) = Fmm2022.coefficients_v(s, re);
         let s = Fmm2022::held_spin_factor_v(s);
-        let t = (L::splat(Self::RE_HIGH) - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
-        let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let t = L::select(t.lt(zero), zero, t);
-        let t = L::select(t.gt(one), one, t);
-        let r = t * t * (L::splat(3.0) - t * 2.0);
+        let r = crisis_rise_v(re, Self::RE_LOW, Self::RE_HIGH);
         (cd + s * Self::CD_PER_S + r * Self::CD_LOW_RE, cl, cm)
     }
+}
+
+/// The lane form of the drag-crisis weight `r(Re)` of [`Fmm2022ReFamily`]: `3t² − 2t³` of
+/// `t = clamp((re_high − Re)/(re_high − re_low), 0, 1)`, 1 below `re_low` and 0 above `re_high`
+/// (the quotient as a product with the constant reciprocal).
+#[inline(always)]
+pub(crate) fn crisis_rise_v<L: Lanes>(re: L, re_low: f64, re_high: f64) -> L {
+    let t = (L::splat(re_high) - re) * (1.0 / (re_high - re_low));
+    let (zero, one) = (L::splat(0.0), L::splat(1.0));
+    let t = L::select(t.lt(zero), zero, t);
+    let t = L::select(t.gt(one), one, t);
+    t * t * (L::splat(3.0) - t * 2.0)
 }
 
 /// A coefficient model chosen by name (what files and the command line select).

@@ -4,7 +4,7 @@
 //! calibrated on all three TrackMan tour tables this project has (disclosed: the PGA Tour
 //! table it is validated on is one of them; README, "Ball flight").
 
-use super::{CoefficientModel, Coefficients, DragFloor, Fmm2022, Fmm2022ReFamily};
+use super::{crisis_rise_v, CoefficientModel, Coefficients, DragFloor, Fmm2022, Fmm2022ReFamily};
 use crate::lanes::Lanes;
 
 /// [`Fmm2022`] held above the still-air drag floor, with a drag rise and a lift loss across
@@ -72,11 +72,8 @@ impl CoefficientModel for Fmm2022Tour {
         let s = Fmm2022::held_spin_factor_v(s);
         // The scalar form's operations, a lane operand on the left where the scalar form has a
         // constant there (the same bits: `+` and `×` commute exactly).
-        let t = (L::splat(Self::RE_HIGH) - re) * (1.0 / (Self::RE_HIGH - Self::RE_LOW));
-        let (zero, one) = (L::splat(0.0), L::splat(1.0));
-        let t = L::select(t.lt(zero), zero, t);
-        let t = L::select(t.gt(one), one, t);
-        let r = t * t * (L::splat(3.0) - t * 2.0);
+        let r = crisis_rise_v(re, Self::RE_LOW, Self::RE_HIGH);
+        let one = L::splat(1.0);
         let floor = s * DragFloor::CD_PER_S + DragFloor::CD;
         let cd = DragFloor::smooth_max_v(cd + s * Self::CD_PER_S, floor) + r * Self::CD_LOW_RE;
         (cd, cl * (one - r * Self::LIFT_LOSS), cm)
