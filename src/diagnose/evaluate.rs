@@ -196,7 +196,8 @@ pub(super) struct StepBase<'a> {
     pub(super) sigma: [f64; 5],
     pub(super) w: Weighting,
     pub(super) rms: [f64; 5],
-    /// Cross-validated χ² of the base.
+    /// Cross-validated χ² of the base; NaN while a step computes it beside the candidates
+    /// (their gains, `cv − cv_chi2`, are then completed by the step).
     pub(super) cv: f64,
     /// The base's residuals and Jacobian on all shots at `theta` with `w`, when known: an
     /// effect candidate's fit starts from them ([`start_evaluation`]).

@@ -290,12 +290,8 @@ pub fn calibrate_data(
         });
     }
     let start = layout.defaults();
-    let problem = FitProblem::new(club, layout.clone(), data, Weighting::launch(&[1.0; 5]));
-    // Below the size at which a residual evaluation is split, a parallel Jacobian costs more
-    // in waking and joining threads than it saves (600 shots, 5 parameters: 2.01 ms parallel,
-    // 1.52 ms on one thread, `cargo bench --bench calibrate`, 26 Nov 2026); the same bits.
-    let parallel = opts.parallel && problem.worth_splitting();
-    let problem = problem.with_parallel_jacobian(parallel);
+    let problem = FitProblem::new(club, layout.clone(), data, Weighting::launch(&[1.0; 5]))
+        .with_parallel_jacobian(opts.parallel);
     let errors_before = problem.launch_errors(start.as_slice())?;
     let before = launch_error_table(&group_names(data), &errors_before);
     let sink = progress.as_ref();

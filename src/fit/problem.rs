@@ -193,8 +193,9 @@ impl<'a> FitProblem<'a> {
         self
     }
 
-    /// Compute Jacobian columns in parallel (worth it when the fit is not itself one of many
-    /// parallel jobs).
+    /// Compute the column-by-column Jacobian's columns in parallel (worth it when the fit is
+    /// not itself one of many parallel jobs: each column's evaluations are scalar solves). The
+    /// one-pass Jacobian on the lanes splits by size alone, as a residual evaluation does.
     pub fn with_parallel_jacobian(mut self, on: bool) -> Self {
         self.parallel_jacobian = on;
         self
@@ -259,7 +260,7 @@ impl<'a> FitProblem<'a> {
     }
 
     /// Evaluation sites of one residual evaluation: shots × impact-location nodes.
-    pub fn sites(&self) -> usize {
+    fn sites(&self) -> usize {
         self.data.len()
             * if self.data.impact_nodes.is_some() {
                 NODES_PER_SHOT
@@ -270,7 +271,7 @@ impl<'a> FitProblem<'a> {
 
     /// Whether an evaluation of this size is worth splitting over threads
     /// ([`PARALLEL_MIN_SITES`]).
-    pub fn worth_splitting(&self) -> bool {
+    fn worth_splitting(&self) -> bool {
         self.sites() >= PARALLEL_MIN_SITES
     }
 

@@ -81,14 +81,14 @@ impl Search<'_> {
         let (base_cv, (mut fits, mut noise, mut delivery)) = rayon::join(
             || {
                 cv_chi2(
-                    self.club,
-                    &self.base,
-                    &self.folds,
-                    w,
-                    &self.theta_base,
-                    at_base.as_ref().map(|(r, j)| (r, j)),
-                    self.opts.max_iters,
-                    self.progress,
+                    b.club,
+                    b.layout,
+                    b.folds,
+                    b.w,
+                    b.theta,
+                    b.at,
+                    b.max_iters,
+                    b.progress,
                 )
             },
             || self.candidates(&b, open, n_noise),
