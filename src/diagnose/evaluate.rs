@@ -11,7 +11,7 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    fit_quietly as fit, fit_quietly_from as fit_from, run_lm_point_near, EffectRequest, FitData,
+    fit_quietly as fit, fit_quietly_chord_from, run_lm_point_near, EffectRequest, FitData,
     FitError, FitProblem, FitRun, ParamLayout, Weighting,
 };
 use crate::measurement::ImpactNoise;
@@ -244,7 +244,7 @@ pub(super) fn evaluate_effect(
     let n_folds = b.folds.train.len();
     let fitted = candidate_layout(b.layout, b.theta, cand, &b.data.groups).and_then(|l| {
         let at_start = start_evaluation(b, &l);
-        let run = fit_from(
+        let run = fit_quietly_chord_from(
             b.club,
             &l.layout,
             b.data,

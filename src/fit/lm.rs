@@ -90,6 +90,9 @@ pub struct LevenbergMarquardt {
     /// The point has moved since the kept Jacobian was evaluated (it is no longer the point's
     /// own).
     kept_moved: bool,
+    /// The kept Jacobian's steps end at the point's own Jacobian, never a stop
+    /// ([`LevenbergMarquardt::to_own_minimum`]).
+    own_minimum: bool,
     /// `JᵀJ` of the Jacobian the state holds, while that Jacobian is carried to the next
     /// iteration unchanged (a rejected step, a kept Jacobian): made once, not every iteration.
     gram: Option<DMatrix<f64>>,
@@ -134,6 +137,7 @@ impl LevenbergMarquardt {
             at_start: None,
             keep_start_jacobian: 0,
             kept_moved: false,
+            own_minimum: false,
             gram: None,
         })
     }
@@ -185,6 +189,20 @@ impl LevenbergMarquardt {
     /// to that order.
     pub fn with_kept_start_jacobian(mut self) -> Self {
         self.keep_start_jacobian = KEPT_JACOBIAN_STEPS;
+        self
+    }
+
+    /// With a kept starting Jacobian ([`LevenbergMarquardt::with_kept_start_jacobian`]): its
+    /// steps end, never the fit. When a kept step is rejected, or accepted with a change of `χ²`
+    /// below `ftol` (the chord's own convergence, off the fit's minimum by a second-order
+    /// amount), the point's Jacobian is taken and the fit goes on as plain Levenberg–Marquardt,
+    /// which stops by its own tests at its own minimum. For a fit whose solution and covariance
+    /// are wanted, started from an evaluation mostly made already (a diagnose candidate started
+    /// from the step base's residuals and Jacobian): the chord steps replace the Jacobians of
+    /// every step but the last, and with [`LevenbergMarquardt::without_final_jacobian`] the
+    /// fit typically evaluates one Jacobian in all.
+    pub fn to_own_minimum(mut self) -> Self {
+        self.own_minimum = true;
         self
     }
 
@@ -254,6 +272,30 @@ impl LevenbergMarquardt {
             g[k] = 0.0;
         }
         damped
+    }
+
+    /// The Jacobian at `theta`, the point's own, ending the kept Jacobian's steps: the fit
+    /// goes on as plain Levenberg–Marquardt.
+    fn own_jacobian<O>(
+        &mut self,
+        problem: &mut Problem<O>,
+        theta: &DVector<f64>,
+    ) -> Result<DMatrix<f64>, ArgminError>
+    where
+        O: Jacobian<Param = DVector<f64>, Jacobian = DMatrix<f64>>,
+    {
+        self.keep_start_jacobian = 0;
+        self.kept_moved = false;
+        self.gram = None;
+        problem.jacobian(theta)
+    }
+
+    /// The largest `|step_j|` relative to its parameter's range.
+    fn step_of_range(&self, step: &DVector<f64>) -> f64 {
+        step.iter()
+            .zip(self.lower.iter().zip(self.upper.iter()))
+            .map(|(s, (l, u))| s.abs() / (u - l))
+            .fold(0.0, f64::max)
     }
 
     fn stop(&mut self, state: LmState, why: Converged) -> LmState {
@@ -341,6 +383,13 @@ where
         let keep = |state: LmState, theta, r, j, cost| {
             state.param(theta).residuals(r).jacobian(j).cost(cost)
         };
+        // A test passed on the kept Jacobian ([`LevenbergMarquardt::to_own_minimum`]) is the
+        // chord's convergence, not the fit's: the point's own Jacobian is taken instead.
+        let chord_only = self.own_minimum && self.kept_moved;
+        if chord_only && (cosine <= self.gtol || cost == 0.0) {
+            let j_here = self.own_jacobian(problem, &theta)?;
+            return Ok((keep(state, theta, r, j_here, cost), None));
+        }
         if cosine <= self.gtol || cost == 0.0 {
             let state = keep(state, theta, r, j, cost);
             return Ok((self.stop(state, Converged::Gradient), None));
@@ -356,11 +405,11 @@ where
             let mut trial = &theta + &delta;
             self.project(&mut trial);
             let step = &trial - &theta;
-            let step_rel = step
-                .iter()
-                .zip(self.lower.iter().zip(self.upper.iter()))
-                .map(|(s, (l, u))| s.abs() / (u - l))
-                .fold(0.0, f64::max);
+            let step_rel = self.step_of_range(&step);
+            if step_rel <= self.xtol && chord_only {
+                let j_here = self.own_jacobian(problem, &theta)?;
+                return Ok((keep(state, theta, r, j_here, cost), None));
+            }
             if step_rel <= self.xtol {
                 let state = keep(state, theta, r, j, cost);
                 return Ok((self.stop(state, Converged::Step), None));
@@ -376,17 +425,24 @@ where
                     let rho = actual / predicted;
                     let small = actual <= self.ftol * cost && predicted <= self.ftol * cost;
                     let keep = self.keep_start_jacobian > 0;
-                    let j_trial = if (small && !self.final_jacobian) || keep {
+                    // A small step with a kept Jacobian that is no longer the point's: the
+                    // chord converged, and the fit goes on from its point's own Jacobian.
+                    let chord_done = small && self.own_minimum && self.kept_moved;
+                    let j_trial = if chord_done {
+                        Some(self.own_jacobian(problem, &trial)?)
+                    } else if (small && !self.final_jacobian) || keep {
                         self.keep_start_jacobian = self.keep_start_jacobian.saturating_sub(1);
                         self.kept_moved = keep;
                         None
                     } else {
+                        // The point's own: the kept Jacobian (if any) is given up.
+                        self.kept_moved = false;
                         Some(problem.jacobian(&trial)?)
                     };
                     self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     self.nu = 2.0;
                     accepted = true;
-                    new_state = Some((trial, r_trial, j_trial, cost_trial, small));
+                    new_state = Some((trial, r_trial, j_trial, cost_trial, small && !chord_done));
                 }
             }
         }
@@ -404,7 +460,7 @@ where
                     Ok((state, Some(kv)))
                 }
             }
-            None if self.kept_moved && small_prediction => {
+            None if self.kept_moved && small_prediction && !self.own_minimum => {
                 self.gram = Some(a);
                 // At the kept Jacobian's solution, within a second-order amount of the fit's
                 // own minimum: its steps no longer lower χ².
@@ -414,9 +470,7 @@ where
             None if self.kept_moved => {
                 // The kept Jacobian may be what failed: take the point's own and go on as
                 // plain Levenberg–Marquardt from the same damping.
-                self.keep_start_jacobian = 0;
-                self.kept_moved = false;
-                let j_here = problem.jacobian(&theta)?;
+                let j_here = self.own_jacobian(problem, &theta)?;
                 Ok((keep(state, theta, r, j_here, cost), Some(kv)))
             }
             None => {

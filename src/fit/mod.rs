@@ -31,8 +31,8 @@ pub use covariance::{covariance, Covariance, Identifiability};
 pub use lm::{Converged, LevenbergMarquardt, LmState};
 pub use problem::{EvalError, FitData, FitProblem, Weighting, FD_STEP_OF_RANGE};
 pub use run::{
-    fit_quietly, fit_quietly_from, run_lm, run_lm_point, run_lm_point_from, run_lm_point_near,
-    FitPoint, FitRun, IterInfo, Progress,
+    fit_quietly, fit_quietly_chord_from, fit_quietly_from, run_lm, run_lm_point, run_lm_point_from,
+    run_lm_point_near, FitPoint, FitRun, IterInfo, Progress,
 };
 pub use spec::{parse_effect_list, parse_request, EffectRequest, FreeEffect, ParamLayout};
 

@@ -234,7 +234,56 @@ pub fn run_lm_point_near(
     max_iters: u64,
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
 ) -> Result<FitPoint, FitError> {
-    execute_with(problem, start, max_iters, None, (false, true), at_start).map(FitPoint::from)
+    execute_with(
+        problem,
+        start,
+        max_iters,
+        None,
+        (false, Steps::KeptNear),
+        at_start,
+    )
+    .map(FitPoint::from)
+}
+
+/// [`fit_quietly_from`] with the chord steps of a kept start Jacobian
+/// ([`LevenbergMarquardt::to_own_minimum`]) and the covariance's Jacobian from the point before
+/// the last step when that step changed `χ²` by less than `ftol`
+/// ([`LevenbergMarquardt::without_final_jacobian`], as MINPACK returns it): the fit's own
+/// minimum to its tolerances, typically with one Jacobian evaluated where plain
+/// Levenberg–Marquardt evaluates one a step. Diagnose's effect candidates, started from the
+/// step base's evaluation (`at_start`), fit this way. Without `at_start` (or when the friction
+/// scan moves the start) it is [`fit_quietly_from`] without the final Jacobian.
+pub fn fit_quietly_chord_from(
+    club: &crate::club::ClubSpec,
+    layout: &super::ParamLayout,
+    data: &super::FitData,
+    w: super::Weighting,
+    start: &DVector<f64>,
+    max_iters: u64,
+    at_start: Option<(DVector<f64>, DMatrix<f64>)>,
+) -> Result<FitRun, FitError> {
+    let pr = FitProblem::new(club, layout.clone(), data, w);
+    execute_with(
+        pr,
+        start,
+        max_iters,
+        None,
+        (false, Steps::KeptToOwn),
+        at_start,
+    )
+}
+
+/// How a fit given its start evaluation uses that Jacobian.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Steps {
+    /// A Jacobian at every accepted point.
+    Own,
+    /// The start's kept for the steps, stopping near the fit's minimum
+    /// ([`LevenbergMarquardt::with_kept_start_jacobian`]).
+    KeptNear,
+    /// The start's kept for the steps, then the point's own to the fit's minimum
+    /// ([`LevenbergMarquardt::to_own_minimum`]).
+    KeptToOwn,
 }
 
 /// [`run_lm`], with the Jacobian at a solution reached by a small `χ²` change computed or not
@@ -252,19 +301,19 @@ pub(crate) fn execute(
         start,
         max_iters,
         progress,
-        (final_jacobian, false),
+        (final_jacobian, Steps::Own),
         at_start,
     )
 }
 
-/// [`execute`]; `keep_start_jacobian` keeps a given start's Jacobian for the steps
-/// ([`run_lm_point_near`]).
+/// [`execute`]; `steps` says how a given start's Jacobian is used ([`run_lm_point_near`],
+/// [`fit_quietly_chord_from`]).
 fn execute_with(
     problem: FitProblem<'_>,
     start: &DVector<f64>,
     max_iters: u64,
     progress: Option<(&Arc<dyn Progress>, &str)>,
-    (final_jacobian, keep_start_jacobian): (bool, bool),
+    (final_jacobian, steps): (bool, Steps),
     at_start: Option<(DVector<f64>, DMatrix<f64>)>,
 ) -> Result<FitRun, FitError> {
     let n_active = problem.active().len();
@@ -277,7 +326,7 @@ fn execute_with(
     // fold started from the all-shots solution, whose fit scanned the friction already) starts
     // there: a scan on the fold's shots would move a never-identifiable `mu` to a grid value
     // and crawl back along its flat valley, step by step with new Jacobians.
-    let near = keep_start_jacobian && at_start.is_some();
+    let near = steps == Steps::KeptNear && at_start.is_some();
     let init = if near {
         problem.active_part(start)
     } else {
@@ -292,8 +341,10 @@ fn execute_with(
                 .all(|(v, (l, u))| l <= v && v <= u);
         if unmoved && r.len() == problem.rows() && j.shape() == (problem.rows(), n_active) {
             solver = solver.with_start_evaluation(r, j);
-            if keep_start_jacobian {
-                solver = solver.with_kept_start_jacobian();
+            match steps {
+                Steps::Own => {}
+                Steps::KeptNear => solver = solver.with_kept_start_jacobian(),
+                Steps::KeptToOwn => solver = solver.with_kept_start_jacobian().to_own_minimum(),
             }
         }
     }

@@ -223,6 +223,83 @@ fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
     assert_relative_eq!(cost_far, cost_full, max_relative = 1e-9);
 }
 
+/// The kept Jacobian's chord steps taken to the fit's own minimum
+/// ([`LevenbergMarquardt::to_own_minimum`], without the final Jacobian, as diagnose's effect
+/// candidates fit): from a near start it ends at the plain fit's minimum to the solver's
+/// tolerances (not the chord's point, which the same start without it stops at) with one
+/// Jacobian where the plain fit takes one a step; from a far start too.
+#[test]
+fn chord_steps_taken_to_the_own_minimum_end_where_the_plain_fit_does() {
+    let mut inner = decay();
+    for (i, y) in inner.y.iter_mut().enumerate() {
+        *y += 0.01 * (5.0 * i as f64).cos();
+    }
+    let copy = |d: &Decay| Decay {
+        t: d.t.clone(),
+        y: d.y.clone(),
+    };
+    let run = |start: &DVector<f64>, inner: Decay, own: bool| {
+        let mut solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap()
+        .without_final_jacobian();
+        let (r, j) = (inner.apply(start).unwrap(), inner.jacobian(start).unwrap());
+        solver = solver.with_start_evaluation(r, j);
+        if own {
+            solver = solver.with_kept_start_jacobian().to_own_minimum();
+        }
+        let problem = Counted {
+            inner,
+            jacobians: std::cell::Cell::new(0),
+        };
+        let res = Executor::new(problem, solver)
+            .configure(|s| s.param(start.clone()).max_iters(100))
+            .run()
+            .unwrap();
+        let why = res.solver().converged();
+        let p = res.state().get_param().unwrap().clone();
+        let cost = res.state().get_cost();
+        (p, cost, res.problem.problem.unwrap().jacobians.get(), why)
+    };
+    let far = DVector::from_vec(vec![1.0, 2.0]);
+    let (p_plain, cost_plain, _, _) = run(&far, copy(&inner), false);
+    let near = &p_plain + DVector::from_vec(vec![0.02, -0.01]);
+    let (p_near_plain, _, j_plain, _) = run(&near, copy(&inner), false);
+    let (p_own, cost_own, j_own, why) = run(&near, copy(&inner), true);
+    assert!(
+        why.is_some() && why != Some(Converged::KeptJacobian),
+        "{why:?}"
+    );
+    assert!(j_own < j_plain, "{j_own} Jacobians, plain {j_plain}");
+    assert!(j_own >= 1, "the chord's point is not taken for the minimum");
+    assert_relative_eq!(p_own, p_near_plain, max_relative = 1e-7);
+    assert_relative_eq!(cost_own, cost_plain, max_relative = 1e-9);
+    // The chord alone stops off the minimum, measurably farther than the own-minimum fit.
+    let chord = {
+        let mut solver = LevenbergMarquardt::new(
+            DVector::from_vec(vec![-10.0, 0.0]),
+            DVector::from_vec(vec![10.0, 5.0]),
+        )
+        .unwrap();
+        let (r, j) = (inner.apply(&near).unwrap(), inner.jacobian(&near).unwrap());
+        solver = solver
+            .with_start_evaluation(r, j)
+            .with_kept_start_jacobian();
+        let res = Executor::new(copy(&inner), solver)
+            .configure(|s| s.param(near.clone()).max_iters(100))
+            .run()
+            .unwrap();
+        res.state().get_param().unwrap().clone()
+    };
+    assert!((&chord - &p_plain).norm() > 10.0 * (&p_own - &p_plain).norm());
+    let (p_far, cost_far, _, why) = run(&far, inner, true);
+    assert!(why.is_some());
+    assert_relative_eq!(p_far, p_plain, max_relative = 1e-7);
+    assert_relative_eq!(cost_far, cost_plain, max_relative = 1e-9);
+}
+
 /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
 struct Coupled {
     t: Vec<f64>,
