@@ -71,14 +71,28 @@ pub(super) fn impact_options(
     (fold_of, n_folds): FoldPlan,
     warnings: &mut Vec<String>,
 ) -> Result<Vec<(ImpactNoise, FitData, Folds)>, FitError> {
+    let levels = opts
+        .impact_noise_candidates_mm
+        .iter()
+        .map(|&s_mm| Ok((s_mm, ImpactNoise::from_mm(s_mm, s_mm)?)))
+        .collect::<Result<Vec<_>, FitError>>()?;
+    // Each level's data (the posterior nodes of every shot) and folds made side by side; the
+    // warnings in the order of the levels.
+    let made: Vec<_> = levels
+        .par_iter()
+        .map(|&(s_mm, noise)| {
+            let d = data.clone().with_impact_noise(Some(noise));
+            (
+                s_mm,
+                noise,
+                d.map(|d| (make_folds(&d, fold_of, n_folds), d)),
+            )
+        })
+        .collect();
     let mut out = Vec::new();
-    for &s_mm in &opts.impact_noise_candidates_mm {
-        let noise = ImpactNoise::from_mm(s_mm, s_mm)?;
-        match data.clone().with_impact_noise(Some(noise)) {
-            Ok(d) => {
-                let f = make_folds(&d, fold_of, n_folds);
-                out.push((noise, d, f));
-            }
+    for (s_mm, noise, made) in made {
+        match made {
+            Ok((f, d)) => out.push((noise, d, f)),
             Err(e) => warnings.push(format!("impact noise {s_mm} mm not tried: {e}")),
         }
     }
@@ -92,7 +106,7 @@ pub(super) fn delivery_options(
     (fold_of, n_folds): FoldPlan,
 ) -> Vec<DeliveryOption> {
     opts.delivery_noise_scales
-        .iter()
+        .par_iter()
         .filter(|s| s.is_finite() && **s > 0.0)
         .map(|&scale| {
             let noise = scaled_camera(scale);
@@ -233,7 +247,7 @@ impl Search<'_> {
         exact: &FitData,
         theta: DVector<f64>,
         w: Weighting,
-    ) -> Result<(), FitError> {
+    ) -> Result<bool, FitError> {
         let inst = self.opts.noise_floor.clone();
         let refined = spread::refine_selected(
             (self.club, &self.base_club()?, self.shots),
@@ -244,13 +258,14 @@ impl Search<'_> {
             noise,
         )?;
         self.theta_base = theta;
-        if let Some((noise, data, theta)) = refined {
-            self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
-            self.data = data;
-            self.chosen_noise = Some(noise);
-            self.theta_base = theta;
-        }
-        Ok(())
+        let Some((noise, data, theta)) = refined else {
+            return Ok(false);
+        };
+        self.folds = make_folds(&data, &self.fold_of, self.folds.train.len());
+        self.data = data;
+        self.chosen_noise = Some(noise);
+        self.theta_base = theta;
+        Ok(true)
     }
 
     /// After an impact-noise level is adopted: the open delivery levels, rebuilt on the new data.
