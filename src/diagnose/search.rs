@@ -152,24 +152,40 @@ impl<'a> Search<'a> {
         (fold_of, n_folds): (&[usize], usize),
         warnings: &mut Vec<String>,
     ) -> Result<Self, FitError> {
-        let noise_options = if opts.impact_noise.is_none() {
-            measure::impact_options(&data, opts, (fold_of, n_folds), warnings)?
-        } else {
-            Vec::new()
-        };
         let delivery_noise = opts.delivery_noise();
-        let delivery_options = if delivery_noise.is_none() {
-            measure::delivery_options(&data, opts, (fold_of, n_folds))
-        } else {
-            Vec::new()
-        };
+        // The measurement candidates' data and the folds, made side by side.
+        let (noise_options, (delivery_options, folds)) = rayon::join(
+            || {
+                let mut said = Vec::new();
+                let options = if opts.impact_noise.is_none() {
+                    measure::impact_options(&data, opts, (fold_of, n_folds), &mut said)
+                } else {
+                    Ok(Vec::new())
+                };
+                options.map(|o| (o, said))
+            },
+            || {
+                rayon::join(
+                    || {
+                        if delivery_noise.is_none() {
+                            measure::delivery_options(&data, opts, (fold_of, n_folds))
+                        } else {
+                            Vec::new()
+                        }
+                    },
+                    || make_folds(&data, fold_of, n_folds),
+                )
+            },
+        );
+        let (noise_options, said) = noise_options?;
+        warnings.extend(said);
         Ok(Self {
             club,
             shots,
             opts,
             progress,
             groups: group_names(&data),
-            folds: make_folds(&data, fold_of, n_folds),
+            folds,
             penalty_per_param: (data.len() as f64).ln(),
             data,
             noise_options,
@@ -252,6 +268,8 @@ impl<'a> Search<'a> {
         open: &[&EffectRequest],
         w: Weighting,
     ) -> Result<(String, ErrorTable), FitError> {
+        // The model or the data changes: a final fit checked before is not theirs.
+        self.checked_fit = None;
         if i >= scored.n_effects + scored.n_impact {
             let (j, theta) = scored.noise_fits[i - scored.n_effects]
                 .clone()
@@ -451,8 +469,11 @@ impl<'a> Search<'a> {
             let w = Weighting::launch(&noise_scales(
                 &self.errors_of(&self.base, self.theta_base.as_slice())?,
             ));
-            self.adopt_refined(noise, &exact, self.theta_base.clone(), w)?;
-            self.checked_fit = None; // the data may have changed
+            let theta = self.theta_base.clone();
+            if self.adopt_refined(noise, &exact, theta, w)? {
+                // The data and the base changed: the check's final fit is not theirs.
+                self.checked_fit = None;
+            }
         }
         let (estimates, after, out_club, aliases) = match self.take_final_calibration()? {
             None => (Vec::new(), before.clone(), self.club.clone(), Vec::new()),
