@@ -8,7 +8,7 @@ use nalgebra::Vector3;
 use super::FitError;
 use crate::measurement::{DeliveryNoise, ImpactNoise, LocationNode, NODES_PER_SHOT};
 use crate::model::Shot;
-use crate::physics::{Delivery, DeliveryFrame, FaceGeometry, ImpactModel};
+use crate::physics::{Delivery, DeliveryFrame, FaceGeometry, FrameTrig, ImpactModel};
 
 /// The shots a fit uses, flattened for the inner loop.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,22 +49,32 @@ pub(crate) struct SiteCache {
     pub(crate) loft_bias_rad: f64,
     pub(crate) face_bias_rad: f64,
     pub(crate) frames: Vec<DeliveryFrame>,
+    /// Per shot, the trigonometry of `frames` ([`Delivery::frame_trig`]): a model with other
+    /// biases makes its frames from it, computing only the angles its biases change.
+    pub(crate) trig: Vec<FrameTrig>,
     pub(crate) sites_per_shot: usize,
 }
 
 impl SiteCache {
     fn build(model: &ImpactModel, data: &FitData) -> Self {
+        let p = model.params();
+        let trig: Vec<FrameTrig> = data
+            .deliveries
+            .iter()
+            .map(|d| d.frame_trig(p.loft_bias_rad, p.face_bias_rad))
+            .collect();
         let frames = data
             .deliveries
             .iter()
-            .map(|d| model.delivery_frame(d))
+            .zip(&trig)
+            .map(|(d, t)| model.delivery_frame_from(d, t))
             .collect();
-        let p = model.params();
         Self {
             face: *model.face(),
             loft_bias_rad: p.loft_bias_rad,
             face_bias_rad: p.face_bias_rad,
             frames,
+            trig,
             sites_per_shot: if data.impact_nodes.is_some() {
                 NODES_PER_SHOT
             } else {

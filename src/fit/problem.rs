@@ -359,7 +359,11 @@ impl<'a> FitProblem<'a> {
         let fresh;
         let frame = match cache {
             Some(c) if c.frames_fit(model) => &c.frames[i],
-            _ => {
+            Some(c) => {
+                fresh = model.delivery_frame_from(d, &c.trig[i]);
+                &fresh
+            }
+            None => {
                 fresh = model.delivery_frame(d);
                 &fresh
             }

@@ -51,6 +51,77 @@ impl Delivery {
         let (sb, cb) = self.club_path_rad.sin_cos();
         self.club_speed_m_s * Vector3::new(ca * cb, sa, ca * sb)
     }
+
+    /// The sines and cosines of the face's angles (dynamic loft plus `loft_bias_rad`, face
+    /// angle plus `face_bias_rad`, lie tilt) and the clubhead velocity in `G`: what a delivery
+    /// frame is made of ([`FrameTrig`]).
+    #[inline]
+    pub fn frame_trig(&self, loft_bias_rad: f64, face_bias_rad: f64) -> FrameTrig {
+        FrameTrig {
+            loft: (self.dynamic_loft_rad + loft_bias_rad).sin_cos(),
+            face: (self.face_angle_rad + face_bias_rad).sin_cos(),
+            lie: self.lie_tilt_rad.sin_cos(),
+            club_velocity_m_s: self.club_velocity_m_s(),
+            loft_bias_rad,
+            face_bias_rad,
+        }
+    }
+
+    /// [`Delivery::frame_trig`] for other biases, reusing the parts of `made` (the same
+    /// delivery's) that they leave: only a changed bias's angle has its sine and cosine taken
+    /// again (a fit of a loft bias takes one `sin_cos` a shot instead of five). The same bits
+    /// as [`Delivery::frame_trig`].
+    #[inline]
+    pub fn frame_trig_from(
+        &self,
+        made: &FrameTrig,
+        loft_bias_rad: f64,
+        face_bias_rad: f64,
+    ) -> FrameTrig {
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        FrameTrig {
+            loft: if same(loft_bias_rad, made.loft_bias_rad) {
+                made.loft
+            } else {
+                (self.dynamic_loft_rad + loft_bias_rad).sin_cos()
+            },
+            face: if same(face_bias_rad, made.face_bias_rad) {
+                made.face
+            } else {
+                (self.face_angle_rad + face_bias_rad).sin_cos()
+            },
+            loft_bias_rad,
+            face_bias_rad,
+            ..*made
+        }
+    }
+}
+
+/// The trigonometry of one delivery's frame for one pair of loft and face biases
+/// ([`Delivery::frame_trig`]): `(sin, cos)` of the biased loft and face angle and of the lie
+/// tilt, and the clubhead velocity in `G` (m/s), which no bias changes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrameTrig {
+    /// `(sin, cos)` of dynamic loft plus the loft bias.
+    pub loft: (f64, f64),
+    /// `(sin, cos)` of face angle plus the face bias.
+    pub face: (f64, f64),
+    /// `(sin, cos)` of the lie tilt.
+    pub lie: (f64, f64),
+    /// Clubhead CoM velocity in `G`, m/s.
+    pub club_velocity_m_s: Vector3<f64>,
+    /// Loft bias the angles were made with, rad.
+    pub loft_bias_rad: f64,
+    /// Face-angle bias the angles were made with, rad.
+    pub face_bias_rad: f64,
+}
+
+impl FrameTrig {
+    /// Rotation `R_GF` of these angles ([`face_orientation`]).
+    #[inline]
+    pub fn face_orientation(&self) -> Matrix3<f64> {
+        orientation_of(self.loft, self.face, self.lie)
+    }
 }
 
 /// Rotation `R_GF` whose columns are the face axes `x_F`, `y_F`, `z_F` in ground components.
@@ -60,9 +131,20 @@ pub fn face_orientation(
     face_angle_rad: f64,
     lie_tilt_rad: f64,
 ) -> Matrix3<f64> {
-    let (sd, cd) = dynamic_loft_rad.sin_cos();
-    let (sp, cp) = face_angle_rad.sin_cos();
-    let (sl, cl) = lie_tilt_rad.sin_cos();
+    orientation_of(
+        dynamic_loft_rad.sin_cos(),
+        face_angle_rad.sin_cos(),
+        lie_tilt_rad.sin_cos(),
+    )
+}
+
+/// [`face_orientation`] from the `(sin, cos)` of its three angles.
+#[inline]
+fn orientation_of(
+    (sd, cd): (f64, f64),
+    (sp, cp): (f64, f64),
+    (sl, cl): (f64, f64),
+) -> Matrix3<f64> {
     let x_f = Vector3::new(cd * cp, sd, cd * sp);
     let z0 = Vector3::new(-sp, 0.0, cp);
     let y0 = z0.cross(&x_f);

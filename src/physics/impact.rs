@@ -23,7 +23,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::delivery::{face_orientation, Delivery};
+use super::delivery::{face_orientation, Delivery, FrameTrig};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
@@ -364,9 +364,28 @@ impl ImpactModel {
     /// it for every evaluation and every impact-location node ([`ImpactModel::solve_in`]).
     #[inline]
     pub fn delivery_frame(&self, d: &Delivery) -> DeliveryFrame {
-        let r_gf = self.face_orientation(d);
+        let p = &self.params;
+        self.delivery_frame_of(d, &d.frame_trig(p.loft_bias_rad, p.face_bias_rad))
+    }
+
+    /// [`ImpactModel::delivery_frame`] from the trigonometry `trig` of the delivery `d` made for
+    /// any biases ([`Delivery::frame_trig`]): only what this model's biases change is computed
+    /// again. The same bits as [`ImpactModel::delivery_frame`].
+    #[inline]
+    pub fn delivery_frame_from(&self, d: &Delivery, trig: &FrameTrig) -> DeliveryFrame {
+        let p = &self.params;
+        self.delivery_frame_of(
+            d,
+            &d.frame_trig_from(trig, p.loft_bias_rad, p.face_bias_rad),
+        )
+    }
+
+    /// The delivery frame of `d` from its trigonometry for this model's biases.
+    #[inline]
+    fn delivery_frame_of(&self, d: &Delivery, trig: &FrameTrig) -> DeliveryFrame {
+        let r_gf = trig.face_orientation();
         let r_fg = r_gf.transpose();
-        let v_c_g = d.club_velocity_m_s();
+        let v_c_g = trig.club_velocity_m_s;
         DeliveryFrame {
             r_gf,
             club_velocity_f_m_s: r_fg * v_c_g,
@@ -555,26 +574,6 @@ impl ImpactModel {
     }
 }
 
-/// Solve `K x = b` for a symmetric positive definite 3×3 `K` by cofactors (no allocation).
-#[inline]
-pub fn solve_spd3(k: &Matrix3<f64>, b: &Vector3<f64>) -> Vector3<f64> {
-    let (a, bb, c) = (k[(0, 0)], k[(0, 1)], k[(0, 2)]);
-    let (d, e) = (k[(1, 1)], k[(1, 2)]);
-    let f = k[(2, 2)];
-    let c00 = d * f - e * e;
-    let c01 = c * e - bb * f;
-    let c02 = bb * e - c * d;
-    let c11 = a * f - c * c;
-    let c12 = bb * c - a * e;
-    let c22 = a * d - bb * bb;
-    let inv_det = 1.0 / (a * c00 + bb * c01 + c * c02);
-    Vector3::new(
-        (c00 * b.x + c01 * b.y + c02 * b.z) * inv_det,
-        (c01 * b.x + c11 * b.y + c12 * b.z) * inv_det,
-        (c02 * b.x + c12 * b.y + c22 * b.z) * inv_det,
-    )
-}
-
 /// The ball's velocity and spin from the impulse and the angular impulse about its centre of
 /// mass, in whatever frame they are given: the one definition the built-in and the user-defined
 /// solves share, so that both give the same bits. Multiplied by the reciprocals (one scalar
@@ -593,6 +592,9 @@ pub(crate) fn ball_response<R: Real>(
         each3(|i| angular_impulse_n_m_s[i] * ball_inv_inertia_per_kgm2),
     )
 }
+
+mod spd3;
+pub use spd3::solve_spd3;
 
 #[cfg(test)]
 mod tests;

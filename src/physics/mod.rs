@@ -17,7 +17,7 @@ mod params;
 pub mod real;
 pub mod user_terms;
 
-pub use delivery::{face_orientation, Delivery};
+pub use delivery::{face_orientation, Delivery, FrameTrig};
 pub use face::{ContactFrame, ContactFrameOf, FaceError, FaceGeometry};
 pub use impact::{
     solve_spd3, validate_inertia, DeliveryFrame, ImpactError, ImpactModel, ImpactOutcome,

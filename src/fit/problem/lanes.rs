@@ -319,10 +319,11 @@ impl FitProblem<'_> {
         if cache.frames_fit(model) {
             gather_frames(|l| &cache.frames[idx[l]])
         } else {
-            // Only the lanes' own frames are made (a frame costs a face orientation).
+            // Only the lanes' own frames are made (a frame costs a face orientation), from the
+            // cached trigonometry (only the angles of the biases that differ are taken again).
             let mut made = [cache.frames[idx[0]]; MAX_LANES];
             for (f, &i) in made.iter_mut().zip(&idx[..L::N]) {
-                *f = model.delivery_frame(&self.data.deliveries[i]);
+                *f = model.delivery_frame_from(&self.data.deliveries[i], &cache.trig[i]);
             }
             gather_frames(|l| &made[l])
         }
