@@ -32,6 +32,7 @@
 //! structure, too large a noise hides it. Defaults per instrument class are in
 //! [`InstrumentClass`] and `docs/noise-floor.md`.
 
+use rayon::prelude::*;
 use serde_json::json;
 
 use crate::club::ClubSpec;
@@ -264,17 +265,23 @@ pub(super) fn delivery_jacobians(
     shots: &[Shot],
     steps: &[f64; N_DELIVERY],
 ) -> Result<Vec<[[f64; 5]; N_DELIVERY]>, FitError> {
+    // Each group's model (or why it cannot be made) first; then the shots side by side, the
+    // first failing shot in file order reported, as a pass in order would.
     let mut models = std::collections::BTreeMap::new();
-    shots
-        .iter()
+    for s in shots {
+        if !models.contains_key(s.group.as_str()) {
+            let m = club
+                .model_for_group(&s.group)
+                .map_err(|e| format!("noise floor: {e}"));
+            models.insert(s.group.as_str(), m);
+        }
+    }
+    let per_shot: Vec<Result<_, FitError>> = shots
+        .par_iter()
         .map(|s| {
-            if !models.contains_key(&s.group) {
-                let m = club
-                    .model_for_group(&s.group)
-                    .map_err(|e| FitError::Solver(format!("noise floor: {e}")))?;
-                models.insert(s.group.clone(), m);
-            }
-            let model = &models[&s.group];
+            let model = models[s.group.as_str()]
+                .as_ref()
+                .map_err(|e| FitError::Solver(e.clone()))?;
             let x0 = delivery_to_file_units(&s.delivery);
             let launch_at = |x: &[f64; N_DELIVERY]| {
                 // The file-unit vector has no shaft mass: carry the shot's own.
@@ -304,7 +311,8 @@ pub(super) fn delivery_jacobians(
                 }
             }))
         })
-        .collect()
+        .collect();
+    per_shot.into_iter().collect()
 }
 
 /// Expected variance of each shot's error per component (see the module docs).
