@@ -17,31 +17,11 @@ use crate::fit::{
 use crate::measurement::ImpactNoise;
 use crate::stats;
 
+mod folds;
 mod start;
+use folds::fold_rows;
+pub(super) use folds::{make_folds, Folds};
 use start::start_evaluation;
-
-/// Training and held-out subsets of the data, one pair per fold.
-#[derive(Clone)]
-pub(super) struct Folds {
-    pub(super) train: Vec<FitData>,
-    pub(super) test: Vec<FitData>,
-    /// Per fold, the indices (into the whole data) of its training shots, in order.
-    train_idx: Vec<Vec<usize>>,
-}
-
-pub(super) fn make_folds(data: &FitData, fold_of: &[usize], n_folds: usize) -> Folds {
-    let idx = |keep: &dyn Fn(usize) -> bool| -> Vec<usize> {
-        (0..data.len()).filter(|&i| keep(fold_of[i])).collect()
-    };
-    let train_idx: Vec<Vec<usize>> = (0..n_folds).map(|f| idx(&|g| g != f)).collect();
-    Folds {
-        train: train_idx.iter().map(|i| data.subset(i)).collect(),
-        test: (0..n_folds)
-            .map(|f| data.subset(&idx(&|g| g == f)))
-            .collect(),
-        train_idx,
-    }
-}
 
 /// Residuals and Jacobian of a fit on all shots at one point, whose rows a training fold
 /// started there takes instead of evaluating them again.
@@ -64,17 +44,6 @@ pub(super) fn all_shots_at(
         pr.residuals(theta.as_slice()).ok()?,
         pr.jacobian_full(theta).ok()?,
     ))
-}
-
-/// The rows of the training shots `idx` of the all-shots residuals and Jacobian `at`
-/// (`rows` residual rows a shot).
-fn fold_rows((r, j): AllShots, idx: &[usize], rows: usize) -> (DVector<f64>, DMatrix<f64>) {
-    let row = |k: usize| idx[k / rows] * rows + k % rows;
-    let n = idx.len() * rows;
-    (
-        DVector::from_fn(n, |k, _| r[row(k)]),
-        DMatrix::from_fn(n, j.ncols(), |k, c| j[(row(k), c)]),
-    )
 }
 
 fn chi2_at(
