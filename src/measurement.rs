@@ -313,10 +313,10 @@ impl DeliveryNoise {
 
     /// The deliveries at the conditional mean of their true values, given every shot's measured
     /// delivery and its golfer (`None` for all: pooled). `golfer_of` has one entry per delivery.
-    pub fn calibrate(
+    pub fn calibrate<G: AsRef<str>>(
         &self,
         deliveries: &[Delivery],
-        golfer_of: &[Option<String>],
+        golfer_of: &[Option<G>],
     ) -> Vec<Delivery> {
         let mut out = deliveries.to_vec();
         let n = deliveries.len();
@@ -350,13 +350,13 @@ impl DeliveryNoise {
 }
 
 /// Shot indices by golfer (every shot alone when any golfer is unknown).
-fn golfer_groups(golfer_of: &[Option<String>]) -> Vec<Vec<usize>> {
+fn golfer_groups<G: AsRef<str>>(golfer_of: &[Option<G>]) -> Vec<Vec<usize>> {
     if golfer_of.iter().any(Option::is_none) {
         return (0..golfer_of.len()).map(|i| vec![i]).collect();
     }
     let mut by: std::collections::BTreeMap<&str, Vec<usize>> = Default::default();
     for (i, g) in golfer_of.iter().enumerate() {
-        by.entry(g.as_deref().unwrap_or_default())
+        by.entry(g.as_ref().map_or("", AsRef::as_ref))
             .or_default()
             .push(i);
     }
@@ -535,7 +535,7 @@ mod tests {
     #[test]
     fn delivery_calibration_without_golfers_is_the_pooled_attenuation() {
         let (ds, _) = speeds(12, 6);
-        let none = vec![None; ds.len()];
+        let none: Vec<Option<String>> = vec![None; ds.len()];
         let sd = 0.9;
         let got = club_speed_noise(sd).calibrate(&ds, &none);
         let m: Vec<f64> = ds

@@ -13,14 +13,15 @@ use crate::physics::{Delivery, DeliveryFrame, FaceGeometry, FrameTrig, ImpactMod
 /// The shots a fit uses, flattened for the inner loop.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FitData {
-    /// Shot ids, for messages.
-    pub ids: Vec<String>,
+    /// Shot ids, for messages (shared: the folds' and noise levels' copies of the data take
+    /// a reference each, not a new string).
+    pub ids: Vec<Arc<str>>,
     /// Distinct groups, sorted.
     pub groups: Vec<String>,
     /// Index into `groups` of each shot.
     pub group_of: Vec<usize>,
     /// Golfer of each shot, when known.
-    pub golfers: Vec<Option<String>>,
+    pub golfers: Vec<Option<Arc<str>>>,
     /// Shaft mass of each shot, g, when known.
     pub shaft_mass_g: Vec<Option<f64>>,
     /// Deliveries, SI.
@@ -127,10 +128,10 @@ impl FitData {
         };
         for s in shots {
             let m = s.measured.ok_or(FitError::NoMeasurements)?;
-            d.ids.push(s.id.clone());
+            d.ids.push(Arc::from(s.id.as_str()));
             d.group_of
                 .push(d.groups.binary_search(&s.group).expect("group listed"));
-            d.golfers.push(s.golfer.clone());
+            d.golfers.push(s.golfer.as_deref().map(Arc::from));
             d.shaft_mass_g.push(s.delivery.shaft_mass_g);
             d.deliveries.push(s.delivery);
             d.measured.push(m.to_file_units());

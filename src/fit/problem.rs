@@ -374,7 +374,7 @@ impl<'a> FitProblem<'a> {
             model.solve_in(frame, &cf, y, z)
         })
         .map_err(|source| EvalError::Shot {
-            shot_id: self.data.ids[i].clone(),
+            shot_id: self.data.ids[i].to_string(),
             source,
         })
     }
