@@ -66,21 +66,32 @@ pub(in crate::diagnose) fn removal_penalty(
 }
 
 impl Search<'_> {
+    /// The cross-validated χ² of `layout` at `theta` (its all-shots fit) with weights `w`, the
+    /// folds started from their rows of one evaluation on all shots there, as a forward step
+    /// cross-validates its base ([`cv_chi2`]; their own fits when it cannot be made).
+    pub(in crate::diagnose) fn cv_at(
+        &self,
+        layout: &ParamLayout,
+        theta: &DVector<f64>,
+        w: Weighting,
+    ) -> Result<f64, FitError> {
+        let at = evaluate::all_shots_at(self.club, layout, &self.data, w, theta);
+        cv_chi2(
+            self.club,
+            layout,
+            &self.folds,
+            w,
+            theta,
+            at.as_ref().map(|(r, j)| (r, j)),
+            self.opts.max_iters,
+            None,
+        )
+    }
+
     /// Every selected effect tested against the current model (see the module docs), and the
     /// current model's CV χ².
     fn earned_places(&self, w: Weighting) -> Result<(f64, Vec<Earned>), FitError> {
-        let cv_of = |layout: &ParamLayout, theta: &DVector<f64>| {
-            cv_chi2(
-                self.club,
-                layout,
-                &self.folds,
-                w,
-                theta,
-                None,
-                self.opts.max_iters,
-                None,
-            )
-        };
+        let cv_of = |layout: &ParamLayout, theta: &DVector<f64>| self.cv_at(layout, theta, w);
         let cv_now = cv_of(&self.base, &self.theta_base)?;
         let before = Self::implausible_kinds(&self.base, &self.theta_base);
         let tests = (0..self.selected.len())

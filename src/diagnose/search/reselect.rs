@@ -11,7 +11,6 @@
 //! is aliased with (`loft_bias`), and the two can only leave together with a third; no exchange
 //! of one or two effects reaches the model a different order would have found.
 
-use super::super::evaluate::cv_chi2;
 use super::super::{CandidateResult, Step, Swap};
 use super::Search;
 use crate::fit::calibrate::noise_scales;
@@ -67,18 +66,7 @@ impl Search<'_> {
             }
             steps.push(step);
         }
-        let cv_of = |s: &Search| {
-            cv_chi2(
-                s.club,
-                &s.base,
-                &s.folds,
-                w,
-                &s.theta_base,
-                None,
-                s.opts.max_iters,
-                None,
-            )
-        };
+        let cv_of = |s: &Search| s.cv_at(&s.base, &s.theta_base, w);
         let (cv_now, cv_new) = (cv_of(self)?, cv_of(&trial)?);
         let k_net = trial.base.len() as f64 - self.base.len() as f64;
         let gain = cv_now - cv_new;

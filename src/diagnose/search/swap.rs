@@ -29,13 +29,13 @@
 use nalgebra::DVector;
 use rayon::prelude::*;
 
-use super::super::evaluate::{self, cv_chi2, EffectFit, StepBase};
+use super::super::evaluate::{self, EffectFit, StepBase};
 use super::super::{select, CandidateResult, Step, Swap};
 use super::Search;
 use crate::effects::EffectId;
 use crate::fit::calibrate::{noise_scales, STRONG_CORRELATION};
 use crate::fit::covariance;
-use crate::fit::{fit_quietly, EffectRequest, FitError, ParamLayout, Weighting};
+use crate::fit::{fit_quietly_chord_from, EffectRequest, FitError, ParamLayout, Weighting};
 
 /// How many of a stand-in's best single replacements a pair exchange starts from: the pair
 /// completes one of them, so only the leading few need the second effect tried (the rest of
@@ -181,13 +181,17 @@ impl Search<'_> {
         if layout.is_empty() {
             return Ok((layout, theta));
         }
-        let run = fit_quietly(
+        // Chord steps from the start's own evaluation to the refit's own minimum (only its
+        // point is wanted).
+        let at_start = evaluate::all_shots_at(self.club, &layout, &self.data, w, &theta);
+        let run = fit_quietly_chord_from(
             self.club,
             &layout,
             &self.data,
             w,
             &theta,
             self.opts.max_iters,
+            at_start,
         )?;
         Ok((layout, run.theta))
     }
@@ -201,16 +205,7 @@ impl Search<'_> {
     ) -> Result<Reduced, FitError> {
         let (layout, theta, k_out) = self.dropped(outs)?;
         let errors = self.errors_of(&layout, theta.as_slice())?;
-        let cv = cv_chi2(
-            self.club,
-            &layout,
-            &self.folds,
-            w,
-            &theta,
-            None,
-            self.opts.max_iters,
-            None,
-        )?;
+        let cv = self.cv_at(&layout, &theta, w)?;
         Ok(Reduced {
             layout,
             theta,
@@ -522,16 +517,7 @@ impl Search<'_> {
             return Ok(None);
         }
         let base_labels: Vec<String> = self.selected.iter().map(|r| r.label()).collect();
-        let current_cv = cv_chi2(
-            self.club,
-            &self.base,
-            &self.folds,
-            w,
-            &self.theta_base,
-            None,
-            self.opts.max_iters,
-            None,
-        )?;
+        let current_cv = self.cv_at(&self.base, &self.theta_base, w)?;
         let rb = RoundBase {
             cv: current_cv,
             sigma,
