@@ -427,7 +427,7 @@ where
                     let keep = self.keep_start_jacobian > 0;
                     // A small step with a kept Jacobian that is no longer the point's: the
                     // chord converged, and the fit goes on from its point's own Jacobian.
-                    let chord_done = small && self.own_minimum && self.kept_moved;
+                    let chord_done = small && chord_only;
                     let j_trial = if chord_done {
                         Some(self.own_jacobian(problem, &trial)?)
                     } else if (small && !self.final_jacobian) || keep {
