@@ -5,6 +5,7 @@ use approx::assert_relative_eq;
 use argmin::core::Executor;
 
 /// `y = a·exp(−b·t)` sampled without noise: a nonlinear least-squares test problem.
+#[derive(Clone)]
 struct Decay {
     t: Vec<f64>,
     y: Vec<f64>,
@@ -43,6 +44,61 @@ fn decay() -> Decay {
     let t: Vec<f64> = (0..20).map(|i| i as f64 * 0.25).collect();
     let y = t.iter().map(|t| 3.0 * (-0.7 * t).exp()).collect();
     Decay { t, y }
+}
+
+/// [`decay`] with measurements off the curve (χ² has a positive minimum).
+fn noisy_decay() -> Decay {
+    let mut d = decay();
+    for (i, y) in d.y.iter_mut().enumerate() {
+        *y += 0.01 * (5.0 * i as f64).cos();
+    }
+    d
+}
+
+/// A solver for [`Decay`]'s parameters within `a ∈ [−10, 10]`, `b ∈ [0, 5]`.
+fn bounded() -> LevenbergMarquardt {
+    LevenbergMarquardt::new(
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 5.0]),
+    )
+    .unwrap()
+}
+
+/// `solver` started with the evaluation of `inner` at `start` given to it.
+fn given_start(
+    solver: LevenbergMarquardt,
+    inner: &Decay,
+    start: &DVector<f64>,
+) -> LevenbergMarquardt {
+    solver.with_start_evaluation(inner.apply(start).unwrap(), inner.jacobian(start).unwrap())
+}
+
+/// What a run of [`run_counted`] ended with.
+struct Outcome {
+    p: DVector<f64>,
+    cost: f64,
+    iters: u64,
+    jacobians: u32,
+    why: Option<Converged>,
+}
+
+/// `solver` run on `inner` from `start` (at most 100 iterations), counting its Jacobians.
+fn run_counted(inner: Decay, solver: LevenbergMarquardt, start: &DVector<f64>) -> Outcome {
+    let problem = Counted {
+        inner,
+        jacobians: std::cell::Cell::new(0),
+    };
+    let res = Executor::new(problem, solver)
+        .configure(|s| s.param(start.clone()).max_iters(100))
+        .run()
+        .unwrap();
+    Outcome {
+        p: res.state().get_best_param().unwrap().clone(),
+        cost: res.state().get_cost(),
+        iters: res.state().get_iter(),
+        jacobians: res.problem.problem.as_ref().unwrap().jacobians.get(),
+        why: res.solver().converged(),
+    }
 }
 
 #[test]
@@ -88,13 +144,7 @@ impl Jacobian for Counted {
 #[test]
 fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
     let run = |skip: bool| {
-        let mut solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap()
-        .with_ftol(1e-6)
-        .unwrap();
+        let mut solver = bounded().with_ftol(1e-6).unwrap();
         if skip {
             solver = solver.without_final_jacobian();
         }
@@ -103,18 +153,8 @@ fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
         for (i, y) in inner.y.iter_mut().enumerate() {
             *y += 0.01 * (7.0 * i as f64).sin();
         }
-        let problem = Counted {
-            inner,
-            jacobians: std::cell::Cell::new(0),
-        };
-        let res = Executor::new(problem, solver)
-            .configure(|s| s.param(DVector::from_vec(vec![1.0, 2.0])).max_iters(100))
-            .run()
-            .unwrap();
-        let why = res.solver().converged();
-        let p = res.state().get_best_param().unwrap().clone();
-        let iters = res.state().get_iter();
-        (p, why, iters, res.problem.problem.unwrap().jacobians.get())
+        let o = run_counted(inner, solver, &DVector::from_vec(vec![1.0, 2.0]));
+        (o.p, o.why, o.iters, o.jacobians)
     };
     let (p_full, why_full, it_full, j_full) = run(false);
     let (p_skip, why_skip, it_skip, j_skip) = run(true);
@@ -129,32 +169,14 @@ fn skipping_the_final_jacobian_keeps_the_solution_and_saves_one() {
 fn a_start_evaluation_given_gives_the_same_fit_one_evaluation_cheaper() {
     let start = DVector::from_vec(vec![1.0, 2.0]);
     let run = |given: bool| {
-        let mut solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap();
-        let mut inner = decay();
-        for (i, y) in inner.y.iter_mut().enumerate() {
-            *y += 0.01 * (5.0 * i as f64).cos();
-        }
-        if given {
-            solver = solver.with_start_evaluation(
-                inner.apply(&start).unwrap(),
-                inner.jacobian(&start).unwrap(),
-            );
-        }
-        let problem = Counted {
-            inner,
-            jacobians: std::cell::Cell::new(0),
+        let inner = noisy_decay();
+        let solver = if given {
+            given_start(bounded(), &inner, &start)
+        } else {
+            bounded()
         };
-        let res = Executor::new(problem, solver)
-            .configure(|s| s.param(start.clone()).max_iters(100))
-            .run()
-            .unwrap();
-        let p = res.state().get_best_param().unwrap().clone();
-        let out = (p, res.state().get_cost(), res.state().get_iter());
-        (out, res.problem.problem.unwrap().jacobians.get())
+        let o = run_counted(inner, solver, &start);
+        ((o.p, o.cost, o.iters), o.jacobians)
     };
     let (plain, j_plain) = run(false);
     let (given, j_given) = run(true);
@@ -169,47 +191,22 @@ fn a_start_evaluation_given_gives_the_same_fit_one_evaluation_cheaper() {
 /// fit does.
 #[test]
 fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
-    let mut inner = decay();
-    for (i, y) in inner.y.iter_mut().enumerate() {
-        *y += 0.01 * (5.0 * i as f64).cos();
-    }
-    let bounds = || {
-        LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap()
-    };
-    let run = |start: &DVector<f64>, inner: Decay, kept: bool| {
-        let mut solver = bounds();
-        if kept {
-            let (r, j) = (inner.apply(start).unwrap(), inner.jacobian(start).unwrap());
-            solver = solver
-                .with_start_evaluation(r, j)
-                .with_kept_start_jacobian();
-        }
-        let problem = Counted {
-            inner,
-            jacobians: std::cell::Cell::new(0),
+    let inner = noisy_decay();
+    let run = |start: &DVector<f64>, kept: bool| {
+        let solver = if kept {
+            given_start(bounded(), &inner, start).with_kept_start_jacobian()
+        } else {
+            bounded()
         };
-        let res = Executor::new(problem, solver)
-            .configure(|s| s.param(start.clone()).max_iters(100))
-            .run()
-            .unwrap();
-        assert!(res.solver().converged().is_some());
-        let p = res.state().get_best_param().unwrap().clone();
-        let cost = res.state().get_cost();
-        (p, cost, res.problem.problem.unwrap().jacobians.get())
-    };
-    let copy = |d: &Decay| Decay {
-        t: d.t.clone(),
-        y: d.y.clone(),
+        let o = run_counted(inner.clone(), solver, start);
+        assert!(o.why.is_some());
+        (o.p, o.cost, o.jacobians)
     };
     let far = DVector::from_vec(vec![1.0, 2.0]);
-    let (p_full, cost_full, _) = run(&far, copy(&inner), false);
+    let (p_full, cost_full, _) = run(&far, false);
     let near = &p_full + DVector::from_vec(vec![0.02, -0.01]);
     let cost_near = inner.apply(&near).unwrap().norm_squared();
-    let (p_kept, cost_kept, jacobians) = run(&near, copy(&inner), true);
+    let (p_kept, cost_kept, jacobians) = run(&near, true);
     assert_eq!(jacobians, 0);
     assert!(cost_kept >= cost_full * (1.0 - 1e-12));
     assert!(
@@ -217,7 +214,7 @@ fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
         "{cost_kept} {cost_full} {cost_near}"
     );
     assert_relative_eq!(p_kept, p_full, max_relative = 1e-4);
-    let (p_far, cost_far, jacobians) = run(&far, inner, true);
+    let (p_far, cost_far, jacobians) = run(&far, true);
     assert!(jacobians > 0);
     assert_relative_eq!(p_far, p_full, max_relative = 1e-7);
     assert_relative_eq!(cost_far, cost_full, max_relative = 1e-9);
@@ -230,74 +227,47 @@ fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
 /// Jacobian where the plain fit takes one a step; from a far start too.
 #[test]
 fn chord_steps_taken_to_the_own_minimum_end_where_the_plain_fit_does() {
-    let mut inner = decay();
-    for (i, y) in inner.y.iter_mut().enumerate() {
-        *y += 0.01 * (5.0 * i as f64).cos();
-    }
-    let copy = |d: &Decay| Decay {
-        t: d.t.clone(),
-        y: d.y.clone(),
-    };
-    let run = |start: &DVector<f64>, inner: Decay, own: bool| {
-        let mut solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap()
-        .without_final_jacobian();
-        let (r, j) = (inner.apply(start).unwrap(), inner.jacobian(start).unwrap());
-        solver = solver.with_start_evaluation(r, j);
+    let inner = noisy_decay();
+    let run = |start: &DVector<f64>, own: bool| {
+        let mut solver = given_start(bounded().without_final_jacobian(), &inner, start);
         if own {
             solver = solver.with_kept_start_jacobian().to_own_minimum();
         }
-        let problem = Counted {
-            inner,
-            jacobians: std::cell::Cell::new(0),
-        };
-        let res = Executor::new(problem, solver)
-            .configure(|s| s.param(start.clone()).max_iters(100))
-            .run()
-            .unwrap();
-        let why = res.solver().converged();
-        let p = res.state().get_param().unwrap().clone();
-        let cost = res.state().get_cost();
-        (p, cost, res.problem.problem.unwrap().jacobians.get(), why)
+        run_counted(inner.clone(), solver, start)
     };
     let far = DVector::from_vec(vec![1.0, 2.0]);
-    let (p_plain, cost_plain, _, _) = run(&far, copy(&inner), false);
-    let near = &p_plain + DVector::from_vec(vec![0.02, -0.01]);
-    let (p_near_plain, _, j_plain, _) = run(&near, copy(&inner), false);
-    let (p_own, cost_own, j_own, why) = run(&near, copy(&inner), true);
+    let plain = run(&far, false);
+    let near = &plain.p + DVector::from_vec(vec![0.02, -0.01]);
+    let near_plain = run(&near, false);
+    let own = run(&near, true);
     assert!(
-        why.is_some() && why != Some(Converged::KeptJacobian),
-        "{why:?}"
+        own.why.is_some() && own.why != Some(Converged::KeptJacobian),
+        "{:?}",
+        own.why
     );
-    assert!(j_own < j_plain, "{j_own} Jacobians, plain {j_plain}");
-    assert!(j_own >= 1, "the chord's point is not taken for the minimum");
-    assert_relative_eq!(p_own, p_near_plain, max_relative = 1e-7);
-    assert_relative_eq!(cost_own, cost_plain, max_relative = 1e-9);
+    assert!(
+        own.jacobians < near_plain.jacobians,
+        "{} Jacobians, plain {}",
+        own.jacobians,
+        near_plain.jacobians
+    );
+    assert!(
+        own.jacobians >= 1,
+        "the chord's point is not taken for the minimum"
+    );
+    assert_relative_eq!(own.p, near_plain.p, max_relative = 1e-7);
+    assert_relative_eq!(own.cost, plain.cost, max_relative = 1e-9);
     // The chord alone stops off the minimum, measurably farther than the own-minimum fit.
-    let chord = {
-        let mut solver = LevenbergMarquardt::new(
-            DVector::from_vec(vec![-10.0, 0.0]),
-            DVector::from_vec(vec![10.0, 5.0]),
-        )
-        .unwrap();
-        let (r, j) = (inner.apply(&near).unwrap(), inner.jacobian(&near).unwrap());
-        solver = solver
-            .with_start_evaluation(r, j)
-            .with_kept_start_jacobian();
-        let res = Executor::new(copy(&inner), solver)
-            .configure(|s| s.param(near.clone()).max_iters(100))
-            .run()
-            .unwrap();
-        res.state().get_param().unwrap().clone()
-    };
-    assert!((&chord - &p_plain).norm() > 10.0 * (&p_own - &p_plain).norm());
-    let (p_far, cost_far, _, why) = run(&far, inner, true);
-    assert!(why.is_some());
-    assert_relative_eq!(p_far, p_plain, max_relative = 1e-7);
-    assert_relative_eq!(cost_far, cost_plain, max_relative = 1e-9);
+    let chord = run_counted(
+        inner.clone(),
+        given_start(bounded(), &inner, &near).with_kept_start_jacobian(),
+        &near,
+    );
+    assert!((&chord.p - &plain.p).norm() > 10.0 * (&own.p - &plain.p).norm());
+    let far_own = run(&far, true);
+    assert!(far_own.why.is_some());
+    assert_relative_eq!(far_own.p, plain.p, max_relative = 1e-7);
+    assert_relative_eq!(far_own.cost, plain.cost, max_relative = 1e-9);
 }
 
 /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
