@@ -45,14 +45,28 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
         &[("IN.csv", &args.input)],
     )?;
     let imported = args.format.import(&args.input, format)?;
-    // The result must read back as a shots file (ranges, ids, launch columns).
-    let table = imported.read_back(&args.input)?;
+    // The result must read back (ranges, ids, launch columns); shots without a complete
+    // delivery or with estimated values are written all the same (flight uses their launch).
+    let opts = smash::data::shots::ReadOptions {
+        strict: args.format.strict,
+        include_estimated: true,
+    };
+    let table = match imported.delivery {
+        true => Some(imported.read_back_with(&args.input, opts)?),
+        false => None,
+    };
+    let groups = table.as_ref().map_or(0, |t| t.groups().len());
     write_atomic(&args.out, &imported.csv)?;
-    let (n, groups) = (table.shots.len(), table.groups().len());
+    let n = imported.shots;
+    let with_delivery = table.as_ref().map_or(0, |t| t.shots.len());
     eprintln!(
-        "import: {n} shot{} ({groups} group{}) from {} -> {}",
+        "import: {n} shot{} ({with_delivery} with a complete delivery{}) from {} -> {}",
         if n == 1 { "" } else { "s" },
-        if groups == 1 { "" } else { "s" },
+        if groups > 0 {
+            format!(", {groups} group{}", if groups == 1 { "" } else { "s" })
+        } else {
+            String::new()
+        },
         args.input.display(),
         args.out.display()
     );

@@ -277,18 +277,39 @@ pub struct ShotsFormatArgs {
     /// Drop export columns the format does not know instead of refusing the file.
     #[arg(long, help_heading = "Input format")]
     pub ignore_unknown_columns: bool,
+
+    /// Refuse the whole file at the first bad or incomplete row. By default such rows are
+    /// left out (or a shot is kept without its impact location) and counted in one summary.
+    #[arg(long, help_heading = "Input format")]
+    pub strict: bool,
+
+    /// Use shots whose spin or club data the monitor estimated instead of measured
+    /// (`spin_estimated`/`club_estimated` = 1); by default they are left out and counted.
+    #[arg(long, help_heading = "Input format")]
+    pub include_estimated: bool,
 }
 
 impl ShotsFormatArgs {
     /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) go to
     /// stderr.
     pub fn read(&self, path: &std::path::Path) -> anyhow::Result<smash::data::shots::ShotTable> {
-        match self.format.as_deref() {
-            None | Some("shots") => Ok(smash::data::shots::read_shots(path)?),
+        let opts = self.read_options();
+        let table = match self.format.as_deref() {
+            None | Some("shots") => smash::data::shots::read_shots_with(path, opts)?,
             Some(format) => {
                 let imported = self.import(path, format)?;
-                Ok(imported.read_back(path)?)
+                imported.read_back_with(path, opts)?
             }
+        };
+        report_left_out(&table);
+        Ok(table)
+    }
+
+    /// The shots reader's options these flags give.
+    pub fn read_options(&self) -> smash::data::shots::ReadOptions {
+        smash::data::shots::ReadOptions {
+            strict: self.strict,
+            include_estimated: self.include_estimated,
         }
     }
 
@@ -306,12 +327,29 @@ impl ShotsFormatArgs {
         let opts = ImportOptions {
             impact_offset_positive: self.impact_offset_positive.map(Into::into),
             ignore_unknown_columns: self.ignore_unknown_columns,
+            strict: self.strict,
         };
         let imported = import(path, &bytes, &mapping, &opts)?;
         for note in &imported.notes {
             eprintln!("import ({}): {note}", mapping.export.name);
         }
         Ok(imported)
+    }
+}
+
+/// One line on stderr per reason the shots reader left rows out: how many, of how many rows,
+/// and their first lines.
+pub fn report_left_out(table: &smash::data::shots::ShotTable) {
+    let total = table.shots.len() + table.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
+    for l in &table.left_out {
+        let shown: Vec<String> = l.lines.iter().take(10).map(usize::to_string).collect();
+        let more = if l.lines.len() > 10 { ", …" } else { "" };
+        eprintln!(
+            "shots: left out {} of {total} rows: {} (line(s) {}{more}; --strict refuses the file)",
+            l.lines.len(),
+            l.reason,
+            shown.join(", ")
+        );
     }
 }
 

@@ -70,7 +70,35 @@ pub struct ShotTable {
     pub shots: Vec<Shot>,
     /// 1-based line of the file where each shot's record starts (parallel to `shots`).
     pub lines: Vec<usize>,
+    /// Rows left out (a delivery cell empty, estimated values), by reason, in file order.
+    pub left_out: Vec<LeftOut>,
 }
+
+/// Rows of a shots file left out for one reason.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeftOut {
+    /// Why (`no impact location`).
+    pub reason: String,
+    /// Their file lines.
+    pub lines: Vec<usize>,
+}
+
+/// How to read a shots file.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Refuse the file at the first row with an empty delivery cell (the default leaves such
+    /// rows out and counts them in [`ShotTable::left_out`]).
+    pub strict: bool,
+    /// Use shots whose spin or club data the monitor estimated (`spin_estimated = 1`,
+    /// `club_estimated = 1`); by default they are left out and counted.
+    pub include_estimated: bool,
+}
+
+/// The 0/1 columns that mark values a monitor estimated, with what they mark.
+pub const ESTIMATED_FLAGS: [(&str, &str); 2] = [
+    ("spin_estimated", "estimated spin"),
+    ("club_estimated", "estimated club data"),
+];
 
 impl ShotTable {
     /// Do the shots carry measured launch conditions?
@@ -105,14 +133,28 @@ pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
 
 /// Read a shots file.
 pub fn read_shots(path: &Path) -> Result<ShotTable, DataError> {
+    read_shots_with(path, ReadOptions::default())
+}
+
+/// Read a shots file with `opts`.
+pub fn read_shots_with(path: &Path, opts: ReadOptions) -> Result<ShotTable, DataError> {
     crate::data::safe_write::note_input(path);
     let file = std::fs::File::open(path)
         .map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
-    parse_shots(path, file)
+    parse_shots_with(path, file, opts)
 }
 
 /// Parse shots from any reader (`path` is used in messages only).
-pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotTable, DataError> {
+pub fn parse_shots<R: std::io::Read>(path: &Path, reader: R) -> Result<ShotTable, DataError> {
+    parse_shots_with(path, reader, ReadOptions::default())
+}
+
+/// Parse shots from any reader with `opts` (`path` is used in messages only).
+pub fn parse_shots_with<R: std::io::Read>(
+    path: &Path,
+    mut reader: R,
+    opts: ReadOptions,
+) -> Result<ShotTable, DataError> {
     let mut bytes = Vec::new();
     reader
         .read_to_end(&mut bytes)
@@ -137,6 +179,7 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         records: Vec::new(),
         shots: Vec::new(),
         lines: Vec::new(),
+        left_out: Vec::new(),
     };
     let mut ids = HashSet::new();
     for rec in rdr.records() {
@@ -144,7 +187,6 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
         let line = rec
             .position()
             .map_or(table.records.len() + 2, |p| lines.line_of(p));
-        table.lines.push(line);
         let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
         let row = Row {
             path,
@@ -152,14 +194,29 @@ pub fn parse_shots<R: std::io::Read>(path: &Path, mut reader: R) -> Result<ShotT
             headers: &table.headers,
             cells: &cells,
         };
+        if let Some(reason) = row.left_out(&cols, opts)? {
+            match table.left_out.iter_mut().find(|l| l.reason == reason) {
+                Some(l) => l.lines.push(line),
+                None => table.left_out.push(LeftOut {
+                    reason,
+                    lines: vec![line],
+                }),
+            }
+            continue;
+        }
+        table.lines.push(line);
         table.shots.push(row.shot(&cols, &mut ids)?);
         table.records.push(cells);
     }
     if table.shots.is_empty() {
-        return Err(DataError::file(
-            path,
-            "no shots: the file has a header but no rows",
-        ));
+        let why = match table.left_out.first() {
+            Some(l) => format!(
+                "no shots: every row is left out (the first, line {}: {}; --strict names the cell)",
+                l.lines[0], l.reason
+            ),
+            None => "no shots: the file has a header but no rows".into(),
+        };
+        return Err(DataError::file(path, why));
     }
     Ok(table)
 }
@@ -174,6 +231,8 @@ struct Columns {
     delivery: [Option<usize>; N_DELIVERY],
     /// Per [`LaunchComponent`]; all or none present.
     launch: Option<[usize; 5]>,
+    /// The [`ESTIMATED_FLAGS`] columns present.
+    estimated: Vec<(usize, &'static str)>,
 }
 
 impl Columns {
@@ -229,6 +288,10 @@ impl Columns {
             shaft: col("shaft_mass_g"),
             delivery: DeliveryVar::ALL.map(|v| col(v.column())),
             launch: (n_launch > 0).then(|| launch_cols.map(|c| c.expect("all present"))),
+            estimated: ESTIMATED_FLAGS
+                .iter()
+                .filter_map(|(c, what)| col(c).map(|i| (i, *what)))
+                .collect(),
         })
     }
 }
@@ -271,6 +334,57 @@ impl Row<'_> {
             }
         }
         Ok(())
+    }
+
+    /// Why the row is left out, if it is: a delivery cell empty (a session without
+    /// impact-location hardware; under `strict` that is refused, naming the cell), or values
+    /// the monitor estimated.
+    fn left_out(&self, cols: &Columns, opts: ReadOptions) -> Result<Option<String>, DataError> {
+        let empty: Vec<DeliveryVar> = DeliveryVar::ALL
+            .into_iter()
+            .filter(|v| cols.delivery[v.index()].is_some_and(|i| self.cells[i].is_empty()))
+            .collect();
+        if let Some(first) = empty.first() {
+            if opts.strict {
+                let i = cols.delivery[first.index()].expect("present");
+                return Err(self.error(
+                    &self.headers[i],
+                    "empty cell; a number is required (without --strict such a row is left out \
+                     and counted)",
+                ));
+            }
+            return Ok(Some(
+                if empty
+                    .iter()
+                    .all(|v| matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ))
+                {
+                    "no impact location".into()
+                } else {
+                    format!("no complete delivery ({} empty)", first.column())
+                },
+            ));
+        }
+        if !opts.include_estimated {
+            for (i, what) in &cols.estimated {
+                let v = self.cells[*i].as_str();
+                if !matches!(v, "" | "0" | "1") {
+                    return Err(self.error(
+                        &self.headers[*i],
+                        format!(
+                            "{} is not a flag: write 1 (estimated) or 0 (measured)",
+                            super::quote_cell(v)
+                        ),
+                    ));
+                }
+                if v == "1" {
+                    return Ok(Some(format!(
+                        "{what} ({} = 1; --include-estimated uses them)",
+                        self.headers[*i]
+                    )));
+                }
+            }
+        }
+        Ok(None)
     }
 
     /// A finite number.

@@ -9,7 +9,7 @@ use std::path::Path;
 use super::table::{split_header, Table};
 use super::target::Target;
 use super::units::Unit;
-use super::{ColumnSpec, ImportOptions, Mapping};
+use super::{ColumnSpec, ImportOptions, Mapping, UnknownColumns};
 use crate::data::DataError;
 
 /// A mapped column found in the export.
@@ -38,17 +38,13 @@ pub(super) fn resolve_columns<'a>(
 ) -> Result<(Vec<Resolved<'a>>, Vec<String>), DataError> {
     let vendor = &mapping.export.name;
     refuse_duplicate_headers(path, table)?;
-    let find = |names: &[String]| {
-        let wanted: Vec<String> = names.iter().map(|n| split_header(n).0).collect();
-        table.headers.iter().position(|(h, _)| wanted.contains(h))
-    };
     let mut used = vec![false; table.headers.len()];
     let mut resolved: Vec<Resolved> = Vec::new();
     let mut missing: Vec<String> = Vec::new();
     let mut assumed: Vec<String> = Vec::new();
     for spec in &mapping.column {
         let target = Target::parse(&spec.target).expect("checked when parsed");
-        let Some(index) = find(&spec.source) else {
+        let Some(index) = find_column(table, &spec.source, target, &used) else {
             if !spec.optional {
                 missing.push(format!("'{}' ({})", spec.source[0], spec.target));
             }
@@ -102,7 +98,8 @@ pub(super) fn resolve_columns<'a>(
     }
     let mut notes = Vec::new();
     let unknown = unknown_columns(table, mapping, &used);
-    if !unknown.is_empty() && !opts.ignore_unknown_columns {
+    let lenient = mapping.export.unknown_columns == UnknownColumns::Note;
+    if !unknown.is_empty() && !opts.ignore_unknown_columns && !lenient {
         return Err(DataError::at(
             path,
             Some(table.header_line),
@@ -115,7 +112,11 @@ pub(super) fn resolve_columns<'a>(
         ));
     }
     if !unknown.is_empty() {
-        notes.push(format!("ignored unknown column(s): {}", unknown.join(", ")));
+        notes.push(format!(
+            "{} column(s) not used by the {vendor} format (left in the export): {}",
+            unknown.len(),
+            unknown.join(", ")
+        ));
     }
     if !assumed.is_empty() {
         notes.push(format!(
@@ -126,14 +127,45 @@ pub(super) fn resolve_columns<'a>(
     Ok((resolved, notes))
 }
 
-/// Refuse an export whose header names one column twice (case, spacing and a bracketed unit
-/// ignored): which of the two a mapping would read is a guess, and the other would be lost.
+/// The export column a mapping entry reads: the first of its `source` names the header has
+/// (case and spacing ignored). A header may name a column twice when a unit tells the two apart
+/// (FlightScope writes `club` for the club's name and `Club (mph)` for its speed): a source
+/// written with a unit (`Club (mph)`) takes only a column with a unit, a text target prefers the
+/// column without one, and a numeric target the column with one. Columns already `used` are
+/// skipped.
+fn find_column(table: &Table, source: &[String], target: Target, used: &[bool]) -> Option<usize> {
+    for name in source {
+        let (want, want_unit) = split_header(name);
+        let candidates: Vec<usize> = (0..table.headers.len())
+            .filter(|&i| !used[i] && table.headers[i].0 == want)
+            .filter(|&i| want_unit.is_none() || table.headers[i].1.is_some())
+            .collect();
+        let has_unit = |i: &&usize| table.headers[**i].1.is_some();
+        let preferred = if target.unit().is_some() {
+            candidates.iter().find(has_unit)
+        } else {
+            candidates.iter().find(|i| !has_unit(i))
+        };
+        if let Some(&i) = preferred.or(candidates.first()) {
+            return Some(i);
+        }
+    }
+    None
+}
+
+/// Refuse an export whose header names one column twice (case, spacing and the spelling of a
+/// bracketed unit ignored): which of the two a mapping would read is a guess, and the other
+/// would be lost. `club` and `Club (mph)` are two columns.
 fn refuse_duplicate_headers(path: &Path, table: &Table) -> Result<(), DataError> {
-    for (j, (name, _)) in table.headers.iter().enumerate() {
+    let unit = |u: &Option<String>| u.as_deref().map(|u| Unit::parse(u).map(|u| u.name));
+    for (j, (name, u)) in table.headers.iter().enumerate() {
         if name.is_empty() {
             continue;
         }
-        if let Some(i) = table.headers[..j].iter().position(|(h, _)| h == name) {
+        if let Some(i) = table.headers[..j]
+            .iter()
+            .position(|(h, v)| h == name && unit(v) == unit(u))
+        {
             return Err(DataError::at(
                 path,
                 Some(table.header_line),
@@ -151,7 +183,7 @@ fn refuse_duplicate_headers(path: &Path, table: &Table) -> Result<(), DataError>
 }
 
 /// Export columns neither mapped (`used`) nor listed as ignored or as a skip-rule column.
-fn unknown_columns<'t>(table: &'t Table, mapping: &Mapping, used: &[bool]) -> Vec<&'t str> {
+fn unknown_columns(table: &Table, mapping: &Mapping, used: &[bool]) -> Vec<String> {
     let ignored: HashSet<String> = mapping
         .export
         .ignore
@@ -165,13 +197,24 @@ fn unknown_columns<'t>(table: &'t Table, mapping: &Mapping, used: &[bool]) -> Ve
                 .filter_map(|r| r.column.as_ref().map(|c| split_header(c).0)),
         )
         .collect();
-    table
+    let named = table
         .header
         .iter()
         .enumerate()
         .filter(|(i, h)| !h.is_empty() && !used[*i] && !ignored.contains(&table.headers[*i].0))
-        .map(|(_, h)| h.as_str())
-        .collect()
+        .map(|(_, h)| h.clone());
+    // A column without a name that holds data is reported too, never dropped unseen.
+    // (A row with more cells than the header is the row's own fault, reported with it.)
+    let unnamed = (0..table.header.len())
+        .filter(|&i| table.header[i].is_empty())
+        .filter(|&i| {
+            table
+                .rows
+                .iter()
+                .any(|(_, c)| c.get(i).is_some_and(|v| !v.is_empty()))
+        })
+        .map(|i| format!("column {} (no name in the header, holds data)", i + 1));
+    named.chain(unnamed).collect()
 }
 
 /// A mapped numeric column at `index` of the export.

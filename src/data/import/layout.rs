@@ -1,16 +1,19 @@
 //! What the shots file gets from the resolved columns: which columns it has, how spin and the
-//! heel–toe offset are derived, and the checks that the mapping feeds what a shots file needs.
+//! heel–toe offset are derived, and the checks that the mapping feeds what a shots file needs:
+//! a complete delivery, a complete measured launch, or both (a launch-only export, from a
+//! monitor that measures no dynamic loft or impact location, imports for `smash flight`).
 
 use std::path::Path;
 
 use super::columns::Resolved;
-use super::target::numeric;
-use super::{ImportOptions, Mapping, OffsetSide};
+use super::table::Table;
+use super::target::{numeric, Target};
+use super::{ExportSpec, ImportOptions, Mapping, OffsetSide};
 use crate::data::DataError;
 use crate::model::DeliveryVar;
 
 /// The measured-launch columns written only when the whole launch is measured.
-const LAUNCH: [&str; 3] = ["ball_speed_mph", "launch_angle_deg", "azimuth_deg"];
+pub(super) const LAUNCH: [&str; 3] = ["ball_speed_mph", "launch_angle_deg", "azimuth_deg"];
 
 /// The shots file's layout.
 pub(super) struct Layout<'r, 'a> {
@@ -22,8 +25,20 @@ pub(super) struct Layout<'r, 'a> {
     pub from_offset: bool,
     /// Back and side spin are derived from spin rate and axis.
     pub use_rate_axis: bool,
+    /// Back and side spin and spin rate and axis are all given: they are checked against each
+    /// other.
+    pub check_spin: bool,
+    /// The export measures the launch (every row written has it).
+    pub launch_all: bool,
+    /// The export gives every required delivery column (a row may still leave cells empty).
+    pub delivery_all: bool,
     /// Numeric shots columns written, in order.
     pub numeric: Vec<&'static str>,
+    /// Text and flag columns written after the numeric ones (`ball_type`, `spin_estimated`,
+    /// `club_estimated`, `flight_modelled`).
+    pub extra: Vec<&'static str>,
+    /// Every shot's flight figures are the vendor's model (the mapping says so).
+    pub all_modelled: bool,
     /// The text columns, when mapped.
     pub id: Option<&'r Resolved<'a>>,
     pub group: Option<&'r Resolved<'a>>,
@@ -32,24 +47,30 @@ pub(super) struct Layout<'r, 'a> {
 }
 
 impl<'r, 'a> Layout<'r, 'a> {
-    /// Check that `resolved` feeds a shots file (required delivery, the heel–toe sign, a
-    /// complete measured launch or none) and lay it out. `header_line` is where messages point.
+    /// Check that `resolved` feeds a shots file (a complete delivery or a complete measured
+    /// launch, the heel–toe sign when the file holds offsets, a launch all there or absent)
+    /// and lay it out. Messages point at the header line.
     pub(super) fn plan(
         path: &Path,
-        header_line: usize,
+        table: &Table,
         resolved: &'r [Resolved<'a>],
         mapping: &Mapping,
         opts: &ImportOptions,
     ) -> Result<Self, DataError> {
+        let header_line = table.header_line;
         let vendor = &mapping.export.name;
         let has = |name: &str| resolved.iter().any(|r| r.spec.target == name);
         let offset_side = opts
             .impact_offset_positive
             .or(mapping.export.impact_offset_positive);
-        check_delivery(path, header_line, resolved, offset_side, vendor)?;
         let launch_all = check_launch(path, header_line, &has)?;
-        let use_rate_axis = launch_all && !(has("backspin_rpm") && has("sidespin_rpm"));
+        let delivery_all =
+            check_delivery(path, table, resolved, offset_side, &mapping.export, launch_all)?;
+        let spin_pair = has("backspin_rpm") && has("sidespin_rpm");
+        let use_rate_axis = launch_all && !spin_pair;
+        let check_spin = launch_all && spin_pair && has("spin_rate_rpm") && has("spin_axis_deg");
         let from_offset = has("impact_offset_mm");
+        let condition = has("condition");
         let mut out_numeric: Vec<&str> = numeric()
             .into_iter()
             .map(|(c, _)| c)
@@ -57,11 +78,25 @@ impl<'r, 'a> Layout<'r, 'a> {
                 has(c)
                     || (*c == "impact_z_mm" && from_offset)
                     || (use_rate_axis && (*c == "backspin_rpm" || *c == "sidespin_rpm"))
+                    || (condition && matches!(*c, "altitude_m" | "air_temperature_c"))
             })
             .collect();
         if !launch_all {
             out_numeric
                 .retain(|c| !LAUNCH.contains(c) && !matches!(*c, "backspin_rpm" | "sidespin_rpm"));
+        }
+        let mut extra = Vec::new();
+        if has("ball_type") || condition {
+            extra.push("ball_type");
+        }
+        for flag in ["spin_estimated", "club_estimated"] {
+            if has(flag) {
+                extra.push(flag);
+            }
+        }
+        let all_modelled = mapping.export.flight_modelled;
+        if condition || all_modelled || (has("tracked_length_yd") && has("carry_yd")) {
+            extra.push("flight_modelled");
         }
         let text_col = |name: &str| resolved.iter().find(|r| r.spec.target == name);
         Ok(Layout {
@@ -69,12 +104,27 @@ impl<'r, 'a> Layout<'r, 'a> {
             offset_side,
             from_offset,
             use_rate_axis,
+            check_spin,
+            launch_all,
+            delivery_all,
             numeric: out_numeric,
+            extra,
+            all_modelled,
             id: text_col("shot_id"),
             group: text_col("group"),
             golfer: text_col("golfer"),
             status: text_col("status"),
         })
+    }
+
+    /// The resolved column feeding `target`, when mapped.
+    pub(super) fn column(&self, target: &str) -> Option<&'r Resolved<'a>> {
+        self.resolved.iter().find(|r| r.spec.target == target)
+    }
+
+    /// The resolved columns of one kind of target.
+    pub(super) fn of(&self, target: Target) -> Option<&'r Resolved<'a>> {
+        self.resolved.iter().find(|r| r.target == target)
     }
 
     /// The shots file's header row.
@@ -87,28 +137,41 @@ impl<'r, 'a> Layout<'r, 'a> {
             head.push("golfer");
         }
         head.extend(&self.numeric);
+        head.extend(&self.extra);
         head
     }
 }
 
-/// The delivery columns: every required one fed, the heel–toe location fed exactly once, and
-/// the sign of a heel–toe offset stated (the import does not guess).
+/// The delivery columns: every required one fed (unless the export measures the launch:
+/// then the delivery is optional, and a launch-only file imports for flight), the heel–toe
+/// location fed at most once, and the sign of a heel–toe offset stated when any row holds one
+/// (the import does not guess). Returns whether the whole delivery is fed.
 fn check_delivery(
     path: &Path,
-    header_line: usize,
+    table: &Table,
     resolved: &[Resolved],
     offset_side: Option<OffsetSide>,
-    vendor: &str,
-) -> Result<(), DataError> {
+    export: &ExportSpec,
+    launch_all: bool,
+) -> Result<bool, DataError> {
+    let vendor = &export.name;
     let has = |name: &str| resolved.iter().any(|r| r.spec.target == name);
+    let offset_held = |r: &&Resolved| {
+        table.rows.iter().any(|(_, cells)| {
+            cells.get(r.index).is_some_and(|c| {
+                !super::rows::not_measured(c.trim(), &r.spec.missing, &export.missing)
+            })
+        })
+    };
     if let Some(r) = resolved
         .iter()
         .find(|r| r.spec.target == "impact_offset_mm")
+        .filter(offset_held)
         .filter(|_| offset_side.is_none())
     {
         return Err(DataError::at(
             path,
-            Some(header_line),
+            Some(table.header_line),
             Some(format!("column '{}'", r.header)),
             format!(
                 "{vendor} does not document which way a positive heel–toe impact offset points; \
@@ -123,25 +186,23 @@ fn check_delivery(
         ));
     }
     // The required delivery columns; impact_z_mm may come from impact_offset_mm.
-    for need in DeliveryVar::ALL
+    let missing: Vec<&str> = DeliveryVar::ALL
         .into_iter()
-        .filter(|v| v.required() && *v != DeliveryVar::ImpactZ)
+        .filter(|v| v.required())
         .map(DeliveryVar::column)
-    {
-        if !has(need) {
-            return Err(DataError::file(
-                path,
-                format!("the mapping does not feed the required shots column {need}"),
-            ));
-        }
-    }
-    if !has("impact_offset_mm") && !has("impact_z_mm") {
+        .filter(|c| !has(c) && !(*c == "impact_z_mm" && has("impact_offset_mm")))
+        .collect();
+    if !missing.is_empty() && !launch_all {
         return Err(DataError::file(
             path,
-            "the mapping feeds neither impact_z_mm nor impact_offset_mm (the heel–toe impact location)",
+            format!(
+                "the mapping feeds neither a measured launch nor the whole delivery (missing: {}); \
+                 a shots file needs one of them",
+                missing.join(", ")
+            ),
         ));
     }
-    Ok(())
+    Ok(missing.is_empty())
 }
 
 /// The measured launch is all there (ball speed, launch angle and direction, and back and side

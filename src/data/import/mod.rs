@@ -13,11 +13,14 @@
 //! location is stated by the user when the vendor does not document it: the import never guesses.
 
 mod cell;
+mod checks;
 mod columns;
+mod condition;
 mod layout;
 mod rows;
 mod table;
 mod target;
+mod text;
 pub mod units;
 
 use std::collections::HashSet;
@@ -28,14 +31,14 @@ use serde::Deserialize;
 use self::columns::resolve_columns;
 use self::layout::Layout;
 use self::rows::write_shots;
-use self::table::read_table;
+use self::table::{read_table, split_header};
 use self::target::Target;
 use self::units::Unit;
-use super::shots::{parse_shots, ShotTable};
+use super::shots::{parse_shots_with, ReadOptions, ShotTable};
 use super::DataError;
 
 /// The presets: name and the mapping TOML built into the binary.
-pub const PRESETS: [(&str, &str); 4] = [
+pub const PRESETS: [(&str, &str); 8] = [
     (
         "trackman",
         include_str!("../../../configs/import/trackman.toml"),
@@ -52,6 +55,30 @@ pub const PRESETS: [(&str, &str); 4] = [
         "uneekor",
         include_str!("../../../configs/import/uneekor.toml"),
     ),
+    (
+        "garmin-r10",
+        include_str!("../../../configs/import/garmin-r10.toml"),
+    ),
+    (
+        "rapsodo",
+        include_str!("../../../configs/import/rapsodo.toml"),
+    ),
+    (
+        "skytrak",
+        include_str!("../../../configs/import/skytrak.toml"),
+    ),
+    ("gspro", include_str!("../../../configs/import/gspro.toml")),
+];
+
+/// Other names of the presets: `(alias, preset)`.
+pub const PRESET_ALIASES: [(&str, &str); 7] = [
+    ("gc3", "foresight"),
+    ("gcquad", "foresight"),
+    ("fsx", "foresight"),
+    ("mevo", "flightscope"),
+    ("garmin", "garmin-r10"),
+    ("r10", "garmin-r10"),
+    ("mlm2pro", "rapsodo"),
 ];
 
 /// Which way a positive heel–toe impact offset points.
@@ -97,6 +124,31 @@ pub struct ExportSpec {
     /// The sign of the heel–toe impact offset, when the export documents it.
     #[serde(default)]
     pub impact_offset_positive: Option<OffsetSide>,
+    /// What to do with an export column the mapping neither maps nor ignores: `refuse` (the
+    /// default for a user's mapping: a renamed column is not lost unseen) or `note` (the vendor
+    /// presets: an export's many other columns are listed once in the import's summary).
+    #[serde(default)]
+    pub unknown_columns: UnknownColumns,
+    /// Cell values that mean "not measured" in every column (Foresight writes 16777215,
+    /// 2²⁴ − 1); compared as numbers. Empty cells, `-`, `--` and `N/A` always mean it.
+    #[serde(default)]
+    pub missing: Vec<String>,
+    /// Every carry, side, apex and landing in the export is the vendor's flight model of the
+    /// measured launch, not a tracked flight (camera and short-range radar monitors): each
+    /// shot is written with `flight_modelled = 1`.
+    #[serde(default)]
+    pub flight_modelled: bool,
+}
+
+/// [`ExportSpec::unknown_columns`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum UnknownColumns {
+    /// Refuse the file, naming the columns.
+    #[default]
+    Refuse,
+    /// List them once in the import's notes.
+    Note,
 }
 
 /// Rows to skip.
@@ -139,6 +191,14 @@ pub struct ColumnSpec {
     /// For `status`: cell values that mean the shot is measured normally (default: empty cell).
     #[serde(default)]
     pub ok: Vec<String>,
+    /// For `spin_estimated` and `club_estimated`: cell values that mean the monitor estimated
+    /// the values instead of measuring them (case ignored; any other value means measured).
+    #[serde(default)]
+    pub estimated: Vec<String>,
+    /// Cell values that mean "not measured" in this column, compared as numbers (GSPro writes
+    /// 0 for a dynamic loft or impact location its monitor does not measure).
+    #[serde(default)]
+    pub missing: Vec<String>,
 }
 
 /// Options given on the command line.
@@ -148,6 +208,9 @@ pub struct ImportOptions {
     pub impact_offset_positive: Option<OffsetSide>,
     /// Drop export columns the mapping does not know instead of refusing the file.
     pub ignore_unknown_columns: bool,
+    /// Refuse the whole file at the first bad or incomplete row (the default leaves such rows
+    /// out, or keeps a shot without its impact location, and counts them in the notes).
+    pub strict: bool,
 }
 
 /// A converted export.
@@ -159,6 +222,8 @@ pub struct Imported {
     pub shots: usize,
     /// What was skipped and assumed, one line each.
     pub notes: Vec<String>,
+    /// The export gives the whole delivery (else it is a launch-only file, for flight).
+    pub delivery: bool,
     /// The export's file line of the header and of each shot written, in order.
     header_line: usize,
     lines: Vec<usize>,
@@ -171,7 +236,24 @@ impl Imported {
     /// Read the converted shots back as a shots table (ranges, ids, launch columns), every
     /// error placed at the export's own file line and column (`path` is the export).
     pub fn read_back(&self, path: &Path) -> Result<ShotTable, DataError> {
-        parse_shots(path, self.csv.as_slice()).map_err(|e| self.in_export(e))
+        self.read_back_with(path, ReadOptions::default())
+    }
+
+    /// [`Imported::read_back`] with the shots reader's options; the lines of rows left out
+    /// are the export's own.
+    pub fn read_back_with(&self, path: &Path, opts: ReadOptions) -> Result<ShotTable, DataError> {
+        let mut table =
+            parse_shots_with(path, self.csv.as_slice(), opts).map_err(|e| self.in_export(e))?;
+        let export_line = |l: usize| self.lines.get(l.wrapping_sub(2)).copied().unwrap_or(l);
+        for line in table.lines.iter_mut() {
+            *line = export_line(*line);
+        }
+        for l in table.left_out.iter_mut() {
+            for line in l.lines.iter_mut() {
+                *line = export_line(*line);
+            }
+        }
+        Ok(table)
     }
 
     /// `e`, about the converted CSV, moved to the export's line and column names.
@@ -196,10 +278,10 @@ impl Imported {
 /// Resolve `--format`: a preset name or a mapping file path.
 pub fn load_mapping(format: &str) -> Result<Mapping, DataError> {
     let key = format.to_ascii_lowercase();
-    let key = match key.as_str() {
-        "gc3" | "gcquad" | "fsx" => "foresight",
-        k => k,
-    };
+    let key = PRESET_ALIASES
+        .iter()
+        .find(|(a, _)| *a == key)
+        .map_or(key.as_str(), |(_, p)| *p);
     if let Some((_, text)) = PRESETS.iter().find(|(n, _)| *n == key) {
         return parse_mapping(Path::new(&format!("<preset {key}>")), text);
     }
@@ -290,15 +372,25 @@ pub fn import(
     opts: &ImportOptions,
 ) -> Result<Imported, DataError> {
     let vendor = &mapping.export.name;
-    let table = read_table(path, bytes, mapping.export.skip_lines, vendor)?;
-    let (resolved, mut notes) = resolve_columns(path, &table, mapping, opts)?;
-    let layout = Layout::plan(path, table.header_line, &resolved, mapping, opts)?;
+    let names: HashSet<String> = mapping
+        .column
+        .iter()
+        .flat_map(|c| c.source.iter())
+        .chain(&mapping.export.ignore)
+        .map(|n| split_header(n).0)
+        .collect();
+    let known = |name: &str| names.contains(name);
+    let table = read_table(path, bytes, mapping.export.skip_lines, vendor, &known)?;
+    let (resolved, column_notes) = resolve_columns(path, &table, mapping, opts)?;
+    let mut notes = table.notes.clone();
+    notes.extend(column_notes);
+    let layout = Layout::plan(path, &table, &resolved, mapping, opts)?;
     let shots = write_shots(
         path,
         &table,
-        &mapping.export.skip_rows,
+        &mapping.export,
         &layout,
-        vendor,
+        opts.strict,
         &mut notes,
     )?;
     let places = export_places(&layout);
@@ -306,6 +398,7 @@ pub fn import(
         csv: shots.csv,
         shots: shots.count,
         notes,
+        delivery: layout.delivery_all,
         header_line: table.header_line,
         lines: shots.lines,
         places,

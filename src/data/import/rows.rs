@@ -1,15 +1,41 @@
 //! Converting the export's rows to shots: rows to skip (summary rows, shots the monitor
-//! flagged), cells to numbers in the shots file's units, ids, and derived columns.
+//! flagged), cells to numbers in the shots file's units, ids, derived columns and the flags of
+//! what the monitor estimated or modelled.
+//!
+//! A bad row does not sink the file: it is left out and counted under its reason, with its
+//! line, and the import ends with one summary (`--strict` refuses the file at the first). A shot
+//! that lacks part of its delivery (a session without impact-location hardware) keeps those
+//! cells empty, so its launch can still be flown.
 
 use std::collections::HashSet;
 use std::path::Path;
 
 use super::cell::{list_lines, parse_cell};
-use super::layout::Layout;
+use super::checks::{Redundancy, SpinCheck};
+use super::condition::Condition;
+use super::layout::{Layout, LAUNCH};
 use super::table::{split_header, Table};
-use super::target::is_core;
-use super::{OffsetSide, SkipRule};
+use super::target::Target;
+use super::{ExportSpec, SkipRule};
 use crate::data::{fmt_f64, DataError};
+use crate::model::DeliveryVar;
+
+/// Cells that mark a row of statistics, never a shot, whatever the mapping says (case
+/// ignored): the rows vendors append per club or per session.
+const SUMMARY: [&str; 12] = [
+    "average",
+    "avg",
+    "avg.",
+    "mean",
+    "median",
+    "dev",
+    "deviation",
+    "std. dev.",
+    "std dev",
+    "stddev",
+    "std. deviation",
+    "consistency",
+];
 
 /// The shots CSV (bytes), the number of shots written and the export's file line of each.
 pub(super) struct Shots {
@@ -18,72 +44,191 @@ pub(super) struct Shots {
     pub lines: Vec<usize>,
 }
 
-/// Write the shots of `table` laid out by `layout`; notes on skipped rows go to `notes`.
-/// Refuses a file with no usable rows.
+/// Rows left out for one reason: the reason, their lines, and the first one's full message.
+struct LeftOut {
+    reason: String,
+    lines: Vec<usize>,
+    first: String,
+}
+
+/// What the rows of an export came to, for the summary.
+#[derive(Default)]
+struct Tally {
+    summary: Vec<(String, Vec<usize>)>,
+    flagged: Vec<(usize, String)>,
+    left_out: Vec<LeftOut>,
+    lacking: Vec<(&'static str, Vec<usize>)>,
+    flags: Vec<(&'static str, Vec<usize>)>,
+    redundancy: Redundancy,
+}
+
+impl Tally {
+    fn push_to(list: &mut Vec<(&'static str, Vec<usize>)>, what: &'static str, line: usize) {
+        match list.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, v)) => v.push(line),
+            None => list.push((what, vec![line])),
+        }
+    }
+
+    fn leave_out(&mut self, reason: String, line: usize, e: &DataError) {
+        match self.left_out.iter_mut().find(|l| l.reason == reason) {
+            Some(l) => l.lines.push(line),
+            None => self.left_out.push(LeftOut {
+                reason,
+                lines: vec![line],
+                first: e.to_string(),
+            }),
+        }
+    }
+}
+
+/// Write the shots of `table` laid out by `layout`; the summary goes to `notes`. Under
+/// `strict` the first bad or incomplete row refuses the file. Refuses a file with no usable
+/// rows, and one whose redundant values disagree on most shots (a mapping reading a column
+/// with the wrong sign).
 pub(super) fn write_shots(
     path: &Path,
     table: &Table,
-    skip_rules: &[SkipRule],
+    export: &ExportSpec,
     layout: &Layout,
-    vendor: &str,
+    strict: bool,
     notes: &mut Vec<String>,
 ) -> Result<Shots, DataError> {
+    let (skip_rules, vendor) = (&export.skip_rows, &export.name);
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(layout.header()).expect("writing to memory");
-    let mut skipped_by_rule: Vec<(String, Vec<usize>)> = Vec::new();
-    let mut flagged: Vec<(usize, String)> = Vec::new();
+    let mut tally = Tally::default();
     let mut ids = HashSet::new();
-    let mut count = 0usize;
     let mut lines = Vec::new();
     for (line, cells) in &table.rows {
         let row = RowAt {
             path,
             line: *line,
             cells,
+            decimal_comma: table.decimal_comma,
+            export_missing: &export.missing,
         };
         if let Some(label) = row.skipped_by(skip_rules, table) {
-            match skipped_by_rule.iter_mut().find(|(l, _)| *l == label) {
+            match tally.summary.iter_mut().find(|(l, _)| *l == label) {
                 Some((_, v)) => v.push(*line),
-                None => skipped_by_rule.push((label, vec![*line])),
+                None => tally.summary.push((label, vec![*line])),
             }
             continue;
         }
         if let Some(flag) = row.flag(layout) {
-            flagged.push((*line, flag));
+            tally.flagged.push((*line, flag));
             continue;
         }
-        let rec = row.record(layout, &mut ids)?;
-        w.write_record(&rec).expect("writing to memory");
-        count += 1;
-        lines.push(*line);
+        match row.convert(table, layout, &mut ids) {
+            Ok(shot) => {
+                if let Some(what) = shot.lacks {
+                    if strict {
+                        return Err(shot.lack_error.expect("a lack has its message"));
+                    }
+                    Tally::push_to(&mut tally.lacking, what, *line);
+                }
+                for flag in shot.flags {
+                    Tally::push_to(&mut tally.flags, flag, *line);
+                }
+                tally.redundancy.add(*line, &shot.spin, shot.smash);
+                w.write_record(&shot.record).expect("writing to memory");
+                lines.push(*line);
+            }
+            Err((reason, e)) => {
+                if strict {
+                    return Err(e);
+                }
+                tally.leave_out(reason, *line, &e);
+            }
+        }
     }
-    for (label, lines) in &skipped_by_rule {
-        notes.push(format!(
-            "skipped {} {label} row(s) (line(s) {})",
-            lines.len(),
-            list_lines(lines)
-        ));
-    }
-    if !flagged.is_empty() {
-        let lines: Vec<usize> = flagged.iter().map(|(l, _)| *l).collect();
-        notes.push(format!(
-            "skipped {} shot(s) the monitor flagged ({}; line(s) {}): not used",
-            flagged.len(),
-            flagged[0].1,
-            list_lines(&lines)
-        ));
-    }
-    if count == 0 {
+    tally.redundancy.refuse_systematic(path, vendor)?;
+    summarise(&tally, lines.len(), notes);
+    if lines.is_empty() {
+        let why = tally
+            .left_out
+            .first()
+            .map(|l| format!(" (the first left out: {})", l.first))
+            .unwrap_or_default();
         return Err(DataError::file(
             path,
-            format!("no shots: the {vendor} export has no usable rows"),
+            format!("no shots: the {vendor} export has no usable rows{why}"),
         ));
     }
     Ok(Shots {
         csv: w.into_inner().expect("flushing memory"),
-        count,
+        count: lines.len(),
         lines,
     })
+}
+
+/// The import's summary, one note per kind of row.
+fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
+    for (label, lines) in &t.summary {
+        notes.push(format!(
+            "skipped {} {label} row(s), never shots (line(s) {})",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    if !t.flagged.is_empty() {
+        let lines: Vec<usize> = t.flagged.iter().map(|(l, _)| *l).collect();
+        notes.push(format!(
+            "skipped {} shot(s) the monitor flagged ({}; line(s) {}): not used",
+            t.flagged.len(),
+            t.flagged[0].1,
+            list_lines(&lines)
+        ));
+    }
+    for l in &t.left_out {
+        notes.push(format!(
+            "left out {} row(s): {} (line(s) {}; the first: {})",
+            l.lines.len(),
+            l.reason,
+            list_lines(&l.lines),
+            l.first
+        ));
+    }
+    for (what, lines) in &t.lacking {
+        notes.push(format!(
+            "{} of {written} shot(s) have no {what} (line(s) {}): written with those cells \
+             empty; smash flight uses their launch, and predict, compare, calibrate and diagnose \
+             leave them out",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    for (flag, lines) in &t.flags {
+        let what = match *flag {
+            "spin_estimated" => "spin the monitor estimated (spin_estimated = 1)",
+            "club_estimated" => "club data the monitor estimated (club_estimated = 1)",
+            _ => "a carry from the vendor's flight model, not tracked to landing (flight_modelled = 1)",
+        };
+        let then = if *flag == "flight_modelled" {
+            "comparing a flight model with them compares two models"
+        } else {
+            "predict, compare, calibrate and diagnose leave them out unless --include-estimated"
+        };
+        notes.push(format!(
+            "{} of {written} shot(s) have {what} (line(s) {}); {then}",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    t.redundancy.notes(notes);
+}
+
+/// A row converted to a shot.
+struct Converted {
+    record: Vec<String>,
+    /// What the shot lacks (`impact location`, `delivery`), with the strict refusal.
+    lacks: Option<&'static str>,
+    lack_error: Option<DataError>,
+    /// The flags set on it.
+    flags: Vec<&'static str>,
+    /// Values given twice, to check against each other.
+    spin: Option<SpinCheck>,
+    smash: Option<(f64, f64, f64)>,
 }
 
 /// One row of the export, for conversion and messages.
@@ -91,12 +236,18 @@ struct RowAt<'r> {
     path: &'r Path,
     line: usize,
     cells: &'r [String],
+    decimal_comma: bool,
+    /// The export's values meaning "not measured".
+    export_missing: &'r [String],
 }
+
+/// A row left out: its reason (the key of the summary) and its full message.
+type Bad = (String, DataError);
 
 impl RowAt<'_> {
     /// The cell at `i`, empty when the row is short.
     fn cell(&self, i: usize) -> &str {
-        self.cells.get(i).map_or("", String::as_str)
+        self.cells.get(i).map_or("", |c| c.trim())
     }
 
     /// An error at this row, in the column headed `header`.
@@ -109,7 +260,8 @@ impl RowAt<'_> {
         )
     }
 
-    /// The label of the first skip rule the row matches (summary rows: averages, deviations).
+    /// The label of the first skip rule the row matches, or `summary` for a row of statistics
+    /// (a cell reading Average, Avg, Dev, Deviation, Std. Dev., …).
     fn skipped_by(&self, rules: &[SkipRule], table: &Table) -> Option<String> {
         let rule = rules.iter().find(|rule| {
             let hit = |c: &str| rule.values.iter().any(|v| v.eq_ignore_ascii_case(c.trim()));
@@ -124,15 +276,19 @@ impl RowAt<'_> {
                 }
                 None => self.cells.iter().any(|c| hit(c)),
             }
-        })?;
-        Some(rule.label.clone().unwrap_or_else(|| "summary".into()))
+        });
+        if let Some(rule) = rule {
+            return Some(rule.label.clone().unwrap_or_else(|| "summary".into()));
+        }
+        let summary = |c: &String| SUMMARY.iter().any(|s| s.eq_ignore_ascii_case(c.trim()));
+        self.cells.iter().any(summary).then(|| "summary".into())
     }
 
     /// `column = 'value'` when the monitor's status column flags the shot as not measured
     /// normally.
     fn flag(&self, layout: &Layout) -> Option<String> {
         let st = layout.status?;
-        let v = self.cell(st.index).trim();
+        let v = self.cell(st.index);
         let ok = if st.spec.ok.is_empty() {
             v.is_empty()
         } else {
@@ -141,38 +297,71 @@ impl RowAt<'_> {
         (!ok).then(|| format!("{} = '{v}'", st.header))
     }
 
-    /// The numeric cells converted to the shots file's units, by target; `None` for an empty
-    /// cell of an optional flight column.
-    fn values<'a>(
-        &self,
-        layout: &Layout<'_, 'a>,
-    ) -> Result<Vec<(&'a str, Option<f64>)>, DataError> {
+    /// A row with more cells than the header: a separator inside an unquoted cell (a decimal
+    /// comma in a comma-separated file) has shifted them, and no cell can be trusted.
+    fn too_long(&self, table: &Table) -> Result<(), Bad> {
+        let n = table.header.len();
+        if self.cells.len() > n && self.cells[n..].iter().any(|c| !c.trim().is_empty()) {
+            let reason = "more cells than the header has columns".to_owned();
+            let e = self.error_in(
+                None,
+                format!(
+                    "{} cells where the header has {n} columns: a separator inside an unquoted \
+                     cell (a decimal comma?) has shifted the cells, so none of them is trusted",
+                    self.cells.len()
+                ),
+            );
+            return Err((reason, e));
+        }
+        Ok(())
+    }
+
+    /// The numeric cells converted to the shots file's units, by target (`None`: empty, `-`).
+    fn values<'a>(&self, layout: &Layout<'_, 'a>) -> Result<Vec<(&'a str, Option<f64>)>, Bad> {
         let mut values = Vec::new();
         for r in layout.resolved {
-            let Some(to) = r.target.unit() else { continue };
             let raw = self.cell(r.index);
-            let here = |m: String| self.error_in(Some(&r.header), m);
-            if raw.is_empty() || raw == "-" || raw == "--" {
-                if r.spec.optional && !is_core(r.spec.target.as_str()) {
-                    values.push((r.spec.target.as_str(), None));
-                    continue;
-                }
-                return Err(here(format!(
-                    "empty cell; a number is required for {}",
-                    r.spec.target
-                )));
+            let numeric = r.target.unit().is_some() || r.target == Target::SmashFactor;
+            if !numeric {
+                continue;
             }
-            let from = r.unit.expect("numeric columns have a unit");
-            let v = parse_cell(raw, from, r.spec.direction.as_deref()).map_err(here)?;
-            let v = from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1));
+            if not_measured(raw, &r.spec.missing, self.export_missing) {
+                values.push((r.spec.target.as_str(), None));
+                continue;
+            }
+            let bad = |kind: &str, m: String| {
+                (
+                    format!("column '{}' {kind}", r.header),
+                    self.error_in(Some(&r.header), m),
+                )
+            };
+            let text = if self.decimal_comma {
+                raw.replace(',', ".")
+            } else {
+                raw.to_owned()
+            };
+            let v = match r.unit {
+                Some(from) => {
+                    let to = r.target.unit().expect("numeric");
+                    let v = parse_cell(&text, from, r.spec.direction.as_deref())
+                        .map_err(|m| bad("is not a number", m))?;
+                    from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1))
+                }
+                None => crate::data::number::parse_f64(&text).ok_or_else(|| {
+                    bad(
+                        "is not a number",
+                        format!("{} is not a number", crate::data::quote_cell(raw)),
+                    )
+                })?,
+            };
             if !v.is_finite() {
-                return Err(here(format!(
-                    "{} is not a finite number",
-                    crate::data::quote_cell(raw)
-                )));
+                let m = format!("{} is not a finite number", crate::data::quote_cell(raw));
+                return Err(bad("is not a finite number", m));
             }
             if let Some(range) = r.target.range() {
-                range.check(v).map_err(here)?;
+                range
+                    .check(v)
+                    .map_err(|m| bad("is outside its physical range", m))?;
             }
             values.push((r.spec.target.as_str(), Some(v)));
         }
@@ -180,27 +369,40 @@ impl RowAt<'_> {
     }
 
     /// The shot's id: the mapped id column, else `row<line>`; unique within the file.
-    fn shot_id(&self, layout: &Layout, ids: &mut HashSet<String>) -> Result<String, DataError> {
+    fn shot_id(&self, layout: &Layout, ids: &mut HashSet<String>) -> Result<String, Bad> {
         let header = layout.id.map(|c| c.header.as_str());
         let id = match layout.id {
-            Some(c) => self.cell(c.index).trim().to_owned(),
+            Some(c) => self.cell(c.index).to_owned(),
             None => format!("row{}", self.line),
         };
         if id.is_empty() {
-            return Err(self.error_in(header, "empty shot id"));
+            return Err((
+                "an empty shot id".into(),
+                self.error_in(header, "empty shot id"),
+            ));
         }
         if !ids.insert(id.clone()) {
-            return Err(self.error_in(
-                header,
-                format!("shot id '{id}' is used twice; ids must be unique (drop the shot_id mapping to number rows instead)"),
+            return Err((
+                "a shot id used twice".into(),
+                self.error_in(
+                    header,
+                    format!("shot id '{id}' is used twice; ids must be unique (drop the shot_id mapping to number rows instead)"),
+                ),
             ));
         }
         Ok(id)
     }
 
-    /// The row's shots record: id, group and golfer, then the numeric columns (back and side
-    /// spin from rate and axis, `impact_z_mm` from the signed heel–toe offset, when so laid out).
-    fn record(&self, layout: &Layout, ids: &mut HashSet<String>) -> Result<Vec<String>, DataError> {
+    /// The row's shot: id, group and golfer, the numeric columns (back and side spin from
+    /// rate and axis, `impact_z_mm` from the signed heel–toe offset, when so laid out), then
+    /// the text and flag columns.
+    fn convert(
+        &self,
+        table: &Table,
+        layout: &Layout,
+        ids: &mut HashSet<String>,
+    ) -> Result<Converted, Bad> {
+        self.too_long(table)?;
         let values = self.values(layout)?;
         let get = |name: &str| {
             values
@@ -210,34 +412,182 @@ impl RowAt<'_> {
         };
         let mut rec: Vec<String> = vec![self.shot_id(layout, ids)?];
         for col in [layout.group, layout.golfer].into_iter().flatten() {
-            let v = self.cell(col.index).trim();
+            let v = self.cell(col.index);
             if v.is_empty() && col.spec.target == "group" {
-                return Err(self.error_in(Some(&col.header), "empty group (club) name"));
+                let e = self.error_in(Some(&col.header), "empty group (club) name");
+                return Err(("an empty club (group) name".into(), e));
             }
             rec.push(v.to_owned());
         }
+        let spin = SpinCheck::of(layout, &get);
         let (back, side) = if layout.use_rate_axis {
-            let rate = get("spin_rate_rpm").expect("core");
-            let axis = get("spin_axis_deg").expect("core").to_radians();
-            (Some(rate * axis.cos()), Some(rate * axis.sin()))
+            match (get("spin_rate_rpm"), get("spin_axis_deg")) {
+                (Some(rate), Some(axis)) => {
+                    let a = axis.to_radians();
+                    (Some(rate * a.cos()), Some(rate * a.sin()))
+                }
+                _ => (None, None),
+            }
         } else {
             (get("backspin_rpm"), get("sidespin_rpm"))
         };
+        if layout.launch_all {
+            self.launch_complete(layout, &get, back.zip(side).is_some())?;
+        }
+        let condition = layout
+            .of(Target::Condition)
+            .and_then(|c| Condition::parse(self.cell(c.index)));
+        let numeric_value = |c: &str| match c {
+            "impact_z_mm" if layout.from_offset => {
+                get("impact_offset_mm").map(|o| match layout.offset_side {
+                    Some(super::OffsetSide::Heel) => -o,
+                    _ => o,
+                })
+            }
+            "backspin_rpm" => back,
+            "sidespin_rpm" => side,
+            "altitude_m" => get(c).or(condition.as_ref().and_then(|k| k.altitude_m)),
+            "air_temperature_c" => get(c).or(condition.as_ref().and_then(|k| k.temperature_c)),
+            c => get(c),
+        };
+        let mut delivery_missing: Vec<&str> = Vec::new();
         for c in &layout.numeric {
-            let v =
-                match *c {
-                    "impact_z_mm" if layout.from_offset => get("impact_offset_mm").map(|o| {
-                        match layout.offset_side.expect("checked in the layout") {
-                            OffsetSide::Toe => o,
-                            OffsetSide::Heel => -o,
-                        }
-                    }),
-                    "backspin_rpm" => back,
-                    "sidespin_rpm" => side,
-                    c => get(c),
-                };
+            let v = numeric_value(c);
+            if v.is_none() && DeliveryVar::from_column(c).is_some_and(|d| d.required()) {
+                delivery_missing.push(c);
+            }
             rec.push(v.map(fmt_f64).unwrap_or_default());
         }
-        Ok(rec)
+        let (lacks, lack_error) = self.lacks(layout, &delivery_missing)?;
+        let mut flags = Vec::new();
+        for c in &layout.extra {
+            let v = self.extra_value(c, layout, condition.as_ref(), &get);
+            if v == "1" {
+                flags.push(*c);
+            }
+            rec.push(v);
+        }
+        let smash = get("smash_factor")
+            .zip(get("ball_speed_mph"))
+            .zip(get("club_speed_mph"))
+            .map(|((s, b), c)| (s, b, c));
+        Ok(Converted {
+            record: rec,
+            lacks,
+            lack_error,
+            flags,
+            spin,
+            smash,
+        })
     }
+
+    /// A row of an export that measures the launch must have all of it.
+    fn launch_complete(
+        &self,
+        layout: &Layout,
+        get: &dyn Fn(&str) -> Option<f64>,
+        spin: bool,
+    ) -> Result<(), Bad> {
+        let spin_cols: &[&str] = if layout.use_rate_axis {
+            &["spin_rate_rpm", "spin_axis_deg"]
+        } else {
+            &["backspin_rpm", "sidespin_rpm"]
+        };
+        let missing = LAUNCH.iter().chain(spin_cols).find(|c| get(c).is_none());
+        match missing {
+            None if spin => Ok(()),
+            _ => {
+                let c = missing.copied().unwrap_or(spin_cols[0]);
+                let header = layout.column(c).map_or(c, |r| r.header.as_str());
+                let e = self.error_in(
+                    Some(header),
+                    format!("empty cell; the measured launch needs {c}"),
+                );
+                Err((format!("no measured launch (column '{header}' empty)"), e))
+            }
+        }
+    }
+
+    /// What a shot lacks of its delivery: nothing, the impact location (kept, with empty
+    /// cells), or more (kept when the launch is measured, left out otherwise).
+    fn lacks(
+        &self,
+        layout: &Layout,
+        missing: &[&str],
+    ) -> Result<(Option<&'static str>, Option<DataError>), Bad> {
+        if !layout.delivery_all || missing.is_empty() {
+            return Ok((None, None));
+        }
+        let c = missing[0];
+        let source = if c == "impact_z_mm" && layout.from_offset {
+            "impact_offset_mm"
+        } else {
+            c
+        };
+        let header = layout.column(source).map_or(c, |r| r.header.as_str());
+        let e = self.error_in(
+            Some(header),
+            format!("empty cell; a number is required for {c}"),
+        );
+        if !layout.launch_all {
+            return Err((format!("no delivery (column '{header}' empty)"), e));
+        }
+        let what = if missing.iter().all(|c| c.starts_with("impact_")) {
+            "impact location"
+        } else {
+            "complete delivery"
+        };
+        Ok((Some(what), Some(e)))
+    }
+
+    /// A text or flag column's value.
+    fn extra_value(
+        &self,
+        column: &str,
+        layout: &Layout,
+        condition: Option<&Condition>,
+        get: &dyn Fn(&str) -> Option<f64>,
+    ) -> String {
+        let flag = |b: bool| if b { "1" } else { "0" }.to_owned();
+        match column {
+            "ball_type" => layout
+                .column("ball_type")
+                .map(|c| self.cell(c.index).to_owned())
+                .filter(|b| !b.is_empty())
+                .or_else(|| condition.and_then(|k| k.ball.clone()))
+                .unwrap_or_default(),
+            "spin_estimated" | "club_estimated" => {
+                let c = layout.column(column).expect("laid out when mapped");
+                let v = self.cell(c.index);
+                flag(c.spec.estimated.iter().any(|e| e.eq_ignore_ascii_case(v)))
+            }
+            _ => {
+                if layout.all_modelled || condition.is_some_and(|k| k.normalized) {
+                    return flag(true);
+                }
+                match (get("tracked_length_yd"), get("carry_yd")) {
+                    (Some(t), Some(c)) => flag(modelled(t, c)),
+                    _ => String::new(),
+                }
+            }
+        }
+    }
+}
+
+/// Whether a (trimmed) cell means "not measured": empty, `-`, `--`, `N/A`, or one of the
+/// column's or the export's `missing` values (compared as numbers, else as text).
+pub(super) fn not_measured(raw: &str, column: &[String], export: &[String]) -> bool {
+    let num = crate::data::number::parse_f64;
+    matches!(raw, "" | "-" | "--" | "—" | "N/A" | "n/a" | "NA")
+        || column.iter().chain(export).any(|m| match (num(m.trim()), num(raw)) {
+            (Some(a), Some(b)) => a == b,
+            _ => m.trim().eq_ignore_ascii_case(raw),
+        })
+}
+
+/// Whether a carry of `carry_yd` whose radar track ends at `tracked_yd` is the vendor's model
+/// rather than a measurement: the track stops more than 10 % of the carry short of it (indoor
+/// radars track the first few yards only).
+pub(super) fn modelled(tracked_yd: f64, carry_yd: f64) -> bool {
+    tracked_yd < 0.9 * carry_yd
 }

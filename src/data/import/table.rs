@@ -1,9 +1,11 @@
-//! Reading an export into rows of cells: UTF-8 text with an optional byte-order mark, Excel's
-//! `sep=` delimiter hint, preamble lines the mapping skips, the header row and an optional
-//! units row under it. Every row keeps the file line it came from, for messages.
+//! Reading an export into rows of cells: text decoded by [`super::text::decode`], Excel's
+//! `sep=` delimiter hint or a semicolon-separated file (European spreadsheets, whose cells write
+//! decimal commas), title lines before the header (found by its column names), the header row
+//! and an optional units row under it. Every row keeps the file line it came from, for messages.
 
 use std::path::Path;
 
+use super::text::decode;
 use super::units::Unit;
 use crate::data::DataError;
 
@@ -22,21 +24,57 @@ pub(super) struct Table {
     pub unit_row: Option<Row>,
     /// The data rows; rows with no text in any cell are dropped.
     pub rows: Vec<Row>,
+    /// Cells write decimal commas (`3,5`): the file is separated by semicolons or tabs.
+    pub decimal_comma: bool,
+    /// What was read differently from a plain UTF-8 CSV (encoding, separator, title lines).
+    pub notes: Vec<String>,
 }
 
+/// How many rows the header may be preceded by (title lines, a date, a place): an export whose
+/// header is further down is read from its first row, and its columns are reported missing.
+const HEADER_SEARCH_ROWS: usize = 30;
+
 /// Read an export (`bytes`, from `path`): drop `skip_lines` lines after any BOM and `sep=` line,
-/// then split the header, the units row and the data rows. `vendor` names the export in messages.
+/// then find the header (the first row naming at least two columns `known` recognises, among
+/// the first rows; else the first row) and split the units row and the data rows. `vendor`
+/// names the export in messages.
 pub(super) fn read_table(
     path: &Path,
     bytes: &[u8],
     skip_lines: usize,
     vendor: &str,
+    known: &dyn Fn(&str) -> bool,
 ) -> Result<Table, DataError> {
-    let text = std::str::from_utf8(bytes)
-        .map_err(|e| DataError::file(path, format!("not UTF-8 text: {e}")))?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    let (body, offset_lines, delimiter) = strip_preamble(path, text, skip_lines)?;
-    let mut rows = read_rows(path, body, offset_lines, delimiter)?.into_iter();
+    let (text, encoding_note) = decode(path, bytes)?;
+    let mut notes: Vec<String> = encoding_note.into_iter().collect();
+    let (body, offset_lines, sep) = strip_preamble(path, &text, skip_lines)?;
+    let delimiter = sep.unwrap_or_else(|| sniff_delimiter(body));
+    let decimal_comma = delimiter != b',';
+    if sep.is_none() && delimiter != b',' {
+        notes.push(format!(
+            "separated by {}, with decimal commas accepted in numbers",
+            if delimiter == b';' {
+                "semicolons"
+            } else {
+                "tabs"
+            }
+        ));
+    }
+    let mut rows = read_rows(path, body, offset_lines, delimiter)?;
+    let header_at = rows
+        .iter()
+        .take(HEADER_SEARCH_ROWS)
+        .position(|(_, cells)| cells.iter().filter(|c| known(&split_header(c).0)).count() >= 2)
+        .unwrap_or(0);
+    if header_at > 0 {
+        let lines: Vec<usize> = rows[..header_at].iter().map(|(l, _)| *l).collect();
+        notes.push(format!(
+            "{} line(s) before the header skipped (title: line(s) {})",
+            lines.len(),
+            super::cell::list_lines(&lines)
+        ));
+    }
+    let mut rows = rows.split_off(header_at).into_iter();
     let (header_line, header) = rows.next().ok_or_else(|| {
         DataError::file(
             path,
@@ -52,7 +90,24 @@ pub(super) fn read_table(
         headers,
         unit_row,
         rows,
+        decimal_comma,
+        notes,
     })
+}
+
+/// The separator of a file without a `sep=` line: semicolons or tabs when its first line has
+/// more of them than commas (a European spreadsheet writes `;` and decimal commas), else commas.
+fn sniff_delimiter(body: &str) -> u8 {
+    let first = next_line(body.trim_start_matches(['\n', '\r'])).0;
+    let count = |c: char| first.matches(c).count();
+    let (commas, semis, tabs) = (count(','), count(';'), count('\t'));
+    if semis > commas && semis >= tabs {
+        b';'
+    } else if tabs > commas {
+        b'\t'
+    } else {
+        b','
+    }
 }
 
 /// Drop a leading `sep=X` line (taking `X` as the delimiter) and then `skip_lines` lines.
@@ -61,10 +116,10 @@ fn strip_preamble<'t>(
     path: &Path,
     text: &'t str,
     skip_lines: usize,
-) -> Result<(&'t str, usize, u8), DataError> {
+) -> Result<(&'t str, usize, Option<u8>), DataError> {
     let mut body = text;
     let mut offset_lines = 0usize;
-    let mut delimiter = b',';
+    let mut delimiter = None;
     let first = next_line(body).0.trim();
     if let Some(sep) = first.strip_prefix("sep=") {
         let sep = sep.trim_matches('"');
@@ -76,11 +131,20 @@ fn strip_preamble<'t>(
                 format!("'{first}': the sep= line must name one character"),
             ));
         };
-        delimiter = *b;
+        delimiter = Some(*b);
         body = next_line(body).1;
         offset_lines += 1;
     }
     for _ in 0..skip_lines {
+        if body.is_empty() {
+            return Err(DataError::file(
+                path,
+                format!(
+                    "skip_lines = {skip_lines}, but the file has only {offset_lines} line(s) \
+                     before its end: lower skip_lines in the mapping"
+                ),
+            ));
+        }
         body = next_line(body).1;
         offset_lines += 1;
     }

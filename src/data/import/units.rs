@@ -1,7 +1,10 @@
 //! Units a launch monitor writes, and their conversion to the shots file's units.
 //!
 //! Factors are to SI: 1 mph = 0.44704 m/s and 1 yd = 0.9144 m (international yard and mile,
-//! exact by definition), 1 ft = 0.3048 m, 1 in = 0.0254 m, 1 km/h = 1/3.6 m/s.
+//! exact by definition), 1 ft = 0.3048 m, 1 in = 0.0254 m, 1 km/h = 1/3.6 m/s. Conditions a
+//! monitor states: temperature to °C (°F: (F − 32) × 5/9), pressure to Pa (1 psi =
+//! 6894.757293168 Pa, from 1 lbf = 4.4482216152605 N and 1 in = 0.0254 m; 1 inHg = 3386.389 Pa,
+//! NIST SP 811 appendix B.8; 1 hPa = 1 mbar = 100 Pa), relative humidity in percent.
 
 use crate::units::M_S_PER_MPH;
 
@@ -18,6 +21,12 @@ pub enum Quantity {
     Spin,
     /// Seconds.
     Time,
+    /// Air temperature, °C.
+    Temperature,
+    /// Air pressure, Pa.
+    Pressure,
+    /// A percentage (relative humidity).
+    Percent,
 }
 
 impl Quantity {
@@ -29,6 +38,9 @@ impl Quantity {
             Quantity::Angle => "deg",
             Quantity::Spin => "rpm",
             Quantity::Time => "s",
+            Quantity::Temperature => "°C, °F",
+            Quantity::Pressure => "Pa, hPa, kPa, mbar, psi, inHg",
+            Quantity::Percent => "%",
         }
     }
 }
@@ -40,70 +52,138 @@ pub struct Unit {
     pub name: &'static str,
     /// What it measures.
     pub quantity: Quantity,
-    /// Size in SI units (m/s, m, deg, rpm, s).
+    /// Size in SI units (m/s, m, deg, rpm, s, °C, Pa, %).
     pub si: f64,
+    /// Zero of the unit in SI units (°F: −160/9 °C); 0 for every unit but temperatures.
+    pub offset: f64,
 }
 
-const UNITS: [Unit; 12] = [
+const UNITS: [Unit; 21] = [
     Unit {
         name: "mph",
         quantity: Quantity::Speed,
         si: M_S_PER_MPH,
+        offset: 0.0,
     },
     Unit {
         name: "km/h",
         quantity: Quantity::Speed,
         si: 1.0 / 3.6,
+        offset: 0.0,
     },
     Unit {
         name: "m/s",
         quantity: Quantity::Speed,
         si: 1.0,
+        offset: 0.0,
     },
     Unit {
         name: "m",
         quantity: Quantity::Length,
         si: 1.0,
+        offset: 0.0,
     },
     Unit {
         name: "yd",
         quantity: Quantity::Length,
         si: 0.9144,
+        offset: 0.0,
     },
     Unit {
         name: "ft",
         quantity: Quantity::Length,
         si: 0.3048,
+        offset: 0.0,
     },
     Unit {
         name: "mm",
         quantity: Quantity::Length,
         si: 1e-3,
+        offset: 0.0,
     },
     Unit {
         name: "cm",
         quantity: Quantity::Length,
         si: 1e-2,
+        offset: 0.0,
     },
     Unit {
         name: "in",
         quantity: Quantity::Length,
         si: 0.0254,
+        offset: 0.0,
     },
     Unit {
         name: "deg",
         quantity: Quantity::Angle,
         si: 1.0,
+        offset: 0.0,
     },
     Unit {
         name: "rpm",
         quantity: Quantity::Spin,
         si: 1.0,
+        offset: 0.0,
     },
     Unit {
         name: "s",
         quantity: Quantity::Time,
         si: 1.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "°C",
+        quantity: Quantity::Temperature,
+        si: 1.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "°F",
+        quantity: Quantity::Temperature,
+        si: 5.0 / 9.0,
+        offset: -160.0 / 9.0,
+    },
+    Unit {
+        name: "Pa",
+        quantity: Quantity::Pressure,
+        si: 1.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "hPa",
+        quantity: Quantity::Pressure,
+        si: 100.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "kPa",
+        quantity: Quantity::Pressure,
+        si: 1000.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "mbar",
+        quantity: Quantity::Pressure,
+        si: 100.0,
+        offset: 0.0,
+    },
+    Unit {
+        name: "psi",
+        quantity: Quantity::Pressure,
+        si: 6894.757293168,
+        offset: 0.0,
+    },
+    Unit {
+        name: "inHg",
+        quantity: Quantity::Pressure,
+        si: 3386.389,
+        offset: 0.0,
+    },
+    Unit {
+        name: "%",
+        quantity: Quantity::Percent,
+        si: 1.0,
+        offset: 0.0,
     },
 ];
 
@@ -130,6 +210,15 @@ impl Unit {
             "deg" | "°" | "degree" | "degrees" | "º" => "deg",
             "rpm" | "r/min" => "rpm",
             "s" | "sec" | "secs" | "seconds" => "s",
+            "°c" | "c" | "degc" | "deg c" | "celsius" | "℃" => "°C",
+            "°f" | "f" | "degf" | "deg f" | "fahrenheit" | "℉" => "°F",
+            "pa" => "Pa",
+            "hpa" => "hPa",
+            "kpa" => "kPa",
+            "mbar" | "mb" => "mbar",
+            "psi" => "psi",
+            "inhg" | "in hg" => "inHg",
+            "%" | "pct" | "percent" => "%",
             _ => return None,
         };
         UNITS.iter().copied().find(|u| u.name == canonical)
@@ -141,8 +230,10 @@ impl Unit {
         debug_assert_eq!(self.quantity, to.quantity);
         if self.name == to.name {
             value
-        } else {
+        } else if self.offset == 0.0 && to.offset == 0.0 {
             value * (self.si / to.si)
+        } else {
+            (value * self.si + self.offset - to.offset) / to.si
         }
     }
 }
@@ -178,5 +269,9 @@ mod tests {
         assert!((u("ft").convert(3.0, u("yd")) - 1.0).abs() < 1e-15);
         assert!((u("in").convert(1.0, u("mm")) - 25.4).abs() < 1e-12);
         assert_eq!(u("mph").convert(0.1, u("mph")), 0.1);
+        assert!((u("°F").convert(77.0, u("°C")) - 25.0).abs() < 1e-12);
+        assert!((u("[deg F]").convert(32.0, u("°C"))).abs() < 1e-12);
+        assert!((u("psi").convert(14.695_948_8, u("Pa")) - 101_325.0).abs() < 0.01);
+        assert!((u("kPa").convert(101.325, u("Pa")) - 101_325.0).abs() < 1e-9);
     }
 }

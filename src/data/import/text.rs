@@ -1,0 +1,95 @@
+//! Export bytes to text: any number of UTF-8 byte-order marks, and bytes that are not UTF-8
+//! read as Windows-1252 (the code page of spreadsheets saved on Windows, where `°` is the single
+//! byte 0xB0), each such byte counted and the first one's line named. A byte that Windows-1252
+//! leaves undefined, or UTF-16 text, is refused with its line and byte.
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use crate::data::DataError;
+
+const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
+/// The export as text, and a note when some bytes were read as Windows-1252.
+pub(super) fn decode<'b>(
+    path: &Path,
+    bytes: &'b [u8],
+) -> Result<(Cow<'b, str>, Option<String>), DataError> {
+    if bytes.starts_with(b"\xFF\xFE") || bytes.starts_with(b"\xFE\xFF") {
+        return Err(DataError::at(
+            path,
+            Some(1),
+            None,
+            "UTF-16 text (byte-order mark 0xFF 0xFE or 0xFE 0xFF): save the export as CSV in \
+             UTF-8 (or Windows-1252)",
+        ));
+    }
+    let mut body = bytes;
+    while let Some(rest) = body.strip_prefix(UTF8_BOM) {
+        body = rest;
+    }
+    if let Ok(text) = std::str::from_utf8(body) {
+        return Ok((Cow::Borrowed(text), None));
+    }
+    let mut text = String::with_capacity(body.len() + 16);
+    let mut converted = 0usize;
+    let mut first: Option<(usize, u8, char)> = None;
+    for chunk in body.utf8_chunks() {
+        text.push_str(chunk.valid());
+        for &b in chunk.invalid() {
+            let line = 1 + text.matches('\n').count();
+            let c = windows_1252(b);
+            if c.is_control() {
+                return Err(DataError::at(
+                    path,
+                    Some(line),
+                    None,
+                    format!(
+                        "byte 0x{b:02X} is neither UTF-8 nor a Windows-1252 character; save the \
+                         export as CSV in UTF-8"
+                    ),
+                ));
+            }
+            converted += 1;
+            first.get_or_insert((line, b, c));
+            text.push(c);
+        }
+    }
+    let (line, b, c) = first.expect("not UTF-8, so at least one byte was converted");
+    let note = format!(
+        "{converted} byte(s) are not UTF-8 and were read as Windows-1252 (the first on line \
+         {line}: 0x{b:02X} = '{c}')"
+    );
+    Ok((Cow::Owned(text), Some(note)))
+}
+
+/// The character a Windows-1252 byte stands for (WHATWG's table: the five bytes the code page
+/// leaves undefined come out as C1 control characters).
+fn windows_1252(b: u8) -> char {
+    let byte = [b];
+    let (s, _) = encoding_rs::WINDOWS_1252.decode_without_bom_handling(&byte);
+    s.chars().next().unwrap_or('\u{fffd}')
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn boms_and_windows_1252() {
+        let p = Path::new("x.csv");
+        let (t, n) = decode(p, b"\xEF\xBB\xBF\xEF\xBB\xBFsep=,\n").unwrap();
+        assert_eq!(t, "sep=,\n");
+        assert!(n.is_none());
+        let (t, n) = decode(p, b"a,b\nSwing H (\xB0),\xE2\x80\xB3\n").unwrap();
+        assert_eq!(t, "a,b\nSwing H (\u{b0}),\u{2033}\n");
+        let n = n.unwrap();
+        assert!(
+            n.contains("1 byte(s)") && n.contains("line 2") && n.contains("0xB0"),
+            "{n}"
+        );
+        let e = decode(p, b"a\nb\n\x81\n").unwrap_err().to_string();
+        assert!(e.contains(":3") && e.contains("0x81"), "{e}");
+        assert!(decode(p, b"\xFF\xFEa\x00").is_err());
+    }
+}
