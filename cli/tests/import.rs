@@ -386,7 +386,7 @@ fn foresight_round_trip() {
     round_trip(
         "foresight",
         &["--impact-offset-positive", "toe"],
-        &["average row", "flagged", "Estimated = 'Yes'"],
+        &["average row", "1 of", "spin the monitor estimated"],
     );
 }
 
@@ -516,9 +516,14 @@ const TM_ROW: &str = "Driver,105,1,2,11,0.5,3,4,155,12,1.2,2600,-3";
 fn bad_exports_are_refused_with_one_line() {
     let units = ",[mph],[deg],[deg],[deg],[deg],[mm],[mm],[mph],[deg],[deg],[rpm],[deg]";
     let flag = ["--impact-offset-positive", "toe"];
-    // An unknown column.
+    // An unknown column, in a user's mapping (strict by default; the presets list such
+    // columns in the summary instead).
+    let maps = tempfile::tempdir().unwrap();
+    let strict = maps.path().join("tm_strict.toml");
+    let preset = std::fs::read_to_string(cli_support::repo("configs/import/trackman.toml")).unwrap();
+    std::fs::write(&strict, preset.replace("unknown_columns = \"note\"\n", "")).unwrap();
     refused(
-        "trackman",
+        strict.to_str().unwrap(),
         &format!("{TM_HEAD},Wobble\n{units},[deg]\n{TM_ROW},3\n"),
         &flag,
         &["unknown column", "'Wobble'", "--ignore-unknown-columns"],
@@ -541,13 +546,14 @@ fn bad_exports_are_refused_with_one_line() {
         &flag,
         &["header says mph but the unit row says km/h"],
     );
-    // Mixed units inside a column.
+    // Mixed units inside a column: the row is refused under --strict (without it, it is left
+    // out and counted).
     refused(
         "trackman",
         &format!(
             "{TM_HEAD}\n{units}\n{TM_ROW}\nDriver,169 km/h,1,2,11,0.5,3,4,155,12,1.2,2600,-3\n"
         ),
-        &flag,
+        &["--impact-offset-positive", "toe", "--strict"],
         &["mixed units", "km/h", "mph", ":4:"],
     );
     // No units at all in a TrackMan export: refused, not assumed.
@@ -571,7 +577,7 @@ fn bad_exports_are_refused_with_one_line() {
         &flag,
         &[
             "missing column(s)",
-            "'Attack Angle'",
+            "'Ball Speed'",
             "the file has: Club, Club Speed",
         ],
     );
@@ -610,7 +616,8 @@ fn unknown_columns_can_be_dropped_on_request() {
         "--ignore-unknown-columns",
     ]);
     ok(&res);
-    assert!(String::from_utf8_lossy(&res.stderr).contains("ignored unknown column(s): Wobble"));
+    assert!(String::from_utf8_lossy(&res.stderr)
+        .contains("not used by the TrackMan format (left in the export): Wobble"));
     // Spin rate 2600 at axis −3°: backspin = 2600 cos 3°, sidespin = −2600 sin 3° (draw spin).
     let text = std::fs::read_to_string(&out).unwrap();
     let mut rdr = csv::Reader::from_reader(text.as_bytes());
