@@ -51,9 +51,9 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
         strict: args.format.strict,
         include_estimated: true,
     };
-    let table = match imported.delivery {
-        true => Some(imported.read_back_with(&args.input, opts)?),
-        false => None,
+    let table = match imported.complete_delivery {
+        0 => None,
+        _ => Some(imported.read_back_with(&args.input, opts)?),
     };
     let groups = table.as_ref().map_or(0, |t| t.groups().len());
     write_atomic(&args.out, &imported.csv)?;

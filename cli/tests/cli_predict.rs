@@ -199,8 +199,10 @@ fn bad_shots_files_name_the_row_and_column() {
             vec![":3", "dynamic_loft_deg", "not finite"],
         ),
         (
+            // A row without its impact location is left out (and counted); with nothing left
+            // the file is refused, pointing at --strict, which names the cell.
             format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,,0\n"),
-            vec!["impact_y_mm", "empty cell"],
+            vec!["no shots", "line 2: no impact location", "--strict"],
         ),
         (
             format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,0,0\ns1,A,100,0,0,12,0,0,0\n"),

@@ -471,15 +471,25 @@ fn import_errors_name_the_exports_line_and_column() {
         ),
     ] {
         let text = format!("{head}\n{units}\n{good}\n\n{avg}\n{good}\n{bad}\n");
-        common::assert_refused(&import(text, &[]), &[want]);
+        common::assert_refused(&import(text.clone(), &["--strict"]), &[want]);
         assert!(!out.exists());
+        // Without --strict the bad row is left out, counted and named; the others are written.
+        let o = import(text, &[]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert!(o.status.success(), "{err}");
+        assert!(err.contains("left out 1 row(s)") && err.contains(want), "{err}");
+        assert_eq!(std::fs::read_to_string(&out).unwrap().lines().count(), 3);
+        std::fs::remove_file(&out).unwrap();
     }
     // The same line with CRLF and with CR-only line ends (old Mac exports), a blank line and
     // an average row before it.
     let bad = row("999", "12", "2600", "-3");
     for end in ["\r\n", "\r"] {
         let text = [head, units, &good, "", &avg, &good, &bad, ""].join(end);
-        common::assert_refused(&import(text, &[]), &["tm.csv:7: column 'Club Speed'"]);
+        common::assert_refused(
+            &import(text, &["--strict"]),
+            &["tm.csv:7: column 'Club Speed'"],
+        );
     }
     for flags in [&[][..], &["--ignore-unknown-columns"][..]] {
         let o = import(

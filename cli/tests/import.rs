@@ -520,7 +520,8 @@ fn bad_exports_are_refused_with_one_line() {
     // columns in the summary instead).
     let maps = tempfile::tempdir().unwrap();
     let strict = maps.path().join("tm_strict.toml");
-    let preset = std::fs::read_to_string(cli_support::repo("configs/import/trackman.toml")).unwrap();
+    let preset =
+        std::fs::read_to_string(cli_support::repo("configs/import/trackman.toml")).unwrap();
     std::fs::write(&strict, preset.replace("unknown_columns = \"note\"\n", "")).unwrap();
     refused(
         strict.to_str().unwrap(),

@@ -71,8 +71,18 @@ fn every_vendor_layout_imports_as_exported() {
         ("foresight_fsx.csv", "foresight", &[], 3),
         ("gspro.csv", "gspro", &[], 4),
         ("skytrak.csv", "skytrak", &[], 4),
-        ("../../../../tests/data/real/rapsodo_mlm2pro_7i.csv", "rapsodo", &[], 59),
-        ("../../../../tests/data/real/rapsodo_mlm2pro_mixed.csv", "rapsodo", &[], 15),
+        (
+            "../../../../tests/data/real/rapsodo_mlm2pro_7i.csv",
+            "rapsodo",
+            &[],
+            59,
+        ),
+        (
+            "../../../../tests/data/real/rapsodo_mlm2pro_mixed.csv",
+            "rapsodo",
+            &[],
+            15,
+        ),
     ];
     for (file, preset, flags, shots) in cases {
         let dir = tempfile::tempdir().unwrap();
@@ -82,19 +92,30 @@ fn every_vendor_layout_imports_as_exported() {
         if h.iter().any(|c| c == "group") {
             for g in column(&h, &rows, "group") {
                 let summary = ["average", "avg", "dev", "deviation", "std. dev.", ""];
-                assert!(!summary.contains(&g.to_lowercase().as_str()), "{file}: group '{g}'");
+                assert!(
+                    !summary.contains(&g.to_lowercase().as_str()),
+                    "{file}: group '{g}'"
+                );
             }
         }
         let carry = column(&h, &rows, "carry_yd");
-        assert!(carry.iter().all(|c| !c.is_empty()), "{file}: carry {carry:?}");
+        assert!(
+            carry.iter().all(|c| !c.is_empty()),
+            "{file}: carry {carry:?}"
+        );
         let flown = dir.path().join("flown.csv");
         ok(&smash(&["flight", "--shots", s(&out), "--out", s(&flown)]));
         let (fh, frows) = read(&flown);
         let err_carry = column(&fh, &frows, "err_carry_yd");
         assert_eq!(err_carry.len(), shots, "{file}");
         for e in err_carry {
-            let e: f64 = e.parse().unwrap_or_else(|_| panic!("{file}: err_carry '{e}'"));
-            assert!(e.is_finite() && e.abs() < 120.0, "{file}: carry error {e} yd");
+            let e: f64 = e
+                .parse()
+                .unwrap_or_else(|_| panic!("{file}: err_carry '{e}'"));
+            assert!(
+                e.is_finite() && e.abs() < 120.0,
+                "{file}: carry error {e} yd"
+            );
         }
     }
 }
@@ -113,42 +134,75 @@ fn trackman_normalized_summary_flags_and_strict() {
         "2 of 12 shot(s) have no impact location (line(s) 6, 10)",
         "2 of 12 shot(s) have spin the monitor estimated",
         "12 of 12 shot(s) have a carry from the vendor's flight model",
-        "not used by the TrackMan format",
-        "Gyro Angle",
     ] {
         assert!(err.contains(needle), "missing {needle:?} in: {err}");
     }
     let (h, rows) = read(&out);
-    assert_eq!(column(&h, &rows, "impact_z_mm")[3], "");
+    let z = column(&h, &rows, "impact_z_mm");
+    assert_eq!((z[2], z[6]), ("", ""));
+    assert!(z.iter().filter(|v| v.is_empty()).count() == 2, "{z:?}");
     assert_eq!(
         column(&h, &rows, "spin_estimated"),
         ["0", "0", "0", "1", "0", "0", "0", "0", "1", "0", "0", "0"]
     );
-    assert!(column(&h, &rows, "flight_modelled").iter().all(|f| *f == "1"));
-    assert!(column(&h, &rows, "ball_type").iter().all(|b| *b == "Premium"));
+    assert!(column(&h, &rows, "flight_modelled")
+        .iter()
+        .all(|f| *f == "1"));
+    assert!(column(&h, &rows, "ball_type")
+        .iter()
+        .all(|b| *b == "Premium"));
     assert!(column(&h, &rows, "altitude_m").iter().all(|a| *a == "0"));
     for t in column(&h, &rows, "air_temperature_c") {
         assert!((t.parse::<f64>().unwrap() - 25.0).abs() < 1e-9, "{t}");
     }
     // --strict: the first blank impact cell refuses the file, with its line and column.
     let strict = smash(&[
-        "import", "--format", "trackman", s(&file), "--out", s(&dir.path().join("x.csv")),
-        "--impact-offset-positive", "toe", "--strict",
+        "import",
+        "--format",
+        "trackman",
+        s(&file),
+        "--out",
+        s(&dir.path().join("x.csv")),
+        "--impact-offset-positive",
+        "toe",
+        "--strict",
     ]);
-    common::assert_refused(&strict, &[":6:", "Impact Offset", "empty cell"]);
+    common::assert_refused(&strict, &[":6:", "Impact Height", "empty cell"]);
     // compare on the export leaves out 2 without impact location and 2 with estimated spin.
     let cmp = smash(&[
-        "compare", "--club", s(&repo("configs/clubs/paper_driver.toml")), "--shots", s(&file),
-        "--format", "trackman", "--impact-offset-positive", "toe", "--json",
+        "compare",
+        "--club",
+        s(&repo("configs/clubs/paper_driver.toml")),
+        "--shots",
+        s(&file),
+        "--format",
+        "trackman",
+        "--impact-offset-positive",
+        "toe",
+        "--json",
     ]);
     let err = ok(&cmp);
-    assert!(err.contains("left out 2 of 12 rows: no impact location (line(s) 6, 10"), "{err}");
-    assert!(err.contains("left out 2 of 12 rows: estimated spin (spin_estimated = 1"), "{err}");
+    assert!(
+        err.contains("left out 2 of 12 rows: no impact location (line(s) 6, 10"),
+        "{err}"
+    );
+    assert!(
+        err.contains("left out 2 of 12 rows: estimated spin (spin_estimated = 1"),
+        "{err}"
+    );
     let json: serde_json::Value = serde_json::from_slice(&cmp.stdout).unwrap();
     assert_eq!(json["n_shots"].as_u64(), Some(8), "{json}");
     let with = smash(&[
-        "compare", "--club", s(&repo("configs/clubs/paper_driver.toml")), "--shots", s(&file),
-        "--format", "trackman", "--impact-offset-positive", "toe", "--json",
+        "compare",
+        "--club",
+        s(&repo("configs/clubs/paper_driver.toml")),
+        "--shots",
+        s(&file),
+        "--format",
+        "trackman",
+        "--impact-offset-positive",
+        "toe",
+        "--json",
         "--include-estimated",
     ]);
     let json: serde_json::Value = serde_json::from_slice(&with.stdout).unwrap();
@@ -161,8 +215,14 @@ fn trackman_normalized_summary_flags_and_strict() {
 fn launch_only_exports_import_for_flight() {
     let dir = tempfile::tempdir().unwrap();
     let (out, err) = import(dir.path(), &fixture("garmin_r10.csv"), "garmin-r10", &[]);
-    assert!(err.contains("9 shots (0 with a complete delivery)"), "{err}");
-    assert!(err.contains("1 of 9 shot(s) have spin the monitor estimated"), "{err}");
+    assert!(
+        err.contains("9 shots (0 with a complete delivery)"),
+        "{err}"
+    );
+    assert!(
+        err.contains("1 of 9 shot(s) have spin the monitor estimated"),
+        "{err}"
+    );
     let (h, rows) = read(&out);
     assert!(!h.iter().any(|c| c == "dynamic_loft_deg"), "{h:?}");
     // US units converted; Garmin's sidespin (+ = curving left) turned to the shots file's sign.
@@ -174,7 +234,11 @@ fn launch_only_exports_import_for_flight() {
     assert_eq!(side.len(), azimuth_right);
     // compare refuses it with the reason.
     let cmp = smash(&[
-        "compare", "--club", s(&repo("configs/clubs/paper_driver.toml")), "--shots", s(&out),
+        "compare",
+        "--club",
+        s(&repo("configs/clubs/paper_driver.toml")),
+        "--shots",
+        s(&out),
     ]);
     common::assert_refused(&cmp, &["missing required column(s)", "dynamic_loft_deg"]);
 }
@@ -185,15 +249,29 @@ fn launch_only_exports_import_for_flight() {
 fn a_flipped_sidespin_is_caught() {
     let dir = tempfile::tempdir().unwrap();
     let preset = std::fs::read_to_string(repo("configs/import/garmin-r10.toml")).unwrap();
-    let wrong = preset.replace("source = [\"Sidespin\"]\nsign = -1", "source = [\"Sidespin\"]");
+    let wrong = preset.replace(
+        "source = [\"Sidespin\"]\nsign = -1",
+        "source = [\"Sidespin\"]",
+    );
     assert_ne!(wrong, preset);
     let map = dir.path().join("garmin_wrong.toml");
     std::fs::write(&map, wrong).unwrap();
     let res = smash(&[
-        "import", "--format", s(&map), s(&fixture("garmin_r10.csv")), "--out",
+        "import",
+        "--format",
+        s(&map),
+        s(&fixture("garmin_r10.csv")),
+        "--out",
         s(&dir.path().join("x.csv")),
     ]);
-    common::assert_refused(&res, &["disagree", "9 of 9", "sign of sidespin flipped"]);
+    common::assert_refused(
+        &res,
+        &[
+            "disagree",
+            "of 9 Garmin R10 shots",
+            "sign of sidespin flipped",
+        ],
+    );
 }
 
 /// Quirks: a Windows-1252 byte is read and named; a decimal comma in the last column of a
@@ -203,26 +281,41 @@ fn a_flipped_sidespin_is_caught() {
 fn encodings_and_shifted_rows() {
     let dir = tempfile::tempdir().unwrap();
     let toe = ["--impact-offset-positive", "toe"];
-    let (_, err) = import(dir.path(), &fixture("flightscope_cp1252.csv"), "flightscope", &toe);
-    assert!(err.contains("read as Windows-1252 (the first on line 1: 0xB0"), "{err}");
+    let (_, err) = import(
+        dir.path(),
+        &fixture("flightscope_cp1252.csv"),
+        "flightscope",
+        &toe,
+    );
+    assert!(
+        err.contains("read as Windows-1252 (the first on line 1: 0xB0"),
+        "{err}"
+    );
 
     let text = std::fs::read_to_string(fixture("trackman_older.csv")).unwrap();
     let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
-    // Line 5: the last cell written with a decimal comma, unquoted.
-    lines[4] = format!("{},5", lines[4]);
+    // Line 3, the first shot: the last cell written with a decimal comma, unquoted.
+    lines[2] = format!("{},5", lines[2]);
     let shifted = dir.path().join("shifted.csv");
     std::fs::write(&shifted, lines.join("\n") + "\n").unwrap();
     let (out, err) = import(dir.path(), &shifted, "trackman", &toe);
     assert!(
-        err.contains("left out 1 row(s): more cells than the header has columns (line(s) 5;"),
+        err.contains("left out 1 row(s): more cells than the header has columns (line(s) 3;"),
         "{err}"
     );
     assert_eq!(read(&out).1.len(), 7);
     let strict = smash(&[
-        "import", "--format", "trackman", s(&shifted), "--out", s(&dir.path().join("y.csv")),
-        "--impact-offset-positive", "toe", "--strict",
+        "import",
+        "--format",
+        "trackman",
+        s(&shifted),
+        "--out",
+        s(&dir.path().join("y.csv")),
+        "--impact-offset-positive",
+        "toe",
+        "--strict",
     ]);
-    common::assert_refused(&strict, &[":5:", "cells where the header has"]);
+    common::assert_refused(&strict, &[":3:", "cells where the header has"]);
 
     // A column without a name that holds data: noted by a preset, refused by a user mapping.
     let unnamed: String = text
@@ -233,22 +326,36 @@ fn encodings_and_shifted_rows() {
     let path = dir.path().join("unnamed.csv");
     std::fs::write(&path, unnamed).unwrap();
     let (_, err) = import(dir.path(), &path, "trackman", &toe);
-    assert!(err.contains("column 36 (no name in the header, holds data)"), "{err}");
+    assert!(
+        err.contains("column 36 (no name in the header, holds data)"),
+        "{err}"
+    );
     let strict_map = std::fs::read_to_string(repo("configs/import/trackman.toml"))
         .unwrap()
         .replace("unknown_columns = \"note\"\n", "");
     let map = dir.path().join("tm_strict.toml");
     std::fs::write(&map, strict_map).unwrap();
     let res = smash(&[
-        "import", "--format", s(&map), s(&path), "--out", s(&dir.path().join("z.csv")),
-        "--impact-offset-positive", "toe",
+        "import",
+        "--format",
+        s(&map),
+        s(&path),
+        "--out",
+        s(&dir.path().join("z.csv")),
+        "--impact-offset-positive",
+        "toe",
     ]);
     common::assert_refused(&res, &["unknown column(s)", "column 36 (no name"]);
 
     let utf16 = dir.path().join("utf16.csv");
     std::fs::write(&utf16, b"\xFF\xFEC\x00l\x00u\x00b\x00").unwrap();
     let res = smash(&[
-        "import", "--format", "trackman", s(&utf16), "--out", s(&dir.path().join("u.csv")),
+        "import",
+        "--format",
+        "trackman",
+        s(&utf16),
+        "--out",
+        s(&dir.path().join("u.csv")),
     ]);
     common::assert_refused(&res, &["UTF-16", ":1:"]);
 }
@@ -266,7 +373,63 @@ fn skip_lines_past_the_end_is_refused() {
     let exp = dir.path().join("e.csv");
     std::fs::write(&exp, "Ball\n150\n").unwrap();
     let start = std::time::Instant::now();
-    let res = smash(&["import", "--format", s(&map), s(&exp), "--out", s(&dir.path().join("o.csv"))]);
-    common::assert_refused(&res, &["skip_lines = 9223372036854775807", "only 2 line(s)"]);
+    let res = smash(&[
+        "import",
+        "--format",
+        s(&map),
+        s(&exp),
+        "--out",
+        s(&dir.path().join("o.csv")),
+    ]);
+    common::assert_refused(
+        &res,
+        &["skip_lines = 9223372036854775807", "only 2 line(s)"],
+    );
     assert!(start.elapsed().as_secs_f64() < 5.0);
+}
+
+/// A shots file whose row lacks its impact location: predict leaves it out and says so; under
+/// --strict the file is refused naming the cell.
+#[test]
+fn shots_without_impact_location_are_left_out_and_counted() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = dir.path().join("shots.csv");
+    std::fs::write(
+        &shots,
+        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm\n\
+         a,100,0,0,12,0,0,0\nb,100,0,0,12,0,,\nc,101,0,0,12,0,1,2\n",
+    )
+    .unwrap();
+    let club = repo("configs/clubs/paper_driver.toml");
+    let out = dir.path().join("p.csv");
+    let res = smash(&[
+        "predict",
+        "--club",
+        s(&club),
+        "--shots",
+        s(&shots),
+        "--out",
+        s(&out),
+    ]);
+    let err = ok(&res);
+    assert!(
+        err.contains(
+            "left out 1 of 3 rows: no impact location (line(s) 3; --strict refuses the file)"
+        ),
+        "{err}"
+    );
+    assert_eq!(read(&out).1.len(), 2);
+    let out2 = dir.path().join("q.csv");
+    let res = smash(&[
+        "predict",
+        "--club",
+        s(&club),
+        "--shots",
+        s(&shots),
+        "--out",
+        s(&out2),
+        "--strict",
+    ]);
+    common::assert_refused(&res, &[":3:", "impact_y_mm", "empty cell"]);
+    assert!(!out2.exists());
 }

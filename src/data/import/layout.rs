@@ -58,14 +58,19 @@ impl<'r, 'a> Layout<'r, 'a> {
         opts: &ImportOptions,
     ) -> Result<Self, DataError> {
         let header_line = table.header_line;
-        let vendor = &mapping.export.name;
         let has = |name: &str| resolved.iter().any(|r| r.spec.target == name);
         let offset_side = opts
             .impact_offset_positive
             .or(mapping.export.impact_offset_positive);
         let launch_all = check_launch(path, header_line, &has)?;
-        let delivery_all =
-            check_delivery(path, table, resolved, offset_side, &mapping.export, launch_all)?;
+        let delivery_all = check_delivery(
+            path,
+            table,
+            resolved,
+            offset_side,
+            &mapping.export,
+            launch_all,
+        )?;
         let spin_pair = has("backspin_rpm") && has("sidespin_rpm");
         let use_rate_axis = launch_all && !spin_pair;
         let check_spin = launch_all && spin_pair && has("spin_rate_rpm") && has("spin_axis_deg");
@@ -190,7 +195,7 @@ fn check_delivery(
         .into_iter()
         .filter(|v| v.required())
         .map(DeliveryVar::column)
-        .filter(|c| !has(c) && !(*c == "impact_z_mm" && has("impact_offset_mm")))
+        .filter(|c| !(has(c) || (*c == "impact_z_mm" && has("impact_offset_mm"))))
         .collect();
     if !missing.is_empty() && !launch_all {
         return Err(DataError::file(

@@ -18,6 +18,7 @@ mod columns;
 mod condition;
 mod layout;
 mod rows;
+mod summary;
 mod table;
 mod target;
 mod text;
@@ -222,8 +223,8 @@ pub struct Imported {
     pub shots: usize,
     /// What was skipped and assumed, one line each.
     pub notes: Vec<String>,
-    /// The export gives the whole delivery (else it is a launch-only file, for flight).
-    pub delivery: bool,
+    /// Shots written with a complete delivery (0 for a launch-only file, for flight).
+    pub complete_delivery: usize,
     /// The export's file line of the header and of each shot written, in order.
     header_line: usize,
     lines: Vec<usize>,
@@ -398,7 +399,7 @@ pub fn import(
         csv: shots.csv,
         shots: shots.count,
         notes,
-        delivery: layout.delivery_all,
+        complete_delivery: shots.complete,
         header_line: table.header_line,
         lines: shots.lines,
         places,

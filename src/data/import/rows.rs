@@ -10,10 +10,11 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use super::cell::{list_lines, parse_cell};
-use super::checks::{Redundancy, SpinCheck};
+use super::cell::parse_cell;
+use super::checks::SpinCheck;
 use super::condition::Condition;
 use super::layout::{Layout, LAUNCH};
+use super::summary::{summarise, Tally};
 use super::table::{split_header, Table};
 use super::target::Target;
 use super::{ExportSpec, SkipRule};
@@ -42,44 +43,8 @@ pub(super) struct Shots {
     pub csv: Vec<u8>,
     pub count: usize,
     pub lines: Vec<usize>,
-}
-
-/// Rows left out for one reason: the reason, their lines, and the first one's full message.
-struct LeftOut {
-    reason: String,
-    lines: Vec<usize>,
-    first: String,
-}
-
-/// What the rows of an export came to, for the summary.
-#[derive(Default)]
-struct Tally {
-    summary: Vec<(String, Vec<usize>)>,
-    flagged: Vec<(usize, String)>,
-    left_out: Vec<LeftOut>,
-    lacking: Vec<(&'static str, Vec<usize>)>,
-    flags: Vec<(&'static str, Vec<usize>)>,
-    redundancy: Redundancy,
-}
-
-impl Tally {
-    fn push_to(list: &mut Vec<(&'static str, Vec<usize>)>, what: &'static str, line: usize) {
-        match list.iter_mut().find(|(w, _)| *w == what) {
-            Some((_, v)) => v.push(line),
-            None => list.push((what, vec![line])),
-        }
-    }
-
-    fn leave_out(&mut self, reason: String, line: usize, e: &DataError) {
-        match self.left_out.iter_mut().find(|l| l.reason == reason) {
-            Some(l) => l.lines.push(line),
-            None => self.left_out.push(LeftOut {
-                reason,
-                lines: vec![line],
-                first: e.to_string(),
-            }),
-        }
-    }
+    /// Shots with a complete delivery (when the export gives one).
+    pub complete: usize,
 }
 
 /// Write the shots of `table` laid out by `layout`; the summary goes to `notes`. Under
@@ -100,6 +65,7 @@ pub(super) fn write_shots(
     let mut tally = Tally::default();
     let mut ids = HashSet::new();
     let mut lines = Vec::new();
+    let mut complete = 0usize;
     for (line, cells) in &table.rows {
         let row = RowAt {
             path,
@@ -126,6 +92,8 @@ pub(super) fn write_shots(
                         return Err(shot.lack_error.expect("a lack has its message"));
                     }
                     Tally::push_to(&mut tally.lacking, what, *line);
+                } else if layout.delivery_all {
+                    complete += 1;
                 }
                 for flag in shot.flags {
                     Tally::push_to(&mut tally.flags, flag, *line);
@@ -159,63 +127,8 @@ pub(super) fn write_shots(
         csv: w.into_inner().expect("flushing memory"),
         count: lines.len(),
         lines,
+        complete,
     })
-}
-
-/// The import's summary, one note per kind of row.
-fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
-    for (label, lines) in &t.summary {
-        notes.push(format!(
-            "skipped {} {label} row(s), never shots (line(s) {})",
-            lines.len(),
-            list_lines(lines)
-        ));
-    }
-    if !t.flagged.is_empty() {
-        let lines: Vec<usize> = t.flagged.iter().map(|(l, _)| *l).collect();
-        notes.push(format!(
-            "skipped {} shot(s) the monitor flagged ({}; line(s) {}): not used",
-            t.flagged.len(),
-            t.flagged[0].1,
-            list_lines(&lines)
-        ));
-    }
-    for l in &t.left_out {
-        notes.push(format!(
-            "left out {} row(s): {} (line(s) {}; the first: {})",
-            l.lines.len(),
-            l.reason,
-            list_lines(&l.lines),
-            l.first
-        ));
-    }
-    for (what, lines) in &t.lacking {
-        notes.push(format!(
-            "{} of {written} shot(s) have no {what} (line(s) {}): written with those cells \
-             empty; smash flight uses their launch, and predict, compare, calibrate and diagnose \
-             leave them out",
-            lines.len(),
-            list_lines(lines)
-        ));
-    }
-    for (flag, lines) in &t.flags {
-        let what = match *flag {
-            "spin_estimated" => "spin the monitor estimated (spin_estimated = 1)",
-            "club_estimated" => "club data the monitor estimated (club_estimated = 1)",
-            _ => "a carry from the vendor's flight model, not tracked to landing (flight_modelled = 1)",
-        };
-        let then = if *flag == "flight_modelled" {
-            "comparing a flight model with them compares two models"
-        } else {
-            "predict, compare, calibrate and diagnose leave them out unless --include-estimated"
-        };
-        notes.push(format!(
-            "{} of {written} shot(s) have {what} (line(s) {}); {then}",
-            lines.len(),
-            list_lines(lines)
-        ));
-    }
-    t.redundancy.notes(notes);
 }
 
 /// A row converted to a shot.
@@ -579,10 +492,13 @@ impl RowAt<'_> {
 pub(super) fn not_measured(raw: &str, column: &[String], export: &[String]) -> bool {
     let num = crate::data::number::parse_f64;
     matches!(raw, "" | "-" | "--" | "—" | "N/A" | "n/a" | "NA")
-        || column.iter().chain(export).any(|m| match (num(m.trim()), num(raw)) {
-            (Some(a), Some(b)) => a == b,
-            _ => m.trim().eq_ignore_ascii_case(raw),
-        })
+        || column
+            .iter()
+            .chain(export)
+            .any(|m| match (num(m.trim()), num(raw)) {
+                (Some(a), Some(b)) => a == b,
+                _ => m.trim().eq_ignore_ascii_case(raw),
+            })
 }
 
 /// Whether a carry of `carry_yd` whose radar track ends at `tracked_yd` is the vendor's model

@@ -1,0 +1,105 @@
+//! The import's summary: the rows of an export counted by what became of them (summary rows,
+//! rows the monitor flagged, rows left out by reason, shots kept without part of their
+//! delivery, flagged shots, disagreements of values given twice), one note per kind.
+
+use super::cell::list_lines;
+use super::checks::Redundancy;
+use crate::data::DataError;
+
+/// Rows left out for one reason: the reason, their lines, and the first one's full message.
+pub(super) struct LeftOut {
+    pub reason: String,
+    pub lines: Vec<usize>,
+    pub first: String,
+}
+
+/// What the rows of an export came to, for the summary.
+#[derive(Default)]
+pub(super) struct Tally {
+    pub summary: Vec<(String, Vec<usize>)>,
+    pub flagged: Vec<(usize, String)>,
+    pub left_out: Vec<LeftOut>,
+    pub lacking: Vec<(&'static str, Vec<usize>)>,
+    pub flags: Vec<(&'static str, Vec<usize>)>,
+    pub redundancy: Redundancy,
+}
+
+impl Tally {
+    pub(super) fn push_to(
+        list: &mut Vec<(&'static str, Vec<usize>)>,
+        what: &'static str,
+        line: usize,
+    ) {
+        match list.iter_mut().find(|(w, _)| *w == what) {
+            Some((_, v)) => v.push(line),
+            None => list.push((what, vec![line])),
+        }
+    }
+
+    pub(super) fn leave_out(&mut self, reason: String, line: usize, e: &DataError) {
+        match self.left_out.iter_mut().find(|l| l.reason == reason) {
+            Some(l) => l.lines.push(line),
+            None => self.left_out.push(LeftOut {
+                reason,
+                lines: vec![line],
+                first: e.to_string(),
+            }),
+        }
+    }
+}
+
+/// The import's summary, one note per kind of row.
+pub(super) fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
+    for (label, lines) in &t.summary {
+        notes.push(format!(
+            "skipped {} {label} row(s), never shots (line(s) {})",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    if !t.flagged.is_empty() {
+        let lines: Vec<usize> = t.flagged.iter().map(|(l, _)| *l).collect();
+        notes.push(format!(
+            "skipped {} shot(s) the monitor flagged ({}; line(s) {}): not used",
+            t.flagged.len(),
+            t.flagged[0].1,
+            list_lines(&lines)
+        ));
+    }
+    for l in &t.left_out {
+        notes.push(format!(
+            "left out {} row(s): {} (line(s) {}; the first: {})",
+            l.lines.len(),
+            l.reason,
+            list_lines(&l.lines),
+            l.first
+        ));
+    }
+    for (what, lines) in &t.lacking {
+        notes.push(format!(
+            "{} of {written} shot(s) have no {what} (line(s) {}): written with those cells \
+             empty; smash flight uses their launch, and predict, compare, calibrate and diagnose \
+             leave them out",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    for (flag, lines) in &t.flags {
+        let what = match *flag {
+            "spin_estimated" => "spin the monitor estimated (spin_estimated = 1)",
+            "club_estimated" => "club data the monitor estimated (club_estimated = 1)",
+            _ => "a carry from the vendor's flight model, not tracked to landing (flight_modelled = 1)",
+        };
+        let then = if *flag == "flight_modelled" {
+            "comparing a flight model with them compares two models"
+        } else {
+            "predict, compare, calibrate and diagnose leave them out unless --include-estimated"
+        };
+        notes.push(format!(
+            "{} of {written} shot(s) have {what} (line(s) {}); {then}",
+            lines.len(),
+            list_lines(lines)
+        ));
+    }
+    t.redundancy.notes(notes);
+}
