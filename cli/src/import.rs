@@ -11,7 +11,8 @@ use smash::data::write_atomic;
 #[command(
     after_help = "Examples:\n  smash import --format trackman session.csv --impact-offset-positive toe --out shots.csv\n  \
                   smash import --format my_monitor.toml export.csv --out shots.csv\n\n\
-                  Presets: trackman, foresight (gc3, gcquad), flightscope, uneekor. A mapping file\n\
+                  Presets: trackman, flightscope (mevo), foresight (gc3, gcquad, fsx), uneekor,\n\
+                  garmin-r10 (garmin, r10), rapsodo (mlm2pro), skytrak, gspro. A mapping file\n\
                   (TOML) describes any other export; see docs/import.md."
 )]
 pub struct ImportArgs {
@@ -31,13 +32,13 @@ pub struct ImportArgs {
 /// Run `smash import`.
 pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     let Some(format) = args.format.format.as_deref() else {
-        anyhow::bail!("--format is required: a preset (trackman, foresight, flightscope, uneekor) or a mapping file NAME.toml");
+        anyhow::bail!("--format is required: a preset (trackman, flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file NAME.toml");
     };
     if format == "shots" {
         anyhow::bail!(
             "--format shots: `shots` is the shots-file format itself, so there is nothing to \
-             convert; give the export's format: a preset (trackman, foresight, flightscope, \
-             uneekor) or a mapping file NAME.toml"
+             convert; give the export's format: a preset (trackman, flightscope, foresight, \
+             uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file NAME.toml"
         );
     }
     smash::data::safe_write::refuse_inputs(

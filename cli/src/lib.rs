@@ -265,7 +265,8 @@ fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct ShotsFormatArgs {
     /// Format of the shots input: `shots` (default), a launch-monitor preset (trackman,
-    /// foresight, flightscope, uneekor) or a mapping file NAME.toml (docs/import.md).
+    /// flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file
+    /// NAME.toml (docs/import.md).
     #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
     pub format: Option<String>,
 
