@@ -160,7 +160,11 @@ fn check_file_writable(path: &Path) -> Result<(), DataError> {
     })?;
     safe_write::clean_stale_temporaries(path);
     let probe = parent.join(format!(".{name}.{}.tmp", std::process::id()));
-    std::fs::File::create(&probe).map_err(|e| {
+    register_temporary(&probe);
+    let created = std::fs::File::create(&probe);
+    let _ = std::fs::remove_file(&probe);
+    forget_temporary(&probe);
+    created.map_err(|e| {
         DataError::file(
             path,
             format!(
@@ -169,7 +173,6 @@ fn check_file_writable(path: &Path) -> Result<(), DataError> {
             ),
         )
     })?;
-    let _ = std::fs::remove_file(&probe);
     Ok(())
 }
 
@@ -183,7 +186,11 @@ pub fn check_removable(dir: &Path) -> Result<(), DataError> {
     let mut stack = vec![dir.to_owned()];
     while let Some(d) = stack.pop() {
         let probe = d.join(format!(".smash-probe.{}.tmp", std::process::id()));
-        if let Err(e) = std::fs::File::create(&probe) {
+        register_temporary(&probe);
+        let created = std::fs::File::create(&probe);
+        let _ = std::fs::remove_file(&probe);
+        forget_temporary(&probe);
+        if let Err(e) = created {
             return Err(DataError::file(
                 dir,
                 format!(
@@ -193,7 +200,6 @@ pub fn check_removable(dir: &Path) -> Result<(), DataError> {
                 ),
             ));
         }
-        let _ = std::fs::remove_file(&probe);
         if let Ok(entries) = std::fs::read_dir(&d) {
             for entry in entries.flatten() {
                 if entry.file_type().is_ok_and(|t| t.is_dir()) {

@@ -259,13 +259,16 @@ pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
     })?;
     let probe = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&probe);
-    std::fs::create_dir(&probe).map_err(|e| {
+    super::output_plan::register_temporary(&probe);
+    let created = std::fs::create_dir(&probe);
+    let _ = std::fs::remove_dir(&probe);
+    super::output_plan::forget_temporary(&probe);
+    created.map_err(|e| {
         err(format!(
             "cannot write in {}: {e}; choose a folder you can write to",
             parent.display()
         ))
     })?;
-    let _ = std::fs::remove_dir(&probe);
     Ok(())
 }
 
