@@ -109,9 +109,7 @@ pub fn parse(s: &str) -> Result<DeliveryNoise, String> {
             ));
         }
         if std::mem::replace(&mut set[var.index()], true) {
-            return Err(format!(
-                "'{key}' is given twice; give each column once"
-            ));
+            return Err(format!("'{key}' is given twice; give each column once"));
         }
         sd[var.index()] = v;
     }

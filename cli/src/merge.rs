@@ -80,18 +80,19 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let (prepared, metrics, grids) = merged.map_err(|e| hidden(e.into()))?;
     let (sens, opt) = finish(&prepared, &metrics)?;
     let mut staging = plan.stage();
-    let n_files = staging.folder_with(&args.out, |tmp| {
-        write_study(
-            tmp,
-            &prepared,
-            &grids,
-            &metrics,
-            &sens,
-            opt.as_ref(),
-            args.format.into(),
-        )
-    })
-    .map_err(|e| hidden(e.into()))?;
+    let n_files = staging
+        .folder_with(&args.out, |tmp| {
+            write_study(
+                tmp,
+                &prepared,
+                &grids,
+                &metrics,
+                &sens,
+                opt.as_ref(),
+                args.format.into(),
+            )
+        })
+        .map_err(|e| hidden(e.into()))?;
     staging.commit()?;
     print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
     eprintln!("merged {} shard(s)", args.shards.len());

@@ -105,7 +105,11 @@ fn constants_sizes_and_values_of_expressions_are_checked_and_named_in_words() {
     let big = write(d, "big.toml", &definition("e_big", "cor * 1e400"));
     let o = run(&big, &one);
     common::assert_refused(&o, &["big.toml:4", "1e400 is beyond the largest"]);
-    let long = write(d, "long.toml", &definition("e_long", &"cor+".repeat(25_000)));
+    let long = write(
+        d,
+        "long.toml",
+        &definition("e_long", &"cor+".repeat(25_000)),
+    );
     let o = run(&long, &one);
     common::assert_refused(&o, &["long.toml:4", "e_long", "(100000 characters)"]);
     assert!(stderr(&o).len() < 400, "{} characters", stderr(&o).len());
@@ -117,9 +121,21 @@ fn constants_sizes_and_values_of_expressions_are_checked_and_named_in_words() {
         &format!("{SHOTS_HEAD}\nfast,110,0,0,12,0,0,0\n"),
     );
     for (name, cor, words) in [
-        ("e_over", "cor * exp(club_speed_mph * 10)", "too large for a double"),
-        ("e_under", "-cor * exp(club_speed_mph * 10)", "negative value too large"),
-        ("e_undefined", "cor * ln(club_speed_mph - 200)", "gave no number"),
+        (
+            "e_over",
+            "cor * exp(club_speed_mph * 10)",
+            "too large for a double",
+        ),
+        (
+            "e_under",
+            "-cor * exp(club_speed_mph * 10)",
+            "negative value too large",
+        ),
+        (
+            "e_undefined",
+            "cor * ln(club_speed_mph - 200)",
+            "gave no number",
+        ),
     ] {
         let defs = write(d, &format!("{name}.toml"), &definition(name, cor));
         let club_file = write(
@@ -165,7 +181,10 @@ fn launch_files_and_ground_options_are_refused_by_their_culprit() {
     );
     common::assert_refused(
         &fly(&twice, &[]),
-        &["twice.csv:1: column 'ball_speed_mph'", "given twice (columns 2 and 5)"],
+        &[
+            "twice.csv:1: column 'ball_speed_mph'",
+            "given twice (columns 2 and 5)",
+        ],
     );
     let slow = write(
         d,
@@ -303,7 +322,12 @@ fn a_study_metric_that_cannot_be_computed_names_its_culprit() {
     let o = smash(&["run", s(&toe), "--out", s(&out)]);
     common::assert_refused(
         &o,
-        &["cannot be computed", "e_toe", "cor = \"cor + 0.02", "impact at"],
+        &[
+            "cannot be computed",
+            "e_toe",
+            "cor = \"cor + 0.02",
+            "impact at",
+        ],
     );
     assert!(!stderr(&o).contains("off the face"), "{}", stderr(&o));
     // The same club without the effect, a spread of club speed reaching 0 mph.
@@ -313,6 +337,9 @@ fn a_study_metric_that_cannot_be_computed_names_its_culprit() {
         "\n[distribution]\nsigma_club_speed_mph = 40.0\n",
     );
     let o = smash(&["run", s(&spread), "--out", s(&out)]);
-    common::assert_refused(&o, &["[distribution]", "club speed", "narrow the club speed"]);
+    common::assert_refused(
+        &o,
+        &["[distribution]", "club speed", "narrow the club speed"],
+    );
     assert!(!out.exists());
 }

@@ -263,9 +263,13 @@ pub fn launch_columns(
 fn check_header(path: &Path, headers: &[String]) -> Result<(), DataError> {
     let at = |m: String| DataError::at(path, Some(1), None, m);
     match headers {
-        [] => return Err(at("the file is empty; a launch file has a header line naming its \
+        [] => {
+            return Err(at(
+                "the file is empty; a launch file has a header line naming its \
                             comma-separated columns, then one line per launch"
-            .into())),
+                    .into(),
+            ))
+        }
         [one] if one.contains(';') || one.contains('\t') => {
             let sep = if one.contains(';') { "';'" } else { "tabs" };
             return Err(at(format!(

@@ -17,6 +17,7 @@ pub mod output_plan;
 pub mod predictions;
 pub mod safe_write;
 pub mod shots;
+pub mod temporaries;
 pub mod toml_check;
 
 pub use toml_check::{parse_toml, toml_key_error, TomlDoc};

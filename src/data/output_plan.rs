@@ -13,11 +13,11 @@
 //! The temporaries of this process are registered ([`remove_live_temporaries`]), so a handler of
 //! SIGINT or SIGTERM removes them before the process ends.
 
+use super::temporaries::live;
+pub use super::temporaries::{forget_temporary, register_temporary, remove_live_temporaries};
+use super::{safe_write, DataError};
 use std::io::Write;
 use std::path::{Path, PathBuf};
-use std::sync::Mutex;
-
-use super::{safe_write, DataError};
 
 /// One planned output.
 #[derive(Debug, Clone)]
@@ -125,7 +125,8 @@ impl OutputPlan {
             }
         }
         for o in &self.outputs {
-            let flagged = |e: DataError| DataError::file(&o.path, format!("{}: {}", o.flag, e.message));
+            let flagged =
+                |e: DataError| DataError::file(&o.path, format!("{}: {}", o.flag, e.message));
             if o.folder {
                 safe_write::clean_stale_temporaries(&o.path);
                 safe_write::check_replaceable(&o.path).map_err(flagged)?;
@@ -155,7 +156,10 @@ fn check_file_writable(path: &Path) -> Result<(), DataError> {
     std::fs::create_dir_all(&parent).map_err(|e| {
         DataError::file(
             path,
-            format!("cannot create the folder {} to hold it: {e}", parent.display()),
+            format!(
+                "cannot create the folder {} to hold it: {e}",
+                parent.display()
+            ),
         )
     })?;
     safe_write::clean_stale_temporaries(path);
@@ -261,7 +265,9 @@ impl Staging {
             tmp,
             folder: false,
         });
-        written.map_err(|e| DataError::file(path, format!("cannot write: {e} (no output was written)")))
+        written.map_err(|e| {
+            DataError::file(path, format!("cannot write: {e} (no output was written)"))
+        })
     }
 
     /// Stage the folder `dir`: `write` fills the temporary folder it is given (and syncs what
@@ -286,7 +292,9 @@ impl Staging {
         });
         written.map_err(|e| {
             // Name the output folder, not the hidden temporary the error may mention.
-            let text = e.to_string().replace(&tmp.display().to_string(), &dir.display().to_string());
+            let text = e
+                .to_string()
+                .replace(&tmp.display().to_string(), &dir.display().to_string());
             DataError::file(dir, format!("cannot write: {text} (no output was written)"))
         })
     }
@@ -366,7 +374,8 @@ impl Staging {
 
 /// The hidden name the previous output at `target` is kept under during a commit.
 fn old_path(target: &Path) -> PathBuf {
-    let (parent, name) = parent_and_name(target).unwrap_or_else(|_| (PathBuf::from("."), "out".into()));
+    let (parent, name) =
+        parent_and_name(target).unwrap_or_else(|_| (PathBuf::from("."), "out".into()));
     parent.join(format!(".{name}.old-{}", std::process::id()))
 }
 
@@ -428,36 +437,4 @@ impl Drop for Staging {
             forget_temporary(&s.tmp);
         }
     }
-}
-
-/// The temporaries this process has made and not yet moved in or removed.
-static LIVE: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
-
-fn live() -> std::sync::MutexGuard<'static, Vec<PathBuf>> {
-    LIVE.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
-}
-
-/// Record a temporary file or folder of this process, to be removed if a signal ends it.
-pub fn register_temporary(path: &Path) {
-    live().push(path.to_owned());
-}
-
-/// The temporary was moved in or removed.
-pub fn forget_temporary(path: &Path) {
-    live().retain(|t| t != path);
-}
-
-/// Remove every temporary of this process (for a SIGINT or SIGTERM handler, which then ends the
-/// process). Waits for a commit in progress to finish.
-pub fn remove_live_temporaries() {
-    let mut live = live();
-    for t in live.drain(..) {
-        if t.is_dir() {
-            let _ = std::fs::remove_dir_all(&t);
-        } else {
-            let _ = std::fs::remove_file(&t);
-        }
-    }
-    // Keep the registry locked: no new temporary is made while the process ends.
-    std::mem::forget(live);
 }

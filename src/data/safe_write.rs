@@ -259,10 +259,10 @@ pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
     })?;
     let probe = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&probe);
-    super::output_plan::register_temporary(&probe);
+    super::temporaries::register_temporary(&probe);
     let created = std::fs::create_dir(&probe);
     let _ = std::fs::remove_dir(&probe);
-    super::output_plan::forget_temporary(&probe);
+    super::temporaries::forget_temporary(&probe);
     created.map_err(|e| {
         err(format!(
             "cannot write in {}: {e}; choose a folder you can write to",

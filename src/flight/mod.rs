@@ -347,7 +347,10 @@ mod tests {
         let spin = msg(launch(150.0, 10.0, 25_000.7));
         assert!(spin.starts_with("backspin_rpm = 25000.7:"), "{spin}");
         let tiny = msg(launch(1e-300, 10.0, 2500.0));
-        assert!(tiny.starts_with("ball_speed_mph = 1e-300: must be at least 1 mph"), "{tiny}");
+        assert!(
+            tiny.starts_with("ball_speed_mph = 1e-300: must be at least 1 mph"),
+            "{tiny}"
+        );
         let slowest = launch(MIN_BALL_SPEED_MPH, 10.0, 2500.0);
         assert_eq!(slowest.check(), Ok(()));
         for ground in [None, Some(Ground::default())] {

@@ -1,5 +1,8 @@
 //! The expression language of user-defined effects, compiled once to a small stack program.
 //!
+//! Size: the grammar, its compiler and evaluator, and the tests that pin each limit (length,
+//! nesting, operations, stack, constants) belong together.
+//!
 //! ```text
 //! expr    := term (('+' | '-') term)*
 //! term    := unary (('*' | '/') unary)*
@@ -119,9 +122,7 @@ impl Program {
         if n_chars > MAX_CHARS {
             return Err(ExprError {
                 column: MAX_CHARS + 1,
-                message: format!(
-                    "expression too long ({n_chars} characters; at most {MAX_CHARS})"
-                ),
+                message: format!("expression too long ({n_chars} characters; at most {MAX_CHARS})"),
             });
         }
         let tokens = tokenize(text)?;

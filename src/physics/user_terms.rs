@@ -279,8 +279,7 @@ pub struct UserEvalError {
 /// in words and with its likely cause (no `inf` or `NaN` leaves the program, even in a message).
 fn value_in_words(value: f64) -> String {
     if value.is_nan() {
-        "no number (an undefined operation: ln or sqrt of a negative number, or 0/0)"
-            .to_owned()
+        "no number (an undefined operation: ln or sqrt of a negative number, or 0/0)".to_owned()
     } else if value.is_infinite() {
         format!(
             "a {} value too large for a double (an overflow, or a division by zero)",

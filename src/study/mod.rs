@@ -225,9 +225,10 @@ pub fn check_finite(p: &Prepared, metrics: &[Vec<f64>]) -> Result<(), StudyError
     let names = metrics::metric_names(p.study.distribution.is_some());
     for (id, (d, m)) in p.variants.iter().zip(metrics).enumerate() {
         if let Some(j) = m.iter().position(|v| !v.is_finite()) {
-            let culprit = evaluate::culprit(&p.models[id], &p.study, &p.groups).unwrap_or_else(|| {
-                "it overflows; narrow [summary] half_width_mm or the [distribution]".to_owned()
-            });
+            let culprit =
+                evaluate::culprit(&p.models[id], &p.study, &p.groups).unwrap_or_else(|| {
+                    "it overflows; narrow [summary] half_width_mm or the [distribution]".to_owned()
+                });
             return Err(StudyError::NotFinite {
                 id,
                 values: d.describe(),

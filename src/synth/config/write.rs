@@ -69,9 +69,7 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
 }
 
 /// The definitions of the user-defined effects the configuration hides, each once.
-fn hidden_definitions(
-    cfg: &SynthConfig,
-) -> Vec<Spanned<crate::data::effect_defs::RawDefinition>> {
+fn hidden_definitions(cfg: &SynthConfig) -> Vec<Spanned<crate::data::effect_defs::RawDefinition>> {
     let mut defined: Vec<&str> = Vec::new();
     let mut out = Vec::new();
     for u in cfg.hidden.iter().filter_map(|e| e.kind().user()) {
