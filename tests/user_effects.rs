@@ -433,7 +433,7 @@ fn a_value_out_of_range_at_evaluation_names_effect_expression_and_shot() {
     let e = m.solve(&d).unwrap_err().to_string();
     assert!(
         e.contains(
-            "user-defined effect 'e_nan': cor = \"cor * ln(club_speed_mph - 100)\" gave NaN"
+            "user-defined effect 'e_nan': cor = \"cor * ln(club_speed_mph - 100)\" gave no number (an undefined operation: ln or sqrt of a negative"
         ),
         "{e}"
     );

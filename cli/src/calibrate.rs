@@ -8,7 +8,7 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
-use smash::data::write_atomic;
+use smash::data::output_plan::OutputPlan;
 use smash::diagnose::honest;
 use smash::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
 use smash::physics::LaunchComponent;
@@ -106,18 +106,10 @@ pub struct CalibrateArgs {
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
-    if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(
-            &[("--report", report, false)],
-            &[("--club", &args.club), ("--shots", &args.shots)],
-        )?;
-    }
-    if let Some(out) = &args.out_club {
-        smash::data::safe_write::refuse_inputs(
-            &[("--out-club", out, false)],
-            &[("--club", &args.club), ("--shots", &args.shots)],
-        )?;
-    }
+    let plan = OutputPlan::new(&[("--club", &args.club), ("--shots", &args.shots)])
+        .file("--out-club", args.out_club.as_deref())
+        .file("--report", args.report.as_deref());
+    plan.check()?;
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
@@ -153,6 +145,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             args.shots.display()
         );
     }
+    let mut staging = plan.stage();
     if let Some(out) = &args.out_club {
         let comment = format!(
             "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
@@ -165,8 +158,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             cal.reduced_chi2,
             cal.termination
         );
-        write_atomic(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
-        eprintln!("calibrated club -> {}", out.display());
+        staging.file(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
     }
     if let Some(path) = &args.report {
         // The calibrated model under the fit's measurement model: at the expected true
@@ -202,7 +194,13 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         );
         let html = smash::report::html::calibrate_page(&cal, &after, &residuals, &title)
             .map_err(anyhow::Error::msg)?;
-        write_atomic(path, html.as_bytes())?;
+        staging.file(path, html.as_bytes())?;
+    }
+    staging.commit()?;
+    if let Some(out) = &args.out_club {
+        eprintln!("calibrated club -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
     if args.json {

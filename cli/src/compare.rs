@@ -8,7 +8,7 @@ use smash::limits::fmt_value;
 
 use smash::compare::{compare_with_hints, CompareOptions};
 use smash::data::club_file::read_club;
-use smash::data::write_folder_atomic;
+use smash::data::output_plan::OutputPlan;
 use smash::physics::LaunchComponent;
 use smash::predict::expected_launches;
 use smash::report::compare::{compare_files, compare_json, compare_text};
@@ -92,21 +92,10 @@ pub struct CompareArgs {
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
-    if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(
-            &[("--report", report, false)],
-            &[("--club", &args.club), ("--shots", &args.shots)],
-        )?;
-    }
-    if let Some(dir) = &args.out_dir {
-        smash::data::safe_write::refuse_inputs(
-            &[("--out-dir", dir, true)],
-            &[("--club", &args.club), ("--shots", &args.shots)],
-        )?;
-        smash::data::safe_write::clean_stale_temporaries(dir);
-        smash::data::safe_write::check_replaceable(dir)?;
-        smash::data::safe_write::check_folder_writable(dir)?;
-    }
+    let plan = OutputPlan::new(&[("--club", &args.club), ("--shots", &args.shots)])
+        .file("--report", args.report.as_deref())
+        .folder("--out-dir", args.out_dir.as_deref());
+    plan.check()?;
     if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
         bail!(
             "--alpha {}: must be within [{}, {}] (a level above one half flags unbiased \
@@ -178,20 +167,27 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     } else {
         crate::stdout::print(&text)?;
     }
+    let mut staging = plan.stage();
     if let Some(path) = &args.report {
         let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
         let html = smash::report::html::compare_page(&report, &residuals, &title)
             .map_err(anyhow::Error::msg)?;
-        smash::data::write_atomic(path, html.as_bytes())?;
-        eprintln!("report -> {}", path.display());
+        staging.file(path, html.as_bytes())?;
     }
+    let n_files = files.as_ref().map_or(0, Vec::len);
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {
         let files: Vec<(PathBuf, Vec<u8>)> = files
             .into_iter()
             .map(|(n, b)| (PathBuf::from(n), b))
             .collect();
-        write_folder_atomic(dir, &files, "compare.json")?;
-        eprintln!("wrote {} files to {}", files.len(), dir.display());
+        staging.folder(dir, &files)?;
+    }
+    staging.commit()?;
+    if let Some(path) = &args.report {
+        eprintln!("report -> {}", path.display());
+    }
+    if let Some(dir) = &args.out_dir {
+        eprintln!("wrote {n_files} files to {}", dir.display());
     }
     Ok(())
 }

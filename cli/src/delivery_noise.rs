@@ -70,6 +70,7 @@ fn class_multiple(item: &str) -> Option<Result<[f64; N_DELIVERY], String>> {
 /// Parse a `--delivery-noise` spec (see the module docs).
 pub fn parse(s: &str) -> Result<DeliveryNoise, String> {
     let mut sd = [0.0; N_DELIVERY];
+    let mut set = [false; N_DELIVERY];
     let items: Vec<&str> = s.split(',').map(str::trim).collect();
     for (k, item) in items.iter().enumerate() {
         if let Some(class) = class_multiple(item) {
@@ -106,6 +107,9 @@ pub fn parse(s: &str) -> Result<DeliveryNoise, String> {
                 smash::limits::fmt_value(v),
                 var.unit()
             ));
+        }
+        if std::mem::replace(&mut set[var.index()], true) {
+            return Err(format!("'{key}' is given twice; give each column once"));
         }
         sd[var.index()] = v;
     }

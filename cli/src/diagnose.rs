@@ -13,7 +13,7 @@ use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
 use smash::data::noise_file::read_noise_file;
-use smash::data::write_atomic;
+use smash::data::output_plan::OutputPlan;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
 use smash::diagnose::{
@@ -162,12 +162,10 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     if let Some(noise) = &args.noise {
         inputs.push(("--noise", noise));
     }
-    if let Some(out) = &args.out_club {
-        smash::data::safe_write::refuse_inputs(&[("--out-club", out, false)], &inputs)?;
-    }
-    if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
-    }
+    let plan = OutputPlan::new(&inputs)
+        .file("--out-club", args.out_club.as_deref())
+        .file("--report", args.report.as_deref());
+    plan.check()?;
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
@@ -212,6 +210,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     for w in &d.warnings {
         eprintln!("warning: {}", smash::data::escape(w));
     }
+    let mut staging = plan.stage();
     if let Some(out) = &args.out_club {
         let comment = format!(
             "Club with the effects selected by smash diagnose on {} ({} shots): {}",
@@ -223,14 +222,19 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
                 d.selected.join(", ")
             }
         );
-        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
-        eprintln!("club with selected effects -> {}", out.display());
+        staging.file(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
     }
     if let Some(path) = &args.report {
         let title = format!("{} on {}", club.name, args.shots.display());
         let html = smash::report::html::diagnose_page(&to_json(&d, &floor), &title)
             .map_err(anyhow::Error::msg)?;
-        write_atomic(path, html.as_bytes())?;
+        staging.file(path, html.as_bytes())?;
+    }
+    staging.commit()?;
+    if let Some(out) = &args.out_club {
+        eprintln!("club with selected effects -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
     if args.json {

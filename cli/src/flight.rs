@@ -151,6 +151,29 @@ pub struct FlightOptions {
 }
 
 impl FlightOptions {
+    /// The first option given on the command line (aero and spin decay: other than their
+    /// defaults), as its flag, or `None`: `predict` refuses flight options without `--flight`
+    /// rather than ignore them.
+    pub fn first_given(&self) -> Option<&'static str> {
+        let given = [
+            (self.aero != "fmm2022-tour", "--aero"),
+            (self.spin_decay != "moment", "--spin-decay"),
+            (self.atmosphere.is_some(), "--atmosphere"),
+            (self.temperature_c.is_some(), "--temperature-c"),
+            (self.pressure_hpa.is_some(), "--pressure-hpa"),
+            (self.elevation_m.is_some(), "--elevation-m"),
+            (self.humidity_pct.is_some(), "--humidity-pct"),
+            (self.wind_speed_m_s.is_some(), "--wind-speed-m-s"),
+            (self.wind_direction_deg.is_some(), "--wind-direction-deg"),
+            (self.wind_height_m.is_some(), "--wind-height-m"),
+            (self.roughness_m.is_some(), "--roughness-m"),
+            (self.total, "--total"),
+            (self.dt_s.is_some(), "--dt-s"),
+            (self.max_time_s.is_some(), "--max-time-s"),
+        ];
+        given.iter().find(|(g, _)| *g).map(|(_, flag)| *flag)
+    }
+
     /// The flight configuration these options describe.
     pub fn config(&self) -> anyhow::Result<FlightConfig> {
         let mut atm = match &self.atmosphere {

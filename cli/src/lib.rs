@@ -14,6 +14,7 @@ pub mod merge;
 pub mod predict;
 pub mod progress;
 pub mod run;
+pub mod signals;
 pub mod stdout;
 pub mod study_output;
 pub mod synth;

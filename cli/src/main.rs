@@ -6,6 +6,7 @@ use clap::Parser;
 
 fn main() -> ExitCode {
     let cli = smash_cli::Cli::parse();
+    smash_cli::signals::clean_up_on_signals();
     // Fails only if a pool was already installed, which nothing before this line does.
     let _ = smash_cli::thread_pool().build_global();
     match smash_cli::run(cli) {

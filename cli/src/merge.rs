@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use crate::study_output::{print_summary, TableFormatArg};
-use smash::data::write_folder_atomic_with;
+use smash::data::output_plan::OutputPlan;
 use smash::study::finish;
 use smash::study::output::write_study;
 use smash::study::shard::merge_shards;
@@ -29,10 +29,15 @@ pub struct MergeArgs {
     /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
     #[arg(long, value_enum, default_value = "csv")]
     pub format: TableFormatArg,
+
+    /// The user-defined effects the shards were run with (`smash run --effect-defs`).
+    #[command(flatten)]
+    pub effect_defs: super::EffectDefsArgs,
 }
 
 /// Run `smash merge`.
 pub fn run(args: MergeArgs) -> anyhow::Result<()> {
+    args.effect_defs.load()?;
     let canon = |p: &std::path::Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_owned());
     if args.shards.iter().any(|s| canon(s) == canon(&args.out)) {
         anyhow::bail!(
@@ -45,9 +50,8 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         .iter()
         .map(|s| ("a SHARD_DIR", s.as_path()))
         .collect();
-    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, true)], &inputs)?;
-    smash::data::safe_write::clean_stale_temporaries(&args.out);
-    smash::data::safe_write::check_replaceable(&args.out)?;
+    let plan = OutputPlan::new(&inputs).folder("--out", Some(&args.out));
+    plan.check()?;
     // The shards' face maps go to a scratch file beside the output folder (named as the
     // temporaries a later run cleans up if this one is killed) and are streamed from it.
     let name = args
@@ -62,19 +66,34 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     std::fs::create_dir_all(&parent)
         .map_err(|e| anyhow::anyhow!("{}: cannot create: {e}", parent.display()))?;
     let scratch = parent.join(format!(".{name}.{}.tmp", std::process::id()));
-    let (prepared, metrics, grids) = merge_shards(&args.shards, &scratch)?;
+    smash::data::output_plan::register_temporary(&scratch);
+    let merged = merge_shards(&args.shards, &scratch);
+    smash::data::output_plan::forget_temporary(&scratch);
+    // A failure of the scratch file (a full disk) is a failure to write the output folder:
+    // name that, not the hidden file beside it.
+    let hidden = |e: anyhow::Error| {
+        anyhow::anyhow!(super::error_chain(&e).replace(
+            &scratch.display().to_string(),
+            &format!("{} (its scratch file)", args.out.display())
+        ))
+    };
+    let (prepared, metrics, grids) = merged.map_err(|e| hidden(e.into()))?;
     let (sens, opt) = finish(&prepared, &metrics)?;
-    let n_files = write_folder_atomic_with(&args.out, "study.toml", |tmp| {
-        write_study(
-            tmp,
-            &prepared,
-            &grids,
-            &metrics,
-            &sens,
-            opt.as_ref(),
-            args.format.into(),
-        )
-    })?;
+    let mut staging = plan.stage();
+    let n_files = staging
+        .folder_with(&args.out, |tmp| {
+            write_study(
+                tmp,
+                &prepared,
+                &grids,
+                &metrics,
+                &sens,
+                opt.as_ref(),
+                args.format.into(),
+            )
+        })
+        .map_err(|e| hidden(e.into()))?;
+    staging.commit()?;
     print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())

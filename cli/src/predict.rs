@@ -170,6 +170,9 @@ pub struct PredictArgs {
 /// Run `smash predict`: the shots-file form (`--shots`, `--out`) or the one-shot form.
 pub fn run(args: PredictArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
+    if let (false, Some(flag)) = (args.flight, args.flight_options.first_given()) {
+        bail!("{flag} is a flight option: give --flight to fly the launches, or leave it out");
+    }
     let club = read_club(&args.club)?;
     match &args.shots {
         Some(shots_path) => predict_file(&args, &club, shots_path),

@@ -7,8 +7,8 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::study_output::TableFormatArg;
-use smash::data::{write_folder_atomic, write_folder_atomic_with};
-use smash::study::output::{write_study, Files};
+use smash::data::output_plan::OutputPlan;
+use smash::study::output::write_study;
 use smash::study::shard::{parse_shard_spec, shard_files};
 use smash::study::{finish, read_study, Prepared, Study, StudyError};
 
@@ -49,13 +49,6 @@ pub struct RunArgs {
     pub report: Option<PathBuf>,
 }
 
-/// Write every file under `dir`, as one unit: `dir` ends up holding exactly `files` (see
-/// [`write_folder_atomic`]; every study output folder holds `study.toml`).
-pub fn write_all(dir: &Path, files: &Files) -> anyhow::Result<()> {
-    write_folder_atomic(dir, files, "study.toml")?;
-    Ok(())
-}
-
 /// A swing that does not reach the ball is a problem of the study's `[delivery]` table: name the
 /// file and the table's line.
 fn locate_swing_error(study: &Path, e: StudyError) -> anyhow::Error {
@@ -86,20 +79,21 @@ pub fn run(args: RunArgs) -> anyhow::Result<()> {
         (None, Some(_)) => study.output_dir.join("shards").join(format!("{k}_of_{n}")),
         (None, None) => study.output_dir.clone(),
     };
-    refuse_outputs(&args, &study, &dir)?;
+    let plan = refuse_outputs(&args, &study, &dir)?;
     let prepared = Prepared::new(study).map_err(|e| locate_swing_error(&args.study, e))?;
     // Start the worker threads before the clock: the closing line states the sweep's rate, not
     // the thread pool's start-up.
     rayon::broadcast(|_| ());
     match args.shard {
-        Some((k, n)) => run_shard(&args, &prepared, &dir, (k, n)),
-        None => run_whole(&args, &prepared, &dir),
+        Some((k, n)) => run_shard(&args, &prepared, &plan, &dir, (k, n)),
+        None => run_whole(&args, &prepared, &plan, &dir),
     }
 }
 
 /// Refuse before the sweep, not after it: the output folder may not hold the inputs or files
-/// smash did not write, and the report may not lie inside the output folder.
-fn refuse_outputs(args: &RunArgs, study: &Study, dir: &Path) -> anyhow::Result<()> {
+/// smash did not write, and the report may not lie inside the output folder. Returns the checked
+/// plan of the outputs.
+fn refuse_outputs(args: &RunArgs, study: &Study, dir: &Path) -> anyhow::Result<OutputPlan> {
     let inputs = [
         ("STUDY.toml", args.study.as_path()),
         ("the study's club", study.club_path.as_path()),
@@ -109,9 +103,7 @@ fn refuse_outputs(args: &RunArgs, study: &Study, dir: &Path) -> anyhow::Result<(
     } else {
         "the study's output folder"
     };
-    smash::data::safe_write::refuse_inputs(&[(out_name, dir, true)], &inputs)?;
     if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
         // The output folder is replaced as a whole and holds only what smash lists in it.
         if smash::data::safe_write::canonical(report)
             .starts_with(smash::data::safe_write::canonical(dir))
@@ -124,9 +116,11 @@ fn refuse_outputs(args: &RunArgs, study: &Study, dir: &Path) -> anyhow::Result<(
             );
         }
     }
-    smash::data::safe_write::clean_stale_temporaries(dir);
-    smash::data::safe_write::check_replaceable(dir)?;
-    Ok(())
+    let plan = OutputPlan::new(&inputs)
+        .folder(out_name, Some(dir))
+        .file("--report", args.report.as_deref());
+    plan.check()?;
+    Ok(plan)
 }
 
 /// A progress bar for `items` work items of `impacts` impacts (hidden for small runs).
@@ -158,6 +152,7 @@ fn grid_text(p: &Prepared) -> String {
 fn run_shard(
     args: &RunArgs,
     prepared: &Prepared,
+    plan: &OutputPlan,
     dir: &Path,
     (k, n): (usize, usize),
 ) -> anyhow::Result<()> {
@@ -191,7 +186,9 @@ fn run_shard(
     prepared.compute_into(&mut results, &|| bar.inc(1));
     let seconds = start.elapsed().as_secs_f64();
     bar.finish_and_clear();
-    write_all(dir, &shard_files(prepared, k, n, &results)?)?;
+    let mut staging = plan.stage();
+    staging.folder(dir, &shard_files(prepared, k, n, &results)?)?;
+    staging.commit()?;
     eprintln!(
         "shard {k} of {n}: work items {}..{} -> {}",
         items.start,
@@ -208,7 +205,12 @@ fn run_shard(
 
 /// The whole study: the maps computed band by band as they are written (bounded memory), the
 /// yard part, the report.
-fn run_whole(args: &RunArgs, prepared: &Prepared, dir: &Path) -> anyhow::Result<()> {
+fn run_whole(
+    args: &RunArgs,
+    prepared: &Prepared,
+    plan: &OutputPlan,
+    dir: &Path,
+) -> anyhow::Result<()> {
     let impacts = prepared.impacts_in(0..prepared.work_len());
     let start = Instant::now();
     let metrics = prepared.all_metrics();
@@ -221,7 +223,8 @@ fn run_whole(args: &RunArgs, prepared: &Prepared, dir: &Path) -> anyhow::Result<
         None => None,
     };
     let kernels = prepared.kernels();
-    let n_files = write_folder_atomic_with(dir, "study.toml", |tmp| {
+    let mut staging = plan.stage();
+    let n_files = staging.folder_with(dir, |tmp| {
         let n = write_study(
             tmp,
             prepared,
@@ -244,9 +247,14 @@ fn run_whole(args: &RunArgs, prepared: &Prepared, dir: &Path) -> anyhow::Result<
     }
     let seconds = start.elapsed().as_secs_f64();
     if let Some(path) = &args.report {
-        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(dir)?)
+        // Read back from the staged folder: the study's outputs and the report go in together.
+        let staged = staging.staged(dir).unwrap_or(dir).to_owned();
+        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&staged)?)
             .map_err(anyhow::Error::msg)?;
-        smash::data::write_atomic(path, html.as_bytes())?;
+        staging.file(path, html.as_bytes())?;
+    }
+    staging.commit()?;
+    if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
     crate::study_output::print_summary(prepared, &metrics, opt.as_ref(), dir, n_files)?;

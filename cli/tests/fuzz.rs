@@ -1,4 +1,6 @@
-//! Mutation fuzz of the file readers: club, study, synth and instrument-noise TOML, shots CSV.
+//! Mutation fuzz of the file readers: club, study, synth and instrument-noise TOML, shots CSV,
+//! user-effect definitions (their expressions, alone and in a club file) and launch files
+//! (`smash flight`'s input, through both of its readers and the flight).
 //!
 //! Each case takes a valid file (the shipped configs, a generated shots file), applies one to
 //! four random mutations (bytes, lines, numbers and fields replaced by hostile values) and parses
@@ -24,7 +26,11 @@ fn root() -> PathBuf {
 const SEEDS: [u64; 4] = [1, 7, 2024, 0x5eed];
 
 /// Values that broke readers before or sit at the edges of types and ranges.
-const HOSTILE: [&str; 36] = [
+const HOSTILE: [&str; 40] = [
+    "\"cor * 1e400\"",
+    "\"((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((((cor\"",
+    "\"-------------------------------------------------------------------------cor\"",
+    "\"cor / 0 + ln(0 - cor) ^ 1e308\"",
     "1e308",
     "-1e308",
     "1e-320",
@@ -120,7 +126,16 @@ fn mutate(rng: &mut ChaCha8Rng, input: &[u8], csv: bool) -> Vec<u8> {
     let mut b = input.to_vec();
     for _ in 0..rng.random_range(1..=4) {
         let pos = |rng: &mut ChaCha8Rng, b: &Vec<u8>| rng.random_range(0..=b.len());
-        match rng.random_range(0..10) {
+        match rng.random_range(0..11) {
+            // A short chunk repeated thousands of times: `((((…`, `-----…`, `abs(abs(…`
+            // nested deeper than any recursive parser's stack.
+            10 if !b.is_empty() && rng.random_bool(0.3) => {
+                let i = rng.random_range(0..b.len());
+                let n = rng.random_range(1..=4).min(b.len() - i);
+                let chunk = b[i..i + n].repeat(rng.random_range(1_000..=30_000));
+                let j = pos(rng, &b);
+                b.splice(j..j, chunk);
+            }
             0 if !b.is_empty() => {
                 let i = rng.random_range(0..b.len());
                 b[i] = BYTES[rng.random_range(0..BYTES.len())];
@@ -247,17 +262,99 @@ fn shots_corpus() -> Vec<u8> {
     t.into_bytes()
 }
 
+/// A launch file as `smash predict` and a launch monitor write it: measured and predicted
+/// columns, a quoted note.
+fn launch_corpus() -> Vec<u8> {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut t = String::from(
+        "shot_id,ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm,\
+         pred_ball_speed_mph,pred_launch_angle_deg,pred_backspin_rpm,carry_yd,note\n",
+    );
+    for i in 0..8 {
+        let r = |rng: &mut ChaCha8Rng, a: f64, b: f64| a + (b - a) * rng.random::<f64>();
+        t.push_str(&format!(
+            "d{i},{:.1},{:.1},{:.1},{:.0},{:.0},{:.1},{:.1},{:.0},{:.1},\"a, b\"\n",
+            r(&mut rng, 60.0, 170.0),
+            r(&mut rng, 5.0, 30.0),
+            r(&mut rng, -4.0, 4.0),
+            r(&mut rng, 1500.0, 9000.0),
+            r(&mut rng, -800.0, 800.0),
+            r(&mut rng, 60.0, 170.0),
+            r(&mut rng, 5.0, 30.0),
+            r(&mut rng, 1500.0, 9000.0),
+            r(&mut rng, 100.0, 280.0),
+        ));
+    }
+    t.into_bytes()
+}
+
+/// Read and fly a launch file through both of `smash flight`'s readers (in memory, and streamed
+/// in small chunks to an output file); an output written must hold only finite numbers.
+fn fly_launch_file(b: &[u8]) -> Result<(), anyhow::Error> {
+    use smash::data::flight_files::read_launches;
+    let dir = std::env::temp_dir().join(format!("smash-fuzz-{}", std::process::id()));
+    std::fs::create_dir_all(&dir)?;
+    let (input, out) = (dir.join("launch.csv"), dir.join("flown.csv"));
+    std::fs::write(&input, b)?;
+    let cfg = smash::flight::FlightConfig::default();
+    let table = read_launches(&input, None)?;
+    smash_cli::flight::collect(
+        &input,
+        &table.lines,
+        table.source.prefix(),
+        smash::flight::fly(&cfg, &table.launches),
+    )?;
+    smash::data::flight_stream::fly_csv_file(&input, &out, &cfg, None, 64)?;
+    // The columns the flight adds (after the input's, which are copied as given) are finite
+    // numbers or empty.
+    let mut r = csv::Reader::from_path(&out)?;
+    let width = table.headers.len();
+    for rec in r.records() {
+        let rec = rec?;
+        for cell in rec.iter().skip(width) {
+            let finite = cell.is_empty() || cell.parse::<f64>().is_ok_and(f64::is_finite);
+            assert!(finite, "a flown file holds '{cell}' in {rec:?}");
+        }
+    }
+    Ok(())
+}
+
 fn targets() -> Vec<Target> {
     let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
     vec![
         Target {
             name: "club",
             csv: false,
-            corpus: vec![read("configs/clubs/paper_driver.toml")],
+            corpus: vec![read("configs/clubs/paper_driver.toml"), {
+                // A club file with its own user-defined effect, named by an [[effect]] table.
+                let mut c = read("configs/clubs/paper_driver.toml");
+                c.extend_from_slice(
+                    b"\n[[define_effect]]\nname = \"fuzz_club\"\nparams = [{ key = \"k\", \
+                      unit = \"1\", default = 0.0, lower = -1.0, upper = 1.0 }]\n\
+                      cor = \"min(cor * (1 - k * abs(impact_z_mm) / 40) ^ 2, 1)\"\n\
+                      \n[[effect]]\nname = \"fuzz_club\"\nk = 0.1\n",
+                );
+                c
+            }],
             parse: |p, b| {
                 smash::data::club_file::parse_club(p, &String::from_utf8_lossy(b))?;
                 Ok(())
             },
+        },
+        Target {
+            name: "effect definitions",
+            csv: false,
+            corpus: vec![read("configs/effects/example_effects.toml")],
+            parse: |p, b| {
+                smash::data::effect_defs::parse_effect_defs(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "launch",
+            csv: true,
+            corpus: vec![launch_corpus()],
+            parse: |_, b| fly_launch_file(b),
         },
         Target {
             name: "study",

@@ -334,7 +334,8 @@ fn compile_terms(
                     Some(line),
                     Some(format!("column {col}: key {table_key}.{}", q.key())),
                     format!(
-                        "effect '{name}': expression \"{src}\", at character {column}: {message}"
+                        "effect '{name}': expression {}, at character {column}: {message}",
+                        quote_expression(src)
                     ),
                 )
             })?;
@@ -346,6 +347,17 @@ fn compile_terms(
         });
     }
     Ok(terms)
+}
+
+/// An expression as an error message quotes it: whole and in double quotes when it is short
+/// enough to read on one line, else cut as a long cell is ([`super::quote_cell`]): a 100 kB
+/// expression once made a 100 kB message.
+fn quote_expression(src: &str) -> String {
+    if src.chars().count() <= 200 {
+        format!("\"{}\"", super::escape(src))
+    } else {
+        super::quote_cell(src)
+    }
 }
 
 /// The variable number of `name` in an expression for quantity `q` with parameters `specs`.

@@ -231,6 +231,7 @@ pub fn launch_columns(
     headers: &[String],
     source: Option<LaunchSource>,
 ) -> Result<(LaunchSource, [Option<usize>; 5]), DataError> {
+    check_header(path, headers)?;
     let col = |name: &str| headers.iter().position(|h| h == name);
     let source = source.unwrap_or(if col("ball_speed_mph").is_some() {
         LaunchSource::Measured
@@ -253,6 +254,46 @@ pub fn launch_columns(
         }
     }
     Ok((source, idx))
+}
+
+/// A launch file's header says what it is before any column is looked for: an empty file, or a
+/// header of one column holding `;` or a tab (another separator), is named as such rather than
+/// as lacking `pred_ball_speed_mph`; a column given twice is refused (the first was flown, the
+/// second silently ignored).
+fn check_header(path: &Path, headers: &[String]) -> Result<(), DataError> {
+    let at = |m: String| DataError::at(path, Some(1), None, m);
+    match headers {
+        [] => {
+            return Err(at(
+                "the file is empty; a launch file has a header line naming its \
+                            comma-separated columns, then one line per launch"
+                    .into(),
+            ))
+        }
+        [one] if one.contains(';') || one.contains('\t') => {
+            let sep = if one.contains(';') { "';'" } else { "tabs" };
+            return Err(at(format!(
+                "the header is one column separated by {sep}, not commas; a launch file is \
+                 comma-separated (decimal points, not commas)"
+            )));
+        }
+        _ => {}
+    }
+    for (j, h) in headers.iter().enumerate() {
+        if let Some(k) = headers[..j].iter().position(|x| x == h && !h.is_empty()) {
+            return Err(DataError::at(
+                path,
+                Some(1),
+                Some(format!("column '{}'", crate::data::escape(h))),
+                format!(
+                    "given twice (columns {} and {}); give each column once",
+                    k + 1,
+                    j + 1
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Read launches from a CSV: `source` picks the columns; `None` takes measured columns when

@@ -36,6 +36,7 @@ impl Temporary {
         safe_write::check_output(out, false)?;
         safe_write::clean_stale_temporaries(out);
         let tmp = parent.join(format!(".{name}.{}.tmp", std::process::id()));
+        crate::data::output_plan::register_temporary(&tmp);
         let file = std::fs::File::create(&tmp)
             .map_err(|e| DataError::file(out, format!("cannot write: {e}")))?;
         Ok(Self {
@@ -53,6 +54,7 @@ impl Temporary {
             .sync_all()
             .and_then(|()| std::fs::rename(&self.tmp, &self.out));
         r.map_err(|e| DataError::file(&self.out, format!("cannot write: {e}")))?;
+        crate::data::output_plan::forget_temporary(&self.tmp);
         self.done = true;
         Ok(())
     }
@@ -62,6 +64,7 @@ impl Drop for Temporary {
     fn drop(&mut self) {
         if !self.done {
             let _ = std::fs::remove_file(&self.tmp);
+            crate::data::output_plan::forget_temporary(&self.tmp);
         }
     }
 }

@@ -13,9 +13,11 @@ pub mod flight_stream;
 pub mod import;
 pub mod noise_file;
 pub mod number;
+pub mod output_plan;
 pub mod predictions;
 pub mod safe_write;
 pub mod shots;
+pub mod temporaries;
 pub mod toml_check;
 
 pub use toml_check::{parse_toml, toml_key_error, TomlDoc};
@@ -143,12 +145,14 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), DataError> {
     safe_write::check_output(path, false)?;
     safe_write::clean_stale_temporaries(path);
     let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
+    output_plan::register_temporary(&tmp);
     let result = (|| {
         let mut f = std::fs::File::create(&tmp)?;
         f.write_all(bytes)?;
         f.sync_all()?;
         std::fs::rename(&tmp, path)
     })();
+    output_plan::forget_temporary(&tmp);
     result.map_err(|e| {
         let _ = std::fs::remove_file(&tmp);
         DataError::file(path, format!("cannot write: {e}"))
@@ -162,6 +166,7 @@ pub fn write_files_atomic(files: &[(&Path, &[u8])]) -> Result<(), DataError> {
     let cleanup = |staged: &[(PathBuf, &Path)]| {
         for (tmp, _) in staged {
             let _ = std::fs::remove_file(tmp);
+            output_plan::forget_temporary(tmp);
         }
     };
     for (path, bytes) in files {
@@ -182,6 +187,7 @@ pub fn write_files_atomic(files: &[(&Path, &[u8])]) -> Result<(), DataError> {
         }
         safe_write::clean_stale_temporaries(path);
         let tmp = parent.join(format!(".{file_name}.{}.tmp", std::process::id()));
+        output_plan::register_temporary(&tmp);
         let written = (|| {
             std::fs::create_dir_all(&parent)?;
             let mut f = std::fs::File::create(&tmp)?;
@@ -214,6 +220,7 @@ pub fn write_files_atomic(files: &[(&Path, &[u8])]) -> Result<(), DataError> {
                 format!("cannot write: {e} (no output was written)"),
             ));
         }
+        output_plan::forget_temporary(tmp);
     }
     Ok(())
 }
@@ -255,11 +262,13 @@ pub fn write_folder_atomic_with<T>(
     safe_write::check_output(dir, true)?;
     safe_write::clean_stale_temporaries(dir);
     safe_write::check_replaceable(dir)?;
+    output_plan::check_removable(dir)?;
     let (name, parent) = safe_write::folder_name_and_parent(dir)?;
     std::fs::create_dir_all(&parent)
         .map_err(|e| err(format!("cannot create {}: {e}", parent.display())))?;
     let tmp = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let old = parent.join(format!(".{name}.old-{}", std::process::id()));
+    output_plan::register_temporary(&tmp);
     let _ = std::fs::remove_dir_all(&tmp);
     let written = std::fs::create_dir_all(&tmp)
         .and_then(|()| write(&tmp))
@@ -268,7 +277,12 @@ pub fn write_folder_atomic_with<T>(
         Ok(v) => v,
         Err(e) => {
             let _ = std::fs::remove_dir_all(&tmp);
-            return Err(err(format!("cannot write: {e}")));
+            output_plan::forget_temporary(&tmp);
+            // Name the output folder, not the hidden temporary the error may mention.
+            let text = e
+                .to_string()
+                .replace(&tmp.display().to_string(), &dir.display().to_string());
+            return Err(err(format!("cannot write: {text}")));
         }
     };
     let swapped = (|| -> std::io::Result<()> {
@@ -283,11 +297,18 @@ pub fn write_folder_atomic_with<T>(
         }
         Ok(())
     })();
+    output_plan::forget_temporary(&tmp);
     if let Err(e) = swapped {
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(err(format!("cannot replace the folder: {e}")));
     }
-    let _ = std::fs::remove_dir_all(&old);
+    if let Err(e) = std::fs::remove_dir_all(&old) {
+        eprintln!(
+            "warning: {}: the previous outputs, moved to {}, could not be removed: {e}",
+            dir.display(),
+            old.display()
+        );
+    }
     Ok(value)
 }
 

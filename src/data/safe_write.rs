@@ -259,13 +259,16 @@ pub fn check_folder_writable(dir: &Path) -> Result<(), DataError> {
     })?;
     let probe = parent.join(format!(".{name}.tmp-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&probe);
-    std::fs::create_dir(&probe).map_err(|e| {
+    super::temporaries::register_temporary(&probe);
+    let created = std::fs::create_dir(&probe);
+    let _ = std::fs::remove_dir(&probe);
+    super::temporaries::forget_temporary(&probe);
+    created.map_err(|e| {
         err(format!(
             "cannot write in {}: {e}; choose a folder you can write to",
             parent.display()
         ))
     })?;
-    let _ = std::fs::remove_dir(&probe);
     Ok(())
 }
 
@@ -275,9 +278,9 @@ fn process_gone(pid: u32) -> bool {
 }
 
 /// Remove the temporaries a killed run of ours left beside `target` (`.NAME.tmp-PID` folders,
-/// `.NAME.PID.tmp` files), only when process PID is gone. A `.NAME.old-PID` folder (a run killed
-/// between moving the previous outputs aside and moving the new ones in) is put back when
-/// `target` is missing, else removed.
+/// `.NAME.PID.tmp` files), only when process PID is gone. A `.NAME.old-PID` folder or file (a
+/// run killed between keeping the previous output aside and moving the new one in) is put back
+/// when `target` is missing, else removed.
 pub fn clean_stale_temporaries(target: &Path) {
     let (Some(name), parent) = (target.file_name(), target.parent()) else {
         return;
@@ -308,8 +311,10 @@ pub fn clean_stale_temporaries(target: &Path) {
             }
         } else if let Some(pid) = file.strip_prefix(&folder_old).and_then(pid_of) {
             if pid != me && process_gone(pid) {
-                if target.exists() {
+                if target.exists() && path.is_dir() {
                     let _ = std::fs::remove_dir_all(&path);
+                } else if target.exists() {
+                    let _ = std::fs::remove_file(&path);
                 } else {
                     let _ = std::fs::rename(&path, target);
                 }

@@ -476,7 +476,9 @@ fn estimates(layout: &ParamLayout, theta: &DVector<f64>, cov: &Covariance) -> Ve
         .enumerate()
         .map(|(j, (i, s))| {
             let e = &layout.effects()[i];
-            let span = 1e-9 * (upper[j] - lower[j]);
+            // Scaled before the difference: bounds of ±1e308 would overflow it to infinity
+            // and mark every value at its bound.
+            let span = 1e-9 * upper[j] - 1e-9 * lower[j];
             ParamEstimate {
                 effect: e.kind.name(),
                 group: e.group.clone(),

@@ -26,6 +26,9 @@ pub const DEFAULT_RESTITUTION: f64 = 0.20;
 /// Default rolling deceleration, m/s², see the module documentation.
 pub const DEFAULT_ROLL_DECEL_M_S2: f64 = 12.0;
 
+/// Slowest run-out deceleration accepted, m/s² (see [`Ground::check`]).
+pub const MIN_ROLL_DECEL_M_S2: f64 = 0.1;
+
 /// Turf parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Ground {
@@ -53,9 +56,14 @@ impl Ground {
                 crate::limits::fmt_value(self.restitution)
             ));
         }
-        if !(self.roll_decel_m_s2 > 0.0 && self.roll_decel_m_s2 <= 50.0) {
+        // The lower end: the USGA Stimpmeter releases a ball at about 1.83 m/s, and on the
+        // fastest greens (Stimp 14 ft, 4.27 m) it rolls out at v²/2d ≈ 0.39 m/s²; no turf is a
+        // quarter as slow. Below that the run-out grows without bound (1e-300 m/s² once gave a
+        // 304-digit total).
+        if !(self.roll_decel_m_s2 >= MIN_ROLL_DECEL_M_S2 && self.roll_decel_m_s2 <= 50.0) {
             return Err(format!(
-                "ground roll_decel_m_s2 = {}: must be within (0, 50]",
+                "ground roll_decel_m_s2 = {}: must be within [0.1, 50] m/s² (the fastest \
+                 greens roll out at about 0.4)",
                 crate::limits::fmt_value(self.roll_decel_m_s2)
             ));
         }

@@ -207,14 +207,10 @@ impl FlightLaunch {
         };
         let clearly_within = |x: f64, limit: f64| x.abs() <= limit * (1.0 - 1e-9);
         let mph = self.ball_speed_m_s / units::M_S_PER_MPH;
-        if !(mph >= 1e-6 && clearly_within(mph, MAX_BALL_SPEED_MPH)) {
+        if !(mph >= MIN_BALL_SPEED_MPH * (1.0 + 1e-9) && clearly_within(mph, MAX_BALL_SPEED_MPH)) {
             let mph = tidy(mph);
-            if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
-                return bad(
-                    "ball_speed_mph",
-                    mph,
-                    "must be > 0 and at most 250 mph (beyond the long-drive record)",
-                );
+            if !(mph >= MIN_BALL_SPEED_MPH && mph <= MAX_BALL_SPEED_MPH) {
+                return bad("ball_speed_mph", mph, BALL_SPEED_ALLOWED);
             }
         }
         let angles = [
@@ -247,6 +243,14 @@ impl FlightLaunch {
 
 /// Highest ball speed accepted, mph.
 pub const MAX_BALL_SPEED_MPH: f64 = 250.0;
+/// Lowest ball speed accepted, mph. Slower than this the ball rises less than a hundredth of
+/// its own radius (v²/2g = 0.01 mm at 1 mph) and is on the ground again within a step's rounding:
+/// 1e-300 mph once "flew" to a land angle of −12°. The impact model's own floor is the same
+/// (`limits::CLUB_SPEED_MPH`).
+pub const MIN_BALL_SPEED_MPH: f64 = 1.0;
+/// What a ball speed must be, as the refusal says it.
+const BALL_SPEED_ALLOWED: &str =
+    "must be at least 1 mph (slower, the ball does not fly) and at most 250 mph (beyond the long-drive record)";
 /// Largest spin component accepted, rpm.
 pub const MAX_SPIN_RPM: f64 = 20_000.0;
 
@@ -326,7 +330,7 @@ mod tests {
     /// A launch out of range is named with its value in file units as given: a tiny value is
     /// not rounded to 0 (a ball speed of -2.5e-12 mph once read "= 0", and 1e-300 mph was
     /// refused as "= 0: must be > 0"), and 120° is not 119.99999999999999 after the SI round
-    /// trip. A tiny positive speed is a speed: it flies (nowhere), with finite numbers.
+    /// trip. A speed below the slowest flight (1e-300 mph) is refused, as given.
     #[test]
     fn bad_launch_values_print_as_given() {
         let msg = |l: FlightLaunch| l.check().unwrap_err().to_string();
@@ -342,17 +346,20 @@ mod tests {
         assert!(steep.starts_with("launch_angle_deg = 120:"), "{steep}");
         let spin = msg(launch(150.0, 10.0, 25_000.7));
         assert!(spin.starts_with("backspin_rpm = 25000.7:"), "{spin}");
-        let tiny = launch(1e-300, 10.0, 2500.0);
-        assert_eq!(tiny.check(), Ok(()));
+        let tiny = msg(launch(1e-300, 10.0, 2500.0));
+        assert!(
+            tiny.starts_with("ball_speed_mph = 1e-300: must be at least 1 mph"),
+            "{tiny}"
+        );
+        let slowest = launch(MIN_BALL_SPEED_MPH, 10.0, 2500.0);
+        assert_eq!(slowest.check(), Ok(()));
         for ground in [None, Some(Ground::default())] {
             let cfg = FlightConfig {
                 ground,
                 ..FlightConfig::default()
             };
-            match fly_one(&cfg, &tiny) {
-                Ok(f) => assert!(f.carry_m.abs() < 1e-6 && f.apex_m.is_finite(), "{f:?}"),
-                Err(e) => assert!(!e.to_string().contains("= 0:"), "{e}"),
-            }
+            let f = fly_one(&cfg, &slowest).unwrap();
+            assert!(f.carry_m.abs() < 1e-3 && f.land_angle_rad < 0.0, "{f:?}");
         }
     }
 
@@ -374,12 +381,8 @@ mod tests {
             })
         };
         let mph = tidy(l.ball_speed_m_s / units::M_S_PER_MPH);
-        if !(mph > 0.0 && mph <= MAX_BALL_SPEED_MPH) {
-            return bad(
-                "ball_speed_mph",
-                mph,
-                "must be > 0 and at most 250 mph (beyond the long-drive record)",
-            );
+        if !(mph >= MIN_BALL_SPEED_MPH && mph <= MAX_BALL_SPEED_MPH) {
+            return bad("ball_speed_mph", mph, BALL_SPEED_ALLOWED);
         }
         for (field, rad) in [
             ("launch_angle_deg", l.launch_angle_rad),
@@ -423,7 +426,7 @@ mod tests {
             f64::INFINITY,
             f64::NAN,
         ];
-        for limit in [MAX_BALL_SPEED_MPH, 90.0, MAX_SPIN_RPM] {
+        for limit in [MIN_BALL_SPEED_MPH, MAX_BALL_SPEED_MPH, 90.0, MAX_SPIN_RPM] {
             for centre in [limit, limit * (1.0 - 1e-9), limit * (1.0 - 5e-12)] {
                 let mut up = centre;
                 let mut down = centre;

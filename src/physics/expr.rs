@@ -1,5 +1,8 @@
 //! The expression language of user-defined effects, compiled once to a small stack program.
 //!
+//! Size: the grammar, its compiler and evaluator, and the tests that pin each limit (length,
+//! nesting, operations, stack, constants) belong together.
+//!
 //! ```text
 //! expr    := term (('+' | '-') term)*
 //! term    := unary (('*' | '/') unary)*
@@ -30,6 +33,16 @@ pub const MAX_OPS: usize = 64;
 
 /// Deepest evaluation stack an expression may need.
 pub const MAX_STACK: usize = 16;
+
+/// Deepest nesting of parentheses, function calls, signs and powers the parser follows. Every
+/// nesting level costs a frame of the recursive parser; checked before recursing, so that a
+/// hostile `((((…` or `-----…` 20 000 deep is an error, not a stack overflow. An expression
+/// nested deeper than it has operations ([`MAX_OPS`]) is never needed.
+pub const MAX_NEST: usize = MAX_OPS;
+
+/// Longest expression text, characters, checked before the text is tokenized. [`MAX_OPS`]
+/// operations with names of 40 characters and spaces fit in about 3 000.
+pub const MAX_CHARS: usize = 4096;
 
 /// One postfix operation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -105,6 +118,13 @@ impl Program {
         text: &str,
         resolve: &dyn Fn(&str) -> Result<u8, String>,
     ) -> Result<Self, ExprError> {
+        let n_chars = text.chars().count();
+        if n_chars > MAX_CHARS {
+            return Err(ExprError {
+                column: MAX_CHARS + 1,
+                message: format!("expression too long ({n_chars} characters; at most {MAX_CHARS})"),
+            });
+        }
         let tokens = tokenize(text)?;
         let mut p = Parser {
             tokens: &tokens,
@@ -116,6 +136,7 @@ impl Program {
                 reads: 0,
             },
             depth: 0,
+            nest: 0,
             resolve,
         };
         p.expr()?;
@@ -221,6 +242,15 @@ fn tokenize(text: &str) -> Result<Vec<Token>, ExprError> {
                 column,
                 message: format!("'{s}' is not a number"),
             })?;
+            if !v.is_finite() {
+                return Err(ExprError {
+                    column,
+                    message: format!(
+                        "the number {s} is beyond the largest a double can hold (about \
+                         1.8e308); write a finite constant"
+                    ),
+                });
+            }
             out.push(Token {
                 kind: Tok::Num(v),
                 column,
@@ -268,6 +298,8 @@ struct Parser<'a> {
     end_column: usize,
     out: Program,
     depth: usize,
+    /// Current recursion depth of [`Parser::unary`], through which every nesting passes.
+    nest: usize,
     resolve: &'a dyn Fn(&str) -> Result<u8, String>,
 }
 
@@ -341,7 +373,25 @@ impl Parser<'_> {
         }
     }
 
+    /// Every recursion of the parser (parentheses, function arguments, signs, exponents) passes
+    /// here, so the nesting is bounded here, before recursing.
     fn unary(&mut self) -> Result<(), ExprError> {
+        if self.nest == MAX_NEST {
+            return Err(ExprError {
+                column: self.column(),
+                message: format!(
+                    "expression nested too deeply (more than {MAX_NEST} levels of parentheses, \
+                     function calls, signs or powers)"
+                ),
+            });
+        }
+        self.nest += 1;
+        let result = self.unary_inner();
+        self.nest -= 1;
+        result
+    }
+
+    fn unary_inner(&mut self) -> Result<(), ExprError> {
         let column = self.column();
         if self.peek_sym('-') {
             self.pos += 1;
@@ -557,6 +607,17 @@ mod tests {
             ")".repeat(MAX_STACK + 2)
         );
         assert!(err(&deep).message.contains("nested too deeply"));
+        // Nesting far beyond the limits is an error found before recursing (no stack overflow).
+        for open in ["(", "abs(", "-", "+", "2^"] {
+            let text = format!("{}x", open.repeat(20_000));
+            let e = err(&text);
+            assert!(e.message.contains("nested too deeply"), "{open}: {e:?}");
+        }
+        let e = err(&"x+".repeat(3000));
+        assert!(e.message.contains("too long (6000 characters"), "{e:?}");
+        let e = err("1e400 * x");
+        assert_eq!(e.column, 1);
+        assert!(e.message.contains("1e400 is beyond"), "{e:?}");
         // Just within the limits compiles and evaluates.
         let ok = format!(
             "{}x{}",

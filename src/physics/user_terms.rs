@@ -260,7 +260,7 @@ pub struct PreSolve {
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 #[error(
     "user-defined effect '{effect}': {quantity} = \"{expr}\" gave {}; it must be {allowed}",
-    crate::limits::fmt_value(*value)
+    value_in_words(*value)
 )]
 pub struct UserEvalError {
     /// Effect name.
@@ -273,6 +273,21 @@ pub struct UserEvalError {
     pub value: f64,
     /// What is allowed.
     pub allowed: &'static str,
+}
+
+/// A value an expression gave, as a message says it: a finite number as itself, a non-finite one
+/// in words and with its likely cause (no `inf` or `NaN` leaves the program, even in a message).
+fn value_in_words(value: f64) -> String {
+    if value.is_nan() {
+        "no number (an undefined operation: ln or sqrt of a negative number, or 0/0)".to_owned()
+    } else if value.is_infinite() {
+        format!(
+            "a {} value too large for a double (an overflow, or a division by zero)",
+            if value > 0.0 { "positive" } else { "negative" }
+        )
+    } else {
+        crate::limits::fmt_value(value)
+    }
 }
 
 impl UserTerms {

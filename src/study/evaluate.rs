@@ -23,6 +23,41 @@ pub fn impacts_per_design(study: &Study, groups: &[SwingGroup]) -> usize {
     1 + 2 * (2 * n - 1) + groups.iter().map(|g| g.weights.len()).sum::<usize>()
 }
 
+/// Why a metric of `model` could not be computed, in the user's terms: the first impact of the
+/// summary probe lines or of the distribution that the scalar solve refuses, with its reason (a
+/// user-defined effect and its expression, an impact off the face, a swing that does not reach
+/// the ball), or a distribution swing slower than the impact model's floor. `None` when every
+/// impact solves (the metric's arithmetic then overflowed).
+pub fn culprit(model: &ImpactModel, study: &Study, groups: &[SwingGroup]) -> Option<String> {
+    let offs = probe_offsets(study);
+    let probes = offs
+        .iter()
+        .flat_map(|&o| [(0.0, o), (0.0, -o), (o, 0.0), (-o, 0.0)])
+        .map(|(y, z)| (study.swing, y, z, "the summary probe lines"));
+    let drawn = groups.iter().flat_map(|g| {
+        g.ys_m
+            .iter()
+            .zip(&g.zs_m)
+            .map(move |(y, z)| (g.swing, y * 1e3, z * 1e3, "the [distribution]"))
+    });
+    for (swing, y_mm, z_mm, source) in probes.chain(drawn) {
+        let floor = crate::limits::CLUB_SPEED_MPH;
+        if let Err(m) = floor.check(swing.club_speed_mph) {
+            return Some(format!(
+                "a swing of {source}: {m}; narrow the club speed's spread"
+            ));
+        }
+        if let Err(e) = model.solve(&swing.delivery(y_mm, z_mm)) {
+            return Some(format!(
+                "the impact at y = {} mm, z = {} mm of {source}: {e}",
+                crate::limits::fmt_value(y_mm),
+                crate::limits::fmt_value(z_mm)
+            ));
+        }
+    }
+    None
+}
+
 /// All metrics of one model, in [`Metric::all`] order. `groups` is the study distribution's
 /// impacts (empty without a distribution).
 pub fn evaluate(model: &ImpactModel, study: &Study, groups: &[SwingGroup]) -> Vec<f64> {

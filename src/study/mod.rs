@@ -118,11 +118,7 @@ pub enum StudyError {
         problem: String,
     },
     /// A summary metric of a variant came out infinite or undefined.
-    #[error(
-        "design variant {id} ({values}): {metric} is {value}, not a number: an impact of the \
-         summary probe lines or the [distribution] is off the face or does not reach the ball; \
-         narrow [summary] half_width_mm or the [distribution]"
-    )]
+    #[error("design variant {id} ({values}): {metric} cannot be computed: {culprit}")]
     NotFinite {
         /// Variant id.
         id: usize,
@@ -130,8 +126,9 @@ pub enum StudyError {
         values: String,
         /// The metric's name.
         metric: String,
-        /// Its value (`inf`, `NaN`).
-        value: f64,
+        /// Why, in the user's terms (the impact and the effect, swing or location that failed;
+        /// see [`evaluate::culprit`]).
+        culprit: String,
     },
     /// The optimiser failed.
     #[error("optimiser: {0}")]
@@ -227,12 +224,16 @@ pub fn finish(
 pub fn check_finite(p: &Prepared, metrics: &[Vec<f64>]) -> Result<(), StudyError> {
     let names = metrics::metric_names(p.study.distribution.is_some());
     for (id, (d, m)) in p.variants.iter().zip(metrics).enumerate() {
-        if let Some((j, v)) = m.iter().enumerate().find(|(_, v)| !v.is_finite()) {
+        if let Some(j) = m.iter().position(|v| !v.is_finite()) {
+            let culprit =
+                evaluate::culprit(&p.models[id], &p.study, &p.groups).unwrap_or_else(|| {
+                    "it overflows; narrow [summary] half_width_mm or the [distribution]".to_owned()
+                });
             return Err(StudyError::NotFinite {
                 id,
                 values: d.describe(),
                 metric: names.get(j).cloned().unwrap_or_default(),
-                value: *v,
+                culprit,
             });
         }
     }

@@ -23,6 +23,10 @@ pub(super) struct RawConfig {
     pub delivery: Option<BTreeMap<String, Spanned<Spread>>>,
     pub face: Option<RawFace>,
     pub noise: Option<RawNoise>,
+    /// User-defined effects the `[[hidden]]` tables may name (a truth file carries those it
+    /// hides, so it regenerates its shots without `--effect-defs`).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub define_effect: Vec<Spanned<crate::data::effect_defs::RawDefinition>>,
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub hidden: Vec<Spanned<toml::Table>>,
     pub world: Option<RawWorld>,
@@ -126,7 +130,8 @@ const MAX_COUNT: i64 = 1_000_000;
 const MAX_NOISE_SD: f64 = 1e4;
 
 const LAYOUT: &str = "a synth config has top-level club, seed and tables [design], [delivery], \
-                      [face], [noise.delivery], [noise.launch], [[hidden]], [world]; see \
+                      [face], [noise.delivery], [noise.launch], [[define_effect]], [[hidden]], \
+                      [world]; see \
                       configs/synth/README.md";
 
 /// Read and validate a synth configuration. The `club` path is resolved relative to the
@@ -166,6 +171,8 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
     if let Some(n) = &raw.noise {
         parse_noise(&doc, n, &mut cfg)?;
     }
+    // User-defined effects first, so that [[hidden]] tables can name them.
+    crate::data::effect_defs::register_definitions(path, text, &raw.define_effect)?;
     for (i, t) in raw.hidden.iter().enumerate() {
         cfg.hidden
             .push(parse_effect_table(path, text, "hidden", i, t)?);

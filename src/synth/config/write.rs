@@ -60,11 +60,25 @@ pub fn config_toml(cfg: &SynthConfig) -> String {
                     .collect(),
             ),
         }),
+        define_effect: hidden_definitions(cfg),
         hidden: cfg.hidden.iter().map(|e| sp(effect_table(e))).collect(),
         world: cfg.world.is_active().then(|| raw_world(&cfg.world)),
         truth: None,
     };
     toml::to_string(&raw).expect("a resolved synth configuration is plain TOML data")
+}
+
+/// The definitions of the user-defined effects the configuration hides, each once.
+fn hidden_definitions(cfg: &SynthConfig) -> Vec<Spanned<crate::data::effect_defs::RawDefinition>> {
+    let mut defined: Vec<&str> = Vec::new();
+    let mut out = Vec::new();
+    for u in cfg.hidden.iter().filter_map(|e| e.kind().user()) {
+        if !defined.contains(&u.name) {
+            defined.push(u.name);
+            out.push(sp(crate::data::effect_defs::raw_definition_of(u)));
+        }
+    }
+    out
 }
 
 fn raw_world(w: &WorldPhysics) -> RawWorld {
