@@ -439,6 +439,15 @@ pub fn yards_summary(study: &Study, r: &YardsResult) -> String {
         );
         t.push_str(&super::yards_variants::rows_text(&r.base_head, &r.rows, 12));
     }
+    if !study.club.effects.is_empty() {
+        let _ = writeln!(
+            t,
+            "yards: the club's {} [[effect]] entries are not applied in yards (the nominal head, \
+             as documented in configs/README.md); the face maps apply group '{}'",
+            study.club.effects.len(),
+            study.group
+        );
+    }
     if study.sensitivity.is_some() {
         let _ = writeln!(
             t,
