@@ -7,8 +7,9 @@
 //!   must succeed;
 //! - in an untagged, `console` or `text` block, a line starting with `$ ` is a command (with `\` continuation
 //!   lines); the lines after it, up to the next `$ ` line or the block's end, are output it must
-//!   print (stdout and stderr together), in order, compared with runs of spaces collapsed;
+//!   print (stdout, then stderr), in order, compared with runs of spaces collapsed;
 //!   `...` or `…` on a line of its own skips any lines, and within a line matches any text;
+//! - a line starting with `smash ` in such a block without `$ ` is refused (it would not run);
 //! - a block preceded by `<!-- docs-run: skip: REASON -->` is not run (the reason is required).
 //!
 //! Files other than these are not read. A failing command names its file, line and output.
@@ -86,6 +87,14 @@ fn commands(rel: &str, text: &str) -> Vec<DocCommand> {
                     expect: Vec::new(),
                 });
             } else if matches!(lang, "" | "console" | "text") {
+                if let Some(k) = body.iter().position(|l| l.starts_with("smash ")) {
+                    panic!(
+                        "{rel}:{}: a command outside a sh block and without `$ `: write \
+                         `$ {}` (its output below it) or put it in a ```sh block",
+                        start + k + 1,
+                        body[k]
+                    );
+                }
                 out.extend(console_commands(rel, start, body));
             }
         }
@@ -150,7 +159,8 @@ fn line_matches(want: &str, line: &str) -> bool {
 
 /// The first expected line the output does not print, in order.
 fn missing_line(expect: &[String], output: &str) -> Option<String> {
-    let lines: Vec<&str> = output.lines().collect();
+    // Blank lines are layout: neither side's count.
+    let lines: Vec<&str> = output.lines().filter(|l| !l.trim().is_empty()).collect();
     let mut at = 0;
     let mut loose = false;
     for want in expect {

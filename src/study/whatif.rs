@@ -106,8 +106,8 @@ impl HeadChange {
         if let Some(m) = &self.mass_move {
             if !(m.mass_g > 0.0 && g(m.mass_g) < nominal.club_mass_kg) {
                 return Err(format!(
-                    "the moved mass must be above 0 g and below the head's {} g, got {} g",
-                    crate::limits::fmt_value(nominal.club_mass_kg * 1e3),
+                    "the moved mass must be above 0 g and below the head's {:.1} g, got {} g",
+                    nominal.club_mass_kg / crate::units::KG_PER_G,
                     crate::limits::fmt_value(m.mass_g)
                 ));
             }
@@ -268,7 +268,7 @@ mod tests {
             ..HeadChange::default()
         };
         let e = c.apply(&p).unwrap_err();
-        assert!(e.contains("below the head's 204 g"), "{e}");
+        assert!(e.contains("below the head's 204.0 g"), "{e}");
     }
 
     #[test]
