@@ -18,6 +18,7 @@ pub mod signals;
 pub mod stdout;
 pub mod study_output;
 pub mod synth;
+pub mod whatif;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.
@@ -58,6 +59,9 @@ pub enum Command {
     /// Convert a launch-monitor export (TrackMan, Foresight, FlightScope, Uneekor or a mapping
     /// file) to a shots file.
     Import(import::ImportArgs),
+    /// Answer one design change (a mass moved, the CoM shifted, the MOI scaled, loft, bulge
+    /// or roll changed) in yards against the base head, for a stated golfer and mishits.
+    Whatif(whatif::WhatIfArgs),
 }
 
 /// Run a parsed command line.
@@ -73,6 +77,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Calibrate(args) => calibrate::run(args),
         Command::Diagnose(args) => diagnose::run(args),
         Command::Import(args) => import::run(args),
+        Command::Whatif(args) => whatif::run(args),
     }
 }
 

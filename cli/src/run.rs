@@ -217,7 +217,7 @@ fn run_whole(
     let (sens, opt) = finish(prepared, &metrics)?;
     let yards = match &prepared.study.yards {
         Some(_) => Some(
-            smash::study::yards_run::run_yards(&prepared.study)
+            smash::study::yards_run::run_yards(&prepared.study, opt.as_ref().map(|o| &o.best))
                 .map_err(|e| anyhow::anyhow!("{}: {e}", args.study.display()))?,
         ),
         None => None,

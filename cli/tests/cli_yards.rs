@@ -190,3 +190,135 @@ fn bad_yards_tables_are_one_clear_line() {
         assert!(!out.exists(), "case {k}: no output");
     }
 }
+
+/// The paper driver's club file with its CoM (mm) replaced.
+fn club_with_com(dir: &Path, name: &str, com_mm: [f64; 3]) -> PathBuf {
+    let text = read(Path::new(&club()));
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("com_mm"))
+        .expect("the club file has com_mm");
+    let moved = text.replace(
+        line,
+        &format!(
+            "com_mm = [{:?}, {:?}, {:?}]",
+            com_mm[0], com_mm[1], com_mm[2]
+        ),
+    );
+    let p = dir.join(name);
+    std::fs::write(&p, moved).unwrap();
+    p
+}
+
+/// A [yards] study of one swing and distribution with `club` and `extra` sections.
+fn single_study(dir: &Path, name: &str, club: &Path, extra: &str) -> PathBuf {
+    let text = format!(
+        "[study]\nname = \"{name}\"\nclub = \"{}\"\noutputs = [\"ball_speed_mph\"]\n\n\
+         [delivery]\nclub_speed_mph = 100.0\ndynamic_loft_deg = 13.0\n\n\
+         [distribution]\nmethod = \"quadrature\"\nnodes = 3\nsigma_y_mm = 3.0\nsigma_z_mm = 8.0\nsigma_face_angle_deg = 1.0\n\n\
+         [grid]\ny_mm = {{ from = 0.0, to = 0.0, count = 1 }}\nz_mm = {{ from = 0.0, to = 0.0, count = 1 }}\n\n\
+         [yards]\nstatic_loft_deg = 10.5\n{extra}",
+        club.to_string_lossy().replace('\\', "/")
+    );
+    let p = dir.join(format!("{name}.toml"));
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+/// `yards/variants.csv` as rows of named cells.
+fn variant_rows(out: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let mut r = csv::Reader::from_path(out.join("yards/variants.csv")).unwrap();
+    let head = r.headers().unwrap().clone();
+    r.records()
+        .map(|rec| {
+            let rec = rec.unwrap();
+            head.iter()
+                .zip(rec.iter())
+                .map(|(h, v)| (h.to_owned(), v.to_owned()))
+                .collect()
+        })
+        .collect()
+}
+
+fn num(row: &std::collections::HashMap<String, String>, key: &str) -> f64 {
+    row[key]
+        .parse()
+        .unwrap_or_else(|_| panic!("{key} = '{}'", row[key]))
+}
+
+#[test]
+fn design_variants_are_judged_in_yards_as_separate_heads_are() {
+    // Three variants moving the CoM 4 mm toward the heel, not at all and toward the toe: each
+    // row of yards/variants.csv must be what a study of that head alone computes.
+    let dir = tempfile::tempdir().unwrap();
+    let base_com = [-42.3, 2.9, 1.0];
+    let s = single_study(
+        dir.path(),
+        "sweep",
+        Path::new(&club()),
+        "\n[design]\ncom_dz_mm = [-4.0, 0.0, 4.0]\n",
+    );
+    let out = dir.path().join("out");
+    let o = smash(&["run", s.to_str().unwrap(), "--out", out.to_str().unwrap()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{err}");
+    assert!(err.contains("yards per design against the base"), "{err}");
+    let rows = variant_rows(&out);
+    let labels: Vec<&str> = rows.iter().map(|r| r["label"].as_str()).collect();
+    assert_eq!(labels, ["base", "variant 0", "variant 1", "variant 2"]);
+    assert_eq!(rows[1]["design"], "com_dz_mm = -4");
+    let keys = [
+        "mean_carry_yd",
+        "std_carry_yd",
+        "ellipse_area_yd2",
+        "mean_offline_yd",
+        "std_offline_yd",
+        "mean_ball_speed_mph",
+        "mean_backspin_rpm",
+        "mean_sidespin_rpm",
+    ];
+    for (i, dz) in [-4.0, 0.0, 4.0].into_iter().enumerate() {
+        let row = &rows[i + 1];
+        let com = [base_com[0], base_com[1], base_com[2] + dz];
+        let c = club_with_com(dir.path(), &format!("club{i}.toml"), com);
+        let single = single_study(dir.path(), &format!("single{i}"), &c, "");
+        let single_out = dir.path().join(format!("single{i}_out"));
+        let o = smash(&[
+            "run",
+            single.to_str().unwrap(),
+            "--out",
+            single_out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let alone = &variant_rows(&single_out)[0];
+        // The single-head study's own metrics file agrees with its table.
+        let m = rows_of_metrics(&single_out);
+        assert_eq!(m[1][4], alone["mean_carry_yd"]);
+        for k in keys {
+            let (a, b) = (num(row, k), num(alone, k));
+            assert!(
+                (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+                "variant {i} {k}: {a} in the sweep, {b} alone"
+            );
+            let d = num(row, &format!("d_{k}"));
+            assert!(
+                (d - (a - num(&rows[0], k))).abs() <= 1e-9 * a.abs().max(1.0),
+                "variant {i} d_{k}"
+            );
+        }
+        // A quadrature has its error estimate; a moved CoM changes carry and offline.
+        assert!(!row["d_mean_carry_yd_unc"].is_empty());
+        if dz != 0.0 {
+            assert!(num(row, "d_mean_carry_yd").abs() > 1e-3, "{row:?}");
+            assert!(num(row, "d_mean_offline_yd").abs() > 0.1, "{row:?}");
+        } else {
+            assert_eq!(num(row, "d_mean_carry_yd"), 0.0);
+        }
+    }
+    // Toe-ward and heel-ward CoM moves send the ball to opposite sides.
+    assert!(num(&rows[1], "d_mean_offline_yd") * num(&rows[3], "d_mean_offline_yd") < 0.0);
+}
+
+fn rows_of_metrics(out: &Path) -> Vec<Vec<String>> {
+    rows(&out.join("yards/metrics.csv"))
+}

@@ -15,7 +15,8 @@
 //! - [`output`]: the output files as bytes; [`shard`]: shard files and their merge.
 //! - [`yards`]: studies in yards (impact then ball flight): carry maps, robust carry and
 //!   dispersion over a distribution, head constraints (mass, Rules MOI limit, CoM box) and a
-//!   discretionary-mass optimiser for expected carry or dispersion.
+//!   discretionary-mass optimiser for expected carry or dispersion; [`yards_variants`]: every
+//!   design variant (and each optimiser's result) in yards against the base.
 //!
 //! Nothing here writes files or prints: the CLI does.
 
@@ -29,9 +30,11 @@ pub mod sensitivity;
 pub mod shard;
 pub mod spec;
 pub mod sweep;
+pub mod whatif;
 pub mod yards;
 pub mod yards_run;
 pub mod yards_spec;
+pub mod yards_variants;
 
 pub use spec::{parse_study, read_study, resolved_toml, Study};
 pub use sweep::{Prepared, VariantResult};

@@ -115,6 +115,12 @@ pub struct YardMetrics {
     pub ellipse_area_yd2: f64,
     /// Confidence level of the ellipse, in (0, 1).
     pub confidence: f64,
+    /// Weighted mean ball speed at launch, mph.
+    pub mean_ball_speed_mph: f64,
+    /// Weighted mean backspin at launch, rpm.
+    pub mean_backspin_rpm: f64,
+    /// Weighted mean sidespin at launch, rpm (+ curves right).
+    pub mean_sidespin_rpm: f64,
 }
 
 /// Robust metrics over `dist` around `base` (see the module documentation). Every impact of
@@ -156,6 +162,18 @@ pub fn yard_metrics(
         ));
     }
     let flights = fly(flight, &launches);
+    let launch_mean = |f: fn(&FlightLaunch) -> f64| -> f64 {
+        let sw: f64 = weights.iter().sum();
+        launches
+            .iter()
+            .zip(&weights)
+            .map(|(l, w)| w * f(l))
+            .sum::<f64>()
+            / sw
+    };
+    let mean_ball_speed_mph = launch_mean(|l| l.ball_speed_m_s) / crate::units::M_S_PER_MPH;
+    let mean_backspin_rpm = launch_mean(|l| l.backspin_rad_s) / crate::units::RAD_S_PER_RPM;
+    let mean_sidespin_rpm = launch_mean(|l| l.sidespin_rad_s) / crate::units::RAD_S_PER_RPM;
     // Carry is the landing's signed coordinate along the target line (`Flight::carry_m`), so
     // the mean and spread of carry are those of the landing points' `x`.
     let (mut sw, mut sx, mut sz) = (0.0, 0.0, 0.0);
@@ -185,6 +203,9 @@ pub fn yard_metrics(
         std_offline_yd: vzz.sqrt(),
         ellipse_area_yd2: std::f64::consts::PI * k2 * det.sqrt(),
         confidence,
+        mean_ball_speed_mph,
+        mean_backspin_rpm,
+        mean_sidespin_rpm,
     })
 }
 

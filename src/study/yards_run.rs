@@ -10,6 +10,7 @@
 //! | `yards/metrics.csv` | base (and optimum) design: mean and spread of carry and offline, dispersion-ellipse area and its confidence |
 //! | `yards/constraints.csv` | every constraint at the base (and optimum): value, limit, margin, holds |
 //! | `yards/optimise.csv` | goal, evaluations, rejected designs, mass move, active bounds (or why it did not run) |
+//! | `yards/variants.csv` | every head against the base: each `[design]` variant, the `[yards.optimise]` optimum and the `[optimise]` optimum, with the changes of mean carry, carry spread, ellipse area, offline, ball speed and spin and their quadrature uncertainty ([`super::yards_variants`]) |
 //!
 //! The impact model is the study's base club (nominal parameters; the group's effects are not
 //! applied to the yard part). Pure: the CLI writes the files.
@@ -19,6 +20,7 @@ use std::path::PathBuf;
 
 use rayon::prelude::*;
 
+use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::output::{cell, Files};
 use super::spec::Study;
 use super::yards::{
@@ -26,6 +28,7 @@ use super::yards::{
     MassProblem, YardGoal, YardMetrics, YardOptimum,
 };
 use super::yards_spec::YardsSpec;
+use super::yards_variants::{head_yards, rows_csv, HeadYards, YardRow, YardSetting};
 use crate::flight::FlightConfig;
 use crate::physics::ImpactModel;
 use crate::report::heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
@@ -37,6 +40,10 @@ pub const MAX_MAP_FLIGHTS: usize = 20_000_000;
 /// Everything the yard part computes.
 #[derive(Debug, Clone)]
 pub struct YardsResult {
+    /// The base head's metrics with the companion rule's (for the uncertainties).
+    pub base_head: HeadYards,
+    /// Every head against the base, the base first (see [`super::yards_variants`]).
+    pub rows: Vec<YardRow>,
     /// Carry and offline of the study's swing over the grid.
     pub map: CarryMap,
     /// Robust metrics of the distribution centred at each grid point (row-major), `None` where
@@ -59,8 +66,9 @@ pub fn flight_config(y: &YardsSpec) -> Result<FlightConfig, String> {
     })
 }
 
-/// Run the yard part of `study` (which must have a `[yards]` table).
-pub fn run_yards(study: &Study) -> Result<YardsResult, String> {
+/// Run the yard part of `study` (which must have a `[yards]` table). `study_optimum`: the
+/// best design of the study's `[optimise]`, when it has one (its row joins the table).
+pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsResult, String> {
     let y = study
         .yards
         .as_ref()
@@ -114,13 +122,63 @@ pub fn run_yards(study: &Study) -> Result<YardsResult, String> {
         }
         _ => None,
     };
+    let setting = YardSetting {
+        swing: &study.swing,
+        dist,
+        flight: &flight,
+        confidence: y.confidence,
+    };
+    let base_head =
+        head_yards(nominal, &setting).map_err(|e| format!("[yards] base design: {e}"))?;
+    let mut heads = design_heads(study, study_optimum);
+    if let (Some(Ok(o)), Some((mass, _))) = (&optimum, &y.mass) {
+        let d = Design::default()
+            .with(DesignVar::MassDx, o.move_mm[0])
+            .with(DesignVar::MassDy, o.move_mm[1])
+            .with(DesignVar::MassDz, o.move_mm[2]);
+        heads.push(("optimum [yards.optimise]".into(), d, Some(*mass)));
+    }
+    let rows = heads
+        .into_par_iter()
+        .map(|(label, d, mass)| {
+            let p = d.apply(nominal, mass.as_ref()).map_err(|e| e.to_string())?;
+            let head = head_yards(&p, &setting).map_err(|e| format!("[yards] {label}: {e}"))?;
+            Ok(YardRow {
+                label,
+                design: d.describe(),
+                head,
+            })
+        })
+        .collect::<Result<Vec<_>, String>>()?;
     Ok(YardsResult {
+        base_head,
+        rows,
         map,
         robust_map,
         base,
         base_constraints,
         optimum,
     })
+}
+
+/// The heads the table compares: the base, each `[design]` variant that is not the base, and
+/// the `[optimise]` optimum (label, design, the discretionary mass it moves).
+fn design_heads(
+    study: &Study,
+    study_optimum: Option<&Design>,
+) -> Vec<(String, Design, Option<DiscretionaryMass>)> {
+    let mass = study.design.discretionary_mass;
+    let mut heads = vec![("base".to_owned(), Design::default(), None)];
+    let variants = study.design.variants();
+    if variants.len() > 1 || variants.first().is_some_and(|d| *d != Design::default()) {
+        for (i, d) in variants.into_iter().enumerate() {
+            heads.push((format!("variant {i}"), d, mass));
+        }
+    }
+    if let Some(d) = study_optimum {
+        heads.push(("optimum [optimise]".into(), *d, mass));
+    }
+    heads
 }
 
 fn map_files(
@@ -170,6 +228,10 @@ pub fn yards_files(study: &Study, r: &YardsResult) -> Files {
         constraints_csv(r, opt),
     ));
     out.extend(optimise_csv(study, r));
+    out.push((
+        PathBuf::from("yards/variants.csv"),
+        rows_csv(&r.base_head, &r.rows),
+    ));
     out
 }
 
@@ -369,6 +431,28 @@ pub fn yards_summary(study: &Study, r: &YardsResult) -> String {
                 o.evaluations, o.rejected
             );
         }
+    }
+    if r.rows.len() > 1 {
+        let _ = writeln!(
+            t,
+            "yards per design against the base (changes; ± the quadrature's error estimate):"
+        );
+        t.push_str(&super::yards_variants::rows_text(&r.base_head, &r.rows, 12));
+    }
+    if !study.club.effects.is_empty() {
+        let _ = writeln!(
+            t,
+            "yards: the club's {} [[effect]] entries are not applied in yards (the nominal head, \
+             as documented in configs/README.md); the face maps apply group '{}'",
+            study.club.effects.len(),
+            study.group
+        );
+    }
+    if study.sensitivity.is_some() {
+        let _ = writeln!(
+            t,
+            "yards: [sensitivity] differentiates the face-map metrics (sensitivities.csv), not yards"
+        );
     }
     t
 }

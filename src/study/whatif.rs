@@ -1,0 +1,297 @@
+//! A what-if: one design change stated directly, answered in yards against the base head for
+//! a stated golfer and mishit pattern (`smash whatif`).
+//!
+//! The change ([`HeadChange`]) is applied to the club's nominal head in this order:
+//!
+//! 1. **Mass move**: a mass `m` that is part of the head moves from `A` to `B` (F frame, from
+//!    the CoF). The head's mass is unchanged; its CoM and its inertia about the new CoM follow
+//!    from the parallel-axis theorem, exactly as a `[design]` discretionary-mass move does
+//!    ([`super::design`]: `I' = I − m·J(A − C) + m·J(B − C) − M·J(c)`, `c = m·(B − A)/M`).
+//! 2. **CoM shift**: the CoM moves, the inertia about it is unchanged.
+//! 3. **MOI scale**: the inertia tensor about the CoM scales by `s`.
+//! 4. **Bulge and roll radii**: replaced.
+//! 5. **Loft change**: the head has `δ` more loft; delivered by the same swing (the same shaft
+//!    lean and attack), the face meets the ball with `δ` more dynamic loft.
+//!
+//! The answer is [`super::yards_variants`]'s comparison of the two heads over the same
+//! distribution of swings and impacts. Pure: no I/O.
+
+use std::fmt::Write as _;
+
+use nalgebra::Vector3;
+
+use super::design::{Design, DesignVar, DiscretionaryMass};
+use super::distribution::SwingSpec;
+use super::yards_variants::{head_yards, HeadYards, YardSetting};
+use crate::physics::{ImpactModel, ModelParams};
+use crate::units::{g, mm};
+
+/// A point mass of the head moved from one place to another.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MassMove {
+    /// The mass moved, g.
+    pub mass_g: f64,
+    /// Where it sits in the base head, mm (F frame, from the CoF).
+    pub from_mm: [f64; 3],
+    /// Where it is moved to, mm.
+    pub to_mm: [f64; 3],
+}
+
+/// One design change (every part optional; the default changes nothing).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct HeadChange {
+    /// A mass moved within the head.
+    pub mass_move: Option<MassMove>,
+    /// CoM shift, mm (F frame).
+    pub com_shift_mm: Option<[f64; 3]>,
+    /// Scale of the inertia tensor about the CoM.
+    pub moi_scale: Option<f64>,
+    /// New bulge radius, mm.
+    pub bulge_mm: Option<f64>,
+    /// New roll radius, mm.
+    pub roll_mm: Option<f64>,
+    /// Loft change of the head, degrees (+ more loft).
+    pub loft_change_deg: Option<f64>,
+}
+
+fn fmt3(v: [f64; 3]) -> String {
+    format!(
+        "({}, {}, {})",
+        crate::limits::fmt_value(v[0]),
+        crate::limits::fmt_value(v[1]),
+        crate::limits::fmt_value(v[2])
+    )
+}
+
+impl HeadChange {
+    /// Whether it changes anything.
+    pub fn is_empty(&self) -> bool {
+        *self == Self::default()
+    }
+
+    /// The change in words, one part per item.
+    pub fn describe(&self) -> Vec<String> {
+        let f = crate::limits::fmt_value;
+        let mut out = Vec::new();
+        if let Some(m) = &self.mass_move {
+            out.push(format!(
+                "move {} g from {} mm to {} mm",
+                f(m.mass_g),
+                fmt3(m.from_mm),
+                fmt3(m.to_mm)
+            ));
+        }
+        if let Some(c) = self.com_shift_mm {
+            out.push(format!("shift the CoM by {} mm", fmt3(c)));
+        }
+        if let Some(s) = self.moi_scale {
+            out.push(format!("scale the inertia tensor by {}", f(s)));
+        }
+        if let Some(b) = self.bulge_mm {
+            out.push(format!("bulge radius {} mm", f(b)));
+        }
+        if let Some(r) = self.roll_mm {
+            out.push(format!("roll radius {} mm", f(r)));
+        }
+        if let Some(d) = self.loft_change_deg {
+            out.push(format!("loft {:+} deg", d));
+        }
+        out
+    }
+
+    /// The changed head (errors name what is not physical).
+    pub fn apply(&self, nominal: &ModelParams) -> Result<ModelParams, String> {
+        let mut d = Design::default();
+        let mut mass = None;
+        if let Some(m) = &self.mass_move {
+            if !(m.mass_g > 0.0 && g(m.mass_g) < nominal.club_mass_kg) {
+                return Err(format!(
+                    "the moved mass must be above 0 g and below the head's {:.1} g, got {} g",
+                    nominal.club_mass_kg / crate::units::KG_PER_G,
+                    crate::limits::fmt_value(m.mass_g)
+                ));
+            }
+            mass = Some(DiscretionaryMass {
+                mass_kg: g(m.mass_g),
+                at_m: Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])),
+            });
+            for (k, v) in [DesignVar::MassDx, DesignVar::MassDy, DesignVar::MassDz]
+                .into_iter()
+                .enumerate()
+            {
+                d.set(v, m.to_mm[k] - m.from_mm[k]);
+            }
+        }
+        if let Some(c) = self.com_shift_mm {
+            d.set(DesignVar::ComDx, c[0]);
+            d.set(DesignVar::ComDy, c[1]);
+            d.set(DesignVar::ComDz, c[2]);
+        }
+        if let Some(s) = self.moi_scale {
+            d.set(DesignVar::InertiaScale, s);
+        }
+        let mut p = d
+            .apply(nominal, mass.as_ref())
+            .map_err(|e| e.problem.clone())?;
+        if let Some(b) = self.bulge_mm {
+            p.bulge_m = mm(b);
+        }
+        if let Some(r) = self.roll_mm {
+            p.roll_m = mm(r);
+        }
+        ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+        Ok(p)
+    }
+
+    /// The swing the changed head is delivered with (the loft change).
+    pub fn swing(&self, base: &SwingSpec) -> SwingSpec {
+        SwingSpec {
+            dynamic_loft_deg: base.dynamic_loft_deg + self.loft_change_deg.unwrap_or(0.0),
+            ..*base
+        }
+    }
+}
+
+/// The answer: both heads and their yard metrics.
+#[derive(Debug, Clone)]
+pub struct WhatIf {
+    /// The base head.
+    pub base_params: ModelParams,
+    /// The changed head.
+    pub changed_params: ModelParams,
+    /// The base head's yards.
+    pub base: HeadYards,
+    /// The changed head's yards.
+    pub changed: HeadYards,
+}
+
+/// Answer `change` against the base head `nominal` in the setting `s` (its swing is the base
+/// head's; the changed head's follows from [`HeadChange::swing`]).
+pub fn what_if(
+    nominal: &ModelParams,
+    change: &HeadChange,
+    s: &YardSetting<'_>,
+) -> Result<WhatIf, String> {
+    let changed_params = change.apply(nominal)?;
+    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
+    let swing = change.swing(s.swing);
+    let changed = head_yards(
+        &changed_params,
+        &YardSetting {
+            swing: &swing,
+            ..*s
+        },
+    )
+    .map_err(|e| format!("the changed head: {e}"))?;
+    Ok(WhatIf {
+        base_params: nominal.clone(),
+        changed_params,
+        base,
+        changed,
+    })
+}
+
+/// The heads side by side: mass, CoM and the inertia tensor's diagonal.
+pub fn head_text(w: &WhatIf) -> String {
+    let mut t = String::new();
+    let com = |p: &ModelParams| {
+        let c = p.club_com_m / crate::units::M_PER_MM;
+        format!("({:.2}, {:.2}, {:.2})", c.x, c.y, c.z)
+    };
+    let moi = |p: &ModelParams| {
+        let i = p.club_inertia_kgm2 / crate::units::KGM2_PER_GCM2;
+        format!("({:.1}, {:.1}, {:.1})", i[(0, 0)], i[(1, 1)], i[(2, 2)])
+    };
+    let (b, c) = (&w.base_params, &w.changed_params);
+    let _ = writeln!(
+        t,
+        "head mass: {:.1} g -> {:.1} g",
+        b.club_mass_kg * 1e3,
+        c.club_mass_kg * 1e3
+    );
+    let _ = writeln!(t, "CoM (x, y, z) mm: {} -> {}", com(b), com(c));
+    let _ = writeln!(
+        t,
+        "I_xx, I_yy, I_zz about the CoM g·cm²: {} -> {}",
+        moi(b),
+        moi(c)
+    );
+    let _ = writeln!(
+        t,
+        "bulge, roll mm: {:.1}, {:.1} -> {:.1}, {:.1}",
+        b.bulge_m * 1e3,
+        b.roll_m * 1e3,
+        c.bulge_m * 1e3,
+        c.roll_m * 1e3
+    );
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_mass_moved_keeps_the_head_mass_and_moves_the_com_by_its_share() {
+        let p = ModelParams::paper_driver();
+        let c = HeadChange {
+            mass_move: Some(MassMove {
+                mass_g: 5.0,
+                from_mm: [-70.0, -10.0, 0.0],
+                to_mm: [-80.0, -10.0, -10.0],
+            }),
+            ..HeadChange::default()
+        };
+        let q = c.apply(&p).unwrap();
+        assert_eq!(q.club_mass_kg, p.club_mass_kg);
+        let shift = (q.club_com_m - p.club_com_m) / crate::units::M_PER_MM;
+        let share = 5.0 / (p.club_mass_kg * 1e3);
+        assert!((shift.x + 10.0 * share).abs() < 1e-12);
+        assert!(shift.y.abs() < 1e-12);
+        assert!((shift.z + 10.0 * share).abs() < 1e-12);
+        // Moving a mass back and to the heel, away from the CoM, raises the vertical-axis MOI.
+        assert!(q.club_inertia_kgm2[(1, 1)] > p.club_inertia_kgm2[(1, 1)]);
+        // Nothing else changes.
+        assert_eq!(q.bulge_m, p.bulge_m);
+        assert!(HeadChange::default().is_empty() && !c.is_empty());
+    }
+
+    #[test]
+    fn a_mass_heavier_than_the_head_is_refused() {
+        let p = ModelParams::paper_driver();
+        let c = HeadChange {
+            mass_move: Some(MassMove {
+                mass_g: 500.0,
+                from_mm: [-70.0, 0.0, 0.0],
+                to_mm: [-60.0, 0.0, 0.0],
+            }),
+            ..HeadChange::default()
+        };
+        let e = c.apply(&p).unwrap_err();
+        assert!(e.contains("below the head's 204.0 g"), "{e}");
+    }
+
+    #[test]
+    fn bulge_roll_and_loft_are_replaced_or_added() {
+        let p = ModelParams::paper_driver();
+        let c = HeadChange {
+            bulge_mm: Some(280.0),
+            roll_mm: Some(250.0),
+            loft_change_deg: Some(1.5),
+            ..HeadChange::default()
+        };
+        let q = c.apply(&p).unwrap();
+        assert!((q.bulge_m - 0.28).abs() < 1e-15 && (q.roll_m - 0.25).abs() < 1e-15);
+        let swing = SwingSpec {
+            club_speed_mph: 95.0,
+            dynamic_loft_deg: 12.0,
+            attack_angle_deg: 0.0,
+            club_path_deg: 0.0,
+            face_angle_deg: 0.0,
+            lie_tilt_deg: 0.0,
+            club_omega_rad_s: [0.0; 3],
+        };
+        assert_eq!(c.swing(&swing).dynamic_loft_deg, 13.5);
+        assert_eq!(c.describe().len(), 3);
+    }
+}
