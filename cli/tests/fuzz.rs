@@ -1,6 +1,7 @@
 //! Mutation fuzz of the file readers: club, study, synth and instrument-noise TOML, shots CSV,
 //! user-effect definitions (their expressions, alone and in a club file) and launch files
-//! (`smash flight`'s input, through both of its readers and the flight).
+//! (`smash flight`'s input, through both of its readers and the flight), import mapping files (the
+//! presets) and launch-monitor exports read with their presets.
 //!
 //! Each case takes a valid file (the shipped configs, a generated shots file), applies one to
 //! four random mutations (bytes, lines, numbers and fields replaced by hostile values) and parses
@@ -319,6 +320,26 @@ fn fly_launch_file(b: &[u8]) -> Result<(), anyhow::Error> {
     Ok(())
 }
 
+/// A file's bytes as they are (exports: byte-order marks and Windows-1252 bytes included).
+fn read_bytes(rel: &str) -> Vec<u8> {
+    std::fs::read(root().join(rel)).unwrap()
+}
+
+/// Import an export with a preset, and read the result back as the commands do.
+fn import_export(preset: &str, p: &Path, b: &[u8]) -> Result<(), anyhow::Error> {
+    use smash::data::import::{import, load_mapping, ImportOptions, OffsetSide};
+    let mapping = load_mapping(preset)?;
+    let opts = ImportOptions {
+        impact_offset_positive: Some(OffsetSide::Toe),
+        ..ImportOptions::default()
+    };
+    let imported = import(p, b, &mapping, &opts)?;
+    if imported.complete_delivery > 0 {
+        imported.read_back(p)?;
+    }
+    Ok(())
+}
+
 fn targets() -> Vec<Target> {
     let text = |b: &[u8]| String::from_utf8_lossy(b).into_owned();
     vec![
@@ -403,6 +424,64 @@ fn targets() -> Vec<Target> {
                 smash::data::shots::parse_shots(p, b)?;
                 Ok(())
             },
+        },
+        Target {
+            name: "mapping",
+            csv: false,
+            corpus: smash::data::import::PRESETS
+                .iter()
+                .map(|(_, text)| text.as_bytes().to_vec())
+                .collect(),
+            parse: |p, b| {
+                smash::data::import::parse_mapping(p, &String::from_utf8_lossy(b))?;
+                Ok(())
+            },
+        },
+        Target {
+            name: "export trackman",
+            csv: true,
+            corpus: vec![
+                read_bytes("cli/tests/fixtures/import/trackman_normalized.csv"),
+                read_bytes("cli/tests/fixtures/import/trackman_older.csv"),
+                read_bytes("cli/tests/fixtures/import/trackman_semicolon.csv"),
+            ],
+            parse: |p, b| import_export("trackman", p, b),
+        },
+        Target {
+            name: "export flightscope",
+            csv: true,
+            corpus: vec![
+                read_bytes("cli/tests/fixtures/import/flightscope_fsgolf.csv"),
+                read_bytes("cli/tests/fixtures/import/flightscope_cp1252.csv"),
+            ],
+            parse: |p, b| import_export("flightscope", p, b),
+        },
+        Target {
+            name: "export garmin-r10",
+            csv: true,
+            corpus: vec![read_bytes("cli/tests/fixtures/import/garmin_r10.csv")],
+            parse: |p, b| import_export("garmin-r10", p, b),
+        },
+        Target {
+            name: "export uneekor",
+            csv: true,
+            corpus: vec![
+                read_bytes("cli/tests/fixtures/import/uneekor_range.csv"),
+                read_bytes("cli/tests/fixtures/import/uneekor_refine.csv"),
+            ],
+            parse: |p, b| import_export("uneekor", p, b),
+        },
+        Target {
+            name: "export rapsodo",
+            csv: true,
+            corpus: vec![read_bytes("tests/data/real/rapsodo_mlm2pro_mixed.csv")],
+            parse: |p, b| import_export("rapsodo", p, b),
+        },
+        Target {
+            name: "export foresight",
+            csv: true,
+            corpus: vec![read_bytes("cli/tests/fixtures/import/foresight_fsx.csv")],
+            parse: |p, b| import_export("foresight", p, b),
         },
     ]
     .into_iter()
