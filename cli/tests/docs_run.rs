@@ -78,7 +78,7 @@ fn commands(rel: &str, text: &str) -> Vec<DocCommand> {
             );
         }
         let body = &lines[start..end.min(lines.len())];
-        let lang = info.trim().split_whitespace().next().unwrap_or("");
+        let lang = info.split_whitespace().next().unwrap_or("");
         if !skipped && !fence.starts_with("````") {
             if matches!(lang, "sh" | "bash" | "shell") {
                 out.push(DocCommand {

@@ -26,7 +26,7 @@ fn paper_head() -> (f64, Vector3<f64>, Matrix3<f64>) {
         line.split('=')
             .nth(1)
             .unwrap()
-            .split(|c: char| c == '[' || c == ']' || c == ',')
+            .split(['[', ']', ','])
             .filter_map(|x| x.trim().parse().ok())
             .collect()
     };
