@@ -13,6 +13,7 @@ use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
 use smash::data::noise_file::read_noise_file;
+use smash::data::shots::ShotTable;
 use smash::data::write_atomic;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
@@ -23,6 +24,7 @@ use smash::diagnose::{
 use smash::fit::{parse_effect_list, FitError, ParamEstimate};
 use smash::physics::LaunchComponent;
 use smash::report::{error_table_text, error_tables_side_by_side, TextTable};
+use smash::ClubSpec;
 
 use super::progress::job_bar;
 
@@ -171,6 +173,50 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
+    let bar = Bar(job_bar(1, "fits"));
+    let result = compute(&args, &club, &table, Some(&bar));
+    bar.0.finish_and_clear();
+    let (d, floor) = result?;
+    for w in &d.warnings {
+        eprintln!("warning: {}", smash::data::escape(w));
+    }
+    if let Some(out) = &args.out_club {
+        let comment = format!(
+            "Club with the effects selected by smash diagnose on {} ({} shots): {}",
+            args.shots.display(),
+            d.n_shots,
+            if d.selected.is_empty() {
+                "none".to_owned()
+            } else {
+                d.selected.join(", ")
+            }
+        );
+        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
+        eprintln!("club with selected effects -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        let title = format!("{} on {}", club.name, args.shots.display());
+        let html = smash::report::html::diagnose_page(&to_json(&d, &floor), &title)
+            .map_err(anyhow::Error::msg)?;
+        write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
+    if args.json {
+        crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
+    } else {
+        crate::stdout::print(text_report(&d, &floor))?;
+    }
+    Ok(())
+}
+
+/// The diagnosis of `table` with `club` under `args`' options (its `--club` and `--shots` only
+/// name them in messages) and its noise floor; `progress` sees the fits. What `run` reports.
+pub fn compute(
+    args: &DiagnoseArgs,
+    club: &ClubSpec,
+    table: &ShotTable,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> anyhow::Result<(Diagnosis, NoiseFloor)> {
     let known_noise = match (&args.noise, args.instrument) {
         (Some(p), _) => Some(read_noise_file(p)?),
         (None, Some(c)) => Some(c.noise()),
@@ -204,41 +250,10 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         noise_floor: known_noise,
         ..DiagnoseOptions::default()
     };
-    let bar = Bar(job_bar(1, "fits"));
-    let d = diagnose(&club, &table.shots, &opts, Some(&bar));
-    bar.0.finish_and_clear();
-    let d = d.with_context(|| args.shots.display().to_string())?;
+    let d = diagnose(club, &table.shots, &opts, progress)
+        .with_context(|| args.shots.display().to_string())?;
     let floor = noise_floor(&d, &table.shots, &instrument)?;
-    for w in &d.warnings {
-        eprintln!("warning: {}", smash::data::escape(w));
-    }
-    if let Some(out) = &args.out_club {
-        let comment = format!(
-            "Club with the effects selected by smash diagnose on {} ({} shots): {}",
-            args.shots.display(),
-            d.n_shots,
-            if d.selected.is_empty() {
-                "none".to_owned()
-            } else {
-                d.selected.join(", ")
-            }
-        );
-        write_atomic(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
-        eprintln!("club with selected effects -> {}", out.display());
-    }
-    if let Some(path) = &args.report {
-        let title = format!("{} on {}", club.name, args.shots.display());
-        let html = smash::report::html::diagnose_page(&to_json(&d, &floor), &title)
-            .map_err(anyhow::Error::msg)?;
-        write_atomic(path, html.as_bytes())?;
-        eprintln!("report -> {}", path.display());
-    }
-    if args.json {
-        crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
-    } else {
-        crate::stdout::print(text_report(&d, &floor))?;
-    }
-    Ok(())
+    Ok((d, floor))
 }
 
 fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
