@@ -51,6 +51,12 @@ TableLike = Union[str, "os.PathLike[str]", pd.DataFrame]
 # Columns that hold names, not numbers: kept as text when a CSV comes back.
 _TEXT_COLUMNS = ("shot_id", "group", "golfer")
 
+# Reading floats exactly as written: pandas before 3 needs the round-trip parser asked for;
+# from 3 on it is the default (and the argument is deprecated).
+_EXACT_FLOATS: Dict[str, Any] = (
+    {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+)
+
 
 class SmashWarning(UserWarning):
     """A warning of smash (the lines the CLI prints as ``warning: …`` or import notes)."""
@@ -76,7 +82,7 @@ def _read_csv(data: bytes) -> pd.DataFrame:
     dtype = {c: str for c in _TEXT_COLUMNS if c in head}
     return pd.read_csv(
         io.BytesIO(data),
-        float_precision="round_trip",
+        **_EXACT_FLOATS,
         dtype=dtype,
         keep_default_na=False,
         na_values=[""],

@@ -3,7 +3,6 @@ by the CLI's own `smash synth`."""
 
 from __future__ import annotations
 
-import io
 import json
 import os
 import shutil
@@ -82,6 +81,3 @@ def read_cli_csv(path: Path) -> pd.DataFrame:
 
     return _read_csv(Path(path).read_bytes())
 
-
-def read_cli_csv_text(text: str) -> pd.DataFrame:
-    return pd.read_csv(io.StringIO(text), float_precision="round_trip")

@@ -42,7 +42,7 @@ def test_predict_golden_matches_cli(cli, tmp_path, case):
     out = tmp_path / "pred.csv"
     cli.run("predict", "--club", club, "--shots", shots, "--out", out)
     want = read_cli_csv(out)
-    df = pd.read_csv(shots, float_precision="round_trip", dtype={"shot_id": str})
+    df = read_cli_csv(shots)
     got = sg.predict(sg.Club.load(club), df)
     assert_same_table(got, want, rtol=1e-12)
     # A path is read as the CLI reads it.
@@ -74,6 +74,11 @@ def test_club_variant_predicts_as_its_file(cli, tmp_path):
     # The variant is the golden club file's club.
     assert variant.to_toml() == sg.Club.load(GOLDEN_CLUBS / "added_mass.toml").to_toml()
     assert variant.without_effects().effects == []
+    two = variant.with_effect("ball_offset", group="A", dy_mm=0.48, dz_mm=-0.07)
+    assert [e["name"] for e in two.effects] == ["added_mass", "ball_offset"]
+    assert two.effects[1] == {"name": "ball_offset", "group": "A",
+                              "params": {"dy_mm": 0.48, "dz_mm": -0.07}}
+    assert sg.Club.from_toml(two.to_toml()).to_toml() == two.to_toml()
 
 
 def test_club_refuses_what_a_club_file_refuses():
