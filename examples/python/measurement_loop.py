@@ -65,9 +65,20 @@ print(truth)
 
 # %% [markdown]
 # ## 3. Calibrate the selected effects and watch the error fall
+# Under the measurement model diagnose chose (impact-location and delivery noise), as its
+# `calibrate_flags` say.
 
 # %%
-cal = sg.calibrate(club, shots, d["selected"])
+# The CLI's `calibrate_flags`: the selected effects and the measurement model diagnose chose.
+flags = dict(zip(*[iter(d["calibrate_flags"].split())] * 2))
+impact_noise = flags.get("--impact-noise-mm")
+cal = sg.calibrate(
+    club,
+    shots,
+    flags.get("--effects", ""),
+    impact_noise_mm=tuple(map(float, impact_noise.split(","))) if impact_noise else None,
+    delivery_noise=flags.get("--delivery-noise"),
+)
 print(cal["params"][["effect", "param", "group", "value", "stderr", "unit"]])
 print(f"chi2: nominal {cal['chi2_nominal']:.1f} -> calibrated {cal['chi2']:.1f}")
 calibrated = cal["club"]
@@ -117,15 +128,15 @@ fig.savefig(OUT / "measurement_loop_carry.png", dpi=120)
 
 # %% [markdown]
 # ## 5. Variants in a loop
-# A `Club` is a value: build variants and predict them, here the added effective mass of
-# shaft A swept around its calibrated value.
+# A `Club` is a value: build variants and predict them, here an added effective clubhead mass
+# for shaft A swept on the calibrated club (the truth file shows what the world hid).
 
 # %%
 a_shots = shots[shots["group"] == "A"]
 masses_g = np.linspace(0.0, 5.0, 11)
 bias_mph = []
 for dm_g in masses_g:
-    variant = club.with_effect("added_mass", group="A", dm_g=float(dm_g))
+    variant = calibrated.with_effect("added_mass", group="A", dm_g=float(dm_g))
     bias_mph.append(sg.predict(variant, a_shots)["err_ball_speed_mph"].mean())
 fig, ax = plt.subplots(figsize=(6, 4))
 ax.plot(masses_g, bias_mph, marker="o")
