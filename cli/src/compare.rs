@@ -164,7 +164,7 @@ pub fn compute(
         );
     }
     let launches = expected_launches(club, &table.shots, args.measurement.impact_noise_mm)
-        .map_err(|e| super::locate_shot_error(&table, e))?;
+        .map_err(|e| super::locate_shot_error(table, e))?;
     if let Some((shot, _)) = table
         .shots
         .iter()
