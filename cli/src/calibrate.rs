@@ -9,11 +9,15 @@ use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
 use smash::data::output_plan::OutputPlan;
+use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
-use smash::fit::{calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method};
+use smash::fit::{
+    calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
+};
 use smash::physics::LaunchComponent;
 use smash::report::{error_tables_side_by_side, TextTable};
 use smash::stats::t_statistic;
+use smash::ClubSpec;
 
 use super::progress::IterationLine;
 
@@ -113,38 +117,10 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    if !table.has_measurements() {
-        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
-    }
-    let requests = parse_effect_list(&args.effects)?;
-    let opts = CalibrateOptions {
-        method: match args.method {
-            MethodArg::Lm => Method::Lm,
-            MethodArg::Paper => Method::Paper,
-        },
-        max_iters: args.max_iters,
-        parallel: true,
-        impact_noise: args.measurement.impact_noise_mm,
-        delivery_noise: args.delivery_noise,
-    };
     let line = Arc::new(IterationLine::new());
-    let cal = calibrate(&club, &table.shots, &requests, &opts, Some(line.clone()));
+    let cal = compute(&args, &club, &table, Some(line.clone()));
     line.finish();
-    let cal = cal.with_context(|| args.shots.display().to_string())?;
-    // Nothing infinite or undefined is reported or written into a club file.
-    let mut numbers: Vec<(String, f64)> = vec![
-        ("chi2".into(), cal.chi2),
-        ("nominal chi2".into(), cal.chi2_before),
-        ("reduced chi2".into(), cal.reduced_chi2),
-    ];
-    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
-    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
-        anyhow::bail!(
-            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
-             (check the shots' measured launch values)",
-            args.shots.display()
-        );
-    }
+    let cal = cal?;
     let mut staging = plan.stage();
     if let Some(out) = &args.out_club {
         let comment = format!(
@@ -209,6 +185,48 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         crate::stdout::print(text_report(&cal, table.shots.len()))?;
     }
     Ok(())
+}
+
+/// The calibration of `table` with `club` under `args`' options (its `--club` and `--shots`
+/// only name them in messages), refused when any reported number is not finite; `progress`
+/// sees the solver's iterations. What `run` reports.
+pub fn compute(
+    args: &CalibrateArgs,
+    club: &ClubSpec,
+    table: &ShotTable,
+    progress: Option<Arc<dyn Progress>>,
+) -> anyhow::Result<Calibration> {
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    let requests = parse_effect_list(&args.effects)?;
+    let opts = CalibrateOptions {
+        method: match args.method {
+            MethodArg::Lm => Method::Lm,
+            MethodArg::Paper => Method::Paper,
+        },
+        max_iters: args.max_iters,
+        parallel: true,
+        impact_noise: args.measurement.impact_noise_mm,
+        delivery_noise: args.delivery_noise,
+    };
+    let cal = calibrate(club, &table.shots, &requests, &opts, progress)
+        .with_context(|| args.shots.display().to_string())?;
+    // Nothing infinite or undefined is reported or written into a club file.
+    let mut numbers: Vec<(String, f64)> = vec![
+        ("chi2".into(), cal.chi2),
+        ("nominal chi2".into(), cal.chi2_before),
+        ("reduced chi2".into(), cal.reduced_chi2),
+    ];
+    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
+    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
+        anyhow::bail!(
+            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
+             (check the shots' measured launch values)",
+            args.shots.display()
+        );
+    }
+    Ok(cal)
 }
 
 fn opt(v: Option<f64>) -> serde_json::Value {

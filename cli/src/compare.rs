@@ -6,12 +6,15 @@ use anyhow::bail;
 use clap::Args;
 use smash::limits::fmt_value;
 
+use smash::compare::CompareReport;
 use smash::compare::{compare_with_hints, CompareOptions};
 use smash::data::club_file::read_club;
 use smash::data::output_plan::OutputPlan;
-use smash::physics::LaunchComponent;
+use smash::data::shots::ShotTable;
+use smash::physics::{Launch, LaunchComponent};
 use smash::predict::expected_launches;
 use smash::report::compare::{compare_files, compare_json, compare_text};
+use smash::ClubSpec;
 
 /// Smallest `--alpha` accepted: a significance level far below any multiple-testing correction
 /// a comparison of a few components needs (and printed short in the report's header).
@@ -96,63 +99,11 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         .file("--report", args.report.as_deref())
         .folder("--out-dir", args.out_dir.as_deref());
     plan.check()?;
-    if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
-        bail!(
-            "--alpha {}: must be within [{}, {}] (a level above one half flags unbiased \
-             components half the time; one below 1e-9 flags no bias a launch monitor can show)",
-            fmt_value(args.alpha),
-            fmt_value(MIN_ALPHA),
-            fmt_value(MAX_ALPHA)
-        );
-    }
-    if !smash::compare::FACE_BIN_MM.contains(&args.bin_mm) {
-        bail!(
-            "--bin-mm {}: must be within [0.5, 100] mm (impact locations are measured to about a \
-             millimetre, and a bin larger than the face holds every shot)",
-            fmt_value(args.bin_mm)
-        );
-    }
+    check_options(&args)?;
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    if !table.has_measurements() {
-        let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
-        bail!(
-            "{}: no measured launch columns ({}); compare needs measurements (to predict only, use `smash predict`)",
-            args.shots.display(),
-            cols.join(", ")
-        );
-    }
-    let launches = expected_launches(&club, &table.shots, args.measurement.impact_noise_mm)
-        .map_err(|e| super::locate_shot_error(&table, e))?;
-    if let Some((shot, _)) = table
-        .shots
-        .iter()
-        .zip(&launches)
-        .find(|(_, l)| !l.is_finite())
-    {
-        bail!(
-            "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
-             the club {}",
-            args.shots.display(),
-            shot.id,
-            args.club.display()
-        );
-    }
-    let options = CompareOptions {
-        alpha: args.alpha,
-        face_bin_mm: args.bin_mm,
-        min_bin_count: args.min_bin_count,
-        ..CompareOptions::default()
-    };
-    // Hints at the user-defined effects (of --effect-defs and the club file), from their
-    // signatures measured on these shots.
-    let user = smash::compare::UserHints::measure(
-        &club,
-        &table.shots,
-        &smash::effects::user::registered(),
-    );
-    let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
+    let (report, launches) = compute(&args, &club, &table)?;
     let title = format!(
         "{} vs {} ({})",
         club.name,
@@ -188,6 +139,73 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
     if let Some(dir) = &args.out_dir {
         eprintln!("wrote {n_files} files to {}", dir.display());
+    }
+    Ok(())
+}
+
+/// The comparison of `table` with `club` under `args`' options (its `--club` and `--shots`
+/// only name them in messages) and the model's launch of every shot. What `run` reports.
+pub fn compute(
+    args: &CompareArgs,
+    club: &ClubSpec,
+    table: &ShotTable,
+) -> anyhow::Result<(CompareReport, Vec<Launch>)> {
+    check_options(args)?;
+    if !table.has_measurements() {
+        let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
+        bail!(
+            "{}: no measured launch columns ({}); compare needs measurements (to predict only, use `smash predict`)",
+            args.shots.display(),
+            cols.join(", ")
+        );
+    }
+    let launches = expected_launches(club, &table.shots, args.measurement.impact_noise_mm)
+        .map_err(|e| super::locate_shot_error(table, e))?;
+    if let Some((shot, _)) = table
+        .shots
+        .iter()
+        .zip(&launches)
+        .find(|(_, l)| !l.is_finite())
+    {
+        bail!(
+            "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
+             the club {}",
+            args.shots.display(),
+            shot.id,
+            args.club.display()
+        );
+    }
+    let options = CompareOptions {
+        alpha: args.alpha,
+        face_bin_mm: args.bin_mm,
+        min_bin_count: args.min_bin_count,
+        ..CompareOptions::default()
+    };
+    // Hints at the user-defined effects (of --effect-defs and the club file), from their
+    // signatures measured on these shots.
+    let user =
+        smash::compare::UserHints::measure(club, &table.shots, &smash::effects::user::registered());
+    let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
+    Ok((report, launches))
+}
+
+/// Refuse a significance level or face bin outside their ranges (before any file is read).
+pub fn check_options(args: &CompareArgs) -> anyhow::Result<()> {
+    if !(args.alpha >= MIN_ALPHA && args.alpha <= MAX_ALPHA) {
+        bail!(
+            "--alpha {}: must be within [{}, {}] (a level above one half flags unbiased \
+             components half the time; one below 1e-9 flags no bias a launch monitor can show)",
+            fmt_value(args.alpha),
+            fmt_value(MIN_ALPHA),
+            fmt_value(MAX_ALPHA)
+        );
+    }
+    if !smash::compare::FACE_BIN_MM.contains(&args.bin_mm) {
+        bail!(
+            "--bin-mm {}: must be within [0.5, 100] mm (impact locations are measured to about a \
+             millimetre, and a bin larger than the face holds every shot)",
+            fmt_value(args.bin_mm)
+        );
     }
     Ok(())
 }

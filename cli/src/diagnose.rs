@@ -14,6 +14,7 @@ use serde_json::json;
 use smash::data::club_file::{club_toml_checked, read_club};
 use smash::data::noise_file::read_noise_file;
 use smash::data::output_plan::OutputPlan;
+use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
 use smash::diagnose::{
@@ -23,6 +24,7 @@ use smash::diagnose::{
 use smash::fit::{parse_effect_list, FitError, ParamEstimate};
 use smash::physics::LaunchComponent;
 use smash::report::{error_table_text, error_tables_side_by_side, TextTable};
+use smash::ClubSpec;
 
 use super::progress::job_bar;
 
@@ -169,44 +171,10 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    let known_noise = match (&args.noise, args.instrument) {
-        (Some(p), _) => Some(read_noise_file(p)?),
-        (None, Some(c)) => Some(c.noise()),
-        (None, None) => None,
-    };
-    let instrument = known_noise
-        .clone()
-        .unwrap_or_else(|| InstrumentClass::Camera.noise());
-    if !table.has_measurements() {
-        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
-    }
-    if args.folds < 2 {
-        anyhow::bail!("--folds must be at least 2, got {}", args.folds);
-    }
-    let candidates = args
-        .candidates
-        .as_deref()
-        .map(parse_effect_list)
-        .transpose()?;
-    let opts = DiagnoseOptions {
-        folds: args.folds,
-        max_steps: args.max_steps,
-        max_iters: args.max_iters,
-        candidates,
-        impact_noise: args.measurement.impact_noise_mm,
-        impact_noise_candidates_mm: if args.exact_impact_locations {
-            Vec::new()
-        } else {
-            DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
-        },
-        noise_floor: known_noise,
-        ..DiagnoseOptions::default()
-    };
     let bar = Bar(job_bar(1, "fits"));
-    let d = diagnose(&club, &table.shots, &opts, Some(&bar));
+    let result = compute(&args, &club, &table, Some(&bar));
     bar.0.finish_and_clear();
-    let d = d.with_context(|| args.shots.display().to_string())?;
-    let floor = noise_floor(&d, &table.shots, &instrument)?;
+    let (d, floor) = result?;
     for w in &d.warnings {
         eprintln!("warning: {}", smash::data::escape(w));
     }
@@ -243,6 +211,53 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         crate::stdout::print(text_report(&d, &floor))?;
     }
     Ok(())
+}
+
+/// The diagnosis of `table` with `club` under `args`' options (its `--club` and `--shots` only
+/// name them in messages) and its noise floor; `progress` sees the fits. What `run` reports.
+pub fn compute(
+    args: &DiagnoseArgs,
+    club: &ClubSpec,
+    table: &ShotTable,
+    progress: Option<&dyn DiagnoseProgress>,
+) -> anyhow::Result<(Diagnosis, NoiseFloor)> {
+    let known_noise = match (&args.noise, args.instrument) {
+        (Some(p), _) => Some(read_noise_file(p)?),
+        (None, Some(c)) => Some(c.noise()),
+        (None, None) => None,
+    };
+    let instrument = known_noise
+        .clone()
+        .unwrap_or_else(|| InstrumentClass::Camera.noise());
+    if !table.has_measurements() {
+        return Err(FitError::NoMeasurements).context(args.shots.display().to_string());
+    }
+    if args.folds < 2 {
+        anyhow::bail!("--folds must be at least 2, got {}", args.folds);
+    }
+    let candidates = args
+        .candidates
+        .as_deref()
+        .map(parse_effect_list)
+        .transpose()?;
+    let opts = DiagnoseOptions {
+        folds: args.folds,
+        max_steps: args.max_steps,
+        max_iters: args.max_iters,
+        candidates,
+        impact_noise: args.measurement.impact_noise_mm,
+        impact_noise_candidates_mm: if args.exact_impact_locations {
+            Vec::new()
+        } else {
+            DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
+        },
+        noise_floor: known_noise,
+        ..DiagnoseOptions::default()
+    };
+    let d = diagnose(club, &table.shots, &opts, progress)
+        .with_context(|| args.shots.display().to_string())?;
+    let floor = noise_floor(&d, &table.shots, &instrument)?;
+    Ok((d, floor))
 }
 
 fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {

@@ -194,18 +194,7 @@ fn predict_file(
     )?;
     let table = args.shots_format.read(shots_path)?;
     super::warn_groups_without_effects(&args.club, club, &table.shots);
-    let outcomes = predict_table(club, &table).map_err(|e| super::locate_shot_error(&table, e))?;
-    for (shot, o) in table.shots.iter().zip(&outcomes) {
-        if !(o.launch().is_finite() && o.smash_factor().is_finite()) {
-            bail!(
-                "{}: shot '{}': the impact has no finite launch; check its delivery and the \
-                 club {}",
-                shots_path.display(),
-                shot.id,
-                args.club.display()
-            );
-        }
-    }
+    let outcomes = predict_checked(&args.club, club, shots_path, &table)?;
     let mut bytes = predictions_csv(&table, &outcomes);
     if args.flight {
         bytes = add_flight(args, shots_path, &bytes, &outcomes)?;
@@ -218,6 +207,29 @@ fn predict_file(
         out.display()
     );
     Ok(())
+}
+
+/// Every shot of `table` predicted with `club` (`club_path` and `shots_path` name them in
+/// messages); refuses a shot whose impact has no finite launch.
+pub fn predict_checked(
+    club_path: &std::path::Path,
+    club: &ClubSpec,
+    shots_path: &std::path::Path,
+    table: &smash::data::shots::ShotTable,
+) -> anyhow::Result<Vec<ImpactOutcome>> {
+    let outcomes = predict_table(club, table).map_err(|e| super::locate_shot_error(table, e))?;
+    for (shot, o) in table.shots.iter().zip(&outcomes) {
+        if !(o.launch().is_finite() && o.smash_factor().is_finite()) {
+            bail!(
+                "{}: shot '{}': the impact has no finite launch; check its delivery and the \
+                 club {}",
+                shots_path.display(),
+                shot.id,
+                club_path.display()
+            );
+        }
+    }
+    Ok(outcomes)
 }
 
 /// The one-shot form: check the delivery given by flags, solve its impact and print the launch

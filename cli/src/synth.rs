@@ -8,7 +8,7 @@ use clap::Args;
 use smash::data::club_file::read_club;
 use smash::data::write_files_atomic;
 use smash::synth::files::{synth_shots_csv, truth_toml};
-use smash::synth::{generate, read_config};
+use smash::synth::{generate, read_config, SynthConfig, SynthRun};
 
 /// Arguments of `smash synth`.
 #[derive(Debug, Args)]
@@ -46,14 +46,8 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
         outputs.push(("--truth", t.as_path(), false));
     }
     smash::data::safe_write::refuse_inputs(&outputs, &[("--config", &args.config)])?;
-    let mut cfg = read_config(&args.config)?;
-    if let Some(seed) = args.seed {
-        cfg.seed = seed;
-    }
-    let club =
-        read_club(&cfg.club).with_context(|| format!("base club of {}", args.config.display()))?;
+    let (cfg, run) = generate_world(&args.config, args.seed)?;
     smash::data::safe_write::refuse_inputs(&outputs, &[("the configuration's club", &cfg.club)])?;
-    let run = generate(&cfg, &club).with_context(|| args.config.display().to_string())?;
     let csv = synth_shots_csv(&run);
     let truth = args
         .truth
@@ -83,4 +77,17 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
         args.out.display()
     );
     Ok(())
+}
+
+/// The world the configuration file `config` describes, with its seed replaced by `seed` if
+/// given: the configuration and the generated shots (what `run` writes).
+pub fn generate_world(config: &Path, seed: Option<u64>) -> anyhow::Result<(SynthConfig, SynthRun)> {
+    let mut cfg = read_config(config)?;
+    if let Some(seed) = seed {
+        cfg.seed = seed;
+    }
+    let club =
+        read_club(&cfg.club).with_context(|| format!("base club of {}", config.display()))?;
+    let run = generate(&cfg, &club).with_context(|| config.display().to_string())?;
+    Ok((cfg, run))
 }

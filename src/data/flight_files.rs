@@ -301,7 +301,16 @@ fn check_header(path: &Path, headers: &[String]) -> Result<(), DataError> {
 /// absent (0).
 pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<LaunchTable, DataError> {
     let text = read_text(path)?;
-    let raw = parse_raw_csv(path, text.as_bytes())?;
+    parse_launches(path, text.as_bytes(), source)
+}
+
+/// [`read_launches`] from the file's bytes (`path` names it in messages).
+pub fn parse_launches(
+    path: &Path,
+    bytes: &[u8],
+    source: Option<LaunchSource>,
+) -> Result<LaunchTable, DataError> {
+    let raw = parse_raw_csv(path, bytes)?;
     let (source, idx) = launch_columns(path, &raw.headers, source)?;
     let p = source.prefix();
     let names = LAUNCH_COLUMNS;

@@ -8,7 +8,7 @@
 //! The output is byte for byte what [`flight_csv`] writes for the same input (tested below).
 //! Files the plain splitter does not handle exactly as the `csv` reader does (quoted cells,
 //! carriage returns, a byte-order mark, invalid UTF-8) go through the one-piece path instead:
-//! [`read_launches`], [`fly`](crate::flight::fly), [`flight_csv`].
+//! [`fly_csv_bytes`] ([`parse_launches`], [`fly`](crate::flight::fly), [`flight_csv`]).
 
 use std::io::{Read, Write};
 use std::path::Path;
@@ -16,7 +16,7 @@ use std::path::Path;
 use rayon::prelude::*;
 
 use crate::data::flight_files::{
-    flight_csv, flight_error_at, flight_value, launch_columns, read_launches, split_at_line_ends,
+    flight_csv, flight_error_at, flight_value, launch_columns, parse_launches, split_at_line_ends,
     LaunchSource, OutputLayout, FLIGHT_COLUMNS, LAUNCH_COLUMNS,
 };
 use crate::data::flight_measured::{check_measured, measured_flight_value};
@@ -66,7 +66,21 @@ fn in_memory(
     cfg: &FlightConfig,
     source: Option<LaunchSource>,
 ) -> Result<Flown, DataError> {
-    let table = read_launches(input, source)?;
+    let text = crate::data::read_text(input)?;
+    let (bytes, flown) = fly_csv_bytes(input, text.as_bytes(), cfg, source)?;
+    write_atomic(out, &bytes)?;
+    Ok(flown)
+}
+
+/// The flight file of the launch CSV `bytes` (`input` names it in messages), in memory: what
+/// [`fly_csv_file`] writes for a file holding `bytes`.
+pub fn fly_csv_bytes(
+    input: &Path,
+    bytes: &[u8],
+    cfg: &FlightConfig,
+    source: Option<LaunchSource>,
+) -> Result<(Vec<u8>, Flown), DataError> {
+    let table = parse_launches(input, bytes, source)?;
     let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
     check_measured(input, &layout, &table.records, &table.lines)?;
     let results = crate::flight::fly(cfg, &table.launches);
@@ -76,19 +90,19 @@ fn in_memory(
         .zip(&table.lines)
         .map(|(r, &line)| r.map_err(|e| flight_error_at(input, line, prefix, &e)))
         .collect::<Result<Vec<Flight>, DataError>>()?;
-    write_atomic(
-        out,
-        &flight_csv(
-            &table.headers,
-            &table.records,
-            &flights,
-            cfg.ground.is_some(),
-        ),
-    )?;
-    Ok(Flown {
-        shots: flights.len(),
-        source: table.source,
-    })
+    let csv = flight_csv(
+        &table.headers,
+        &table.records,
+        &flights,
+        cfg.ground.is_some(),
+    );
+    Ok((
+        csv,
+        Flown {
+            shots: flights.len(),
+            source: table.source,
+        },
+    ))
 }
 
 /// Where the columns are, from the header.

@@ -1,0 +1,352 @@
+//! The commands: each parses its options with the CLI's parser (so every option is checked and
+//! refused with the CLI's message), then runs what the CLI's command runs, with the GIL
+//! released, and returns what the command prints or writes.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+use smash::data::shots::ShotTable;
+use smash_cli::Command;
+
+use crate::progress::PyProgress;
+use crate::{bytes, parse_cli, to_py, Club, Shots};
+
+/// Register the commands in the module.
+pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(predict, m)?)?;
+    m.add_function(wrap_pyfunction!(flight, m)?)?;
+    m.add_function(wrap_pyfunction!(compare, m)?)?;
+    m.add_function(wrap_pyfunction!(calibrate, m)?)?;
+    m.add_function(wrap_pyfunction!(diagnose, m)?)?;
+    m.add_function(wrap_pyfunction!(read_export, m)?)?;
+    m.add_function(wrap_pyfunction!(run_study, m)?)?;
+    m.add_function(wrap_pyfunction!(synth, m)?)?;
+    Ok(())
+}
+
+/// The command line `smash SUB --club CLUB --shots SHOTS EXTRA… ARGS…` (club and shots by their
+/// names: the files are not read again).
+fn argv(
+    sub: &str,
+    club: Option<&Club>,
+    shots: &Shots,
+    extra: &[&str],
+    args: Vec<String>,
+) -> Vec<String> {
+    let mut v = vec![sub.to_owned()];
+    if let Some(c) = club {
+        v.push("--club".into());
+        v.push(c.label.display().to_string());
+    }
+    v.push("--shots".into());
+    v.push(shots.label().display().to_string());
+    v.extend(extra.iter().map(|s| (*s).to_owned()));
+    v.extend(args);
+    v
+}
+
+/// The shots table and the CLI's warning about groups without effects (if any).
+fn table_and_warnings(
+    club: &Club,
+    shots: &Shots,
+    format: &smash_cli::ShotsFormatArgs,
+) -> anyhow::Result<(ShotTable, Vec<String>)> {
+    let table = shots.read(format)?;
+    let warnings = smash_cli::groups_without_effects(&club.label, &club.spec, &table.shots)
+        .into_iter()
+        .collect();
+    Ok((table, warnings))
+}
+
+/// `smash predict --shots … --out …`: the predictions file's bytes, and warnings.
+#[pyfunction]
+#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None))]
+fn predict(
+    py: Python<'_>,
+    club: PyRef<'_, Club>,
+    args: Vec<String>,
+    shots_path: Option<PathBuf>,
+    shots_csv: Option<Vec<u8>>,
+    label: Option<String>,
+) -> PyResult<(Py<PyBytes>, Vec<String>)> {
+    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let club: &Club = &club;
+    let (csv, warnings) = py
+        .detach(|| -> anyhow::Result<_> {
+            let Command::Predict(a) = parse_cli(argv(
+                "predict",
+                Some(club),
+                &shots,
+                &["--out", "<memory>"],
+                args,
+            ))?
+            else {
+                unreachable!("parsed as predict")
+            };
+            let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let outcomes = smash_cli::predict::predict_checked(
+                &club.label,
+                &club.spec,
+                shots.label(),
+                &table,
+            )?;
+            Ok((
+                smash::data::predictions::predictions_csv(&table, &outcomes),
+                warnings,
+            ))
+        })
+        .map_err(to_py)?;
+    Ok((bytes(py, &csv), warnings))
+}
+
+/// `smash flight --shots … --out …`: the flight file's bytes.
+#[pyfunction]
+#[pyo3(signature = (args, shots_path = None, shots_csv = None, label = None))]
+fn flight(
+    py: Python<'_>,
+    args: Vec<String>,
+    shots_path: Option<PathBuf>,
+    shots_csv: Option<Vec<u8>>,
+    label: Option<String>,
+) -> PyResult<Py<PyBytes>> {
+    use smash::data::flight_files::LaunchSource;
+    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let csv = py
+        .detach(|| -> anyhow::Result<Vec<u8>> {
+            let Command::Flight(a) =
+                parse_cli(argv("flight", None, &shots, &["--out", "<memory>"], args))?
+            else {
+                unreachable!("parsed as flight")
+            };
+            let cfg = a.flight.config()?;
+            let source = a.launch.as_deref().map(|s| match s {
+                "predicted" => LaunchSource::Predicted,
+                _ => LaunchSource::Measured,
+            });
+            let text;
+            let input: &[u8] = match &shots {
+                Shots::File(p) => {
+                    smash::data::safe_write::note_input(p);
+                    text = smash::data::read_text(p)?;
+                    text.as_bytes()
+                }
+                Shots::Csv { bytes, .. } => bytes,
+            };
+            let (csv, _) =
+                smash::data::flight_stream::fly_csv_bytes(shots.label(), input, &cfg, source)?;
+            Ok(csv)
+        })
+        .map_err(to_py)?;
+    Ok(bytes(py, &csv))
+}
+
+/// `smash compare --json`: the JSON report, the text report and warnings.
+#[pyfunction]
+#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None))]
+fn compare(
+    py: Python<'_>,
+    club: PyRef<'_, Club>,
+    args: Vec<String>,
+    shots_path: Option<PathBuf>,
+    shots_csv: Option<Vec<u8>>,
+    label: Option<String>,
+) -> PyResult<(String, String, Vec<String>)> {
+    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let club: &Club = &club;
+    py.detach(|| -> anyhow::Result<_> {
+        let Command::Compare(a) =
+            parse_cli(argv("compare", Some(club), &shots, &["--json"], args))?
+        else {
+            unreachable!("parsed as compare")
+        };
+        smash_cli::compare::check_options(&a)?;
+        let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+        let (report, _) = smash_cli::compare::compute(&a, &club.spec, &table)?;
+        let title = format!(
+            "{} vs {} ({})",
+            club.spec.name,
+            shots.label().display(),
+            smash_cli::counted(table.groups().len(), "group")
+        );
+        Ok((
+            smash::report::compare::compare_json(&report),
+            smash::report::compare::compare_text(&report, &title),
+            warnings,
+        ))
+    })
+    .map_err(to_py)
+}
+
+/// `smash calibrate --json`: the JSON report, the calibrated club and warnings. `progress`
+/// (optional) receives the solver's iterations.
+#[pyfunction]
+#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None, progress = None))]
+fn calibrate(
+    py: Python<'_>,
+    club: PyRef<'_, Club>,
+    args: Vec<String>,
+    shots_path: Option<PathBuf>,
+    shots_csv: Option<Vec<u8>>,
+    label: Option<String>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(String, Club, Vec<String>)> {
+    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let club: &Club = &club;
+    let progress = progress.map(|p| Arc::new(PyProgress(p)) as Arc<dyn smash::fit::Progress>);
+    let (json, spec, warnings) = py
+        .detach(|| -> anyhow::Result<_> {
+            let Command::Calibrate(a) =
+                parse_cli(argv("calibrate", Some(club), &shots, &["--json"], args))?
+            else {
+                unreachable!("parsed as calibrate")
+            };
+            let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let cal = smash_cli::calibrate::compute(&a, &club.spec, &table, progress)?;
+            let json = serde_json::to_string_pretty(&smash_cli::calibrate::to_json(&cal))?;
+            Ok((json, cal.club, warnings))
+        })
+        .map_err(to_py)?;
+    let calibrated = Club {
+        spec,
+        label: club.label.clone(),
+    };
+    Ok((json, calibrated, warnings))
+}
+
+/// `smash diagnose --json`: the JSON report, the club with the selected effects (what
+/// `--out-club` writes) and warnings (the CLI's `warning:` lines). `progress` (optional)
+/// receives the steps and finished fits.
+#[pyfunction]
+#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None, progress = None))]
+fn diagnose(
+    py: Python<'_>,
+    club: PyRef<'_, Club>,
+    args: Vec<String>,
+    shots_path: Option<PathBuf>,
+    shots_csv: Option<Vec<u8>>,
+    label: Option<String>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<(String, Club, Vec<String>)> {
+    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let club: &Club = &club;
+    let progress = progress.map(PyProgress);
+    let (json, spec, warnings) = py
+        .detach(|| -> anyhow::Result<_> {
+            let Command::Diagnose(a) =
+                parse_cli(argv("diagnose", Some(club), &shots, &["--json"], args))?
+            else {
+                unreachable!("parsed as diagnose")
+            };
+            let (table, mut warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let p = progress
+                .as_ref()
+                .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);
+            let (d, floor) = smash_cli::diagnose::compute(&a, &club.spec, &table, p)?;
+            warnings.extend(d.warnings.iter().cloned());
+            let json = serde_json::to_string_pretty(&smash_cli::diagnose::to_json(&d, &floor))?;
+            Ok((json, d.club, warnings))
+        })
+        .map_err(to_py)?;
+    let selected = Club {
+        spec,
+        label: club.label.clone(),
+    };
+    Ok((json, selected, warnings))
+}
+
+/// `smash import`: the shots file's bytes converted from the export at `path` with `format`
+/// (a preset or a mapping file), and the import's notes (skipped rows, assumed units).
+#[pyfunction]
+#[pyo3(signature = (path, format, impact_offset_positive = None, ignore_unknown_columns = false))]
+fn read_export(
+    py: Python<'_>,
+    path: PathBuf,
+    format: String,
+    impact_offset_positive: Option<String>,
+    ignore_unknown_columns: bool,
+) -> PyResult<(Py<PyBytes>, Vec<String>)> {
+    let (csv, notes) = py
+        .detach(|| -> anyhow::Result<_> {
+            let mut v = vec![
+                "import".to_owned(),
+                path.display().to_string(),
+                "--out".into(),
+                "<memory>".into(),
+                "--format".into(),
+                format,
+            ];
+            if let Some(side) = impact_offset_positive {
+                v.extend(["--impact-offset-positive".to_owned(), side]);
+            }
+            if ignore_unknown_columns {
+                v.push("--ignore-unknown-columns".into());
+            }
+            let Command::Import(a) = parse_cli(v)? else {
+                unreachable!("parsed as import")
+            };
+            let format = a.format.format.as_deref().unwrap_or_default();
+            if format == "shots" {
+                anyhow::bail!(
+                    "format 'shots': `shots` is the shots-file format itself, so there is \
+                     nothing to convert; give the export's format: a preset (trackman, \
+                     foresight, flightscope, uneekor) or a mapping file NAME.toml"
+                );
+            }
+            let mapping = smash::data::import::load_mapping(format)?;
+            let bytes = std::fs::read(&a.input)
+                .map_err(|e| smash::data::DataError::file(&a.input, format!("cannot read: {e}")))?;
+            let opts = smash::data::import::ImportOptions {
+                impact_offset_positive: a.format.impact_offset_positive.map(Into::into),
+                ignore_unknown_columns: a.format.ignore_unknown_columns,
+            };
+            let imported = smash::data::import::import(&a.input, &bytes, &mapping, &opts)?;
+            // The result must read back as a shots file (ranges, ids, launch columns).
+            imported.read_back(&a.input)?;
+            let notes = imported
+                .notes
+                .iter()
+                .map(|n| format!("import ({}): {n}", mapping.export.name))
+                .collect::<Vec<_>>();
+            Ok((imported.csv, notes))
+        })
+        .map_err(to_py)?;
+    Ok((bytes(py, &csv), notes))
+}
+
+/// `smash run STUDY --out DIR ARGS…`: the study's files written to `out` (the Python half
+/// reads them back into DataFrames). The CLI's summary goes to the process's standard output.
+#[pyfunction]
+fn run_study(py: Python<'_>, study: PathBuf, out: PathBuf, args: Vec<String>) -> PyResult<()> {
+    py.detach(|| -> anyhow::Result<()> {
+        let mut v = vec![
+            "run".to_owned(),
+            study.display().to_string(),
+            "--out".into(),
+            out.display().to_string(),
+        ];
+        v.extend(args);
+        let Command::Run(a) = parse_cli(v)? else {
+            unreachable!("parsed as run")
+        };
+        smash_cli::run::run(a)
+    })
+    .map_err(to_py)
+}
+
+/// `smash synth --config CONFIG [--seed N] --out … --truth …`: the shots file's bytes and the
+/// truth file's text (the hidden effects and world physics).
+#[pyfunction]
+#[pyo3(signature = (config, seed = None))]
+fn synth(py: Python<'_>, config: PathBuf, seed: Option<u64>) -> PyResult<(Py<PyBytes>, String)> {
+    let (csv, truth) = py
+        .detach(|| -> anyhow::Result<_> {
+            let (cfg, run) = smash_cli::synth::generate_world(&config, seed)?;
+            let truth = smash::synth::files::truth_toml(&cfg, &run, &config.display().to_string());
+            Ok((smash::synth::files::synth_shots_csv(&run), truth))
+        })
+        .map_err(to_py)?;
+    Ok((bytes(py, &csv), truth))
+}

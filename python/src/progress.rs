@@ -1,0 +1,44 @@
+//! Progress of long work reported to a Python object (the Python half makes a tqdm bar in a
+//! notebook when tqdm is installed, where the CLI shows its indicatif bar). The callbacks come
+//! from rayon's threads, each taking the GIL only for the call; a failing callback is ignored
+//! (progress is never worth stopping the work for).
+
+use pyo3::prelude::*;
+
+use smash::diagnose::DiagnoseProgress;
+use smash::fit::{IterInfo, Progress};
+
+/// A Python object with `step(step, jobs)` and `job_done()` (diagnose), or
+/// `iteration(stage, iter, chi2, lambda_, evaluations)` (calibrate).
+pub struct PyProgress(pub Py<PyAny>);
+
+impl DiagnoseProgress for PyProgress {
+    fn step(&self, step: usize, jobs: usize) {
+        Python::attach(|py| {
+            let _ = self.0.call_method1(py, "step", (step, jobs));
+        });
+    }
+    fn job_done(&self) {
+        Python::attach(|py| {
+            let _ = self.0.call_method0(py, "job_done");
+        });
+    }
+}
+
+impl Progress for PyProgress {
+    fn iteration(&self, info: &IterInfo<'_>) {
+        Python::attach(|py| {
+            let _ = self.0.call_method1(
+                py,
+                "iteration",
+                (
+                    info.stage.to_string(),
+                    info.iter,
+                    info.cost,
+                    info.lambda,
+                    info.evaluations,
+                ),
+            );
+        });
+    }
+}
