@@ -180,6 +180,11 @@ struct Consts {
     /// `ρ·2R/μ`, s/m: Reynolds number per speed.
     re_per_speed: f64,
     radius: f64,
+    /// Height of the ground in G, m: the ball centre at contact, `−tee height` (the centre is
+    /// at `y = 0` at address, one radius above a ball-on-the-ground's contact point).
+    ground_y: f64,
+    /// Height of the ball centre above the ground at address, m (for the wind profile).
+    centre_above_ground: f64,
     dt: f64,
     max_time: f64,
 }
@@ -201,6 +206,8 @@ impl Consts {
             moment,
             re_per_speed: rho * 2.0 * b.radius_m / cfg.air.viscosity_pa_s,
             radius: b.radius_m,
+            ground_y: -cfg.tee_height_m,
+            centre_above_ground: b.radius_m + cfg.tee_height_m,
             dt: cfg.dt(),
             max_time: cfg.max_time_s,
         }
@@ -235,7 +242,7 @@ fn rate<L: Lanes, C: CoefficientModel, const WIND: bool>(
         let y = s.p[1].to_array();
         let (mut wx, mut wz) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
         for i in 0..L::N {
-            let w = cfg.air.wind_at(y[i] + k.radius);
+            let w = cfg.air.wind_at(y[i] + k.centre_above_ground);
             wx[i] = w[0];
             wz[i] = w[1];
         }
@@ -467,6 +474,7 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
 ) {
     let (mut s, axis) = start::<L>(launches, idx);
     let zero = L::splat(0.0);
+    let ground = L::splat(k.ground_y);
     let h = k.dt;
     let mut apex = [zero; G];
     let mut done = [[false; MAX_LANES]; G];
@@ -478,9 +486,12 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
         for g in 0..G {
             let (s, ns) = (&s[g], &ns[g]);
             apex[g] = L::select(ns.p[1].gt(apex[g]), ns.p[1], apex[g]);
-            // Lanes that cross the ground or pass the apex this step (done lanes included:
-            // the scalar code below skips them).
-            let event = ns.p[1].lt(zero) | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
+            // Lanes that end the step below the ground, pass a trough (the interpolant may dip
+            // below the ground within the step) or pass the apex (done lanes included: the
+            // scalar code below skips them).
+            let event = ns.p[1].lt(ground)
+                | (s.v[1].lt(zero) & !ns.v[1].lt(zero))
+                | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
             if !event.any() {
                 continue;
             }
@@ -518,7 +529,8 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
 }
 
 /// Lane `i`'s event in the step from `s` to `ns` (from time `t`): its apex `apex` raised to the
-/// interpolant's maximum if it passed it, and its landing if it came down through `y = 0`.
+/// interpolant's maximum if it passed it, and its landing if the interpolant came down to the
+/// ground (`y = −tee height`) anywhere in the step.
 #[inline(always)]
 fn land<L: Lanes>(
     cfg: &FlightConfig,
@@ -536,10 +548,7 @@ fn land<L: Lanes>(
     if vy0 > 0.0 && vy1 <= 0.0 {
         *apex = apex.max(hy.max());
     }
-    if y1 >= 0.0 {
-        return None;
-    }
-    let th = hy.root();
+    let th = hy.first_down_to(k.ground_y)?;
     let interp = |j: usize| {
         let hj = Hermite::new(s.p[j][i], ns.p[j][i], s.v[j][i], ns.v[j][i], h);
         (hj.at(th), hj.slope(th) / h)
