@@ -9,12 +9,18 @@ use clap::Args;
 use smash::data::flight_conditions::{
     columns_used, file_headers, fly_with_conditions, UserConditions,
 };
-use smash::data::flight_files::{flight_error_at, read_atmosphere, LaunchSource};
-use smash::data::flight_report::flight_page;
-use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
+use smash::data::flight_files::{
+    flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource, OutputLayout,
+};
+use smash::data::flight_measured::check_measured;
+use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
+use smash::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
+use smash::data::number::parse_f64;
 use smash::data::DataError;
-use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay, M_PER_YD};
+use smash::report::charts::{grouped_bars_svg, scatter_trend_svg, BarSeries, BLUE_C};
+use smash::report::html::{esc, Figure, Page, Section};
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -355,6 +361,11 @@ pub struct FlightArgs {
     /// per club).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+    /// Calibrate the flight to the measured carry, apex and land angle: fit scalings of the
+    /// listed terms (drag, lift, spin_decay; comma-separated) with their standard errors,
+    /// then fly and compare with the calibrated model.
+    #[arg(long, value_name = "TERMS")]
+    pub calibrate: Option<String>,
     /// Flight options.
     #[command(flatten)]
     pub flight: FlightOptions,
@@ -380,7 +391,17 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     let headers = file_headers(&args.shots)?;
     let from_file = columns_used(&headers, user);
     let t0 = std::time::Instant::now();
-    let (flown, conditions) = if from_file.is_empty() {
+    let (flown, conditions) = if let Some(terms) = &args.calibrate {
+        if !from_file.is_empty() {
+            anyhow::bail!(
+                "--calibrate flies every shot in one atmosphere, but {} states conditions per \
+                 shot ({}): set them with --elevation-m, --temperature-c and --humidity-pct",
+                args.shots.display(),
+                from_file.iter().map(|c| c.1).collect::<Vec<_>>().join(", ")
+            );
+        }
+        (calibrate_and_fly(&args, &cfg, source, terms)?, None)
+    } else if from_file.is_empty() {
         let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
         (flown, None)
     } else {
@@ -435,6 +456,74 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `--calibrate`: fit the scalings of `names` to the file's measured flights, report them, and
+/// write the flights of the calibrated model.
+fn calibrate_and_fly(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    source: Option<LaunchSource>,
+    names: &str,
+) -> anyhow::Result<Flown> {
+    use smash::flight::calibrate::{calibrate, MeasuredFlight, Term};
+    let terms = names
+        .split(',')
+        .map(|n| Term::from_name(n.trim()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
+    let table = read_launches(&args.shots, source)?;
+    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
+    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let col = |n: &str| table.headers.iter().position(|h| h == n);
+    let (carry, apex, land) = (col("carry_yd"), col("apex_yd"), col("land_angle_deg"));
+    let shots: Vec<MeasuredFlight> = table
+        .records
+        .iter()
+        .zip(&table.launches)
+        .map(|(rec, l)| {
+            let get = |i: Option<usize>| {
+                i.and_then(|i| rec.get(i))
+                    .and_then(parse_f64)
+                    .filter(|x| x.is_finite())
+            };
+            MeasuredFlight {
+                launch: *l,
+                carry_m: get(carry).map(|v| v * M_PER_YD),
+                apex_m: get(apex).map(|v| v * M_PER_YD),
+                land_angle_rad: get(land).map(f64::to_radians),
+            }
+        })
+        .collect();
+    let cal = calibrate(cfg, &shots, &terms).map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
+    let scales: Vec<String> = cal
+        .terms
+        .iter()
+        .zip(cal.scale.iter().zip(&cal.se))
+        .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
+        .collect();
+    eprintln!(
+        "calibrated {} on {} measured value(s): {} (weighted RMS residual {:.3} -> {:.3})",
+        cfg.aero.name(),
+        cal.residuals,
+        scales.join(", "),
+        cal.rms_before,
+        cal.rms_after
+    );
+    let model = cal.model(&cfg.aero);
+    let results = smash::flight::integrate::fly_with(cfg, &model, &table.launches);
+    let flights = collect(&args.shots, &table.lines, table.source.prefix(), results)?;
+    let bytes = flight_csv(
+        &table.headers,
+        &table.records,
+        &flights,
+        cfg.ground.is_some(),
+    );
+    smash::data::write_atomic(&args.out, &bytes)?;
+    Ok(Flown {
+        shots: flights.len(),
+        source: table.source,
+    })
+}
+
 /// Results to flights, or the first failure as one line naming file, line and column.
 pub fn collect(
     path: &std::path::Path,
@@ -447,4 +536,96 @@ pub fn collect(
         .zip(lines)
         .map(|(r, &line)| r.map_err(|e| flight_error_at(path, line, prefix, &e)))
         .collect()
+}
+
+/// The `--report` page: the carry, side, apex and land-angle errors per club (bias, with the
+/// RMSE as its whisker) and every shot's carry error against its measured carry; `subtitle`:
+/// the model and conditions flown. The HTML page for a summary; `subtitle`: the model and conditions flown.
+pub fn flight_page(summary: &FlightSummary, title: &str, subtitle: &str) -> Result<String, String> {
+    let categories: Vec<String> = summary.rows.iter().map(|r| r.group.clone()).collect();
+    let mut figures = Vec::new();
+    for (name, label, unit) in SUMMARY_QUANTITIES {
+        let values: Vec<Option<(f64, f64)>> = summary
+            .rows
+            .iter()
+            .map(|r| {
+                r.errors
+                    .iter()
+                    .find(|e| e.0 == name)
+                    .map(|e| (e.1.bias, e.1.rmse))
+            })
+            .collect();
+        if values.iter().all(Option::is_none) {
+            continue;
+        }
+        let series = [BarSeries {
+            label: "bias".into(),
+            colour: BLUE_C,
+            values,
+        }];
+        let svg = grouped_bars_svg(
+            &format!("{label} error per club"),
+            &format!("predicted - measured, {unit}"),
+            &categories,
+            &series,
+        )?;
+        figures.push(Figure {
+            kind: "flight-bias",
+            caption: format!(
+                "{label}: mean error (bar) and RMSE (whisker half-width) per club and over all shots, {unit}"
+            ),
+            svg,
+        });
+    }
+    if !summary.carry_points.is_empty() {
+        let svg = scatter_trend_svg(
+            "carry error against measured carry",
+            "measured carry, yd",
+            "predicted - measured, yd",
+            &summary.carry_points,
+            None,
+            &[],
+        )?;
+        figures.push(Figure {
+            kind: "flight-carry",
+            caption: "every shot's carry error against its measured carry".into(),
+            svg,
+        });
+    }
+    let table = table_html(summary);
+    Ok(Page {
+        title: title.into(),
+        subtitle: subtitle.into(),
+        sections: vec![Section {
+            heading: "Flight against measured flights".into(),
+            html: vec![table],
+            figures,
+        }],
+    }
+    .render())
+}
+
+/// The carry statistics as an HTML table.
+fn table_html(summary: &FlightSummary) -> String {
+    let mut t = String::from(
+        "<table><tr><th class=\"l\">club</th><th>n</th><th>carry bias yd</th><th>carry RMSE yd</th>\
+         <th>median |err| %</th><th>P90 |err| %</th></tr>",
+    );
+    for r in &summary.rows {
+        let Some((_, s)) = r.errors.iter().find(|e| e.0 == "carry_yd") else {
+            continue;
+        };
+        let pct = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.2}"));
+        t.push_str(&format!(
+            "<tr><td class=\"l\">{}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
+            esc(&r.group),
+            s.n,
+            s.bias,
+            s.rmse,
+            pct(s.median_abs_pct),
+            pct(s.p90_abs_pct)
+        ));
+    }
+    t.push_str("</table>");
+    t
 }

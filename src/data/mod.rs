@@ -10,7 +10,6 @@ pub mod flight_conditions;
 pub mod flight_files;
 pub mod flight_measured;
 mod flight_output;
-pub mod flight_report;
 pub mod flight_stream;
 pub mod flight_summary;
 pub mod import;

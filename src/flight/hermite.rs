@@ -137,6 +137,17 @@ impl Hermite {
         r
     }
 
+    /// Largest value over [0, `end`].
+    pub(crate) fn max_until(&self, end: f64) -> f64 {
+        let mut best = self.y0.max(self.at(end));
+        for t in self.critical_points().into_iter().flatten() {
+            if t <= end {
+                best = best.max(self.at(t));
+            }
+        }
+        best
+    }
+
     /// Largest value over [0, 1].
     pub(crate) fn max(&self) -> f64 {
         self.argmax().1

@@ -21,6 +21,7 @@
 
 pub mod aero;
 pub mod atmosphere;
+pub mod calibrate;
 pub mod ground;
 mod hermite;
 pub mod integrate;
