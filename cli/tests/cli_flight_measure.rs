@@ -282,3 +282,46 @@ fn predict_flight_of_a_downward_launch_does_not_depend_on_the_step() {
 
 /// Dynamic loft that launches the ball about 1.1° below horizontal with the delivery above.
 const DOWNWARD_LOFT_DEG: &str = "-2";
+
+/// A tee beyond what the Rules allow, or below the ground, is refused in one line naming the
+/// flag and the range; the message of a teed run states the tee.
+#[test]
+fn tee_heights_out_of_range_are_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = write(
+        dir.path(),
+        "l.csv",
+        "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,-1,2600\n",
+    );
+    let out = dir.path().join("f.csv");
+    for bad in ["-1", "200", "NaN"] {
+        let o = smash(&[
+            "flight",
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&out),
+            "--tee-mm",
+            bad,
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{err}");
+        assert!(
+            err.starts_with(&format!(
+                "error: --tee-mm {bad}: must be within [0, 101.6] mm"
+            )),
+            "{err}"
+        );
+        assert!(!out.exists());
+    }
+    let o = smash(&[
+        "flight",
+        "--shots",
+        s(&shots),
+        "--out",
+        s(&out),
+        "--tee-mm",
+        "30",
+    ]);
+    assert!(stderr(&o).contains("ball teed 30 mm"), "{}", stderr(&o));
+}
