@@ -83,18 +83,15 @@ pub trait CoefficientModel: Send + Sync {
     }
 
     /// Whether `re` is the Reynolds number in the air the model was fitted in (ISA sea level,
-    /// [`REFERENCE_AIR`]) rather than in the air flown through: then the model's Reynolds
+    /// [`reference_air`]) rather than in the air flown through: then the model's Reynolds
     /// window is a window of air speed, and thinner or warmer air changes the flight only
     /// through the density. `false` (the default, and a user's table): the Reynolds number
     /// of the air flown through.
     ///
-    /// Why the built-in models take `true`: with the Reynolds number of the air flown through,
-    /// each of their drag-crisis windows made every club carry *less* in thin or warm air (a
-    /// 90 mph, 18°, 6,000 rpm wedge 109.7 yd at sea level, 104.5 yd at 1,609 m; a 110 mph drive
-    /// 8 yd shorter at 40 °C than at −5 °C), the opposite of the measured altitude gain, so
-    /// that dependence does not survive the test of `tests/flight_air.rs`. Their windows were
-    /// fitted, or measured (Lyu et al. 2018), in sea-level air, where the two readings agree
-    /// bit for bit.
+    /// Why the built-in models take `true`: in the air flown through, each of their
+    /// drag-crisis windows made every club carry *less* in thin or warm air (the opposite of
+    /// the measured altitude gain; `tests/flight_air.rs`). Their windows were fitted, or
+    /// measured (Lyu et al. 2018), in sea-level air, where the two readings agree bit for bit.
     fn reynolds_at_reference_air(&self) -> bool {
         false
     }
@@ -128,9 +125,6 @@ pub fn reference_air() -> crate::flight::Air {
         .air()
         .expect("the default atmosphere is valid")
 }
-
-/// The name [`reference_air`] is documented under.
-pub const REFERENCE_AIR: &str = "ISA sea level, 15 °C, 1013.25 hPa, 50 % relative humidity";
 
 /// Smits & Smith (1994) moment coefficient per unit spin factor (dimensionless).
 pub const SMITS_SMITH_CM_PER_S: f64 = 0.01;
