@@ -6,10 +6,21 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use smash::data::flight_files::{flight_error_at, read_atmosphere, LaunchSource};
-use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
+mod report;
+use report::flight_page;
+
+use smash::data::flight_conditions::{
+    columns_used, file_headers, fly_with_conditions, UserConditions,
+};
+use smash::data::flight_files::{
+    flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource, OutputLayout,
+};
+use smash::data::flight_measured::check_measured;
+use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
+use smash::data::flight_summary::summarise_file;
+use smash::data::number::parse_f64;
 use smash::data::DataError;
-use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay, M_PER_YD};
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -140,6 +151,16 @@ pub struct FlightOptions {
         help_heading = "Flight"
     )]
     pub dt_s: Option<f64>,
+    /// Height of a teed ball above the ground, mm: the gap under the ball (default 0, the ball
+    /// on the ground). The ball lands when it first touches the ground, so from the ground a
+    /// launch below horizontal lands at once; from a tee it may dip and fly on.
+    #[arg(
+        long,
+        value_name = "MM",
+        allow_negative_numbers = true,
+        help_heading = "Flight"
+    )]
+    pub tee_mm: Option<f64>,
     /// Longest flight before it is an error, s (default 30).
     #[arg(
         long,
@@ -174,8 +195,24 @@ impl FlightOptions {
         given.iter().find(|(g, _)| *g).map(|(_, flag)| *flag)
     }
 
+    /// Which conditions the user set: an `--atmosphere` file sets them all.
+    pub fn user_conditions(&self) -> UserConditions {
+        let file = self.atmosphere.is_some();
+        UserConditions {
+            temperature: file || self.temperature_c.is_some(),
+            pressure: file || self.pressure_hpa.is_some() || self.elevation_m.is_some(),
+            humidity: file || self.humidity_pct.is_some(),
+        }
+    }
+
     /// The flight configuration these options describe.
     pub fn config(&self) -> anyhow::Result<FlightConfig> {
+        let atm = self.atmosphere()?;
+        self.config_in(&atm)
+    }
+
+    /// The atmosphere the options describe (file, then flags over it).
+    pub fn atmosphere(&self) -> anyhow::Result<Atmosphere> {
         let mut atm = match &self.atmosphere {
             Some(p) => read_atmosphere(p)?,
             None => Atmosphere::default(),
@@ -208,6 +245,11 @@ impl FlightOptions {
         if let Some(v) = self.roughness_m {
             atm.roughness_m = v;
         }
+        Ok(atm)
+    }
+
+    /// The flight configuration of these options in the atmosphere `atm`.
+    fn config_in(&self, atm: &Atmosphere) -> anyhow::Result<FlightConfig> {
         let air = atm
             .air()
             .map_err(|e| anyhow::anyhow!("--{}: {e}", e.key.replace('_', "-")))?;
@@ -259,6 +301,16 @@ impl FlightOptions {
                 fmt_value(max_time_s)
             );
         }
+        let tee_mm = self.tee_mm.unwrap_or(0.0);
+        let max_tee_mm = smash::flight::MAX_TEE_HEIGHT_M * 1e3;
+        if !(0.0..=max_tee_mm).contains(&tee_mm) {
+            anyhow::bail!(
+                "--tee-mm {}: must be within [0, {}] mm (0: the ball on the ground; a tee may \
+                 be at most 4 in long)",
+                fmt_value(tee_mm),
+                fmt_value(max_tee_mm)
+            );
+        }
         Ok(FlightConfig {
             aero,
             air,
@@ -266,6 +318,7 @@ impl FlightOptions {
             dt_s,
             max_time_s,
             ground,
+            tee_height_m: tee_mm * 1e-3,
             ..FlightConfig::default()
         })
     }
@@ -323,6 +376,19 @@ pub struct FlightArgs {
     /// (pred_ball_speed_mph, …). Default: measured if present.
     #[arg(long, value_name = "WHICH", value_parser = ["measured", "predicted"])]
     pub launch: Option<String>,
+    /// Print the comparison with the measured flight columns (carry_yd, offline_yd, apex_yd,
+    /// land_angle_deg) as one JSON object on stdout instead of the text table on stderr.
+    #[arg(long)]
+    pub json: bool,
+    /// Write a self-contained HTML report of the comparison with the measured flights (charts
+    /// per club).
+    #[arg(long, value_name = "FILE.html")]
+    pub report: Option<PathBuf>,
+    /// Calibrate the flight to the measured carry, apex and land angle: fit scalings of the
+    /// listed terms (drag, lift, spin_decay; comma-separated) with their standard errors,
+    /// then fly and compare with the calibrated model.
+    #[arg(long, value_name = "TERMS")]
+    pub calibrate: Option<String>,
     /// Flight options.
     #[command(flatten)]
     pub flight: FlightOptions,
@@ -334,24 +400,151 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     if let Some(a) = &args.flight.atmosphere {
         inputs.push(("--atmosphere", a.as_path()));
     }
-    smash::data::safe_write::refuse_inputs(&[("--out", &args.out, false)], &inputs)?;
+    let mut outputs = vec![("--out", args.out.as_path(), false)];
+    if let Some(r) = &args.report {
+        outputs.push(("--report", r.as_path(), false));
+    }
+    smash::data::safe_write::refuse_inputs(&outputs, &inputs)?;
     let cfg = args.flight.config()?;
     let source = args.launch.as_deref().map(|s| match s {
         "predicted" => LaunchSource::Predicted,
         _ => LaunchSource::Measured,
     });
+    let user = args.flight.user_conditions();
+    let headers = file_headers(&args.shots)?;
+    let from_file = columns_used(&headers, user);
     let t0 = std::time::Instant::now();
-    let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
+    let (flown, conditions) = if let Some(terms) = &args.calibrate {
+        if !from_file.is_empty() {
+            anyhow::bail!(
+                "--calibrate flies every shot in one atmosphere, but {} states conditions per \
+                 shot ({}): set them with --elevation-m, --temperature-c and --humidity-pct",
+                args.shots.display(),
+                from_file.iter().map(|c| c.1).collect::<Vec<_>>().join(", ")
+            );
+        }
+        (calibrate_and_fly(&args, &cfg, source, terms)?, None)
+    } else if from_file.is_empty() {
+        let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
+        (flown, None)
+    } else {
+        let base = args.flight.atmosphere()?;
+        let (flown, used) = fly_with_conditions(&args.shots, &args.out, &cfg, &base, user, source)?;
+        (flown, Some(used))
+    };
     let secs = t0.elapsed().as_secs_f64();
+    let air = match &conditions {
+        None => format!("air {:.4} kg/m³", cfg.air.density_kg_m3),
+        Some(c) => format!(
+            "air per shot from the file's {} ({} distinct){}",
+            c.columns.join(", "),
+            c.atmospheres,
+            user.overridden_text()
+        ),
+    };
     eprintln!(
-        "flew {} shot(s) with {} (air {:.4} kg/m³) in {:.3} s (reading, flying and writing) -> {}",
+        "flew {} shot(s) with {} ({air}, ball {}) in {:.3} s (reading, flying and writing) -> {}",
         flown.shots,
         cfg.aero.name(),
-        cfg.air.density_kg_m3,
+        cfg.start_text(),
         secs,
         args.out.display()
     );
+    let Some(summary) = summarise_file(&args.out)? else {
+        if args.json || args.report.is_some() {
+            anyhow::bail!(
+                "{}: no measured flight column (carry_yd, offline_yd, apex_yd or \
+                 land_angle_deg) to compare with for --json or --report",
+                args.shots.display()
+            );
+        }
+        return Ok(());
+    };
+    if args.json {
+        crate::stdout::println(serde_json::to_string_pretty(&summary)?)?;
+    } else {
+        eprint!("\n{}", summary.text());
+    }
+    if let Some(path) = &args.report {
+        let subtitle = format!(
+            "{} shots flown with {} ({air})",
+            flown.shots,
+            cfg.aero.name()
+        );
+        let html = flight_page(&summary, "Flight against measured flights", &subtitle)
+            .map_err(|e| anyhow::anyhow!("--report: {e}"))?;
+        smash::data::write_atomic(path, html.as_bytes())?;
+        eprintln!("report -> {}", path.display());
+    }
     Ok(())
+}
+
+/// `--calibrate`: fit the scalings of `names` to the file's measured flights, report them, and
+/// write the flights of the calibrated model.
+fn calibrate_and_fly(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    source: Option<LaunchSource>,
+    names: &str,
+) -> anyhow::Result<Flown> {
+    use smash::flight::calibrate::{calibrate, MeasuredFlight, Term};
+    let terms = names
+        .split(',')
+        .map(|n| Term::from_name(n.trim()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
+    let table = read_launches(&args.shots, source)?;
+    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
+    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let col = |n: &str| table.headers.iter().position(|h| h == n);
+    let (carry, apex, land) = (col("carry_yd"), col("apex_yd"), col("land_angle_deg"));
+    let shots: Vec<MeasuredFlight> = table
+        .records
+        .iter()
+        .zip(&table.launches)
+        .map(|(rec, l)| {
+            let get = |i: Option<usize>| {
+                i.and_then(|i| rec.get(i))
+                    .and_then(parse_f64)
+                    .filter(|x| x.is_finite())
+            };
+            MeasuredFlight {
+                launch: *l,
+                carry_m: get(carry).map(|v| v * M_PER_YD),
+                apex_m: get(apex).map(|v| v * M_PER_YD),
+                land_angle_rad: get(land).map(f64::to_radians),
+            }
+        })
+        .collect();
+    let cal = calibrate(cfg, &shots, &terms).map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
+    let scales: Vec<String> = cal
+        .terms
+        .iter()
+        .zip(cal.scale.iter().zip(&cal.se))
+        .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
+        .collect();
+    eprintln!(
+        "calibrated {} on {} measured value(s): {} (weighted RMS residual {:.3} -> {:.3})",
+        cfg.aero.name(),
+        cal.residuals,
+        scales.join(", "),
+        cal.rms_before,
+        cal.rms_after
+    );
+    let model = cal.model(&cfg.aero);
+    let results = smash::flight::integrate::fly_with(cfg, &model, &table.launches);
+    let flights = collect(&args.shots, &table.lines, table.source.prefix(), results)?;
+    let bytes = flight_csv(
+        &table.headers,
+        &table.records,
+        &flights,
+        cfg.ground.is_some(),
+    );
+    smash::data::write_atomic(&args.out, &bytes)?;
+    Ok(Flown {
+        shots: flights.len(),
+        source: table.source,
+    })
 }
 
 /// Results to flights, or the first failure as one line naming file, line and column.

@@ -330,6 +330,7 @@ fn flight_text(args: &PredictArgs, launch: &Launch) -> anyhow::Result<String> {
     let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(launch))
         .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
     let mut text = String::new();
+    let _ = writeln!(text, "{:<14} {:>13}", "Ball start", cfg.start_text());
     let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
     let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
     let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());

@@ -6,10 +6,12 @@
 
 pub mod club_file;
 pub mod effect_defs;
+pub mod flight_conditions;
 pub mod flight_files;
 pub mod flight_measured;
 mod flight_output;
 pub mod flight_stream;
+pub mod flight_summary;
 pub mod import;
 pub mod noise_file;
 pub mod number;

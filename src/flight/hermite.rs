@@ -35,25 +35,50 @@ impl Hermite {
             + (-6.0 * t2 + 6.0 * t) * self.y1
             + (3.0 * t2 - 2.0 * t) * self.m1
     }
-    /// The downward crossing in [0, 1] given `at(0) ≥ 0 > at(1)`: Newton kept inside a
-    /// shrinking bracket. A step that starts on the ground while rising (the launch step of a
-    /// flight shorter than one step) also has a root at θ = 0, the launch itself; the landing
-    /// is then searched after the step's highest point.
-    pub(crate) fn root(&self) -> f64 {
-        let lo0 = if self.y0 <= 0.0 && self.m0 > 0.0 {
+    /// The first time in [0, 1] the interpolant comes down to `level` (the ground), or `None`
+    /// when it stays above it over the whole step. Ground contact is found on the
+    /// interpolant, not at the step's ends, so a ball that dips below the ground and rises
+    /// again within one step lands there whatever the step (a step-end test missed such a dip
+    /// at a long step and found it at a short one).
+    ///
+    /// A step that starts on the ground while rising (the launch of a ball lying on the
+    /// ground) touches `level` at θ = 0, the launch itself: the search then starts at the
+    /// step's highest point. A step that starts on the ground while not rising lands at θ = 0.
+    pub(crate) fn first_down_to(&self, level: f64) -> Option<f64> {
+        let lo = if self.y0 <= level && self.m0 > 0.0 {
             self.argmax().0
         } else {
             0.0
         };
-        let (mut lo, mut hi) = (lo0, 1.0);
-        let y_lo = self.at(lo0);
-        let mut t = if y_lo - self.y1 > 0.0 {
-            (lo0 + (1.0 - lo0) * y_lo / (y_lo - self.y1)).clamp(lo0, 1.0)
+        if self.at(lo) - level < 0.0 {
+            return Some(lo);
+        }
+        // The bracket's far end: the first local minimum after `lo` below the level, else the
+        // step's end if it is below. Between `lo` and that point the interpolant rises at
+        // most once and then falls, so it crosses the level exactly once.
+        let below = |t: f64| self.at(t) - level < 0.0;
+        let hi = self
+            .critical_points()
+            .into_iter()
+            .flatten()
+            .filter(|&t| t > lo && self.curvature(t) > 0.0)
+            .find(|&t| below(t))
+            .or_else(|| below(1.0).then_some(1.0))?;
+        Some(self.root_between(level, lo, hi))
+    }
+
+    /// The crossing of `level` in `[lo, hi]` given `at(lo) ≥ level > at(hi)` and one crossing
+    /// there: Newton kept inside a shrinking bracket.
+    fn root_between(&self, level: f64, lo: f64, hi: f64) -> f64 {
+        let (mut lo, mut hi) = (lo, hi);
+        let (f_lo, f_hi) = (self.at(lo) - level, self.at(hi) - level);
+        let mut t = if f_lo - f_hi > 0.0 {
+            (lo + (hi - lo) * f_lo / (f_lo - f_hi)).clamp(lo, hi)
         } else {
-            0.5 * (lo0 + 1.0)
+            0.5 * (lo + hi)
         };
         for _ in 0..100 {
-            let f = self.at(t);
+            let f = self.at(t) - level;
             if f == 0.0 {
                 return t;
             }
@@ -75,41 +100,69 @@ impl Hermite {
         }
         t
     }
-    /// Largest value over [0, 1].
-    pub(crate) fn max(&self) -> f64 {
-        self.argmax().1
+
+    /// Second derivative with respect to θ.
+    fn curvature(&self, t: f64) -> f64 {
+        (12.0 * t - 6.0) * self.y0
+            + (6.0 * t - 4.0) * self.m0
+            + (6.0 - 12.0 * t) * self.y1
+            + (6.0 * t - 2.0) * self.m1
     }
-    /// Where on [0, 1] the interpolant is largest, and its value there.
-    pub(crate) fn argmax(&self) -> (f64, f64) {
+
+    /// The zeros of the slope in [0, 1], in increasing order.
+    fn critical_points(&self) -> [Option<f64>; 2] {
         // slope(θ) = A θ² + B θ + C.
         let a = 6.0 * self.y0 + 3.0 * self.m0 - 6.0 * self.y1 + 3.0 * self.m1;
         let b = -6.0 * self.y0 - 4.0 * self.m0 + 6.0 * self.y1 - 2.0 * self.m1;
         let c = self.m0;
-        let mut best = if self.y0 >= self.y1 {
-            (0.0, self.y0)
-        } else {
-            (1.0, self.y1)
-        };
-        let mut try_t = |t: f64| {
-            if (0.0..=1.0).contains(&t) {
-                let y = self.at(t);
-                if y > best.1 {
-                    best = (t, y);
-                }
-            }
-        };
+        let inside = |t: f64| (0.0..=1.0).contains(&t).then_some(t);
+        let mut r = [None, None];
         if a.abs() < 1e-300 {
             if b != 0.0 {
-                try_t(-c / b);
+                r[0] = inside(-c / b);
             }
         } else {
             let disc = b * b - 4.0 * a * c;
             if disc >= 0.0 {
                 let q = -0.5 * (b + b.signum() * disc.sqrt());
                 if q != 0.0 {
-                    try_t(q / a);
-                    try_t(c / q);
+                    let (t1, t2) = (q / a, c / q);
+                    r = [inside(t1.min(t2)), inside(t1.max(t2))];
                 }
+            }
+        }
+        if r[0].is_none() {
+            r = [r[1], None];
+        }
+        r
+    }
+
+    /// Largest value over [0, `end`].
+    pub(crate) fn max_until(&self, end: f64) -> f64 {
+        let mut best = self.y0.max(self.at(end));
+        for t in self.critical_points().into_iter().flatten() {
+            if t <= end {
+                best = best.max(self.at(t));
+            }
+        }
+        best
+    }
+
+    /// Largest value over [0, 1].
+    pub(crate) fn max(&self) -> f64 {
+        self.argmax().1
+    }
+    /// Where on [0, 1] the interpolant is largest, and its value there.
+    pub(crate) fn argmax(&self) -> (f64, f64) {
+        let mut best = if self.y0 >= self.y1 {
+            (0.0, self.y0)
+        } else {
+            (1.0, self.y1)
+        };
+        for t in self.critical_points().into_iter().flatten() {
+            let y = self.at(t);
+            if y > best.1 {
+                best = (t, y);
             }
         }
         best
@@ -130,6 +183,38 @@ mod tests {
             m1: -4.0,
         };
         assert!((hm.max() - 4.0 / 3.0).abs() < 1e-8);
-        assert!((hm.root() - 1.0).abs() < 1e-6);
+        assert!((hm.first_down_to(0.0).unwrap() - 1.0).abs() < 1e-6);
+    }
+
+    /// A dip below the level inside the step is found although both ends are above it, and
+    /// the first of two crossings is the one returned.
+    #[test]
+    fn first_down_to_finds_a_dip_within_the_step() {
+        // y = (θ − ½)² − 1/16 = θ² − θ + 3/16: above 0 at both ends, zeros at ¼ and ¾.
+        let hm = Hermite {
+            y0: 3.0 / 16.0,
+            y1: 3.0 / 16.0,
+            m0: -1.0,
+            m1: 1.0,
+        };
+        assert!((hm.first_down_to(0.0).unwrap() - 0.25).abs() < 1e-12);
+        // Above the trough's level: no contact.
+        assert_eq!(hm.first_down_to(-0.1), None);
+        // Starting on the level going down: contact at once.
+        let down = Hermite {
+            y0: 0.0,
+            y1: 0.5,
+            m0: -0.2,
+            m1: 2.0,
+        };
+        assert_eq!(down.first_down_to(0.0), Some(0.0));
+        // Starting on the level going up (a launch from the ground): not a contact.
+        let up = Hermite {
+            y0: 0.0,
+            y1: 0.5,
+            m0: 1.0,
+            m1: 0.1,
+        };
+        assert_eq!(up.first_down_to(0.0), None);
     }
 }

@@ -4,11 +4,14 @@
 //!
 //! State per trajectory: position and velocity in G and the spin rate. The spin axis is
 //! constant (the decay moment is antiparallel to the spin), so spin is one number. Each step
-//! every lane checks, with a cubic Hermite interpolant over the step (positions and
-//! velocities at both ends, error `O(h⁴)` like the step itself), whether the ball came down
-//! through `y = 0` (root by safeguarded Newton) or passed its apex (root of the interpolant's
-//! derivative). The step `dt` is fixed by a tolerance test against a 64× finer step (see
-//! `tests/flight.rs`); an independent adaptive Dormand–Prince integrator checks the whole.
+//! every lane checks whether it passed its apex (root of the derivative of a cubic Hermite
+//! interpolant over the step: positions and velocities at both ends, error `O(h⁴)` like the
+//! step itself) and whether it may have touched the ground (it ends the step below the ground,
+//! or passes a trough). Such a step is re-integrated in [`REFINE`] substeps and the contact is
+//! the first root of a substep's interpolant at the ground (`y = −tee height`; safeguarded
+//! Newton), so the landing does not depend on the step. The step `dt` is fixed by a tolerance
+//! test against a 64× finer step (see `tests/flight.rs`); an independent adaptive
+//! Dormand–Prince integrator checks the whole.
 //!
 //! Every lane runs the same sequence of operations whatever its batch, position, thread or
 //! instruction set (no fused multiply–add, no libm calls in the vector code; `ln` of the
@@ -20,7 +23,6 @@
 use rayon::prelude::*;
 
 use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, Fmm2022Tour, NathanLyu};
-use super::hermite::Hermite;
 use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use crate::lanes::{each2, each3, simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
@@ -116,7 +118,7 @@ fn dispatch_on<C: CoefficientModel>(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let k = Consts::new(cfg);
+    let k = Consts::new(cfg, model.reynolds_at_reference_air());
     let (k, args) = (&k, (cfg, model, launches, out));
     match (level.or_supported(), wind) {
         #[cfg(target_arch = "x86_64")]
@@ -180,12 +182,19 @@ struct Consts {
     /// `ρ·2R/μ`, s/m: Reynolds number per speed.
     re_per_speed: f64,
     radius: f64,
+    /// Height of the ground in G, m: the ball centre at contact, `−tee height` (the centre is
+    /// at `y = 0` at address, one radius above a ball-on-the-ground's contact point).
+    ground_y: f64,
+    /// Height of the ball centre above the ground at address, m (for the wind profile).
+    centre_above_ground: f64,
     dt: f64,
     max_time: f64,
 }
 
 impl Consts {
-    fn new(cfg: &FlightConfig) -> Self {
+    /// `reference_re`: the Reynolds number in the reference air
+    /// ([`CoefficientModel::reynolds_at_reference_air`]).
+    fn new(cfg: &FlightConfig, reference_re: bool) -> Self {
         let b = &cfg.ball;
         let rho = cfg.air.density_kg_m3;
         let area = std::f64::consts::PI * b.radius_m * b.radius_m;
@@ -199,8 +208,15 @@ impl Consts {
             k_moment: rho * area * b.radius_m / b.inertia_kg_m2,
             inv_tau,
             moment,
-            re_per_speed: rho * 2.0 * b.radius_m / cfg.air.viscosity_pa_s,
+            re_per_speed: if reference_re {
+                let air = super::aero::reference_air();
+                air.density_kg_m3 * 2.0 * b.radius_m / air.viscosity_pa_s
+            } else {
+                rho * 2.0 * b.radius_m / cfg.air.viscosity_pa_s
+            },
             radius: b.radius_m,
+            ground_y: -cfg.tee_height_m,
+            centre_above_ground: b.radius_m + cfg.tee_height_m,
             dt: cfg.dt(),
             max_time: cfg.max_time_s,
         }
@@ -235,7 +251,7 @@ fn rate<L: Lanes, C: CoefficientModel, const WIND: bool>(
         let y = s.p[1].to_array();
         let (mut wx, mut wz) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
         for i in 0..L::N {
-            let w = cfg.air.wind_at(y[i] + k.radius);
+            let w = cfg.air.wind_at(y[i] + k.centre_above_ground);
             wx[i] = w[0];
             wz[i] = w[1];
         }
@@ -467,6 +483,7 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
 ) {
     let (mut s, axis) = start::<L>(launches, idx);
     let zero = L::splat(0.0);
+    let ground = L::splat(k.ground_y);
     let h = k.dt;
     let mut apex = [zero; G];
     let mut done = [[false; MAX_LANES]; G];
@@ -475,24 +492,48 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     let mut steps = 0u64;
     while left > 0 && t < k.max_time {
         let ns = rk4::<L, C, WIND>(k, cfg, model, &axis, &s);
+        let (s_all, axis_all) = (s, axis);
+        let mut fine: Option<[Vec<Lanewise<L>>; G]> = None;
         for g in 0..G {
             let (s, ns) = (&s[g], &ns[g]);
+            // The apex before this step (a lane that lands in it keeps only the part of the
+            // step before its landing) and after it.
+            let before = apex[g];
             apex[g] = L::select(ns.p[1].gt(apex[g]), ns.p[1], apex[g]);
-            // Lanes that cross the ground or pass the apex this step (done lanes included:
-            // the scalar code below skips them).
-            let event = ns.p[1].lt(zero) | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
+            // Lanes that end the step below the ground, pass a trough (the interpolant may dip
+            // below the ground within the step) or pass the apex (done lanes included: the
+            // scalar code below skips them).
+            // Lanes that end the step below the ground or pass a trough (the trajectory may
+            // dip below the ground within the step: a contact to search for), or pass the apex
+            // (done lanes included: the scalar code below skips them).
+            let contact = ns.p[1].lt(ground) | (s.v[1].lt(zero) & !ns.v[1].lt(zero));
+            let event = contact | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
             if !event.any() {
                 continue;
             }
-            let (a, b) = (s.lanewise(), ns.lanewise());
+            let pair = [s.lanewise(), ns.lanewise()];
             let mut top = apex[g].to_array();
+            let before = before.to_array();
             let ax = each3(|j| axis[g][j].to_array());
             for i in 0..L::N {
                 if done[g][i] || !event.get(i) {
                     continue;
                 }
                 let axis = [ax[0][i], ax[1][i], ax[2][i]];
-                let Some(f) = land::<L>(cfg, k, (&a, &b), i, &axis, &mut top[i], t) else {
+                let mut lane_top = before[i];
+                // A contact is searched on the step re-integrated in REFINE substeps (made once
+                // a step for every lane that needs it), an apex on the step itself.
+                let (states, hs): (&[Lanewise<L>], f64) = if contact.get(i) {
+                    let fine = fine.get_or_insert_with(|| {
+                        substeps::<L, C, WIND>(k, cfg, model, &axis_all, &s_all)
+                    });
+                    (&fine[g], h / REFINE as f64)
+                } else {
+                    (&pair, h)
+                };
+                let landed = land::land::<L>(cfg, k, states, hs, i, &axis, &mut lane_top, t);
+                top[i] = lane_top;
+                let Some(f) = landed else {
                     continue;
                 };
                 let lane = g * L::N + i;
@@ -517,62 +558,37 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     }
 }
 
-/// Lane `i`'s event in the step from `s` to `ns` (from time `t`): its apex `apex` raised to the
-/// interpolant's maximum if it passed it, and its landing if it came down through `y = 0`.
+/// Substeps a step is re-integrated in where a lane may touch the ground: the contact is then
+/// found on an interpolant 8⁴ = 4096 times more accurate, so a ball that grazes the ground or
+/// lands at a shallow angle (where a small height error moves the contact far) lands at the
+/// same place at any step (`tests/flight_step.rs`).
+const REFINE: usize = 8;
+
+/// The states of both lane groups at the ends of [`REFINE`] substeps of the step from `s`
+/// (the start first), lane by lane.
 #[inline(always)]
-fn land<L: Lanes>(
-    cfg: &FlightConfig,
+fn substeps<L: Lanes, C: CoefficientModel, const WIND: bool>(
     k: &Consts,
-    (s, ns): (&Lanewise<L>, &Lanewise<L>),
-    i: usize,
-    axis: &[f64; 3],
-    apex: &mut f64,
-    t: f64,
-) -> Option<Flight> {
-    let h = k.dt;
-    let (y0, y1) = (s.p[1][i], ns.p[1][i]);
-    let (vy0, vy1) = (s.v[1][i], ns.v[1][i]);
-    let hy = Hermite::new(y0, y1, vy0, vy1, h);
-    if vy0 > 0.0 && vy1 <= 0.0 {
-        *apex = apex.max(hy.max());
-    }
-    if y1 >= 0.0 {
-        return None;
-    }
-    let th = hy.root();
-    let interp = |j: usize| {
-        let hj = Hermite::new(s.p[j][i], ns.p[j][i], s.v[j][i], ns.v[j][i], h);
-        (hj.at(th), hj.slope(th) / h)
+    cfg: &FlightConfig,
+    model: &C,
+    axis: &[[L; 3]; G],
+    s: &[St<L>; G],
+) -> [Vec<Lanewise<L>>; G] {
+    let fine = Consts {
+        dt: k.dt / REFINE as f64,
+        ..*k
     };
-    let (x, vx) = interp(0);
-    let (z, vz) = interp(2);
-    let vy = hy.slope(th) / h;
-    let w = s.w[i] + th * (ns.w[i] - s.w[i]);
-    let horiz = vx.hypot(vz);
-    let mut f = Flight {
-        carry_m: x,
-        offline_m: z,
-        apex_m: apex.max(0.0),
-        flight_time_s: t + th * h,
-        land_angle_rad: (-vy).atan2(horiz),
-        land_speed_m_s: (horiz * horiz + vy * vy).sqrt(),
-        land_spin_rad_s: w,
-        total_m: None,
-    };
-    if let Some(gr) = &cfg.ground {
-        // Backspin component about the horizontal axis across the direction of
-        // travel: ω·(ĥ × ŷ) with ĥ the unit horizontal velocity, ĥ × ŷ = (−uz, 0, ux).
-        let (ux, uz) = if horiz > 0.0 {
-            (vx / horiz, vz / horiz)
-        } else {
-            (1.0, 0.0)
-        };
-        let back = w * (axis[0] * -uz + axis[2] * ux);
-        let roll = gr.run_m(horiz, -vy, back, k.radius);
-        f.total_m = Some(x + roll * ux);
+    let mut cur = *s;
+    let mut out = [vec![cur[0].lanewise()], vec![cur[1].lanewise()]];
+    for _ in 0..REFINE {
+        cur = rk4::<L, C, WIND>(&fine, cfg, model, axis, &cur);
+        out[0].push(cur[0].lanewise());
+        out[1].push(cur[1].lanewise());
     }
-    Some(f)
+    out
 }
+
+mod land;
 
 #[cfg(test)]
 mod tests;

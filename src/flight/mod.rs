@@ -3,8 +3,11 @@
 //!
 //! A spinning ball under gravity, aerodynamic drag against the air-relative velocity, Magnus
 //! lift along `ω × v_rel`, and spin decay, in the G frame of CONVENTIONS (origin at the ball
-//! centre at address, `x` toward the target, `y` up, `z` right). The ball lands when its centre
-//! comes back down to the height it had at address (`y = 0`).
+//! centre at address, `x` toward the target, `y` up, `z` right). The ball starts on the ground
+//! or on a tee ([`FlightConfig::tee_height_m`], the gap under the ball; 0 by default) and lands
+//! when it first touches the ground, its centre at `y = −tee height`: one radius above the
+//! ground, like at address. Contact is found on the step's interpolant, so a ball launched
+//! downward or grazing the ground lands (or not) whatever the time step.
 //!
 //! - [`aero`]: coefficient models (`C_D`, `C_L`, `C_M` from spin factor and Reynolds number),
 //!   the trait and the built-in and table models;
@@ -18,6 +21,7 @@
 
 pub mod aero;
 pub mod atmosphere;
+pub mod calibrate;
 pub mod ground;
 mod hermite;
 pub mod integrate;
@@ -107,11 +111,20 @@ pub struct FlightConfig {
     pub max_time_s: f64,
     /// Bounce and roll after landing (`None`: carry only).
     pub ground: Option<Ground>,
+    /// Gap between the ball's lowest point and the ground at launch, m: 0 for a ball on the
+    /// ground (the default), the tee height for a teed ball, at most [`MAX_TEE_HEIGHT_M`].
+    /// The ball lands when it first touches the ground, so a launch below horizontal lands at
+    /// once from the ground and after a dip below its address height from a tee.
+    pub tee_height_m: f64,
 }
+
+/// Highest tee accepted, m: a tee may be at most 4 in (101.6 mm) long (Rules of Golf,
+/// Equipment Rules, Part 3: tees), so no ball sits higher above the ground.
+pub const MAX_TEE_HEIGHT_M: f64 = 0.1016;
 
 impl Default for FlightConfig {
     /// `fmm2022-tour`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
-    /// no ground.
+    /// no ground model, the ball on the ground.
     fn default() -> Self {
         Self {
             aero: AeroModel::default(),
@@ -123,6 +136,7 @@ impl Default for FlightConfig {
             dt_s: None,
             max_time_s: DEFAULT_MAX_TIME_S,
             ground: None,
+            tee_height_m: 0.0,
         }
     }
 }
@@ -135,6 +149,15 @@ impl FlightConfig {
         } else {
             DEFAULT_DT_S
         })
+    }
+
+    /// Where the ball starts, for reports: "on the ground" or "teed N mm".
+    pub fn start_text(&self) -> String {
+        if self.tee_height_m > 0.0 {
+            format!("teed {:.0} mm", self.tee_height_m * 1e3)
+        } else {
+            "on the ground".to_string()
+        }
     }
 }
 

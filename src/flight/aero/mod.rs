@@ -82,6 +82,20 @@ pub trait CoefficientModel: Send + Sync {
         true
     }
 
+    /// Whether `re` is the Reynolds number in the air the model was fitted in (ISA sea level,
+    /// [`reference_air`]) rather than in the air flown through: then the model's Reynolds
+    /// window is a window of air speed, and thinner or warmer air changes the flight only
+    /// through the density. `false` (the default, and a user's table): the Reynolds number
+    /// of the air flown through.
+    ///
+    /// Why the built-in models take `true`: in the air flown through, each of their
+    /// drag-crisis windows made every club carry *less* in thin or warm air (the opposite of
+    /// the measured altitude gain; `tests/flight_air.rs`). Their windows were fitted, or
+    /// measured (Lyu et al. 2018), in sea-level air, where the two readings agree bit for bit.
+    fn reynolds_at_reference_air(&self) -> bool {
+        false
+    }
+
     /// The same on lanes (any [`Lanes`] type, one lane a point): `(C_D, C_L, C_M)`.
     #[inline(always)]
     fn coefficients_v<L: Lanes>(&self, s: L, re: L) -> (L, L, L)
@@ -102,6 +116,14 @@ pub trait CoefficientModel: Send + Sync {
             L::load(cm.as_ref()),
         )
     }
+}
+
+/// The air of [`CoefficientModel::reynolds_at_reference_air`]: the default atmosphere, ISA sea
+/// level (15 °C, 1013.25 hPa) at 50 % relative humidity, still.
+pub fn reference_air() -> crate::flight::Air {
+    crate::flight::Atmosphere::default()
+        .air()
+        .expect("the default atmosphere is valid")
 }
 
 /// Smits & Smith (1994) moment coefficient per unit spin factor (dimensionless).
@@ -298,6 +320,10 @@ impl Fmm2022ReFamily {
 }
 
 impl CoefficientModel for Fmm2022ReFamily {
+    fn reynolds_at_reference_air(&self) -> bool {
+        true
+    }
+
     #[inline]
     fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         let mut c = Fmm2022.coefficients(s, re);
@@ -316,6 +342,10 @@ impl CoefficientModel for Fmm2022ReFamily {
 }
 
 impl CoefficientModel for Fmm2022Re {
+    fn reynolds_at_reference_air(&self) -> bool {
+        true
+    }
+
     #[inline]
     fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         Fmm2022ReFamily::FITTED.coefficients(s, re)
@@ -390,6 +420,12 @@ impl AeroModel {
             Self::NathanLyu => "nathan-lyu".into(),
             Self::Table(t) => t.describe(),
         }
+    }
+
+    /// [`CoefficientModel::reynolds_at_reference_air`] of the model: the built-in models
+    /// take it, a table does not.
+    pub fn reynolds_at_reference_air(&self) -> bool {
+        !matches!(self, Self::Table(_))
     }
 
     /// Coefficients (dispatching on the model; the integrator dispatches once per batch).

@@ -30,6 +30,10 @@ impl NathanLyu {
 }
 
 impl CoefficientModel for NathanLyu {
+    fn reynolds_at_reference_air(&self) -> bool {
+        true
+    }
+
     #[inline]
     fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         let t = ((re - Self::RE_LOW) / (Self::RE_HIGH - Self::RE_LOW)).clamp(0.0, 1.0);

@@ -61,6 +61,10 @@ impl Fmm2022Tour {
 }
 
 impl CoefficientModel for Fmm2022Tour {
+    fn reynolds_at_reference_air(&self) -> bool {
+        true
+    }
+
     #[inline]
     fn coefficients(&self, s: f64, re: f64) -> Coefficients {
         Self::FAMILY.coefficients(s, re)

@@ -1,0 +1,101 @@
+//! The `smash flight --report` page: the flight model against measured flights, per club.
+
+use smash::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
+use smash::report::charts::{grouped_bars_svg, scatter_trend_svg, BarSeries, BLUE_C};
+use smash::report::html::{esc, Figure, Page, Section};
+
+/// The `--report` page: the carry, side, apex and land-angle errors per club (bias, with the
+/// RMSE as its whisker) and every shot's carry error against its measured carry; `subtitle`:
+/// the model and conditions flown. The HTML page for a summary; `subtitle`: the model and conditions flown.
+pub(super) fn flight_page(
+    summary: &FlightSummary,
+    title: &str,
+    subtitle: &str,
+) -> Result<String, String> {
+    let categories: Vec<String> = summary.rows.iter().map(|r| r.group.clone()).collect();
+    let mut figures = Vec::new();
+    for (name, label, unit) in SUMMARY_QUANTITIES {
+        let values: Vec<Option<(f64, f64)>> = summary
+            .rows
+            .iter()
+            .map(|r| {
+                r.errors
+                    .iter()
+                    .find(|e| e.0 == name)
+                    .map(|e| (e.1.bias, e.1.rmse))
+            })
+            .collect();
+        if values.iter().all(Option::is_none) {
+            continue;
+        }
+        let series = [BarSeries {
+            label: "bias".into(),
+            colour: BLUE_C,
+            values,
+        }];
+        let svg = grouped_bars_svg(
+            &format!("{label} error per club"),
+            &format!("predicted - measured, {unit}"),
+            &categories,
+            &series,
+        )?;
+        figures.push(Figure {
+            kind: "flight-bias",
+            caption: format!(
+                "{label}: mean error (bar) and RMSE (whisker half-width) per club and over all shots, {unit}"
+            ),
+            svg,
+        });
+    }
+    if !summary.carry_points.is_empty() {
+        let svg = scatter_trend_svg(
+            "carry error against measured carry",
+            "measured carry, yd",
+            "predicted - measured, yd",
+            &summary.carry_points,
+            None,
+            &[],
+        )?;
+        figures.push(Figure {
+            kind: "flight-carry",
+            caption: "every shot's carry error against its measured carry".into(),
+            svg,
+        });
+    }
+    let table = table_html(summary);
+    Ok(Page {
+        title: title.into(),
+        subtitle: subtitle.into(),
+        sections: vec![Section {
+            heading: "Flight against measured flights".into(),
+            html: vec![table],
+            figures,
+        }],
+    }
+    .render())
+}
+
+/// The carry statistics as an HTML table.
+fn table_html(summary: &FlightSummary) -> String {
+    let mut t = String::from(
+        "<table><tr><th class=\"l\">club</th><th>n</th><th>carry bias yd</th><th>carry RMSE yd</th>\
+         <th>median |err| %</th><th>P90 |err| %</th></tr>",
+    );
+    for r in &summary.rows {
+        let Some((_, s)) = r.errors.iter().find(|e| e.0 == "carry_yd") else {
+            continue;
+        };
+        let pct = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:.2}"));
+        t.push_str(&format!(
+            "<tr><td class=\"l\">{}</td><td>{}</td><td>{:.2}</td><td>{:.2}</td><td>{}</td><td>{}</td></tr>",
+            esc(&r.group),
+            s.n,
+            s.bias,
+            s.rmse,
+            pct(s.median_abs_pct),
+            pct(s.p90_abs_pct)
+        ));
+    }
+    t.push_str("</table>");
+    t
+}
