@@ -292,7 +292,8 @@ fn read_export(
                 anyhow::bail!(
                     "format 'shots': `shots` is the shots-file format itself, so there is \
                      nothing to convert; give the export's format: a preset (trackman, \
-                     foresight, flightscope, uneekor) or a mapping file NAME.toml"
+                     flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a \
+                     mapping file NAME.toml"
                 );
             }
             let mapping = smash::data::import::load_mapping(format)?;
@@ -301,10 +302,18 @@ fn read_export(
             let opts = smash::data::import::ImportOptions {
                 impact_offset_positive: a.format.impact_offset_positive.map(Into::into),
                 ignore_unknown_columns: a.format.ignore_unknown_columns,
+                strict: a.format.strict,
             };
             let imported = smash::data::import::import(&a.input, &bytes, &mapping, &opts)?;
-            // The result must read back as a shots file (ranges, ids, launch columns).
-            imported.read_back(&a.input)?;
+            // As `smash import`: shots with a complete delivery must read back as a shots file
+            // (ranges, ids, launch columns); a launch-only export is for flight.
+            if imported.complete_delivery > 0 {
+                let read = smash::data::shots::ReadOptions {
+                    strict: a.format.strict,
+                    include_estimated: true,
+                };
+                imported.read_back_with(&a.input, read)?;
+            }
             let notes = imported
                 .notes
                 .iter()
