@@ -241,7 +241,7 @@ fn bad_input_is_one_clear_line_and_no_file() {
             vec!["--aero", "magic"],
             "unknown aerodynamic model 'magic'",
         ),
-        (LAUNCH_ROW0, vec![], "ball_speed_mph = 0: must be > 0"),
+        (LAUNCH_ROW0, vec![], "ball_speed_mph = 0: must be at least 1 mph"),
         (
             "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,300,10,2500\n",
             vec![],

@@ -60,7 +60,7 @@ impl Ground {
         // fastest greens (Stimp 14 ft, 4.27 m) it rolls out at v²/2d ≈ 0.39 m/s²; no turf is a
         // quarter as slow. Below that the run-out grows without bound (1e-300 m/s² once gave a
         // 304-digit total).
-        if !(self.roll_decel_m_s2 >= MIN_ROLL_DECEL_M_S2 && self.roll_decel_m_s2 <= 50.0) {
+        if !(MIN_ROLL_DECEL_M_S2..=50.0).contains(&self.roll_decel_m_s2) {
             return Err(format!(
                 "ground roll_decel_m_s2 = {}: must be within [0.1, 50] m/s² (the fastest \
                  greens roll out at about 0.4)",

@@ -232,7 +232,7 @@ impl FlightLaunch {
         let mph = self.ball_speed_m_s / units::M_S_PER_MPH;
         if !(mph >= MIN_BALL_SPEED_MPH * (1.0 + 1e-9) && clearly_within(mph, MAX_BALL_SPEED_MPH)) {
             let mph = tidy(mph);
-            if !(mph >= MIN_BALL_SPEED_MPH && mph <= MAX_BALL_SPEED_MPH) {
+            if !(MIN_BALL_SPEED_MPH..=MAX_BALL_SPEED_MPH).contains(&mph) {
                 return bad("ball_speed_mph", mph, BALL_SPEED_ALLOWED);
             }
         }
@@ -404,7 +404,7 @@ mod tests {
             })
         };
         let mph = tidy(l.ball_speed_m_s / units::M_S_PER_MPH);
-        if !(mph >= MIN_BALL_SPEED_MPH && mph <= MAX_BALL_SPEED_MPH) {
+        if !(MIN_BALL_SPEED_MPH..=MAX_BALL_SPEED_MPH).contains(&mph) {
             return bad("ball_speed_mph", mph, BALL_SPEED_ALLOWED);
         }
         for (field, rad) in [
