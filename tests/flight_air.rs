@@ -58,7 +58,7 @@ fn falls(aero: &str, steps: &[(String, Atmosphere)]) -> Vec<String> {
     for (k, club) in CLUBS.iter().enumerate() {
         for w in 1..steps.len() {
             let (a, b) = (runs[w - 1][k], runs[w][k]);
-            if !(b > a) {
+            if b.partial_cmp(&a) != Some(std::cmp::Ordering::Greater) {
                 bad.push(format!(
                     "{aero}, {} {} mph {}° {} rpm: {a:.2} yd at {} -> {b:.2} yd at {}",
                     club.0,
