@@ -87,6 +87,10 @@ pub struct CompareArgs {
     /// Measurement noise of the inputs.
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
+
+    /// What to do when the shots do not match the club.
+    #[command(flatten)]
+    pub club_check: super::ClubCheckArgs,
 }
 
 /// Run `smash compare`.
@@ -126,6 +130,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
+    let mismatch = args
+        .club_check
+        .check(&args.club, &club, &args.shots, &table.shots)?;
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(
@@ -163,14 +170,24 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         &table.shots,
         &smash::effects::user::registered(),
     );
-    let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
+    let mut report = compare_with_hints(&table.shots, &launches, &options, &user)?;
+    if mismatch.is_some() {
+        // Errors of another club's shots say nothing about this head.
+        report.findings.clear();
+    }
     let title = format!(
         "{} vs {} ({})",
         club.name,
         args.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let text = compare_text(&report, &title);
+    let mut text = compare_text(&report, &title);
+    if let Some(why) = &mismatch {
+        text = format!(
+            "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
+             errors of another club's shots, not of this head\n{text}"
+        );
+    }
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");

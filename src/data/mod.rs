@@ -15,6 +15,7 @@ pub mod noise_file;
 pub mod number;
 pub mod predictions;
 pub mod safe_write;
+pub mod sessions;
 pub mod shots;
 pub mod toml_check;
 
