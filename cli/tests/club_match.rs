@@ -58,7 +58,7 @@ fn a_seven_iron_session_against_the_driver_is_refused_naming_loft() {
     let shots = s(&repo("cli/tests/fixtures/import/flightscope_fsgolf.csv")).to_owned();
     for cmd in ["compare", "diagnose", "calibrate"] {
         let mut args = vec![cmd, "--club", DRIVER, "--shots", &shots];
-        args.extend(["--format", "flightscope"]);
+        args.extend(["--format", "flightscope", "--impact-offset-positive", "toe"]);
         if cmd == "calibrate" {
             args.extend(["--effects", "loft_bias"]);
         }
