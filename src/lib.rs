@@ -9,6 +9,7 @@
 //! - [`effects`]: the named library of physics beyond the nominal model, each with parameters,
 //!   units and bounds.
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
+//! - [`club_match`]: do the shots belong to the club file (names, delivered loft, speed)?
 //! - [`model`]: the domain types every room above the physics shares: a shot and the delivery
 //!   variables (column, unit, range, typical instrument noise). No I/O.
 //! - [`data`]: club TOML, shots CSV, predictions CSV, noise files, launch-monitor import; the one
@@ -36,6 +37,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod club;
+pub mod club_match;
 pub mod compare;
 pub mod data;
 pub mod diagnose;

@@ -91,6 +91,10 @@ pub struct CalibrateArgs {
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
 
+    /// What to do when the shots do not match the club.
+    #[command(flatten)]
+    pub club_check: super::ClubCheckArgs,
+
     /// 1σ noise of the measured delivery variables other than the impact location: the model
     /// is then evaluated at each shot's expected true delivery given all the shots' measured
     /// ones and golfers (regression calibration). An instrument class (camera, radar) or a
@@ -117,6 +121,9 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
+    let mismatch = args
+        .club_check
+        .check(&args.club, &club, &args.shots, &table.shots)?;
     let line = Arc::new(IterationLine::new());
     let cal = compute(&args, &club, &table, Some(line.clone()));
     line.finish();
@@ -180,9 +187,18 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         eprintln!("report -> {}", path.display());
     }
     if args.json {
-        crate::stdout::println(serde_json::to_string_pretty(&to_json(&cal))?)?;
+        let mut json = to_json(&cal);
+        json["club_mismatch"] = serde_json::json!(mismatch);
+        crate::stdout::println(serde_json::to_string_pretty(&json)?)?;
     } else {
-        crate::stdout::print(text_report(&cal, table.shots.len()))?;
+        let mut text = text_report(&cal, table.shots.len());
+        if let Some(why) = &mismatch {
+            text = format!(
+                "NO FINDINGS: the shots do not match the club ({why}); the fitted values describe \
+                 another club's shots, not this head\n{text}"
+            );
+        }
+        crate::stdout::print(text)?;
     }
     Ok(())
 }

@@ -90,6 +90,10 @@ pub struct CompareArgs {
     /// Measurement noise of the inputs.
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
+
+    /// What to do when the shots do not match the club.
+    #[command(flatten)]
+    pub club_check: super::ClubCheckArgs,
 }
 
 /// Run `smash compare`.
@@ -103,14 +107,27 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    let (report, launches) = compute(&args, &club, &table)?;
+    let mismatch = args
+        .club_check
+        .check(&args.club, &club, &args.shots, &table.shots)?;
+    let (mut report, launches) = compute(&args, &club, &table)?;
+    if mismatch.is_some() {
+        // Errors of another club's shots say nothing about this head.
+        report.findings.clear();
+    }
     let title = format!(
         "{} vs {} ({})",
         club.name,
         args.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let text = compare_text(&report, &title);
+    let mut text = compare_text(&report, &title);
+    if let Some(why) = &mismatch {
+        text = format!(
+            "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
+             errors of another club's shots, not of this head\n{text}"
+        );
+    }
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");

@@ -18,7 +18,7 @@ use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
 use smash::diagnose::{
-    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, FoldBy, Step,
+    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, Step,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
 };
 use smash::fit::{parse_effect_list, FitError, ParamEstimate};
@@ -102,6 +102,10 @@ pub struct DiagnoseArgs {
     /// 1, 1.5, 2 and 3 mm is offered as a candidate beside the effects.
     #[command(flatten)]
     pub measurement: super::MeasurementArgs,
+
+    /// What to do when the shots do not match the club.
+    #[command(flatten)]
+    pub club_check: super::ClubCheckArgs,
 
     /// Take the measured impact locations as exact (offer no impact-noise candidate).
     #[arg(
@@ -221,6 +225,9 @@ pub fn compute(
     table: &ShotTable,
     progress: Option<&dyn DiagnoseProgress>,
 ) -> anyhow::Result<(Diagnosis, NoiseFloor)> {
+    let mismatch = args
+        .club_check
+        .check(&args.club, club, &args.shots, &table.shots)?;
     let known_noise = match (&args.noise, args.instrument) {
         (Some(p), _) => Some(read_noise_file(p)?),
         (None, Some(c)) => Some(c.noise()),
@@ -252,10 +259,13 @@ pub fn compute(
             DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
         },
         noise_floor: known_noise,
+        // Without golfers, whole sessions (dates), time blocks or clubs form the folds.
+        fold_keys: smash::data::sessions::fold_keys(table, args.folds)?,
         ..DiagnoseOptions::default()
     };
-    let d = diagnose(club, &table.shots, &opts, progress)
+    let mut d = diagnose(club, &table.shots, &opts, progress)
         .with_context(|| args.shots.display().to_string())?;
+    d.club_mismatch = mismatch;
     let floor = noise_floor(&d, &table.shots, &instrument)?;
     Ok((d, floor))
 }
@@ -291,7 +301,9 @@ fn estimates_json_with(
 /// `finding`, `stand_in`, `absent` (on its no-effect bound) or `ambiguous` (a plausible value
 /// with a plausible rival, or aliased with another effect).
 fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
-    if honest::is_plausible(p) == Some(false) {
+    if d.club_mismatch.is_some() {
+        "wrong_club"
+    } else if honest::is_plausible(p) == Some(false) {
         "stand_in"
     } else if honest::is_absent(p) {
         "absent"
@@ -376,7 +388,8 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         "conclusion": conclusion(d, floor),
         "steps": steps,
         "folds": d.folds,
-        "fold_by": match d.fold_by { FoldBy::Golfer => "golfer", FoldBy::Shot => "shot" },
+        "fold_by": d.fold_by.name(),
+        "club_mismatch": d.club_mismatch,
         "n_shots": d.n_shots,
         "warnings": d.warnings,
         "before": d.before.to_json(),
@@ -496,12 +509,15 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
          (+ 2·ln m for a physical effect picked from m candidates)\n",
         d.n_shots,
         d.folds,
-        match d.fold_by {
-            FoldBy::Golfer => "golfer",
-            FoldBy::Shot => "shot",
-        },
+        d.fold_by.name(),
         (d.n_shots as f64).ln()
     );
+    if let Some(why) = &d.club_mismatch {
+        s = format!(
+            "NO FINDINGS: the shots do not match the club ({why}); what is selected below \
+             describes another club's shots, not this head\n{s}"
+        );
+    }
     for (i, st) in d.steps.iter().enumerate() {
         s.push_str(&step_text(i, st));
     }

@@ -186,6 +186,48 @@ pub fn warn_groups_without_effects(
     }
 }
 
+/// The flag that runs `compare`, `calibrate` or `diagnose` on shots that do not match the club.
+#[derive(Debug, Clone, Copy, clap::Args)]
+pub struct ClubCheckArgs {
+    /// Run even when the shots do not match the club file (another club's loft or speed, or
+    /// several clubs named in `group`); the output then reports no findings about this club.
+    #[arg(long)]
+    pub ignore_club_mismatch: bool,
+}
+
+impl ClubCheckArgs {
+    /// Compare the shots with the club ([`smash::club_match::check`]) before anything is
+    /// fitted: refuse a mismatch in one line, or under `--ignore-club-mismatch` warn and return
+    /// the reason (the caller then reports no findings).
+    pub fn check(
+        self,
+        club_path: &std::path::Path,
+        club: &smash::club::ClubSpec,
+        shots_path: &std::path::Path,
+        shots: &[smash::model::Shot],
+    ) -> anyhow::Result<Option<String>> {
+        let loft_deg = club.static_loft_rad.map(f64::to_degrees);
+        let check = smash::club_match::check(loft_deg, shots);
+        if check.is_match() {
+            return Ok(None);
+        }
+        let why = format!(
+            "{} does not match the club {}: {}",
+            shots_path.display(),
+            club_path.display(),
+            check.summary()
+        );
+        if !self.ignore_club_mismatch {
+            anyhow::bail!("{why} (--ignore-club-mismatch runs anyway and reports no findings)");
+        }
+        eprintln!(
+            "warning: {}; running under --ignore-club-mismatch: no findings are reported",
+            smash::data::escape(&why)
+        );
+        Ok(Some(check.summary()))
+    }
+}
+
 /// One line: the error and its causes, joined by `: `, with control characters from the input
 /// (ESC, CR, …) escaped so that they cannot act on the terminal.
 pub fn error_chain(e: &anyhow::Error) -> String {

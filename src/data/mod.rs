@@ -18,6 +18,7 @@ pub mod number;
 pub mod output_plan;
 pub mod predictions;
 pub mod safe_write;
+pub mod sessions;
 pub mod shots;
 pub mod temporaries;
 pub mod toml_check;

@@ -100,6 +100,9 @@ pub struct DiagnoseOptions {
     /// levels, these multiples of the camera class's delivery SDs, as measurement candidates
     /// (`docs/diagnose-selection.md`); empty: assume an exact delivery.
     pub delivery_noise_scales: Vec<f64>,
+    /// Keys to group the folds by when the shots have no golfers (sessions, time blocks or
+    /// clubs, read from the input's columns: [`crate::data::sessions`]); `None`: by shot.
+    pub fold_keys: Option<crate::stats::FoldKeys>,
 }
 
 /// Delivery-noise levels diagnose tries by default when the instruments' noise is unknown:
@@ -132,6 +135,7 @@ impl Default for DiagnoseOptions {
             impact_noise_candidates_mm: DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec(),
             noise_floor: None,
             delivery_noise_scales: DEFAULT_DELIVERY_NOISE_SCALES.to_vec(),
+            fold_keys: None,
         }
     }
 }
@@ -141,8 +145,27 @@ impl Default for DiagnoseOptions {
 pub enum FoldBy {
     /// A golfer's shots are all in one fold.
     Golfer,
-    /// Shot by shot (no golfer column).
+    /// A session's (a date's) shots are all in one fold (no golfers).
+    Session,
+    /// Blocks of consecutive shots by time of day, each in one fold (no golfers, one session).
+    TimeBlock,
+    /// A club's shots are all in one fold (no golfers, no dates or times).
+    Club,
+    /// Shot by shot (no golfer column, no date or time column).
     Shot,
+}
+
+impl FoldBy {
+    /// Its name in reports: `golfer`, `session`, `time block`, `club`, `shot`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Golfer => "golfer",
+            Self::Session => "session",
+            Self::TimeBlock => "time block",
+            Self::Club => "club",
+            Self::Shot => "shot",
+        }
+    }
 }
 
 /// One candidate at one step.
@@ -312,6 +335,9 @@ pub struct Diagnosis {
     /// Each selected effect that had rivals at its step, with them; those whose readings are
     /// all plausible are ambiguous ([`honest::Ambiguity::is_ambiguous`]), not findings.
     pub ambiguities: Vec<honest::Ambiguity>,
+    /// Why the shots do not match the club file, when the caller ran anyway
+    /// ([`crate::club_match`]): then no estimate is a finding.
+    pub club_mismatch: Option<String>,
 }
 
 impl Diagnosis {
@@ -321,7 +347,8 @@ impl Diagnosis {
     /// tell which of the two effects carries the signal, so neither value is a reading of the
     /// physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
     pub fn is_finding(&self, p: &ParamEstimate) -> bool {
-        honest::is_plausible(p) != Some(false)
+        self.club_mismatch.is_none()
+            && honest::is_plausible(p) != Some(false)
             && !honest::is_absent(p)
             && !self
                 .ambiguities
@@ -390,7 +417,8 @@ pub fn diagnose(
         .with_delivery_noise(opts.delivery_noise())
         .with_impact_noise(opts.impact_noise)?;
     let mut warnings = Vec::new();
-    let (fold_of, fold_by) = search::fold_assignment(&data, opts.folds, &mut warnings);
+    let (fold_of, fold_by) =
+        search::fold_assignment(&data, opts.folds, opts.fold_keys.as_ref(), &mut warnings);
     let n_folds = fold_of.iter().max().map_or(1, |m| m + 1);
     if n_folds < 2 {
         return Err(FitError::TooFewShots {

@@ -35,10 +35,12 @@ fn group_names(data: &FitData) -> Vec<String> {
 }
 
 /// Fold of every shot and how the folds were formed: by golfer when there are at least two,
-/// else by shot (with a warning).
+/// else by the given keys (sessions, time blocks, clubs) when they hold at least two, else by
+/// shot (with a warning).
 pub(super) fn fold_assignment(
     data: &FitData,
     folds: usize,
+    keys: Option<&stats::FoldKeys>,
     warnings: &mut Vec<String>,
 ) -> (Vec<usize>, FoldBy) {
     let golfers: Vec<&str> = data
@@ -52,6 +54,19 @@ pub(super) fn fold_assignment(
     if data.has_golfers() && distinct.len() >= 2 {
         return (stats::grouped_folds(&golfers, folds), FoldBy::Golfer);
     }
+    if let Some(k) = keys.filter(|k| k.keys.len() == data.len()) {
+        let mut distinct: Vec<&String> = k.keys.iter().collect();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if distinct.len() >= 2 {
+            let by = match k.kind {
+                stats::KeyKind::Session => FoldBy::Session,
+                stats::KeyKind::TimeBlock => FoldBy::TimeBlock,
+                stats::KeyKind::Club => FoldBy::Club,
+            };
+            return (stats::grouped_folds(&k.keys, folds), by);
+        }
+    }
     warnings.push(if data.has_golfers() {
         format!(
             "every shot is from one golfer ('{}'): cross-validation folds cannot be grouped by \
@@ -59,8 +74,8 @@ pub(super) fn fold_assignment(
             distinct.first().copied().unwrap_or_default()
         )
     } else {
-        "no golfer column: cross-validation folds are by shot, so a golfer's shots can be in \
-         both training and test folds"
+        "no golfer column and no date or time column: cross-validation folds are by shot, so a \
+         golfer's or a session's shots can be in both training and test folds"
             .to_owned()
     });
     (stats::item_folds(data.len(), folds), FoldBy::Shot)
@@ -501,6 +516,7 @@ impl<'a> Search<'a> {
             warnings,
             aliases,
             ambiguities,
+            club_mismatch: None,
         })
     }
 }

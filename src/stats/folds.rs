@@ -20,6 +20,29 @@ pub fn grouped_folds<S: AsRef<str>>(keys: &[S], k: usize) -> Vec<usize> {
         .collect()
 }
 
+/// What per-shot keys of [`FoldKeys`] stand for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KeyKind {
+    /// A session: the shots of one date.
+    Session,
+    /// A block of consecutive shots of one session, by time of day.
+    TimeBlock,
+    /// The club named in the shots' group.
+    Club,
+}
+
+/// Keys that group shots into folds when there are no golfers: one key per shot, with what they
+/// are and the column they come from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FoldKeys {
+    /// What the keys stand for.
+    pub kind: KeyKind,
+    /// The input column they were read from.
+    pub column: String,
+    /// One key per shot, in shot order.
+    pub keys: Vec<String>,
+}
+
 /// Shot-level fold assignment (no grouping): item `i` goes to fold `i mod k`.
 pub fn item_folds(n: usize, k: usize) -> Vec<usize> {
     let k = k.clamp(1, n.max(1));

@@ -12,7 +12,7 @@ pub mod tdist;
 
 pub use correlation::{pearson, Correlation};
 pub use error_table::{launch_error_table, ErrorTable, GroupErrors, MeanStd};
-pub use folds::{grouped_folds, item_folds};
+pub use folds::{grouped_folds, item_folds, FoldKeys, KeyKind};
 pub use regression::{linear_regression, t_statistic, LineFit};
 pub use robust::{median, rms, robust_scale, MAD_TO_SIGMA};
 pub use summary::{mean, std_dev, Summary};
