@@ -609,9 +609,14 @@ mod tests {
         assert!(err(&deep).message.contains("nested too deeply"));
         // Nesting far beyond the limits is an error found before recursing (no stack overflow).
         for open in ["(", "abs(", "-", "+", "2^"] {
-            let text = format!("{}x", open.repeat(20_000));
+            // Deeper than the nesting limit within the length limit: refused by nesting.
+            let text = format!("{}x", open.repeat(4 * MAX_NEST));
             let e = err(&text);
             assert!(e.message.contains("nested too deeply"), "{open}: {e:?}");
+            // 20 000 deep: refused by its length before it is tokenized.
+            let text = format!("{}x", open.repeat(20_000));
+            let e = err(&text);
+            assert!(e.message.contains("too long"), "{open}: {e:?}");
         }
         let e = err(&"x+".repeat(3000));
         assert!(e.message.contains("too long (6000 characters"), "{e:?}");
