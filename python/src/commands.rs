@@ -204,8 +204,15 @@ fn calibrate(
                 unreachable!("parsed as calibrate")
             };
             let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            // As `smash calibrate`: shots of another club are refused (or, with the flag,
+            // reported with the mismatch) before anything is fitted.
+            let mismatch = a
+                .club_check
+                .check(&a.club, &club.spec, &a.shots, &table.shots)?;
             let cal = smash_cli::calibrate::compute(&a, &club.spec, &table, progress)?;
-            let json = serde_json::to_string_pretty(&smash_cli::calibrate::to_json(&cal))?;
+            let mut json = smash_cli::calibrate::to_json(&cal);
+            json["club_mismatch"] = serde_json::json!(mismatch);
+            let json = serde_json::to_string_pretty(&json)?;
             Ok((json, cal.club, warnings))
         })
         .map_err(to_py)?;
