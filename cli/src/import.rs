@@ -46,16 +46,9 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
         &[("IN.csv", &args.input)],
     )?;
     let imported = args.format.import(&args.input, format)?;
-    // The result must read back (ranges, ids, launch columns); shots without a complete
-    // delivery or with estimated values are written all the same (flight uses their launch).
-    let opts = smash::data::shots::ReadOptions {
-        strict: args.format.strict,
-        include_estimated: true,
-    };
-    let table = match imported.complete_delivery {
-        0 => None,
-        _ => Some(imported.read_back_with(&args.input, opts)?),
-    };
+    // Shots without a complete delivery or with estimated values are written all the same
+    // (flight uses their launch); the rest must read back.
+    let table = imported.checked_read_back(&args.input, args.format.strict)?;
     let groups = table.as_ref().map_or(0, |t| t.groups().len());
     write_atomic(&args.out, &imported.csv)?;
     let n = imported.shots;

@@ -389,16 +389,8 @@ impl ShotsFormatArgs {
 /// One line on stderr per reason the shots reader left rows out: how many, of how many rows,
 /// and their first lines.
 pub fn report_left_out(table: &smash::data::shots::ShotTable) {
-    let total = table.shots.len() + table.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
-    for l in &table.left_out {
-        let shown: Vec<String> = l.lines.iter().take(10).map(usize::to_string).collect();
-        let more = if l.lines.len() > 10 { ", …" } else { "" };
-        eprintln!(
-            "shots: left out {} of {total} rows: {} (line(s) {}{more}; --strict refuses the file)",
-            l.lines.len(),
-            l.reason,
-            shown.join(", ")
-        );
+    for note in table.left_out_notes() {
+        eprintln!("shots: {note}");
     }
 }
 

@@ -100,7 +100,34 @@ pub const ESTIMATED_FLAGS: [(&str, &str); 2] = [
     ("club_estimated", "estimated club data"),
 ];
 
+/// File lines for a note: the first ten, then `…` when there are more.
+pub fn list_lines(lines: &[usize]) -> String {
+    let shown: Vec<String> = lines.iter().take(10).map(usize::to_string).collect();
+    if lines.len() > 10 {
+        format!("{}, …", shown.join(", "))
+    } else {
+        shown.join(", ")
+    }
+}
+
 impl ShotTable {
+    /// One note per reason rows were left out: how many of all the rows, why, and their first
+    /// file lines (`left out 2 of 40 rows: no impact location (line(s) 5, 9; …)`).
+    pub fn left_out_notes(&self) -> Vec<String> {
+        let total = self.shots.len() + self.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
+        self.left_out
+            .iter()
+            .map(|l| {
+                format!(
+                    "left out {} of {total} rows: {} (line(s) {}; --strict refuses the file)",
+                    l.lines.len(),
+                    l.reason,
+                    list_lines(&l.lines)
+                )
+            })
+            .collect()
+    }
+
     /// Do the shots carry measured launch conditions?
     pub fn has_measurements(&self) -> bool {
         self.shots.first().is_some_and(|s| s.measured.is_some())

@@ -2,15 +2,7 @@
 
 use super::units::Unit;
 
-/// File lines for a note: the first ten, then `…` when there are more.
-pub(super) fn list_lines(lines: &[usize]) -> String {
-    let shown: Vec<String> = lines.iter().take(10).map(usize::to_string).collect();
-    if lines.len() > 10 {
-        format!("{}, …", shown.join(", "))
-    } else {
-        shown.join(", ")
-    }
-}
+pub(super) use crate::data::shots::list_lines;
 
 /// Parse one cell: a number, optionally with an L/R letter before or after it (when the column
 /// takes directions) or the column's own unit after it. Returns the value in the column's unit.

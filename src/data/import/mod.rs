@@ -240,6 +240,24 @@ impl Imported {
         self.read_back_with(path, ReadOptions::default())
     }
 
+    /// The check every conversion ends with, as `smash import` makes it: the shots with a
+    /// complete delivery must read back as a shots file (ranges, ids, launch columns), estimated
+    /// values included; `None` for a launch-only export (for flight), which has nothing to read.
+    pub fn checked_read_back(
+        &self,
+        path: &Path,
+        strict: bool,
+    ) -> Result<Option<ShotTable>, DataError> {
+        if self.complete_delivery == 0 {
+            return Ok(None);
+        }
+        let opts = ReadOptions {
+            strict,
+            include_estimated: true,
+        };
+        self.read_back_with(path, opts).map(Some)
+    }
+
     /// [`Imported::read_back`] with the shots reader's options; the lines of rows left out
     /// are the export's own.
     pub fn read_back_with(&self, path: &Path, opts: ReadOptions) -> Result<ShotTable, DataError> {
