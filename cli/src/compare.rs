@@ -107,27 +107,14 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let club = read_club(&args.club)?;
     let table = args.shots_format.read(&args.shots)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    let mismatch = args
-        .club_check
-        .check(&args.club, &club, &args.shots, &table.shots)?;
-    let (mut report, launches) = compute(&args, &club, &table)?;
-    if mismatch.is_some() {
-        // Errors of another club's shots say nothing about this head.
-        report.findings.clear();
-    }
+    let (report, launches) = compute(&args, &club, &table)?;
     let title = format!(
         "{} vs {} ({})",
         club.name,
         args.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let mut text = compare_text(&report, &title);
-    if let Some(why) = &mismatch {
-        text = format!(
-            "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
-             errors of another club's shots, not of this head\n{text}"
-        );
-    }
+    let text = text(&report, &title);
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");
@@ -160,14 +147,31 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// The text report, headed by `NO FINDINGS` when the shots do not match the club.
+pub fn text(report: &CompareReport, title: &str) -> String {
+    let text = compare_text(report, title);
+    match &report.club_mismatch {
+        Some(why) => format!(
+            "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
+             errors of another club's shots, not of this head\n{text}"
+        ),
+        None => text,
+    }
+}
+
 /// The comparison of `table` with `club` under `args`' options (its `--club` and `--shots`
-/// only name them in messages) and the model's launch of every shot. What `run` reports.
+/// only name them in messages) and the model's launch of every shot, after the club check
+/// (which refuses shots of another club unless `--ignore-club-mismatch`; the report then says
+/// why and has no findings). What `run` reports.
 pub fn compute(
     args: &CompareArgs,
     club: &ClubSpec,
     table: &ShotTable,
 ) -> anyhow::Result<(CompareReport, Vec<Launch>)> {
     check_options(args)?;
+    let mismatch = args
+        .club_check
+        .check(&args.club, club, &args.shots, &table.shots)?;
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(
@@ -203,6 +207,10 @@ pub fn compute(
     let user =
         smash::compare::UserHints::measure(club, &table.shots, &smash::effects::user::registered());
     let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
+    let report = match mismatch {
+        Some(why) => report.mismatched(why),
+        None => report,
+    };
     Ok((report, launches))
 }
 

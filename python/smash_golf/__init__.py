@@ -10,6 +10,10 @@ A DataFrame goes to the library as CSV text (no file is written): floats are wri
 their shortest round-trip decimal and read back with pandas' round-trip parser, so no number
 changes on the way. A path instead of a DataFrame is read exactly as the CLI reads it.
 
+compare, calibrate and diagnose first check the shots against the club (loft, speed, club names)
+and raise the CLI's refusal for shots of another club; ``ignore_club_mismatch=True`` runs them
+anyway, and the report then has no findings and says why under ``"club_mismatch"``.
+
 Long work (diagnose, calibrate, flight, studies) releases the GIL and runs on rayon's worker
 threads; in a notebook, diagnose and calibrate show a tqdm progress bar when tqdm is installed.
 """
@@ -302,6 +306,7 @@ def compare(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     tables: bool = True,
 ) -> Dict[str, Any]:
     """Compare the model with measured launch, as ``smash compare --json``.
@@ -314,7 +319,11 @@ def compare(
     tables as DataFrames) and its text report under ``"text"``.
     """
     args = _args(
-        alpha=alpha, bin_mm=bin_mm, min_bin_count=min_bin_count, impact_noise_mm=impact_noise_mm
+        alpha=alpha,
+        bin_mm=bin_mm,
+        min_bin_count=min_bin_count,
+        impact_noise_mm=impact_noise_mm,
+        ignore_club_mismatch=ignore_club_mismatch,
     ) + _format_args(format, impact_offset_positive, ignore_unknown_columns)
     report, text, warns = _native.compare(_club(club), args, **_table(shots, "shots"))
     _warn(warns)
@@ -336,6 +345,7 @@ def calibrate(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     progress: Any = True,
     tables: bool = True,
 ) -> Dict[str, Any]:
@@ -354,6 +364,7 @@ def calibrate(
         effects = ",".join(effects)
     args = _args(
         effects=effects,
+        ignore_club_mismatch=ignore_club_mismatch,
         method=method,
         max_iters=max_iters,
         impact_noise_mm=impact_noise_mm,
@@ -389,6 +400,7 @@ def diagnose(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     progress: Any = True,
     tables: bool = True,
 ) -> Dict[str, Any]:
@@ -408,6 +420,7 @@ def diagnose(
         candidates = ",".join(candidates)
     args = _args(
         noise=noise,
+        ignore_club_mismatch=ignore_club_mismatch,
         instrument=instrument,
         folds=folds,
         max_steps=max_steps,

@@ -111,6 +111,7 @@ def compare(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     tables: bool = True,
 ) -> Dict[str, Any]:
     """`smash compare --json` as a dict (tables as DataFrames), plus "text"."""
@@ -127,6 +128,7 @@ def calibrate(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     progress: Any = True,
     tables: bool = True,
 ) -> Dict[str, Any]:
@@ -148,6 +150,7 @@ def diagnose(
     format: Optional[str] = None,
     impact_offset_positive: Optional[str] = None,
     ignore_unknown_columns: bool = False,
+    ignore_club_mismatch: bool = False,
     progress: Any = True,
     tables: bool = True,
 ) -> Dict[str, Any]:

@@ -173,7 +173,7 @@ fn compare(
         );
         Ok((
             smash::report::compare::compare_json(&report),
-            smash::report::compare::compare_text(&report, &title),
+            smash_cli::compare::text(&report, &title),
             warnings,
         ))
     })
@@ -312,15 +312,7 @@ fn read_export(
                 strict: a.format.strict,
             };
             let imported = smash::data::import::import(&a.input, &bytes, &mapping, &opts)?;
-            // As `smash import`: shots with a complete delivery must read back as a shots file
-            // (ranges, ids, launch columns); a launch-only export is for flight.
-            if imported.complete_delivery > 0 {
-                let read = smash::data::shots::ReadOptions {
-                    strict: a.format.strict,
-                    include_estimated: true,
-                };
-                imported.read_back_with(&a.input, read)?;
-            }
+            imported.checked_read_back(&a.input, a.format.strict)?;
             let notes = imported
                 .notes
                 .iter()

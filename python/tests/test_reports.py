@@ -114,3 +114,19 @@ def test_calibrate_matches_cli(cli, tmp_path, paper_world, world):
     assert uncommented(club.to_toml()) == uncommented(out_club.read_text())
     tables = sg.calibrate(PAPER_DRIVER, world, "added_mass@group,ball_offset", progress=False)
     assert list(tables["params"]["param"]) == [p["param"] for p in want["params"]]
+
+
+def test_compare_refuses_another_clubs_shots_as_the_cli(cli, tmp_path, world):
+    lofted = world.copy()
+    lofted["dynamic_loft_deg"] += 11.0
+    path = tmp_path / "lofted.csv"
+    lofted.to_csv(path, index=False)
+    want = cli.error("compare", "--club", PAPER_DRIVER, "--shots", path)
+    assert "club file's loft is 9.8°" in want
+    with pytest.raises(sg.SmashError) as e:
+        sg.compare(PAPER_DRIVER, path)
+    assert str(e.value) == want
+    got = sg.compare(PAPER_DRIVER, lofted, ignore_club_mismatch=True, tables=False)
+    assert got["findings"] == []
+    assert "loft" in got["club_mismatch"]
+    assert got["text"].startswith("NO FINDINGS: the shots do not match the club")

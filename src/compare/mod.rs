@@ -329,6 +329,18 @@ pub struct CompareReport {
     pub flags: usize,
     /// Ranked findings, strongest first.
     pub findings: Vec<Finding>,
+    /// Why the shots do not match the club, when a caller compared them anyway (then there
+    /// are no findings: errors of another club's shots say nothing about this head).
+    pub club_mismatch: Option<String>,
+}
+
+impl CompareReport {
+    /// The report of shots that do not match the club (`why`): no findings.
+    pub fn mismatched(mut self, why: String) -> Self {
+        self.findings.clear();
+        self.club_mismatch = Some(why);
+        self
+    }
 }
 
 /// Why a comparison cannot be made.
@@ -444,6 +456,7 @@ pub fn compare_with_hints(
         expected_false_flags: tests as f64 * o.alpha,
         flags,
         findings,
+        club_mismatch: None,
     })
 }
 
