@@ -1,6 +1,6 @@
 //! Real export layouts go in as exported: every vendor-format fixture in
 //! `cli/tests/fixtures/import/` (built from real exports' headers and quirks, see
-//! `tests/data/README.md`) and the real Rapsodo session in `tests/data/real/` imports with its
+//! `tests/data/README.md`) and every real export in `tests/data/real/` imports with its
 //! preset alone, writes every shot and no summary row, keeps the measured flight and the
 //! provenance flags, and `smash flight` on the result reports the error against the export's
 //! carry. Bad rows are counted, not fatal (`--strict` restores refusal); what a file gives twice
@@ -59,7 +59,7 @@ fn import(dir: &Path, file: &Path, preset: &str, flags: &[&str]) -> (PathBuf, St
 #[test]
 fn every_vendor_layout_imports_as_exported() {
     let toe: &[&str] = &["--impact-offset-positive", "toe"];
-    let cases: [(&str, &str, &[&str], usize); 13] = [
+    let cases: [(&str, &str, &[&str], usize); 16] = [
         ("trackman_normalized.csv", "trackman", toe, 12),
         ("trackman_older.csv", "trackman", toe, 8),
         ("trackman_semicolon.csv", "trackman", toe, 8),
@@ -82,6 +82,24 @@ fn every_vendor_layout_imports_as_exported() {
             "rapsodo",
             &[],
             15,
+        ),
+        (
+            "../../../../tests/data/real/flightscope_mevoplus_8i.csv",
+            "flightscope",
+            toe,
+            36,
+        ),
+        (
+            "../../../../tests/data/real/range_export_9clubs.csv",
+            "uneekor",
+            &[],
+            62,
+        ),
+        (
+            "../../../../tests/data/real/uneekor_14clubs.csv",
+            "uneekor",
+            &[],
+            66,
         ),
     ];
     for (file, preset, flags, shots) in cases {
