@@ -105,7 +105,8 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     plan.check()?;
     check_options(&args)?;
     let club = read_club(&args.club)?;
-    let table = args.shots_format.read(&args.shots)?;
+    let mut table = args.shots_format.read(&args.shots)?;
+    let conventions = super::to_model_convention(&club, &mut table, false)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let mismatch = args
         .club_check
@@ -115,6 +116,11 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         // Errors of another club's shots say nothing about this head.
         report.findings.clear();
     }
+    if conventions.derived_face > 0 {
+        // Those shots' face angles are the model's for their measured launch direction: an
+        // azimuth finding would describe the monitor's formula, not the head.
+        report.findings.retain(|f| f.component != "azimuth_deg");
+    }
     let title = format!(
         "{} vs {} ({})",
         club.name,
@@ -122,6 +128,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         super::counted(table.groups().len(), "group")
     );
     let mut text = compare_text(&report, &title);
+    if !conventions.is_native() {
+        text = format!("{}{text}", conventions);
+    }
     if let Some(why) = &mismatch {
         text = format!(
             "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \

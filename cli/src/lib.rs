@@ -386,6 +386,35 @@ impl ShotsFormatArgs {
     }
 }
 
+/// Bring the shots of `table` to the model's own delivery convention with `club`
+/// ([`smash::conventions::to_model`]), in place and once: the table's conventions are the
+/// model's afterwards. With `to_stderr`, what was converted goes to stderr, one line each
+/// (commands whose report prints the summary pass `false`); the summary is returned.
+pub fn to_model_convention(
+    club: &smash::club::ClubSpec,
+    table: &mut smash::data::shots::ShotTable,
+    to_stderr: bool,
+) -> anyhow::Result<smash::conventions::ConventionSummary> {
+    let (shots, summary) = smash::conventions::to_model(club, &table.shots, &table.conventions)
+        .map_err(|e| {
+            let line = table.lines.get(e.index).copied();
+            smash::data::DataError::at(
+                &table.path,
+                line,
+                None,
+                format!("shot '{}': {}", e.shot_id, e.source),
+            )
+        })?;
+    table.shots = shots;
+    table.conventions = vec![Default::default(); table.shots.len()];
+    if to_stderr {
+        for l in summary.lines() {
+            eprintln!("{l}");
+        }
+    }
+    Ok(summary)
+}
+
 /// One line on stderr per reason the shots reader left rows out: how many, of how many rows,
 /// and their first lines.
 pub fn report_left_out(table: &smash::data::shots::ShotTable) {

@@ -16,6 +16,7 @@ mod cell;
 mod checks;
 mod columns;
 mod condition;
+mod conventions;
 mod layout;
 mod rows;
 mod summary;
@@ -200,6 +201,16 @@ pub struct ColumnSpec {
     /// 0 for a dynamic loft or impact location its monitor does not measure).
     #[serde(default)]
     pub missing: Vec<String>,
+    /// For the delivery's angles and velocity: where the vendor defines the value. Dynamic
+    /// loft and face angle: `contact_point` or `face_centre`; club speed, attack angle and
+    /// path: `com`, `geometric_centre` or `face_centre` ([`crate::conventions`]). Absent:
+    /// the model's own (face centre, CoM).
+    #[serde(default)]
+    pub at: Option<String>,
+    /// For a delivery column: `measured`, or (face angle only) `derived_from_launch` when the
+    /// monitor computes it from the launch direction and path. Absent: measured.
+    #[serde(default)]
+    pub how: Option<String>,
 }
 
 /// Options given on the command line.
@@ -352,6 +363,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
                 )));
             }
         }
+        conventions::check_column(c).map_err(err)?;
         if let Some(d) = &c.direction {
             if !matches!(d.as_str(), "R+" | "L+") {
                 return Err(err(format!(
@@ -361,6 +373,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
             }
         }
     }
+    conventions::check_mapping(&m).map_err(err)?;
     Ok(m)
 }
 
@@ -452,6 +465,20 @@ mod tests {
             load_mapping(name).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
         assert!(load_mapping("gcquad").is_ok());
+        // Every preset records, per delivery column, where and how the vendor defines it.
+        for (name, _) in PRESETS {
+            let m = load_mapping(name).unwrap();
+            for c in m.column.iter().filter(|c| {
+                crate::model::DeliveryVar::from_column(&c.target).is_some_and(|v| {
+                    !matches!(
+                        v,
+                        crate::model::DeliveryVar::ImpactY | crate::model::DeliveryVar::ImpactZ
+                    ) && v.required()
+                })
+            }) {
+                assert!(c.at.is_some() && c.how.is_some(), "{name}: {}", c.target);
+            }
+        }
         let e = load_mapping("nosuch").unwrap_err().to_string();
         assert!(e.contains("unknown format"), "{e}");
     }
