@@ -24,11 +24,14 @@
 //! - **Measured or derived**: some radars compute the face angle from the launch direction and
 //!   the path instead of measuring it (e.g. `φ = (azimuth − 0.25·path)/0.75`). Such a face
 //!   angle holds no information the launch direction does not, and compared as a measurement
-//!   it makes the monitor's formula a finding. smash treats it as not measured: the face angle
-//!   is the one at which the club's model launches the ball in the measured direction (a
-//!   one-dimensional root of `azimuth(φ) − measured`, to rounding). The launch direction of
-//!   such a shot is then spent on its face angle: its error is 0 by construction, tests
-//!   nothing, and no finding is drawn from it ([`ConventionSummary::derived_face`]).
+//!   it makes the monitor's formula a finding (its face share against the model's, on every
+//!   off-centre strike its neglect of bulge and gear effect). smash treats it as not measured:
+//!   `compare` and `predict` use the face angle at which the club's model launches the ball in
+//!   the measured direction (a one-dimensional root of `azimuth(φ) − measured`, to rounding);
+//!   that shot's launch direction is then spent on its face angle, so `compare` draws no
+//!   azimuth finding from it and no trend against that face angle, which carries the launch
+//!   direction's noise ([`drop_derived_findings`]). `diagnose` and `calibrate` leave such
+//!   shots out ([`leave_out_derived`]): a fit on them would fit the monitor's formula.
 //!
 //! [`to_model`] applies all three to a table's shots, in that order, and returns what it did.
 
@@ -386,10 +389,13 @@ impl ConventionSummary {
                 self.derived_face
             ));
             out.push(
-                "  not used; the model's face angle for the measured launch direction is, so their"
+                "  replaced by the model's for the measured launch direction; no azimuth finding"
                     .to_owned(),
             );
-            out.push("  azimuth error is 0 by design and no azimuth finding is drawn".to_owned());
+            out.push(
+                "  and no trend against face_angle_deg is drawn from them (both restate the launch)"
+                    .to_owned(),
+            );
         }
         out
     }
@@ -401,6 +407,59 @@ impl fmt::Display for ConventionSummary {
             writeln!(f, "{l}")?;
         }
         Ok(())
+    }
+}
+
+/// Why [`leave_out_derived`] leaves shots out (a [`crate::data::shots::LeftOut`] reason).
+pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from = \
+     derived_from_launch): a fit would fit the monitor's formula; compare reports them";
+
+/// Leave out of `table` the shots whose face angle the monitor derived from the launch, and
+/// count them in its `left_out` under [`DERIVED_LEFT_OUT`]: what `diagnose` and `calibrate` do,
+/// so that no effect is fitted to a formula. Returns how many were left out.
+pub fn leave_out_derived(table: &mut crate::data::shots::ShotTable) -> usize {
+    let derived = |c: &DeliveryConvention| c.face_angle_from == FaceAngleSource::Launch;
+    let lines: Vec<usize> = table
+        .conventions
+        .iter()
+        .zip(&table.lines)
+        .filter(|(c, _)| derived(c))
+        .map(|(_, l)| *l)
+        .collect();
+    if lines.is_empty() {
+        return 0;
+    }
+    let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
+    let mut k = keep.iter();
+    table.shots.retain(|_| *k.next().expect("parallel"));
+    let mut k = keep.iter();
+    table.records.retain(|_| *k.next().expect("parallel"));
+    let mut k = keep.iter();
+    table.lines.retain(|_| *k.next().expect("parallel"));
+    table.conventions.retain(|c| !derived(c));
+    let n = lines.len();
+    table.left_out.push(crate::data::shots::LeftOut {
+        reason: DERIVED_LEFT_OUT.to_owned(),
+        lines,
+    });
+    n
+}
+
+/// Drop from a comparison's `findings` those a derived face angle makes: every azimuth finding
+/// (the launch direction was spent on the face angle) and every trend against
+/// `face_angle_deg` (estimated from the measured launch direction, so it carries that
+/// measurement's noise: errors-in-variables), including one appended to a bias finding.
+pub fn drop_derived_findings(findings: &mut Vec<crate::compare::Finding>) {
+    use crate::compare::Pattern;
+    findings.retain(|f| {
+        f.component != "azimuth_deg" && !matches!(f.pattern, Pattern::Trend("face_angle_deg"))
+    });
+    for f in findings.iter_mut() {
+        for word in [", rises with face_angle_deg", ", falls with face_angle_deg"] {
+            if let Some(at) = f.text.find(word) {
+                f.text.truncate(at);
+            }
+        }
     }
 }
 
@@ -518,7 +577,8 @@ mod tests {
     #[test]
     fn a_loft_out_of_reach_is_an_error() {
         let f = face();
-        let e = face_centre_angles(&f, -0.02, 0.0, (89.9f64.to_radians(), 0.0), 0.0);
+        // Off the heel-toe centre the normal leans sideways, so no loft reaches 89.9° there.
+        let e = face_centre_angles(&f, 0.0, 0.03, (89.9f64.to_radians(), 0.0), 0.0);
         assert!(matches!(e, Err(ConventionError::Loft { .. })), "{e:?}");
     }
 

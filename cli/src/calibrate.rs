@@ -120,7 +120,7 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     plan.check()?;
     let club = read_club(&args.club)?;
     let mut table = args.shots_format.read(&args.shots)?;
-    super::to_model_convention(&club, &mut table, true)?;
+    super::to_model_convention(&club, &mut table, true, true)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let mismatch = args
         .club_check

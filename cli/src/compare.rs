@@ -106,7 +106,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     check_options(&args)?;
     let club = read_club(&args.club)?;
     let mut table = args.shots_format.read(&args.shots)?;
-    let conventions = super::to_model_convention(&club, &mut table, false)?;
+    let conventions = super::to_model_convention(&club, &mut table, false, false)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let mismatch = args
         .club_check
@@ -118,8 +118,9 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     }
     if conventions.derived_face > 0 {
         // Those shots' face angles are the model's for their measured launch direction: an
-        // azimuth finding would describe the monitor's formula, not the head.
-        report.findings.retain(|f| f.component != "azimuth_deg");
+        // azimuth finding, or a trend against that face angle, would describe the monitor's
+        // formula and the launch's noise, not the head.
+        smash::conventions::drop_derived_findings(&mut report.findings);
     }
     let title = format!(
         "{} vs {} ({})",

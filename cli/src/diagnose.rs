@@ -174,7 +174,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     plan.check()?;
     let club = read_club(&args.club)?;
     let mut table = args.shots_format.read(&args.shots)?;
-    let conventions = super::to_model_convention(&club, &mut table, args.json)?;
+    let conventions = super::to_model_convention(&club, &mut table, args.json, true)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let bar = Bar(job_bar(1, "fits"));
     let result = compute(&args, &club, &table, Some(&bar));

@@ -389,12 +389,36 @@ impl ShotsFormatArgs {
 /// Bring the shots of `table` to the model's own delivery convention with `club`
 /// ([`smash::conventions::to_model`]), in place and once: the table's conventions are the
 /// model's afterwards. With `to_stderr`, what was converted goes to stderr, one line each
-/// (commands whose report prints the summary pass `false`); the summary is returned.
+/// (commands whose report prints the summary pass `false`); the summary is returned. With
+/// `fit`, shots whose face angle the monitor derived from the launch are left out first and
+/// counted on stderr ([`smash::conventions::leave_out_derived`]: `diagnose`, `calibrate`).
 pub fn to_model_convention(
     club: &smash::club::ClubSpec,
     table: &mut smash::data::shots::ShotTable,
     to_stderr: bool,
+    fit: bool,
 ) -> anyhow::Result<smash::conventions::ConventionSummary> {
+    if fit {
+        let total = table.shots.len();
+        let n = smash::conventions::leave_out_derived(table);
+        if n > 0 {
+            let l = table.left_out.last().expect("just pushed");
+            let shown: Vec<String> = l.lines.iter().take(10).map(usize::to_string).collect();
+            let more = if l.lines.len() > 10 { ", …" } else { "" };
+            eprintln!(
+                "shots: left out {n} of {total} shots: {} (line(s) {}{more})",
+                l.reason,
+                shown.join(", ")
+            );
+        }
+        if table.shots.is_empty() {
+            anyhow::bail!(
+                "{}: every shot's face angle is derived from the launch: there is no measured \
+                 face angle to fit with (`smash compare` reports such shots)",
+                table.path.display()
+            );
+        }
+    }
     let (shots, summary) = smash::conventions::to_model(club, &table.shots, &table.conventions)
         .map_err(|e| {
             let line = table.lines.get(e.index).copied();

@@ -193,7 +193,7 @@ fn predict_file(
         &[("--shots", shots_path), ("--club", &args.club)],
     )?;
     let mut table = args.shots_format.read(shots_path)?;
-    super::to_model_convention(club, &mut table, true)?;
+    super::to_model_convention(club, &mut table, true, false)?;
     super::warn_groups_without_effects(&args.club, club, &table.shots);
     let outcomes = predict_checked(&args.club, club, shots_path, &table)?;
     let mut bytes = predictions_csv(&table, &outcomes);
