@@ -140,20 +140,22 @@ fn trackman(rows: &[Vec<String>]) -> String {
     s
 }
 
-/// Equal JSON: same structure and strings, numbers within 1e-9 relative (1e-12 absolute).
-fn assert_json_eq(a: &Value, b: &Value, at: &str) {
+/// Equal JSON: same structure and strings, numbers within `rel` relative (`rel`·1e-3
+/// absolute). The conversions cost a few ulps; a fit stops at its own tolerance, so fitted
+/// values of inputs a few ulps apart agree to about 1e-6.
+fn assert_json_eq(a: &Value, b: &Value, at: &str, rel: f64) {
     match (a, b) {
         (Value::Number(x), Value::Number(y)) => {
             let (x, y) = (x.as_f64().unwrap(), y.as_f64().unwrap());
             assert!(
-                (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-3),
+                (x - y).abs() <= rel * x.abs().max(y.abs()).max(1e-3),
                 "{at}: {x} vs {y}"
             );
         }
         (Value::Array(x), Value::Array(y)) => {
             assert_eq!(x.len(), y.len(), "{at}: lengths");
             for (i, (p, q)) in x.iter().zip(y).enumerate() {
-                assert_json_eq(p, q, &format!("{at}[{i}]"));
+                assert_json_eq(p, q, &format!("{at}[{i}]"), rel);
             }
         }
         (Value::Object(x), Value::Object(y)) => {
@@ -161,7 +163,7 @@ fn assert_json_eq(a: &Value, b: &Value, at: &str) {
             let ky: Vec<_> = y.keys().collect();
             assert_eq!(kx, ky, "{at}: keys");
             for (k, v) in x {
-                assert_json_eq(v, &y[k], &format!("{at}.{k}"));
+                assert_json_eq(v, &y[k], &format!("{at}.{k}"), rel);
             }
         }
         _ => assert_eq!(a, b, "{at}"),
@@ -216,7 +218,7 @@ fn a_trackman_export_reads_back_as_the_world() {
 
     let want = json_of("compare", &orig, &[]);
     let got = json_of("compare", &export, &flags);
-    assert_json_eq(&want, &got, "compare");
+    assert_json_eq(&want, &got, "compare", 1e-9);
     let (max_r, _) = location_trends(&got);
     assert!(max_r < 0.3, "a trend against impact location: r = {max_r}");
     let mut dflags = flags.to_vec();
@@ -225,6 +227,7 @@ fn a_trackman_export_reads_back_as_the_world() {
         &json_of("diagnose", &orig, &DIAGNOSE),
         &json_of("diagnose", &export, &dflags),
         "diagnose",
+        1e-4,
     );
 
     // The old reading: the contact-point angles taken as the face centre's count the bulge
@@ -273,6 +276,15 @@ fn radar(rows: &[Vec<String>], derived: &[&str], honest: bool) -> Vec<Vec<String
         .collect()
 }
 
+/// Does diagnose report unexplained structure in the azimuth error?
+fn azimuth_structure(d: &Value) -> bool {
+    d["noise_floor"]["components"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|c| c["component"] == "azimuth_deg" && c["structure"] == true)
+}
+
 #[test]
 fn a_face_angle_derived_from_the_launch_is_no_finding() {
     let dir = tempfile::tempdir().unwrap();
@@ -298,13 +310,15 @@ fn a_face_angle_derived_from_the_launch_is_no_finding() {
     assert!(naive.iter().any(formula), "{naive:?}");
 
     // Two groups derived, one measured: diagnose fits the measured one and finds the world's
-    // nothing; read as measured, the formula's shots make it select an effect.
+    // nothing; read as measured, the formula's shots leave structure in the azimuth (the
+    // formula's face share against the model's) that diagnose reports as unexplained.
     let mixed = dir.path().join("mixed.csv");
     write_shots(&mixed, &head, &radar(&rows, &["B", "C"], true));
     let d = json_of("diagnose", &mixed, &DIAGNOSE);
-    assert_eq!(d["selected"], serde_json::json!([]), "{}", d["selected"]);
+    assert_eq!(d["findings"], serde_json::json!([]), "{}", d["findings"]);
+    assert!(!azimuth_structure(&d), "{}", d["noise_floor"]);
     let mixed_old = dir.path().join("mixed_old.csv");
     write_shots(&mixed_old, &head, &radar(&rows, &["B", "C"], false));
     let d = json_of("diagnose", &mixed_old, &DIAGNOSE);
-    assert_ne!(d["selected"], serde_json::json!([]), "{}", d["selected"]);
+    assert!(azimuth_structure(&d), "{}", d["noise_floor"]);
 }
