@@ -511,7 +511,8 @@ unit = "ft"
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,apex_yd"
+        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,apex_yd,\
+         face_at,velocity_at,face_angle_from"
     );
     let v: Vec<&str> = lines.next().unwrap().split(',').collect();
     assert_eq!(v[0], "q1");
@@ -520,6 +521,8 @@ unit = "ft"
     assert_eq!(num(3), -2.0);
     assert!((num(7) - 25.4).abs() < 1e-12);
     assert!((num(8) - 10.0).abs() < 1e-12);
+    // A mapping that states no convention is read in the model's own, and the file says so.
+    assert_eq!(v[9..], ["face_centre", "com", "measured"]);
 }
 
 fn refused(preset: &str, text: &str, flags: &[&str], want: &[&str]) {
