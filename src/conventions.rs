@@ -31,7 +31,8 @@
 //!   that shot's launch direction is then spent on its face angle, so `compare` draws no
 //!   azimuth finding from it and no trend against that face angle, which carries the launch
 //!   direction's noise ([`drop_derived_findings`]). `diagnose` and `calibrate` leave such
-//!   shots out ([`leave_out_derived`]): a fit on them would fit the monitor's formula.
+//!   shots out (`ShotTable::leave_out_derived`): a fit on them would fit the monitor's
+//!   formula.
 //!
 //! [`to_model`] applies all three to a table's shots, in that order, and returns what it did.
 
@@ -40,98 +41,9 @@ use std::fmt;
 use nalgebra::Vector3;
 
 use crate::club::ClubSpec;
+pub use crate::model::convention::*;
 use crate::model::Shot;
 use crate::physics::{face_orientation, Delivery, FaceError, FaceGeometry, ImpactModel};
-
-/// Where the dynamic loft and the face angle are defined.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, PartialOrd, Ord)]
-pub enum FacePoint {
-    /// The orientation of the face frame at the face centre (the model's own).
-    #[default]
-    FaceCentre,
-    /// The direction of the face normal at the centre-point of contact (TrackMan).
-    ContactPoint,
-}
-
-/// Which point of the head the club speed, attack angle and path describe.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, PartialOrd, Ord)]
-pub enum VelocityPoint {
-    /// The clubhead's centre of mass (the model's own).
-    #[default]
-    Com,
-    /// The head's geometric centre (TrackMan), taken to be the centre of mass.
-    GeometricCentre,
-    /// The centre of the face (camera monitors).
-    FaceCentre,
-}
-
-/// How the face angle was obtained.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, PartialOrd, Ord)]
-pub enum FaceAngleSource {
-    /// Measured (the model's assumption).
-    #[default]
-    Measured,
-    /// Computed by the monitor from the launch direction and the club path.
-    Launch,
-}
-
-/// The convention of one shot's delivery ([`Default`]: the model's own).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash, PartialOrd, Ord)]
-pub struct DeliveryConvention {
-    /// Where loft and face angle are defined.
-    pub face_at: FacePoint,
-    /// Which point speed, attack angle and path describe.
-    pub velocity_at: VelocityPoint,
-    /// How the face angle was obtained.
-    pub face_angle_from: FaceAngleSource,
-}
-
-/// Shots-file column of [`DeliveryConvention::face_at`].
-pub const FACE_AT_COLUMN: &str = "face_at";
-/// Shots-file column of [`DeliveryConvention::velocity_at`].
-pub const VELOCITY_AT_COLUMN: &str = "velocity_at";
-/// Shots-file column of [`DeliveryConvention::face_angle_from`].
-pub const FACE_ANGLE_FROM_COLUMN: &str = "face_angle_from";
-
-impl FacePoint {
-    /// Every value, with its name in files.
-    pub const ALL: [(Self, &'static str); 2] = [
-        (Self::FaceCentre, "face_centre"),
-        (Self::ContactPoint, "contact_point"),
-    ];
-}
-
-impl VelocityPoint {
-    /// Every value, with its name in files.
-    pub const ALL: [(Self, &'static str); 3] = [
-        (Self::Com, "com"),
-        (Self::GeometricCentre, "geometric_centre"),
-        (Self::FaceCentre, "face_centre"),
-    ];
-}
-
-impl FaceAngleSource {
-    /// Every value, with its name in files.
-    pub const ALL: [(Self, &'static str); 2] = [
-        (Self::Measured, "measured"),
-        (Self::Launch, "derived_from_launch"),
-    ];
-}
-
-/// The value named `name` in `all`.
-pub fn parse_name<T: Copy>(all: &[(T, &'static str)], name: &str) -> Option<T> {
-    all.iter().find(|(_, n)| *n == name).map(|(v, _)| *v)
-}
-
-/// The name of `v` in `all`.
-pub fn name_of<T: Copy + PartialEq>(all: &[(T, &'static str)], v: T) -> &'static str {
-    all.iter().find(|(x, _)| *x == v).map_or("?", |(_, n)| *n)
-}
-
-/// The names in `all`, for messages.
-pub fn names<T>(all: &[(T, &'static str)]) -> String {
-    all.iter().map(|(_, n)| *n).collect::<Vec<_>>().join(", ")
-}
 
 /// Why a shot cannot be brought to the model's convention.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -408,41 +320,6 @@ impl fmt::Display for ConventionSummary {
         }
         Ok(())
     }
-}
-
-/// Why [`leave_out_derived`] leaves shots out (a [`crate::data::shots::LeftOut`] reason).
-pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from = \
-     derived_from_launch): a fit would fit the monitor's formula; compare reports them";
-
-/// Leave out of `table` the shots whose face angle the monitor derived from the launch, and
-/// count them in its `left_out` under [`DERIVED_LEFT_OUT`]: what `diagnose` and `calibrate` do,
-/// so that no effect is fitted to a formula. Returns how many were left out.
-pub fn leave_out_derived(table: &mut crate::data::shots::ShotTable) -> usize {
-    let derived = |c: &DeliveryConvention| c.face_angle_from == FaceAngleSource::Launch;
-    let lines: Vec<usize> = table
-        .conventions
-        .iter()
-        .zip(&table.lines)
-        .filter(|(c, _)| derived(c))
-        .map(|(_, l)| *l)
-        .collect();
-    if lines.is_empty() {
-        return 0;
-    }
-    let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
-    let mut k = keep.iter();
-    table.shots.retain(|_| *k.next().expect("parallel"));
-    let mut k = keep.iter();
-    table.records.retain(|_| *k.next().expect("parallel"));
-    let mut k = keep.iter();
-    table.lines.retain(|_| *k.next().expect("parallel"));
-    table.conventions.retain(|c| !derived(c));
-    let n = lines.len();
-    table.left_out.push(crate::data::shots::LeftOut {
-        reason: DERIVED_LEFT_OUT.to_owned(),
-        lines,
-    });
-    n
 }
 
 /// Drop from a comparison's `findings` those a derived face angle makes: every azimuth finding

@@ -391,7 +391,7 @@ impl ShotsFormatArgs {
 /// model's afterwards. With `to_stderr`, what was converted goes to stderr, one line each
 /// (commands whose report prints the summary pass `false`); the summary is returned. With
 /// `fit`, shots whose face angle the monitor derived from the launch are left out first and
-/// counted on stderr ([`smash::conventions::leave_out_derived`]: `diagnose`, `calibrate`).
+/// counted on stderr (`ShotTable::leave_out_derived`: `diagnose`, `calibrate`).
 pub fn to_model_convention(
     club: &smash::club::ClubSpec,
     table: &mut smash::data::shots::ShotTable,
@@ -400,7 +400,7 @@ pub fn to_model_convention(
 ) -> anyhow::Result<smash::conventions::ConventionSummary> {
     if fit {
         let total = table.shots.len();
-        let n = smash::conventions::leave_out_derived(table);
+        let n = table.leave_out_derived();
         if n > 0 {
             let l = table.left_out.last().expect("just pushed");
             let shown: Vec<String> = l.lines.iter().take(10).map(usize::to_string).collect();

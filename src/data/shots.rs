@@ -20,12 +20,12 @@ use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
 use super::{csv_error_at, DataError};
-use crate::conventions::{
+use crate::limits::{self, PhysicalRange};
+use crate::line_index::LineIndex;
+use crate::model::convention::{
     names, parse_name, DeliveryConvention, FaceAngleSource, FacePoint, VelocityPoint,
     FACE_ANGLE_FROM_COLUMN, FACE_AT_COLUMN, VELOCITY_AT_COLUMN,
 };
-use crate::limits::{self, PhysicalRange};
-use crate::line_index::LineIndex;
 /// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
 /// callers of the reader.
 pub use crate::model::Shot;
@@ -121,6 +121,44 @@ impl ShotTable {
         g.sort();
         g.dedup();
         g
+    }
+}
+
+/// Why [`ShotTable::leave_out_derived`] leaves shots out (a [`LeftOut`] reason).
+pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from = \
+     derived_from_launch): a fit would fit the monitor's formula; compare reports them";
+
+impl ShotTable {
+    /// Leave out the shots whose face angle the monitor derived from the launch, and count them in
+    /// `left_out` under [`DERIVED_LEFT_OUT`]: what `diagnose` and `calibrate` do, so that no
+    /// effect is fitted to a formula. Returns how many were left out.
+    pub fn leave_out_derived(&mut self) -> usize {
+        let table = self;
+        let derived = |c: &DeliveryConvention| c.face_angle_from == FaceAngleSource::Launch;
+        let lines: Vec<usize> = table
+            .conventions
+            .iter()
+            .zip(&table.lines)
+            .filter(|(c, _)| derived(c))
+            .map(|(_, l)| *l)
+            .collect();
+        if lines.is_empty() {
+            return 0;
+        }
+        let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
+        let mut k = keep.iter();
+        table.shots.retain(|_| *k.next().expect("parallel"));
+        let mut k = keep.iter();
+        table.records.retain(|_| *k.next().expect("parallel"));
+        let mut k = keep.iter();
+        table.lines.retain(|_| *k.next().expect("parallel"));
+        table.conventions.retain(|c| !derived(c));
+        let n = lines.len();
+        table.left_out.push(LeftOut {
+            reason: DERIVED_LEFT_OUT.to_owned(),
+            lines,
+        });
+        n
     }
 }
 

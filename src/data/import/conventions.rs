@@ -1,12 +1,12 @@
 //! The delivery conventions a mapping records per column (`at`, `how`) and the three shots
-//! columns they become (`face_at`, `velocity_at`, `face_angle_from`; [`crate::conventions`]).
+//! columns they become (`face_at`, `velocity_at`, `face_angle_from`; [`crate::model::convention`]).
 //!
 //! Dynamic loft and face angle are one orientation and share one point; club speed, attack
 //! angle and path are one velocity and share one point. Only the face angle may be derived
-//! from the launch (the model can stand in for it: [`crate::conventions`]).
+//! from the launch (the model can stand in for it: [`crate::model::convention`]).
 
 use super::{ColumnSpec, Mapping};
-use crate::conventions::{
+use crate::model::convention::{
     name_of, names, parse_name, DeliveryConvention, FaceAngleSource, FacePoint, VelocityPoint,
     FACE_ANGLE_FROM_COLUMN, FACE_AT_COLUMN, VELOCITY_AT_COLUMN,
 };

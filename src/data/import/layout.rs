@@ -9,8 +9,8 @@ use super::columns::Resolved;
 use super::table::Table;
 use super::target::{numeric, Target};
 use super::{ExportSpec, ImportOptions, Mapping, OffsetSide};
-use crate::conventions::DeliveryConvention;
 use crate::data::DataError;
+use crate::model::convention::DeliveryConvention;
 use crate::model::DeliveryVar;
 
 /// The measured-launch columns written only when the whole launch is measured.
