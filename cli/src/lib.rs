@@ -403,11 +403,11 @@ pub fn to_model_convention(
         let n = table.leave_out_derived();
         if n > 0 {
             let l = table.left_out.last().expect("just pushed");
-            let shown: Vec<String> = l.lines.iter().take(10).map(usize::to_string).collect();
-            let more = if l.lines.len() > 10 { ", …" } else { "" };
+            let shown: Vec<String> = l.lines.iter().take(5).map(usize::to_string).collect();
+            let more = if l.lines.len() > 5 { ", …" } else { "" };
+            eprintln!("shots: left out {n} of {total} shots: {}", l.reason);
             eprintln!(
-                "shots: left out {n} of {total} shots: {} (line(s) {}{more})",
-                l.reason,
+                "  line(s) {}{more}: a fit on them would fit the monitor's formula",
                 shown.join(", ")
             );
         }

@@ -125,8 +125,7 @@ impl ShotTable {
 }
 
 /// Why [`ShotTable::leave_out_derived`] leaves shots out (a [`LeftOut`] reason).
-pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from = \
-     derived_from_launch): a fit would fit the monitor's formula; compare reports them";
+pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from)";
 
 impl ShotTable {
     /// Leave out the shots whose face angle the monitor derived from the launch, and count them in
