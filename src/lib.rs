@@ -39,6 +39,7 @@
 pub mod club;
 pub mod club_match;
 pub mod compare;
+pub mod conventions;
 pub mod data;
 pub mod diagnose;
 pub mod effects;

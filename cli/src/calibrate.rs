@@ -119,7 +119,8 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         .file("--report", args.report.as_deref());
     plan.check()?;
     let club = read_club(&args.club)?;
-    let table = args.shots_format.read(&args.shots)?;
+    let mut table = args.shots_format.read(&args.shots)?;
+    super::to_model_convention(&club, &mut table, true, true)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let mismatch = args
         .club_check

@@ -105,16 +105,26 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     plan.check()?;
     check_options(&args)?;
     let club = read_club(&args.club)?;
-    let table = args.shots_format.read(&args.shots)?;
+    let mut table = args.shots_format.read(&args.shots)?;
+    let conventions = super::to_model_convention(&club, &mut table, false, false)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
-    let (report, launches) = compute(&args, &club, &table)?;
+    let (mut report, launches) = compute(&args, &club, &table)?;
+    if conventions.derived_face > 0 {
+        // Those shots' face angles are the model's for their measured launch direction: an
+        // azimuth finding, or a trend against that face angle, would describe the monitor's
+        // formula and the launch's noise, not the head.
+        smash::conventions::drop_derived_findings(&mut report.findings);
+    }
     let title = format!(
         "{} vs {} ({})",
         club.name,
         args.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let text = text(&report, &title);
+    let mut text = text(&report, &title);
+    if !conventions.is_native() {
+        text = format!("{}{text}", conventions);
+    }
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
     if args.json {
         eprint!("{text}");

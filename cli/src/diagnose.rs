@@ -173,7 +173,8 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         .file("--report", args.report.as_deref());
     plan.check()?;
     let club = read_club(&args.club)?;
-    let table = args.shots_format.read(&args.shots)?;
+    let mut table = args.shots_format.read(&args.shots)?;
+    let conventions = super::to_model_convention(&club, &mut table, args.json, true)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let bar = Bar(job_bar(1, "fits"));
     let result = compute(&args, &club, &table, Some(&bar));
@@ -212,7 +213,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     if args.json {
         crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
     } else {
-        crate::stdout::print(text_report(&d, &floor))?;
+        crate::stdout::print(format!("{conventions}{}", text_report(&d, &floor)))?;
     }
     Ok(())
 }

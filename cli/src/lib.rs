@@ -386,6 +386,59 @@ impl ShotsFormatArgs {
     }
 }
 
+/// Bring the shots of `table` to the model's own delivery convention with `club`
+/// ([`smash::conventions::to_model`]), in place and once: the table's conventions are the
+/// model's afterwards. With `to_stderr`, what was converted goes to stderr, one line each
+/// (commands whose report prints the summary pass `false`); the summary is returned. With
+/// `fit`, shots whose face angle the monitor derived from the launch are left out first and
+/// counted on stderr (`ShotTable::leave_out_derived`: `diagnose`, `calibrate`).
+pub fn to_model_convention(
+    club: &smash::club::ClubSpec,
+    table: &mut smash::data::shots::ShotTable,
+    to_stderr: bool,
+    fit: bool,
+) -> anyhow::Result<smash::conventions::ConventionSummary> {
+    if fit {
+        let total = table.shots.len();
+        let n = table.leave_out_derived();
+        if n > 0 {
+            let l = table.left_out.last().expect("just pushed");
+            let shown: Vec<String> = l.lines.iter().take(5).map(usize::to_string).collect();
+            let more = if l.lines.len() > 5 { ", …" } else { "" };
+            eprintln!("shots: left out {n} of {total} shots: {}", l.reason);
+            eprintln!(
+                "  line(s) {}{more}: a fit on them would fit the monitor's formula",
+                shown.join(", ")
+            );
+        }
+        if table.shots.is_empty() {
+            anyhow::bail!(
+                "{}: every shot's face angle is derived from the launch: there is no measured \
+                 face angle to fit with (`smash compare` reports such shots)",
+                table.path.display()
+            );
+        }
+    }
+    let (shots, summary) = smash::conventions::to_model(club, &table.shots, &table.conventions)
+        .map_err(|e| {
+            let line = table.lines.get(e.index).copied();
+            smash::data::DataError::at(
+                &table.path,
+                line,
+                None,
+                format!("shot '{}': {}", e.shot_id, e.source),
+            )
+        })?;
+    table.shots = shots;
+    table.conventions = vec![Default::default(); table.shots.len()];
+    if to_stderr {
+        for l in summary.lines() {
+            eprintln!("{l}");
+        }
+    }
+    Ok(summary)
+}
+
 /// One line on stderr per reason the shots reader left rows out: how many, of how many rows,
 /// and their first lines.
 pub fn report_left_out(table: &smash::data::shots::ShotTable) {

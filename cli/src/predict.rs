@@ -192,7 +192,8 @@ fn predict_file(
         &[("--out", out, false)],
         &[("--shots", shots_path), ("--club", &args.club)],
     )?;
-    let table = args.shots_format.read(shots_path)?;
+    let mut table = args.shots_format.read(shots_path)?;
+    super::to_model_convention(club, &mut table, true, false)?;
     super::warn_groups_without_effects(&args.club, club, &table.shots);
     let outcomes = predict_checked(&args.club, club, shots_path, &table)?;
     let mut bytes = predictions_csv(&table, &outcomes);

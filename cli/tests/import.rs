@@ -138,9 +138,40 @@ fn rate_axis(r: &Row) -> (f64, f64) {
     (r.back.hypot(r.side), r.side.atan2(r.back).to_degrees())
 }
 
+/// The face of the club the experiment is compared with (configs/clubs/paper_driver.toml).
+fn paper_face() -> smash::physics::FaceGeometry {
+    let club =
+        smash::data::club_file::read_club(&cli_support::repo("configs/clubs/paper_driver.toml"))
+            .unwrap();
+    smash::physics::FaceGeometry::new(club.nominal.bulge_m, club.nominal.roll_m).unwrap()
+}
+
+/// A row's loft and face angle as TrackMan defines them: the direction of the face normal at
+/// the centre-point of contact (the library's [`smash::conventions::contact_point_angles`]),
+/// deg. Speed and path are TrackMan's geometric centre, which smash takes to be the CoM: the
+/// experiment's own.
+fn at_contact(face: &smash::physics::FaceGeometry, r: &Row) -> (f64, f64) {
+    let (l, f) = smash::conventions::contact_point_angles(
+        face,
+        r.y_mm * 1e-3,
+        r.z_mm * 1e-3,
+        (r.loft.to_radians(), r.face.to_radians()),
+        0.0,
+    )
+    .unwrap();
+    (l.to_degrees(), f.to_degrees())
+}
+
 /// TrackMan: BOM, `sep=,`, header, units row (metric speeds), spin rate and axis, impact offset
-/// positive toward the heel, per-club average rows.
+/// positive toward the heel, per-club average rows; loft and face angle at the contact point.
 fn trackman(rows: &[Row]) -> String {
+    trackman_with(rows, true)
+}
+
+/// [`trackman`], with loft and face angle at the contact point (`contact`, as TrackMan does)
+/// or at the face centre (as the experiment states them: the old writer).
+fn trackman_with(rows: &[Row], contact: bool) -> String {
+    let face = paper_face();
     let mut s = String::from("\u{feff}sep=,\r\n");
     s.push_str("Date,Player,Club,Club Speed,Attack Angle,Club Path,Dyn. Loft,Face Angle,Impact Offset,Impact Height,Ball Speed,Smash Factor,Launch Angle,Launch Direction,Spin Rate,Spin Axis,Carry\r\n");
     s.push_str(
@@ -148,6 +179,11 @@ fn trackman(rows: &[Row]) -> String {
     );
     for (i, r) in rows.iter().enumerate() {
         let (rate, axis) = rate_axis(r);
+        let (loft, face_angle) = if contact {
+            at_contact(&face, r)
+        } else {
+            (r.loft, r.face)
+        };
         s.push_str(&format!(
             "2026-01-0{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\r\n",
             1 + i % 3,
@@ -156,8 +192,8 @@ fn trackman(rows: &[Row]) -> String {
             r.speed_mph * MPH * 3.6,
             r.attack,
             r.path,
-            r.loft,
-            r.face,
+            loft,
+            face_angle,
             -r.z_mm,
             r.y_mm,
             r.ball_mph * MPH * 3.6,
@@ -475,7 +511,8 @@ unit = "ft"
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,apex_yd"
+        "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm,apex_yd,\
+         face_at,velocity_at,face_angle_from"
     );
     let v: Vec<&str> = lines.next().unwrap().split(',').collect();
     assert_eq!(v[0], "q1");
@@ -484,6 +521,8 @@ unit = "ft"
     assert_eq!(num(3), -2.0);
     assert!((num(7) - 25.4).abs() < 1e-12);
     assert!((num(8) - 10.0).abs() < 1e-12);
+    // A mapping that states no convention is read in the model's own, and the file says so.
+    assert_eq!(v[9..], ["face_centre", "com", "measured"]);
 }
 
 fn refused(preset: &str, text: &str, flags: &[&str], want: &[&str]) {

@@ -53,12 +53,26 @@ fn table_and_warnings(
     club: &Club,
     shots: &Shots,
     format: &smash_cli::ShotsFormatArgs,
-) -> anyhow::Result<(ShotTable, Vec<String>)> {
-    let table = shots.read(format)?;
-    let warnings = smash_cli::groups_without_effects(&club.label, &club.spec, &table.shots)
+    fit: bool,
+) -> anyhow::Result<(
+    ShotTable,
+    Vec<String>,
+    smash::conventions::ConventionSummary,
+)> {
+    let mut table = shots.read(format)?;
+    // As the CLI: each shot in the model's own delivery convention, converted once (`fit`:
+    // shots whose face angle the monitor derived from the launch are left out).
+    let conventions = smash_cli::to_model_convention(&club.spec, &mut table, false, fit)?;
+    let warnings = conventions
+        .lines()
         .into_iter()
+        .chain(smash_cli::groups_without_effects(
+            &club.label,
+            &club.spec,
+            &table.shots,
+        ))
         .collect();
-    Ok((table, warnings))
+    Ok((table, warnings, conventions))
 }
 
 /// `smash predict --shots … --out …`: the predictions file's bytes, and warnings.
@@ -86,7 +100,7 @@ fn predict(
             else {
                 unreachable!("parsed as predict")
             };
-            let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let (table, warnings, _) = table_and_warnings(club, &shots, &a.shots_format, false)?;
             let outcomes = smash_cli::predict::predict_checked(
                 &club.label,
                 &club.spec,
@@ -163,8 +177,12 @@ fn compare(
             unreachable!("parsed as compare")
         };
         smash_cli::compare::check_options(&a)?;
-        let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
-        let (report, _) = smash_cli::compare::compute(&a, &club.spec, &table)?;
+        let (table, warnings, conventions) =
+            table_and_warnings(club, &shots, &a.shots_format, false)?;
+        let (mut report, _) = smash_cli::compare::compute(&a, &club.spec, &table)?;
+        if conventions.derived_face > 0 {
+            smash::conventions::drop_derived_findings(&mut report.findings);
+        }
         let title = format!(
             "{} vs {} ({})",
             club.spec.name,
@@ -203,7 +221,7 @@ fn calibrate(
             else {
                 unreachable!("parsed as calibrate")
             };
-            let (table, warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let (table, warnings, _) = table_and_warnings(club, &shots, &a.shots_format, true)?;
             // As `smash calibrate`: shots of another club are refused (or, with the flag,
             // reported with the mismatch) before anything is fitted.
             let mismatch = a
@@ -247,7 +265,7 @@ fn diagnose(
             else {
                 unreachable!("parsed as diagnose")
             };
-            let (table, mut warnings) = table_and_warnings(club, &shots, &a.shots_format)?;
+            let (table, mut warnings, _) = table_and_warnings(club, &shots, &a.shots_format, true)?;
             let p = progress
                 .as_ref()
                 .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);

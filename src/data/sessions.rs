@@ -210,6 +210,7 @@ mod tests {
             shots,
             lines: (2..2 + cells.len()).collect(),
             left_out: Vec::new(),
+            conventions: Vec::new(),
         }
     }
 

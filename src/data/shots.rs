@@ -12,6 +12,7 @@
 //! | `club_omega_{x,y,z}_rad_s` | rad/s | no (0) | clubhead angular velocity in G |
 //! | `impact_y_mm`, `impact_z_mm` | mm | yes | impact location from CoF |
 //! | `ball_speed_mph`, `launch_angle_deg`, `azimuth_deg`, `backspin_rpm`, `sidespin_rpm` | | all or none | measured launch |
+//! | `face_at`, `velocity_at`, `face_angle_from` | text | no (the model's own) | the delivery's convention ([`crate::conventions`]) |
 //!
 //! Other columns are carried through to outputs untouched.
 
@@ -21,6 +22,10 @@ use std::path::{Path, PathBuf};
 use super::{csv_error_at, DataError};
 use crate::limits::{self, PhysicalRange};
 use crate::line_index::LineIndex;
+use crate::model::convention::{
+    names, parse_name, DeliveryConvention, FaceAngleSource, FacePoint, VelocityPoint,
+    FACE_ANGLE_FROM_COLUMN, FACE_AT_COLUMN, VELOCITY_AT_COLUMN,
+};
 /// The shot itself is a domain type (it lives in [`crate::model`]); re-exported here for
 /// callers of the reader.
 pub use crate::model::Shot;
@@ -72,6 +77,10 @@ pub struct ShotTable {
     pub lines: Vec<usize>,
     /// Rows left out (a delivery cell empty, estimated values), by reason, in file order.
     pub left_out: Vec<LeftOut>,
+    /// Where and how each shot's delivery is defined (parallel to `shots`): the
+    /// `face_at`, `velocity_at` and `face_angle_from` columns, the model's own convention
+    /// where absent. [`crate::conventions::to_model`] brings the shots to the model's.
+    pub conventions: Vec<DeliveryConvention>,
 }
 
 /// Rows of a shots file left out for one reason.
@@ -142,6 +151,43 @@ impl ShotTable {
     }
 }
 
+/// Why [`ShotTable::leave_out_derived`] leaves shots out (a [`LeftOut`] reason).
+pub const DERIVED_LEFT_OUT: &str = "face angle derived from the launch (face_angle_from)";
+
+impl ShotTable {
+    /// Leave out the shots whose face angle the monitor derived from the launch, and count them in
+    /// `left_out` under [`DERIVED_LEFT_OUT`]: what `diagnose` and `calibrate` do, so that no
+    /// effect is fitted to a formula. Returns how many were left out.
+    pub fn leave_out_derived(&mut self) -> usize {
+        let table = self;
+        let derived = |c: &DeliveryConvention| c.face_angle_from == FaceAngleSource::Launch;
+        let lines: Vec<usize> = table
+            .conventions
+            .iter()
+            .zip(&table.lines)
+            .filter(|(c, _)| derived(c))
+            .map(|(_, l)| *l)
+            .collect();
+        if lines.is_empty() {
+            return 0;
+        }
+        let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
+        let mut k = keep.iter();
+        table.shots.retain(|_| *k.next().expect("parallel"));
+        let mut k = keep.iter();
+        table.records.retain(|_| *k.next().expect("parallel"));
+        let mut k = keep.iter();
+        table.lines.retain(|_| *k.next().expect("parallel"));
+        table.conventions.retain(|c| !derived(c));
+        let n = lines.len();
+        table.left_out.push(LeftOut {
+            reason: DERIVED_LEFT_OUT.to_owned(),
+            lines,
+        });
+        n
+    }
+}
+
 /// The physical range of a measured launch component (file units).
 pub fn measured_range(c: LaunchComponent) -> PhysicalRange {
     match c {
@@ -207,6 +253,7 @@ pub fn parse_shots_with<R: std::io::Read>(
         shots: Vec::new(),
         lines: Vec::new(),
         left_out: Vec::new(),
+        conventions: Vec::new(),
     };
     let mut ids = HashSet::new();
     for rec in rdr.records() {
@@ -233,6 +280,7 @@ pub fn parse_shots_with<R: std::io::Read>(
         }
         table.lines.push(line);
         table.shots.push(row.shot(&cols, &mut ids)?);
+        table.conventions.push(row.convention(&cols)?);
         table.records.push(cells);
     }
     if table.shots.is_empty() {
@@ -260,6 +308,8 @@ struct Columns {
     launch: Option<[usize; 5]>,
     /// The [`ESTIMATED_FLAGS`] columns present.
     estimated: Vec<(usize, &'static str)>,
+    /// The `face_at`, `velocity_at` and `face_angle_from` columns, when present.
+    convention: [Option<usize>; 3],
 }
 
 impl Columns {
@@ -319,6 +369,7 @@ impl Columns {
                 .iter()
                 .filter_map(|(c, what)| col(c).map(|i| (i, *what)))
                 .collect(),
+            convention: [FACE_AT_COLUMN, VELOCITY_AT_COLUMN, FACE_ANGLE_FROM_COLUMN].map(col),
         })
     }
 }
@@ -412,6 +463,41 @@ impl Row<'_> {
             }
         }
         Ok(None)
+    }
+
+    /// The row's delivery convention: each of the three columns names a value, or is absent
+    /// or empty (the model's own).
+    fn convention(&self, cols: &Columns) -> Result<DeliveryConvention, DataError> {
+        fn cell<T: Copy + Default>(
+            row: &Row,
+            at: Option<usize>,
+            all: &[(T, &'static str)],
+        ) -> Result<T, DataError> {
+            let Some(i) = at else {
+                return Ok(T::default());
+            };
+            let v = row.cells[i].as_str();
+            if v.is_empty() {
+                return Ok(T::default());
+            }
+            parse_name(all, v).ok_or_else(|| {
+                row.error(
+                    &row.headers[i],
+                    format!(
+                        "{} is not known here (allowed: {}, or empty for {})",
+                        super::quote_cell(v),
+                        names(all),
+                        all[0].1
+                    ),
+                )
+            })
+        }
+        let [f, v, d] = cols.convention;
+        Ok(DeliveryConvention {
+            face_at: cell(self, f, &FacePoint::ALL)?,
+            velocity_at: cell(self, v, &VelocityPoint::ALL)?,
+            face_angle_from: cell(self, d, &FaceAngleSource::ALL)?,
+        })
     }
 
     /// A finite number.

@@ -2,6 +2,7 @@
 //! units as each says. No I/O: [`crate::data`] reads and writes files of these types.
 
 pub mod component;
+pub mod convention;
 /// The delivery variables live beside [`crate::physics::Delivery`], whose file-unit view they are
 /// (user-defined effects in `physics` read them too); re-exported here for the domain's users.
 pub use crate::physics::delivery_vars as delivery;

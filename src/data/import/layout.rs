@@ -10,6 +10,7 @@ use super::table::Table;
 use super::target::{numeric, Target};
 use super::{ExportSpec, ImportOptions, Mapping, OffsetSide};
 use crate::data::DataError;
+use crate::model::convention::DeliveryConvention;
 use crate::model::DeliveryVar;
 
 /// The measured-launch columns written only when the whole launch is measured.
@@ -39,6 +40,9 @@ pub(super) struct Layout<'r, 'a> {
     pub extra: Vec<&'static str>,
     /// Every shot's flight figures are the vendor's model (the mapping says so).
     pub all_modelled: bool,
+    /// The delivery's convention, as the mapping states it, when it maps delivery angles or
+    /// velocity (written as the `face_at`, `velocity_at`, `face_angle_from` columns).
+    pub convention: Option<DeliveryConvention>,
     /// The text columns, when mapped.
     pub id: Option<&'r Resolved<'a>>,
     pub group: Option<&'r Resolved<'a>>,
@@ -103,6 +107,14 @@ impl<'r, 'a> Layout<'r, 'a> {
         if condition || all_modelled || (has("tracked_length_yd") && has("carry_yd")) {
             extra.push("flight_modelled");
         }
+        let delivery_mapped = ["dynamic_loft_deg", "face_angle_deg", "club_speed_mph"]
+            .iter()
+            .chain(&["attack_angle_deg", "club_path_deg"])
+            .any(|c| has(c));
+        let convention = delivery_mapped.then(|| super::conventions::of_mapping(mapping, &has));
+        if let Some(c) = convention {
+            extra.extend(super::conventions::cells(c).map(|(col, _)| col));
+        }
         let text_col = |name: &str| resolved.iter().find(|r| r.spec.target == name);
         Ok(Layout {
             resolved,
@@ -115,6 +127,7 @@ impl<'r, 'a> Layout<'r, 'a> {
             numeric: out_numeric,
             extra,
             all_modelled,
+            convention,
             id: text_col("shot_id"),
             group: text_col("group"),
             golfer: text_col("golfer"),

@@ -16,6 +16,7 @@ mod cell;
 mod checks;
 mod columns;
 mod condition;
+mod conventions;
 mod layout;
 mod rows;
 mod summary;
@@ -200,6 +201,16 @@ pub struct ColumnSpec {
     /// 0 for a dynamic loft or impact location its monitor does not measure).
     #[serde(default)]
     pub missing: Vec<String>,
+    /// For the delivery's angles and velocity: where the vendor defines the value. Dynamic
+    /// loft and face angle: `contact_point` or `face_centre`; club speed, attack angle and
+    /// path: `com`, `geometric_centre` or `face_centre` ([`crate::conventions`]). Absent:
+    /// the model's own (face centre, CoM).
+    #[serde(default)]
+    pub at: Option<String>,
+    /// For a delivery column: `measured`, or (face angle only) `derived_from_launch` when the
+    /// monitor computes it from the launch direction and path. Absent: measured.
+    #[serde(default)]
+    pub how: Option<String>,
 }
 
 /// Options given on the command line.
@@ -370,6 +381,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
                 )));
             }
         }
+        conventions::check_column(c).map_err(err)?;
         if let Some(d) = &c.direction {
             if !matches!(d.as_str(), "R+" | "L+") {
                 return Err(err(format!(
@@ -379,6 +391,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
             }
         }
     }
+    conventions::check_mapping(&m).map_err(err)?;
     Ok(m)
 }
 
@@ -464,12 +477,64 @@ fn export_places(layout: &Layout) -> Vec<(&'static str, String)> {
 mod tests {
     use super::*;
 
+    /// A mapping's conventions: each value allowed for its target, one point per quantity.
+    #[test]
+    fn conventions_are_checked() {
+        let map = |cols: &str| {
+            parse_mapping(
+                Path::new("m.toml"),
+                &format!("[export]\nname = \"M\"\n{cols}"),
+            )
+        };
+        let col = |t: &str, extra: &str| {
+            format!("[[column]]\ntarget = \"{t}\"\nsource = [\"{t}\"]\n{extra}\n")
+        };
+        let err = |cols: String| map(&cols).unwrap_err().to_string();
+        let e = err(col("dynamic_loft_deg", "at = \"geometric_centre\""));
+        assert!(e.contains("allowed: face_centre, contact_point"), "{e}");
+        let e = err(col("club_speed_mph", "at = \"contact_point\""));
+        assert!(
+            e.contains("allowed: com, geometric_centre, face_centre"),
+            "{e}"
+        );
+        let e = err(col("ball_speed_mph", "at = \"com\""));
+        assert!(e.contains("`at` is for the delivery"), "{e}");
+        let e = err(col("dynamic_loft_deg", "how = \"derived_from_launch\""));
+        assert!(
+            e.contains("only face_angle_deg may be derived_from_launch"),
+            "{e}"
+        );
+        let e = err(col("dynamic_loft_deg", "at = \"contact_point\"")
+            + &col("face_angle_deg", "at = \"face_centre\""));
+        assert!(e.contains("must state the same point"), "{e}");
+        let ok = col("dynamic_loft_deg", "at = \"contact_point\"")
+            + &col(
+                "face_angle_deg",
+                "at = \"contact_point\"\nhow = \"derived_from_launch\"",
+            );
+        assert!(map(&ok).is_ok());
+    }
+
     #[test]
     fn presets_parse() {
         for (name, _) in PRESETS {
             load_mapping(name).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
         assert!(load_mapping("gcquad").is_ok());
+        // Every preset records, per delivery column, where and how the vendor defines it.
+        for (name, _) in PRESETS {
+            let m = load_mapping(name).unwrap();
+            for c in m.column.iter().filter(|c| {
+                crate::model::DeliveryVar::from_column(&c.target).is_some_and(|v| {
+                    !matches!(
+                        v,
+                        crate::model::DeliveryVar::ImpactY | crate::model::DeliveryVar::ImpactZ
+                    ) && v.required()
+                })
+            }) {
+                assert!(c.at.is_some() && c.how.is_some(), "{name}: {}", c.target);
+            }
+        }
         let e = load_mapping("nosuch").unwrap_err().to_string();
         assert!(e.contains("unknown format"), "{e}");
     }

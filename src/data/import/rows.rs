@@ -469,6 +469,14 @@ impl RowAt<'_> {
                 .filter(|b| !b.is_empty())
                 .or_else(|| condition.and_then(|k| k.ball.clone()))
                 .unwrap_or_default(),
+            "face_at" | "velocity_at" | "face_angle_from" => layout
+                .convention
+                .and_then(|c| {
+                    super::conventions::cells(c)
+                        .into_iter()
+                        .find(|(col, _)| *col == column)
+                })
+                .map_or_else(String::new, |(_, v)| v.to_owned()),
             "spin_estimated" | "club_estimated" => {
                 let c = layout.column(column).expect("laid out when mapped");
                 let v = self.cell(c.index);
