@@ -139,7 +139,7 @@ fn location_mm(m: f64) -> f64 {
     (m * 1e9).round() / 1e6
 }
 
-fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
+pub(crate) fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
     InstrumentClass::from_name(s).ok_or_else(|| {
         format!(
             "unknown instrument class '{s}'; allowed: {}",
@@ -360,6 +360,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                     "params": estimates_json(&c.params),
                 })).collect::<Vec<_>>(),
                 "after": s.after.to_json(),
+                "fit": crate::calibrate::score_json(&s.fit),
             })
         })
         .collect();
@@ -384,6 +385,13 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
         }))).collect::<Vec<_>>(),
         "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "likelihood": json!({
+            "scales": d.final_fit.source.kind(),
+            "given_by": d.final_fit.source.name(),
+            "n_residuals": d.final_fit.n_residuals,
+            "nominal": crate::calibrate::score_json(&d.nominal_fit),
+            "final": crate::calibrate::score_json(&d.final_fit),
+        }),
         "noise_floor": floor.to_json(),
         "conclusion": conclusion(d, floor),
         "steps": steps,
@@ -522,6 +530,7 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
         s.push_str(&step_text(i, st));
     }
     s.push_str(&summary_text(d));
+    s.push_str(&likelihood_text(d));
     s.push_str(&floor_text(d, floor));
     s.push('\n');
     s.push_str(&error_tables_side_by_side(
@@ -647,6 +656,27 @@ fn step_text(i: usize, st: &Step) -> String {
         None => s.push_str("-> no candidate beats its penalty: stop\n"),
     }
     s
+}
+
+/// The models of the steps that changed the model, with the nominal and the final model, on
+/// the diagnosis's one likelihood scale.
+fn likelihood_text(d: &Diagnosis) -> String {
+    let mut rows: Vec<(String, &smash::fit::Likelihood)> = vec![("nominal".into(), &d.nominal_fit)];
+    for (i, st) in d.steps.iter().enumerate() {
+        let what = match (&st.selected, &st.swap) {
+            (Some(l), _) => format!("+ {l}"),
+            (None, Some(w)) => match &w.inn {
+                Some(inn) => format!("{} -> {inn}", w.out),
+                None => format!("- {}", w.out),
+            },
+            (None, None) => continue,
+        };
+        rows.push((format!("after step {}: {what}", i + 1), &st.fit));
+    }
+    rows.push(("final (the values reported)".into(), &d.final_fit));
+    let rows: Vec<(&str, &smash::fit::Likelihood)> =
+        rows.iter().map(|(n, l)| (n.as_str(), *l)).collect();
+    crate::calibrate::likelihood_text(&rows, "")
 }
 
 /// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the

@@ -69,7 +69,7 @@ mod spread;
 use crate::club::ClubSpec;
 use crate::effects::{EffectId, EffectKind};
 use crate::fit::calibrate::ParamEstimate;
-use crate::fit::{EffectRequest, FitData, FitError};
+use crate::fit::{EffectRequest, FitData, FitError, Likelihood};
 use crate::model::Shot;
 use crate::physics::LaunchComponent;
 use crate::stats::{launch_error_table, ErrorTable};
@@ -256,6 +256,10 @@ pub struct Step {
     pub selected: Option<String>,
     /// Errors on all shots of the model after this step.
     pub after: ErrorTable,
+    /// The likelihood score of the model after this step, on the diagnosis's one scale (the
+    /// instruments' noise when known, else profiled; [`crate::fit::likelihood`]): comparable
+    /// across steps, unlike the cross-validated χ² whose noise scales each step re-estimates.
+    pub fit: Likelihood,
     /// With a known noise floor: the base model's errors were already at it, so no physical
     /// effect was offered this step (only measurement candidates).
     pub at_noise_floor: bool,
@@ -338,6 +342,10 @@ pub struct Diagnosis {
     /// Why the shots do not match the club file, when the caller ran anyway
     /// ([`crate::club_match`]): then no estimate is a finding.
     pub club_mismatch: Option<String>,
+    /// The club as given, scored on the same scale as [`Step::fit`].
+    pub nominal_fit: Likelihood,
+    /// The final model (the reported values), scored on the same scale.
+    pub final_fit: Likelihood,
 }
 
 impl Diagnosis {
@@ -496,7 +504,8 @@ pub fn diagnose(
         steps.extend(more);
         changes += 1;
     }
-    search.finish((fold_by, n_folds), steps, before, warnings)
+    let nominal_fit = search.likelihood_of(&nominal);
+    search.finish((fold_by, n_folds), steps, (before, nominal_fit), warnings)
 }
 
 /// Launch components in report order (re-exported for the CLI).

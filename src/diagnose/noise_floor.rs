@@ -36,7 +36,7 @@ use rayon::prelude::*;
 use serde_json::json;
 
 use crate::club::ClubSpec;
-use crate::fit::{FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::fit::{FitData, FitError, FitProblem, GivenScales, ParamLayout, Weighting};
 use crate::model::Shot;
 use crate::model::{default_launch_noise, delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use crate::physics::{Delivery, LaunchComponent};
@@ -315,8 +315,28 @@ pub(super) fn delivery_jacobians(
     per_shot.into_iter().collect()
 }
 
+/// The instruments' noise `inst` as the given scales of a likelihood
+/// ([`crate::fit::likelihood`]): each shot's expected error variance per component (see the
+/// module docs) with the model `club` (the nominal model, so that every model of the same shots
+/// is scored on the same variances) and the location correction `location_model`.
+pub fn given_scales(
+    club: &ClubSpec,
+    shots: &[Shot],
+    inst: &InstrumentNoise,
+    location_model: Option<crate::measurement::ImpactNoise>,
+) -> Result<GivenScales, FitError> {
+    let variances = expected_variances(club, shots, inst, location_model)?
+        .into_iter()
+        .map(|v| v.map(|x| x.max(f64::MIN_POSITIVE)))
+        .collect();
+    Ok(GivenScales {
+        name: inst.name.clone(),
+        variances,
+    })
+}
+
 /// Expected variance of each shot's error per component (see the module docs).
-fn expected_variances(
+pub fn expected_variances(
     club: &ClubSpec,
     shots: &[Shot],
     inst: &InstrumentNoise,
