@@ -8,14 +8,13 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
+use smash::data::noise_file::read_noise_file;
 use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
-use smash::data::noise_file::read_noise_file;
 use smash::diagnose::noise_floor;
 use smash::fit::{
-    calibrate_scored, parse_effect_list, CalibrateOptions, Calibration, FitError, GivenScales,
-    Likelihood, Method, Progress,
+    calibrate_scored, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
 };
 use smash::physics::LaunchComponent;
 use smash::report::{error_tables_side_by_side, TextTable};
@@ -113,19 +112,13 @@ pub struct CalibrateArgs {
     )]
     pub delivery_noise: Option<smash::measurement::DeliveryNoise>,
 
-    /// Instrument class whose documented noise gives the scales every model is scored by
-    /// (-2 ln L, AIC, BIC: chi2 with those scales, carried through the nominal model, plus a
-    /// constant). Without it or --noise the scales are profiled (estimated in each fit).
-    #[arg(
-        long,
-        value_name = "CLASS",
-        value_parser = super::diagnose::parse_instrument,
-        help_heading = "Model comparison"
-    )]
+    /// Instrument class whose noise, carried through the nominal model, gives the scales every
+    /// model is scored by (-2 ln L, AIC, BIC); without it or --noise they are profiled.
+    #[arg(long, value_name = "CLASS", value_parser = super::likelihood::parse_instrument,
+        help_heading = "Model comparison")]
     pub instrument: Option<smash::diagnose::noise_floor::InstrumentClass>,
 
-    /// Instrument noise file ([noise] table, as for diagnose) giving the scores' scales;
-    /// overrides --instrument.
+    /// Instrument noise file ([noise] table, as diagnose's) giving the scales (overrides it).
     #[arg(long, value_name = "NOISE.toml", help_heading = "Model comparison")]
     pub noise: Option<PathBuf>,
 }
@@ -134,9 +127,7 @@ pub struct CalibrateArgs {
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
     let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
-    if let Some(noise) = &args.noise {
-        inputs.push(("--noise", noise));
-    }
+    inputs.extend(args.noise.as_deref().map(|n| ("--noise", n)));
     let plan = OutputPlan::new(&inputs)
         .file("--out-club", args.out_club.as_deref())
         .file("--report", args.report.as_deref());
@@ -249,16 +240,32 @@ pub fn compute(
         impact_noise: args.measurement.impact_noise_mm,
         delivery_noise: args.delivery_noise,
     };
-    let given = given_scales(args, club, table)?;
-    let cal = calibrate_scored(club, &table.shots, &requests, &opts, given.as_ref(), progress)
-        .with_context(|| args.shots.display().to_string())?;
+    let given = super::likelihood::given_scales(
+        (args.noise.as_deref(), args.instrument),
+        club,
+        &table.shots,
+        args.measurement.impact_noise_mm,
+    )
+    .with_context(|| args.shots.display().to_string())?;
+    let cal = calibrate_scored(
+        club,
+        &table.shots,
+        &requests,
+        &opts,
+        given.as_ref(),
+        progress,
+    )
+    .with_context(|| args.shots.display().to_string())?;
     // Nothing infinite or undefined is reported or written into a club file.
     let mut numbers: Vec<(String, f64)> = vec![
         ("chi2".into(), cal.chi2),
         ("nominal chi2".into(), cal.chi2_before),
         ("reduced chi2".into(), cal.reduced_chi2),
         ("-2 ln L".into(), cal.likelihood.minus_2_ln_l),
-        ("nominal -2 ln L".into(), cal.likelihood_nominal.minus_2_ln_l),
+        (
+            "nominal -2 ln L".into(),
+            cal.likelihood_nominal.minus_2_ln_l,
+        ),
     ];
     numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
     if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
@@ -269,43 +276,6 @@ pub fn compute(
         );
     }
     Ok(cal)
-}
-
-/// The scales the models are scored by when the instruments' noise is given (`--noise`, else
-/// `--instrument`): each shot's expected error variance through the nominal model `club`;
-/// `None` (profiled scales) when neither is given. A zero scale is refused: it would make any
-/// error infinitely unlikely.
-fn given_scales(
-    args: &CalibrateArgs,
-    club: &ClubSpec,
-    table: &ShotTable,
-) -> anyhow::Result<Option<GivenScales>> {
-    let inst = match (&args.noise, args.instrument) {
-        (Some(p), _) => read_noise_file(p)?,
-        (None, Some(c)) => c.noise(),
-        (None, None) => return Ok(None),
-    };
-    let given = noise_floor::given_scales(
-        club,
-        &table.shots,
-        &inst,
-        args.measurement.impact_noise_mm,
-    )
-    .with_context(|| args.shots.display().to_string())?;
-    let scales = given.scales();
-    if let Some(c) = LaunchComponent::ALL
-        .iter()
-        .find(|c| !(scales[c.index()] > 1e-9 && scales[c.index()].is_finite()))
-    {
-        anyhow::bail!(
-            "{}: the noise of {} is {}; scoring needs a positive noise for every launch \
-             component (give it in [noise.launch])",
-            inst.name,
-            c.column(),
-            scales[c.index()]
-        );
-    }
-    Ok(Some(given))
 }
 
 fn opt(v: Option<f64>) -> serde_json::Value {
@@ -402,32 +372,7 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         "shaft_relation": shaft,
         "paper_stages": stages,
         "measurement_model": measurement_json(cal),
-        "likelihood": likelihood_json(&cal.likelihood, &cal.likelihood_nominal),
-    })
-}
-
-/// A likelihood score's scale-free numbers: `k`, `−2 ln L`, AIC, BIC and the scales.
-pub fn score_json(l: &Likelihood) -> serde_json::Value {
-    json!({
-        "k": l.k,
-        "minus_2_ln_l": l.minus_2_ln_l,
-        "aic": l.aic(),
-        "bic": l.bic(),
-        "scales": LaunchComponent::ALL
-            .iter()
-            .map(|c| (c.column().to_owned(), json!(l.scales[c.index()])))
-            .collect::<serde_json::Map<_, _>>(),
-    })
-}
-
-/// How the models were scored, and the calibrated and nominal models' scores.
-fn likelihood_json(cal: &Likelihood, nominal: &Likelihood) -> serde_json::Value {
-    json!({
-        "scales": cal.source.kind(),
-        "given_by": cal.source.name(),
-        "n_residuals": cal.n_residuals,
-        "calibrated": score_json(cal),
-        "nominal": score_json(nominal),
+        "likelihood": super::likelihood::to_json("calibrated", &cal.likelihood, &cal.likelihood_nominal),
     })
 }
 
@@ -588,8 +533,11 @@ fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> Str
 /// The fit's statistics: the models' likelihood scores on one scale, the fit's own chi2 and
 /// whitening scales, the solver's work and the paper's stage of each parameter.
 fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
-    let mut s = likelihood_text(
-        &[("nominal", &cal.likelihood_nominal), ("calibrated", &cal.likelihood)],
+    let mut s = super::likelihood::text(
+        &[
+            ("nominal", &cal.likelihood_nominal),
+            ("calibrated", &cal.likelihood),
+        ],
         "",
     );
     s.push_str(&format!(
@@ -600,7 +548,11 @@ fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
         cal.params.len(),
         cal.reduced_chi2,
     ));
-    s.push_str(&scales_text("whitening scales:", "", &cal.noise_scales));
+    s.push_str(&super::likelihood::scales_text(
+        "whitening scales:",
+        "",
+        &cal.noise_scales,
+    ));
     s.push_str(&format!(
         "solver: {} iteration(s), {} residual evaluations; {}\n",
         cal.iterations, cal.evaluations, cal.termination
@@ -619,76 +571,6 @@ fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
                 }
             ));
         }
-    }
-    s
-}
-
-/// `head` then per component `name value unit`, comma-separated, wrapped with `indent` and two
-/// spaces so that no line passes 99 columns; ends with a newline.
-fn scales_text(head: &str, indent: &str, scales: &[f64; 5]) -> String {
-    let mut s = format!("{indent}{head}");
-    let mut line = s.chars().count();
-    for (i, c) in LaunchComponent::ALL.iter().enumerate() {
-        let mut piece = format!("{} {:.4} {}", c.column(), scales[c.index()], c.unit());
-        if i + 1 < LaunchComponent::ALL.len() {
-            piece.push(',');
-        }
-        let width = piece.chars().count() + 1;
-        if line + width > 99 {
-            s.push_str(&format!("\n{indent} "));
-            line = indent.len() + 1;
-        }
-        s.push(' ');
-        s.push_str(&piece);
-        line += width;
-    }
-    s.push('\n');
-    s
-}
-
-/// The likelihood table of the models `rows` (name, score), all on the first one's scale, with
-/// a header saying how the scales were set and the scales (given: once; profiled: the first
-/// and the last model's); `indent` before every line.
-pub fn likelihood_text(rows: &[(&str, &Likelihood)], indent: &str) -> String {
-    let Some((_, first)) = rows.first() else {
-        return String::new();
-    };
-    let how = match &first.source {
-        smash::fit::ScaleSource::Profiled => {
-            "PROFILED (estimated in each fit, sigma_c^2 = RSS_c/n; k counts the 5 scales)"
-                .to_owned()
-        }
-        smash::fit::ScaleSource::Given(name) => format!(
-            "GIVEN ({name} noise through the nominal model; k counts fitted parameters only)"
-        ),
-    };
-    let mut s = format!(
-        "\n{indent}Model comparison: -2 ln L of the errors, AIC = -2 ln L + 2k, BIC = -2 ln L + \
-         k ln N (N = {}),\n{indent}noise scales {how}:\n",
-        first.n_residuals
-    );
-    let mut t = TextTable::new(["model", "k", "-2 ln L", "AIC", "BIC"]);
-    for (name, l) in rows {
-        t.row([
-            (*name).to_owned(),
-            l.k.to_string(),
-            format!("{:.2}", l.minus_2_ln_l),
-            format!("{:.2}", l.aic()),
-            format!("{:.2}", l.bic()),
-        ]);
-    }
-    for line in t.render().lines() {
-        s.push_str(&format!("{indent}{line}\n"));
-    }
-    if first.source == smash::fit::ScaleSource::Profiled {
-        // The first and the last model's (every model's in a two-row table).
-        let ends = [rows.first(), rows.get(1).and(rows.last())];
-        for (name, l) in ends.into_iter().flatten() {
-            s.push_str(&scales_text(&format!("scales ({name}):"), indent, &l.scales));
-        }
-    } else {
-        let head = "scales (given; root mean of each shot's expected variance):";
-        s.push_str(&scales_text(head, indent, &first.scales));
     }
     s
 }

@@ -16,7 +16,7 @@ use smash::data::noise_file::read_noise_file;
 use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
-use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
+use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor, SpreadBand};
 use smash::diagnose::{
     diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, Step,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
@@ -122,7 +122,7 @@ pub struct DiagnoseArgs {
     #[arg(
         long,
         value_name = "CLASS",
-        value_parser = parse_instrument,
+        value_parser = super::likelihood::parse_instrument,
         help_heading = "Noise floor"
     )]
     pub instrument: Option<InstrumentClass>,
@@ -137,15 +137,6 @@ pub struct DiagnoseArgs {
 /// the metre round trip.
 fn location_mm(m: f64) -> f64 {
     (m * 1e9).round() / 1e6
-}
-
-pub(crate) fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
-    InstrumentClass::from_name(s).ok_or_else(|| {
-        format!(
-            "unknown instrument class '{s}'; allowed: {}",
-            InstrumentClass::ALL.map(|c| c.name()).join(", ")
-        )
-    })
 }
 
 struct Bar(ProgressBar);
@@ -233,6 +224,7 @@ pub fn compute(
         (None, Some(c)) => Some(c.noise()),
         (None, None) => None,
     };
+    let assumed = known_noise.is_none();
     let instrument = known_noise
         .clone()
         .unwrap_or_else(|| InstrumentClass::Camera.noise());
@@ -266,7 +258,8 @@ pub fn compute(
     let mut d = diagnose(club, &table.shots, &opts, progress)
         .with_context(|| args.shots.display().to_string())?;
     d.club_mismatch = mismatch;
-    let floor = noise_floor(&d, &table.shots, &instrument)?;
+    let mut floor = noise_floor(&d, &table.shots, &instrument)?;
+    floor.assumed = assumed;
     Ok((d, floor))
 }
 
@@ -360,7 +353,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                     "params": estimates_json(&c.params),
                 })).collect::<Vec<_>>(),
                 "after": s.after.to_json(),
-                "fit": crate::calibrate::score_json(&s.fit),
+                "fit": crate::likelihood::score_json(&s.fit),
             })
         })
         .collect();
@@ -385,13 +378,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
         }))).collect::<Vec<_>>(),
         "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
-        "likelihood": json!({
-            "scales": d.final_fit.source.kind(),
-            "given_by": d.final_fit.source.name(),
-            "n_residuals": d.final_fit.n_residuals,
-            "nominal": crate::calibrate::score_json(&d.nominal_fit),
-            "final": crate::calibrate::score_json(&d.final_fit),
-        }),
+        "likelihood": crate::likelihood::to_json("final", &d.final_fit, &d.nominal_fit),
         "noise_floor": floor.to_json(),
         "conclusion": conclusion(d, floor),
         "steps": steps,
@@ -429,8 +416,66 @@ fn fmt_params(ps: &[ParamEstimate]) -> String {
         .join(", ")
 }
 
-/// What the diagnosis concludes about the structure left in the errors.
+/// What the diagnosis concludes about the structure left in the errors, and, when the
+/// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
 pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    format!("{}{}", verdict(d, floor), assumed_note(floor))
+}
+
+/// Without `--noise` or `--instrument`: the verdict rests on the assumed class's noise; the
+/// observed-to-expected spread ratio per component, and what a ratio well below or well above
+/// 1 means (empty when the noise was given).
+fn assumed_note(floor: &NoiseFloor) -> String {
+    if !floor.assumed {
+        return String::new();
+    }
+    let ratios: Vec<String> = floor
+        .components
+        .iter()
+        .map(|c| format!("{} {:.2}", c.component.column(), c.ratio))
+        .collect();
+    let band = |b: SpreadBand| -> Vec<&str> {
+        floor
+            .components
+            .iter()
+            .filter(|c| floor.spread_band(c) == b)
+            .map(|c| c.component.column())
+            .collect()
+    };
+    let h = floor.band_half_width();
+    let mut s = format!(
+        ". This verdict rests on the ASSUMED {} instrument noise (no --noise or --instrument \
+         given); observed/expected spread: {}",
+        floor.instrument.name,
+        ratios.join(", ")
+    );
+    let below = band(SpreadBand::WellBelow);
+    if !below.is_empty() {
+        s.push_str(&format!(
+            "; well below 1 (under {:.2}) in {}: the assumed noise is too large for these \
+             errors, so the test cannot see structure there",
+            1.0 - h,
+            below.join(", ")
+        ));
+    }
+    let above = band(SpreadBand::WellAbove);
+    if !above.is_empty() {
+        s.push_str(&format!(
+            "; well above 1 (over {:.2}) in {}: structure remains there, or the instruments \
+             are noisier than assumed",
+            1.0 + h,
+            above.join(", ")
+        ));
+    }
+    if below.is_empty() && above.is_empty() {
+        s.push_str(&format!("; each within {h:.2} of 1"));
+    }
+    s.push_str("; give the instruments' noise with --noise to test it");
+    s
+}
+
+/// The verdict on the structure left in the errors.
+fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let stand_ins: Vec<String> = d
         .estimates
         .iter()
@@ -673,10 +718,10 @@ fn likelihood_text(d: &Diagnosis) -> String {
         };
         rows.push((format!("after step {}: {what}", i + 1), &st.fit));
     }
-    rows.push(("final (the values reported)".into(), &d.final_fit));
+    rows.push(("final".into(), &d.final_fit));
     let rows: Vec<(&str, &smash::fit::Likelihood)> =
         rows.iter().map(|(n, l)| (n.as_str(), *l)).collect();
-    crate::calibrate::likelihood_text(&rows, "")
+    crate::likelihood::text(&rows, "")
 }
 
 /// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the
@@ -799,12 +844,35 @@ fn calibrate_flags(d: &Diagnosis) -> String {
     flags.join(" ")
 }
 
+/// `text` wrapped at spaces into lines of at most `width` columns (a longer word stands alone),
+/// each ending in a newline, the continuation lines indented by two spaces.
+fn wrap(text: &str, width: usize) -> String {
+    let mut out = String::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
+            out.push_str(&line);
+            out.push('\n');
+            line = "  ".to_owned();
+        } else if !line.is_empty() && line != "  " {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    out.push_str(&line);
+    out.push('\n');
+    out
+}
+
 /// The noise-floor table and the conclusion.
 fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let mut s = format!(
         "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
         floor.instrument.name
     );
+    if floor.assumed {
+        s.push_str("(that noise is ASSUMED: no --noise or --instrument was given)\n");
+    }
     let mut t = TextTable::new([
         "component",
         "mean",
@@ -828,6 +896,6 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
         ]);
     }
     s.push_str(&t.render());
-    s.push_str(&format!("Conclusion: {}\n", conclusion(d, floor)));
+    s.push_str(&wrap(&format!("Conclusion: {}", conclusion(d, floor)), 99));
     s
 }

@@ -10,6 +10,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod flight;
 pub mod import;
+pub mod likelihood;
 pub mod merge;
 pub mod predict;
 pub mod progress;

@@ -446,6 +446,8 @@ pub fn diagnose(
     )?;
     let nominal = search.errors_of(&search.base, &[])?;
     let before = launch_error_table(&search.groups, &nominal);
+    // Scored before any step chooses a noise level (which would be counted as a parameter).
+    let nominal_fit = search.likelihood_of(&nominal);
     let mut steps = Vec::new();
     // Forward steps (at most `max_steps`), then swap rounds (or a re-selection) while one
     // improves, then forward again while steps are left. The step cap bounds run time, not the
@@ -504,7 +506,6 @@ pub fn diagnose(
         steps.extend(more);
         changes += 1;
     }
-    let nominal_fit = search.likelihood_of(&nominal);
     search.finish((fold_by, n_folds), steps, (before, nominal_fit), warnings)
 }
 

@@ -234,9 +234,7 @@ impl<'a> Search<'a> {
     /// scale ([`crate::fit::likelihood`]).
     pub(super) fn likelihood_of(&self, errors: &[[f64; 5]]) -> Likelihood {
         let chosen = usize::from(self.chosen_noise.is_some() && self.opts.impact_noise.is_none())
-            + usize::from(
-                self.chosen_delivery.is_some() && self.opts.delivery_noise().is_none(),
-            );
+            + usize::from(self.chosen_delivery.is_some() && self.opts.delivery_noise().is_none());
         Likelihood::of(errors, self.base.len() + chosen, self.given.as_deref())
     }
 

@@ -20,10 +20,10 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, DVector};
 
 use super::covariance::{covariance, Covariance, Identifiability};
+use super::likelihood::{GivenScales, Likelihood};
 use super::problem::{FitData, FitProblem, Weighting};
 use super::run::{execute, FitRun, Progress};
 use super::spec::{EffectRequest, ParamLayout};
-use super::likelihood::{GivenScales, Likelihood};
 use super::FitError;
 use crate::club::ClubSpec;
 use crate::effects::EffectKind;

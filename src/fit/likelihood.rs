@@ -204,7 +204,11 @@ mod tests {
         };
         let l = Likelihood::of(&e, 0, Some(&g));
         let chi2 = 1.0 + 1.0 + 0.25 + 1.0;
-        let c: f64 = v.iter().flatten().map(|x| (std::f64::consts::TAU * x).ln()).sum();
+        let c: f64 = v
+            .iter()
+            .flatten()
+            .map(|x| (std::f64::consts::TAU * x).ln())
+            .sum();
         assert!((l.minus_2_ln_l - (chi2 + c)).abs() < 1e-12);
         assert_eq!(l.source.kind(), "given");
         assert_eq!(l.scales[1], 2.0);
@@ -215,7 +219,9 @@ mod tests {
     fn better_fits_score_lower_and_a_perfect_fit_is_finite() {
         let e = errors();
         let half: Vec<[f64; 5]> = e.iter().map(|r| r.map(|x| 0.5 * x)).collect();
-        assert!(Likelihood::of(&half, 0, None).minus_2_ln_l < Likelihood::of(&e, 0, None).minus_2_ln_l);
+        assert!(
+            Likelihood::of(&half, 0, None).minus_2_ln_l < Likelihood::of(&e, 0, None).minus_2_ln_l
+        );
         assert!(Likelihood::of(&vec![[0.0; 5]; 3], 0, None).is_finite());
     }
 }

@@ -27,8 +27,8 @@ pub mod spec;
 pub mod variation;
 
 pub use calibrate::{
-    calibrate, calibrate_scored, noise_scales, CalibrateOptions, Calibration, CorrelatedPair, Method,
-    PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
+    calibrate, calibrate_scored, noise_scales, CalibrateOptions, Calibration, CorrelatedPair,
+    Method, PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
 };
 pub use covariance::{covariance, Covariance, Identifiability};
 pub use likelihood::{GivenScales, Likelihood, ScaleSource};
