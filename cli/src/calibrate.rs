@@ -8,11 +8,9 @@ use clap::{Args, ValueEnum};
 use serde_json::json;
 
 use smash::data::club_file::{club_toml_checked, read_club};
-use smash::data::noise_file::read_noise_file;
 use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
-use smash::diagnose::noise_floor;
 use smash::fit::{
     calibrate_scored, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
 };

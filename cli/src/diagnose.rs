@@ -291,8 +291,9 @@ fn estimates_json_with(
         .collect()
 }
 
-/// `finding`, `stand_in`, `absent` (on its no-effect bound) or `ambiguous` (a plausible value
-/// with a plausible rival, or aliased with another effect).
+/// `finding`, `stand_in`, `absent` (on its no-effect bound), `provisional` (its value differs
+/// across strata of the shots) or `ambiguous` (a plausible value with a plausible rival, or
+/// aliased with another effect).
 fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
     if d.club_mismatch.is_some() {
         "wrong_club"
@@ -302,6 +303,8 @@ fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
         "absent"
     } else if d.is_finding(p) {
         "finding"
+    } else if d.provisional(p).is_some() {
+        "provisional"
     } else {
         "ambiguous"
     }
@@ -372,6 +375,10 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         "calibrate_flags": calibrate_flags(d),
         "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
         "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
+        "provisional": d.estimates.iter().filter_map(|p| d.provisional(p).map(|why| json!({
+            "param": p.label(), "failed_check": why,
+        }))).collect::<Vec<_>>(),
+        "strata": d.strata.as_ref().map(crate::strata::to_json),
         "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
         "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
             "param": p.label(), "value": p.value, "unit": p.unit,
@@ -520,6 +527,21 @@ fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
             aliased.join("; ")
         )
     };
+    let provisional: Vec<String> = d
+        .estimates
+        .iter()
+        .filter(|p| d.provisional(p).is_some())
+        .map(|p| p.label())
+        .collect();
+    let stand_in_note = if provisional.is_empty() {
+        stand_in_note
+    } else {
+        format!(
+            "{stand_in_note}; provisional, not findings (the value differs between parts of the \
+             shots beyond its uncertainty): {}",
+            provisional.join(", ")
+        )
+    };
     if !floor.structure_remains() {
         return format!(
             "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
@@ -575,6 +597,7 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
         s.push_str(&step_text(i, st));
     }
     s.push_str(&summary_text(d));
+    s.push_str(&crate::strata::text(d));
     s.push_str(&likelihood_text(d));
     s.push_str(&floor_text(d, floor));
     s.push('\n');
@@ -745,7 +768,7 @@ fn summary_text(d: &Diagnosis) -> String {
             .collect();
         s.push_str(&format!(
             "Findings (values inside their plausible ranges, no plausible rival, not aliased with \
-             another effect): {}\n",
+             another effect, the same in every stratum): {}\n",
             if findings.is_empty() {
                 "none".to_owned()
             } else {

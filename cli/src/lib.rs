@@ -17,6 +17,7 @@ pub mod progress;
 pub mod run;
 pub mod signals;
 pub mod stdout;
+pub mod strata;
 pub mod study_output;
 pub mod synth;
 pub mod whatif;

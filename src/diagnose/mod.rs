@@ -65,6 +65,7 @@ pub mod noise_floor;
 mod search;
 pub mod select;
 mod spread;
+pub mod strata;
 
 use crate::club::ClubSpec;
 use crate::effects::{EffectId, EffectKind};
@@ -346,6 +347,9 @@ pub struct Diagnosis {
     pub nominal_fit: Likelihood,
     /// The final model (the reported values), scored on the same scale.
     pub final_fit: Likelihood,
+    /// The final model refitted on independent strata of the shots, and whether each value
+    /// holds across them ([`strata`]; `None` when nothing is selected).
+    pub strata: Option<strata::StrataCheck>,
 }
 
 impl Diagnosis {
@@ -354,7 +358,23 @@ impl Diagnosis {
     /// selection, and not aliased with another selected effect's parameter (the data cannot
     /// tell which of the two effects carries the signal, so neither value is a reading of the
     /// physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
+    /// It must also hold across the strata of the shots ([`strata`]): else it is
+    /// [`Self::provisional`].
     pub fn is_finding(&self, p: &ParamEstimate) -> bool {
+        self.passes_report_checks(p) && self.provisional(p).is_none()
+    }
+
+    /// When this estimate would be a finding but its value differs across the strata of the
+    /// shots beyond its uncertainty ([`strata`]): the failed check, as text.
+    pub fn provisional(&self, p: &ParamEstimate) -> Option<String> {
+        if !self.passes_report_checks(p) {
+            return None;
+        }
+        self.strata.as_ref()?.failed(&p.label())
+    }
+
+    /// The checks of [`Self::is_finding`] but the strata's.
+    fn passes_report_checks(&self, p: &ParamEstimate) -> bool {
         self.club_mismatch.is_none()
             && honest::is_plausible(p) != Some(false)
             && !honest::is_absent(p)

@@ -530,7 +530,19 @@ impl<'a> Search<'a> {
         // The final model's score: the reported values on the base layout (the nominal
         // model's errors when nothing is selected).
         let final_theta: Vec<f64> = estimates.iter().map(|p| p.value).collect();
-        let final_fit = self.likelihood_of(&self.errors_of(&self.base, &final_theta)?);
+        let final_errors = self.errors_of(&self.base, &final_theta)?;
+        let final_fit = self.likelihood_of(&final_errors);
+        let strata = (!estimates.is_empty()).then(|| {
+            let theta = DVector::from_vec(final_theta);
+            super::strata::check(
+                self.club,
+                &self.data,
+                (&self.base, &theta, noise_scales(&final_errors)),
+                &estimates,
+                super::strata::families(&self.data, self.opts.fold_keys.as_ref()),
+                self.opts.max_iters,
+            )
+        });
         let ambiguities = self.ambiguities(&estimates)?;
         Ok(Diagnosis {
             fold_by,
@@ -553,6 +565,7 @@ impl<'a> Search<'a> {
             club_mismatch: None,
             nominal_fit,
             final_fit,
+            strata,
         })
     }
 }
