@@ -867,26 +867,6 @@ fn calibrate_flags(d: &Diagnosis) -> String {
     flags.join(" ")
 }
 
-/// `text` wrapped at spaces into lines of at most `width` columns (a longer word stands alone),
-/// each ending in a newline, the continuation lines indented by two spaces.
-fn wrap(text: &str, width: usize) -> String {
-    let mut out = String::new();
-    let mut line = String::new();
-    for word in text.split(' ') {
-        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > width {
-            out.push_str(&line);
-            out.push('\n');
-            line = "  ".to_owned();
-        } else if !line.is_empty() && line != "  " {
-            line.push(' ');
-        }
-        line.push_str(word);
-    }
-    out.push_str(&line);
-    out.push('\n');
-    out
-}
-
 /// The noise-floor table and the conclusion.
 fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let mut s = format!(
@@ -919,6 +899,10 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
         ]);
     }
     s.push_str(&t.render());
-    s.push_str(&wrap(&format!("Conclusion: {}", conclusion(d, floor)), 99));
+    s.push_str(&crate::wrap::wrap(
+        &format!("Conclusion: {}", conclusion(d, floor)),
+        99,
+        2,
+    ));
     s
 }

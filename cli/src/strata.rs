@@ -39,7 +39,11 @@ pub fn text(d: &Diagnosis) -> String {
     for f in &c.families {
         for (i, st) in f.strata.iter().enumerate() {
             let mut row = vec![
-                if i == 0 { f.name.clone() } else { String::new() },
+                if i == 0 {
+                    f.name.clone()
+                } else {
+                    String::new()
+                },
                 st.label.clone(),
                 st.n.to_string(),
             ];
@@ -49,7 +53,11 @@ pub fn text(d: &Diagnosis) -> String {
         let mut row = vec![String::new(), "p (one value?)".into(), String::new()];
         row.extend(f.checks.iter().map(|k| {
             k.as_ref().map_or("-".into(), |k| {
-                format!("{:.2e}{}", k.p_value, if k.stable { "" } else { " DIFFERS" })
+                format!(
+                    "{:.2e}{}",
+                    k.p_value,
+                    if k.stable { "" } else { " DIFFERS" }
+                )
             })
         }));
         t.row(row);
@@ -57,7 +65,8 @@ pub fn text(d: &Diagnosis) -> String {
     s.push_str(&t.render());
     for p in &d.estimates {
         if let Some(why) = d.provisional(p) {
-            s.push_str(&format!("  provisional, not a finding: {why}\n"));
+            let line = format!("  provisional, not a finding: {why}");
+            s.push_str(&crate::wrap::wrap(&line, 99, 2));
         }
     }
     s

@@ -118,8 +118,8 @@ fn the_right_law_outranks_the_wrong_one_across_separate_calibrate_runs() {
     }
 }
 
-/// The text report prints the table, the scales and how they were set; a noise file with a
-/// zero launch noise is refused in one line.
+/// The text report prints the table, the scales and how they were set; a noise file that makes
+/// a component's scale zero is refused in one line.
 #[test]
 fn the_text_report_says_how_the_models_were_scored() {
     let dir = tempfile::tempdir().unwrap();
@@ -163,7 +163,28 @@ fn the_text_report_says_how_the_models_were_scored() {
     assert!(calibrated[2] < nominal[2], "{text}");
 
     let noise = dir.path().join("noise.toml");
-    std::fs::write(&noise, "[noise]\n[noise.launch]\nball_speed_mph = 0\n").unwrap();
+    // No launch noise on ball speed and no delivery noise: a zero scale.
+    let delivery: String = [
+        "club_speed_mph",
+        "attack_angle_deg",
+        "club_path_deg",
+        "dynamic_loft_deg",
+        "face_angle_deg",
+        "lie_tilt_deg",
+        "club_omega_x_rad_s",
+        "club_omega_y_rad_s",
+        "club_omega_z_rad_s",
+        "impact_y_mm",
+        "impact_z_mm",
+    ]
+    .iter()
+    .map(|k| format!("{k} = 0\n"))
+    .collect();
+    std::fs::write(
+        &noise,
+        format!("[noise]\n[noise.delivery]\n{delivery}[noise.launch]\nball_speed_mph = 0\n"),
+    )
+    .unwrap();
     let mut args = base.to_vec();
     args.extend(["--noise", s(&noise)]);
     let o = smash(&args);

@@ -139,9 +139,15 @@ pub(super) fn families(
     out.push((
         "club speed terciles".to_owned(),
         vec![
-            (format!("slow (< {:.1} mph)", cut(1)), order[..n / 3].to_vec()),
+            (
+                format!("slow (< {:.1} mph)", cut(1)),
+                order[..n / 3].to_vec(),
+            ),
             ("middle".to_owned(), order[n / 3..2 * n / 3].to_vec()),
-            (format!("fast (≥ {:.1} mph)", cut(2)), order[2 * n / 3..].to_vec()),
+            (
+                format!("fast (≥ {:.1} mph)", cut(2)),
+                order[2 * n / 3..].to_vec(),
+            ),
         ],
     ));
     for (name, lo, hi, mm) in [
@@ -149,13 +155,19 @@ pub(super) fn families(
             "impact height",
             "low",
             "high",
-            data.deliveries.iter().map(|d| d.impact_y_m * 1e3).collect::<Vec<_>>(),
+            data.deliveries
+                .iter()
+                .map(|d| d.impact_y_m * 1e3)
+                .collect::<Vec<_>>(),
         ),
         (
             "heel-toe impact",
             "heel-side",
             "toe-side",
-            data.deliveries.iter().map(|d| d.impact_z_m * 1e3).collect::<Vec<_>>(),
+            data.deliveries
+                .iter()
+                .map(|d| d.impact_z_m * 1e3)
+                .collect::<Vec<_>>(),
         ),
     ] {
         let order = by(&mm);
@@ -220,7 +232,11 @@ pub(super) fn check(
                 let dof = (run.residuals.len().saturating_sub(p)).max(1);
                 let cov = covariance(&run.jacobian, run.cost / dof as f64, &ranges);
                 (0..p)
-                    .map(|j| cov.stderr[j].filter(|s| *s > 0.0).map(|s| (run.theta[j], s)))
+                    .map(|j| {
+                        cov.stderr[j]
+                            .filter(|s| *s > 0.0)
+                            .map(|s| (run.theta[j], s))
+                    })
                     .collect()
             }
             _ => vec![None; p],
@@ -251,7 +267,11 @@ pub(super) fn check(
         .iter()
         .map(|f| {
             (0..p)
-                .map(|j| (!(per_group[j] && f.name == "groups")).then(|| spread(f, j)).flatten())
+                .map(|j| {
+                    (!(per_group[j] && f.name == "groups"))
+                        .then(|| spread(f, j))
+                        .flatten()
+                })
                 .collect()
         })
         .collect();

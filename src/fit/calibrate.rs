@@ -372,7 +372,17 @@ pub fn calibrate_data_scored(
     let chi2 = residuals.norm_squared();
     let chi2_before = whiten(&errors_before, &sigma).norm_squared();
     let likelihood = Likelihood::of(&errors_after, p, given);
-    let likelihood_nominal = Likelihood::of(&errors_before, 0, given);
+    // The nominal model as the club alone (no free effect): the same evaluation in every
+    // calibration, whatever effects this one frees (at their defaults they leave the model as
+    // it is, but a user-defined term evaluates along another path, equal only to rounding).
+    let nominal_errors = FitProblem::new(
+        club,
+        ParamLayout::new(Vec::new())?,
+        data,
+        Weighting::launch(&[1.0; 5]),
+    )
+    .launch_errors(&[])?;
+    let likelihood_nominal = Likelihood::of(&nominal_errors, 0, given);
     let n_residuals = residuals.len();
     let dof = n_residuals - p;
     let reduced_chi2 = chi2 / dof as f64;
