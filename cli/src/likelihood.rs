@@ -125,9 +125,14 @@ pub fn text(rows: &[(&str, &Likelihood)], indent: &str) -> String {
     };
     let mut s = format!(
         "\n{indent}Model comparison: -2 ln L of the errors, AIC = -2 ln L + 2k, BIC = -2 ln L + \
-         k ln N (N = {}),\n{indent}noise scales {how}:\n",
+         k ln N (N = {}),\n",
         first.n_residuals
     );
+    s.push_str(&crate::wrap::wrap(
+        &format!("{indent}noise scales {how}:"),
+        99,
+        2,
+    ));
     let mut t = TextTable::new(["model", "k", "-2 ln L", "AIC", "BIC"]);
     for (name, l) in rows {
         t.row([

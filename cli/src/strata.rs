@@ -53,11 +53,12 @@ pub fn text(d: &Diagnosis) -> String {
         let mut row = vec![String::new(), "p (one value?)".into(), String::new()];
         row.extend(f.checks.iter().map(|k| {
             k.as_ref().map_or("-".into(), |k| {
-                format!(
-                    "{:.2e}{}",
-                    k.p_value,
-                    if k.stable { "" } else { " DIFFERS" }
-                )
+                let p = if k.p_value < 1e-15 {
+                    "< 1e-15".to_owned()
+                } else {
+                    format!("{:.2e}", k.p_value)
+                };
+                format!("{p}{}", if k.stable { "" } else { " DIFFERS" })
             })
         }));
         t.row(row);

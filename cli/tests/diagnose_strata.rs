@@ -53,7 +53,7 @@ fn a_stand_in_that_drifts_across_strata_is_provisional_not_a_finding() {
     std::fs::write(&curved_club, curved).unwrap();
     let shots = synth(
         dir.path(),
-        "curved",
+        "curved_world",
         &format!(
             "club = {:?}\nseed = 7\n[design]\nswings_per_golfer = 50\n",
             s(&curved_club)

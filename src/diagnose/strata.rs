@@ -59,6 +59,17 @@ pub struct Consistency {
     pub stable: bool,
 }
 
+impl Consistency {
+    /// `= 2.1e-6`, or `< 1e-15` below what the tail approximation resolves.
+    pub fn p_text(&self) -> String {
+        if self.p_value < 1e-15 {
+            "< 1e-15".to_owned()
+        } else {
+            format!("= {:.1e}", self.p_value)
+        }
+    }
+}
+
 /// One way of cutting the shots.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Family {
@@ -98,10 +109,10 @@ impl StrataCheck {
                 })
                 .collect();
             Some(format!(
-                "{label} differs across {}: {} (p = {:.1e})",
+                "{label} differs across {}: {} (p {})",
                 f.name,
                 values.join(", "),
-                c.p_value
+                c.p_text()
             ))
         })
     }
