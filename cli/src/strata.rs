@@ -50,6 +50,9 @@ pub fn text(d: &Diagnosis) -> String {
             row.extend(st.values.iter().map(|v| value_text(*v)));
             t.row(row);
         }
+        if f.checks.iter().all(Option::is_none) {
+            continue;
+        }
         let mut row = vec![String::new(), "p (one value?)".into(), String::new()];
         row.extend(f.checks.iter().map(|k| {
             k.as_ref().map_or("-".into(), |k| {

@@ -92,6 +92,7 @@ fn a_stand_in_that_drifts_across_strata_is_provisional_not_a_finding() {
     assert_eq!(
         names,
         [
+            "all shots",
             "club speed terciles",
             "impact height halves",
             "heel-toe impact halves",
