@@ -129,12 +129,12 @@ fn num(x: f64) -> String {
     }
 }
 
-/// The cuts of `data` (family name, and per stratum its label and shot indices), as the module
-/// docs list them; `session_keys` the shots' session keys when known.
-pub(super) fn families(
-    data: &FitData,
-    session_keys: Option<&crate::stats::FoldKeys>,
-) -> Vec<(String, Vec<(String, Vec<usize>)>)> {
+/// A way of cutting the shots: its name, and per stratum its label and shot indices.
+pub(super) type Cut = (String, Vec<(String, Vec<usize>)>);
+
+/// The cuts of `data`, as the module docs list them; `session_keys` the shots' session keys
+/// when known.
+pub(super) fn families(data: &FitData, session_keys: Option<&crate::stats::FoldKeys>) -> Vec<Cut> {
     let n = data.len();
     // The reference: every shot, fitted the strata's way (their start and noise scales); one
     // stratum, so no test.
@@ -235,7 +235,7 @@ pub(super) fn check(
     data: &FitData,
     (layout, theta, sigma): (&ParamLayout, &DVector<f64>, [f64; 5]),
     estimates: &[ParamEstimate],
-    cuts: Vec<(String, Vec<(String, Vec<usize>)>)>,
+    cuts: Vec<Cut>,
     max_iters: u64,
 ) -> StrataCheck {
     let p = layout.len();

@@ -222,6 +222,6 @@ mod tests {
         assert!(
             Likelihood::of(&half, 0, None).minus_2_ln_l < Likelihood::of(&e, 0, None).minus_2_ln_l
         );
-        assert!(Likelihood::of(&vec![[0.0; 5]; 3], 0, None).is_finite());
+        assert!(Likelihood::of(&[[0.0; 5]; 3], 0, None).is_finite());
     }
 }
