@@ -372,16 +372,7 @@ pub fn calibrate_data_scored(
     let chi2 = residuals.norm_squared();
     let chi2_before = whiten(&errors_before, &sigma).norm_squared();
     let likelihood = Likelihood::of(&errors_after, p, given);
-    // The nominal model as the club alone (no free effect): the same evaluation in every
-    // calibration, whatever effects this one frees (at their defaults they leave the model as
-    // it is, but a user-defined term evaluates along another path, equal only to rounding).
-    let nominal_errors = FitProblem::new(
-        club,
-        ParamLayout::new(Vec::new())?,
-        data,
-        Weighting::launch(&[1.0; 5]),
-    )
-    .launch_errors(&[])?;
+    let nominal_errors = club_alone_errors(club, data)?;
     let likelihood_nominal = Likelihood::of(&nominal_errors, 0, given);
     let n_residuals = residuals.len();
     let dof = n_residuals - p;
@@ -430,6 +421,14 @@ pub fn calibrate_data_scored(
         impact_noise: opts.impact_noise,
         delivery_noise: opts.delivery_noise.filter(DeliveryNoise::is_active),
     })
+}
+
+/// The errors of the nominal model as the club alone (no free effect): the same evaluation in
+/// every calibration, whatever effects it frees (at their defaults they leave the model as it
+/// is, but a user-defined term evaluates along another path, equal only to rounding).
+fn club_alone_errors(club: &ClubSpec, data: &FitData) -> Result<Vec<[f64; 5]>, FitError> {
+    let layout = ParamLayout::new(Vec::new())?;
+    Ok(FitProblem::new(club, layout, data, Weighting::launch(&[1.0; 5])).launch_errors(&[])?)
 }
 
 /// What a procedure found: the point, its work, and the Jacobian there when it has one.
