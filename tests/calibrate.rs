@@ -54,7 +54,16 @@ fn paper_world_recovers_added_mass_per_shaft_and_ball_offset() {
     // A good fit: reduced chi2 near one, far below the nominal model's.
     assert!((cal.reduced_chi2 - 1.0).abs() < 0.1, "{}", cal.reduced_chi2);
     assert!(cal.chi2_before > 5.0 * cal.chi2);
-    assert!(cal.bic > cal.aic && cal.aic > cal.chi2);
+    // Information criteria from the likelihood with profiled scales: 5 parameters + 5 scales,
+    // and the calibrated model far more likely than the nominal one on the same scale.
+    let l = &cal.likelihood;
+    assert_eq!((l.k, cal.likelihood_nominal.k), (10, 5));
+    assert_eq!(cal.aic, l.minus_2_ln_l + 20.0);
+    assert_eq!(
+        cal.bic,
+        l.minus_2_ln_l + 10.0 * (cal.n_residuals as f64).ln()
+    );
+    assert!(cal.likelihood_nominal.aic() > cal.aic + 100.0);
     assert!(cal.evaluations > cal.iterations && cal.termination.contains("converged"));
     // The mean backspin error collapses (paper: 741 → ~100 rpm; here the truth is reachable).
     for (b, a) in cal.before.groups.iter().zip(&cal.after.groups) {

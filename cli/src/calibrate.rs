@@ -12,7 +12,7 @@ use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
 use smash::fit::{
-    calibrate, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
+    calibrate_scored, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
 };
 use smash::physics::LaunchComponent;
 use smash::report::{error_tables_side_by_side, TextTable};
@@ -109,12 +109,24 @@ pub struct CalibrateArgs {
         help_heading = "Measurement noise"
     )]
     pub delivery_noise: Option<smash::measurement::DeliveryNoise>,
+
+    /// Instrument class whose noise, carried through the nominal model, gives the scales every
+    /// model is scored by (-2 ln L, AIC, BIC); without it or --noise they are profiled.
+    #[arg(long, value_name = "CLASS", value_parser = super::likelihood::parse_instrument,
+        help_heading = "Model comparison")]
+    pub instrument: Option<smash::diagnose::noise_floor::InstrumentClass>,
+
+    /// Instrument noise file ([noise] table, as diagnose's) giving the scales (overrides it).
+    #[arg(long, value_name = "NOISE.toml", help_heading = "Model comparison")]
+    pub noise: Option<PathBuf>,
 }
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     args.effect_defs.load()?;
-    let plan = OutputPlan::new(&[("--club", &args.club), ("--shots", &args.shots)])
+    let mut inputs = vec![("--club", args.club.as_path()), ("--shots", &args.shots)];
+    inputs.extend(args.noise.as_deref().map(|n| ("--noise", n)));
+    let plan = OutputPlan::new(&inputs)
         .file("--out-club", args.out_club.as_deref())
         .file("--report", args.report.as_deref());
     plan.check()?;
@@ -227,13 +239,32 @@ pub fn compute(
         impact_noise: args.measurement.impact_noise_mm,
         delivery_noise: args.delivery_noise,
     };
-    let cal = calibrate(club, &table.shots, &requests, &opts, progress)
-        .with_context(|| args.shots.display().to_string())?;
+    let given = super::likelihood::given_scales(
+        (args.noise.as_deref(), args.instrument),
+        club,
+        &table.shots,
+        args.measurement.impact_noise_mm,
+    )
+    .with_context(|| args.shots.display().to_string())?;
+    let cal = calibrate_scored(
+        club,
+        &table.shots,
+        &requests,
+        &opts,
+        given.as_ref(),
+        progress,
+    )
+    .with_context(|| args.shots.display().to_string())?;
     // Nothing infinite or undefined is reported or written into a club file.
     let mut numbers: Vec<(String, f64)> = vec![
         ("chi2".into(), cal.chi2),
         ("nominal chi2".into(), cal.chi2_before),
         ("reduced chi2".into(), cal.reduced_chi2),
+        ("-2 ln L".into(), cal.likelihood.minus_2_ln_l),
+        (
+            "nominal -2 ln L".into(),
+            cal.likelihood_nominal.minus_2_ln_l,
+        ),
     ];
     numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
     if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
@@ -340,6 +371,7 @@ pub fn to_json(cal: &Calibration) -> serde_json::Value {
         "shaft_relation": shaft,
         "paper_stages": stages,
         "measurement_model": measurement_json(cal),
+        "likelihood": super::likelihood::to_json("calibrated", &cal.likelihood, &cal.likelihood_nominal),
     })
 }
 
@@ -497,37 +529,31 @@ fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> Str
     s
 }
 
-/// The fit's statistics: chi2, information criteria, noise scales, the solver's work and the
-/// paper's stage of each parameter.
+/// The fit's statistics: the models' likelihood scores on one scale, the fit's own chi2 and
+/// whitening scales, the solver's work and the paper's stage of each parameter.
 fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
-    let mut s = format!(
-        "\nchi2 = {:.2} (nominal model: {:.2}) over N = {} residuals, p = {}: reduced chi2 = {:.4}, \
-         AIC = {:.2}, BIC = {:.2}\n",
+    let mut s = super::likelihood::text(
+        &[
+            ("nominal", &cal.likelihood_nominal),
+            ("calibrated", &cal.likelihood),
+        ],
+        "",
+    );
+    s.push_str(&format!(
+        "chi2 = {:.2} over N = {} residuals, p = {}: reduced chi2 = {:.4} (whitened by this \
+         fit's own\n  robust scales, for the standard errors: not comparable between fits)\n",
         cal.chi2,
-        cal.chi2_before,
         cal.n_residuals,
         cal.params.len(),
         cal.reduced_chi2,
-        cal.aic,
-        cal.bic
-    );
-    s.push_str("noise scales (robust, from the calibrated residuals): ");
-    s.push_str(
-        &LaunchComponent::ALL
-            .iter()
-            .map(|c| {
-                format!(
-                    "{} {:.3} {}",
-                    c.column(),
-                    cal.noise_scales[c.index()],
-                    c.unit()
-                )
-            })
-            .collect::<Vec<_>>()
-            .join(", "),
-    );
+    ));
+    s.push_str(&super::likelihood::scales_text(
+        "whitening scales:",
+        "",
+        &cal.noise_scales,
+    ));
     s.push_str(&format!(
-        "\nsolver: {} iteration(s), {} residual evaluations; {}\n",
+        "solver: {} iteration(s), {} residual evaluations; {}\n",
         cal.iterations, cal.evaluations, cal.termination
     ));
     if !cal.paper_stages.is_empty() {

@@ -16,7 +16,7 @@ use smash::data::noise_file::read_noise_file;
 use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
-use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor};
+use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor, SpreadBand};
 use smash::diagnose::{
     diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, Step,
     DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
@@ -122,7 +122,7 @@ pub struct DiagnoseArgs {
     #[arg(
         long,
         value_name = "CLASS",
-        value_parser = parse_instrument,
+        value_parser = super::likelihood::parse_instrument,
         help_heading = "Noise floor"
     )]
     pub instrument: Option<InstrumentClass>,
@@ -137,15 +137,6 @@ pub struct DiagnoseArgs {
 /// the metre round trip.
 fn location_mm(m: f64) -> f64 {
     (m * 1e9).round() / 1e6
-}
-
-fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
-    InstrumentClass::from_name(s).ok_or_else(|| {
-        format!(
-            "unknown instrument class '{s}'; allowed: {}",
-            InstrumentClass::ALL.map(|c| c.name()).join(", ")
-        )
-    })
 }
 
 struct Bar(ProgressBar);
@@ -234,6 +225,7 @@ pub fn compute(
         (None, Some(c)) => Some(c.noise()),
         (None, None) => None,
     };
+    let assumed = known_noise.is_none();
     let instrument = known_noise
         .clone()
         .unwrap_or_else(|| InstrumentClass::Camera.noise());
@@ -267,7 +259,8 @@ pub fn compute(
     let mut d = diagnose(club, &table.shots, &opts, progress)
         .with_context(|| args.shots.display().to_string())?;
     d.club_mismatch = mismatch;
-    let floor = noise_floor(&d, &table.shots, &instrument)?;
+    let mut floor = noise_floor(&d, &table.shots, &instrument)?;
+    floor.assumed = assumed;
     Ok((d, floor))
 }
 
@@ -299,8 +292,9 @@ fn estimates_json_with(
         .collect()
 }
 
-/// `finding`, `stand_in`, `absent` (on its no-effect bound) or `ambiguous` (a plausible value
-/// with a plausible rival, or aliased with another effect).
+/// `finding`, `stand_in`, `absent` (on its no-effect bound), `provisional` (its value differs
+/// across strata of the shots) or `ambiguous` (a plausible value with a plausible rival, or
+/// aliased with another effect).
 fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
     if d.club_mismatch.is_some() {
         "wrong_club"
@@ -310,6 +304,8 @@ fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
         "absent"
     } else if d.is_finding(p) {
         "finding"
+    } else if d.provisional(p).is_some() {
+        "provisional"
     } else {
         "ambiguous"
     }
@@ -361,6 +357,7 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
                     "params": estimates_json(&c.params),
                 })).collect::<Vec<_>>(),
                 "after": s.after.to_json(),
+                "fit": crate::likelihood::score_json(&s.fit),
             })
         })
         .collect();
@@ -379,12 +376,17 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         "calibrate_flags": calibrate_flags(d),
         "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
         "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
+        "provisional": d.estimates.iter().filter_map(|p| d.provisional(p).map(|why| json!({
+            "param": p.label(), "failed_check": why,
+        }))).collect::<Vec<_>>(),
+        "strata": d.strata.as_ref().map(crate::strata::to_json),
         "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
         "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
             "param": p.label(), "value": p.value, "unit": p.unit,
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
         }))).collect::<Vec<_>>(),
         "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "likelihood": crate::likelihood::to_json("final", &d.final_fit, &d.nominal_fit),
         "noise_floor": floor.to_json(),
         "conclusion": conclusion(d, floor),
         "steps": steps,
@@ -422,8 +424,66 @@ fn fmt_params(ps: &[ParamEstimate]) -> String {
         .join(", ")
 }
 
-/// What the diagnosis concludes about the structure left in the errors.
+/// What the diagnosis concludes about the structure left in the errors, and, when the
+/// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
 pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    format!("{}{}", verdict(d, floor), assumed_note(floor))
+}
+
+/// Without `--noise` or `--instrument`: the verdict rests on the assumed class's noise; the
+/// observed-to-expected spread ratio per component, and what a ratio well below or well above
+/// 1 means (empty when the noise was given).
+fn assumed_note(floor: &NoiseFloor) -> String {
+    if !floor.assumed {
+        return String::new();
+    }
+    let ratios: Vec<String> = floor
+        .components
+        .iter()
+        .map(|c| format!("{} {:.2}", c.component.column(), c.ratio))
+        .collect();
+    let band = |b: SpreadBand| -> Vec<&str> {
+        floor
+            .components
+            .iter()
+            .filter(|c| floor.spread_band(c) == b)
+            .map(|c| c.component.column())
+            .collect()
+    };
+    let h = floor.band_half_width();
+    let mut s = format!(
+        ". This verdict rests on the ASSUMED {} instrument noise (no --noise or --instrument \
+         given); observed/expected spread: {}",
+        floor.instrument.name,
+        ratios.join(", ")
+    );
+    let below = band(SpreadBand::WellBelow);
+    if !below.is_empty() {
+        s.push_str(&format!(
+            "; well below 1 (under {:.2}) in {}: the assumed noise is too large for these \
+             errors, so the test cannot see structure there",
+            1.0 - h,
+            below.join(", ")
+        ));
+    }
+    let above = band(SpreadBand::WellAbove);
+    if !above.is_empty() {
+        s.push_str(&format!(
+            "; well above 1 (over {:.2}) in {}: structure remains there, or the instruments \
+             are noisier than assumed",
+            1.0 + h,
+            above.join(", ")
+        ));
+    }
+    if below.is_empty() && above.is_empty() {
+        s.push_str(&format!("; each within {h:.2} of 1"));
+    }
+    s.push_str("; give the instruments' noise with --noise to test it");
+    s
+}
+
+/// The verdict on the structure left in the errors.
+fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
     let stand_ins: Vec<String> = d
         .estimates
         .iter()
@@ -466,6 +526,21 @@ pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
             "{stand_in_note}; aliased, not findings (the data cannot tell which effect carries \
              the signal): {}",
             aliased.join("; ")
+        )
+    };
+    let provisional: Vec<String> = d
+        .estimates
+        .iter()
+        .filter(|p| d.provisional(p).is_some())
+        .map(|p| p.label())
+        .collect();
+    let stand_in_note = if provisional.is_empty() {
+        stand_in_note
+    } else {
+        format!(
+            "{stand_in_note}; provisional, not findings (the value differs between parts of the \
+             shots beyond its uncertainty): {}",
+            provisional.join(", ")
         )
     };
     if !floor.structure_remains() {
@@ -523,6 +598,8 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
         s.push_str(&step_text(i, st));
     }
     s.push_str(&summary_text(d));
+    s.push_str(&crate::strata::text(d));
+    s.push_str(&likelihood_text(d));
     s.push_str(&floor_text(d, floor));
     s.push('\n');
     s.push_str(&error_tables_side_by_side(
@@ -650,6 +727,27 @@ fn step_text(i: usize, st: &Step) -> String {
     s
 }
 
+/// The models of the steps that changed the model, with the nominal and the final model, on
+/// the diagnosis's one likelihood scale.
+fn likelihood_text(d: &Diagnosis) -> String {
+    let mut rows: Vec<(String, &smash::fit::Likelihood)> = vec![("nominal".into(), &d.nominal_fit)];
+    for (i, st) in d.steps.iter().enumerate() {
+        let what = match (&st.selected, &st.swap) {
+            (Some(l), _) => format!("+ {l}"),
+            (None, Some(w)) => match &w.inn {
+                Some(inn) => format!("{} -> {inn}", w.out),
+                None => format!("- {}", w.out),
+            },
+            (None, None) => continue,
+        };
+        rows.push((format!("after step {}: {what}", i + 1), &st.fit));
+    }
+    rows.push(("final".into(), &d.final_fit));
+    let rows: Vec<(&str, &smash::fit::Likelihood)> =
+        rows.iter().map(|(n, l)| (n.as_str(), *l)).collect();
+    crate::likelihood::text(&rows, "")
+}
+
 /// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the
 /// measurement model.
 fn summary_text(d: &Diagnosis) -> String {
@@ -671,7 +769,7 @@ fn summary_text(d: &Diagnosis) -> String {
             .collect();
         s.push_str(&format!(
             "Findings (values inside their plausible ranges, no plausible rival, not aliased with \
-             another effect): {}\n",
+             another effect, the same in every stratum): {}\n",
             if findings.is_empty() {
                 "none".to_owned()
             } else {
@@ -776,6 +874,9 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
         "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
         floor.instrument.name
     );
+    if floor.assumed {
+        s.push_str("(that noise is ASSUMED: no --noise or --instrument was given)\n");
+    }
     let mut t = TextTable::new([
         "component",
         "mean",
@@ -799,6 +900,10 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
         ]);
     }
     s.push_str(&t.render());
-    s.push_str(&format!("Conclusion: {}\n", conclusion(d, floor)));
+    s.push_str(&crate::wrap::wrap(
+        &format!("Conclusion: {}", conclusion(d, floor)),
+        99,
+        2,
+    ));
     s
 }

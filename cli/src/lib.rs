@@ -10,15 +10,18 @@ pub mod diagnose;
 pub mod effects;
 pub mod flight;
 pub mod import;
+pub mod likelihood;
 pub mod merge;
 pub mod predict;
 pub mod progress;
 pub mod run;
 pub mod signals;
 pub mod stdout;
+pub mod strata;
 pub mod study_output;
 pub mod synth;
 pub mod whatif;
+pub mod wrap;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.

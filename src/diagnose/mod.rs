@@ -65,11 +65,12 @@ pub mod noise_floor;
 mod search;
 pub mod select;
 mod spread;
+pub mod strata;
 
 use crate::club::ClubSpec;
 use crate::effects::{EffectId, EffectKind};
 use crate::fit::calibrate::ParamEstimate;
-use crate::fit::{EffectRequest, FitData, FitError};
+use crate::fit::{EffectRequest, FitData, FitError, Likelihood};
 use crate::model::Shot;
 use crate::physics::LaunchComponent;
 use crate::stats::{launch_error_table, ErrorTable};
@@ -256,6 +257,10 @@ pub struct Step {
     pub selected: Option<String>,
     /// Errors on all shots of the model after this step.
     pub after: ErrorTable,
+    /// The likelihood score of the model after this step, on the diagnosis's one scale (the
+    /// instruments' noise when known, else profiled; [`crate::fit::likelihood`]): comparable
+    /// across steps, unlike the cross-validated χ² whose noise scales each step re-estimates.
+    pub fit: Likelihood,
     /// With a known noise floor: the base model's errors were already at it, so no physical
     /// effect was offered this step (only measurement candidates).
     pub at_noise_floor: bool,
@@ -338,6 +343,13 @@ pub struct Diagnosis {
     /// Why the shots do not match the club file, when the caller ran anyway
     /// ([`crate::club_match`]): then no estimate is a finding.
     pub club_mismatch: Option<String>,
+    /// The club as given, scored on the same scale as [`Step::fit`].
+    pub nominal_fit: Likelihood,
+    /// The final model (the reported values), scored on the same scale.
+    pub final_fit: Likelihood,
+    /// The final model refitted on independent strata of the shots, and whether each value
+    /// holds across them ([`strata`]; `None` when nothing is selected).
+    pub strata: Option<strata::StrataCheck>,
 }
 
 impl Diagnosis {
@@ -346,7 +358,23 @@ impl Diagnosis {
     /// selection, and not aliased with another selected effect's parameter (the data cannot
     /// tell which of the two effects carries the signal, so neither value is a reading of the
     /// physics; `docs/diagnose-selection.md`, "Aliased absent pairs")?
+    /// It must also hold across the strata of the shots ([`strata`]): else it is
+    /// [`Self::provisional`].
     pub fn is_finding(&self, p: &ParamEstimate) -> bool {
+        self.passes_report_checks(p) && self.provisional(p).is_none()
+    }
+
+    /// When this estimate would be a finding but its value differs across the strata of the
+    /// shots beyond its uncertainty ([`strata`]): the failed check, as text.
+    pub fn provisional(&self, p: &ParamEstimate) -> Option<String> {
+        if !self.passes_report_checks(p) {
+            return None;
+        }
+        self.strata.as_ref()?.failed(&p.label())
+    }
+
+    /// The checks of [`Self::is_finding`] but the strata's.
+    fn passes_report_checks(&self, p: &ParamEstimate) -> bool {
         self.club_mismatch.is_none()
             && honest::is_plausible(p) != Some(false)
             && !honest::is_absent(p)
@@ -438,6 +466,8 @@ pub fn diagnose(
     )?;
     let nominal = search.errors_of(&search.base, &[])?;
     let before = launch_error_table(&search.groups, &nominal);
+    // Scored before any step chooses a noise level (which would be counted as a parameter).
+    let nominal_fit = search.likelihood_of(&nominal);
     let mut steps = Vec::new();
     // Forward steps (at most `max_steps`), then swap rounds (or a re-selection) while one
     // improves, then forward again while steps are left. The step cap bounds run time, not the
@@ -496,7 +526,7 @@ pub fn diagnose(
         steps.extend(more);
         changes += 1;
     }
-    search.finish((fold_by, n_folds), steps, before, warnings)
+    search.finish((fold_by, n_folds), steps, (before, nominal_fit), warnings)
 }
 
 /// Launch components in report order (re-exported for the CLI).

@@ -36,7 +36,7 @@ use rayon::prelude::*;
 use serde_json::json;
 
 use crate::club::ClubSpec;
-use crate::fit::{FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::fit::{FitData, FitError, FitProblem, GivenScales, ParamLayout, Weighting};
 use crate::model::Shot;
 use crate::model::{default_launch_noise, delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use crate::physics::{Delivery, LaunchComponent};
@@ -186,9 +186,57 @@ pub struct NoiseFloor {
     pub instrument: InstrumentNoise,
     /// Per launch component, in [`LaunchComponent::ALL`] order.
     pub components: Vec<ComponentFloor>,
+    /// Shots the spreads were measured on.
+    pub n_shots: usize,
+    /// Was the instrument noise assumed (a default class) rather than given by the user?
+    /// Set by the caller, who knows; `false` from [`noise_floor_of`].
+    pub assumed: bool,
+}
+
+/// Where an observed-to-expected spread ratio lies (see [`NoiseFloor::spread_band`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SpreadBand {
+    /// Well below 1: the errors scatter less than the noise assumed, which is too large; the
+    /// test cannot see structure of that size.
+    WellBelow,
+    /// Within the band: as the noise assumed explains.
+    Near,
+    /// Well above 1: structure remains, or the noise is larger than assumed.
+    WellAbove,
+}
+
+impl SpreadBand {
+    /// `well_below`, `near` or `well_above`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::WellBelow => "well_below",
+            Self::Near => "near",
+            Self::WellAbove => "well_above",
+        }
+    }
 }
 
 impl NoiseFloor {
+    /// Half-width of the band around 1 inside which a spread ratio counts as near 1: the larger
+    /// of 0.1 and three standard errors of the ratio under the noise (`√(S/ν)` with
+    /// `S ~ χ²(ν)`, `ν = n − 1`, has standard error `1/√(2ν)` for large `ν`).
+    pub fn band_half_width(&self) -> f64 {
+        let nu = (self.n_shots.max(2) - 1) as f64;
+        (3.0 / (2.0 * nu).sqrt()).max(0.1)
+    }
+
+    /// Where component `c`'s ratio lies relative to 1 (see [`Self::band_half_width`]).
+    pub fn spread_band(&self, c: &ComponentFloor) -> SpreadBand {
+        let h = self.band_half_width();
+        if c.ratio < 1.0 - h {
+            SpreadBand::WellBelow
+        } else if c.ratio > 1.0 + h {
+            SpreadBand::WellAbove
+        } else {
+            SpreadBand::Near
+        }
+    }
+
     /// Does structure remain in any component?
     pub fn structure_remains(&self) -> bool {
         self.components.iter().any(|c| c.structure)
@@ -202,9 +250,15 @@ impl NoiseFloor {
                 "launch_sd": LaunchComponent::ALL.iter().map(|c| (c.column().to_owned(), json!(self.instrument.launch_sd[c.index()]))).collect::<serde_json::Map<_, _>>(),
                 "delivery_sd": DeliveryVar::ALL.iter().map(|v| (v.column().to_owned(), json!(self.instrument.delivery_sd[v.index()]))).collect::<serde_json::Map<_, _>>(),
             },
+            "assumed": self.assumed,
+            "band_half_width": self.band_half_width(),
             "alpha": STRUCTURE_ALPHA,
             "structure_remains": self.structure_remains(),
-            "components": self.components.iter().map(ComponentFloor::to_json).collect::<Vec<_>>(),
+            "components": self.components.iter().map(|c| {
+                let mut j = c.to_json();
+                j["spread_band"] = self.spread_band(c).name().into();
+                j
+            }).collect::<Vec<_>>(),
         })
     }
 }
@@ -315,8 +369,28 @@ pub(super) fn delivery_jacobians(
     per_shot.into_iter().collect()
 }
 
+/// The instruments' noise `inst` as the given scales of a likelihood
+/// ([`crate::fit::likelihood`]): each shot's expected error variance per component (see the
+/// module docs) with the model `club` (the nominal model, so that every model of the same shots
+/// is scored on the same variances) and the location correction `location_model`.
+pub fn given_scales(
+    club: &ClubSpec,
+    shots: &[Shot],
+    inst: &InstrumentNoise,
+    location_model: Option<crate::measurement::ImpactNoise>,
+) -> Result<GivenScales, FitError> {
+    let variances = expected_variances(club, shots, inst, location_model)?
+        .into_iter()
+        .map(|v| v.map(|x| x.max(f64::MIN_POSITIVE)))
+        .collect();
+    Ok(GivenScales {
+        name: inst.name.clone(),
+        variances,
+    })
+}
+
 /// Expected variance of each shot's error per component (see the module docs).
-fn expected_variances(
+pub fn expected_variances(
     club: &ClubSpec,
     shots: &[Shot],
     inst: &InstrumentNoise,
@@ -413,6 +487,8 @@ pub fn noise_floor_of(
     Ok(NoiseFloor {
         instrument: inst.clone(),
         components,
+        n_shots: n,
+        assumed: false,
     })
 }
 

@@ -13,7 +13,9 @@ use super::{
 };
 use crate::club::ClubSpec;
 use crate::fit::calibrate::{noise_scales, Calibration};
-use crate::fit::{EffectRequest, FitData, FitError, FitProblem, ParamLayout, Weighting};
+use crate::fit::{
+    EffectRequest, FitData, FitError, FitProblem, GivenScales, Likelihood, ParamLayout, Weighting,
+};
 use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
@@ -155,6 +157,9 @@ pub(super) struct Search<'a> {
     reselected: bool, // a re-selection (`reselect.rs`) has been tried: at most once
     /// The final fit made by the check of `final_fit.rs`, kept for the report (its selection).
     checked_fit: Option<(Vec<String>, Calibration)>,
+    /// The instruments' noise as fixed variances per shot when it is known, for the
+    /// likelihood every step's model is scored by (`None`: profiled scales).
+    given: Option<std::sync::Arc<GivenScales>>,
 }
 
 impl<'a> Search<'a> {
@@ -194,6 +199,12 @@ impl<'a> Search<'a> {
         );
         let (noise_options, said) = noise_options?;
         warnings.extend(said);
+        let given = opts
+            .noise_floor
+            .as_ref()
+            .map(|inst| noise_floor::given_scales(club, shots, inst, opts.impact_noise))
+            .transpose()?
+            .map(std::sync::Arc::new);
         Ok(Self {
             club,
             shots,
@@ -214,7 +225,17 @@ impl<'a> Search<'a> {
             fold_of: fold_of.to_vec(),
             reselected: false,
             checked_fit: None,
+            given,
         })
+    }
+
+    /// The likelihood score of `errors` of the current model (its fitted parameters, and a
+    /// noise level selected from the data counted as one more each), on the diagnosis's one
+    /// scale ([`crate::fit::likelihood`]).
+    pub(super) fn likelihood_of(&self, errors: &[[f64; 5]]) -> Likelihood {
+        let chosen = usize::from(self.chosen_noise.is_some() && self.opts.impact_noise.is_none())
+            + usize::from(self.chosen_delivery.is_some() && self.opts.delivery_noise().is_none());
+        Likelihood::of(errors, self.base.len() + chosen, self.given.as_deref())
     }
 
     pub(super) fn errors_of(
@@ -275,14 +296,15 @@ impl<'a> Search<'a> {
             .collect()
     }
 
-    /// Make candidate `i` of `scored` part of the model; returns its label and the errors after.
+    /// Make candidate `i` of `scored` part of the model; returns its label, the errors after
+    /// and the model's likelihood score.
     fn adopt(
         &mut self,
         i: usize,
         scored: &Scored,
         open: &[&EffectRequest],
         w: Weighting,
-    ) -> Result<(String, ErrorTable), FitError> {
+    ) -> Result<(String, ErrorTable, Likelihood), FitError> {
         // The model or the data changes: a final fit checked before is not theirs.
         self.checked_fit = None;
         if i >= scored.n_effects + scored.n_impact {
@@ -319,6 +341,7 @@ impl<'a> Search<'a> {
         Ok((
             scored.results[i].label.clone(),
             launch_error_table(&self.groups, &errs),
+            self.likelihood_of(&errs),
         ))
     }
 
@@ -346,6 +369,7 @@ impl<'a> Search<'a> {
                 candidates: Vec::new(),
                 selected: None,
                 after: launch_error_table(&self.groups, &base_errors),
+                fit: self.likelihood_of(&base_errors),
                 at_noise_floor,
                 alias: None,
                 rivals: Vec::new(),
@@ -367,9 +391,10 @@ impl<'a> Search<'a> {
             ),
             _ => Vec::new(),
         };
-        let (chosen, after) = match winner {
+        let (chosen, after, fit) = match winner {
             Some(i) => {
-                let (label, after) = self.adopt(i, &scored, &open, Weighting::launch(&sigma))?;
+                let (label, after, fit) =
+                    self.adopt(i, &scored, &open, Weighting::launch(&sigma))?;
                 if i < scored.n_effects {
                     let kin = select::kin(&scored.results, &scored.explained, i, scored.n_effects)
                         .into_iter()
@@ -379,9 +404,13 @@ impl<'a> Search<'a> {
                         .retain(|(_, req, _)| req.kind() != open[i].kind());
                     self.kin_of.push((label.clone(), open[i].clone(), kin));
                 }
-                (Some(label), after)
+                (Some(label), after, fit)
             }
-            None => (None, launch_error_table(&self.groups, &base_errors)),
+            None => (
+                None,
+                launch_error_table(&self.groups, &base_errors),
+                self.likelihood_of(&base_errors),
+            ),
         };
         Ok(Some(Step {
             base: base_labels,
@@ -390,6 +419,7 @@ impl<'a> Search<'a> {
             candidates: order.iter().map(|&i| scored.results[i].clone()).collect(),
             selected: chosen,
             after,
+            fit,
             at_noise_floor,
             alias,
             rivals,
@@ -475,7 +505,7 @@ impl<'a> Search<'a> {
         mut self,
         (fold_by, n_folds): (FoldBy, usize),
         steps: Vec<Step>,
-        before: ErrorTable,
+        (before, nominal_fit): (ErrorTable, Likelihood),
         warnings: Vec<String>,
     ) -> Result<Diagnosis, FitError> {
         // A level selected from the data, refined once more on the final model.
@@ -497,6 +527,22 @@ impl<'a> Search<'a> {
                 (cal.params, cal.after, cal.club, aliases)
             }
         };
+        // The final model's score: the reported values on the base layout (the nominal
+        // model's errors when nothing is selected).
+        let final_theta: Vec<f64> = estimates.iter().map(|p| p.value).collect();
+        let final_errors = self.errors_of(&self.base, &final_theta)?;
+        let final_fit = self.likelihood_of(&final_errors);
+        let strata = (!estimates.is_empty()).then(|| {
+            let theta = DVector::from_vec(final_theta);
+            super::strata::check(
+                self.club,
+                &self.data,
+                (&self.base, &theta, noise_scales(&final_errors)),
+                &estimates,
+                super::strata::families(&self.data, self.opts.fold_keys.as_ref()),
+                self.opts.max_iters,
+            )
+        });
         let ambiguities = self.ambiguities(&estimates)?;
         Ok(Diagnosis {
             fold_by,
@@ -517,6 +563,9 @@ impl<'a> Search<'a> {
             aliases,
             ambiguities,
             club_mismatch: None,
+            nominal_fit,
+            final_fit,
+            strata,
         })
     }
 }

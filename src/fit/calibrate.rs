@@ -20,6 +20,7 @@ use std::sync::Arc;
 use nalgebra::{DMatrix, DVector};
 
 use super::covariance::{covariance, Covariance, Identifiability};
+use super::likelihood::{GivenScales, Likelihood};
 use super::problem::{FitData, FitProblem, Weighting};
 use super::run::{execute, FitRun, Progress};
 use super::spec::{EffectRequest, ParamLayout};
@@ -182,11 +183,17 @@ pub struct Calibration {
     pub dof: usize,
     /// `χ²/(N − p)`.
     pub reduced_chi2: f64,
-    /// `χ² + 2p`.
+    /// `−2 ln L + 2k` of [`Self::likelihood`] (comparable across calibrations of the same
+    /// shots with the same scale source, see [`super::likelihood`]).
     pub aic: f64,
-    /// `χ² + p·ln N`.
+    /// `−2 ln L + k·ln N` of [`Self::likelihood`].
     pub bic: f64,
-    /// χ² of the nominal model with the same noise scales.
+    /// The calibrated model's likelihood score.
+    pub likelihood: Likelihood,
+    /// The nominal model's likelihood score, on the same scale (its `k`: no fitted parameter).
+    pub likelihood_nominal: Likelihood,
+    /// χ² of the nominal model whitened with this fit's noise scales (which another fit
+    /// estimates differently: compare models by [`Self::likelihood`]).
     pub chi2_before: f64,
     /// Residual evaluations, all stages (a Jacobian counts two per parameter).
     pub evaluations: u64,
@@ -194,7 +201,8 @@ pub struct Calibration {
     pub iterations: u64,
     /// Why the last stage stopped.
     pub termination: String,
-    /// Noise scales `σ_c` in file units, launch component order.
+    /// Noise scales `σ_c` the residuals were whitened with (robust, from this fit's errors),
+    /// file units, launch component order.
     pub noise_scales: [f64; 5],
     /// Errors of the nominal model, Table-2 layout.
     pub before: ErrorTable,
@@ -259,6 +267,19 @@ pub fn calibrate(
     opts: &CalibrateOptions,
     progress: Option<Arc<dyn Progress>>,
 ) -> Result<Calibration, FitError> {
+    calibrate_scored(club, shots, requests, opts, None, progress)
+}
+
+/// [`calibrate`], its models scored ([`Calibration::likelihood`]) with the noise variances
+/// `given` (one row a shot of `shots`) or, when `None`, with profiled scales.
+pub fn calibrate_scored(
+    club: &ClubSpec,
+    shots: &[Shot],
+    requests: &[EffectRequest],
+    opts: &CalibrateOptions,
+    given: Option<&GivenScales>,
+    progress: Option<Arc<dyn Progress>>,
+) -> Result<Calibration, FitError> {
     let data = FitData::from_shots(shots)?
         .with_delivery_noise(opts.delivery_noise)
         .with_impact_noise(opts.impact_noise)?;
@@ -269,7 +290,7 @@ pub fn calibrate(
             return Err(FitError::Degenerate(why.clone()));
         }
     }
-    calibrate_data(club, &data, layout, opts, progress)
+    calibrate_data_scored(club, &data, layout, opts, given, progress)
 }
 
 /// [`calibrate`] on prepared data and layout. `opts.impact_noise` and `opts.delivery_noise`
@@ -282,6 +303,24 @@ pub fn calibrate_data(
     opts: &CalibrateOptions,
     progress: Option<Arc<dyn Progress>>,
 ) -> Result<Calibration, FitError> {
+    calibrate_data_scored(club, data, layout, opts, None, progress)
+}
+
+/// [`calibrate_data`], scored with the variances `given` (one row a shot of `data`) or, when
+/// `None`, with profiled scales ([`super::likelihood`]).
+pub fn calibrate_data_scored(
+    club: &ClubSpec,
+    data: &FitData,
+    layout: ParamLayout,
+    opts: &CalibrateOptions,
+    given: Option<&GivenScales>,
+    progress: Option<Arc<dyn Progress>>,
+) -> Result<Calibration, FitError> {
+    if given.is_some_and(|g| g.variances.len() != data.len()) {
+        return Err(FitError::Solver(
+            "the given noise variances are not one row a shot".into(),
+        ));
+    }
     let p = layout.len();
     if data.len() <= p {
         return Err(FitError::TooFewShots {
@@ -332,6 +371,9 @@ pub fn calibrate_data(
     };
     let chi2 = residuals.norm_squared();
     let chi2_before = whiten(&errors_before, &sigma).norm_squared();
+    let likelihood = Likelihood::of(&errors_after, p, given);
+    let nominal_errors = club_alone_errors(club, data)?;
+    let likelihood_nominal = Likelihood::of(&nominal_errors, 0, given);
     let n_residuals = residuals.len();
     let dof = n_residuals - p;
     let reduced_chi2 = chi2 / dof as f64;
@@ -361,8 +403,10 @@ pub fn calibrate_data(
         n_residuals,
         dof,
         reduced_chi2,
-        aic: chi2 + 2.0 * p as f64,
-        bic: chi2 + p as f64 * (n_residuals as f64).ln(),
+        aic: likelihood.aic(),
+        bic: likelihood.bic(),
+        likelihood,
+        likelihood_nominal,
         chi2_before,
         evaluations,
         iterations: solved.iterations,
@@ -377,6 +421,14 @@ pub fn calibrate_data(
         impact_noise: opts.impact_noise,
         delivery_noise: opts.delivery_noise.filter(DeliveryNoise::is_active),
     })
+}
+
+/// The errors of the nominal model as the club alone (no free effect): the same evaluation in
+/// every calibration, whatever effects it frees (at their defaults they leave the model as it
+/// is, but a user-defined term evaluates along another path, equal only to rounding).
+fn club_alone_errors(club: &ClubSpec, data: &FitData) -> Result<Vec<[f64; 5]>, FitError> {
+    let layout = ParamLayout::new(Vec::new())?;
+    Ok(FitProblem::new(club, layout, data, Weighting::launch(&[1.0; 5])).launch_errors(&[])?)
 }
 
 /// What a procedure found: the point, its work, and the Jacobian there when it has one.

@@ -10,13 +10,16 @@
 //! Statistics, with `r` the whitened residuals (`(model − measured)/σ_c`, `σ_c` the noise
 //! scale of launch component `c`, estimated from the data as the normal-consistent MAD of the
 //! residuals and re-estimated after a first fit), `N` residual rows and `p` parameters:
-//! `χ² = Σ r²`, reduced `χ²/(N − p)`, `AIC = χ² + 2p`, `BIC = χ² + p·ln N` (the Gaussian
-//! log-likelihood up to a constant), standard errors `√diag((JᵀJ)⁻¹·χ²/(N − p))` from the
-//! undamped Jacobian at the solution.
+//! `χ² = Σ r²`, reduced `χ²/(N − p)`, standard errors `√diag((JᵀJ)⁻¹·χ²/(N − p))` from the
+//! undamped Jacobian at the solution. Models are compared on one scale, not by this χ²
+//! (whose scales each fit estimates for itself): by the Gaussian likelihood of the errors with
+//! given or profiled noise scales, `AIC = −2 ln L + 2k`, `BIC = −2 ln L + k·ln N`
+//! ([`likelihood`]).
 
 pub mod calibrate;
 pub mod covariance;
 mod data;
+pub mod likelihood;
 pub mod lm;
 pub mod problem;
 pub mod run;
@@ -24,10 +27,11 @@ pub mod spec;
 pub mod variation;
 
 pub use calibrate::{
-    calibrate, noise_scales, CalibrateOptions, Calibration, CorrelatedPair, Method,
-    PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
+    calibrate, calibrate_scored, noise_scales, CalibrateOptions, Calibration, CorrelatedPair,
+    Method, PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
 };
 pub use covariance::{covariance, Covariance, Identifiability};
+pub use likelihood::{GivenScales, Likelihood, ScaleSource};
 pub use lm::{Converged, LevenbergMarquardt, LmState};
 pub use problem::{EvalError, FitData, FitProblem, Weighting, FD_STEP_OF_RANGE};
 pub use run::{

@@ -152,6 +152,7 @@ impl Search<'_> {
             candidates,
             selected: None,
             after: launch_error_table(&self.groups, &after_errors),
+            fit: self.likelihood_of(&after_errors),
             at_noise_floor: false,
             alias: None,
             rivals: Vec::new(),

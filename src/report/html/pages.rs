@@ -131,11 +131,15 @@ pub fn calibrate_page(
     let page = Page {
         title: "smash calibrate".into(),
         subtitle: format!(
-            "{title} — {} parameter(s), method {}; χ² {:.1} → {:.1} (nominal → calibrated), reduced χ² {:.3}.",
+            "{title} — {} parameter(s), method {}; −2 ln L {:.1} → {:.1}, AIC {:.1} → {:.1} (nominal → calibrated; noise scales {}{}); reduced χ² {:.3} (whitened by the fit's own scales).",
             cal.params.len(),
             cal.method.name(),
-            cal.chi2_before,
-            cal.chi2,
+            cal.likelihood_nominal.minus_2_ln_l,
+            cal.likelihood.minus_2_ln_l,
+            cal.likelihood_nominal.aic(),
+            cal.likelihood.aic(),
+            cal.likelihood.source.kind(),
+            cal.likelihood.source.name().map_or(String::new(), |n| format!(", {n}")),
             cal.reduced_chi2
         ),
         sections: vec![

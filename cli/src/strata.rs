@@ -1,0 +1,115 @@
+//! Diagnose's strata table: every selected value refitted on independent parts of the shots, and
+//! which would-be findings are provisional because the parts disagree
+//! ([`smash::diagnose::strata`]).
+
+use serde_json::json;
+
+use smash::diagnose::strata::StrataCheck;
+use smash::diagnose::Diagnosis;
+use smash::report::TextTable;
+
+/// A value in 4 significant figures (scientific when small), with its standard error.
+fn value_text(v: Option<(f64, f64)>) -> String {
+    let num = |x: f64| {
+        if x != 0.0 && x.abs() < 1e-3 {
+            format!("{x:.2e}")
+        } else {
+            format!("{x:.4}")
+        }
+    };
+    v.map_or("n/a".into(), |(v, se)| format!("{} ± {}", num(v), num(se)))
+}
+
+/// The strata table (one block of rows per family, its p-values last) and the provisional
+/// values with the check each failed; empty when nothing was checked.
+pub fn text(d: &Diagnosis) -> String {
+    let Some(c) = &d.strata else {
+        return String::new();
+    };
+    let mut s = format!(
+        "\nStability across strata (the final model refitted on each part of the shots; a \
+         value whose\nparts disagree, p < {:.1e} = {} / checks made, is provisional, not a \
+         finding):\n",
+        c.alpha_each,
+        smash::diagnose::strata::STRATA_ALPHA
+    );
+    let mut header = vec!["family".to_owned(), "stratum".into(), "n".into()];
+    header.extend(c.params.iter().cloned());
+    let mut t = TextTable::new(header);
+    for f in &c.families {
+        for (i, st) in f.strata.iter().enumerate() {
+            let mut row = vec![
+                if i == 0 {
+                    f.name.clone()
+                } else {
+                    String::new()
+                },
+                st.label.clone(),
+                st.n.to_string(),
+            ];
+            row.extend(st.values.iter().map(|v| value_text(*v)));
+            t.row(row);
+        }
+        if f.checks.iter().all(Option::is_none) {
+            continue;
+        }
+        let mut row = vec![String::new(), "p (one value?)".into(), String::new()];
+        row.extend(f.checks.iter().map(|k| {
+            k.as_ref().map_or("-".into(), |k| {
+                let p = if k.p_value < 1e-15 {
+                    "< 1e-15".to_owned()
+                } else {
+                    format!("{:.2e}", k.p_value)
+                };
+                format!("{p}{}", if k.stable { "" } else { " DIFFERS" })
+            })
+        }));
+        t.row(row);
+    }
+    s.push_str(&t.render());
+    for p in &d.estimates {
+        if let Some(why) = d.provisional(p) {
+            let line = format!("  provisional, not a finding: {why}");
+            s.push_str(&crate::wrap::wrap(&line, 99, 2));
+        }
+    }
+    s
+}
+
+/// The strata check as JSON: per family its strata (label, n, per parameter value and
+/// standard error) and per parameter its test.
+pub fn to_json(c: &StrataCheck) -> serde_json::Value {
+    let per_param = |f: &dyn Fn(usize) -> serde_json::Value| -> serde_json::Value {
+        c.params
+            .iter()
+            .enumerate()
+            .map(|(j, l)| (l.clone(), f(j)))
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let families: Vec<serde_json::Value> = c
+        .families
+        .iter()
+        .map(|f| {
+            json!({
+                "name": f.name,
+                "strata": f.strata.iter().map(|s| json!({
+                    "label": s.label,
+                    "n": s.n,
+                    "values": per_param(&|j| s.values[j].map_or(serde_json::Value::Null, |(v, se)| {
+                        json!({"value": v, "stderr": se})
+                    })),
+                })).collect::<Vec<_>>(),
+                "checks": per_param(&|j| f.checks[j].as_ref().map_or(serde_json::Value::Null, |k| {
+                    json!({"chi2": k.chi2, "dof": k.dof, "p_value": k.p_value, "stable": k.stable})
+                })),
+            })
+        })
+        .collect();
+    json!({
+        "alpha": smash::diagnose::strata::STRATA_ALPHA,
+        "alpha_each": c.alpha_each,
+        "params": c.params,
+        "families": families,
+    })
+}
