@@ -451,3 +451,35 @@ fn shots_without_impact_location_are_left_out_and_counted() {
     common::assert_refused(&res, &[":3:", "impact_y_mm", "empty cell"]);
     assert!(!out2.exists());
 }
+
+/// TrackMan's `Date` cell (the date and the time of day) is kept as `datetime`, so that an
+/// export without golfers is cross-validated by session or by blocks of consecutive shots, never
+/// shot by shot: here one evening's session, so time blocks.
+#[test]
+fn trackman_dates_become_the_folds() {
+    let dir = tempfile::tempdir().unwrap();
+    let toe = ["--impact-offset-positive", "toe"];
+    let (out, _) = import(
+        dir.path(),
+        &fixture("trackman_normalized.csv"),
+        "trackman",
+        &toe,
+    );
+    let (h, rows) = read(&out);
+    let dates = column(&h, &rows, "datetime");
+    assert_eq!(dates[0], "5/6/2026 7:01:07 PM", "{dates:?}");
+    assert!(
+        dates.iter().all(|d| d.starts_with("5/6/2026 ")),
+        "{dates:?}"
+    );
+    let opts = smash::data::shots::ReadOptions {
+        include_estimated: true,
+        ..Default::default()
+    };
+    let table = smash::data::shots::read_shots_with(&out, opts).unwrap();
+    let keys = smash::data::sessions::fold_keys(&table, 5)
+        .unwrap()
+        .expect("folds by the dates, not by shot");
+    assert_eq!(keys.kind, smash::stats::KeyKind::TimeBlock);
+    assert_eq!(keys.column, "datetime");
+}

@@ -95,6 +95,9 @@ impl<'r, 'a> Layout<'r, 'a> {
                 .retain(|c| !LAUNCH.contains(c) && !matches!(*c, "backspin_rpm" | "sidespin_rpm"));
         }
         let mut extra = Vec::new();
+        if has("datetime") {
+            extra.push("datetime");
+        }
         if has("ball_type") || condition {
             extra.push("ball_type");
         }

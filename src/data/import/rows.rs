@@ -463,6 +463,10 @@ impl RowAt<'_> {
     ) -> String {
         let flag = |b: bool| if b { "1" } else { "0" }.to_owned();
         match column {
+            "datetime" => layout
+                .column("datetime")
+                .map(|c| self.cell(c.index).trim().to_owned())
+                .unwrap_or_default(),
             "ball_type" => layout
                 .column("ball_type")
                 .map(|c| self.cell(c.index).to_owned())

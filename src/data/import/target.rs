@@ -29,6 +29,10 @@ pub(super) enum Target {
     Status,
     /// The ball model the monitor names (`Premium`, `Range`), written as `ball_type`.
     BallType,
+    /// When the shot was hit (a date, a time of day or both, as the export writes them),
+    /// written as `datetime`: what cross-validation folds are grouped by when the shots name no
+    /// golfer (sessions by date, time blocks within one; `crate::data::sessions`).
+    Datetime,
     /// A statement of the conditions the data are normalised to (TrackMan's `Condition`):
     /// read into `altitude_m`, `air_temperature_c`, `ball_type` and `flight_modelled`.
     Condition,
@@ -77,7 +81,7 @@ pub(super) fn numeric() -> Vec<(&'static str, &'static str)> {
 }
 
 /// The special targets, by name.
-const SPECIAL: [(&str, Target); 13] = [
+const SPECIAL: [(&str, Target); 14] = [
     ("impact_offset_mm", Target::ImpactOffset),
     ("spin_rate_rpm", Target::SpinRate),
     ("spin_axis_deg", Target::SpinAxis),
@@ -88,6 +92,7 @@ const SPECIAL: [(&str, Target); 13] = [
     ("golfer", Target::Golfer),
     ("status", Target::Status),
     ("ball_type", Target::BallType),
+    ("datetime", Target::Datetime),
     ("condition", Target::Condition),
     ("spin_estimated", Target::SpinEstimated),
     ("club_estimated", Target::ClubEstimated),
