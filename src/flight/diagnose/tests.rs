@@ -50,7 +50,7 @@ fn measured<C: crate::flight::CoefficientModel>(
     seed: u64,
 ) -> Vec<MeasuredFlight> {
     let cfg = FlightConfig::default();
-    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x5eed_0f_0015e);
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x05ee_d0f0_015e);
     let unit = Normal::new(0.0, 1.0).unwrap();
     launches
         .iter()
