@@ -29,7 +29,7 @@ pub mod fit;
 use serde::Serialize;
 
 use crate::flight::calibrate::MeasuredFlight;
-use crate::flight::FlightConfig;
+use crate::flight::{FlightConfig, M_PER_YD};
 use crate::stats::{grouped_folds, item_folds};
 use fit::{robust_sigma, Data, FitOut, Layout};
 
@@ -157,7 +157,8 @@ pub struct FlightDiagnosis {
     pub selected: Vec<&'static str>,
     /// Their values fitted together on all shots, with standard errors.
     pub values: Vec<Value>,
-    /// RMS error of carry (yd), apex (yd) and land angle (°), model as given.
+    /// RMS error of carry (yd), apex (yd) and land angle (°), model as given (NaN, `null` in
+    /// JSON, for a quantity not measured).
     pub rmse_before: [f64; 3],
     /// The same with the selected terms.
     pub rmse_after: [f64; 3],
@@ -395,7 +396,7 @@ fn select_step(
     let s = data.sigma;
     Ok(StepOut {
         step: Step {
-            sigma: [s[0] / 0.9144, s[1] / 0.9144, s[2].to_degrees()],
+            sigma: [s[0] / M_PER_YD, s[1] / M_PER_YD, s[2].to_degrees()],
             base_cv_chi2: base_cv,
             candidates: order.into_iter().map(|i| cands[i].clone()).collect(),
             selected: chosen,
@@ -428,7 +429,7 @@ fn named_values(layout: &Layout, balls: &[String], f: &FitOut) -> Vec<Value> {
 /// RMS of the carry (yd), apex (yd) and land-angle (°) errors.
 fn rmse_of(e: &[[Option<f64>; 3]]) -> [f64; 3] {
     let mut out = [f64::NAN; 3];
-    let unit = [1.0 / 0.9144, 1.0 / 0.9144, 180.0 / std::f64::consts::PI];
+    let unit = [1.0 / M_PER_YD, 1.0 / M_PER_YD, 180.0 / std::f64::consts::PI];
     for q in 0..3 {
         let v: Vec<f64> = e.iter().filter_map(|x| x[q]).collect();
         if !v.is_empty() {

@@ -111,10 +111,23 @@ pub(super) fn render(d: &FlightDiagnosis) -> String {
         let _ = writeln!(s, "selected: {}", wrapped(&v, 10, 10));
     }
     let (b, a) = (d.rmse_before, d.rmse_after);
+    // A quantity the file does not measure has no RMSE: `-`, never NaN.
+    let f = |x: f64| {
+        if x.is_finite() {
+            format!("{x:.2}")
+        } else {
+            "-".to_string()
+        }
+    };
     let _ = writeln!(
         s,
-        "RMSE on all shots: carry {:.2} -> {:.2} yd, apex {:.2} -> {:.2} yd, land {:.2} -> {:.2} deg",
-        b[0], a[0], b[1], a[1], b[2], a[2]
+        "RMSE on all shots: carry {} -> {} yd, apex {} -> {} yd, land {} -> {} deg",
+        f(b[0]),
+        f(a[0]),
+        f(b[1]),
+        f(a[1]),
+        f(b[2]),
+        f(a[2])
     );
     s
 }
