@@ -6,6 +6,8 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+mod diagnose;
+mod measured;
 mod report;
 use report::flight_page;
 
@@ -18,9 +20,8 @@ use smash::data::flight_files::{
 use smash::data::flight_measured::check_measured;
 use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
-use smash::data::number::parse_f64;
 use smash::data::DataError;
-use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay, M_PER_YD};
+use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -387,8 +388,14 @@ pub struct FlightArgs {
     /// Calibrate the flight to the measured carry, apex and land angle: fit scalings of the
     /// listed terms (drag, lift, spin_decay; comma-separated) with their standard errors,
     /// then fly and compare with the calibrated model.
-    #[arg(long, value_name = "TERMS")]
+    #[arg(long, value_name = "TERMS", conflicts_with = "diagnose")]
     pub calibrate: Option<String>,
+    /// Diagnose the flight model against the measured carry, apex and land angle: which term
+    /// is off (drag level, lift slope, drag crisis, spin decay, drag per ball_type), ranked by
+    /// cross-validated gain (folds by session when the file has a session or date column, else
+    /// by shot); the selected terms are then flown and compared.
+    #[arg(long)]
+    pub diagnose: bool,
     /// Flight options.
     #[command(flatten)]
     pub flight: FlightOptions,
@@ -414,16 +421,29 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     let headers = file_headers(&args.shots)?;
     let from_file = columns_used(&headers, user);
     let t0 = std::time::Instant::now();
-    let (flown, conditions) = if let Some(terms) = &args.calibrate {
+    let fitting = match (&args.calibrate, args.diagnose) {
+        (Some(_), _) => Some("--calibrate"),
+        (None, true) => Some("--diagnose"),
+        _ => None,
+    };
+    let mut diagnosis = None;
+    let (flown, conditions) = if let Some(flag) = fitting {
         if !from_file.is_empty() {
             anyhow::bail!(
-                "--calibrate flies every shot in one atmosphere, but {} states conditions per \
+                "{flag} flies every shot in one atmosphere, but {} states conditions per \
                  shot ({}): set them with --elevation-m, --temperature-c and --humidity-pct",
                 args.shots.display(),
                 from_file.iter().map(|c| c.1).collect::<Vec<_>>().join(", ")
             );
         }
-        (calibrate_and_fly(&args, &cfg, source, terms)?, None)
+        match &args.calibrate {
+            Some(terms) => (calibrate_and_fly(&args, &cfg, source, terms)?, None),
+            None => {
+                let (flown, d) = diagnose::diagnose_and_fly(&args, &cfg, source)?;
+                diagnosis = Some(d);
+                (flown, None)
+            }
+        }
     } else if from_file.is_empty() {
         let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
         (flown, None)
@@ -461,7 +481,13 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         return Ok(());
     };
     if args.json {
-        crate::stdout::println(serde_json::to_string_pretty(&summary)?)?;
+        let text = match &diagnosis {
+            Some(d) => serde_json::to_string_pretty(
+                &serde_json::json!({ "diagnosis": d, "errors": summary }),
+            )?,
+            None => serde_json::to_string_pretty(&summary)?,
+        };
+        crate::stdout::println(text)?;
     } else {
         eprint!("\n{}", summary.text());
     }
@@ -487,7 +513,7 @@ fn calibrate_and_fly(
     source: Option<LaunchSource>,
     names: &str,
 ) -> anyhow::Result<Flown> {
-    use smash::flight::calibrate::{calibrate, MeasuredFlight, Term};
+    use smash::flight::calibrate::{calibrate, Term};
     let terms = names
         .split(',')
         .map(|n| Term::from_name(n.trim()))
@@ -496,26 +522,7 @@ fn calibrate_and_fly(
     let table = read_launches(&args.shots, source)?;
     let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
     check_measured(&args.shots, &layout, &table.records, &table.lines)?;
-    let col = |n: &str| table.headers.iter().position(|h| h == n);
-    let (carry, apex, land) = (col("carry_yd"), col("apex_yd"), col("land_angle_deg"));
-    let shots: Vec<MeasuredFlight> = table
-        .records
-        .iter()
-        .zip(&table.launches)
-        .map(|(rec, l)| {
-            let get = |i: Option<usize>| {
-                i.and_then(|i| rec.get(i))
-                    .and_then(parse_f64)
-                    .filter(|x| x.is_finite())
-            };
-            MeasuredFlight {
-                launch: *l,
-                carry_m: get(carry).map(|v| v * M_PER_YD),
-                apex_m: get(apex).map(|v| v * M_PER_YD),
-                land_angle_rad: get(land).map(f64::to_radians),
-            }
-        })
-        .collect();
+    let shots = measured::measured_flights(&table);
     let cal = calibrate(cfg, &shots, &terms).map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
     let scales: Vec<String> = cal
         .terms

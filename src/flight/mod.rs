@@ -22,6 +22,7 @@
 pub mod aero;
 pub mod atmosphere;
 pub mod calibrate;
+pub mod diagnose;
 pub mod ground;
 mod hermite;
 pub mod integrate;

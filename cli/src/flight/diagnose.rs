@@ -1,0 +1,72 @@
+//! `smash flight --diagnose`: which aerodynamic term do the measured flights ask for?
+
+use smash::data::flight_files::{flight_csv, read_launches, LaunchSource, OutputLayout};
+use smash::data::flight_measured::check_measured;
+use smash::data::flight_stream::Flown;
+use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
+use smash::flight::FlightConfig;
+
+use super::measured::{ball_types, measured_flights, sessions};
+use super::FlightArgs;
+
+/// Cross-validation folds (fewer when there are fewer sessions).
+const FOLDS: usize = 5;
+
+/// Diagnose the model of `cfg` on the file's measured flights, print the ranking (stderr,
+/// unless `--json`), and write the flights with the selected terms.
+pub fn diagnose_and_fly(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    source: Option<LaunchSource>,
+) -> anyhow::Result<(Flown, FlightDiagnosis)> {
+    let table = read_launches(&args.shots, source)?;
+    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
+    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let shots = measured_flights(&table);
+    if !shots
+        .iter()
+        .any(|s| s.carry_m.is_some() || s.apex_m.is_some() || s.land_angle_rad.is_some())
+    {
+        anyhow::bail!(
+            "--diagnose: {} has no measured carry_yd, apex_yd or land_angle_deg to diagnose \
+             the flight with",
+            args.shots.display()
+        );
+    }
+    let balls = ball_types(&table);
+    let sessions = sessions(&table);
+    let d = diagnose(
+        cfg,
+        DiagnoseInput {
+            shots: &shots,
+            balls: balls.as_deref(),
+            sessions: sessions.as_ref().map(|s| s.1.as_slice()),
+            folds: FOLDS,
+        },
+    )
+    .map_err(|e| anyhow::anyhow!("--diagnose: {e}"))?;
+    if !args.json {
+        let from = match (&sessions, d.folds_by) {
+            (Some((col, _)), "session") => format!(" (sessions from column '{col}')"),
+            _ => " (no session or date column with two or more sessions)".to_string(),
+        };
+        eprint!("{}", d.text());
+        eprintln!("folds by {}{from}", d.folds_by);
+    }
+    let results = d.fly(cfg, &table.launches);
+    let flights = super::collect(&args.shots, &table.lines, table.source.prefix(), results)?;
+    let bytes = flight_csv(
+        &table.headers,
+        &table.records,
+        &flights,
+        cfg.ground.is_some(),
+    );
+    smash::data::write_atomic(&args.out, &bytes)?;
+    Ok((
+        Flown {
+            shots: flights.len(),
+            source: table.source,
+        },
+        d,
+    ))
+}
