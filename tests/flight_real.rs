@@ -19,9 +19,9 @@
 use std::path::Path;
 
 use smash::data::import::{import, load_mapping, ImportOptions};
+use smash::flight::atmosphere::Atmosphere;
 use smash::flight::calibrate::{calibrate, MeasuredFlight, Scaled, Term};
 use smash::flight::integrate::fly_with;
-use smash::flight::atmosphere::Atmosphere;
 use smash::flight::{AeroModel, CoefficientModel, FlightConfig, FlightLaunch, M_PER_YD};
 
 /// One shot: its club (`group`), its measured flight and the atmosphere it flew in.
@@ -118,7 +118,10 @@ fn class(club: &str) -> &'static str {
     let digits = c.chars().all(|ch| ch.is_ascii_digit());
     if c == "driver" || c == "dr" || c == "1w" {
         "driver"
-    } else if c.contains("wood") || c.contains("hybrid") || c.starts_with("hy") || c.starts_with('m')
+    } else if c.contains("wood")
+        || c.contains("hybrid")
+        || c.starts_with("hy")
+        || c.starts_with('m')
         || c.ends_with('w') && c[..c.len() - 1].chars().all(|ch| ch.is_ascii_digit())
         || c.ends_with('h') && c[..c.len() - 1].chars().all(|ch| ch.is_ascii_digit())
     {
@@ -239,7 +242,10 @@ fn held_out_real_carry_per_club_class() {
         }
     }
     let cfg = FlightConfig::default();
-    assert!(fit.iter().all(|s| s.cfg.air == cfg.air), "the fit part states no conditions");
+    assert!(
+        fit.iter().all(|s| s.cfg.air == cfg.air),
+        "the fit part states no conditions"
+    );
     let fit_shots: Vec<MeasuredFlight> = fit.iter().map(|s| s.flight).collect();
     let cal = calibrate(&cfg, &fit_shots, &[Term::Drag, Term::Lift]).unwrap();
     println!("calibrated on the fit part: {cal:?}");

@@ -106,9 +106,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     check_options(&args)?;
     let club = read_club(&args.club)?;
     let mut table = args.shots_format.read(&args.shots)?;
-    // A mapping file (`--format NAME.toml`) is an input too, known once read: refuse an
-    // output that would replace it before anything is said about the shots.
-    plan.check()?;
+    plan.check()?; // again: a `--format` mapping file is an input known once read
     let conventions = super::to_model_convention(&club, &mut table, false, false)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let (mut report, launches) = compute(&args, &club, &table)?;

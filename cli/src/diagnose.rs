@@ -165,9 +165,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     plan.check()?;
     let club = read_club(&args.club)?;
     let mut table = args.shots_format.read(&args.shots)?;
-    // A mapping file (`--format NAME.toml`) is an input too, known once read: refuse an
-    // output that would replace it before anything is said about the shots.
-    plan.check()?;
+    plan.check()?; // again: a `--format` mapping file is an input known once read
     let conventions = super::to_model_convention(&club, &mut table, args.json, true)?;
     super::warn_groups_without_effects(&args.club, &club, &table.shots);
     let bar = Bar(job_bar(1, "fits"));
