@@ -330,7 +330,9 @@ pub struct CompareReport {
     /// Ranked findings, strongest first.
     pub findings: Vec<Finding>,
     /// Why the shots do not match the club, when a caller compared them anyway (then there
-    /// are no findings: errors of another club's shots say nothing about this head).
+    /// are no findings: errors of another club's shots say nothing about this head). In the
+    /// JSON only when there is a mismatch.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub club_mismatch: Option<String>,
 }
 
