@@ -540,6 +540,17 @@ fn calibrate_and_fly(
     );
     let model = cal.model(&cfg.aero);
     let results = smash::flight::integrate::fly_with(cfg, &model, &table.launches);
+    write_flown(args, cfg, table, results)
+}
+
+/// The flights of every launch of `table` (`results`, in its order) written to `--out` with
+/// the table's own columns, or the first failure as one line naming file, line and column.
+fn write_flown(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    table: smash::data::flight_files::LaunchTable,
+    results: Vec<Result<smash::flight::Flight, smash::flight::FlightError>>,
+) -> anyhow::Result<Flown> {
     let flights = collect(&args.shots, &table.lines, table.source.prefix(), results)?;
     let bytes = flight_csv(
         &table.headers,

@@ -1,6 +1,6 @@
 //! `smash flight --diagnose`: which aerodynamic term do the measured flights ask for?
 
-use smash::data::flight_files::{flight_csv, read_launches, LaunchSource, OutputLayout};
+use smash::data::flight_files::{read_launches, LaunchSource, OutputLayout};
 use smash::data::flight_measured::check_measured;
 use smash::data::flight_stream::Flown;
 use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
@@ -54,19 +54,5 @@ pub fn diagnose_and_fly(
         eprintln!("folds by {}{from}", d.folds_by);
     }
     let results = d.fly(cfg, &table.launches);
-    let flights = super::collect(&args.shots, &table.lines, table.source.prefix(), results)?;
-    let bytes = flight_csv(
-        &table.headers,
-        &table.records,
-        &flights,
-        cfg.ground.is_some(),
-    );
-    smash::data::write_atomic(&args.out, &bytes)?;
-    Ok((
-        Flown {
-            shots: flights.len(),
-            source: table.source,
-        },
-        d,
-    ))
+    Ok((super::write_flown(args, cfg, table, results)?, d))
 }
