@@ -491,59 +491,48 @@ fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
         .filter(|p| honest::is_plausible(p) == Some(false))
         .map(|p| p.label())
         .collect();
-    let stand_in_note = if stand_ins.is_empty() {
-        String::new()
-    } else {
-        format!(
+    let mut stand_in_note = String::new();
+    if !stand_ins.is_empty() {
+        stand_in_note = format!(
             "; {} stand(s) in for physics the library lacks and is not a finding",
             stand_ins.join(", ")
-        )
+        );
+    }
+    // Each kind of value that is not a finding, with why, when there is any.
+    let mut not_findings = |why: &str, labels: Vec<String>, sep: &str| {
+        if !labels.is_empty() {
+            stand_in_note.push_str(&format!("; {why}: {}", labels.join(sep)));
+        }
     };
-    let ambiguous: Vec<&str> = d
-        .ambiguities
-        .iter()
-        .filter(|a| a.is_ambiguous())
-        .map(|a| a.selected.as_str())
-        .collect();
-    let stand_in_note = if ambiguous.is_empty() {
-        stand_in_note
-    } else {
-        format!(
-            "{stand_in_note}; ambiguous, not findings (each has a plausible alternative the data \
-             cannot tell apart from it): {}",
-            ambiguous.join(", ")
-        )
-    };
-    let aliased: Vec<String> = d
-        .aliases
-        .iter()
-        .filter(|a| a.across_effects())
-        .map(|a| format!("{} and {}", a.a, a.b))
-        .collect();
-    let stand_in_note = if aliased.is_empty() {
-        stand_in_note
-    } else {
-        format!(
-            "{stand_in_note}; aliased, not findings (the data cannot tell which effect carries \
-             the signal): {}",
-            aliased.join("; ")
-        )
-    };
-    let provisional: Vec<String> = d
-        .estimates
-        .iter()
-        .filter(|p| d.provisional(p).is_some())
-        .map(|p| p.label())
-        .collect();
-    let stand_in_note = if provisional.is_empty() {
-        stand_in_note
-    } else {
-        format!(
-            "{stand_in_note}; provisional, not findings (the value differs between parts of the \
-             shots beyond its uncertainty): {}",
-            provisional.join(", ")
-        )
-    };
+    not_findings(
+        "ambiguous, not findings (each has a plausible alternative the data cannot tell apart \
+         from it)",
+        d.ambiguities
+            .iter()
+            .filter(|a| a.is_ambiguous())
+            .map(|a| a.selected.clone())
+            .collect(),
+        ", ",
+    );
+    not_findings(
+        "aliased, not findings (the data cannot tell which effect carries the signal)",
+        d.aliases
+            .iter()
+            .filter(|a| a.across_effects())
+            .map(|a| format!("{} and {}", a.a, a.b))
+            .collect(),
+        "; ",
+    );
+    not_findings(
+        "provisional, not findings (the value differs between parts of the shots beyond its \
+         uncertainty)",
+        d.estimates
+            .iter()
+            .filter(|p| d.provisional(p).is_some())
+            .map(|p| p.label())
+            .collect(),
+        ", ",
+    );
     if !floor.structure_remains() {
         return format!(
             "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
