@@ -1,7 +1,7 @@
 //! Fly TrackMan's PGA Tour averages and print the per-club errors (the README table).
 //!
 //! `cargo run --release --example trackman -- [MODEL] [TEMPERATURE_C] [ELEVATION_M] [RH_PCT]`
-//! (defaults: fmm2022-tour and the default atmosphere).
+//! (defaults: fmm2022-tour, the model calibrated on these tables, and the default atmosphere).
 
 use smash::flight::trackman::PGA_TOUR;
 use smash::flight::{fly, AeroModel, Atmosphere, FlightConfig};

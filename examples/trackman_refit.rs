@@ -1,6 +1,6 @@
-//! The fits behind the built-in models: `fmm2022-tour` (the default, `-- --joint`) and
-//! `fmm2022-re` (no flag), both in one family around Ferguson, McNally & McPhee's (2022)
-//! quadratics.
+//! The fits behind the built-in models: `fmm2022-tour` (the default before `fmm2022`,
+//! `-- --joint`) and `fmm2022-re` (no flag), both in one family around Ferguson, McNally &
+//! McPhee's (2022) quadratics.
 //!
 //! Family: `C_D = C_D,fmm(S) + DS·S + DR·r(Re)`, `C_L = C_L,fmm(S)·(1 − LL·r(Re))`, with
 //! `r` the smoothstep `3t² − 2t³` of `t = clamp((RE_HIGH − Re)/(RE_HIGH − RE_LOW), 0, 1)` (a

@@ -36,7 +36,7 @@ import subprocess
 import sys
 import tempfile
 
-MODELS = ["fmm2022-tour", "fmm2022-re", "fmm2022", "nathan-lyu"]
+MODELS = ["fmm2022", "fmm2022-tour", "fmm2022-re", "nathan-lyu"]
 CLASSES = ["driver", "wood/hybrid", "iron", "wedge"]
 
 

@@ -80,41 +80,41 @@ fn assert_errors_within(
     );
 }
 
-/// The issue's targets, with the default model (`fmm2022-tour`, calibrated on the three
+/// Issue 11's targets for `fmm2022-tour` (the default before `fmm2022`, calibrated on the three
 /// TrackMan tables, this one among them: disclosed, with its leave-one-table-out errors, in
-/// the README) and the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 % relative
+/// the README) in the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 % relative
 /// humidity, still air): median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle within 5°.
 /// Measured: 1.58 %, 2.73 % (driver, 3-wood, 7-iron), 2.77° (4-iron).
 #[test]
 fn trackman_pga_tour_meets_the_issue_targets() {
-    let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR);
+    let (carry, land, _) = trackman_errors(AeroModel::Fmm2022Tour, &PGA_TOUR);
     assert_errors_within(&carry, &land, 2.0, 4.0, 5.0);
 }
 
-/// The default model's apex heights on the PGA Tour table: measured within 3.64 yd (all but
-/// the driver high); the bound is the measured value rounded up, a regression guard.
+/// `fmm2022-tour`'s apex heights on the PGA Tour table: measured within 3.64 yd (all but the
+/// driver high); the bound is the measured value rounded up, a regression guard.
 #[test]
-fn trackman_pga_tour_default_model_apex_regression() {
-    let (_, _, apex) = trackman_errors(AeroModel::default(), &PGA_TOUR);
+fn trackman_pga_tour_fmm2022_tour_apex_regression() {
+    let (_, _, apex) = trackman_errors(AeroModel::Fmm2022Tour, &PGA_TOUR);
     for (model, tm) in apex {
         assert!((model - tm).abs() < 3.7, "apex {model} vs {tm}");
     }
 }
 
-/// The default model on the 2023 PGA Tour table (in its calibration): measured 1.64 % median,
+/// `fmm2022-tour` on the 2023 PGA Tour table (in its calibration): measured 1.64 % median,
 /// 3.42 % worst carry, 3.22° worst land angle; bounds the measured values rounded up.
 #[test]
 fn trackman_pga_tour_2023_regression() {
-    let (carry, land, _) = trackman_errors(AeroModel::default(), &PGA_TOUR_2023);
+    let (carry, land, _) = trackman_errors(AeroModel::Fmm2022Tour, &PGA_TOUR_2023);
     assert_errors_within(&carry, &land, 1.7, 3.5, 3.3);
 }
 
-/// The default model on the 2023 LPGA Tour table (in its calibration): measured 1.62 %
-/// median, 3.70 % worst carry, 6.92° worst land angle (the 3-wood, see the README); bounds
-/// the measured values rounded up.
+/// `fmm2022-tour` on the 2023 LPGA Tour table (in its calibration): measured 1.62 % median,
+/// 3.70 % worst carry, 6.92° worst land angle (the 3-wood, see the README); bounds the
+/// measured values rounded up.
 #[test]
 fn trackman_lpga_tour_2023_regression() {
-    let (carry, land, _) = trackman_errors(AeroModel::default(), &LPGA_TOUR_2023);
+    let (carry, land, _) = trackman_errors(AeroModel::Fmm2022Tour, &LPGA_TOUR_2023);
     assert_errors_within(&carry, &land, 1.7, 3.8, 7.0);
 }
 
@@ -132,11 +132,14 @@ fn trackman_pga_tour_fmm2022_re_regression() {
     assert_errors_within(&carry, &land, 1.4, 4.8, 3.3);
 }
 
-/// `fmm2022` as published misses the targets (measured 1.98 % median, 4.84 % worst carry,
-/// 7.2° worst land angle, apex within 3 yd); a regression guard on those values.
+/// `fmm2022` as published, the default (chosen on real shots: `tests/flight_real.rs`), misses
+/// issue 11's targets on the tour table (measured 1.98 % median, 4.84 % worst carry, 7.2° worst
+/// land angle, apex within 3 yd): a secondary check, never a fitting target, and a regression
+/// guard on those values.
 #[test]
 fn trackman_pga_tour_fmm2022_as_published_regression() {
-    let (carry, land, apex) = trackman_errors(AeroModel::Fmm2022, &PGA_TOUR);
+    assert_eq!(AeroModel::default(), AeroModel::Fmm2022);
+    let (carry, land, apex) = trackman_errors(AeroModel::default(), &PGA_TOUR);
     assert_errors_within(&carry, &land, 2.0, 4.9, 7.3);
     for (model, tm) in apex {
         assert!((model - tm).abs() < 3.0, "apex {model} vs {tm}");
@@ -282,9 +285,28 @@ fn launch_set() -> Vec<FlightLaunch> {
 
 #[test]
 fn step_size_passes_the_tolerance_test() {
-    // The default step against a 64× finer one: carry, offline and apex within 0.02 yd
-    // (0.05 yd in wind), land angle within 0.02°, flight time within 2 ms. Measured: 0.0070 yd,
-    // 0.0017° in still air at 0.35 s; 0.042 yd (offline), 0.004° in the 8 m/s wind at 0.1 s.
+    // The default step against a 64× finer one, for every built-in model: carry, offline and
+    // apex within 0.02 yd (0.05 yd in wind), land angle within 0.02°, flight time within 2 ms.
+    // Measured under the default `fmm2022`: 0.0012 yd, 0.0007° in still air at 0.35 s; 0.044 yd
+    // (offline), 0.004° in the 8 m/s wind at 0.1 s (`fmm2022-tour`, the hardest of the three
+    // `fmm2022` models: 0.0087 yd, 0.0086°; 0.0485 yd, 0.011°).
+    for aero in [
+        AeroModel::Fmm2022,
+        AeroModel::Fmm2022Tour,
+        AeroModel::Fmm2022Re,
+    ] {
+        step_tolerance(aero, [0.02 / 2.0, 0.05, 0.02, 2e-3]);
+    }
+    // `nathan-lyu`'s drag has corners (a linear ramp between `Re` 5·10⁴ and 10⁵, a kink in
+    // `C_L` at `S` = 0.3), which cost RK4 its order: measured 0.077 yd carry, 0.006° and 2.7 ms
+    // in still air. It is held to 0.1 yd (the resolution to which launch monitors report
+    // carry, without the margin) and 5 ms, and the README says so.
+    step_tolerance(AeroModel::NathanLyu, [0.1, 0.1, 0.02, 5e-3]);
+}
+
+/// The step test for one model: its bounds on position in still air and in wind (yd), on the
+/// land angle (°) and on the flight time (s).
+fn step_tolerance(aero: AeroModel, bounds: [f64; 4]) {
     for wind in [0.0, 8.0] {
         let air = Atmosphere {
             wind_speed_m_s: wind,
@@ -294,6 +316,7 @@ fn step_size_passes_the_tolerance_test() {
         .air()
         .unwrap();
         let coarse = FlightConfig {
+            aero: aero.clone(),
             air,
             ..FlightConfig::default()
         };
@@ -318,17 +341,24 @@ fn step_size_passes_the_tolerance_test() {
             }
         }
         println!(
-            "wind {wind}: worst |coarse − fine| carry, offline, apex yd, land °, time s: {worst:?}"
+            "{} wind {wind}: worst |coarse − fine| carry, offline, apex yd, land °, time s: \
+             {worst:?}",
+            aero.name()
         );
         // Still air: 0.02 yd and 0.02°. In wind the log profile's steep gradient near the
         // ground costs accuracy at launch and landing: 0.05 yd.
         // The default still-air step keeps a margin of two on the position bound.
-        let tol = if wind == 0.0 { 0.02 / 2.0 } else { 0.05 };
+        let tol = if wind == 0.0 { bounds[0] } else { bounds[1] };
         assert!(
             worst[0] < tol && worst[1] < tol && worst[2] < tol,
-            "{worst:?}"
+            "{}: {worst:?}",
+            aero.name()
         );
-        assert!(worst[3] < 0.02 && worst[4] < 2e-3, "{worst:?}");
+        assert!(
+            worst[3] < bounds[2] && worst[4] < bounds[3],
+            "{}: {worst:?}",
+            aero.name()
+        );
     }
 }
 
@@ -602,7 +632,10 @@ fn agrees_with_an_independent_adaptive_integrator() {
         };
         let air = atm.air().unwrap();
         let reference = Atmosphere::default().air().unwrap();
+        // The reference writes out `fmm2022-tour`'s law (the richest built-in one: floor,
+        // Reynolds window, lift loss), so the batched integrator flies that model here.
         let cfg = FlightConfig {
+            aero: AeroModel::Fmm2022Tour,
             air,
             spin_decay: SpinDecay::Moment,
             tee_height_m: tee_m,

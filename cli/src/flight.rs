@@ -26,15 +26,16 @@ use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
 pub struct FlightOptions {
-    /// Aerodynamic coefficient model: fmm2022-tour (default: Ferguson, McNally & McPhee 2022
-    /// held above the still-air drag, with a drag rise and lift loss across the drag crisis,
-    /// calibrated on TrackMan's PGA, PGA 2023 and LPGA 2023 averages), fmm2022-re (the same
-    /// quadratics with a low-Reynolds drag rise fitted to the LPGA averages), fmm2022 (as
-    /// published), nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with
+    /// Aerodynamic coefficient model: fmm2022 (default: Ferguson, McNally & McPhee 2022 as
+    /// published, the best of these on the fit part of the shipped real shots),
+    /// fmm2022-tour (the same held above the still-air drag, with a drag rise and lift loss
+    /// across the drag crisis, calibrated on TrackMan's PGA, PGA 2023 and LPGA 2023 averages),
+    /// fmm2022-re (the same quadratics with a low-Reynolds drag rise fitted to the LPGA
+    /// averages), nathan-lyu (Reynolds-dependent drag crisis), or table:PATH (CSV with
     /// spin_factor, cd, cl and optionally cm, reynolds).
     #[arg(
         long,
-        default_value = "fmm2022-tour",
+        default_value = smash::flight::aero::MODEL_NAMES[0],
         value_name = "NAME",
         help_heading = "Flight"
     )]
@@ -178,7 +179,7 @@ impl FlightOptions {
     /// rather than ignore them.
     pub fn first_given(&self) -> Option<&'static str> {
         let given = [
-            (self.aero != "fmm2022-tour", "--aero"),
+            (self.aero != smash::flight::aero::MODEL_NAMES[0], "--aero"),
             (self.spin_decay != "moment", "--spin-decay"),
             (self.atmosphere.is_some(), "--atmosphere"),
             (self.temperature_c.is_some(), "--temperature-c"),

@@ -61,7 +61,7 @@ fn diagnose_text_names_folds_and_terms() {
         assert!(o.status.success(), "{err}");
         assert!(
             err.contains(&format!(
-                "flight diagnose: 59 shots, model fmm2022-tour, {folds}"
+                "flight diagnose: 59 shots, model fmm2022, {folds}"
             )),
             "{err}"
         );

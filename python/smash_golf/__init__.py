@@ -265,7 +265,7 @@ def flight(
     ``wind_height_m``, m, default 10), ``wind_direction_deg`` (deg the wind blows toward, from
     the target line to the right: 0 tailwind, 180 headwind), ``roughness_m`` (m), or an
     ``atmosphere`` TOML file (keywords override it). ``aero``: the coefficient model
-    (``fmm2022-tour`` by default); ``spin_decay``: ``moment``, ``none`` or ``exp:TAU`` (s).
+    (``fmm2022`` by default); ``spin_decay``: ``moment``, ``none`` or ``exp:TAU`` (s).
     ``total``: add ``pred_total_yd`` (bounce and roll, with ``ground_restitution`` (1) and
     ``roll_decel_m_s2`` (m/s²)). ``dt_s``, ``max_time_s``: integration step and limit, s.
 

@@ -83,9 +83,10 @@ pub enum SpinDecay {
 /// Default fixed time step in still air, s: the largest of 0.2, 0.25, … 0.5 s that passes the
 /// tolerance test in `tests/flight.rs` (carry, offline and apex within 0.02 yd of a step 64
 /// times finer and within 2 cm of an adaptive Dormand–Prince reference, land angle within
-/// 0.02°, driver to wedge plus extreme launches) with a margin of two or more under the
-/// default `fmm2022-tour`: measured 0.0087 yd and 0.0086° at 0.35 s (0.0138 yd at 0.4 s, over
-/// half the bound; under `fmm2022-re`, the default before, 0.0070 yd and 0.0017°). 2 cm is a
+/// 0.02°, driver to wedge plus extreme launches) with a margin of two or more under
+/// `fmm2022-tour`, the hardest built-in model for the step: measured 0.0087 yd and 0.0086° at
+/// 0.35 s (0.0138 yd at 0.4 s, over half the bound; under `fmm2022-re` 0.0070 yd and 0.0017°;
+/// under the default `fmm2022` 0.0012 yd and 0.0007°). 2 cm is a
 /// fifth of the 0.1 yd to which launch monitors report carry, so a
 /// smaller step buys nothing a user can see.
 pub const DEFAULT_DT_S: f64 = 0.35;
@@ -124,7 +125,7 @@ pub struct FlightConfig {
 pub const MAX_TEE_HEIGHT_M: f64 = 0.1016;
 
 impl Default for FlightConfig {
-    /// `fmm2022-tour`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
+    /// `fmm2022`, the default [`Atmosphere`], the Rules ball, moment spin decay, default steps,
     /// no ground model, the ball on the ground.
     fn default() -> Self {
         Self {

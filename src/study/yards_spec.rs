@@ -4,7 +4,7 @@
 //! [yards]
 //! static_loft_deg = 10.5          # address loft: the vertical axis of the MOI limit
 //! confidence = 0.95               # dispersion ellipse
-//! model = "fmm2022-tour"          # aerodynamic model (optional, this default; as `smash flight --aero`)
+//! model = "fmm2022"               # aerodynamic model (optional, this default; as `smash flight --aero`)
 //! [yards.atmosphere]              # as `smash flight --atmosphere` (optional; default ISA sea level)
 //! temperature_c = 20.0
 //! [yards.mass]                    # the discretionary mass the optimiser moves
@@ -51,7 +51,7 @@ pub struct YardsSpec {
     pub static_loft_deg: f64,
     /// Confidence level of the dispersion ellipse, in (0, 1).
     pub confidence: f64,
-    /// Aerodynamic model name (`fmm2022-tour`, the default, `fmm2022-re`, `fmm2022`, `nathan-lyu`; tables are not accepted here).
+    /// Aerodynamic model name (`fmm2022`, the default, `fmm2022-tour`, `fmm2022-re`, `nathan-lyu`; tables are not accepted here).
     pub model: String,
     /// The air.
     pub atmosphere: Atmosphere,

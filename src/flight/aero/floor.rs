@@ -1,7 +1,7 @@
 //! The still-air drag floor: the super-critical drag of modern golf balls measured in still
 //! air, as a law in spin factor, and the smooth maximum that holds a fitted drag above it.
 //!
-//! The default model `fmm2022-tour` ([`super::Fmm2022Tour`]) holds its spin drag above it; in
+//! The model `fmm2022-tour` ([`super::Fmm2022Tour`]) holds its spin drag above it; in
 //! the family both it and `fmm2022-re` come from it is [`super::Fmm2022ReFamily::drag_floor`]
 //! (`cargo run --release --example trackman_refit -- --joint`; README, "Ball flight").
 

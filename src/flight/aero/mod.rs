@@ -7,7 +7,7 @@
 //! `q·A·2R·C_M` against the spin.
 //!
 //! Built in, selected by name:
-//! - `fmm2022`: Ferguson, McNally & McPhee (2022), "Predicting the flight of a golf
+//! - `fmm2022` (default): Ferguson, McNally & McPhee (2022), "Predicting the flight of a golf
 //!   ball: comparing a physics-based aerodynamic model to a neural network", ISEA 2022
 //!   (Engineering of Sport 14), Purdue University, doi:10.5703/1288284317493. Quadratics in `S`
 //!   fitted (with the moment coefficient) to GCQuad launch and FlightScope X3 carry, apex and
@@ -15,16 +15,17 @@
 //!   No Reynolds dependence. `S` is held at the end of the fitted range beyond it, through a
 //!   blend with a continuous slope ([`Fmm2022::held_spin_factor`]); below the start of the
 //!   range (`S` = 0.02) the lift is tapered smoothly to zero at `S` = 0, since a ball that
-//!   does not spin has no Magnus lift ([`Fmm2022::lift_taper`]).
-//! - `fmm2022-tour` (default): `fmm2022` with the spin part of its drag held above the
-//!   still-air drag of modern balls, `C_D = smax(C_D,fmm(S) − 0.15·S, 0.212 + 0.15·S) +
-//!   0.04·r(Re)`, `C_L = C_L,fmm(S)·(1 − 0.60·r(Re))`, `r` = 1 below `Re` = 7·10⁴ falling
-//!   smoothly to 0 at `Re` = 10⁵ (the measured drag crisis); moment as `fmm2022`
+//!   does not spin has no Magnus lift ([`Fmm2022::lift_taper`]). The default: the lowest
+//!   carry RMSE on the fit part of the shipped real shots (`tests/flight_real.rs`).
+//! - `fmm2022-tour` (the default before `fmm2022`): `fmm2022` with the spin part of its drag
+//!   held above the still-air drag of modern balls, `C_D = smax(C_D,fmm(S) − 0.15·S, 0.212 +
+//!   0.15·S) + 0.04·r(Re)`, `C_L = C_L,fmm(S)·(1 − 0.60·r(Re))`, `r` = 1 below `Re` = 7·10⁴
+//!   falling smoothly to 0 at `Re` = 10⁵ (the measured drag crisis); moment as `fmm2022`
 //!   ([`Fmm2022Tour`]). The constants are calibrated on all three TrackMan tour tables,
 //!   disclosed, and validated leave-one-table-out (`examples/trackman_refit.rs --joint`).
-//! - `fmm2022-re` (the default before): `fmm2022` with its drag split into a spin part and a
-//!   low-Reynolds part, `C_D = C_D,fmm(S) − 0.20·S + 0.20·r(Re)` with `r` = 1 below `Re` =
-//!   4·10⁴ falling smoothly to 0 at `Re` = 1.5·10⁵; lift and moment as `fmm2022`
+//! - `fmm2022-re` (the default before `fmm2022-tour`): `fmm2022` with its drag split into a spin
+//!   part and a low-Reynolds part, `C_D = C_D,fmm(S) − 0.20·S + 0.20·r(Re)` with `r` = 1 below
+//!   `Re` = 4·10⁴ falling smoothly to 0 at `Re` = 1.5·10⁵; lift and moment as `fmm2022`
 //!   ([`Fmm2022Re`]). The constants are fitted to TrackMan's 2023 LPGA Tour averages only
 //!   (`examples/trackman_refit.rs` reproduces the fit).
 //! - `nathan-lyu`: a Reynolds-dependent law with a drag crisis: `C_D` 0.500 below
@@ -286,7 +287,7 @@ impl Fmm2022Re {
 /// [`Fmm2022ReFamily::FITTED`]; `examples/trackman_refit.rs` searches it and `tests/flight.rs`
 /// checks that the fitted point is a minimum of the fit's objective. With
 /// [`Fmm2022ReFamily::drag_floor`] the spin part of the drag is first held above the still-air
-/// drag of modern balls ([`DragFloor`]): the family of the default [`Fmm2022Tour`]
+/// drag of modern balls ([`DragFloor`]): the family of [`Fmm2022Tour`]
 /// ([`Fmm2022Tour::FAMILY`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fmm2022ReFamily {
@@ -375,13 +376,13 @@ pub(crate) fn crisis_rise_v<L: Lanes>(re: L, re_low: f64, re_high: f64) -> L {
 /// A coefficient model chosen by name (what files and the command line select).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub enum AeroModel {
-    /// [`Fmm2022Tour`] (the default).
+    /// [`Fmm2022`] (the default).
     #[default]
+    Fmm2022,
+    /// [`Fmm2022Tour`].
     Fmm2022Tour,
     /// [`Fmm2022Re`].
     Fmm2022Re,
-    /// [`Fmm2022`].
-    Fmm2022,
     /// [`NathanLyu`].
     NathanLyu,
     /// A user's [`TableModel`].
@@ -389,10 +390,10 @@ pub enum AeroModel {
 }
 
 /// Names of the built-in models, the default first.
-pub const MODEL_NAMES: [&str; 4] = ["fmm2022-tour", "fmm2022-re", "fmm2022", "nathan-lyu"];
+pub const MODEL_NAMES: [&str; 4] = ["fmm2022", "fmm2022-tour", "fmm2022-re", "nathan-lyu"];
 
 impl AeroModel {
-    /// `fmm2022-tour`, `fmm2022-re`, `fmm2022`, `nathan-lyu`, or `table:PATH` (a CSV file, see
+    /// `fmm2022`, `fmm2022-tour`, `fmm2022-re`, `nathan-lyu`, or `table:PATH` (a CSV file, see
     /// [`TableModel`]).
     pub fn from_name(name: &str) -> Result<Self, String> {
         match name {
@@ -405,7 +406,7 @@ impl AeroModel {
                     Path::new(p),
                 )?))),
                 None => Err(format!(
-                    "unknown aerodynamic model '{name}' (allowed: fmm2022-tour, fmm2022-re, fmm2022, nathan-lyu, table:PATH)"
+                    "unknown aerodynamic model '{name}' (allowed: fmm2022, fmm2022-tour, fmm2022-re, nathan-lyu, table:PATH)"
                 )),
             },
         }
@@ -515,7 +516,7 @@ mod tests {
         fn coefficients(&self, s: f64, re: f64) -> Coefficients {
             Coefficients {
                 cl: 0.0,
-                ..Fmm2022Tour.coefficients(s, re)
+                ..AeroModel::default().coefficients(s, re)
             }
         }
     }
