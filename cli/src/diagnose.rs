@@ -262,6 +262,7 @@ pub fn compute(
     d.club_mismatch = mismatch;
     let mut floor = noise_floor(&d, &table.shots, &instrument)?;
     floor.assumed = assumed;
+    d.shared_signals = smash::diagnose::shared::shared_signals(&d, &table.shots, &floor)?;
     Ok((d, floor))
 }
 
@@ -525,7 +526,7 @@ fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
     );
     not_findings(
         "provisional, not findings (the value differs between parts of the shots beyond its \
-         uncertainty)",
+         uncertainty, or its signal shares the trend of structure left)",
         d.estimates
             .iter()
             .filter(|p| d.provisional(p).is_some())

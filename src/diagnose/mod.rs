@@ -64,6 +64,7 @@ pub mod honest;
 pub mod noise_floor;
 mod search;
 pub mod select;
+pub mod shared;
 mod spread;
 pub mod strata;
 
@@ -350,6 +351,9 @@ pub struct Diagnosis {
     /// The final model refitted on independent strata of the shots, and whether each value
     /// holds across them ([`strata`]; `None` when nothing is selected).
     pub strata: Option<strata::StrataCheck>,
+    /// Estimates whose signal trends with structure the final model leaves ([`shared`]): set
+    /// by the caller once the noise floor is known (empty until then).
+    pub shared_signals: Vec<shared::SharedSignal>,
 }
 
 impl Diagnosis {
@@ -366,11 +370,20 @@ impl Diagnosis {
 
     /// When this estimate would be a finding but its value differs across the strata of the
     /// shots beyond its uncertainty ([`strata`]): the failed check, as text.
+    /// Also when its signal shares the trend of structure the final model leaves
+    /// ([`Self::shared_signals`]).
     pub fn provisional(&self, p: &ParamEstimate) -> Option<String> {
         if !self.passes_report_checks(p) {
             return None;
         }
-        self.strata.as_ref()?.failed(&p.label())
+        let label = p.label();
+        let strata = self.strata.as_ref().and_then(|s| s.failed(&label));
+        strata.or_else(|| {
+            self.shared_signals
+                .iter()
+                .find(|s| s.label == label)
+                .map(|s| format!("{label}: {}", s.text()))
+        })
     }
 
     /// The checks of [`Self::is_finding`] but the strata's.

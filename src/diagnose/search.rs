@@ -566,6 +566,7 @@ impl<'a> Search<'a> {
             nominal_fit,
             final_fit,
             strata,
+            shared_signals: Vec::new(),
         })
     }
 }
