@@ -278,6 +278,23 @@ fn pages_have_charts_and_the_json_numbers() {
             assert!(html.contains(c["effect"].as_str().unwrap()));
         }
     }
+    // The strata table: every stratum's row with its size, and every refitted value to four
+    // decimals, as the JSON has them.
+    assert!(html.contains("Stability across strata"));
+    for f in r.diagnose.1["strata"]["families"].as_array().unwrap() {
+        for st in f["strata"].as_array().unwrap() {
+            let label = st["label"].as_str().unwrap();
+            let label = label
+                .replace('&', "&amp;")
+                .replace('<', "&lt;")
+                .replace('>', "&gt;");
+            assert!(html.contains(&label), "stratum {label} missing");
+            for v in st["values"].as_object().unwrap().values() {
+                let cell = format!("{:.4}", v["value"].as_f64().unwrap());
+                assert!(html.contains(&cell), "{label}: value {cell} missing");
+            }
+        }
+    }
 
     let html = std::fs::read_to_string(&r.study).unwrap();
     assert_self_contained(&html, "study");

@@ -186,33 +186,7 @@ pub fn diagnose_page(d: &serde_json::Value, title: &str) -> Result<String, Strin
             .map(Vec::as_slice)
             .unwrap_or_default(),
     )?;
-    let mut warn_html = String::new();
-    if let Some(c) = d["conclusion"].as_str() {
-        let _ = write!(warn_html, "<p><b>Conclusion:</b> {}</p>", esc(c));
-    }
-    for a in d["aliases"]
-        .as_array()
-        .map(Vec::as_slice)
-        .unwrap_or_default()
-    {
-        let _ = write!(
-            warn_html,
-            "<p><b>Alias:</b> {} and {} (r = {}): the data cannot tell them apart; to separate them: {}</p>",
-            esc(a["a"].as_str().unwrap_or("?")),
-            esc(a["b"].as_str().unwrap_or("?")),
-            a["r"].as_f64().map(|r| format!("{r:+.2}")).unwrap_or_default(),
-            esc(a["separate_by"].as_str().unwrap_or(""))
-        );
-    }
-    for w in d["warnings"]
-        .as_array()
-        .map(Vec::as_slice)
-        .unwrap_or_default()
-    {
-        if let Some(w) = w.as_str() {
-            let _ = write!(warn_html, "<p><b>Warning:</b> {}</p>", esc(w));
-        }
-    }
+    let warn_html = notes_html(d);
     let page = Page {
         title: "smash diagnose".into(),
         subtitle: format!(
@@ -245,7 +219,124 @@ pub fn diagnose_page(d: &serde_json::Value, title: &str) -> Result<String, Strin
                 html: vec![table],
                 figures: est_figs,
             },
+            Section {
+                heading: "Stability across strata".into(),
+                html: vec![strata_html(d)],
+                figures: Vec::new(),
+            },
         ],
     };
     Ok(page.render())
+}
+
+/// The conclusion, aliases and warnings of the diagnosis JSON, as paragraphs.
+fn notes_html(d: &serde_json::Value) -> String {
+    let mut warn_html = String::new();
+    if let Some(c) = d["conclusion"].as_str() {
+        let _ = write!(warn_html, "<p><b>Conclusion:</b> {}</p>", esc(c));
+    }
+    for a in d["aliases"]
+        .as_array()
+        .map(Vec::as_slice)
+        .unwrap_or_default()
+    {
+        let _ = write!(
+            warn_html,
+            "<p><b>Alias:</b> {} and {} (r = {}): the data cannot tell them apart; to separate them: {}</p>",
+            esc(a["a"].as_str().unwrap_or("?")),
+            esc(a["b"].as_str().unwrap_or("?")),
+            a["r"].as_f64().map(|r| format!("{r:+.2}")).unwrap_or_default(),
+            esc(a["separate_by"].as_str().unwrap_or(""))
+        );
+    }
+    for w in d["warnings"]
+        .as_array()
+        .map(Vec::as_slice)
+        .unwrap_or_default()
+    {
+        if let Some(w) = w.as_str() {
+            let _ = write!(warn_html, "<p><b>Warning:</b> {}</p>", esc(w));
+        }
+    }
+    warn_html
+}
+
+/// The strata table of the diagnosis JSON (`strata`: the final model refitted on each stratum
+/// of each family, value ± SE per parameter, and per family whether each parameter holds one
+/// value), then the provisional values with their failed checks.
+fn strata_html(d: &serde_json::Value) -> String {
+    fn list(v: &serde_json::Value) -> &[serde_json::Value] {
+        v.as_array().map(Vec::as_slice).unwrap_or_default()
+    }
+    let mut html = String::new();
+    let strata = &d["strata"];
+    let families = list(&strata["families"]);
+    let params: Vec<String> = families
+        .first()
+        .and_then(|f| f["checks"].as_object())
+        .map(|c| c.keys().cloned().collect())
+        .unwrap_or_default();
+    if params.is_empty() {
+        html.push_str("<p>No effect selected: nothing to refit on strata.</p>");
+    } else {
+        let _ = write!(
+            html,
+            "<p>The final model refitted on parts of the shots. A value that differs between \
+             the parts of a family beyond its uncertainty (p below {} = 1 % over the checks \
+             made) is provisional, not a finding.</p><table><tr><th>family</th><th>stratum</th>\
+             <th>n</th>",
+            strata["alpha_each"]
+                .as_f64()
+                .map_or("?".into(), |a| format!("{a:.1e}"))
+        );
+        for p in &params {
+            let _ = write!(html, "<th>{}</th>", esc(p));
+        }
+        html.push_str("</tr>");
+        for f in families {
+            for st in list(&f["strata"]) {
+                let _ = write!(
+                    html,
+                    "<tr><td>{}</td><td>{}</td><td>{}</td>",
+                    esc(f["name"].as_str().unwrap_or("?")),
+                    esc(st["label"].as_str().unwrap_or("?")),
+                    st["n"].as_u64().unwrap_or(0)
+                );
+                for p in &params {
+                    let v = &st["values"][p.as_str()];
+                    let cell = match (v["value"].as_f64(), v["stderr"].as_f64()) {
+                        (Some(x), Some(se)) => format!("{x:.4} ± {se:.4}"),
+                        (Some(x), None) => format!("{x:.4}"),
+                        _ => "–".into(),
+                    };
+                    let _ = write!(html, "<td>{cell}</td>");
+                }
+                html.push_str("</tr>");
+            }
+            let _ = write!(
+                html,
+                "<tr><td>{}</td><td><i>one value?</i></td><td></td>",
+                esc(f["name"].as_str().unwrap_or("?"))
+            );
+            for p in &params {
+                let c = &f["checks"][p.as_str()];
+                let cell = match (c["p_value"].as_f64(), c["stable"].as_bool()) {
+                    (Some(pv), Some(true)) => format!("yes (p = {pv:.2e})"),
+                    (Some(pv), Some(false)) => format!("<b>no</b> (p = {pv:.2e})"),
+                    _ => "–".into(),
+                };
+                let _ = write!(html, "<td>{cell}</td>");
+            }
+            html.push_str("</tr>");
+        }
+        html.push_str("</table>");
+    }
+    for p in list(&d["provisional"]) {
+        let _ = write!(
+            html,
+            "<p><b>Provisional, not a finding:</b> {}</p>",
+            esc(p["failed_check"].as_str().unwrap_or("?"))
+        );
+    }
+    html
 }
