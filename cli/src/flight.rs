@@ -6,6 +6,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+mod calibrate;
 mod diagnose;
 mod measured;
 mod report;
@@ -14,10 +15,7 @@ use report::flight_page;
 use smash::data::flight_conditions::{
     columns_used, file_headers, fly_with_conditions, UserConditions,
 };
-use smash::data::flight_files::{
-    flight_csv, flight_error_at, read_atmosphere, read_launches, LaunchSource, OutputLayout,
-};
-use smash::data::flight_measured::check_measured;
+use smash::data::flight_files::{flight_csv, flight_error_at, read_atmosphere, LaunchSource};
 use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
 use smash::data::DataError;
@@ -391,6 +389,11 @@ pub struct FlightArgs {
     /// then fly and compare with the calibrated model.
     #[arg(long, value_name = "TERMS", conflicts_with = "diagnose")]
     pub calibrate: Option<String>,
+    /// With --calibrate: fit the scalings separately per ball (the `ball_type` column) or per
+    /// session (a `session`, `date`, `datetime`, `date_time` or `timestamp` column), each with
+    /// its standard errors, and fly each part's shots with its own scalings.
+    #[arg(long, value_name = "ball|session", requires = "calibrate", value_parser = ["ball", "session"])]
+    pub calibrate_by: Option<String>,
     /// Diagnose the flight model against the measured carry, apex and land angle: which term
     /// is off (drag level, lift slope, drag crisis, spin decay, drag per ball_type), ranked by
     /// cross-validated gain (folds by session when the file has a session or date column, else
@@ -438,7 +441,10 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
             );
         }
         match &args.calibrate {
-            Some(terms) => (calibrate_and_fly(&args, &cfg, source, terms)?, None),
+            Some(terms) => (
+                calibrate::calibrate_and_fly(&args, &cfg, source, terms)?,
+                None,
+            ),
             None => {
                 let (flown, d) = diagnose::diagnose_and_fly(&args, &cfg, source)?;
                 diagnosis = Some(d);
@@ -504,44 +510,6 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         eprintln!("report -> {}", path.display());
     }
     Ok(())
-}
-
-/// `--calibrate`: fit the scalings of `names` to the file's measured flights, report them, and
-/// write the flights of the calibrated model.
-fn calibrate_and_fly(
-    args: &FlightArgs,
-    cfg: &FlightConfig,
-    source: Option<LaunchSource>,
-    names: &str,
-) -> anyhow::Result<Flown> {
-    use smash::flight::calibrate::{calibrate, Term};
-    let terms = names
-        .split(',')
-        .map(|n| Term::from_name(n.trim()))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
-    let table = read_launches(&args.shots, source)?;
-    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
-    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
-    let shots = measured::measured_flights(&table);
-    let cal = calibrate(cfg, &shots, &terms).map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
-    let scales: Vec<String> = cal
-        .terms
-        .iter()
-        .zip(cal.scale.iter().zip(&cal.se))
-        .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
-        .collect();
-    eprintln!(
-        "calibrated {} on {} measured value(s): {} (weighted RMS residual {:.3} -> {:.3})",
-        cfg.aero.name(),
-        cal.residuals,
-        scales.join(", "),
-        cal.rms_before,
-        cal.rms_after
-    );
-    let model = cal.model(&cfg.aero);
-    let results = smash::flight::integrate::fly_with(cfg, &model, &table.launches);
-    write_flown(args, cfg, table, results)
 }
 
 /// The flights of every launch of `table` (`results`, in its order) written to `--out` with

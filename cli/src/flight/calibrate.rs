@@ -1,0 +1,116 @@
+//! `smash flight --calibrate TERMS [--calibrate-by ball|session]`: scalings of the model's
+//! drag, lift and spin decay fitted to the measured flights, for all shots or per ball or
+//! session, then the shots flown with them.
+
+use smash::data::flight_files::{read_launches, LaunchSource, OutputLayout};
+use smash::data::flight_measured::check_measured;
+use smash::data::flight_stream::Flown;
+use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
+use smash::flight::{Flight, FlightConfig, FlightError};
+
+use super::measured::{ball_types, measured_flights, sessions};
+use super::FlightArgs;
+
+/// Fit the scalings of `names` to the file's measured flights (per part with
+/// `--calibrate-by`), report them on stderr, and write the flights of the calibrated model(s).
+pub fn calibrate_and_fly(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    source: Option<LaunchSource>,
+    names: &str,
+) -> anyhow::Result<Flown> {
+    let terms = names
+        .split(',')
+        .map(|n| Term::from_name(n.trim()))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
+    let table = read_launches(&args.shots, source)?;
+    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
+    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let shots = measured_flights(&table);
+    let parts = match args.calibrate_by.as_deref() {
+        None => vec![(None, (0..shots.len()).collect())],
+        Some(by) => parts_by(by, &table, &args.shots)?,
+    };
+    let mut results: Vec<Option<Result<Flight, FlightError>>> =
+        (0..shots.len()).map(|_| None).collect();
+    for (key, idx) in parts {
+        let part: Vec<MeasuredFlight> = idx.iter().map(|&i| shots[i]).collect();
+        let what = key
+            .as_deref()
+            .map_or(String::new(), |k| format!(" for {k}"));
+        let cal =
+            calibrate(cfg, &part, &terms).map_err(|e| anyhow::anyhow!("--calibrate{what}: {e}"))?;
+        eprintln!("{}", calibration_line(cfg, &what, &cal));
+        let launches: Vec<_> = idx.iter().map(|&i| table.launches[i]).collect();
+        let flown = smash::flight::integrate::fly_with(cfg, &cal.model(&cfg.aero), &launches);
+        for (&i, f) in idx.iter().zip(flown) {
+            results[i] = Some(f);
+        }
+    }
+    let results = results
+        .into_iter()
+        .map(|r| r.expect("every shot is in one part"))
+        .collect();
+    super::write_flown(args, cfg, table, results)
+}
+
+/// "calibrated fmm2022 for ball_type 'range' on 90 measured value(s): drag x1.0800 ± 0.0011
+/// (weighted RMS residual 3.210 -> 0.000)".
+fn calibration_line(cfg: &FlightConfig, what: &str, cal: &Calibration) -> String {
+    let scales: Vec<String> = cal
+        .terms
+        .iter()
+        .zip(cal.scale.iter().zip(&cal.se))
+        .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
+        .collect();
+    format!(
+        "calibrated {}{what} on {} measured value(s): {} (weighted RMS residual {:.3} -> {:.3})",
+        cfg.aero.name(),
+        cal.residuals,
+        scales.join(", "),
+        cal.rms_before,
+        cal.rms_after
+    )
+}
+
+/// The shots' parts by ball or session, in the order each first appears: a label such as
+/// `ball_type 'range'` and the indices of its shots.
+type Parts = Vec<(Option<String>, Vec<usize>)>;
+
+fn parts_by(
+    by: &str,
+    table: &smash::data::flight_files::LaunchTable,
+    path: &std::path::Path,
+) -> anyhow::Result<Parts> {
+    let (column, keys) = match by {
+        "ball" => ("ball_type".to_string(), ball_types(table)),
+        _ => match sessions(table) {
+            Some((column, keys)) => (column, Some(keys)),
+            None => (String::new(), None),
+        },
+    };
+    let Some(keys) = keys else {
+        anyhow::bail!(
+            "--calibrate-by {by}: {} has no {} naming every shot's {by}",
+            path.display(),
+            if by == "ball" {
+                "ball_type column"
+            } else {
+                "session, date, datetime, date_time or timestamp column"
+            }
+        );
+    };
+    let mut parts: Parts = Vec::new();
+    for (i, k) in keys.iter().enumerate() {
+        let label = format!("{column} '{k}'");
+        match parts
+            .iter_mut()
+            .find(|(l, _)| l.as_deref() == Some(label.as_str()))
+        {
+            Some((_, idx)) => idx.push(i),
+            None => parts.push((Some(label), vec![i])),
+        }
+    }
+    Ok(parts)
+}
