@@ -2,9 +2,17 @@
 //! (`DiagnoseOptions::default()`, which the CLI's defaults build: the default candidates and
 //! impact-noise levels, 5-fold CV grouped by golfer, up to 10 steps, 100 iterations a fit, then
 //! the noise floor the report prints), in process: the library calls the CLI makes, on the
-//! 600-shot paper world and on the same world with 10,020 shots (334 golfers per shaft).
+//! 600-shot paper world and on the same world with 10,020 shots (334 golfers per shaft), and
+//! on the real-format season (`benches/support/real_format.rs`: 2,200 drives of 22 sessions as
+//! a TrackMan export read with the `trackman` preset, folded by session as the CLI folds it,
+//! with structure everywhere so that the selection walks 13 steps, swap rounds and removals
+//! among them).
 //! Reading the files and printing the report are left out (a few ms).
 
+#[path = "support/real_format.rs"]
+mod real_format;
+#[path = "support/trackman.rs"]
+mod trackman;
 #[path = "support/worlds.rs"]
 mod worlds;
 
@@ -13,31 +21,47 @@ use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 
+use smash::data::shots::Shot;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass};
 use smash::diagnose::{diagnose, DiagnoseOptions};
+use smash::ClubSpec;
+
+fn bench_one(
+    g: &mut criterion::BenchmarkGroup<criterion::measurement::WallTime>,
+    name: &str,
+    (club, shots, opts): (&ClubSpec, &[Shot], &DiagnoseOptions),
+) {
+    g.bench_function(name, |b| {
+        b.iter(|| {
+            let d = diagnose(black_box(club), black_box(shots), opts, None).unwrap();
+            noise_floor(&d, shots, &InstrumentClass::Camera.noise()).unwrap()
+        })
+    });
+}
 
 fn bench(c: &mut Criterion) {
     let club = worlds::paper_club();
     let mut g = c.benchmark_group("diagnose");
     g.sample_size(10);
+    let defaults = DiagnoseOptions::default();
     for (label, golfers) in [("600 shots", 20), ("10k shots", 334)] {
         let shots = worlds::paper_world(golfers);
         if golfers > 20 {
             g.measurement_time(Duration::from_secs(60));
         }
-        g.bench_function(format!("paper world, {label}, default options"), |b| {
-            b.iter(|| {
-                let d = diagnose(
-                    black_box(&club),
-                    black_box(&shots),
-                    &DiagnoseOptions::default(),
-                    None,
-                )
-                .unwrap();
-                noise_floor(&d, &shots, &InstrumentClass::Camera.noise()).unwrap()
-            })
-        });
+        let name = format!("paper world, {label}, default options");
+        bench_one(&mut g, &name, (&club, &shots, &defaults));
     }
+    // The CLI's options on an export without golfers: folds by session (the `Date` column).
+    let (shots, fold_keys) = real_format::real_format_season(&club, defaults.folds);
+    assert!(fold_keys.is_some(), "the season's sessions fold it");
+    let opts = DiagnoseOptions {
+        fold_keys,
+        ..DiagnoseOptions::default()
+    };
+    g.measurement_time(Duration::from_secs(100));
+    let name = "real-format TrackMan season, 2,200 shots, default options";
+    bench_one(&mut g, name, (&club, &shots, &opts));
     g.finish();
 }
 

@@ -76,13 +76,25 @@ impl Search<'_> {
         w: Weighting,
     ) -> Result<f64, FitError> {
         let at = evaluate::all_shots_at(self.club, layout, &self.data, w, theta);
+        self.cv_given(layout, theta, w, at.as_ref().map(|(r, j)| (r, j)))
+    }
+
+    /// [`Self::cv_at`] given the residuals and Jacobian on all shots at `theta` (`at`, `None`
+    /// when they cannot be evaluated there).
+    pub(in crate::diagnose) fn cv_given(
+        &self,
+        layout: &ParamLayout,
+        theta: &DVector<f64>,
+        w: Weighting,
+        at: Option<evaluate::AllShots>,
+    ) -> Result<f64, FitError> {
         cv_chi2(
             self.club,
             layout,
             &self.folds,
             w,
             theta,
-            at.as_ref().map(|(r, j)| (r, j)),
+            at,
             self.opts.max_iters,
             None,
         )

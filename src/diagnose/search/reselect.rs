@@ -4,7 +4,8 @@
 //! together and forward selection is run again from what is left, by its own rule (penalty, multiplicity, noise-floor
 //! stop). The new model replaces the current one only when it fits the held-out golfers better
 //! by more than its extra parameters cost: `CV(new) + k_new·ln n < CV(current) + k_now·ln n`,
-//! both CV χ² with the current model's noise scales and folds.
+//! both CV χ² with the current model's noise scales and folds, and selects other effects (the
+//! same effects re-selected in another order are the same model, not a change).
 //!
 //! Why: a stand-in chosen early (a 2-parameter `ball_offset` taking the place of the compression
 //! lever and the COR's speed dependence at step 2) is later propped up by another stand-in it
@@ -71,7 +72,11 @@ impl Search<'_> {
         let k_net = trial.base.len() as f64 - self.base.len() as f64;
         let gain = cv_now - cv_new;
         let penalty = k_net * self.penalty_per_param;
-        if !gain.is_finite() || gain - penalty <= 0.0 || trial.selected == self.selected {
+        // The same effects in another order are the same model (its CV χ² moves only by the
+        // fits' tolerance): no change to make.
+        let same_effects = trial.selected.len() == self.selected.len()
+            && trial.selected.iter().all(|r| self.selected.contains(r));
+        if !gain.is_finite() || gain - penalty <= 0.0 || same_effects {
             return Ok(None);
         }
         let decision = self.decision(

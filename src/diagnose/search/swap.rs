@@ -26,7 +26,7 @@
 //! and delivery-noise levels) stay as chosen. Ties keep candidate order, so the rounds are
 //! deterministic.
 
-use nalgebra::DVector;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::super::evaluate::{self, EffectFit, StepBase};
@@ -63,13 +63,18 @@ fn without(
     Ok((ParamLayout::new(effects)?, DVector::from_vec(vals), k_out))
 }
 
-/// The model without one selected effect: its layout, warm start, errors on all shots and
-/// cross-validated χ².
+/// The model without one selected effect, refitted on all shots: its layout, values, errors on
+/// all shots and cross-validated χ², and its residuals and Jacobian on all shots at its values
+/// (`None` when they cannot be evaluated there). The round's replacements of that effect start
+/// from that fit and evaluation as a forward step's candidates start from the step base's (a
+/// fitted model and its evaluation: the replacement's fit then begins near its minimum, and
+/// the folds' chord steps, which assume a start at the all-shots solution, begin at one).
 pub(in crate::diagnose) struct Reduced {
     pub(in crate::diagnose) layout: ParamLayout,
     pub(in crate::diagnose) theta: DVector<f64>,
     errors: Vec<[f64; 5]>,
     cv: f64,
+    at: Option<(DVector<f64>, DMatrix<f64>)>,
     /// Parameters the removed effect had.
     k_out: usize,
 }
@@ -196,29 +201,36 @@ impl Search<'_> {
         Ok((layout, run.theta))
     }
 
-    /// The model without the selected effects `outs`, not refitted, with its errors and
-    /// cross-validated χ² (a removal option of a round).
+    /// The model without the selected effects `outs`, refitted on all shots (warm-started from
+    /// the current values), with its errors and cross-validated χ² (a removal option of a
+    /// round) and its evaluation on all shots.
     pub(in crate::diagnose) fn reduced_by(
         &self,
         outs: &[usize],
         w: Weighting,
     ) -> Result<Reduced, FitError> {
-        let (layout, theta, k_out) = self.dropped(outs)?;
+        let (_, _, k_out) = self.dropped(outs)?;
+        let (layout, theta) = self.refit_without(outs, w)?;
         let errors = self.errors_of(&layout, theta.as_slice())?;
-        let cv = self.cv_at(&layout, &theta, w)?;
+        let at = evaluate::all_shots_at(self.club, &layout, &self.data, w, &theta);
+        let cv = self.cv_given(&layout, &theta, w, at.as_ref().map(|(r, j)| (r, j)))?;
         Ok(Reduced {
             layout,
             theta,
             errors,
             cv,
+            at,
             k_out,
         })
     }
 
+    /// The base an option's effect is fitted on: the model `(layout, theta)` with its `errors`,
+    /// CV χ² and its residuals and Jacobian on all shots at `theta` when known (`at`: the
+    /// effect's fit then starts from them plus its own columns, [`evaluate::evaluate_effect`]).
     fn step_base<'s>(
         &'s self,
         (layout, theta, errors): (&'s ParamLayout, &'s DVector<f64>, &'s [[f64; 5]]),
-        cv: f64,
+        (cv, at): (f64, Option<evaluate::AllShots<'s>>),
         rb: RoundBase,
     ) -> StepBase<'s> {
         StepBase {
@@ -232,7 +244,7 @@ impl Search<'_> {
             w: rb.w,
             rms: evaluate::rms_per_component(errors),
             cv,
-            at: None,
+            at,
             max_iters: self.opts.max_iters,
             progress: None,
             spread: None,
@@ -327,7 +339,9 @@ impl Search<'_> {
         let (layout, run) = st.fit.as_ref()?.fit.as_ref()?;
         let (l2, t2, k_e) = without(layout, &run.theta, self.selected[e].kind()).ok()?;
         let errors = self.errors_of(&l2, t2.as_slice()).ok()?;
-        let base = self.step_base((&l2, &t2, &errors), f64::NAN, rb);
+        let at = evaluate::all_shots_at(self.club, &l2, &self.data, rb.w, &t2);
+        let at = at.as_ref().map(|(r, j)| (r, j));
+        let base = self.step_base((&l2, &t2, &errors), (f64::NAN, at), rb);
         let f = evaluate::evaluate_effect(&base, b, self.penalty_per_param, 0.0);
         let s = st.outs[0];
         let k_net = st.k_net + f.result.n_params as f64 - k_e as f64;
@@ -417,7 +431,8 @@ impl Search<'_> {
             .par_iter()
             .map(|&(r, c)| {
                 let red = &reduced[r];
-                let base = self.step_base((&red.layout, &red.theta, &red.errors), red.cv, rb);
+                let at = red.at.as_ref().map(|(r, j)| (r, j));
+                let base = self.step_base((&red.layout, &red.theta, &red.errors), (red.cv, at), rb);
                 let f = evaluate::evaluate_effect(&base, c, self.penalty_per_param, 0.0);
                 let o = questioned[r];
                 let label = format!("{} → {}", self.selected[o].label(), c.label());

@@ -1,0 +1,54 @@
+//! The real-format fixture of the diagnose bench: `configs/synth/trackman_real_scale_world.toml`
+//! (2,200 drives in 22 sessions, structure everywhere) generated as `smash synth` does, written
+//! as a TrackMan export ([`super::trackman`], with the radar's derived face angle, as
+//! `cargo run --example trackman_session -- … --radar-face` writes it), converted with the
+//! `trackman` preset as `smash import --format trackman --impact-offset-positive toe` does, read
+//! back with the CLI's reader and brought to the model's convention as `smash diagnose` does.
+//! What `smash diagnose` is then given: the shots and the session (date) fold keys.
+
+use std::path::Path;
+
+use smash::data::club_file::read_club;
+use smash::data::import::{import, load_mapping, ImportOptions, OffsetSide};
+use smash::data::sessions::fold_keys;
+use smash::data::shots::{read_shots, Shot};
+use smash::stats::FoldKeys;
+use smash::synth::files::synth_shots_csv;
+use smash::synth::{generate, read_config};
+use smash::ClubSpec;
+
+use super::trackman::trackman_export;
+
+/// The shots of the real-format season in the model's convention with `club`'s face, and the
+/// fold keys (sessions) for `folds` folds.
+pub fn real_format_season(club: &ClubSpec, folds: usize) -> (Vec<Shot>, Option<FoldKeys>) {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let cfg = read_config(&root.join("configs/synth/trackman_real_scale_world.toml"))
+        .expect("real-scale world reads");
+    let base = read_club(&cfg.club).expect("base club reads");
+    let run = generate(&cfg, &base).expect("world generates");
+    let layout =
+        std::fs::read_to_string(root.join("cli/tests/fixtures/import/trackman_normalized.csv"))
+            .expect("TrackMan layout reads");
+    let face =
+        smash::physics::FaceGeometry::new(club.nominal.bulge_m, club.nominal.roll_m).expect("face");
+    let export = trackman_export(&synth_shots_csv(&run), &layout, &face, true);
+    let dir = tempfile::tempdir().expect("temp dir");
+    let export_path = dir.path().join("trackman.csv");
+    let opts = ImportOptions {
+        impact_offset_positive: Some(OffsetSide::Toe),
+        ..ImportOptions::default()
+    };
+    let mapping = load_mapping("trackman").expect("trackman preset");
+    let imported =
+        import(&export_path, export.as_bytes(), &mapping, &opts).expect("export imports");
+    let shots_path = dir.path().join("shots.csv");
+    std::fs::write(&shots_path, &imported.csv).expect("shots written");
+    let mut table = read_shots(&shots_path).expect("shots read");
+    let (shots, _) = smash::conventions::to_model(club, &table.shots, &table.conventions)
+        .expect("shots on the face");
+    table.shots = shots;
+    table.conventions = vec![Default::default(); table.shots.len()];
+    let keys = fold_keys(&table, folds).expect("session keys");
+    (table.shots, keys)
+}
