@@ -223,3 +223,37 @@ fn without_golfers_folds_hold_whole_sessions_or_time_blocks() {
     // The golfers themselves still fold by golfer.
     assert_eq!(fold_by(&world).0, "golfer");
 }
+
+/// The same real-format 7-iron session against the shipped 7-iron head: no mismatch, and
+/// `compare` runs and reports every launch component (issue 28: "compare runs on a
+/// real-format iron session with the 7-iron file").
+#[test]
+fn a_seven_iron_session_compares_with_the_seven_iron_head() {
+    let shots = s(&repo("cli/tests/fixtures/import/flightscope_fsgolf.csv")).to_owned();
+    let o = smash(&[
+        "compare",
+        "--club",
+        "configs/clubs/iron_7.toml",
+        "--shots",
+        &shots,
+        "--format",
+        "flightscope",
+        "--impact-offset-positive",
+        "toe",
+        "--json",
+    ]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(!err.contains("does not match the club"), "{err}");
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert!(j.get("club_mismatch").is_none(), "{j}");
+    let text = j.to_string();
+    for c in [
+        "ball_speed_mph",
+        "launch_angle_deg",
+        "azimuth_deg",
+        "backspin_rpm",
+    ] {
+        assert!(text.contains(c), "{c} missing: {text}");
+    }
+}
