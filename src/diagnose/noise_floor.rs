@@ -498,17 +498,28 @@ pub fn noise_floor(
     shots: &[Shot],
     inst: &InstrumentNoise,
 ) -> Result<NoiseFloor, FitError> {
-    let data = FitData::from_shots(shots)?
+    let data = final_model_data(d, shots)?;
+    let errors = launch_errors_of(&d.club, &data)?;
+    noise_floor_of(&d.club, shots, &errors, inst, d.impact_noise)
+}
+
+/// The shots as the final model of `d` sees them: with its delivery- and impact-noise
+/// treatment.
+pub(super) fn final_model_data(d: &Diagnosis, shots: &[Shot]) -> Result<FitData, FitError> {
+    FitData::from_shots(shots)?
         .with_delivery_noise(d.delivery_noise)
-        .with_impact_noise(d.impact_noise)?;
-    let errors = FitProblem::new(
-        &d.club,
+        .with_impact_noise(d.impact_noise)
+}
+
+/// Model − measured of `club` (its effects applied, nothing free) for every shot, file units.
+pub(super) fn launch_errors_of(club: &ClubSpec, data: &FitData) -> Result<Vec<[f64; 5]>, FitError> {
+    Ok(FitProblem::new(
+        club,
         ParamLayout::new(Vec::new())?,
-        &data,
+        data,
         Weighting::launch(&[1.0; 5]),
     )
-    .launch_errors(&[])?;
-    noise_floor_of(&d.club, shots, &errors, inst, d.impact_noise)
+    .launch_errors(&[])?)
 }
 
 #[cfg(test)]

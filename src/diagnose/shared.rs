@@ -24,12 +24,12 @@
 
 use crate::club::ClubSpec;
 use crate::effects::Effect;
-use crate::fit::{FitData, FitError, FitProblem, ParamEstimate, ParamLayout, Weighting};
+use crate::fit::{FitData, FitError, ParamEstimate};
 use crate::model::{DeliveryVar, Shot};
 use crate::physics::LaunchComponent;
 use crate::stats;
 
-use super::noise_floor::{delivery_to_file_units, NoiseFloor};
+use super::noise_floor::{delivery_to_file_units, final_model_data, launch_errors_of, NoiseFloor};
 use super::Diagnosis;
 
 /// Smallest |r| of a component's remaining structure with a delivery variable for the check
@@ -84,9 +84,7 @@ pub fn shared_signals(
     if trends.is_empty() || d.estimates.is_empty() {
         return Ok(Vec::new());
     }
-    let data = FitData::from_shots(shots)?
-        .with_delivery_noise(d.delivery_noise)
-        .with_impact_noise(d.impact_noise)?;
+    let data = final_model_data(d, shots)?;
     let deliveries: Vec<_> = shots
         .iter()
         .map(|s| delivery_to_file_units(&s.delivery))
@@ -145,15 +143,8 @@ fn signal_of(
         let mut values = e.values().to_vec();
         values[j] = v;
         let mut moved = club.clone();
-        moved.effects[k] = Effect::new(e.kind(), &values, e.group().map(str::to_owned))
-            .map_err(|err| FitError::Solver(err.to_string()))?;
-        Ok(FitProblem::new(
-            &moved,
-            ParamLayout::new(Vec::new())?,
-            data,
-            Weighting::launch(&[1.0; 5]),
-        )
-        .launch_errors(&[])?)
+        moved.effects[k] = Effect::new(e.kind(), &values, e.group().map(str::to_owned))?;
+        launch_errors_of(&moved, data)
     };
     let (ea, eb) = (at(a)?, at(b)?);
     Ok(Some(
