@@ -503,8 +503,7 @@ pub fn noise_floor(
     noise_floor_of(&d.club, shots, &errors, inst, d.impact_noise)
 }
 
-/// The shots as the final model of `d` sees them: with its delivery- and impact-noise
-/// treatment.
+/// The shots as the final model of `d` sees them (its delivery- and impact-noise treatment).
 pub(super) fn final_model_data(d: &Diagnosis, shots: &[Shot]) -> Result<FitData, FitError> {
     FitData::from_shots(shots)?
         .with_delivery_noise(d.delivery_noise)
@@ -513,13 +512,8 @@ pub(super) fn final_model_data(d: &Diagnosis, shots: &[Shot]) -> Result<FitData,
 
 /// Model − measured of `club` (its effects applied, nothing free) for every shot, file units.
 pub(super) fn launch_errors_of(club: &ClubSpec, data: &FitData) -> Result<Vec<[f64; 5]>, FitError> {
-    Ok(FitProblem::new(
-        club,
-        ParamLayout::new(Vec::new())?,
-        data,
-        Weighting::launch(&[1.0; 5]),
-    )
-    .launch_errors(&[])?)
+    let (layout, unit) = (ParamLayout::new(Vec::new())?, Weighting::launch(&[1.0; 5]));
+    Ok(FitProblem::new(club, layout, data, unit).launch_errors(&[])?)
 }
 
 #[cfg(test)]
