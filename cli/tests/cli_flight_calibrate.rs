@@ -65,6 +65,13 @@ fn shots(dir: &Path, with_ball: bool) -> PathBuf {
     p
 }
 
+/// `smash flight --shots SHOTS --out OUT` with `extra` flags.
+fn flight(shots: &Path, out: &Path, extra: &[&str]) -> std::process::Output {
+    let mut args = vec!["flight", "--shots", s(shots), "--out", s(out)];
+    args.extend_from_slice(extra);
+    smash(&args)
+}
+
 /// The drag scaling printed for `part` (`ball_type 'range'`, `date '2026-05-02'`).
 fn drag_of(err: &str, part: &str) -> f64 {
     let line = err
@@ -84,17 +91,7 @@ fn a_range_ball_s_drag_is_recovered_per_ball_and_per_session() {
         ("ball", "ball_type 'premium'", "ball_type 'range'"),
         ("session", "date '2026-05-01'", "date '2026-05-02'"),
     ] {
-        let o = smash(&[
-            "flight",
-            "--shots",
-            s(&shots),
-            "--out",
-            s(&out),
-            "--calibrate",
-            "drag",
-            "--calibrate-by",
-            by,
-        ]);
+        let o = flight(&shots, &out, &["--calibrate", "drag", "--calibrate-by", by]);
         let err = stderr(&o);
         assert!(o.status.success(), "{err}");
         let (p, r) = (drag_of(&err, premium), drag_of(&err, range));
@@ -123,17 +120,11 @@ fn calibrate_by_refusals() {
     let dir = tempfile::tempdir().unwrap();
     let shots = shots(dir.path(), false);
     let out = dir.path().join("f.csv");
-    let o = smash(&[
-        "flight",
-        "--shots",
-        s(&shots),
-        "--out",
-        s(&out),
-        "--calibrate",
-        "drag",
-        "--calibrate-by",
-        "ball",
-    ]);
+    let o = flight(
+        &shots,
+        &out,
+        &["--calibrate", "drag", "--calibrate-by", "ball"],
+    );
     assert!(!o.status.success());
     let err = stderr(&o);
     assert!(
@@ -141,15 +132,7 @@ fn calibrate_by_refusals() {
         "{err}"
     );
     assert!(!out.exists());
-    let o = smash(&[
-        "flight",
-        "--shots",
-        s(&shots),
-        "--out",
-        s(&out),
-        "--calibrate-by",
-        "session",
-    ]);
+    let o = flight(&shots, &out, &["--calibrate-by", "session"]);
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--calibrate"), "{}", stderr(&o));
 }
