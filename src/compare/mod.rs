@@ -9,7 +9,7 @@
 //! - the errors binned by club speed and by dynamic loft (quantile bins);
 //! - the Pearson correlation of each error component with each delivery variable;
 //! - a ranked list of [`Finding`]s, each with hints from a small table of effect
-//!   [`SIGNATURES`]: which library effects produce such a pattern, and, given their measured
+//!   [`signatures`]: which library effects produce such a pattern, and, given their measured
 //!   signatures ([`UserHints`]), which user-defined effects can cancel it.
 //!
 //! Undefined statistics are `None`, never NaN.
@@ -26,7 +26,7 @@ use crate::model::{DeliveryVar, Shot, N_DELIVERY};
 use crate::physics::{Launch, LaunchComponent};
 use crate::stats::Summary;
 
-pub use signatures::{hints_for, Hint, Pattern, Signature, SIGNATURES};
+pub use signatures::{hints_for, signatures, Hint, Pattern, Signature};
 pub use user_hints::{UserHints, UserSignature};
 
 /// Settings of a comparison.
@@ -301,7 +301,7 @@ pub struct Finding {
     pub strength: f64,
     /// One sentence.
     pub text: String,
-    /// Library effects that produce such a pattern (from [`SIGNATURES`]).
+    /// Library effects that produce such a pattern (from [`signatures`]).
     pub hints: Vec<String>,
 }
 

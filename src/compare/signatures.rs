@@ -1,13 +1,13 @@
-//! Which library effects produce which error pattern: a small table, used to hint at the
-//! missing physics behind a finding. Each row was read off the model (an effect's derivative of
-//! the launch over typical driver shots); `smash diagnose` tests them quantitatively.
+//! Which library effects produce which error pattern, used to hint at the missing physics
+//! behind a finding. The rows are the effects' own (`SIGNATURE` in each file of
+//! `src/effects/`, read off the model: an effect's derivative of the launch over typical driver
+//! shots) plus one for noisy impact locations; `smash diagnose` tests them quantitatively.
 
 use std::fmt;
 
-use serde::Serialize;
-
 use crate::effects::user::UserEffect;
 use crate::effects::EffectKind;
+pub use crate::effects::Pattern;
 use crate::physics::LaunchComponent;
 
 /// What a signature points at: a library effect (checked by the compiler), the effect per group
@@ -39,236 +39,53 @@ impl fmt::Display for Hint {
     }
 }
 
-/// The shape of an error pattern.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Pattern {
-    /// A uniform bias: the mean error is not zero.
-    Bias,
-    /// The mean error differs between groups (shafts).
-    GroupBias,
-    /// The error changes with a delivery variable.
-    Trend(&'static str),
-}
-
-/// One row of the table.
+/// One row of the table: a component's error pattern, what produces it and why.
 #[derive(Debug, Clone, Copy)]
 pub struct Signature {
     /// Error component.
     pub component: LaunchComponent,
     /// Pattern.
     pub pattern: Pattern,
-    /// Effects (or measurement noise) that produce it.
-    pub effects: &'static [Hint],
+    /// The effect (or measurement noise) that produces it.
+    pub hint: Hint,
     /// Why, in a few words.
     pub why: &'static str,
 }
 
-use Hint::{Effect, ImpactNoise, PerGroup};
-use LaunchComponent::{Azimuth, Backspin, BallSpeed, LaunchAngle, Sidespin};
-use Pattern::{Bias, GroupBias, Trend};
+/// Noisy measured impact locations leave a ball-speed trend with the distance from the centre:
+/// the model is charged for strikes measured farther out than they were.
+const IMPACT_NOISE: Signature = Signature {
+    component: LaunchComponent::BallSpeed,
+    pattern: Pattern::Trend("impact_r_mm"),
+    hint: Hint::ImpactNoise,
+    why: "noisy impact locations: falling with r, the model is charged for strikes measured \
+          farther out than they were; try --impact-noise-mm",
+};
 
-const fn sig(
-    component: LaunchComponent,
-    pattern: Pattern,
-    effects: &'static [Hint],
-    why: &'static str,
-) -> Signature {
-    Signature {
-        component,
-        pattern,
-        effects,
-        why,
-    }
+/// The table: every library effect's own rows, in registration order (a `GroupBias` row is the
+/// effect fitted per group), then the impact-noise row.
+pub fn signatures() -> impl Iterator<Item = Signature> {
+    EffectKind::ALL
+        .into_iter()
+        .flat_map(|k| {
+            k.signature().iter().map(move |r| Signature {
+                component: r.component,
+                pattern: r.pattern,
+                hint: match r.pattern {
+                    Pattern::GroupBias => Hint::PerGroup(k),
+                    _ => Hint::Effect(k),
+                },
+                why: r.why,
+            })
+        })
+        .chain([IMPACT_NOISE])
 }
 
-/// The table.
-pub const SIGNATURES: &[Signature] = &[
-    sig(
-        BallSpeed,
-        Bias,
-        &[
-            Effect(EffectKind::AddedMass),
-            Effect(EffectKind::CorLevel),
-            Effect(EffectKind::HoselMass),
-        ],
-        "effective clubhead mass (shaft taking part) or the club's COR",
-    ),
-    sig(
-        BallSpeed,
-        GroupBias,
-        &[PerGroup(EffectKind::AddedMass)],
-        "shaft mass taking part in the impact",
-    ),
-    sig(
-        BallSpeed,
-        Trend("club_speed_mph"),
-        &[Effect(EffectKind::CorSpeed), Effect(EffectKind::CorPower)],
-        "COR falling with impact speed",
-    ),
-    sig(
-        BallSpeed,
-        Trend("impact_r_mm"),
-        &[Effect(EffectKind::CorRadial), ImpactNoise],
-        "COR falling off-centre, or noisy impact locations (falling with r: the model is charged \
-         for strikes measured farther out than they were; try --impact-noise-mm)",
-    ),
-    sig(
-        BallSpeed,
-        Trend("impact_y_mm"),
-        &[Effect(EffectKind::CorRadial), Effect(EffectKind::ComOffset)],
-        "COR or effective mass varying up the face",
-    ),
-    sig(
-        BallSpeed,
-        Trend("impact_z_mm"),
-        &[
-            Effect(EffectKind::ComOffset),
-            Effect(EffectKind::InertiaScale),
-        ],
-        "heel-toe energy loss: CoM position, inertia",
-    ),
-    sig(
-        LaunchAngle,
-        Bias,
-        &[Effect(EffectKind::LoftBias)],
-        "delivered loft measured with an offset",
-    ),
-    sig(
-        LaunchAngle,
-        Trend("dynamic_loft_deg"),
-        &[
-            Effect(EffectKind::LoftBias),
-            Effect(EffectKind::TangentialRestitution),
-            Effect(EffectKind::Friction),
-        ],
-        "how far the ball follows the face normal",
-    ),
-    sig(
-        LaunchAngle,
-        Trend("impact_y_mm"),
-        &[Effect(EffectKind::ComOffset)],
-        "vertical gear effect",
-    ),
-    sig(
-        Azimuth,
-        Bias,
-        &[Effect(EffectKind::FaceBias)],
-        "delivered face angle measured with an offset",
-    ),
-    sig(
-        Azimuth,
-        Trend("face_angle_deg"),
-        &[
-            Effect(EffectKind::TangentialRestitution),
-            Effect(EffectKind::Friction),
-            Effect(EffectKind::FaceBias),
-        ],
-        "how far the ball follows the face vs the path",
-    ),
-    sig(
-        Azimuth,
-        Trend("club_path_deg"),
-        &[
-            Effect(EffectKind::TangentialRestitution),
-            Effect(EffectKind::Friction),
-        ],
-        "how far the ball follows the path",
-    ),
-    sig(
-        Azimuth,
-        Trend("impact_z_mm"),
-        &[
-            Effect(EffectKind::ComOffset),
-            Effect(EffectKind::InertiaScale),
-        ],
-        "horizontal gear effect",
-    ),
-    sig(
-        Backspin,
-        Bias,
-        &[Effect(EffectKind::BallOffset), Effect(EffectKind::LoftBias)],
-        "ball deformation: CoM off the contact normal (dy)",
-    ),
-    sig(
-        Backspin,
-        GroupBias,
-        &[
-            PerGroup(EffectKind::BallOffset),
-            PerGroup(EffectKind::AddedMass),
-        ],
-        "shaft-dependent spin",
-    ),
-    sig(
-        Backspin,
-        Trend("dynamic_loft_deg"),
-        &[
-            Effect(EffectKind::LoftBias),
-            Effect(EffectKind::Friction),
-            Effect(EffectKind::TangentialRestitution),
-        ],
-        "spin loft: grip and loft reading",
-    ),
-    sig(
-        Backspin,
-        Trend("club_speed_mph"),
-        &[Effect(EffectKind::BallOffset), Effect(EffectKind::Friction)],
-        "spin growing with speed: deformation, slip",
-    ),
-    sig(
-        Backspin,
-        Trend("impact_y_mm"),
-        &[
-            Effect(EffectKind::ComOffset),
-            Effect(EffectKind::InertiaScale),
-        ],
-        "vertical gear effect: CoM height/depth, inertia",
-    ),
-    sig(
-        Sidespin,
-        Bias,
-        &[Effect(EffectKind::BallOffset), Effect(EffectKind::FaceBias)],
-        "ball deformation sideways (dz), face reading",
-    ),
-    sig(
-        Sidespin,
-        Trend("impact_z_mm"),
-        &[
-            Effect(EffectKind::ComOffset),
-            Effect(EffectKind::InertiaScale),
-        ],
-        "horizontal gear effect: CoM, inertia",
-    ),
-    sig(
-        Sidespin,
-        Trend("face_angle_deg"),
-        &[
-            Effect(EffectKind::FaceBias),
-            Effect(EffectKind::Friction),
-            Effect(EffectKind::TangentialRestitution),
-        ],
-        "face-to-path spin axis",
-    ),
-    sig(
-        Sidespin,
-        Trend("club_path_deg"),
-        &[
-            Effect(EffectKind::Friction),
-            Effect(EffectKind::TangentialRestitution),
-        ],
-        "face-to-path spin axis",
-    ),
-];
-
-/// Hints for a pattern of one component: `effect, effect (why)` for every matching row.
+/// Hints for a pattern of one component: `effect (why)` for every matching row.
 pub fn hints_for(component: LaunchComponent, pattern: &Pattern) -> Vec<String> {
-    SIGNATURES
-        .iter()
+    signatures()
         .filter(|s| s.component == component && s.pattern == *pattern)
-        .map(|s| {
-            let names: Vec<String> = s.effects.iter().map(Hint::to_string).collect();
-            format!("{} ({})", names.join(" or "), s.why)
-        })
+        .map(|s| format!("{} ({})", s.hint, s.why))
         .collect()
 }
 

@@ -1,7 +1,7 @@
 //! Hints at user-defined effects: which error patterns a `[[define_effect]]` can produce on
 //! these shots, read off the model rather than off its text.
 //!
-//! The library's effects have a table ([`super::SIGNATURES`]) that was read off the model once.
+//! The library's effects have a table ([`super::signatures`]), each row read off the model once.
 //! A user-defined effect has none, so its signature is measured on the shots being compared:
 //! each parameter is stepped from its default (into its bounds) and the model's change of every
 //! launch component is taken shot by shot (a forward difference through the compiled

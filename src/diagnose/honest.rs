@@ -48,128 +48,24 @@ pub fn is_absent(p: &ParamEstimate) -> bool {
 }
 
 /// Which physics an implausible value behaves like (`None` when the value is plausible or the
-/// parameter unknown). The reasons are the model's own sensitivities: what else moves the same
-/// launch components the same way.
+/// parameter unknown). The reading is the effect's own (`STAND_IN` in its file): what else moves
+/// the same launch components the same way.
 pub fn stand_in(p: &ParamEstimate) -> Option<&'static str> {
     if is_plausible(p)? {
         return None;
     }
     let (lo, _) = spec_of(p)?.plausible;
-    let low = p.value < lo;
-    let kind = EffectKind::from_name(p.effect)?;
-    Some(match (kind, p.param, low) {
-        (EffectKind::AddedMass, _, true) => {
-            "less ball speed and a different spin split than the head's mass gives: behaves like \
-             a lower face COR or energy lost in a compliant contact, not like mass leaving the head"
-        }
-        (EffectKind::AddedMass, _, false) => {
-            "more ball speed than the head gives: behaves like a higher face COR or a heavier \
-             hosel (shaft tip) than the head alone"
-        }
-        (EffectKind::BallOffset, _, _) => {
-            "a spin bias beyond any ball deformation: behaves like tangential compliance (spin \
-             depending on the contact regime) or a loft bias"
-        }
-        (EffectKind::TangentialRestitution, _, _) => {
-            "more or less spin than a rebound of that size allows: behaves like regime-dependent \
-             tangential compliance or a loft bias"
-        }
-        (EffectKind::Friction, _, _) => {
-            "a slip limit outside ball-on-face values: behaves like tangential compliance"
-        }
-        (EffectKind::CorSpeed, _, _) => {
-            "a COR falling with speed faster than balls do: behaves like a COR level or a \
-             power-law COR and energy lost in a compliant contact"
-        }
-        (EffectKind::CorRadial, _, _) => {
-            "a COR falling off-centre faster than faces do: behaves like anisotropic face flex \
-             or head rotation during a finite contact"
-        }
-        (EffectKind::LoftBias, _, _) | (EffectKind::FaceBias, _, _) => {
-            "a delivery bias larger than a calibrated monitor has: behaves like the head \
-             rotating during a finite contact (dynamic loft or face changing while in contact)"
-        }
-        (EffectKind::ComOffset, _, _) => {
-            "a centre of mass moved beyond CAD tolerance: behaves like gear effect changed by a \
-             finite contact (the contact point travels, the head rotates) or tangential compliance"
-        }
-        (EffectKind::InertiaScale, _, _) => {
-            "a head that turns more or less off-centre than its inertia allows: behaves like a \
-             finite contact time, a shaft constraint at the hosel, or tangential compliance"
-        }
-        (EffectKind::CorLevel, _, _) => {
-            "a face COR outside what conforming drivers show: behaves like an effective mass \
-             change (shaft taking part) or energy lost in a compliant contact"
-        }
-        (EffectKind::HoselMass, _, _) => {
-            "more shaft mass at the hosel than a shaft tip has: behaves like a higher face COR or \
-             a centre of mass and inertia different from the file's"
-        }
-        (EffectKind::CorPower, _, _) => {
-            "a COR falling with speed faster than balls do: behaves like a COR level or energy \
-             lost in a compliant contact"
-        }
-        (EffectKind::ContactTime, _, _) => {
-            "a contact longer than a driver impact lasts: behaves like a spin lever or head \
-             rotation the file's geometry does not give (ball offset, CoM or inertia error)"
-        }
-        (EffectKind::TangentialCompliance, _, _) => {
-            "a tangential rebound or friction outside ball-on-face values: behaves like a spin \
-             lever or a loft bias rather than shear compliance"
-        }
-        (EffectKind::CompressionLever, _, _) => {
-            "a spin lever shortened beyond what a compressed ball gives: behaves like a loft bias \
-             or a tangential rebound outside ball-on-face values"
-        }
-    })
+    let s = EffectKind::from_name(p.effect)?.stand_in();
+    Some(if p.value < lo { s.below } else { s.above })
 }
 
-/// What measurement pins a parameter of this effect down independently.
+/// What measurement pins a parameter of this effect down independently (`SEPARATE_BY` in the
+/// effect's file).
 pub fn separating_measurement(effect: &str) -> &'static str {
-    match EffectKind::from_name(effect) {
-        Some(EffectKind::AddedMass) => {
-            "head speed just after impact (momentum balance) or shafts of different tip mass"
-        }
-        Some(EffectKind::BallOffset) => "spin over a wider range of dynamic loft",
-        Some(EffectKind::TangentialRestitution) | Some(EffectKind::Friction) => {
-            "spin over a wider range of dynamic loft (the tangential regime changes with obliquity)"
-        }
-        Some(EffectKind::CorSpeed) => "shots over a wider range of club speed",
-        Some(EffectKind::CorRadial) => "shots spread wider over the face, centre to edge",
-        Some(EffectKind::LoftBias) => {
-            "an independent dynamic-loft measurement (high-speed video of the face)"
-        }
-        Some(EffectKind::FaceBias) => {
-            "an independent face-angle measurement (high-speed video of the face)"
-        }
-        Some(EffectKind::ComOffset) => {
-            "a measured centre of mass (balance) and shots spread over the face"
-        }
-        Some(EffectKind::InertiaScale) => {
-            "a measured moment of inertia (pendulum or MOI instrument) and off-centre shots"
-        }
-        Some(EffectKind::CorLevel) => {
-            "a COR test of the face (pendulum CT or ball-cannon rebound) or head speed just after \
-             impact"
-        }
-        Some(EffectKind::HoselMass) => {
-            "heel and toe strikes (the hosel mass changes the gear effect) with shafts of \
-             different tip mass"
-        }
-        Some(EffectKind::CorPower) => "shots over a wider range of club speed",
-        Some(EffectKind::ContactTime) => {
-            "a measured contact time (high-speed video or a force-instrumented face) and \
-             off-centre shots"
-        }
-        Some(EffectKind::TangentialCompliance) => {
-            "spin over a wide range of dynamic loft, from gripping to sliding impacts"
-        }
-        Some(EffectKind::CompressionLever) => {
-            "spin against launch over a range of attack angle (the tangential approach) and \
-             club speed (the compression)"
-        }
-        None => "an independent measurement of this parameter",
-    }
+    EffectKind::from_name(effect).map_or(
+        "an independent measurement of this parameter",
+        EffectKind::separate_by,
+    )
 }
 
 /// Two parameters the data cannot tell apart.

@@ -45,6 +45,8 @@
 //! range; against the simulator a speed-scaled `δ̄` fitted no better than a constant one.
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -74,3 +76,20 @@ pub fn apply(v: &[f64], p: &mut ModelParams) {
     let r = p.ball_radius_m;
     p.ball_inertia_kgm2 *= r / (r - v[0] * 1e-3);
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::Backspin, Pattern::Bias, "a shorter spin lever of the compressed ball"),
+    row(LaunchComponent::Backspin, Pattern::Trend("club_speed_mph"), "the ball compressing more at speed"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "a spin lever shortened beyond what a compressed ball gives: behaves like a loft bias or a tangential rebound outside ball-on-face values",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "spin against launch over a range of attack angle (the tangential approach) and club speed (the compression)";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::Nothing("a shorter lever changes the spin of every shot with a tangential approach");

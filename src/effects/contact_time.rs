@@ -12,6 +12,8 @@
 //! parameter, `τ`, sets both.
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -41,3 +43,21 @@ pub const PARAMS: &[ParamSpec] = &[spec(
 pub fn apply(v: &[f64], p: &mut ModelParams) {
     p.contact_time_s += v[0] * 1e-3;
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::LaunchAngle, Pattern::Bias, "the face turning while the ball is on it"),
+    row(LaunchComponent::Backspin, Pattern::Trend("impact_y_mm"), "vertical gear effect changed by a finite contact"),
+    row(LaunchComponent::Sidespin, Pattern::Trend("impact_z_mm"), "horizontal gear effect changed by a finite contact"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "a contact longer than a driver impact lasts: behaves like a spin lever or head rotation the file's geometry does not give (ball offset, CoM or inertia error)",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "a measured contact time (high-speed video or a force-instrumented face) and off-centre shots";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::Nothing("the head's own rotation and the ball's travel turn the impulse of every shot");

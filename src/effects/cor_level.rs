@@ -5,6 +5,8 @@
 //! The composed COR must stay in (0, 1] (checked when the model is built).
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -31,3 +33,19 @@ pub const PARAMS: &[ParamSpec] = &[spec(
 pub fn apply(v: &[f64], p: &mut ModelParams) {
     p.cor += v[0];
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::BallSpeed, Pattern::Bias, "the face's own COR"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "a face COR outside what conforming drivers show: behaves like an effective mass change (shaft taking part) or energy lost in a compliant contact",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "a COR test of the face (pendulum CT or ball-cannon rebound) or head speed just after impact";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::Nothing("a COR change moves ball speed at every delivery");

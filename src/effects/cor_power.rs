@@ -7,6 +7,9 @@
 //! scalar solve and the face-map kernel share; this effect sets its exponent.
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::delivery_vars::DeliveryVar;
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -34,3 +37,22 @@ pub const PARAMS: &[ParamSpec] = &[spec(
 pub fn apply(v: &[f64], p: &mut ModelParams) {
     p.cor_power_q += v[0];
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::BallSpeed, Pattern::Trend("club_speed_mph"), "COR falling with impact speed"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "a COR falling with speed faster than balls do: behaves like a COR level or energy lost in a compliant contact",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "shots over a wider range of club speed";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::AnyOf(
+    &[DeliveryVar::ClubSpeed],
+    "its COR falls as a power of approach speed, so the club speed must vary",
+);

@@ -18,6 +18,8 @@
 use nalgebra::Matrix3;
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -51,3 +53,20 @@ pub fn apply(v: &[f64], p: &mut ModelParams) {
     p.club_com_m += d * (dm / total);
     p.club_mass_kg = total;
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::BallSpeed, Pattern::Bias, "effective clubhead mass: the shaft tip at the hosel"),
+    row(LaunchComponent::BallSpeed, Pattern::GroupBias, "shaft tip mass at the hosel, per shaft"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "more shaft mass at the hosel than a shaft tip has: behaves like a higher face COR or a centre of mass and inertia different from the file's",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "heel and toe strikes (the hosel mass changes the gear effect) with shafts of different tip mass";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::Nothing("a mass change moves ball speed at every delivery");

@@ -35,8 +35,10 @@ use std::fmt;
 
 use crate::physics::ModelParams;
 
+pub mod knowledge;
 pub mod user;
 
+pub use knowledge::{Needs, Pattern, SignatureRow, StandIn};
 pub use user::UserEffect;
 
 /// Most parameters any effect has.
@@ -86,8 +88,10 @@ pub(crate) const fn spec(
 }
 
 /// Declares the library: one line per effect, `module => Variant,`. The module is the file
-/// `src/effects/<module>.rs`, which defines `NAME`, `DESCRIPTION`, `PARAMS` and
-/// `apply(values, &mut ModelParams)` (see `docs/adding-an-effect.md`).
+/// `src/effects/<module>.rs`, which defines `NAME`, `DESCRIPTION`, `PARAMS`,
+/// `apply(values, &mut ModelParams)` and what the library knows of the effect beyond its law:
+/// `SIGNATURE`, `STAND_IN`, `SEPARATE_BY` and `NEEDS` ([`knowledge`]; see
+/// `docs/adding-an-effect.md`).
 macro_rules! library {
     ($($module:ident => $variant:ident,)*) => {
         $(pub mod $module;)*
@@ -124,6 +128,34 @@ macro_rules! library {
             pub const fn params(self) -> &'static [ParamSpec] {
                 match self {
                     $(Self::$variant => $module::PARAMS,)*
+                }
+            }
+
+            /// Launch patterns the effect leaves when the model lacks it (compare's hints).
+            pub const fn signature(self) -> &'static [knowledge::SignatureRow] {
+                match self {
+                    $(Self::$variant => $module::SIGNATURE,)*
+                }
+            }
+
+            /// What a fitted value outside the plausible range behaves like.
+            pub const fn stand_in(self) -> knowledge::StandIn {
+                match self {
+                    $(Self::$variant => $module::STAND_IN,)*
+                }
+            }
+
+            /// The measurement that pins the effect down independently of launch data.
+            pub const fn separate_by(self) -> &'static str {
+                match self {
+                    $(Self::$variant => $module::SEPARATE_BY,)*
+                }
+            }
+
+            /// Which delivery variables must vary for shots to identify the effect.
+            pub const fn needs(self) -> knowledge::Needs {
+                match self {
+                    $(Self::$variant => $module::NEEDS,)*
                 }
             }
 

@@ -75,6 +75,8 @@
 //! unidentifiable).
 
 use super::{spec, ParamSpec};
+use super::knowledge::{row, Needs, Pattern, SignatureRow, StandIn};
+use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
 /// Name in files and on the command line.
@@ -121,3 +123,20 @@ pub fn apply(v: &[f64], p: &mut ModelParams) {
     p.tangential_restitution_slope += v[1];
     p.gear_restitution += v[2];
 }
+
+/// Launch patterns it leaves when present and missing from the model (compare's hints).
+pub const SIGNATURE: &[SignatureRow] = &[
+    row(LaunchComponent::LaunchAngle, Pattern::Trend("dynamic_loft_deg"), "the tangential rebound changing with obliquity"),
+    row(LaunchComponent::Backspin, Pattern::Trend("dynamic_loft_deg"), "spin depending on the contact regime"),
+];
+
+/// What a fitted value outside the plausible range behaves like.
+pub const STAND_IN: StandIn = StandIn::either(
+    "a tangential rebound or friction outside ball-on-face values: behaves like a spin lever or a loft bias rather than shear compliance",
+);
+
+/// The measurement that pins it down independently of launch data.
+pub const SEPARATE_BY: &str = "spin over a wide range of dynamic loft, from gripping to sliding impacts";
+
+/// Which delivery variables must vary for shots to identify it.
+pub const NEEDS: Needs = Needs::Nothing("its rebound changes with the obliquity every shot has");

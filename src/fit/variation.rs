@@ -9,7 +9,7 @@
 //! centre needs different impact locations. [`check_variation`] finds these cases so
 //! `calibrate` and `diagnose` can say so instead of reporting a fit.
 
-use crate::effects::EffectKind;
+use crate::effects::{EffectKind, Needs};
 use crate::model::{DeliveryVar, Shot};
 
 use super::{EffectRequest, FitError};
@@ -19,20 +19,13 @@ fn varies(shots: &[Shot], v: DeliveryVar) -> bool {
     shots.iter().any(|s| v.file_value(&s.delivery) != first)
 }
 
-/// The delivery variables an effect's parameters are slopes against: without variation in
-/// at least one of them the effect is a constant offset, indistinguishable from others.
+/// The delivery variables an effect's parameters are slopes against (`NEEDS` in the effect's
+/// file): without variation in at least one of them the effect is a constant offset,
+/// indistinguishable from others.
 fn needs(kind: EffectKind) -> Option<(&'static [DeliveryVar], &'static str)> {
-    match kind {
-        EffectKind::CorSpeed => Some((
-            &[DeliveryVar::ClubSpeed],
-            "its COR slope is against approach speed, so the club speed must vary",
-        )),
-        EffectKind::CorRadial => Some((
-            &[DeliveryVar::ImpactY, DeliveryVar::ImpactZ],
-            "its COR falloff is with distance from the face centre, so the impact location \
-             must vary",
-        )),
-        _ => None,
+    match kind.needs() {
+        Needs::AnyOf(vars, why) => Some((vars, why)),
+        Needs::Nothing(_) => None,
     }
 }
 
