@@ -161,6 +161,8 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         cor_speed_k_s_per_m: 0.0,
         cor_power_q: 0.0,
         cor_radial_c_per_m2: 0.0,
+        cor_radial_moment_per_m: [0.0; 2],
+        cor_radial_offset: 0.0,
         loft_bias_rad: 0.0,
         face_bias_rad: 0.0,
         hosel_m: Vector3::new(mm(hosel_mm[0]), mm(hosel_mm[1]), mm(hosel_mm[2])),

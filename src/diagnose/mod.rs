@@ -427,7 +427,7 @@ pub trait DiagnoseProgress: Sync {
 pub const OPT_IN_CANDIDATES: [EffectKind; 0] = [];
 
 /// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
-/// `added_mass@group` with several groups, plus every registered user-defined effect
+/// `added_mass@group` and `hosel_mass@group` with several groups, plus every registered user-defined effect
 /// (`crate::effects::user`: those of an effects file or club file the command read) as a
 /// global candidate beside them.
 pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
@@ -438,6 +438,7 @@ pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
         .collect();
     if groups.len() > 1 {
         c.push(EffectRequest::PerGroup(EffectKind::AddedMass.into()));
+        c.push(EffectRequest::PerGroup(EffectKind::HoselMass.into()));
     }
     c.extend(
         crate::effects::user::registered()

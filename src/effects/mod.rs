@@ -22,6 +22,9 @@
 //! | `contact_time` | `tau_ms` | finite contact: the impulse delivered by the face turned by `τ·(ω₀/2 + Δω/9)`, at the point the ball has travelled to, `−τ·(u1/2 − g/9)_t` |
 //! | `tangential_compliance` | `et0`, `k_tan`, `eg` | `e_t = et0 + k_tan·|u1t|/u1n` on the approach, `e_g = eg` on the gear-effect drive: `K P = u1 + e·u1n·n + e_t·u1t − e_g·(K·n)_t·P_n0` |
 //! | `compression_lever` | `delta_mm` | spin lever `R − δ̄` of the compressed ball: `I_b → I_b·R/(R − δ̄)` |
+//! | `face_curvature` | `d_bulge_mm`, `d_roll_mm` | bulge and roll radii + the changes |
+//! | `cor_spot` | `y0_mm`, `z0_mm`, `c_per_mm2` | `e = cor − c·((y − y0)² + (z − z0)²)`, y and z in mm |
+//! | `shaft_fraction` | `f` | `m_c → m_c + f·m_shaft`, per shot (the paper's Figure 3 relation) |
 //!
 //! Each effect is one file in this folder plus one line in the `library!` registration below
 //! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read
@@ -188,6 +191,9 @@ library! {
     contact_time => ContactTime,
     tangential_compliance => TangentialCompliance,
     compression_lever => CompressionLever,
+    face_curvature => FaceCurvature,
+    cor_spot => CorSpot,
+    shaft_fraction => ShaftFraction,
 }
 
 impl EffectKind {

@@ -278,6 +278,8 @@ impl ImpactModel {
                 power_q: p.cor_power_q,
                 speed_k_s_per_m: p.cor_speed_k_s_per_m,
                 radial_c_per_m2: p.cor_radial_c_per_m2,
+                radial_moment_per_m: p.cor_radial_moment_per_m,
+                radial_offset: p.cor_radial_offset,
             },
             ball: BallContact {
                 radius_m: p.ball_radius_m,
@@ -510,7 +512,7 @@ impl ImpactModel {
         let n = &x.normal;
         let u1n = u1[0] * n[0] + u1[1] * n[1] + u1[2] * n[2];
         let laws = &self.laws;
-        let e = laws.restitution.cor(u1n, x.y_m * x.y_m + x.z_m * x.z_m);
+        let e = laws.restitution.cor(u1n, x.y_m, x.z_m);
         // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
         let r_b = laws.ball.lever(n, &x.tangent_y, &x.tangent_z_xz);
         // The instantaneous law, wrapped by the finite contact (`contact_time`; with τ = 0 it is

@@ -67,11 +67,14 @@ pub(crate) fn sym_mul<R: Real>(k: &Sym3<R>, v: &Vec3<R>) -> Vec3<R> {
 /// The normal coefficient of restitution of one impact:
 ///
 /// ```text
-/// e = cor·(u1n / v_ref)^(−q) − k·(u1n − v_ref) − c·(y² + z²)      v_ref = 48.77 m/s
+/// e = cor·(u1n / v_ref)^(−q) − k·(u1n − v_ref) − Σᵢ cᵢ·|r − aᵢ|²      v_ref = 48.77 m/s
+///   = cor·(u1n / v_ref)^(−q) − k·(u1n − v_ref) − (c·|r|² − 2·r·m − m₀)
 /// ```
 ///
 /// `cor` is the face's COR (club file `cor`, plus `cor_level`), `q` the `cor_power` exponent,
-/// `k` the `cor_speed` slope and `c` the `cor_radial` falloff; `y`, `z` the impact location.
+/// `k` the `cor_speed` slope; `r = (y, z)` the impact location. Each falloff `cᵢ·|r − aᵢ|²`
+/// is centred on its peak `aᵢ` (`cor_radial`: the face centre; `cor_spot`: a peak of its own);
+/// they add exactly when kept as `c = Σ cᵢ`, `m = Σ cᵢ·aᵢ` and `m₀ = −Σ cᵢ·|aᵢ|²`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Restitution {
     /// COR at the reference speed and the face centre.
@@ -80,18 +83,23 @@ pub struct Restitution {
     pub power_q: f64,
     /// Linear slope `k` with normal approach speed, s/m.
     pub speed_k_s_per_m: f64,
-    /// Falloff `c` with squared distance from the face centre, 1/m².
+    /// Falloff `c = Σ cᵢ` with squared distance, 1/m².
     pub radial_c_per_m2: f64,
+    /// First moment of the falloffs' peaks, `m = Σ cᵢ·aᵢ` (y, z), 1/m (0: every peak at the
+    /// face centre).
+    pub radial_moment_per_m: [f64; 2],
+    /// `m₀ = −Σ cᵢ·|aᵢ|²` (dimensionless; 0: every peak at the face centre).
+    pub radial_offset: f64,
 }
 
 impl Restitution {
-    /// `e` for normal approach speed `u1n_m_s` at squared distance `r2_m2` from the face centre.
+    /// `e` for normal approach speed `u1n_m_s` at the impact location `(y_m, z_m)`.
     #[inline(always)]
-    pub fn cor<R: Real>(&self, u1n_m_s: R, r2_m2: R) -> R {
+    pub fn cor<R: Real>(&self, u1n_m_s: R, y_m: R, z_m: R) -> R {
         if self.power_q == 0.0 {
-            self.cor_with::<R, false>(u1n_m_s, r2_m2)
+            self.cor_with::<R, false>(u1n_m_s, y_m, z_m)
         } else {
-            self.cor_with::<R, true>(u1n_m_s, r2_m2)
+            self.cor_with::<R, true>(u1n_m_s, y_m, z_m)
         }
     }
 
@@ -99,14 +107,18 @@ impl Restitution {
     /// `self.power_q != 0.0` (with `q = 0` both give the same bits, since `x^0 = 1` exactly).
     /// Inner loops use it so that the common case carries no `pow` call.
     #[inline(always)]
-    pub fn cor_with<R: Real, const POWER: bool>(&self, u1n_m_s: R, r2_m2: R) -> R {
+    pub fn cor_with<R: Real, const POWER: bool>(&self, u1n_m_s: R, y_m: R, z_m: R) -> R {
         let base = if POWER {
             (u1n_m_s / COR_REFERENCE_SPEED_M_S).powf(-self.power_q) * self.cor
         } else {
             R::splat(self.cor)
         };
+        let [my, mz] = self.radial_moment_per_m;
+        // With every peak at the centre (m = 0, m₀ = 0) the last two terms add exact zeros.
         base - (u1n_m_s - COR_REFERENCE_SPEED_M_S) * self.speed_k_s_per_m
-            - r2_m2 * self.radial_c_per_m2
+            - (y_m * y_m + z_m * z_m) * self.radial_c_per_m2
+            + (y_m * my + z_m * mz) * 2.0
+            + self.radial_offset
     }
 }
 
@@ -379,15 +391,21 @@ mod tests {
             power_q: 0.12,
             speed_k_s_per_m: 0.003,
             radial_c_per_m2: 150.0,
+            radial_moment_per_m: [0.3, -0.45],
+            radial_offset: -150.0 * (0.002f64.powi(2) + 0.003f64.powi(2)),
         };
         let u = [40.0, 45.5, 48.77, 52.0];
-        let r2 = [0.0, 1e-4, 4e-4, 9e-5];
-        let v = law.cor(V(u), V(r2));
+        let y = [0.0, 0.01, -0.02, 0.003];
+        let z = [0.0, -0.005, 0.01, 0.009];
+        let v = law.cor(V(u), V(y), V(z));
         for i in 0..4 {
-            assert_eq!(v.0[i].to_bits(), law.cor(u[i], r2[i]).to_bits());
+            assert_eq!(v.0[i].to_bits(), law.cor(u[i], y[i], z[i]).to_bits());
         }
-        // At the reference speed and centre the COR is the face's own.
-        assert_eq!(law.cor(48.77, 0.0), 0.83);
+        // At the reference speed and the peak (2, −3) mm the COR is the face's own.
+        assert!((law.cor(48.77, 0.002, -0.003) - 0.83).abs() < 1e-15);
+        // 5 mm from the peak it has fallen by c·r².
+        let off = law.cor(48.77, 0.002 + 0.003, -0.003 - 0.004);
+        assert!((off - (0.83 - 150.0 * 25e-6)).abs() < 1e-15);
     }
 
     #[test]
@@ -397,8 +415,10 @@ mod tests {
             power_q: 0.2,
             speed_k_s_per_m: 0.0,
             radial_c_per_m2: 0.0,
+            radial_moment_per_m: [0.0; 2],
+            radial_offset: 0.0,
         };
-        let e = law.cor(2.0 * 48.77, 0.0);
+        let e = law.cor(2.0 * 48.77, 0.0, 0.0);
         assert!((e - 0.8 * 2f64.powf(-0.2)).abs() < 1e-15);
     }
 

@@ -51,8 +51,12 @@ pub struct ModelParams {
     /// Exponent `q` of the COR's power law in normal approach speed,
     /// `e = cor·(u1n / 48.77 m/s)^(−q)` (0: off).
     pub cor_power_q: f64,
-    /// COR falloff with squared distance from CoF `c`, 1/m².
+    /// COR falloff with squared distance `c = Σ cᵢ`, 1/m² ([`super::laws::Restitution`]).
     pub cor_radial_c_per_m2: f64,
+    /// First moment of the falloffs' peaks `m = Σ cᵢ·aᵢ` (y, z), 1/m (0: peaks at the centre).
+    pub cor_radial_moment_per_m: [f64; 2],
+    /// `m₀ = −Σ cᵢ·|aᵢ|²` of the falloffs' peaks (0: peaks at the centre).
+    pub cor_radial_offset: f64,
     /// Added to the delivered dynamic loft, rad.
     pub loft_bias_rad: f64,
     /// Added to the delivered face angle, rad.
@@ -102,6 +106,8 @@ impl ModelParams {
             cor_speed_k_s_per_m: 0.0,
             cor_power_q: 0.0,
             cor_radial_c_per_m2: 0.0,
+            cor_radial_moment_per_m: [0.0; 2],
+            cor_radial_offset: 0.0,
             loft_bias_rad: 0.0,
             face_bias_rad: 0.0,
             hosel_m: Vector3::from(DRIVER_HOSEL_MM) * 1e-3,
@@ -197,6 +203,9 @@ impl ModelParams {
             ),
             (p.cor_power_q, "cor power exponent"),
             (p.cor_radial_c_per_m2, "cor radial falloff"),
+            (p.cor_radial_moment_per_m[0], "cor peak moment y"),
+            (p.cor_radial_moment_per_m[1], "cor peak moment z"),
+            (p.cor_radial_offset, "cor peak offset"),
             (p.loft_bias_rad, "loft bias"),
             (p.face_bias_rad, "face bias"),
         ] {

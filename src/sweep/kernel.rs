@@ -108,8 +108,6 @@ struct Row {
     ok: M,
     /// `y`, m.
     y: V,
-    /// `y²`, m².
-    yy: V,
     /// `s = sqrt(r² − y²)`, m.
     s: V,
     /// `ρ²`, m².
@@ -219,6 +217,8 @@ impl FaceMapKernel {
             cor_speed_k_s_per_m: _,          // in laws.restitution
             cor_power_q: _,                  // in laws.restitution
             cor_radial_c_per_m2: _,          // in laws.restitution
+            cor_radial_moment_per_m: _,      // in laws.restitution
+            cor_radial_offset: _,            // in laws.restitution
             loft_bias_rad: _,                // in model.face_orientation
             face_bias_rad: _,                // in model.face_orientation
             hosel_m: _,                      // composed into mass, CoM and inertia by the effects
@@ -288,7 +288,6 @@ impl FaceMapKernel {
         Row {
             ok: s2.gt(zero) & rho.gt(zero),
             y,
-            yy: y * y,
             s,
             rho2: rho * rho,
             inv_rho: 1.0 / rho,
@@ -377,7 +376,7 @@ impl FaceMapKernel {
         a: &Approach,
     ) -> (V, V, V, M) {
         let laws = &self.laws;
-        let e = laws.restitution.cor_with::<V, POWER>(a.u1n, row.yy + z * z);
+        let e = laws.restitution.cor_with::<V, POWER>(a.u1n, row.y, z);
         let e_t = V::splat(laws.tangential.e_t);
         let mu = V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY));
         if !USER {

@@ -447,6 +447,8 @@ impl ContactWorld {
             || p.cor_speed_k_s_per_m != 0.0
             || p.cor_power_q != 0.0
             || p.cor_radial_c_per_m2 != 0.0
+            || p.cor_radial_moment_per_m != [0.0; 2]
+            || p.cor_radial_offset != 0.0
             || p.ball_offset_y_m != 0.0
             || p.ball_offset_z_m != 0.0
         {

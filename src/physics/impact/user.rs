@@ -147,10 +147,7 @@ impl ImpactModel {
             });
         }
         let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
-        let mut e = laws.restitution.cor(
-            u1n,
-            d.impact_y_m * d.impact_y_m + d.impact_z_m * d.impact_z_m,
-        );
+        let mut e = laws.restitution.cor(u1n, d.impact_y_m, d.impact_z_m);
         let mut tangential = laws.tangential;
         if laws.user.has_contact() {
             let mut vars = user::delivery_vars(d);
