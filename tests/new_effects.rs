@@ -170,7 +170,10 @@ fn check_per_shot(kind: EffectKind, values: &[f64], reference: impl Fn(&Delivery
         let base = nominal.solve(&d).unwrap();
         changed = changed.max((closed.ball_velocity_m_s - base.ball_velocity_m_s).norm());
     }
-    assert!(changed > 0.05, "{kind} changed ball velocity by {changed} m/s");
+    assert!(
+        changed > 0.05,
+        "{kind} changed ball velocity by {changed} m/s"
+    );
 }
 
 #[test]
@@ -253,7 +256,11 @@ fn shaft_fraction_adds_the_fraction_of_each_shots_shaft_mass() {
     let mut q = ModelParams::paper_driver();
     EffectKind::AddedMass.apply(&[f * (74.5 + 60.3 + 70.9) / 3.0], &mut q);
     let a = engine.solve(&d).unwrap().ball_velocity_m_s;
-    let b = ImpactModel::new(q).unwrap().solve(&d).unwrap().ball_velocity_m_s;
+    let b = ImpactModel::new(q)
+        .unwrap()
+        .solve(&d)
+        .unwrap()
+        .ball_velocity_m_s;
     assert!((a - b).norm() < 1e-12 * b.norm(), "{a} vs {b}");
 }
 

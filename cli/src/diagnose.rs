@@ -83,10 +83,20 @@ pub struct DiagnoseArgs {
     )]
     pub max_steps: usize,
 
-    /// Candidates (default: every library effect, plus added_mass@group), same syntax as
-    /// calibrate --effects.
+    /// Candidates (default: every library effect, plus added_mass@group and
+    /// hosel_mass@group), same syntax as calibrate --effects.
     #[arg(long, value_name = "LIST", help_heading = "Selection")]
     pub candidates: Option<String>,
+
+    /// Every default candidate except these (e.g. face_curvature,added_mass@group): what
+    /// diagnose concludes when the library lacks them.
+    #[arg(
+        long,
+        value_name = "LIST",
+        help_heading = "Selection",
+        conflicts_with = "candidates"
+    )]
+    pub without: Option<String>,
 
     /// Iteration limit of each fit.
     #[arg(
@@ -236,11 +246,14 @@ pub fn compute(
     if args.folds < 2 {
         anyhow::bail!("--folds must be at least 2, got {}", args.folds);
     }
-    let candidates = args
-        .candidates
-        .as_deref()
-        .map(parse_effect_list)
-        .transpose()?;
+    let candidates = match (&args.candidates, &args.without) {
+        (Some(list), _) => Some(parse_effect_list(list)?),
+        (None, Some(list)) => Some(
+            smash::diagnose::default_candidates_without(&table.shots, &parse_effect_list(list)?)
+                .context("--without")?,
+        ),
+        (None, None) => None,
+    };
     let opts = DiagnoseOptions {
         folds: args.folds,
         max_steps: args.max_steps,
@@ -667,7 +680,7 @@ fn candidates_table(st: &Step) -> String {
 /// One step: its base, candidates, choice and the errors after it.
 fn step_text(i: usize, st: &Step) -> String {
     let mut s = format!(
-        "\nStep {}: base = {}; CV chi2 of the base = {:.1}\n",
+        "\nStep {}: base = {}; {}\n",
         i + 1,
         if st.base.is_empty() {
             "nominal".to_owned()
@@ -675,6 +688,9 @@ fn step_text(i: usize, st: &Step) -> String {
             st.base.join(" + ")
         },
         st.base_cv_chi2
+            .map_or("not scored (nothing to offer)".to_owned(), |c| {
+                format!("CV chi2 of the base = {c:.1}")
+            })
     );
     if st.at_noise_floor {
         s.push_str(

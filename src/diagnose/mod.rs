@@ -250,8 +250,9 @@ pub struct Step {
     pub base: Vec<String>,
     /// Noise scales used this step, file units.
     pub noise_scales: [f64; 5],
-    /// Cross-validated χ² of the base model.
-    pub base_cv_chi2: f64,
+    /// Cross-validated χ² of the base model (`None` when the step scored no candidate: the
+    /// errors were at the noise floor and nothing was offered).
+    pub base_cv_chi2: Option<f64>,
     /// Candidates, best margin first.
     pub candidates: Vec<CandidateResult>,
     /// The effect added, if any.
@@ -446,6 +447,27 @@ pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
             .map(|u| EffectRequest::Global(EffectId::User(u))),
     );
     c
+}
+
+/// The default candidates for `shots` ([`default_candidates`] of their groups) without those
+/// in `without`: what diagnose would conclude if the library lacked them. Each of `without`
+/// must be a default candidate (a name or `name@group`), or the list is refused.
+pub fn default_candidates_without(
+    shots: &[Shot],
+    without: &[EffectRequest],
+) -> Result<Vec<EffectRequest>, FitError> {
+    let all = default_candidates(&FitData::from_shots(shots)?.groups);
+    if let Some(w) = without.iter().find(|w| !all.contains(w)) {
+        return Err(FitError::BadEffectList(format!(
+            "'{}' is not a default candidate of these shots; they are: {}",
+            w.label(),
+            all.iter()
+                .map(EffectRequest::label)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
+    Ok(all.into_iter().filter(|c| !without.contains(c)).collect())
 }
 
 /// Run forward selection on `shots` (with measured launch) over `club`.

@@ -365,7 +365,7 @@ impl<'a> Search<'a> {
             return Ok(at_noise_floor.then(|| Step {
                 base: base_labels,
                 noise_scales: noise_scales(&base_errors),
-                base_cv_chi2: f64::NAN,
+                base_cv_chi2: None,
                 candidates: Vec::new(),
                 selected: None,
                 after: launch_error_table(&self.groups, &base_errors),
@@ -415,7 +415,7 @@ impl<'a> Search<'a> {
         Ok(Some(Step {
             base: base_labels,
             noise_scales: sigma,
-            base_cv_chi2: scored.base_cv,
+            base_cv_chi2: Some(scored.base_cv),
             candidates: order.iter().map(|&i| scored.results[i].clone()).collect(),
             selected: chosen,
             after,

@@ -153,7 +153,7 @@ impl Search<'_> {
         Ok(Step {
             base,
             noise_scales,
-            base_cv_chi2: swap.cv_before,
+            base_cv_chi2: Some(swap.cv_before),
             candidates,
             selected: None,
             after: launch_error_table(&self.groups, &after_errors),
