@@ -307,7 +307,8 @@ fn estimates_json_with(
         .collect()
 }
 
-/// `finding`, `stand_in`, `absent` (on its no-effect bound), `provisional` (its value differs
+/// `finding`, `stand_in`, `absent` (on its no-effect bound), `unchanged` (not significantly
+/// different from its no-effect value), `provisional` (its value differs
 /// across strata of the shots) or `ambiguous` (a plausible value with a plausible rival, or
 /// aliased with another effect).
 fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
@@ -317,6 +318,8 @@ fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
         "stand_in"
     } else if honest::is_absent(p) {
         "absent"
+    } else if honest::is_unchanged(p, d.estimates.len()) {
+        "unchanged"
     } else if d.is_finding(p) {
         "finding"
     } else if d.provisional(p).is_some() {
@@ -790,6 +793,18 @@ fn summary_text(d: &Diagnosis) -> String {
                 p.label(),
                 p.value,
                 p.unit
+            ));
+        }
+        let n = d.estimates.len();
+        for p in d.estimates.iter().filter(|p| honest::is_unchanged(p, n)) {
+            s.push_str(&format!(
+                "  unchanged, not a finding: {} = {:.4} ± {:.4} {} does not differ from its \
+                 no-effect value (p >= {} / {n} parameters)\n",
+                p.label(),
+                p.value,
+                p.stderr.unwrap_or(0.0),
+                p.unit,
+                honest::UNCHANGED_ALPHA
             ));
         }
         for p in &d.estimates {

@@ -10,7 +10,9 @@
 //! Measured when the test was written (26 Nov 2026): dy within 2 SE in 18 (seeds 9 and 17 at
 //! −2.8 and +2.3 SE), dz in 19 (seed 20 at −2.4 SE); one false finding (`hosel_mass.dm_g`,
 //! seed 20). The added mass per shaft, which the world holds, is selected in 1 seed of 20 (and
-//! `cor_level`, ambiguous, in 7): a miss, not a false finding, and not yet explained.
+//! `cor_level`, ambiguous, in 7): a miss, not a false finding, and not yet explained. With
+//! `face_curvature`, `cor_spot`, `shaft_fraction` and `hosel_mass@group` among the candidates:
+//! dy 18/20, dz 20/20, no false finding.
 //!
 //! **A twisted face** (`configs/synth/twisted_face_world.toml`: loft +0.075°/mm and face
 //! +0.05°/mm toward the toe, which no library form expresses, and 2 g of added mass),
@@ -19,7 +21,11 @@
 //! and `hosel_mass`/`contact_time` in four; now every one of them is provisional, naming the
 //! structure it shares. Measured: one seed of ten with a false finding (seed 4, `cor_radial`,
 //! whose signal is radial and shares no trend); issue 29 asks for none, so the bound is the
-//! measured one and may only tighten.
+//! measured one and may only tighten. With `face_curvature` in the library, its bulge is a
+//! finding in every seed: the face-angle half of the twist turns the face normal heel to toe,
+//! which is what a bulge radius is (`face_angle_twist_is_a_bulge_error`), so it counts as the
+//! world's. Its roll is "unchanged" (not significant over the model's parameters); the false
+//! finding is now seed 4's `ball_offset.dz_mm` (−0.023 ± 0.006 mm): still one seed of ten.
 
 mod cli_support;
 
@@ -144,14 +150,22 @@ fn twisted_face_over_ten_seeds() {
             .map(|p| p["failed_check"].as_str().unwrap())
             .collect();
         println!("seed {seed}: findings {found:?}, provisional {provisional:#?}");
-        // The stand-ins the issue found must not be findings in any seed.
-        for stand_in in ["inertia_scale.s", "contact_time.tau_ms", "loft_bias.deg"] {
+        // The stand-ins the issue found must not be findings in any seed, nor the roll radius:
+        // the twist turns the loft heel to toe, not crown to sole.
+        for stand_in in [
+            "inertia_scale.s",
+            "contact_time.tau_ms",
+            "loft_bias.deg",
+            "face_curvature.d_roll_mm",
+        ] {
             assert!(
                 !found.iter().any(|f| f == stand_in),
                 "seed {seed}: {stand_in}"
             );
         }
-        let wrong = false_findings(&found, &["added_mass"]);
+        // The face-angle half of the twist turns the face normal heel to toe: that is a bulge
+        // radius (`face_angle_twist_is_a_bulge_error` below), so a bulge change is the world's.
+        let wrong = false_findings(&found, &["added_mass", "face_curvature"]);
         false_seeds += usize::from(!wrong.is_empty());
     }
     println!("twisted face: seeds with a false finding: {false_seeds} of 10");
@@ -159,4 +173,66 @@ fn twisted_face_over_ten_seeds() {
         false_seeds <= 1,
         "{false_seeds} of 10 seeds with a false finding"
     );
+}
+
+/// The face-angle half of the twisted face alone (face +0.05°/mm toward the toe, loft
+/// untwisted, nothing else): the face normal turns 0.05°/mm faster heel to toe than the file's
+/// 305 mm bulge turns it, which to first order is a bulge radius of 1/(1/305 mm + 8.73e-4/mm) =
+/// 241 mm, a change of −64 mm. Diagnose finds `face_curvature` with the bulge 50–62 mm tighter
+/// (the twist turns the whole head, not only the normal, so the first-order figure is not
+/// exact), its roll unchanged, and nothing else. Measured on seeds 1 and 2: −55.6 ± 2.5 and
+/// −60.3 ± 2.4 mm.
+#[test]
+fn face_angle_twist_is_a_bulge_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let twisted = std::fs::read_to_string(repo("configs/synth/twisted_face_world.toml")).unwrap();
+    let club = repo("configs/clubs/paper_driver.toml");
+    let config: String = twisted
+        .replace("loft_deg_per_mm = 0.075", "loft_deg_per_mm = 0.0")
+        .replace("[[hidden]]\nname = \"added_mass\"\ndm_g = 2.0\n", "")
+        .replace("\"../clubs/paper_driver.toml\"", &format!("{:?}", s(&club)));
+    assert!(!config.contains("added_mass") && config.contains("loft_deg_per_mm = 0.0"));
+    let path = dir.path().join("face_twist_only.toml");
+    std::fs::write(&path, config).unwrap();
+    for seed in 1..=2 {
+        let shots = dir.path().join(format!("f{seed}.csv"));
+        let seed_arg = seed.to_string();
+        let o = smash(&[
+            "synth",
+            "--config",
+            s(&path),
+            "--out",
+            s(&shots),
+            "--seed",
+            &seed_arg,
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let o = smash(&[
+            "diagnose",
+            "--club",
+            s(&club),
+            "--shots",
+            s(&shots),
+            "--instrument",
+            "camera",
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let found = findings(&d);
+        println!("face twist only, seed {seed}: findings {found:?}");
+        assert_eq!(found, ["face_curvature.d_bulge_mm"], "seed {seed}");
+        let bulge = d["estimates"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|e| e["param"] == "d_bulge_mm")
+            .unwrap()["value"]
+            .as_f64()
+            .unwrap();
+        assert!(
+            (-70.0..=-45.0).contains(&bulge),
+            "seed {seed}: d_bulge {bulge}"
+        );
+    }
 }

@@ -47,6 +47,33 @@ pub fn is_absent(p: &ParamEstimate) -> bool {
         })
 }
 
+/// Family-wise error rate of reading a parameter as changed from its no-effect value: the
+/// conventional 5 %, shared (Bonferroni) over every parameter of the final model.
+pub const UNCHANGED_ALPHA: f64 = 0.05;
+
+/// Is this parameter of a selected effect indistinguishable from its no-effect value? Its
+/// two-sided p-value against that value, `|value − neutral|/SE` read as a normal deviate, is at
+/// least [`UNCHANGED_ALPHA`] / `n_params` (the parameters the final model estimates: a claim is
+/// made of each, so the rate is shared among them). Then the data show no change from the club
+/// file in it (a face curvature whose roll is 5 ± 5 mm from the file's, say), and it is not a
+/// finding even when the effect's other parameters are. `friction.mu` has no finite no-effect
+/// value (its default is a typical value), so it is never read this way.
+/// `docs/diagnose-selection.md`, "Absent at a bound".
+pub fn is_unchanged(p: &ParamEstimate, n_params: usize) -> bool {
+    if EffectKind::from_name(p.effect) == Some(EffectKind::Friction) {
+        return false;
+    }
+    match (spec_of(p), p.stderr) {
+        (Some(s), Some(se)) if se > 0.0 => {
+            let z = (p.value - s.default).abs() / se;
+            // A normal deviate: Student's t with effectively infinite degrees of freedom.
+            let p_value = crate::stats::tdist::student_t_two_sided_p(z, 1e9);
+            p_value >= UNCHANGED_ALPHA / n_params.max(1) as f64
+        }
+        _ => false,
+    }
+}
+
 /// Which physics an implausible value behaves like (`None` when the value is plausible or the
 /// parameter unknown). The reading is the effect's own (`STAND_IN` in its file): what else moves
 /// the same launch components the same way.

@@ -392,6 +392,7 @@ impl Diagnosis {
         self.club_mismatch.is_none()
             && honest::is_plausible(p) != Some(false)
             && !honest::is_absent(p)
+            && !honest::is_unchanged(p, self.estimates.len())
             && !self
                 .ambiguities
                 .iter()
