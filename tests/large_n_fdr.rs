@@ -52,9 +52,14 @@ fn paper_world(golfers: usize, seed: u64, delivery_noise: bool) -> (SynthConfig,
     (c, shots)
 }
 
-/// Does the world contain the effect `label` (`name` or `name@group`)?
+/// Does the world contain the effect `label` (`name` or `name@group`)? `shaft_fraction` adds
+/// mass at the head's CoM as the world's `added_mass` does, one fraction of each shaft's mass
+/// for every shaft (the paper's own reading of its Figure 3): the world's law, with the
+/// per-shaft masses tied together.
 fn in_world(label: &str) -> bool {
-    label.starts_with("added_mass") || label.starts_with("ball_offset")
+    ["added_mass", "shaft_fraction", "ball_offset"]
+        .iter()
+        .any(|w| label.starts_with(w))
 }
 
 /// The selected effects the world does not contain.
