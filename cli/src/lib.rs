@@ -7,6 +7,7 @@ pub mod calibrate;
 pub mod compare;
 pub mod delivery_noise;
 pub mod diagnose;
+pub mod diagnose_text;
 pub mod effects;
 pub mod flight;
 pub mod import;
@@ -20,6 +21,7 @@ pub mod stdout;
 pub mod strata;
 pub mod study_output;
 pub mod synth;
+pub mod text;
 pub mod whatif;
 pub mod wrap;
 
