@@ -26,6 +26,8 @@ use smash::ClubSpec;
 
 use super::progress::job_bar;
 
+pub mod text;
+
 /// Arguments of `smash diagnose`.
 #[derive(Debug, Args)]
 #[command(after_help = "Examples:\n  \
@@ -207,8 +209,8 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     if args.json {
         crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
     } else {
-        let layout = crate::diagnose_text::Layout::of(&args);
-        let text = crate::diagnose_text::text_report(&d, &floor, &layout);
+        let layout = text::Layout::of(&args);
+        let text = text::text_report(&d, &floor, &layout);
         crate::stdout::print(format!("{conventions}{text}"))?;
     }
     Ok(())

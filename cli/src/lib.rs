@@ -4,10 +4,10 @@
 use clap::{Parser, Subcommand};
 
 pub mod calibrate;
+pub mod calibrate_text;
 pub mod compare;
 pub mod delivery_noise;
 pub mod diagnose;
-pub mod diagnose_text;
 pub mod effects;
 pub mod flight;
 pub mod import;

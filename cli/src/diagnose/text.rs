@@ -9,7 +9,7 @@ use smash::fit::ParamEstimate;
 use smash::physics::LaunchComponent;
 use smash::report::{error_table_text, TextTable};
 
-use crate::diagnose::{calibrate_flag_pairs, conclusion, location_mm};
+use super::{calibrate_flag_pairs, conclusion, location_mm};
 use crate::text::{shell_command, shell_word, wrap_long};
 
 /// How the text report is laid out, and the command that runs `smash calibrate` on the same
@@ -25,7 +25,7 @@ pub struct Layout {
 
 impl Layout {
     /// The layout of `args`' report.
-    pub fn of(args: &crate::diagnose::DiagnoseArgs) -> Self {
+    pub fn of(args: &super::DiagnoseArgs) -> Self {
         let path = |p: &std::path::Path| shell_word(&p.display().to_string());
         let mut words = vec!["smash".to_owned(), "calibrate".into()];
         if let Some(defs) = &args.effect_defs.effect_defs {
