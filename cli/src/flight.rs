@@ -469,13 +469,15 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
             user.overridden_text()
         ),
     };
-    eprintln!(
-        "flew {} shot(s) with {} ({air}, ball {}) in {:.3} s (reading, flying and writing) -> {}",
-        flown.shots,
-        cfg.aero.name(),
-        cfg.start_text(),
-        secs,
-        args.out.display()
+    eprint!(
+        "{}  in {secs:.3} s (reading, flying and writing)\n",
+        crate::text::wrap_long(&format!(
+            "flew {} shot(s) with {} ({air}, ball {}) -> {}\n",
+            flown.shots,
+            cfg.aero.name(),
+            cfg.start_text(),
+            args.out.display()
+        ))
     );
     let Some(summary) = summarise_file(&args.out)? else {
         if args.json || args.report.is_some() {
