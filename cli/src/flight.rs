@@ -469,8 +469,8 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
             user.overridden_text()
         ),
     };
-    eprint!(
-        "{}  in {secs:.3} s (reading, flying and writing)\n",
+    eprintln!(
+        "{}  in {secs:.3} s (reading, flying and writing)",
         crate::text::wrap_long(&format!(
             "flew {} shot(s) with {} ({air}, ball {}) -> {}\n",
             flown.shots,
