@@ -57,6 +57,10 @@ pub struct CompareArgs {
     #[arg(long)]
     pub json: bool,
 
+    /// `--wide`: Table 2 in one block however many groups.
+    #[command(flatten)]
+    pub wide: crate::text::WideArgs,
+
     /// Significance level of the flags.
     #[arg(
         long,
@@ -122,7 +126,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         args.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let mut text = text(&report, &title);
+    let mut text = text(&report, &title, args.wide.wide);
     if !conventions.is_native() {
         text = format!("{}{text}", conventions);
     }
@@ -158,14 +162,18 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The text report, headed by `NO FINDINGS` when the shots do not match the club.
-pub fn text(report: &CompareReport, title: &str) -> String {
-    let text = compare_text(report, title);
+/// The text report, headed by `NO FINDINGS` when the shots do not match the club; `wide`: Table
+/// 2 in one block however many groups.
+pub fn text(report: &CompareReport, title: &str, wide: bool) -> String {
+    let title = crate::text::wrap_long(title);
+    let text = compare_text(report, title.trim_end(), wide);
     match &report.club_mismatch {
-        Some(why) => format!(
-            "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
-             errors of another club's shots, not of this head\n{text}"
-        ),
+        Some(why) => {
+            crate::text::wrap_long(&format!(
+                "NO FINDINGS: the shots do not match the club ({why}); the tables below describe \
+             errors of another club's shots, not of this head\n"
+            )) + &text
+        }
         None => text,
     }
 }

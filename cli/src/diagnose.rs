@@ -18,15 +18,15 @@ use smash::data::shots::ShotTable;
 use smash::diagnose::honest;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass, NoiseFloor, SpreadBand};
 use smash::diagnose::{
-    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, Step,
-    DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
+    diagnose, DiagnoseOptions, DiagnoseProgress, Diagnosis, DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
 };
 use smash::fit::{parse_effect_list, FitError, ParamEstimate};
 use smash::physics::LaunchComponent;
-use smash::report::{error_table_text, error_tables_side_by_side, TextTable};
 use smash::ClubSpec;
 
 use super::progress::job_bar;
+
+pub mod text;
 
 /// Arguments of `smash diagnose`.
 #[derive(Debug, Args)]
@@ -62,6 +62,10 @@ pub struct DiagnoseArgs {
     /// Print one JSON object on stdout (progress and prose go to stderr).
     #[arg(long)]
     pub json: bool,
+
+    /// `--wide`: the full candidate and noise-floor tables.
+    #[command(flatten)]
+    pub wide: crate::text::WideArgs,
 
     /// Cross-validation folds (grouped by golfer).
     #[arg(
@@ -145,7 +149,7 @@ pub struct DiagnoseArgs {
 
 /// An impact-location noise in mm as printed: to 1e-6 mm, so that 1.8 mm shows as 1.8 after
 /// the metre round trip.
-fn location_mm(m: f64) -> f64 {
+pub(crate) fn location_mm(m: f64) -> f64 {
     (m * 1e9).round() / 1e6
 }
 
@@ -215,7 +219,9 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     if args.json {
         crate::stdout::println(serde_json::to_string_pretty(&to_json(&d, &floor))?)?;
     } else {
-        crate::stdout::print(format!("{conventions}{}", text_report(&d, &floor)))?;
+        let layout = text::Layout::of(&args);
+        let text = text::text_report(&d, &floor, &layout);
+        crate::stdout::print(format!("{conventions}{text}"))?;
     }
     Ok(())
 }
@@ -418,30 +424,6 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
     })
 }
 
-fn fmt_params(ps: &[ParamEstimate]) -> String {
-    ps.iter()
-        .map(|p| {
-            let name = match &p.group {
-                Some(g) => format!("{}@{g}", p.param),
-                None => p.param.to_owned(),
-            };
-            // Small values (COR falloff per mm², say) in scientific notation.
-            let num = |x: f64| {
-                if x != 0.0 && x.abs() < 1e-3 {
-                    format!("{x:.3e}")
-                } else {
-                    format!("{x:.4}")
-                }
-            };
-            match p.stderr {
-                Some(se) => format!("{name} = {} ± {}{}", num(p.value), num(se), honest::mark(p)),
-                None => format!("{name} = {}{}", num(p.value), honest::mark(p)),
-            }
-        })
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// What the diagnosis concludes about the structure left in the errors, and, when the
 /// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
 pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
@@ -585,299 +567,17 @@ fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
     }
 }
 
-/// The human-readable report.
-pub fn text_report(d: &Diagnosis, floor: &NoiseFloor) -> String {
-    let mut s = format!(
-        "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter \
-         (+ 2·ln m for a physical effect picked from m candidates)\n",
-        d.n_shots,
-        d.folds,
-        d.fold_by.name(),
-        (d.n_shots as f64).ln()
-    );
-    if let Some(why) = &d.club_mismatch {
-        s = format!(
-            "NO FINDINGS: the shots do not match the club ({why}); what is selected below \
-             describes another club's shots, not this head\n{s}"
-        );
-    }
-    for (i, st) in d.steps.iter().enumerate() {
-        s.push_str(&step_text(i, st));
-    }
-    s.push_str(&summary_text(d));
-    s.push_str(&crate::strata::text(d));
-    s.push_str(&likelihood_text(d));
-    s.push_str(&floor_text(d, floor));
-    s.push('\n');
-    s.push_str(&error_tables_side_by_side(
-        &d.before,
-        &d.after,
-        ("before (club as given)", "after (selected effects)"),
-    ));
-    s
-}
-
-fn short_name(c: &LaunchComponent) -> &'static str {
-    match c {
-        LaunchComponent::BallSpeed => "speed",
-        LaunchComponent::LaunchAngle => "launch",
-        LaunchComponent::Azimuth => "azim",
-        LaunchComponent::Backspin => "back",
-        LaunchComponent::Sidespin => "side",
-    }
-}
-
-/// The candidate table of one step.
-fn candidates_table(st: &Step) -> String {
-    let mut header = vec![
-        "candidate".to_owned(),
-        "k".into(),
-        "CV gain".into(),
-        "penalty".into(),
-        "margin".into(),
-    ];
-    header.extend(
-        LaunchComponent::ALL
-            .iter()
-            .map(|c| format!("Δrms {}", short_name(c))),
-    );
-    header.extend(["parameters".to_owned(), "note".to_owned()]);
-    let mut t = TextTable::new(header);
-    for c in &st.candidates {
-        let mut row = vec![
-            c.label.clone(),
-            c.n_params.to_string(),
-            format!("{:.1}", c.gain),
-            format!("{:.1}", c.penalty),
-            format!("{:.1}", c.margin()),
-        ];
-        row.extend(
-            c.rms_reduction
-                .iter()
-                .map(|r| format!("{:+.1}%", -100.0 * r)),
-        );
-        row.push(fmt_params(&c.params));
-        let mut note = Vec::new();
-        if c.spread_gain.is_some() {
-            note.push("gain: −2 ln L of the spread".to_owned());
-        }
-        if let Some(f) = &c.failure {
-            note.push(format!("failed: {f}"));
-        } else if !c.converged {
-            note.push("fit did not converge".to_owned());
-        }
-        if !c.unidentified.is_empty() {
-            note.push(format!("not identifiable: {}", c.unidentified.join(", ")));
-        }
-        if st.selected.as_deref() == Some(c.label.as_str()) {
-            note.push("SELECTED".to_owned());
-        } else if st.rivals.iter().any(|r| r.label == c.label) {
-            note.push("rival of the selected".to_owned());
-        }
-        row.push(note.join("; "));
-        t.row(row);
-    }
-    t.render()
-}
-
-/// One step: its base, candidates, choice and the errors after it.
-fn step_text(i: usize, st: &Step) -> String {
-    let mut s = format!(
-        "\nStep {}: base = {}; {}\n",
-        i + 1,
-        if st.base.is_empty() {
-            "nominal".to_owned()
-        } else {
-            st.base.join(" + ")
-        },
-        st.base_cv_chi2
-            .map_or("not scored (nothing to offer)".to_owned(), |c| {
-                format!("CV chi2 of the base = {c:.1}")
-            })
-    );
-    if st.at_noise_floor {
-        s.push_str(
-            "  (errors at the instruments' noise floor: only measurement candidates offered)\n",
-        );
-    }
-    s.push_str(&candidates_table(st));
-    if let Some(a) = &st.alias {
-        s.push_str(&format!("-> aliases: {}\n", a.text()));
-    }
-    if let Some(w) = &st.swap {
-        s.push_str(&format!(
-            "-> step {}: {} (forward selection had stopped; errors after:)\n",
-            i + 1,
-            w.text()
-        ));
-        s.push_str(&error_table_text(&st.after));
-        return s;
-    }
-    match &st.selected {
-        Some(l) => {
-            if !st.rivals.is_empty() {
-                let names: Vec<&str> = st.rivals.iter().map(|r| r.label.as_str()).collect();
-                s.push_str(&format!(
-                    "-> rivals of {l} (margin within {} and the same change to the predictions, \
-                     r > 0.9): {}\n",
-                    smash::diagnose::select::RIVAL_MARGIN,
-                    names.join(", ")
-                ));
-            }
-            s.push_str(&format!(
-                "-> add {l}; errors (model − measured) after this step:\n"
-            ));
-            s.push_str(&error_table_text(&st.after));
-        }
-        None if st.at_noise_floor && st.candidates.is_empty() => s.push_str(
-            "-> the errors are at the instruments' noise floor: no physical effect offered; stop\n",
-        ),
-        None => s.push_str("-> no candidate beats its penalty: stop\n"),
-    }
-    s
-}
-
-/// The models of the steps that changed the model, with the nominal and the final model, on
-/// the diagnosis's one likelihood scale.
-fn likelihood_text(d: &Diagnosis) -> String {
-    let mut rows: Vec<(String, &smash::fit::Likelihood)> = vec![("nominal".into(), &d.nominal_fit)];
-    for (i, st) in d.steps.iter().enumerate() {
-        let what = match (&st.selected, &st.swap) {
-            (Some(l), _) => format!("+ {l}"),
-            (None, Some(w)) => match &w.inn {
-                Some(inn) => format!("{} -> {inn}", w.out),
-                None => format!("- {}", w.out),
-            },
-            (None, None) => continue,
-        };
-        rows.push((format!("after step {}: {what}", i + 1), &st.fit));
-    }
-    rows.push(("final".into(), &d.final_fit));
-    let rows: Vec<(&str, &smash::fit::Likelihood)> =
-        rows.iter().map(|(n, l)| (n.as_str(), *l)).collect();
-    crate::likelihood::text(&rows, "")
-}
-
-/// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the
-/// measurement model.
-fn summary_text(d: &Diagnosis) -> String {
-    let mut s = format!(
-        "\nSelected (in order): {}\n",
-        if d.selected.is_empty() {
-            "none".to_owned()
-        } else {
-            d.selected.join(", ")
-        }
-    );
-    if !d.estimates.is_empty() {
-        s.push_str(&format!("Final values: {}\n", fmt_params(&d.estimates)));
-        let findings: Vec<String> = d
-            .estimates
-            .iter()
-            .filter(|p| d.is_finding(p))
-            .map(|p| p.label())
-            .collect();
-        s.push_str(&format!(
-            "Findings (values inside their plausible ranges, no plausible rival, not aliased with \
-             another effect, the same in every stratum): {}\n",
-            if findings.is_empty() {
-                "none".to_owned()
-            } else {
-                findings.join(", ")
-            }
-        ));
-        for p in d.estimates.iter().filter(|p| honest::is_absent(p)) {
-            s.push_str(&format!(
-                "  absent, not a finding: {} = {:.4} {} sits on its no-effect bound (the fit \
-                 found none of what it adds)\n",
-                p.label(),
-                p.value,
-                p.unit
-            ));
-        }
-        let n = d.estimates.len();
-        for p in d.estimates.iter().filter(|p| honest::is_unchanged(p, n)) {
-            s.push_str(&format!(
-                "  unchanged, not a finding: {} = {:.4} ± {:.4} {} does not differ from its \
-                 no-effect value (p >= {} / {n} parameters)\n",
-                p.label(),
-                p.value,
-                p.stderr.unwrap_or(0.0),
-                p.unit,
-                honest::UNCHANGED_ALPHA
-            ));
-        }
-        for p in &d.estimates {
-            if let Some(w) = honest::stand_in(p) {
-                s.push_str(&format!(
-                    "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; \
-                     it behaves like {w}\n",
-                    p.label(),
-                    p.value,
-                    p.unit,
-                    honest::plausible_range_text(p)
-                ));
-            }
-        }
-    }
-    for a in &d.ambiguities {
-        s.push_str(&format!("  rivals: {}\n", a.text()));
-    }
-    for a in &d.aliases {
-        s.push_str(&format!("  alias: {}\n", a.text()));
-    }
-    s.push_str(&measurement_model_line(d));
-    s
-}
-
-/// The measurement model's line, when it has noise: what was taken as noisy and how much, with
-/// the `smash calibrate` flags that fit the same model.
-fn measurement_model_line(d: &Diagnosis) -> String {
-    let how = |estimated: bool| {
-        if estimated {
-            ", selected from the data"
-        } else {
-            ", as given"
-        }
-    };
-    let mut parts = Vec::new();
-    if let Some(n) = d.impact_noise {
-        parts.push(format!(
-            "impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe){}",
-            location_mm(n.sigma_y_m),
-            location_mm(n.sigma_z_m),
-            how(d.impact_noise_estimated)
-        ));
-    }
-    if let Some(n) = d.delivery_noise.filter(|n| n.is_active()) {
-        parts.push(format!(
-            "delivery with 1σ noise {}{}",
-            crate::delivery_noise::describe(&n),
-            how(d.delivery_noise_estimated)
-        ));
-    }
-    if parts.is_empty() {
-        return String::new();
-    }
-    format!(
-        "Measurement model: {}; calibrate with {}\n",
-        parts.join("; "),
-        calibrate_flags(d)
-    )
-}
-
-/// The `smash calibrate` flags that fit the diagnosis's final model: its effects and its
-/// measurement model.
-fn calibrate_flags(d: &Diagnosis) -> String {
+/// The `smash calibrate` flags that fit the diagnosis's final model (its effects and its
+/// measurement model), each with its value.
+pub(crate) fn calibrate_flag_pairs(d: &Diagnosis) -> Vec<(&'static str, String)> {
     let mut flags = Vec::new();
     if !d.selected.is_empty() {
-        flags.push(format!("--effects {}", d.selected.join(",")));
+        flags.push(("--effects", d.selected.join(",")));
     }
     if let Some(n) = d.impact_noise {
-        flags.push(format!(
-            "--impact-noise-mm {},{}",
-            location_mm(n.sigma_y_m),
-            location_mm(n.sigma_z_m)
+        flags.push((
+            "--impact-noise-mm",
+            format!("{},{}", location_mm(n.sigma_y_m), location_mm(n.sigma_z_m)),
         ));
     }
     if let Some(spec) = d
@@ -885,47 +585,16 @@ fn calibrate_flags(d: &Diagnosis) -> String {
         .as_ref()
         .and_then(crate::delivery_noise::spec)
     {
-        flags.push(format!("--delivery-noise {spec}"));
+        flags.push(("--delivery-noise", spec));
     }
-    flags.join(" ")
+    flags
 }
 
-/// The noise-floor table and the conclusion.
-fn floor_text(d: &Diagnosis, floor: &NoiseFloor) -> String {
-    let mut s = format!(
-        "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
-        floor.instrument.name
-    );
-    if floor.assumed {
-        s.push_str("(that noise is ASSUMED: no --noise or --instrument was given)\n");
-    }
-    let mut t = TextTable::new([
-        "component",
-        "mean",
-        "mean/σ",
-        "expected sd",
-        "observed sd",
-        "ratio",
-        "p",
-        "verdict",
-    ]);
-    for c in &floor.components {
-        t.row([
-            c.component.column().to_owned(),
-            format!("{:+.3}", c.mean),
-            format!("{:+.2}", c.mean_in_sd),
-            format!("{:.3}", c.expected_sd),
-            format!("{:.3}", c.observed_sd),
-            format!("{:.2}", c.ratio),
-            format!("{:.2e}", c.p_value),
-            c.verdict(),
-        ]);
-    }
-    s.push_str(&t.render());
-    s.push_str(&crate::wrap::wrap(
-        &format!("Conclusion: {}", conclusion(d, floor)),
-        99,
-        2,
-    ));
-    s
+/// [`calibrate_flag_pairs`] as one string (JSON's `calibrate_flags`).
+fn calibrate_flags(d: &Diagnosis) -> String {
+    calibrate_flag_pairs(d)
+        .into_iter()
+        .map(|(f, v)| format!("{f} {v}"))
+        .collect::<Vec<_>>()
+        .join(" ")
 }

@@ -470,12 +470,14 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         ),
     };
     eprintln!(
-        "flew {} shot(s) with {} ({air}, ball {}) in {:.3} s (reading, flying and writing) -> {}",
-        flown.shots,
-        cfg.aero.name(),
-        cfg.start_text(),
-        secs,
-        args.out.display()
+        "{}  in {secs:.3} s (reading, flying and writing)",
+        crate::text::wrap_long(&format!(
+            "flew {} shot(s) with {} ({air}, ball {}) -> {}\n",
+            flown.shots,
+            cfg.aero.name(),
+            cfg.start_text(),
+            args.out.display()
+        ))
     );
     let Some(summary) = summarise_file(&args.out)? else {
         if args.json || args.report.is_some() {

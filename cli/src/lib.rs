@@ -4,6 +4,7 @@
 use clap::{Parser, Subcommand};
 
 pub mod calibrate;
+pub mod calibrate_text;
 pub mod compare;
 pub mod delivery_noise;
 pub mod diagnose;
@@ -20,6 +21,7 @@ pub mod stdout;
 pub mod strata;
 pub mod study_output;
 pub mod synth;
+pub mod text;
 pub mod whatif;
 pub mod wrap;
 

@@ -30,6 +30,10 @@ pub struct MergeArgs {
     #[arg(long, value_enum, default_value = "csv")]
     pub format: TableFormatArg,
 
+    /// `--wide`: one line per variant with every metric.
+    #[command(flatten)]
+    pub wide: crate::text::WideArgs,
+
     /// The user-defined effects the shards were run with (`smash run --effect-defs`).
     #[command(flatten)]
     pub effect_defs: super::EffectDefsArgs,
@@ -94,7 +98,14 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
         })
         .map_err(|e| hidden(e.into()))?;
     staging.commit()?;
-    print_summary(&prepared, &metrics, opt.as_ref(), &args.out, n_files)?;
+    print_summary(
+        &prepared,
+        &metrics,
+        opt.as_ref(),
+        &args.out,
+        n_files,
+        args.wide.wide,
+    )?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }

@@ -47,6 +47,10 @@ pub struct RunArgs {
     /// Also write a self-contained HTML report of the study (face maps and tables).
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+
+    /// `--wide`: one line per variant with every metric, the yards table on one line per row.
+    #[command(flatten)]
+    pub wide: crate::text::WideArgs,
 }
 
 /// A swing that does not reach the ball is a problem of the study's `[delivery]` table: name the
@@ -196,7 +200,7 @@ fn run_shard(
         dir.display()
     );
     eprintln!(
-        "swept {impacts} impact evaluations ({}, shard {k} of {n}) in {seconds:.3} s: {:.0} impacts/s",
+        "swept {impacts} impact evaluations ({}, shard {k} of {n})\n  in {seconds:.3} s: {:.0} impacts/s",
         grid_text(prepared),
         impacts as f64 / seconds.max(1e-9)
     );
@@ -242,7 +246,7 @@ fn run_whole(
     if let Some(r) = &yards {
         eprint!(
             "{}",
-            smash::study::yards_run::yards_summary(&prepared.study, r)
+            smash::study::yards_run::yards_summary(&prepared.study, r, args.wide.wide)
         );
     }
     let seconds = start.elapsed().as_secs_f64();
@@ -257,9 +261,10 @@ fn run_whole(
     if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
-    crate::study_output::print_summary(prepared, &metrics, opt.as_ref(), dir, n_files)?;
+    let wide = args.wide.wide;
+    crate::study_output::print_summary(prepared, &metrics, opt.as_ref(), dir, n_files, wide)?;
     eprintln!(
-        "swept {impacts} impact evaluations ({}) and wrote {n_files} file(s) in {seconds:.3} s \
+        "swept {impacts} impact evaluations ({})\n  and wrote {n_files} file(s) in {seconds:.3} s \
          (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s)",
         grid_text(prepared),
         kernels.points(),

@@ -337,10 +337,13 @@ fn calibrate_takes_the_measurement_model_diagnose_selected() {
     args.retain(|a| *a != "--json");
     let (ok, text, stderr) = smash(&args);
     assert!(ok, "{stderr}");
-    let line = text
+    // The line and its wrapped continuation lines.
+    let line: String = text
         .lines()
-        .find(|l| l.starts_with("Measurement model:"))
-        .unwrap();
+        .skip_while(|l| !l.starts_with("Measurement model:"))
+        .take_while(|l| l.starts_with("Measurement model:") || l.starts_with("  "))
+        .collect::<Vec<_>>()
+        .join(" ");
     assert!(
         line.contains("impact locations with 1σ noise") && line.contains("club_speed_mph"),
         "{line}"

@@ -49,6 +49,12 @@ fn diagnose_world(
         String::from_utf8_lossy(&text.stderr)
     );
     let out = String::from_utf8_lossy(&text.stdout);
+    for line in out.lines() {
+        assert!(
+            line.chars().count() <= 120,
+            "{world} seed {seed}: line over 120 columns: {line}"
+        );
+    }
     for w in ["NaN", "inf", "nan"] {
         assert!(
             !out.split(|c: char| !c.is_ascii_alphanumeric())

@@ -191,7 +191,7 @@ fn compare(
         );
         Ok((
             smash::report::compare::compare_json(&report),
-            smash_cli::compare::text(&report, &title),
+            smash_cli::compare::text(&report, &title, false),
             warnings,
         ))
     })

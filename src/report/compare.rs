@@ -7,6 +7,7 @@ use crate::compare::{sig3, CompareReport};
 use crate::data::fmt_f64;
 use crate::physics::LaunchComponent;
 use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
+use crate::report::wrap::wrap;
 
 fn opt(v: Option<f64>) -> String {
     v.map(fmt_f64).unwrap_or_default()
@@ -16,26 +17,32 @@ fn cell(v: Option<f64>) -> String {
     v.map(sig3).unwrap_or_else(|| "–".into())
 }
 
-/// The printed diagnosis: Table 2 layout, ranked findings with hints, and the flag count.
-pub fn compare_text(r: &CompareReport, title: &str) -> String {
+/// The widest line of [`compare_text`]'s default layout, in columns.
+pub const TEXT_WIDTH: usize = 100;
+
+/// Table 2 (mean and STD per group and component, `*` where the mean differs from 0) for the
+/// groups `groups` (indices into `r.table2`, whose last is all shots), with `t(all)` after the
+/// last group.
+fn table2_block(r: &CompareReport, groups: &[usize]) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "{title}");
-    let _ = writeln!(
-        s,
-        "{} shots; errors are model − measured (the paper's Table 2 layout). * = mean ≠ 0 at {}%",
-        r.n_shots,
-        r.alpha * 100.0
-    );
-    let _ = writeln!(s);
+    let last = r.table2.len() - 1;
     let _ = write!(s, "{:<14}{:<5}", "Component", "unit");
-    for b in &r.table2 {
-        let _ = write!(s, "{:>10}{:>8}", format!("{} mean", b.group), "STD");
+    for &g in groups {
+        let _ = write!(
+            s,
+            "{:>10}{:>8}",
+            format!("{} mean", r.table2[g].group),
+            "STD"
+        );
     }
-    let _ = writeln!(s, "{:>9}", "t(all)");
+    if groups.contains(&last) {
+        let _ = write!(s, "{:>9}", "t(all)");
+    }
+    let _ = writeln!(s);
     for c in LaunchComponent::ALL {
         let _ = write!(s, "{:<14}{:<5}", c.label(), c.unit());
-        for b in &r.table2 {
-            let e = &b.components[c.index()];
+        for &g in groups {
+            let e = &r.table2[g].components[c.index()];
             let mark = if e.significant { "*" } else { " " };
             let _ = write!(
                 s,
@@ -44,12 +51,43 @@ pub fn compare_text(r: &CompareReport, title: &str) -> String {
                 cell(e.summary.std)
             );
         }
-        let all = &r.table2.last().expect("all").components[c.index()];
-        let _ = writeln!(
-            s,
-            "{:>9}",
-            all.summary.t.map(|t| format!("{t:.1}")).unwrap_or_default()
-        );
+        if groups.contains(&last) {
+            let all = &r.table2[last].components[c.index()];
+            let t = all.summary.t.map(|t| format!("{t:.1}")).unwrap_or_default();
+            let _ = write!(s, "{t:>9}");
+        }
+        let _ = writeln!(s);
+    }
+    s
+}
+
+/// The groups of Table 2 in blocks that fit [`TEXT_WIDTH`] (one block when `wide`).
+fn table2_blocks(r: &CompareReport, wide: bool) -> Vec<Vec<usize>> {
+    let n = r.table2.len();
+    // Component and unit, each group's mean and STD, `t(all)` with the last block.
+    let per_block = if wide {
+        n
+    } else {
+        ((TEXT_WIDTH - 19 - 9) / 18).max(1)
+    };
+    let all: Vec<usize> = (0..n).collect();
+    all.chunks(per_block).map(<[usize]>::to_vec).collect()
+}
+
+/// The printed diagnosis: Table 2 layout (in blocks of groups that fit [`TEXT_WIDTH`] unless
+/// `wide`), ranked findings with hints (wrapped), and the flag count.
+pub fn compare_text(r: &CompareReport, title: &str, wide: bool) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "{title}");
+    let _ = writeln!(
+        s,
+        "{} shots; errors are model − measured (the paper's Table 2 layout). * = mean ≠ 0 at {}%",
+        r.n_shots,
+        r.alpha * 100.0
+    );
+    for block in table2_blocks(r, wide) {
+        let _ = writeln!(s);
+        s.push_str(&table2_block(r, &block));
     }
     let _ = writeln!(s);
     if r.findings.is_empty() {
@@ -61,11 +99,15 @@ pub fn compare_text(r: &CompareReport, title: &str) -> String {
     } else {
         let _ = writeln!(s, "Findings, strongest first:");
         for (i, f) in r.findings.iter().enumerate() {
-            let _ = writeln!(s, "{:>2}. {}", i + 1, f.text);
+            // Continuation lines start under the finding's text, in column 4.
+            let line = format!("{:>2}. {}", i + 1, f.text);
+            let lead = line.len() - line.trim_start().len();
+            s.push_str(&wrap(&line, TEXT_WIDTH, 4 - lead));
             if f.hints.is_empty() {
                 let _ = writeln!(s, "    no library effect has this signature");
             } else {
-                let _ = writeln!(s, "    try: {}", f.hints.join("; "));
+                let hints = format!("    try: {}", f.hints.join("; "));
+                s.push_str(&wrap(&hints, TEXT_WIDTH, 5));
             }
         }
     }

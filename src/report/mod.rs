@@ -6,6 +6,7 @@ pub mod compare;
 pub mod heatmap;
 pub mod html;
 pub mod tables;
+pub mod wrap;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
 pub use tables::{error_table_text, error_tables_side_by_side, fmt_value, TextTable};

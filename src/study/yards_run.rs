@@ -399,8 +399,9 @@ fn optimise_csv(study: &Study, r: &YardsResult) -> Option<(PathBuf, Vec<u8>)> {
     }
 }
 
-/// A few lines for the terminal: base and optimum metrics and any broken constraint.
-pub fn yards_summary(study: &Study, r: &YardsResult) -> String {
+/// A few lines for the terminal: base and optimum metrics and any broken constraint, the lines
+/// wrapped and the table split to fit 100 columns unless `wide`.
+pub fn yards_summary(study: &Study, r: &YardsResult, wide: bool) -> String {
     let y = study.yards.as_ref().expect("a study with [yards]");
     let pct = 100.0 * y.confidence;
     let mut t = String::new();
@@ -437,7 +438,13 @@ pub fn yards_summary(study: &Study, r: &YardsResult) -> String {
             t,
             "yards per design against the base (changes; ± the quadrature's error estimate):"
         );
-        t.push_str(&super::yards_variants::rows_text(&r.base_head, &r.rows, 12));
+        let width = (!wide).then_some(crate::report::compare::TEXT_WIDTH);
+        t.push_str(&super::yards_variants::rows_text(
+            &r.base_head,
+            &r.rows,
+            12,
+            width,
+        ));
     }
     if !study.club.effects.is_empty() {
         let _ = writeln!(
@@ -454,5 +461,15 @@ pub fn yards_summary(study: &Study, r: &YardsResult) -> String {
             "yards: [sensitivity] differentiates the face-map metrics (sensitivities.csv), not yards"
         );
     }
-    t
+    if wide {
+        return t;
+    }
+    // Prose wrapped; the table's lines are at most the width already.
+    let width = crate::report::compare::TEXT_WIDTH;
+    t.split_inclusive('\n')
+        .map(|l| match l.trim_end().chars().count() > width {
+            true => crate::report::wrap::wrap(l.trim_end(), width, 2),
+            false => l.to_owned(),
+        })
+        .collect()
 }

@@ -197,8 +197,15 @@ pub fn decimals(q: &Quantity) -> usize {
 }
 
 /// A text table for the terminal: the base's values, then per row the change of each quantity
-/// (± the quadrature uncertainty), at most `max_rows` rows.
-pub fn rows_text(base: &HeadYards, rows: &[YardRow], max_rows: usize) -> String {
+/// (± the quadrature uncertainty), at most `max_rows` rows. Each column is as wide as its
+/// widest cell; with `width`, the quantities are split into blocks of lines at most that wide
+/// (the design names repeated in each), else all on one line.
+pub fn rows_text(
+    base: &HeadYards,
+    rows: &[YardRow],
+    max_rows: usize,
+    width: Option<usize>,
+) -> String {
     let name = |r: &YardRow| {
         if r.design == "base" || r.label.starts_with("optimum") {
             r.label.clone()
@@ -207,29 +214,71 @@ pub fn rows_text(base: &HeadYards, rows: &[YardRow], max_rows: usize) -> String 
         }
     };
     let shown = &rows[..rows.len().min(max_rows)];
-    let width = shown
+    let names: Vec<String> = shown.iter().map(name).collect();
+    let name_w = names
         .iter()
-        .map(|r| name(r).chars().count())
+        .map(|n| n.chars().count())
         .max()
         .unwrap_or(6)
         .max(6);
-    let mut t = format!("{:<width$}", "design");
-    for q in &QUANTITIES {
-        let _ = write!(t, " {:>20}", q.column);
+    // cells[q][row]
+    let cells: Vec<Vec<String>> = QUANTITIES
+        .iter()
+        .map(|q| {
+            shown
+                .iter()
+                .map(|r| {
+                    if r.label == "base" {
+                        format!("{:.*}", decimals(q), (q.get)(&r.head.metrics))
+                    } else {
+                        let (d, u) = delta(q, base, &r.head);
+                        delta_text(d, u, decimals(q))
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let col_w: Vec<usize> = QUANTITIES
+        .iter()
+        .zip(&cells)
+        .map(|(q, c)| {
+            c.iter()
+                .map(|s| s.chars().count())
+                .chain([q.column.len()])
+                .max()
+                .unwrap_or(0)
+        })
+        .collect();
+    // Blocks of quantities that fit `width` (at least one quantity each).
+    let mut blocks: Vec<Vec<usize>> = vec![Vec::new()];
+    let mut used = name_w;
+    for (i, w) in col_w.iter().enumerate() {
+        let block = blocks.last_mut().expect("a block");
+        if width.is_some_and(|max| !block.is_empty() && used + 2 + w > max) {
+            blocks.push(vec![i]);
+            used = name_w + 2 + w;
+        } else {
+            block.push(i);
+            used += 2 + w;
+        }
     }
-    t.push('\n');
-    for r in shown {
-        let _ = write!(t, "{:<width$}", name(r));
-        for q in &QUANTITIES {
-            let cellt = if r.label == "base" {
-                format!("{:.*}", decimals(q), (q.get)(&r.head.metrics))
-            } else {
-                let (d, u) = delta(q, base, &r.head);
-                delta_text(d, u, decimals(q))
-            };
-            let _ = write!(t, " {cellt:>20}");
+    let mut t = String::new();
+    for (b, block) in blocks.iter().enumerate() {
+        if b > 0 {
+            t.push('\n');
+        }
+        let _ = write!(t, "{:<name_w$}", "design");
+        for &i in block {
+            let _ = write!(t, "  {:>w$}", QUANTITIES[i].column, w = col_w[i]);
         }
         t.push('\n');
+        for (r, n) in names.iter().enumerate() {
+            let _ = write!(t, "{n:<name_w$}");
+            for &i in block {
+                let _ = write!(t, "  {:>w$}", cells[i][r], w = col_w[i]);
+            }
+            t.push('\n');
+        }
     }
     if rows.len() > max_rows {
         let _ = writeln!(

@@ -41,7 +41,10 @@ pub fn calibrate_and_fly(
             .map_or(String::new(), |k| format!(" for {k}"));
         let cal =
             calibrate(cfg, &part, &terms).map_err(|e| anyhow::anyhow!("--calibrate{what}: {e}"))?;
-        eprintln!("{}", calibration_line(cfg, &what, &cal));
+        eprintln!(
+            "{}",
+            crate::text::wrap_long(&calibration_line(cfg, &what, &cal))
+        );
         let launches: Vec<_> = idx.iter().map(|&i| table.launches[i]).collect();
         let flown = smash::flight::integrate::fly_with(cfg, &cal.model(&cfg.aero), &launches);
         for (&i, f) in idx.iter().zip(flown) {
