@@ -142,7 +142,14 @@ fn report_page_and_refusal_without_measurements() {
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(err.contains("no measured flight column"), "{err}");
-    assert_eq!(err.trim_end().lines().count(), 2, "{err}");
+    // The error is one line, the last, after the (wrapped) message of what was flown.
+    let lines: Vec<&str> = err.trim_end().lines().collect();
+    assert_eq!(
+        lines.iter().filter(|l| l.starts_with("error: ")).count(),
+        1,
+        "{err}"
+    );
+    assert!(lines.last().unwrap().starts_with("error: "), "{err}");
 }
 
 /// Per-shot conditions: the same launch flies farther at 1,600 m than at sea level and in
@@ -160,8 +167,10 @@ c,7i,120,16.3,7097,172,0,35,,Range,1,0,0\n";
     let o = smash(&["flight", "--shots", s(&shots), "--out", s(&out)]);
     let err = stderr(&o);
     assert!(o.status.success(), "{err}");
+    // The message wraps at 100 columns: compare its words.
+    let words = err.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
-        err.contains(
+        words.contains(
             "air per shot from the file's altitude_m, air_temperature_c, relative_humidity_pct (3 distinct)"
         ),
         "{err}"
@@ -193,7 +202,10 @@ c,7i,120,16.3,7097,172,0,35,,Range,1,0,0\n";
     assert!(
         // c's empty humidity is the default 50 %: with the user's elevation and temperature
         // all three shots fly in one air.
-        err.contains("relative_humidity_pct (1 distinct); the user's temperature, pressure"),
+        err.split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ")
+            .contains("relative_humidity_pct (1 distinct); the user's temperature, pressure"),
         "{err}"
     );
     let carry = column(&out, "pred_carry_yd");

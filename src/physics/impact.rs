@@ -273,14 +273,7 @@ impl ImpactModel {
         let j = &club_inv_inertia;
         let sym = |a: usize, b: usize| 0.5 * (j[(a, b)] + j[(b, a)]);
         let laws = Laws {
-            restitution: Restitution {
-                cor: p.cor,
-                power_q: p.cor_power_q,
-                speed_k_s_per_m: p.cor_speed_k_s_per_m,
-                radial_c_per_m2: p.cor_radial_c_per_m2,
-                radial_moment_per_m: p.cor_radial_moment_per_m,
-                radial_offset: p.cor_radial_offset,
-            },
+            restitution: Restitution::of(p),
             ball: BallContact {
                 radius_m: p.ball_radius_m,
                 offset_y_m: p.ball_offset_y_m,

@@ -93,6 +93,18 @@ pub struct Restitution {
 }
 
 impl Restitution {
+    /// The law of a model's parameters (their COR constants).
+    pub fn of(p: &super::ModelParams) -> Self {
+        Self {
+            cor: p.cor,
+            power_q: p.cor_power_q,
+            speed_k_s_per_m: p.cor_speed_k_s_per_m,
+            radial_c_per_m2: p.cor_radial_c_per_m2,
+            radial_moment_per_m: p.cor_radial_moment_per_m,
+            radial_offset: p.cor_radial_offset,
+        }
+    }
+
     /// `e` for normal approach speed `u1n_m_s` at the impact location `(y_m, z_m)`.
     #[inline(always)]
     pub fn cor<R: Real>(&self, u1n_m_s: R, y_m: R, z_m: R) -> R {
