@@ -408,6 +408,8 @@ pub fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
             "param": p.label(), "value": p.value, "unit": p.unit,
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
+            "most_alike": d.alike(p).iter().map(|(l, r)| json!({"candidate": l, "r": r}))
+                .collect::<Vec<_>>(),
         }))).collect::<Vec<_>>(),
         "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
         "likelihood": crate::likelihood::to_json("final", &d.final_fit, &d.nominal_fit),

@@ -24,8 +24,10 @@
 //! measured one and may only tighten. With `face_curvature` in the library, its bulge is a
 //! finding in every seed: the face-angle half of the twist turns the face normal heel to toe,
 //! which is what a bulge radius is (`face_angle_twist_is_a_bulge_error`), so it counts as the
-//! world's. Its roll is "unchanged" (not significant over the model's parameters); the false
-//! finding is now seed 4's `ball_offset.dz_mm` (−0.023 ± 0.006 mm): still one seed of ten.
+//! world's. Its roll is "unchanged" (not significant over the model's parameters). Seed 4's
+//! `ball_offset.dz_mm` (−0.023 ± 0.006 mm) passed its own checks while the same effect's dy
+//! drifted from heel to toe; an effect failing a check in one parameter is now provisional in
+//! all of them, and no seed of ten reports a finding outside the world, as the issue asks.
 
 mod cli_support;
 
@@ -169,8 +171,8 @@ fn twisted_face_over_ten_seeds() {
         false_seeds += usize::from(!wrong.is_empty());
     }
     println!("twisted face: seeds with a false finding: {false_seeds} of 10");
-    assert!(
-        false_seeds <= 1,
+    assert_eq!(
+        false_seeds, 0,
         "{false_seeds} of 10 seeds with a false finding"
     );
 }

@@ -59,6 +59,7 @@
 //! Folds keep each golfer's shots together, so an effect cannot win by fitting one golfer's
 //! habits. Without a golfer column the folds are by shot, with a warning.
 
+mod candidates;
 mod evaluate;
 pub mod honest;
 pub mod noise_floor;
@@ -69,12 +70,12 @@ mod spread;
 pub mod strata;
 
 use crate::club::ClubSpec;
-use crate::effects::{EffectId, EffectKind};
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::{EffectRequest, FitData, FitError, Likelihood};
 use crate::model::Shot;
 use crate::physics::LaunchComponent;
 use crate::stats::{launch_error_table, ErrorTable};
+pub use candidates::{default_candidates, default_candidates_without, OPT_IN_CANDIDATES};
 pub use evaluate::impact_noise_label;
 
 /// Options of [`diagnose`].
@@ -273,6 +274,11 @@ pub struct Step {
     /// Unselected candidates that explained nearly the same signal as the selected effect
     /// ([`select::rivals`]), best first.
     pub rivals: Vec<honest::Rival>,
+    /// The effect candidates whose change to the predictions was most like the selected
+    /// effect's at this step, with that correlation ([`select::most_alike`], at most
+    /// [`select::MOST_ALIKE`], most alike first): the measured reading of what the selected
+    /// effect could be standing in for.
+    pub alike: Vec<(String, f64)>,
     /// For a swap step (after forward selection stopped, see [`diagnose`]): the change made.
     /// Its `candidates` are then the removals (`remove name`) and replacements (`out → in`)
     /// tried, with gain `CV(current) − CV(changed)` and penalty `(k_in − k_out)·ln n` (plus
@@ -372,11 +378,50 @@ impl Diagnosis {
     /// When this estimate would be a finding but its value differs across the strata of the
     /// shots beyond its uncertainty ([`strata`]): the failed check, as text.
     /// Also when its signal shares the trend of structure the final model leaves
-    /// ([`Self::shared_signals`]).
+    /// ([`Self::shared_signals`]), and when another parameter of the same effect (and group)
+    /// fails either check or is a stand-in: an effect that drifts, or stands in for other
+    /// physics, in one of its parameters is compensating for something, so none of its values
+    /// is a reading of the head (as with aliases, every parameter of the effect is in doubt).
     pub fn provisional(&self, p: &ParamEstimate) -> Option<String> {
         if !self.passes_report_checks(p) {
             return None;
         }
+        let label = p.label();
+        self.own_check_failed(p).or_else(|| {
+            self.estimates
+                .iter()
+                .filter(|s| s.effect == p.effect && s.group == p.group && s.param != p.param)
+                .find_map(|s| {
+                    if honest::is_plausible(s) == Some(false) {
+                        Some(format!(
+                            "{label}: {} of the same effect is a stand-in",
+                            s.label()
+                        ))
+                    } else if self.passes_report_checks(s) {
+                        self.own_check_failed(s)
+                            .map(|why| format!("{label}: the same effect's {why}"))
+                    } else {
+                        None
+                    }
+                })
+        })
+    }
+
+    /// The candidates whose change to the predictions was most like that of `p`'s effect at
+    /// the step that selected it, with the correlation (empty when none was measured).
+    pub fn alike(&self, p: &ParamEstimate) -> &[(String, f64)] {
+        let label = match &p.group {
+            Some(_) => format!("{}@group", p.effect),
+            None => p.effect.to_owned(),
+        };
+        self.steps
+            .iter()
+            .find(|s| s.selected.as_deref() == Some(label.as_str()))
+            .map_or(&[], |s| s.alike.as_slice())
+    }
+
+    /// The strata or shared-signal check this estimate itself fails, as text.
+    fn own_check_failed(&self, p: &ParamEstimate) -> Option<String> {
         let label = p.label();
         let strata = self.strata.as_ref().and_then(|s| s.failed(&label));
         strata.or_else(|| {
@@ -420,55 +465,6 @@ pub trait DiagnoseProgress: Sync {
     fn step(&self, step: usize, jobs: usize);
     /// One fit finished.
     fn job_done(&self);
-}
-
-/// Library effects that are searched only when named with `--candidates`. None at present:
-/// `cor_level`, `hosel_mass` and `cor_power` were here because they alias `added_mass` and
-/// `cor_speed` on launch data alone; alias arbitration (a plausible alias is preferred to an
-/// implausible best candidate, and the pair reported) made them default candidates.
-pub const OPT_IN_CANDIDATES: [EffectKind; 0] = [];
-
-/// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
-/// `added_mass@group` and `hosel_mass@group` with several groups, plus every registered user-defined effect
-/// (`crate::effects::user`: those of an effects file or club file the command read) as a
-/// global candidate beside them.
-pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
-    let mut c: Vec<EffectRequest> = EffectKind::ALL
-        .iter()
-        .filter(|k| !OPT_IN_CANDIDATES.contains(k))
-        .map(|&k| EffectRequest::Global(k.into()))
-        .collect();
-    if groups.len() > 1 {
-        c.push(EffectRequest::PerGroup(EffectKind::AddedMass.into()));
-        c.push(EffectRequest::PerGroup(EffectKind::HoselMass.into()));
-    }
-    c.extend(
-        crate::effects::user::registered()
-            .into_iter()
-            .map(|u| EffectRequest::Global(EffectId::User(u))),
-    );
-    c
-}
-
-/// The default candidates for `shots` ([`default_candidates`] of their groups) without those
-/// in `without`: what diagnose would conclude if the library lacked them. Each of `without`
-/// must be a default candidate (a name or `name@group`), or the list is refused.
-pub fn default_candidates_without(
-    shots: &[Shot],
-    without: &[EffectRequest],
-) -> Result<Vec<EffectRequest>, FitError> {
-    let all = default_candidates(&FitData::from_shots(shots)?.groups);
-    if let Some(w) = without.iter().find(|w| !all.contains(w)) {
-        return Err(FitError::BadEffectList(format!(
-            "'{}' is not a default candidate of these shots; they are: {}",
-            w.label(),
-            all.iter()
-                .map(EffectRequest::label)
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
-    }
-    Ok(all.into_iter().filter(|c| !without.contains(c)).collect())
 }
 
 /// Run forward selection on `shots` (with measured launch) over `club`.

@@ -373,6 +373,7 @@ impl<'a> Search<'a> {
                 at_noise_floor,
                 alias: None,
                 rivals: Vec::new(),
+                alike: Vec::new(),
                 swap: None,
             }));
         }
@@ -381,15 +382,18 @@ impl<'a> Search<'a> {
         let order = select::by_margin(&scored.results);
         let (winner, alias) =
             select::arbitrate(&scored.results, &scored.explained, &order, scored.n_effects);
-        let rivals = match winner {
-            Some(i) if i < scored.n_effects => select::rivals(
-                &scored.results,
-                &scored.explained,
-                &order,
-                i,
-                scored.n_effects,
+        let (rivals, alike) = match winner {
+            Some(i) if i < scored.n_effects => (
+                select::rivals(
+                    &scored.results,
+                    &scored.explained,
+                    &order,
+                    i,
+                    scored.n_effects,
+                ),
+                select::most_alike(&scored.results, &scored.explained, i, scored.n_effects),
             ),
-            _ => Vec::new(),
+            _ => (Vec::new(), Vec::new()),
         };
         let (chosen, after, fit) = match winner {
             Some(i) => {
@@ -423,6 +427,7 @@ impl<'a> Search<'a> {
             at_noise_floor,
             alias,
             rivals,
+            alike,
             swap: None,
         }))
     }

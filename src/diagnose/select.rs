@@ -131,6 +131,33 @@ pub(super) fn kin(
         .collect()
 }
 
+/// How many of the most alike candidates a step keeps ([`most_alike`]).
+pub const MOST_ALIKE: usize = 3;
+
+/// The [`MOST_ALIKE`] other effect candidates whose fits changed the predictions most like
+/// the selected `winner`'s, with that correlation (positive only), most alike first: measured
+/// on these shots, whatever their margin.
+pub(super) fn most_alike(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    winner: usize,
+    n_effects: usize,
+) -> Vec<(String, f64)> {
+    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
+        return Vec::new();
+    };
+    let mut alike: Vec<(String, f64)> = (0..n_effects)
+        .filter(|&i| i != winner && results[i].eligible())
+        .filter_map(|i| {
+            let r = honest::signal_correlation(we, explained[i].as_deref()?);
+            (r.is_finite() && r > 0.0).then(|| (results[i].label.clone(), r))
+        })
+        .collect();
+    alike.sort_by(|a, b| b.1.total_cmp(&a.1));
+    alike.truncate(MOST_ALIKE);
+    alike
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

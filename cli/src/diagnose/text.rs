@@ -364,9 +364,22 @@ fn summary_text(d: &Diagnosis) -> String {
         }
         for p in &d.estimates {
             if let Some(w) = honest::stand_in(p) {
+                let alike: Vec<String> = d
+                    .alike(p)
+                    .iter()
+                    .map(|(l, r)| format!("{l} (r = {r:.2})"))
+                    .collect();
+                let measured = if alike.is_empty() {
+                    String::new()
+                } else {
+                    format!(
+                        "; on these shots its change to the predictions was most like {}",
+                        alike.join(", ")
+                    )
+                };
                 s.push_str(&wrap_long(&format!(
                     "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; \
-                     it behaves like {w}\n",
+                     it behaves like {w}{measured}\n",
                     p.label(),
                     p.value,
                     p.unit,

@@ -161,6 +161,7 @@ impl Search<'_> {
             at_noise_floor: false,
             alias: None,
             rivals: Vec::new(),
+            alike: Vec::new(),
             swap: Some(swap),
         })
     }

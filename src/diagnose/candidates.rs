@@ -1,0 +1,56 @@
+//! The candidates diagnose offers by default, and the same without some of them.
+
+use crate::effects::{EffectId, EffectKind};
+use crate::fit::{EffectRequest, FitError};
+use crate::model::Shot;
+
+use super::FitData;
+
+/// Library effects that are searched only when named with `--candidates`. None at present:
+/// `cor_level`, `hosel_mass` and `cor_power` were here because they alias `added_mass` and
+/// `cor_speed` on launch data alone; alias arbitration (a plausible alias is preferred to an
+/// implausible best candidate, and the pair reported) made them default candidates.
+pub const OPT_IN_CANDIDATES: [EffectKind; 0] = [];
+
+/// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
+/// `added_mass@group` and `hosel_mass@group` with several groups, plus every registered user-defined effect
+/// (`crate::effects::user`: those of an effects file or club file the command read) as a
+/// global candidate beside them.
+pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
+    let mut c: Vec<EffectRequest> = EffectKind::ALL
+        .iter()
+        .filter(|k| !OPT_IN_CANDIDATES.contains(k))
+        .map(|&k| EffectRequest::Global(k.into()))
+        .collect();
+    if groups.len() > 1 {
+        c.push(EffectRequest::PerGroup(EffectKind::AddedMass.into()));
+        c.push(EffectRequest::PerGroup(EffectKind::HoselMass.into()));
+    }
+    c.extend(
+        crate::effects::user::registered()
+            .into_iter()
+            .map(|u| EffectRequest::Global(EffectId::User(u))),
+    );
+    c
+}
+
+/// The default candidates for `shots` ([`default_candidates`] of their groups) without those
+/// in `without`: what diagnose would conclude if the library lacked them. Each of `without`
+/// must be a default candidate (a name or `name@group`), or the list is refused.
+pub fn default_candidates_without(
+    shots: &[Shot],
+    without: &[EffectRequest],
+) -> Result<Vec<EffectRequest>, FitError> {
+    let all = default_candidates(&FitData::from_shots(shots)?.groups);
+    if let Some(w) = without.iter().find(|w| !all.contains(w)) {
+        return Err(FitError::BadEffectList(format!(
+            "'{}' is not a default candidate of these shots; they are: {}",
+            w.label(),
+            all.iter()
+                .map(EffectRequest::label)
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+    }
+    Ok(all.into_iter().filter(|c| !without.contains(c)).collect())
+}
