@@ -419,3 +419,87 @@ fn pages_render_in_chromium() {
         );
     }
 }
+
+/// Width of the narrowest figure a page lays out, CSS px: the grid's smallest column (480 px,
+/// `minmax(480px, 1fr)` in the page's CSS) less the figure's padding (6 px a side). In print the
+/// figures are a full column of an A4 page, wider than this.
+const NARROWEST_FIGURE_PX: f64 = 468.0;
+
+/// Smallest legible label, CSS px: 8 px is 6 pt, the usual minimum for text in a printed
+/// figure.
+const MIN_LABEL_PX: f64 = 8.0;
+
+/// Every chart's smallest text, as shown in the narrowest figure: `(svg width, smallest
+/// font-size, shown size)` per `<svg>` of the page.
+fn label_sizes(html: &str) -> Vec<(f64, f64, f64)> {
+    let attr = |tag: &str, name: &str| -> Option<f64> {
+        let key = format!(" {name}=\"");
+        let i = tag.find(&key)? + key.len();
+        tag[i..]
+            .split('"')
+            .next()?
+            .trim_end_matches("px")
+            .parse()
+            .ok()
+    };
+    let mut out = Vec::new();
+    for (start, _) in html.match_indices("<svg") {
+        let end = html[start..]
+            .find("</svg>")
+            .map_or(html.len(), |e| start + e);
+        let svg = &html[start..end];
+        let width = attr(&svg[..svg.find('>').unwrap()], "width").expect("an svg with a width");
+        let smallest = svg
+            .match_indices('<')
+            .filter_map(|(i, _)| {
+                let tag = &svg[i..i + svg[i..].find('>').unwrap_or(0)];
+                attr(tag, "font-size")
+            })
+            .fold(f64::INFINITY, f64::min);
+        let shown = smallest * NARROWEST_FIGURE_PX.min(width) / width;
+        out.push((width, smallest, shown));
+    }
+    out
+}
+
+#[test]
+fn labels_are_legible_in_the_narrowest_figure() {
+    // The check can fail: a chart drawn 1,800 px wide with 12 px labels (the step charts of a
+    // default diagnose once were) shows them at 3 px.
+    let wide = "<svg width=\"1800\" height=\"400\"><text font-size=\"12\">x</text></svg>";
+    assert!(label_sizes(wide)[0].2 < 4.0);
+    let r = reports();
+    // And diagnose with every default candidate: 28 bars a step.
+    let dir = tempfile::tempdir().unwrap();
+    let shots = experiment(dir.path());
+    let page = dir.path().join("diagnose_default.html");
+    ok(smash(&[
+        "diagnose",
+        "--club",
+        CLUB,
+        "--shots",
+        shots.to_str().unwrap(),
+        "--max-steps",
+        "1",
+        "--report",
+        page.to_str().unwrap(),
+    ]));
+    for (name, page) in [
+        ("compare", &r.compare.0),
+        ("calibrate", &r.calibrate.0),
+        ("diagnose", &r.diagnose.0),
+        ("diagnose, default candidates", &page),
+        ("study", &r.study),
+    ] {
+        let html = std::fs::read_to_string(page).unwrap();
+        let sizes = label_sizes(&html);
+        assert!(!sizes.is_empty(), "{name}: no chart");
+        for (width, font, shown) in sizes {
+            assert!(
+                shown >= MIN_LABEL_PX,
+                "{name}: a chart {width} px wide has {font} px text, shown at {shown:.1} px in a \
+                 {NARROWEST_FIGURE_PX} px figure (at least {MIN_LABEL_PX} px)"
+            );
+        }
+    }
+}

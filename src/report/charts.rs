@@ -121,18 +121,44 @@ fn range(values: impl IntoIterator<Item = f64>, always: Option<f64>) -> (f64, f6
     (lo - pad, hi + pad)
 }
 
-/// One series of a grouped bar chart: a value and an error half-width per category.
+/// One bar: a mean with its standard error, and the spread of what was averaged.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bar {
+    /// Bar height (a mean).
+    pub mean: f64,
+    /// Standard error of the mean: the capped error bar (0 or not finite: none).
+    pub se: f64,
+    /// Standard deviation of the values averaged: a grey band of ± sd behind the bar (0 or not
+    /// finite: none).
+    pub sd: f64,
+}
+
+impl Bar {
+    /// The bar of `n` values with mean `mean` and sample standard deviation `sd`.
+    pub fn of(mean: f64, sd: f64, n: usize) -> Self {
+        let se = if n > 1 && sd.is_finite() {
+            sd / (n as f64).sqrt()
+        } else {
+            0.0
+        };
+        Self { mean, se, sd }
+    }
+}
+
+/// One series of a grouped bar chart: a bar per category.
 #[derive(Debug, Clone)]
 pub struct BarSeries {
     /// Legend label.
     pub label: String,
     /// Colour.
     pub colour: RGBColor,
-    /// Per category: (bar height, error-bar half-width); `None` draws nothing.
-    pub values: Vec<Option<(f64, f64)>>,
+    /// Per category, `None` draws nothing.
+    pub values: Vec<Option<Bar>>,
 }
 
-/// Grouped bars with error bars (e.g. mean error ± STD per group, before and after).
+/// Grouped bars of means with their standard errors (capped error bars) and the spread of the
+/// values as a grey band (e.g. mean error per group, before and after). The value axis leaves
+/// room above the data for the legend, so it covers no bar.
 pub fn grouped_bars_svg(
     title: &str,
     y_label: &str,
@@ -141,12 +167,17 @@ pub fn grouped_bars_svg(
 ) -> Result<String, String> {
     let n = categories.len().max(1);
     let all = series.iter().flat_map(|s| {
-        s.values
-            .iter()
-            .flatten()
-            .flat_map(|&(v, e)| [v - e.abs(), v + e.abs(), v])
+        s.values.iter().flatten().flat_map(|b| {
+            let sd = if b.sd.is_finite() { b.sd.abs() } else { 0.0 };
+            [b.mean - sd, b.mean + sd, b.mean]
+        })
     });
     let (lo, hi) = range(all, Some(0.0));
+    let hi = if series.len() > 1 {
+        hi + 0.3 * (hi - lo)
+    } else {
+        hi
+    };
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
@@ -176,12 +207,22 @@ pub fn grouped_bars_svg(
         let m = series.len().max(1) as f64;
         let slot = 0.8 / m;
         for (k, s) in series.iter().enumerate() {
+            let x0 = |i: usize| i as f64 + 0.1 + k as f64 * slot;
+            let bands = s.values.iter().enumerate().filter_map(|(i, b)| {
+                let b = (*b)?;
+                (b.sd.is_finite() && b.sd > 0.0).then(|| {
+                    Rectangle::new(
+                        [(x0(i), b.mean - b.sd), (x0(i) + slot, b.mean + b.sd)],
+                        BLACK.mix(0.08).filled(),
+                    )
+                })
+            });
+            chart.draw_series(bands).map_err(err)?;
             let colour = s.colour;
-            let bars = s.values.iter().enumerate().filter_map(|(i, v)| {
-                let (v, _) = (*v)?;
-                let x0 = i as f64 + 0.1 + k as f64 * slot;
+            let bars = s.values.iter().enumerate().filter_map(|(i, b)| {
+                let b = (*b)?;
                 Some(Rectangle::new(
-                    [(x0 + 0.05 * slot, 0.0), (x0 + 0.95 * slot, v)],
+                    [(x0(i) + 0.2 * slot, 0.0), (x0(i) + 0.8 * slot, b.mean)],
                     colour.mix(0.85).filled(),
                 ))
             });
@@ -192,23 +233,22 @@ pub fn grouped_bars_svg(
                 .legend(move |(x, y)| {
                     Rectangle::new([(x, y - 6), (x + 14, y + 6)], colour.filled())
                 });
-            for (i, v) in s.values.iter().enumerate() {
-                let Some((v, e)) = *v else { continue };
-                if !(e.is_finite() && e > 0.0) {
+            for (i, b) in s.values.iter().enumerate() {
+                let Some(b) = *b else { continue };
+                if !(b.se.is_finite() && b.se > 0.0) {
                     continue;
                 }
-                let xc = i as f64 + 0.1 + (k as f64 + 0.5) * slot;
-                let cap = 0.15 * slot;
+                let (xc, cap, v, e) = (x0(i) + 0.5 * slot, 0.12 * slot, b.mean, b.se);
                 chart
                     .draw_series([
-                        PathElement::new(vec![(xc, v - e), (xc, v + e)], BLACK.stroke_width(1)),
+                        PathElement::new(vec![(xc, v - e), (xc, v + e)], BLACK.stroke_width(2)),
                         PathElement::new(
                             vec![(xc - cap, v - e), (xc + cap, v - e)],
-                            BLACK.stroke_width(1),
+                            BLACK.stroke_width(2),
                         ),
                         PathElement::new(
                             vec![(xc - cap, v + e), (xc + cap, v + e)],
-                            BLACK.stroke_width(1),
+                            BLACK.stroke_width(2),
                         ),
                     ])
                     .map_err(err)?;
@@ -424,10 +464,12 @@ pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<Strin
 }
 
 /// Bars per candidate, each with a red threshold mark (e.g. cross-validated gain per effect and
-/// the penalty that gain must beat).
+/// the penalty that gain must beat). Horizontal: one row per candidate, its name on the left, so
+/// the chart keeps its width (and its labels their size) however many candidates there are;
+/// what the bars and marks are is said on the axis, not in a legend box that could cover them.
 pub fn bars_with_line_svg(
     title: &str,
-    y_label: &str,
+    x_label: &str,
     labels: &[String],
     values: &[f64],
     line: Option<(&[f64], &str)>,
@@ -440,51 +482,60 @@ pub fn bars_with_line_svg(
             .chain(line.iter().flat_map(|l| l.0.iter().copied())),
         Some(0.0),
     );
+    let axis = match line {
+        Some((_, what)) => format!("{x_label} (bars); {what} (red marks)"),
+        None => x_label.to_owned(),
+    };
     let mut svg = String::new();
     {
         let root =
-            SVGBackend::with_string(&mut svg, (SIZE.0.max(60 * n as u32 + 140), SIZE.1 + 60))
-                .into_drawing_area();
+            SVGBackend::with_string(&mut svg, (SIZE.0, 100 + 24 * n as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
-        let mut chart = build_chart(&root, title, (110, 64), 0.0..n as f64, lo..hi)?;
-        draw_category_mesh(&mut chart, y_label, 12)?;
+        let mut chart = build_chart(&root, title, (44, 190), lo..hi, 0.0..n as f64)?;
         chart
-            .draw_series(values.iter().enumerate().map(|(i, &v)| {
-                Rectangle::new(
-                    [(i as f64 + 0.15, 0.0), (i as f64 + 0.85, v)],
-                    BLUE_C.mix(0.85).filled(),
-                )
-            }))
-            .map_err(err)?
-            .label("gain")
-            .legend(|(x, y)| Rectangle::new([(x, y - 6), (x + 14, y + 6)], BLUE_C.filled()));
+            .configure_mesh()
+            .disable_y_mesh()
+            .y_label_formatter(&|_| String::new())
+            .set_tick_mark_size(LabelAreaPosition::Left, 0)
+            .x_desc(axis)
+            .x_label_formatter(&tick)
+            .light_line_style(BLACK.mix(0.04))
+            .label_style(("sans-serif", 12))
+            .draw()
+            .map_err(err)?;
+        let row_y = |i: usize| (n - 1 - i) as f64;
         for (i, l) in labels.iter().enumerate() {
-            let (px, py) = chart.backend_coord(&(i as f64 + 0.5, lo));
+            let (px, py) = chart.backend_coord(&(lo, row_y(i) + 0.5));
             root.draw(&Text::new(
                 l.clone(),
-                (px, py + 6),
-                ("sans-serif", 12)
-                    .into_font()
-                    .transform(FontTransform::Rotate90)
-                    .into_text_style(&root),
+                (px - 8, py),
+                ("sans-serif", 12).into_font().into_text_style(&root).pos(
+                    plotters::style::text_anchor::Pos::new(
+                        plotters::style::text_anchor::HPos::Right,
+                        plotters::style::text_anchor::VPos::Center,
+                    ),
+                ),
             ))
             .map_err(err)?;
         }
-        if let Some((marks, label)) = line {
+        chart
+            .draw_series(values.iter().enumerate().map(|(i, &v)| {
+                Rectangle::new(
+                    [(0.0, row_y(i) + 0.15), (v, row_y(i) + 0.85)],
+                    BLUE_C.mix(0.85).filled(),
+                )
+            }))
+            .map_err(err)?;
+        if let Some((marks, _)) = line {
             chart
                 .draw_series(marks.iter().enumerate().map(|(i, &v)| {
                     PathElement::new(
-                        vec![(i as f64 + 0.05, v), (i as f64 + 0.95, v)],
+                        vec![(v, row_y(i) + 0.05), (v, row_y(i) + 0.95)],
                         RED_C.stroke_width(3),
                     )
                 }))
-                .map_err(err)?
-                .label(label.to_owned())
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 14, y)], RED_C.stroke_width(2))
-                });
+                .map_err(err)?;
         }
-        draw_legend(&mut chart, SeriesLabelPosition::UpperRight, 12)?;
         root.present().map_err(err)?;
     }
     Ok(svg)
@@ -508,71 +559,4 @@ pub fn fit_line(points: &[(f64, f64)]) -> Option<(f64, f64)> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn charts_are_svg_with_titles_and_legends() {
-        let svg = grouped_bars_svg(
-            "Ball speed",
-            "error, mph",
-            &["A".into(), "B".into()],
-            &[
-                BarSeries {
-                    label: "before".into(),
-                    colour: BLUE_C,
-                    values: vec![Some((-2.0, 1.0)), Some((-1.5, 0.5))],
-                },
-                BarSeries {
-                    label: "after".into(),
-                    colour: ORANGE_C,
-                    values: vec![Some((0.1, 1.0)), None],
-                },
-            ],
-        )
-        .unwrap();
-        assert!(svg.starts_with("<svg"), "{}", &svg[..50]);
-        for t in [
-            "Ball speed",
-            "error, mph",
-            "before",
-            "after",
-            "\nA\n</text>",
-            "\nB\n</text>",
-        ] {
-            assert!(svg.contains(t), "missing {t}");
-        }
-        let pts: Vec<(f64, f64)> = (0..50).map(|i| (i as f64, 2.0 * i as f64 + 1.0)).collect();
-        let (s, c) = fit_line(&pts).unwrap();
-        assert!((s - 2.0).abs() < 1e-12 && (c - 1.0).abs() < 1e-9);
-        let t = Trend {
-            slope: s,
-            intercept: c,
-            label: "trend".into(),
-        };
-        let svg =
-            scatter_trend_svg("t", "x, mph", "y, rpm", &pts, Some(&t), &[(1.0, 3.0)]).unwrap();
-        assert!(svg.contains("x, mph") && svg.contains("trend") && svg.contains("<circle"));
-        let svg = estimates_svg(
-            "dm",
-            "g",
-            &[Estimate {
-                label: "added_mass.dm_g".into(),
-                value: 2.0,
-                interval: Some((1.0, 3.0)),
-                plausible: (0.0, 15.0),
-            }],
-        )
-        .unwrap();
-        assert!(svg.contains("plausible range") && svg.contains("added_mass.dm_g"));
-        let svg = bars_with_line_svg(
-            "g",
-            "gain",
-            &["a".into()],
-            &[3.0],
-            Some((&[2.0][..], "penalty")),
-        )
-        .unwrap();
-        assert!(svg.contains("penalty"));
-    }
-}
+mod tests;

@@ -1,7 +1,7 @@
 //! The `smash flight --report` page: the flight model against measured flights, per club.
 
 use smash::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
-use smash::report::charts::{grouped_bars_svg, scatter_trend_svg, BarSeries, BLUE_C};
+use smash::report::charts::{grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, BLUE_C};
 use smash::report::html::{esc, Figure, Page, Section};
 
 /// The `--report` page: the carry, side, apex and land-angle errors per club (bias, with the
@@ -15,14 +15,20 @@ pub(super) fn flight_page(
     let categories: Vec<String> = summary.rows.iter().map(|r| r.group.clone()).collect();
     let mut figures = Vec::new();
     for (name, label, unit) in SUMMARY_QUANTITIES {
-        let values: Vec<Option<(f64, f64)>> = summary
+        let values: Vec<Option<Bar>> = summary
             .rows
             .iter()
             .map(|r| {
-                r.errors
-                    .iter()
-                    .find(|e| e.0 == name)
-                    .map(|e| (e.1.bias, e.1.rmse))
+                r.errors.iter().find(|e| e.0 == name).map(|e| {
+                    // The errors' SD from their RMSE and mean: rmse² = bias² + sd²·(n−1)/n.
+                    let n = e.1.n as f64;
+                    let sd = if e.1.n > 1 {
+                        ((e.1.rmse.powi(2) - e.1.bias.powi(2)).max(0.0) * n / (n - 1.0)).sqrt()
+                    } else {
+                        0.0
+                    };
+                    Bar::of(e.1.bias, sd, e.1.n)
+                })
             })
             .collect();
         if values.iter().all(Option::is_none) {
@@ -42,7 +48,8 @@ pub(super) fn flight_page(
         figures.push(Figure {
             kind: "flight-bias",
             caption: format!(
-                "{label}: mean error (bar) and RMSE (whisker half-width) per club and over all shots, {unit}"
+                "{label}: mean error per club and over all shots (bar) ± its standard error (black); \
+                 the grey band is ± one standard deviation of the shots, {unit}"
             ),
             svg,
         });

@@ -70,12 +70,12 @@ pub(super) fn draw_svg(map: &Heatmap<'_>) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="Helvetica, Arial, sans-serif" font-size="12">"#
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="Helvetica, Arial, sans-serif" font-size="14">"#
     );
     let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
     let _ = writeln!(
         s,
-        r#"<text x="{}" y="28" font-size="15" text-anchor="middle">{}</text>"#,
+        r#"<text x="{}" y="28" font-size="17" text-anchor="middle">{}</text>"#,
         f.left + f.plot_w / 2.0,
         esc(map.title)
     );

@@ -7,7 +7,7 @@ use super::{esc, Figure, ShotResiduals};
 use crate::compare::{sig3, CompareReport};
 use crate::physics::LaunchComponent;
 use crate::report::charts::{
-    fit_line, grouped_bars_svg, scatter_trend_svg, BarSeries, Trend, BLUE_C, ORANGE_C,
+    fit_line, grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, Trend, BLUE_C, ORANGE_C,
 };
 use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
 use crate::stats::error_table::ErrorTable;
@@ -71,7 +71,7 @@ pub(super) fn table2_html(report: &CompareReport) -> String {
     s
 }
 
-/// Bars of mean error ± STD per group for each component, one chart per component, with one
+/// Bars of mean error ± SE per group (the shots' SD as a band) for each component, one chart per component, with one
 /// or two series (before / after).
 pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figure>, String> {
     let groups: Vec<String> = tables
@@ -91,7 +91,7 @@ pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figur
                     .map(|g| {
                         t.groups.iter().find(|x| &x.group == g).map(|x| {
                             let ms = x.components[c.index()];
-                            (ms.mean, if ms.std.is_finite() { ms.std } else { 0.0 })
+                            Bar::of(ms.mean, ms.std, x.n)
                         })
                     })
                     .collect(),
@@ -106,7 +106,8 @@ pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figur
         out.push(Figure {
             kind: "table2",
             caption: format!(
-                "{}: mean error per group (bar) ± one standard deviation of the shots (error bar).",
+                "{}: mean error per group (bar) ± its standard error (black); the grey band is ± one \
+                 standard deviation of the shots.",
                 c.label()
             ),
             svg,

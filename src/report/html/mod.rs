@@ -64,7 +64,7 @@ figure{margin:0;border:1px solid #e4e4e4;padding:6px;background:#fff}figure svg{
 figcaption{font-size:.85em;color:#444;margin-top:4px}\
 table{border-collapse:collapse;font-size:.9em;margin:.6em 0}td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}\
 th{background:#f3f3f3}td.l,th.l{text-align:left}.sig{font-weight:bold}ol li{margin:.3em 0}\
-@media print{body{max-width:none;padding:0}.grid{grid-template-columns:1fr 1fr}figure,table{break-inside:avoid}h2{break-after:avoid}}";
+@media print{body{max-width:none;padding:0}.grid{grid-template-columns:1fr}figure,table{break-inside:avoid}h2{break-after:avoid}}";
 
 impl Page {
     /// The HTML document.
