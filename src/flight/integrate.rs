@@ -22,8 +22,8 @@
 
 use rayon::prelude::*;
 
-use super::aero::{CoefficientModel, Fmm2022, Fmm2022Re, Fmm2022Tour, NathanLyu};
-use super::{AeroModel, Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
+use super::aero::{CoefficientModel, ModelVisitor};
+use super::{Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
 use crate::lanes::{each2, each3, simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
@@ -68,14 +68,19 @@ pub fn fly_serial(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let wind = cfg.air.has_wind();
-    match &cfg.aero {
-        AeroModel::Fmm2022Tour => dispatch(cfg, &Fmm2022Tour, wind, launches, out),
-        AeroModel::Fmm2022Re => dispatch(cfg, &Fmm2022Re, wind, launches, out),
-        AeroModel::Fmm2022 => dispatch(cfg, &Fmm2022, wind, launches, out),
-        AeroModel::NathanLyu => dispatch(cfg, &NathanLyu, wind, launches, out),
-        AeroModel::Table(t) => dispatch(cfg, t.as_ref(), wind, launches, out),
+    struct Fly<'a, 'o> {
+        cfg: &'a FlightConfig,
+        launches: &'a [FlightLaunch],
+        out: &'o mut [Result<Flight, FlightError>],
     }
+    impl ModelVisitor for Fly<'_, '_> {
+        type Output = ();
+        fn visit<C: CoefficientModel>(self, model: &C) {
+            let wind = self.cfg.air.has_wind();
+            dispatch(self.cfg, model, wind, self.launches, self.out)
+        }
+    }
+    cfg.aero.visit(Fly { cfg, launches, out })
 }
 
 /// [`fly`] with any coefficient model (`cfg.aero` is ignored), e.g. a model being fitted.

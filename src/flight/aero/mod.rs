@@ -42,18 +42,18 @@
 //! Golf II (1994) 340–347, which is also where Ferguson et al.'s fit settled (their lower
 //! bound).
 
-use std::path::Path;
-
 use crate::lanes::Lanes;
 #[cfg(test)]
 use crate::lanes::{V, W};
 
 mod floor;
 mod nathan_lyu;
+mod registry;
 mod table;
 mod tour;
 pub use floor::DragFloor;
 pub use nathan_lyu::NathanLyu;
+pub use registry::{AeroModel, ModelVisitor, MODEL_NAMES};
 pub use table::TableModel;
 pub use tour::Fmm2022Tour;
 
@@ -371,74 +371,6 @@ pub(crate) fn crisis_rise_v<L: Lanes>(re: L, re_low: f64, re_high: f64) -> L {
     let t = L::select(t.lt(zero), zero, t);
     let t = L::select(t.gt(one), one, t);
     t * t * (L::splat(3.0) - t * 2.0)
-}
-
-/// A coefficient model chosen by name (what files and the command line select).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub enum AeroModel {
-    /// [`Fmm2022`] (the default).
-    #[default]
-    Fmm2022,
-    /// [`Fmm2022Tour`].
-    Fmm2022Tour,
-    /// [`Fmm2022Re`].
-    Fmm2022Re,
-    /// [`NathanLyu`].
-    NathanLyu,
-    /// A user's [`TableModel`].
-    Table(std::sync::Arc<TableModel>),
-}
-
-/// Names of the built-in models, the default first.
-pub const MODEL_NAMES: [&str; 4] = ["fmm2022", "fmm2022-tour", "fmm2022-re", "nathan-lyu"];
-
-impl AeroModel {
-    /// `fmm2022`, `fmm2022-tour`, `fmm2022-re`, `nathan-lyu`, or `table:PATH` (a CSV file, see
-    /// [`TableModel`]).
-    pub fn from_name(name: &str) -> Result<Self, String> {
-        match name {
-            "fmm2022-tour" => Ok(Self::Fmm2022Tour),
-            "fmm2022-re" => Ok(Self::Fmm2022Re),
-            "fmm2022" => Ok(Self::Fmm2022),
-            "nathan-lyu" => Ok(Self::NathanLyu),
-            _ => match name.strip_prefix("table:") {
-                Some(p) => Ok(Self::Table(std::sync::Arc::new(TableModel::from_path(
-                    Path::new(p),
-                )?))),
-                None => Err(format!(
-                    "unknown aerodynamic model '{name}' (allowed: fmm2022, fmm2022-tour, fmm2022-re, nathan-lyu, table:PATH)"
-                )),
-            },
-        }
-    }
-
-    /// The name as selected (tables: `table:` and a description).
-    pub fn name(&self) -> String {
-        match self {
-            Self::Fmm2022Tour => "fmm2022-tour".into(),
-            Self::Fmm2022Re => "fmm2022-re".into(),
-            Self::Fmm2022 => "fmm2022".into(),
-            Self::NathanLyu => "nathan-lyu".into(),
-            Self::Table(t) => t.describe(),
-        }
-    }
-
-    /// [`CoefficientModel::reynolds_at_reference_air`] of the model: the built-in models
-    /// take it, a table does not.
-    pub fn reynolds_at_reference_air(&self) -> bool {
-        !matches!(self, Self::Table(_))
-    }
-
-    /// Coefficients (dispatching on the model; the integrator dispatches once per batch).
-    pub fn coefficients(&self, s: f64, re: f64) -> Coefficients {
-        match self {
-            Self::Fmm2022Tour => Fmm2022Tour.coefficients(s, re),
-            Self::Fmm2022Re => Fmm2022Re.coefficients(s, re),
-            Self::Fmm2022 => Fmm2022.coefficients(s, re),
-            Self::NathanLyu => NathanLyu.coefficients(s, re),
-            Self::Table(t) => t.coefficients(s, re),
-        }
-    }
 }
 
 #[cfg(test)]

@@ -1,6 +1,7 @@
 //! Tests of the batched integrator (`super`).
 
 use super::*;
+use crate::flight::aero::{Fmm2022Re, NathanLyu};
 use crate::flight::{Atmosphere, FlightLaunch};
 
 fn drive() -> FlightLaunch {
