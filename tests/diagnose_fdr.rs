@@ -226,8 +226,11 @@ fn check(per_world: u64) {
         false_hits.len(),
         100.0 * rate
     );
+    // Issue 29's promise: at most 2 of the 80 null seeds (measured 26 Nov 2026, with
+    // face_curvature, cor_spot, shaft_fraction and hosel_mass@group among the candidates: 1,
+    // synth seed 2003, cor_radial).
     assert!(
-        rate <= 0.04,
+        false_hits.len() <= 2 && rate <= 0.04,
         "false discoveries in {} of {n} seeds: {:?}",
         false_hits.len(),
         false_hits

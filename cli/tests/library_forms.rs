@@ -16,7 +16,7 @@
 
 mod cli_support;
 
-use cli_support::{repo, s, smash};
+use cli_support::{repo, s, smash, synth_world};
 
 /// `smash synth --config configs/synth/WORLD.toml --seed N`, then `smash diagnose … ARGS
 /// --json`: the JSON, and the text of the same diagnosis checked for non-finite numbers.
@@ -26,19 +26,7 @@ fn diagnose_world(
     seed: u32,
     args: &[&str],
 ) -> serde_json::Value {
-    let shots = dir.join(format!("{world}_{seed}.csv"));
-    let config = repo(&format!("configs/synth/{world}.toml"));
-    let seed_arg = seed.to_string();
-    let o = smash(&[
-        "synth",
-        "--config",
-        s(&config),
-        "--out",
-        s(&shots),
-        "--seed",
-        &seed_arg,
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let shots = synth_world(dir, world, seed);
     let club = repo("configs/clubs/paper_driver.toml");
     let mut argv = vec!["diagnose", "--club", s(&club), "--shots", s(&shots)];
     argv.extend_from_slice(args);

@@ -31,7 +31,7 @@
 
 mod cli_support;
 
-use cli_support::{repo, s, smash};
+use cli_support::{repo, s, smash, synth_world};
 
 /// The paper world's truth (`configs/synth/paper_world.toml`).
 const DY_MM: f64 = 0.48;
@@ -44,19 +44,7 @@ fn diagnose_world(
     seed: u32,
     args: &[&str],
 ) -> serde_json::Value {
-    let shots = dir.join(format!("{world}_{seed}.csv"));
-    let config = repo(&format!("configs/synth/{world}.toml"));
-    let seed_arg = seed.to_string();
-    let o = smash(&[
-        "synth",
-        "--config",
-        s(&config),
-        "--out",
-        s(&shots),
-        "--seed",
-        &seed_arg,
-    ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let shots = synth_world(dir, world, seed);
     let club = repo("configs/clubs/paper_driver.toml");
     let mut argv = vec![
         "diagnose",

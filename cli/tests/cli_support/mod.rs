@@ -60,3 +60,22 @@ pub fn assert_kept(path: &Path, text: &str) {
         path.display()
     );
 }
+
+/// `smash synth --config configs/synth/WORLD.toml --out DIR/WORLD_SEED.csv --seed SEED`: the
+/// shots file, after checking the command succeeded.
+pub fn synth_world(dir: &Path, world: &str, seed: u32) -> PathBuf {
+    let shots = dir.join(format!("{world}_{seed}.csv"));
+    let config = repo(&format!("configs/synth/{world}.toml"));
+    let seed_arg = seed.to_string();
+    let o = smash(&[
+        "synth",
+        "--config",
+        s(&config),
+        "--out",
+        s(&shots),
+        "--seed",
+        &seed_arg,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    shots
+}
