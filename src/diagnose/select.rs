@@ -77,6 +77,24 @@ pub(super) fn arbitrate(
     }
 }
 
+/// Every other eligible effect candidate (index) with the correlation of its change to the
+/// predictions with the selected `winner`'s (empty when the winner's change is unknown): what
+/// [`rivals`], [`kin`] and [`most_alike`] each read their own part of.
+fn correlations_with(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    winner: usize,
+    n_effects: usize,
+) -> Vec<(usize, f64)> {
+    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
+        return Vec::new();
+    };
+    (0..n_effects)
+        .filter(|&i| i != winner && results[i].eligible())
+        .filter_map(|i| Some((i, honest::signal_correlation(we, explained[i].as_deref()?))))
+        .collect()
+}
+
 /// The unselected effect candidates that explained nearly the same signal as the selected
 /// effect `winner`: eligible, a margin at most [`RIVAL_MARGIN`] below the winner's, and a
 /// prediction change correlated with the winner's above [`STRONG_CORRELATION`]. Best first.
@@ -87,24 +105,19 @@ pub(super) fn rivals(
     winner: usize,
     n_effects: usize,
 ) -> Vec<Rival> {
-    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
-        return Vec::new();
-    };
+    let correlated = correlations_with(results, explained, winner, n_effects);
     let w_margin = results[winner].margin();
     order
         .iter()
-        .copied()
-        .filter(|&i| i < n_effects && i != winner && results[i].eligible())
-        .filter(|&i| results[i].margin() >= w_margin - RIVAL_MARGIN)
-        .filter_map(|i| {
-            let r = honest::signal_correlation(we, explained[i].as_deref()?);
-            (r > STRONG_CORRELATION).then(|| Rival {
-                label: results[i].label.clone(),
-                params: results[i].params.clone(),
-                margin_gap: w_margin - results[i].margin(),
-                r,
-                plausible: results[i].plausible(),
-            })
+        .filter(|&&i| results[i].margin() >= w_margin - RIVAL_MARGIN)
+        .filter_map(|&i| correlated.iter().find(|(j, _)| *j == i).copied())
+        .filter(|&(_, r)| r > STRONG_CORRELATION)
+        .map(|(i, r)| Rival {
+            label: results[i].label.clone(),
+            params: results[i].params.clone(),
+            margin_gap: w_margin - results[i].margin(),
+            r,
+            plausible: results[i].plausible(),
         })
         .collect()
 }
@@ -119,15 +132,9 @@ pub(super) fn kin(
     winner: usize,
     n_effects: usize,
 ) -> Vec<(usize, f64)> {
-    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
-        return Vec::new();
-    };
-    (0..n_effects)
-        .filter(|&i| i != winner && results[i].eligible())
-        .filter_map(|i| {
-            let r = honest::signal_correlation(we, explained[i].as_deref()?);
-            (r > STRONG_CORRELATION).then_some((i, r))
-        })
+    correlations_with(results, explained, winner, n_effects)
+        .into_iter()
+        .filter(|&(_, r)| r > STRONG_CORRELATION)
         .collect()
 }
 
@@ -143,15 +150,10 @@ pub(super) fn most_alike(
     winner: usize,
     n_effects: usize,
 ) -> Vec<(String, f64)> {
-    let Some(we) = explained.get(winner).and_then(|e| e.as_deref()) else {
-        return Vec::new();
-    };
-    let mut alike: Vec<(String, f64)> = (0..n_effects)
-        .filter(|&i| i != winner && results[i].eligible())
-        .filter_map(|i| {
-            let r = honest::signal_correlation(we, explained[i].as_deref()?);
-            (r.is_finite() && r > 0.0).then(|| (results[i].label.clone(), r))
-        })
+    let mut alike: Vec<(String, f64)> = correlations_with(results, explained, winner, n_effects)
+        .into_iter()
+        .filter(|&(_, r)| r.is_finite() && r > 0.0)
+        .map(|(i, r)| (results[i].label.clone(), r))
         .collect();
     alike.sort_by(|a, b| b.1.total_cmp(&a.1));
     alike.truncate(MOST_ALIKE);
