@@ -4,8 +4,6 @@ use crate::effects::{EffectId, EffectKind};
 use crate::fit::{EffectRequest, FitError};
 use crate::model::Shot;
 
-use super::FitData;
-
 /// Library effects that are searched only when named with `--candidates`. None at present:
 /// `cor_level`, `hosel_mass` and `cor_power` were here because they alias `added_mass` and
 /// `cor_speed` on launch data alone; alias arbitration (a plausible alias is preferred to an
@@ -41,7 +39,7 @@ pub fn default_candidates_without(
     shots: &[Shot],
     without: &[EffectRequest],
 ) -> Result<Vec<EffectRequest>, FitError> {
-    let all = default_candidates(&FitData::from_shots(shots)?.groups);
+    let all = default_candidates(&crate::fit::distinct_groups(shots));
     if let Some(w) = without.iter().find(|w| !all.contains(w)) {
         return Err(FitError::BadEffectList(format!(
             "'{}' is not a default candidate of these shots; they are: {}",

@@ -31,6 +31,7 @@ pub use calibrate::{
     Method, PaperStageAssignment, ParamEstimate, ShaftRelation, Stage,
 };
 pub use covariance::{covariance, Covariance, Identifiability};
+pub(crate) use data::distinct_groups;
 pub use likelihood::{GivenScales, Likelihood, ScaleSource};
 pub use lm::{Converged, LevenbergMarquardt, LmState};
 pub use problem::{EvalError, FitData, FitProblem, Weighting, FD_STEP_OF_RANGE};
