@@ -24,6 +24,9 @@ pub const NAME: &str = "cor_spot";
 pub const DESCRIPTION: &str =
     "COR peaks at (y0, z0) on the face and falls with squared distance from there";
 
+/// `cor_radial`'s falloff parameter.
+const FALLOFF: ParamSpec = super::cor_radial::PARAMS[0];
+
 /// Parameters, in file order. Physical: the peak on a driver face (±30 mm high, ±40 mm heel to
 /// toe); the falloff as `cor_radial`'s. Plausible: a peak within 10 mm of the centre (face
 /// designs move the hot spot a few mm low and toeward) and `cor_radial`'s falloff range
@@ -47,13 +50,14 @@ pub const PARAMS: &[ParamSpec] = &[
         (-10.0, 10.0),
         "heel-toe position of the COR peak (toward the toe: +z)",
     ),
+    // The falloff is `cor_radial`'s, about another centre: the same bounds and plausible range.
     spec(
         "c_per_mm2",
         "1/mm²",
         0.0,
-        0.0,
-        2e-3,
-        (0.0, 3e-4),
+        FALLOFF.lower,
+        FALLOFF.upper,
+        FALLOFF.plausible,
         "COR drop per mm² of squared distance from the peak",
     ),
 ];

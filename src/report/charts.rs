@@ -81,6 +81,32 @@ fn draw_legend<'a, 'b: 'a>(
         .map_err(err)
 }
 
+/// The names of a chart with one row per item (item `i` centred at `y = n − 1 − i + 0.5`, the
+/// first on top), right-aligned left of `x`.
+fn draw_row_labels<'l>(
+    root: &Root<'_>,
+    chart: &Chart<'_, '_>,
+    labels: impl Iterator<Item = &'l str>,
+    x: f64,
+    n: usize,
+) -> Result<(), String> {
+    for (i, l) in labels.enumerate() {
+        let (px, py) = chart.backend_coord(&(x, (n - 1 - i) as f64 + 0.5));
+        root.draw(&Text::new(
+            l.to_owned(),
+            (px - 8, py),
+            ("sans-serif", 12).into_font().into_text_style(root).pos(
+                plotters::style::text_anchor::Pos::new(
+                    plotters::style::text_anchor::HPos::Right,
+                    plotters::style::text_anchor::VPos::Center,
+                ),
+            ),
+        ))
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
 /// Tick label: at most four decimals, no trailing zeros, no `-0`.
 pub fn tick(v: &f64) -> String {
     let v = *v;
@@ -407,20 +433,7 @@ pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<Strin
             .draw()
             .map_err(err)?;
         let row_y = |i: usize| (n - 1 - i) as f64 + 0.5;
-        for (i, r) in rows.iter().enumerate() {
-            let (px, py) = chart.backend_coord(&(x0, row_y(i)));
-            root.draw(&Text::new(
-                r.label.clone(),
-                (px - 8, py),
-                ("sans-serif", 12).into_font().into_text_style(&root).pos(
-                    plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Right,
-                        plotters::style::text_anchor::VPos::Center,
-                    ),
-                ),
-            ))
-            .map_err(err)?;
-        }
+        draw_row_labels(&root, &chart, rows.iter().map(|r| r.label.as_str()), x0, n)?;
         chart
             .draw_series(rows.iter().enumerate().map(|(i, r)| {
                 Rectangle::new(
@@ -504,20 +517,7 @@ pub fn bars_with_line_svg(
             .draw()
             .map_err(err)?;
         let row_y = |i: usize| (n - 1 - i) as f64;
-        for (i, l) in labels.iter().enumerate() {
-            let (px, py) = chart.backend_coord(&(lo, row_y(i) + 0.5));
-            root.draw(&Text::new(
-                l.clone(),
-                (px - 8, py),
-                ("sans-serif", 12).into_font().into_text_style(&root).pos(
-                    plotters::style::text_anchor::Pos::new(
-                        plotters::style::text_anchor::HPos::Right,
-                        plotters::style::text_anchor::VPos::Center,
-                    ),
-                ),
-            ))
-            .map_err(err)?;
-        }
+        draw_row_labels(&root, &chart, labels.iter().map(String::as_str), lo, n)?;
         chart
             .draw_series(values.iter().enumerate().map(|(i, &v)| {
                 Rectangle::new(
