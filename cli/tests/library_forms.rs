@@ -15,11 +15,14 @@
 //! and low, strikes).
 
 mod cli_support;
+#[path = "../../tests/common/mod.rs"]
+mod common;
 
-use cli_support::{repo, s, smash, synth_world};
+use cli_support::{diagnose_json, repo, s, smash, stderr, synth_world};
 
 /// `smash synth --config configs/synth/WORLD.toml --seed N`, then `smash diagnose … ARGS
-/// --json`: the JSON, and the text of the same diagnosis checked for non-finite numbers.
+/// --json`: the JSON, and the text of the same diagnosis checked for lines over 120 columns and
+/// non-finite numbers.
 fn diagnose_world(
     dir: &std::path::Path,
     world: &str,
@@ -31,11 +34,7 @@ fn diagnose_world(
     let mut argv = vec!["diagnose", "--club", s(&club), "--shots", s(&shots)];
     argv.extend_from_slice(args);
     let text = smash(&argv);
-    assert!(
-        text.status.success(),
-        "{}",
-        String::from_utf8_lossy(&text.stderr)
-    );
+    assert!(text.status.success(), "{}", stderr(&text));
     let out = String::from_utf8_lossy(&text.stdout);
     for line in out.lines() {
         assert!(
@@ -43,17 +42,11 @@ fn diagnose_world(
             "{world} seed {seed}: line over 120 columns: {line}"
         );
     }
-    for w in ["NaN", "inf", "nan"] {
-        assert!(
-            !out.split(|c: char| !c.is_ascii_alphanumeric())
-                .any(|t| t == w),
-            "{world} seed {seed}: '{w}' in the text report"
-        );
-    }
-    argv.push("--json");
-    let o = smash(&argv);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    serde_json::from_slice(&o.stdout).unwrap()
+    assert!(
+        !common::has_non_finite(&out),
+        "{world} seed {seed}: a non-finite number in the text report"
+    );
+    diagnose_json(&shots, args)
 }
 
 fn strings(v: &serde_json::Value) -> Vec<String> {

@@ -31,7 +31,7 @@
 
 mod cli_support;
 
-use cli_support::{repo, s, smash, synth_world};
+use cli_support::{diagnose_json, repo, s, smash, synth_world};
 
 /// The paper world's truth (`configs/synth/paper_world.toml`).
 const DY_MM: f64 = 0.48;
@@ -44,20 +44,7 @@ fn diagnose_world(
     seed: u32,
     args: &[&str],
 ) -> serde_json::Value {
-    let shots = synth_world(dir, world, seed);
-    let club = repo("configs/clubs/paper_driver.toml");
-    let mut argv = vec![
-        "diagnose",
-        "--club",
-        s(&club),
-        "--shots",
-        s(&shots),
-        "--json",
-    ];
-    argv.extend_from_slice(args);
-    let o = smash(&argv);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    serde_json::from_slice(&o.stdout).unwrap()
+    diagnose_json(&synth_world(dir, world, seed), args)
 }
 
 /// The findings of a diagnosis.
@@ -197,18 +184,7 @@ fn face_angle_twist_is_a_bulge_error() {
             &seed_arg,
         ]);
         assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let o = smash(&[
-            "diagnose",
-            "--club",
-            s(&club),
-            "--shots",
-            s(&shots),
-            "--instrument",
-            "camera",
-            "--json",
-        ]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let d: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let d = diagnose_json(&shots, &["--instrument", "camera"]);
         let found = findings(&d);
         println!("face twist only, seed {seed}: findings {found:?}");
         assert_eq!(found, ["face_curvature.d_bulge_mm"], "seed {seed}");

@@ -79,3 +79,21 @@ pub fn synth_world(dir: &Path, world: &str, seed: u32) -> PathBuf {
     assert!(o.status.success(), "{}", stderr(&o));
     shots
 }
+
+/// `smash diagnose --club configs/clubs/paper_driver.toml --shots SHOTS --json ARGS`: the JSON,
+/// after checking the command succeeded.
+pub fn diagnose_json(shots: &Path, args: &[&str]) -> serde_json::Value {
+    let club = repo("configs/clubs/paper_driver.toml");
+    let mut argv = vec![
+        "diagnose",
+        "--club",
+        s(&club),
+        "--shots",
+        s(shots),
+        "--json",
+    ];
+    argv.extend_from_slice(args);
+    let o = smash(&argv);
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).unwrap()
+}
