@@ -8,8 +8,6 @@ use smash::limits::fmt_value;
 
 use smash::compare::CompareReport;
 use smash::compare::{compare_with_hints, CompareOptions};
-use smash::data::club_file::read_club;
-use smash::data::output_plan::OutputPlan;
 use smash::data::shots::ShotTable;
 use smash::physics::{Launch, LaunchComponent};
 use smash::predict::expected_launches;
@@ -29,37 +27,13 @@ const MAX_ALPHA: f64 = 0.5;
     after_help = "Example:\n  smash compare --club configs/clubs/paper_driver.toml --shots paper_world.csv --out-dir compare/"
 )]
 pub struct CompareArgs {
-    /// User-defined effects.
+    /// Club, shots, measurement noise, report formats.
     #[command(flatten)]
-    pub effect_defs: super::EffectDefsArgs,
-
-    /// Club file (TOML).
-    #[arg(long, value_name = "CLUB.toml")]
-    pub club: PathBuf,
-
-    /// Shots file with measured launch columns (CSV).
-    #[arg(long, value_name = "SHOTS.csv")]
-    pub shots: PathBuf,
-
-    /// Format of --shots (a launch-monitor export is converted on the fly).
-    #[command(flatten)]
-    pub shots_format: super::ShotsFormatArgs,
+    pub inputs: crate::measured::MeasuredArgs,
 
     /// Folder for the tables, face pictures and JSON (created). Nothing is written without it.
     #[arg(long, value_name = "DIR")]
     pub out_dir: Option<PathBuf>,
-
-    /// Write a self-contained HTML report (charts of Table 2, trends and face maps).
-    #[arg(long, value_name = "FILE.html")]
-    pub report: Option<PathBuf>,
-
-    /// Print one JSON object on stdout instead of the text report (which goes to stderr).
-    #[arg(long)]
-    pub json: bool,
-
-    /// `--wide`: Table 2 in one block however many groups.
-    #[command(flatten)]
-    pub wide: crate::text::WideArgs,
 
     /// Significance level of the flags.
     #[arg(
@@ -90,29 +64,21 @@ pub struct CompareArgs {
         allow_negative_numbers = true
     )]
     pub min_bin_count: usize,
-
-    /// Measurement noise of the inputs.
-    #[command(flatten)]
-    pub measurement: super::MeasurementArgs,
-
-    /// What to do when the shots do not match the club.
-    #[command(flatten)]
-    pub club_check: super::ClubCheckArgs,
 }
 
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
-    args.effect_defs.load()?;
-    let plan = OutputPlan::new(&[("--club", &args.club), ("--shots", &args.shots)])
-        .file("--report", args.report.as_deref())
-        .folder("--out-dir", args.out_dir.as_deref());
-    plan.check()?;
-    check_options(&args)?;
-    let club = read_club(&args.club)?;
-    let mut table = args.shots_format.read(&args.shots)?;
-    plan.check()?; // again: a `--format` mapping file is an input known once read
+    let crate::measured::Loaded {
+        plan,
+        club,
+        mut table,
+    } = args.inputs.load(
+        &[],
+        |p| p.folder("--out-dir", args.out_dir.as_deref()),
+        || check_options(&args),
+    )?;
     let conventions = super::to_model_convention(&club, &mut table, false, false)?;
-    super::warn_groups_without_effects(&args.club, &club, &table.shots);
+    super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
     let (mut report, launches) = compute(&args, &club, &table)?;
     if conventions.derived_face > 0 {
         // Those shots' face angles are the model's for their measured launch direction: an
@@ -123,22 +89,22 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let title = format!(
         "{} vs {} ({})",
         club.name,
-        args.shots.display(),
+        args.inputs.shots.display(),
         super::counted(table.groups().len(), "group")
     );
-    let mut text = text(&report, &title, args.wide.wide);
+    let mut text = text(&report, &title, args.inputs.wide.wide);
     if !conventions.is_native() {
         text = format!("{}{text}", conventions);
     }
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
-    if args.json {
+    if args.inputs.json {
         eprint!("{text}");
         crate::stdout::println(compare_json(&report))?;
     } else {
         crate::stdout::print(&text)?;
     }
     let mut staging = plan.stage();
-    if let Some(path) = &args.report {
+    if let Some(path) = &args.inputs.report {
         let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
         let html = smash::report::html::compare_page(&report, &residuals, &title)
             .map_err(anyhow::Error::msg)?;
@@ -153,7 +119,7 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         staging.folder(dir, &files)?;
     }
     staging.commit()?;
-    if let Some(path) = &args.report {
+    if let Some(path) = &args.inputs.report {
         eprintln!("report -> {}", path.display());
     }
     if let Some(dir) = &args.out_dir {
@@ -188,18 +154,19 @@ pub fn compute(
     table: &ShotTable,
 ) -> anyhow::Result<(CompareReport, Vec<Launch>)> {
     check_options(args)?;
-    let mismatch = args
-        .club_check
-        .check(&args.club, club, &args.shots, &table.shots)?;
+    let mismatch =
+        args.inputs
+            .club_check
+            .check(&args.inputs.club, club, &args.inputs.shots, &table.shots)?;
     if !table.has_measurements() {
         let cols: Vec<&str> = LaunchComponent::ALL.iter().map(|c| c.column()).collect();
         bail!(
             "{}: no measured launch columns ({}); compare needs measurements (to predict only, use `smash predict`)",
-            args.shots.display(),
+            args.inputs.shots.display(),
             cols.join(", ")
         );
     }
-    let launches = expected_launches(club, &table.shots, args.measurement.impact_noise_mm)
+    let launches = expected_launches(club, &table.shots, args.inputs.measurement.impact_noise_mm)
         .map_err(|e| super::locate_shot_error(table, e))?;
     if let Some((shot, _)) = table
         .shots
@@ -210,9 +177,9 @@ pub fn compute(
         bail!(
             "{}: shot '{}': the model's launch is not a finite number; check its delivery and \
              the club {}",
-            args.shots.display(),
+            args.inputs.shots.display(),
             shot.id,
-            args.club.display()
+            args.inputs.club.display()
         );
     }
     let options = CompareOptions {

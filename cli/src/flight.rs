@@ -9,8 +9,6 @@ use clap::Args;
 mod calibrate;
 mod diagnose;
 mod measured;
-mod report;
-use report::flight_page;
 
 use smash::data::flight_conditions::{
     columns_used, file_headers, fly_with_conditions, UserConditions,
@@ -20,6 +18,7 @@ use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
 use smash::data::DataError;
 use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
+use smash::report::flight::FlightReport;
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -489,24 +488,19 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         }
         return Ok(());
     };
+    let flown = format!(
+        "{} shots flown with {} ({air})",
+        flown.shots,
+        cfg.aero.name()
+    );
+    let report = FlightReport::new(flown, summary, diagnosis);
     if args.json {
-        let text = match &diagnosis {
-            Some(d) => serde_json::to_string_pretty(
-                &serde_json::json!({ "diagnosis": d, "errors": summary }),
-            )?,
-            None => serde_json::to_string_pretty(&summary)?,
-        };
-        crate::stdout::println(text)?;
+        crate::stdout::println(serde_json::to_string_pretty(&report)?)?;
     } else {
-        eprint!("\n{}", summary.text());
+        eprint!("\n{}", report.text());
     }
     if let Some(path) = &args.report {
-        let subtitle = format!(
-            "{} shots flown with {} ({air})",
-            flown.shots,
-            cfg.aero.name()
-        );
-        let html = flight_page(&summary, "Flight against measured flights", &subtitle)
+        let html = smash::report::html::flight_page(&report)
             .map_err(|e| anyhow::anyhow!("--report: {e}"))?;
         smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());

@@ -4,7 +4,6 @@
 use clap::{Parser, Subcommand};
 
 pub mod calibrate;
-pub mod calibrate_text;
 pub mod compare;
 pub mod delivery_noise;
 pub mod diagnose;
@@ -12,13 +11,14 @@ pub mod effects;
 pub mod flight;
 pub mod import;
 pub mod likelihood;
+pub mod measured;
 pub mod merge;
 pub mod predict;
 pub mod progress;
+pub mod project;
 pub mod run;
 pub mod signals;
 pub mod stdout;
-pub mod strata;
 pub mod study_output;
 pub mod synth;
 pub mod text;
@@ -69,8 +69,16 @@ pub enum Command {
     Whatif(whatif::WhatIfArgs),
 }
 
-/// Run a parsed command line.
-pub fn run(cli: Cli) -> anyhow::Result<()> {
+/// Run a parsed command line, its unset options first taken from the project file, if any
+/// ([`project`]).
+pub fn run(mut cli: Cli) -> anyhow::Result<()> {
+    let here = std::env::current_dir().unwrap_or_default();
+    if let Some(path) = project::find(&here) {
+        let taken = project::read(&path)?.apply(cli.command.layered());
+        if !taken.is_empty() {
+            eprintln!("defaults from {}: {}", path.display(), taken.join(", "));
+        }
+    }
     match cli.command {
         Command::Predict(args) => predict::run(args),
         Command::Effects(args) => effects::run(args),
@@ -83,6 +91,50 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Import(args) => import::run(args),
         Command::Whatif(args) => whatif::run(args),
+    }
+}
+
+impl Command {
+    /// The options of this command a project file may set.
+    pub fn layered(&mut self) -> project::Layered<'_> {
+        use project::Layered;
+        let noise = |i, n| Some((i, n));
+        match self {
+            Command::Compare(a) => a.inputs.layered(None, false),
+            Command::Calibrate(a) => a
+                .inputs
+                .layered(noise(&mut a.instrument, &mut a.noise), false),
+            Command::Diagnose(a) => a.inputs.layered(
+                noise(&mut a.instrument, &mut a.noise),
+                a.exact_impact_locations,
+            ),
+            Command::Predict(a) => Layered {
+                effect_defs: Some(&mut a.effect_defs),
+                shots_format: Some(&mut a.shots_format),
+                ..Layered::default()
+            },
+            Command::Import(a) => Layered {
+                shots_format: Some(&mut a.format),
+                ..Layered::default()
+            },
+            Command::Effects(a) => Layered {
+                effect_defs: Some(&mut a.effect_defs),
+                ..Layered::default()
+            },
+            Command::Synth(a) => Layered {
+                effect_defs: Some(&mut a.effect_defs),
+                ..Layered::default()
+            },
+            Command::Run(a) => Layered {
+                effect_defs: Some(&mut a.effect_defs),
+                ..Layered::default()
+            },
+            Command::Merge(a) => Layered {
+                effect_defs: Some(&mut a.effect_defs),
+                ..Layered::default()
+            },
+            Command::Flight(_) | Command::Whatif(_) => Layered::default(),
+        }
     }
 }
 
@@ -270,14 +322,7 @@ mod tests {
     }
 }
 
-/// `n` and the noun, plural unless `n` is 1: "1 group", "3 groups".
-pub fn counted(n: usize, noun: &str) -> String {
-    if n == 1 {
-        format!("1 {noun}")
-    } else {
-        format!("{n} {noun}s")
-    }
-}
+pub use smash::report::text::counted;
 
 /// Measurement-noise options shared by the commands that compare the model with measurements.
 #[derive(Debug, Clone, clap::Args)]
@@ -306,7 +351,12 @@ fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String
         t.parse::<f64>()
             .map_err(|_| format!("'{t}' is not a number (mm)"))
     };
-    let (sy, sz) = (num(y)?, num(z)?);
+    impact_noise_from_mm(num(y)?, num(z)?)
+}
+
+/// An impact-location noise of `sy` (vertical) and `sz` (heel–toe) mm, refused outside its
+/// limits.
+pub fn impact_noise_from_mm(sy: f64, sz: f64) -> Result<smash::measurement::ImpactNoise, String> {
     for v in [sy, sz] {
         smash::limits::SIGMA_LOCATION_MM.check(v)?;
     }

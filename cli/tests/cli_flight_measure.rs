@@ -56,7 +56,9 @@ fn json_and_text_summaries_match_the_written_errors() {
         .iter()
         .map(|c| c.parse().unwrap())
         .collect();
-    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(json["command"], "flight", "{json}");
+    assert_eq!(json["schema_version"], 1, "{json}");
+    let rows = json["errors"]["rows"].as_array().unwrap();
     let names: Vec<&str> = rows.iter().map(|r| r["group"].as_str().unwrap()).collect();
     assert_eq!(names, ["driver", "7-iron", "all"]);
     for r in rows {

@@ -178,7 +178,7 @@ fn compare(
         };
         smash_cli::compare::check_options(&a)?;
         let (table, warnings, conventions) =
-            table_and_warnings(club, &shots, &a.shots_format, false)?;
+            table_and_warnings(club, &shots, &a.inputs.shots_format, false)?;
         let (mut report, _) = smash_cli::compare::compute(&a, &club.spec, &table)?;
         if conventions.derived_face > 0 {
             smash::conventions::drop_derived_findings(&mut report.findings);
@@ -221,17 +221,23 @@ fn calibrate(
             else {
                 unreachable!("parsed as calibrate")
             };
-            let (table, warnings, _) = table_and_warnings(club, &shots, &a.shots_format, true)?;
+            let (table, warnings, _) =
+                table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
             // As `smash calibrate`: shots of another club are refused (or, with the flag,
             // reported with the mismatch) before anything is fitted.
-            let mismatch = a
-                .club_check
-                .check(&a.club, &club.spec, &a.shots, &table.shots)?;
-            let cal = smash_cli::calibrate::compute(&a, &club.spec, &table, progress)?;
-            let mut json = smash_cli::calibrate::to_json(&cal);
-            json["club_mismatch"] = serde_json::json!(mismatch);
-            let json = serde_json::to_string_pretty(&json)?;
-            Ok((json, cal.club, warnings))
+            let mismatch = a.inputs.club_check.check(
+                &a.inputs.club,
+                &club.spec,
+                &a.inputs.shots,
+                &table.shots,
+            )?;
+            let report = smash::report::calibrate::CalibrateReport {
+                calibration: smash_cli::calibrate::compute(&a, &club.spec, &table, progress)?,
+                n_shots: table.shots.len(),
+                club_mismatch: mismatch,
+            };
+            let json = serde_json::to_string_pretty(&report)?;
+            Ok((json, report.calibration.club, warnings))
         })
         .map_err(to_py)?;
     let calibrated = Club {
@@ -265,14 +271,15 @@ fn diagnose(
             else {
                 unreachable!("parsed as diagnose")
             };
-            let (table, mut warnings, _) = table_and_warnings(club, &shots, &a.shots_format, true)?;
+            let (table, mut warnings, _) =
+                table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
             let p = progress
                 .as_ref()
                 .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);
-            let (d, floor) = smash_cli::diagnose::compute(&a, &club.spec, &table, p)?;
-            warnings.extend(d.warnings.iter().cloned());
-            let json = serde_json::to_string_pretty(&smash_cli::diagnose::to_json(&d, &floor))?;
-            Ok((json, d.club, warnings))
+            let report = smash_cli::diagnose::compute(&a, &club.spec, &table, p)?;
+            warnings.extend(report.diagnosis.warnings.iter().cloned());
+            let json = serde_json::to_string_pretty(&report)?;
+            Ok((json, report.diagnosis.club, warnings))
         })
         .map_err(to_py)?;
     let selected = Club {

@@ -231,9 +231,27 @@ pub fn correlations_csv(r: &CompareReport) -> Vec<u8> {
     s.into_bytes()
 }
 
-/// The whole report as one JSON object.
+/// The version of compare's JSON schema (`schema_version`); raised when a key changes meaning
+/// or goes away (a new key does not raise it).
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// The report as JSON: its own fields after `schema_version` and `command`.
+#[derive(serde::Serialize)]
+struct Versioned<'a> {
+    schema_version: u32,
+    command: &'static str,
+    #[serde(flatten)]
+    report: &'a CompareReport,
+}
+
+/// The whole report as one JSON object (the schema: `docs/json.md`).
 pub fn compare_json(r: &CompareReport) -> String {
-    serde_json::to_string_pretty(r).expect("report serializes")
+    let v = Versioned {
+        schema_version: SCHEMA_VERSION,
+        command: "compare",
+        report: r,
+    };
+    serde_json::to_string_pretty(&v).expect("report serializes")
 }
 
 /// Every output file of a comparison: (file name, bytes).

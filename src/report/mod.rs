@@ -1,11 +1,19 @@
 //! Output rendering: builds bytes and strings (SVG pictures, CSV matrices, text tables, JSON);
 //! never writes files. Writing is done in one place, [`crate::data::write_atomic`].
 
+pub mod calibrate;
 pub mod charts;
 pub mod compare;
+pub mod delivery_noise;
+pub mod diagnose;
+pub mod flight;
 pub mod heatmap;
 pub mod html;
+mod json;
+pub mod likelihood;
+pub mod strata;
 pub mod tables;
+pub mod text;
 pub mod wrap;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};

@@ -13,15 +13,22 @@ pub fn repo(rel: &str) -> PathBuf {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)
 }
 
-/// Run `smash` with `args`.
+/// Run `smash` with `args` (and no project file: a `smash.toml` above the checkout must not
+/// change what the tests see).
 pub fn smash(args: &[&str]) -> Output {
-    Command::new(SMASH).args(args).output().unwrap()
+    Command::new(SMASH)
+        .args(args)
+        .env("SMASH_CONFIG", "none")
+        .output()
+        .unwrap()
 }
 
-/// Run `smash` with `args` from the repository's root (relative paths are the repository's).
+/// Run `smash` with `args` from the repository's root (relative paths are the repository's),
+/// without a project file.
 pub fn smash_in_repo(args: &[&str]) -> Output {
     Command::new(SMASH)
         .args(args)
+        .env("SMASH_CONFIG", "none")
         .current_dir(repo(""))
         .output()
         .unwrap()

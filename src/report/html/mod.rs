@@ -1,9 +1,11 @@
 //! Self-contained HTML reports (`--report FILE.html`): one page with inline SVG charts and CSS,
 //! no scripts, fonts or anything else fetched; readable offline and printable. Built from the
-//! same data the JSON output holds. Builds strings only.
+//! same typed report values the JSON serialises (`crate::report::{diagnose, calibrate, flight}`);
+//! never from the JSON. Builds strings only.
 
 mod diagnose;
 mod figures;
+mod flight;
 mod pages;
 mod study;
 
@@ -13,6 +15,7 @@ use crate::compare::VARIABLES;
 use crate::physics::LaunchComponent;
 
 pub use diagnose::diagnose_page;
+pub use flight::flight_page;
 pub use pages::{calibrate_page, compare_page};
 pub use study::study_page;
 

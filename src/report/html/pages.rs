@@ -1,10 +1,8 @@
 //! The pages of `smash compare --report` and `smash calibrate --report`, from their reports.
 
-use std::fmt::Write as _;
-
 use super::figures::{face_figures, findings_html, table2_figures, table2_html, trend_figures};
-use super::{esc, Figure, Page, Section, ShotResiduals};
-use crate::compare::{sig3, CompareReport};
+use super::{Page, Section, ShotResiduals};
+use crate::compare::CompareReport;
 
 /// The page of `smash compare --report`.
 pub fn compare_page(
@@ -68,66 +66,13 @@ pub fn compare_page(
 /// The page of `smash calibrate --report`: before/after bars, the estimates with their plausible
 /// ranges, and the calibrated model's residuals against the delivery and over the face.
 pub fn calibrate_page(
-    cal: &crate::fit::Calibration,
+    r: &crate::report::calibrate::CalibrateReport,
     after: &CompareReport,
     residuals: &ShotResiduals,
     title: &str,
 ) -> Result<String, String> {
-    use crate::report::charts::{estimates_svg, Estimate};
-    let mut est_rows: Vec<(String, Estimate)> = Vec::new();
-    let mut table = String::from(
-        "<table class=\"params\"><tr><th class=\"l\">parameter</th><th>value</th><th>SE</th><th>unit</th><th>plausible</th></tr>",
-    );
-    for p in &cal.params {
-        let plausible = crate::effects::EffectId::from_name(p.effect).and_then(|k| {
-            k.params()
-                .iter()
-                .find(|s| s.key == p.param)
-                .map(|s| s.plausible)
-        });
-        let _ = write!(
-            table,
-            "<tr><td class=\"l\">{}</td><td data-key=\"{}\" data-value=\"{:?}\">{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-            esc(&p.label()),
-            esc(&p.label()),
-            p.value,
-            sig3(p.value),
-            p.stderr.map(sig3).unwrap_or_else(|| "–".into()),
-            esc(p.unit),
-            plausible.map(|(a, b)| format!("{} to {}", sig3(a), sig3(b))).unwrap_or_default()
-        );
-        if let Some(pl) = plausible {
-            est_rows.push((
-                p.unit.to_owned(),
-                Estimate {
-                    label: p.label(),
-                    value: p.value,
-                    interval: p.stderr.map(|s| (p.value - 2.0 * s, p.value + 2.0 * s)),
-                    plausible: pl,
-                },
-            ));
-        }
-    }
-    table.push_str("</table>");
-    let mut units: Vec<String> = est_rows.iter().map(|(u, _)| u.clone()).collect();
-    units.dedup();
-    units.sort();
-    units.dedup();
-    let mut est_figs = Vec::new();
-    for u in &units {
-        let rows: Vec<Estimate> = est_rows
-            .iter()
-            .filter(|(x, _)| x == u)
-            .map(|(_, e)| e.clone())
-            .collect();
-        est_figs.push(Figure {
-            kind: "estimates",
-            caption: format!(
-                "Fitted parameters in {u}: estimate ± 2 standard errors against the range a real driver plausibly shows (docs/plausible-ranges.md)."
-            ),
-            svg: estimates_svg(&format!("Estimates, {u}"), &format!("value, {u}"), &rows)?,
-        });
-    }
+    let cal = &r.calibration;
+    let (table, est_figs) = super::diagnose::estimates_html(&cal.params, "Fitted parameters")?;
     let page = Page {
         title: "smash calibrate".into(),
         subtitle: format!(

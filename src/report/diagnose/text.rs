@@ -1,16 +1,15 @@
 //! The text report of `smash diagnose`: its steps' candidate tables, the selection, the
 //! strata, the model comparison, the noise floor and the errors before and after, in
-//! [`crate::text::WIDTH`] columns (`--wide`: the full candidate and noise-floor tables).
+//! [`crate::report::text::WIDTH`] columns (`--wide`: the full candidate and noise-floor tables).
 
-use smash::diagnose::honest;
-use smash::diagnose::noise_floor::NoiseFloor;
-use smash::diagnose::{Diagnosis, Step};
-use smash::fit::ParamEstimate;
-use smash::physics::LaunchComponent;
-use smash::report::{error_table_text, TextTable};
-
-use super::{calibrate_flag_pairs, conclusion, location_mm};
-use crate::text::{shell_command, shell_word, wrap_long};
+use super::{calibrate_flag_pairs, conclusion, location_mm, DiagnoseReport};
+use crate::diagnose::honest;
+use crate::diagnose::noise_floor::NoiseFloor;
+use crate::diagnose::{Diagnosis, Step};
+use crate::fit::ParamEstimate;
+use crate::physics::LaunchComponent;
+use crate::report::text::{shell_command, shell_word, wrap_long};
+use crate::report::{error_table_text, TextTable};
 
 /// How the text report is laid out, and the command that runs `smash calibrate` on the same
 /// club and shots.
@@ -21,46 +20,6 @@ pub struct Layout {
     /// `smash calibrate --club … --shots …` with the shots' format flags, as shell words; the
     /// model's flags follow it.
     pub calibrate: Vec<String>,
-}
-
-impl Layout {
-    /// The layout of `args`' report.
-    pub fn of(args: &super::DiagnoseArgs) -> Self {
-        let path = |p: &std::path::Path| shell_word(&p.display().to_string());
-        let mut words = vec!["smash".to_owned(), "calibrate".into()];
-        if let Some(defs) = &args.effect_defs.effect_defs {
-            words.extend(["--effect-defs".to_owned(), path(defs)]);
-        }
-        words.extend(["--club".to_owned(), path(&args.club)]);
-        words.extend(["--shots".to_owned(), path(&args.shots)]);
-        let f = &args.shots_format;
-        if let Some(format) = &f.format {
-            words.extend(["--format".to_owned(), shell_word(format)]);
-        }
-        if let Some(side) = f.impact_offset_positive {
-            let side = match side {
-                crate::OffsetSideArg::Toe => "toe",
-                crate::OffsetSideArg::Heel => "heel",
-            };
-            words.extend(["--impact-offset-positive".to_owned(), side.into()]);
-        }
-        for (on, flag) in [
-            (f.ignore_unknown_columns, "--ignore-unknown-columns"),
-            (f.strict, "--strict"),
-            (f.include_estimated, "--include-estimated"),
-        ] {
-            if on {
-                words.push(flag.to_owned());
-            }
-        }
-        if args.club_check.ignore_club_mismatch {
-            words.push("--ignore-club-mismatch".to_owned());
-        }
-        Self {
-            wide: args.wide.wide,
-            calibrate: words,
-        }
-    }
 }
 
 fn fmt_params(ps: &[ParamEstimate]) -> String {
@@ -87,8 +46,9 @@ fn fmt_params(ps: &[ParamEstimate]) -> String {
         .join(", ")
 }
 
-/// The human-readable report.
-pub fn text_report(d: &Diagnosis, floor: &NoiseFloor, layout: &Layout) -> String {
+/// The human-readable report of `r`.
+pub fn render(r: &DiagnoseReport, layout: &Layout) -> String {
+    let (d, floor) = (&r.diagnosis, &r.floor);
     let mut s = format!(
         "Diagnosis of {} shots: {}-fold cross-validation by {}, penalty ln(n) = {:.2} per parameter \
          (+ 2·ln m for a physical effect picked from m candidates)\n",
@@ -115,11 +75,11 @@ pub fn text_report(d: &Diagnosis, floor: &NoiseFloor, layout: &Layout) -> String
     }
     s.push_str(&wrap_long(&summary_text(d)));
     s.push_str(&next_command(d, layout));
-    s.push_str(&crate::strata::text(d));
+    s.push_str(&crate::report::strata::text(d));
     s.push_str(&likelihood_text(d));
     s.push_str(&floor_text(d, floor, layout.wide));
     s.push('\n');
-    s.push_str(&crate::text::before_after(
+    s.push_str(&crate::report::text::before_after(
         &d.before,
         &d.after,
         ("before (club as given)", "after (selected effects)"),
@@ -141,7 +101,7 @@ fn short_name(c: &LaunchComponent) -> &'static str {
 /// The notes on candidate `c` of step `st`: short tags for the narrow table and the full notes.
 fn candidate_notes(
     st: &Step,
-    c: &smash::diagnose::CandidateResult,
+    c: &crate::diagnose::CandidateResult,
 ) -> (Vec<&'static str>, Vec<String>) {
     let (mut tags, mut notes) = (Vec::new(), Vec::new());
     if c.spread_gain.is_some() {
@@ -274,7 +234,7 @@ fn step_text(i: usize, st: &Step, wide: bool) -> String {
                 say(format!(
                     "-> rivals of {l} (margin within {} and the same change to the predictions, \
                      r > 0.9): {}\n",
-                    smash::diagnose::select::RIVAL_MARGIN,
+                    crate::diagnose::select::RIVAL_MARGIN,
                     names.join(", ")
                 ));
             }
@@ -295,7 +255,7 @@ fn step_text(i: usize, st: &Step, wide: bool) -> String {
 /// The models of the steps that changed the model, with the nominal and the final model, on
 /// the diagnosis's one likelihood scale.
 fn likelihood_text(d: &Diagnosis) -> String {
-    let mut rows: Vec<(String, &smash::fit::Likelihood)> = vec![("nominal".into(), &d.nominal_fit)];
+    let mut rows: Vec<(String, &crate::fit::Likelihood)> = vec![("nominal".into(), &d.nominal_fit)];
     for (i, st) in d.steps.iter().enumerate() {
         let what = match (&st.selected, &st.swap) {
             (Some(l), _) => format!("+ {l}"),
@@ -308,9 +268,9 @@ fn likelihood_text(d: &Diagnosis) -> String {
         rows.push((format!("after step {}: {what}", i + 1), &st.fit));
     }
     rows.push(("final".into(), &d.final_fit));
-    let rows: Vec<(&str, &smash::fit::Likelihood)> =
+    let rows: Vec<(&str, &crate::fit::Likelihood)> =
         rows.iter().map(|(n, l)| (n.as_str(), *l)).collect();
-    crate::likelihood::text(&rows, "")
+    crate::report::likelihood::text(&rows, "")
 }
 
 /// Selected effects, final values, findings, stand-ins, ambiguities, aliases and the
@@ -433,7 +393,7 @@ fn measurement_model_line(d: &Diagnosis) -> String {
     if let Some(n) = d.delivery_noise.filter(|n| n.is_active()) {
         parts.push(format!(
             "delivery with 1σ noise {}{}",
-            crate::delivery_noise::describe(&n),
+            crate::report::delivery_noise::describe(&n),
             how(d.delivery_noise_estimated)
         ));
     }
@@ -484,7 +444,7 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor, wide: bool) -> String {
     }
     s.push_str(&t.render());
     s.push_str(&wrap_long(&verdicts));
-    s.push_str(&crate::wrap::wrap(
+    s.push_str(&crate::report::wrap::wrap(
         &format!("Conclusion: {}", conclusion(d, floor)),
         99,
         2,

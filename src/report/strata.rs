@@ -1,12 +1,12 @@
 //! Diagnose's strata table: every selected value refitted on independent parts of the shots, and
 //! which would-be findings are provisional because the parts disagree
-//! ([`smash::diagnose::strata`]).
+//! ([`crate::diagnose::strata`]).
 
 use serde_json::json;
 
-use smash::diagnose::strata::StrataCheck;
-use smash::diagnose::Diagnosis;
-use smash::report::TextTable;
+use crate::diagnose::strata::StrataCheck;
+use crate::diagnose::Diagnosis;
+use crate::report::TextTable;
 
 /// A value in 4 significant figures (scientific when small), with its standard error.
 fn value_text(v: Option<(f64, f64)>) -> String {
@@ -31,7 +31,7 @@ pub fn text(d: &Diagnosis) -> String {
          value whose\nparts disagree, p < {:.1e} = {} / checks made, is provisional, not a \
          finding):\n",
         c.alpha_each,
-        smash::diagnose::strata::STRATA_ALPHA
+        crate::diagnose::strata::STRATA_ALPHA
     );
     let mut header = vec!["family".to_owned(), "stratum".into(), "n".into()];
     header.extend(c.params.iter().cloned());
@@ -70,7 +70,7 @@ pub fn text(d: &Diagnosis) -> String {
     for p in &d.estimates {
         if let Some(why) = d.provisional(p) {
             let line = format!("  provisional, not a finding: {why}");
-            s.push_str(&crate::wrap::wrap(&line, 99, 2));
+            s.push_str(&crate::report::wrap::wrap(&line, 99, 2));
         }
     }
     s
@@ -107,7 +107,7 @@ pub fn to_json(c: &StrataCheck) -> serde_json::Value {
         })
         .collect();
     json!({
-        "alpha": smash::diagnose::strata::STRATA_ALPHA,
+        "alpha": crate::diagnose::strata::STRATA_ALPHA,
         "alpha_each": c.alpha_each,
         "params": c.params,
         "families": families,

@@ -1,17 +1,16 @@
-//! The `smash flight --report` page: the flight model against measured flights, per club.
+//! The `smash flight --report` page, from its [`FlightReport`]: the flight model against
+//! measured flights, per club.
 
-use smash::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
-use smash::report::charts::{grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, BLUE_C};
-use smash::report::html::{esc, Figure, Page, Section};
+use super::{esc, Figure, Page, Section};
+use crate::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
+use crate::report::charts::{grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, BLUE_C};
+use crate::report::flight::FlightReport;
 
-/// The `--report` page: the carry, side, apex and land-angle errors per club (bias, with the
-/// RMSE as its whisker) and every shot's carry error against its measured carry; `subtitle`:
-/// the model and conditions flown. The HTML page for a summary; `subtitle`: the model and conditions flown.
-pub(super) fn flight_page(
-    summary: &FlightSummary,
-    title: &str,
-    subtitle: &str,
-) -> Result<String, String> {
+/// The `--report` page: the carry, side, apex and land-angle errors per club (mean ± its
+/// standard error, the shots' SD as a band) and every shot's carry error against its measured
+/// carry, under the model and conditions flown.
+pub fn flight_page(r: &FlightReport) -> Result<String, String> {
+    let summary = &r.errors;
     let categories: Vec<String> = summary.rows.iter().map(|r| r.group.clone()).collect();
     let mut figures = Vec::new();
     for (name, label, unit) in SUMMARY_QUANTITIES {
@@ -71,8 +70,8 @@ pub(super) fn flight_page(
     }
     let table = table_html(summary);
     Ok(Page {
-        title: title.into(),
-        subtitle: subtitle.into(),
+        title: "Flight against measured flights".into(),
+        subtitle: r.flown.clone(),
         sections: vec![Section {
             heading: "Flight against measured flights".into(),
             html: vec![table],

@@ -1,11 +1,12 @@
 //! The text report of `smash calibrate`: the measurement model, the parameter table, the
 //! correlations, what the values mean, the fit's statistics, the shaft relation and the errors
-//! before and after, in [`crate::text::WIDTH`] columns (`--wide`: the tables side by side).
+//! before and after, in [`crate::report::text::WIDTH`] columns (`--wide`: the tables side by side).
 
-use smash::diagnose::honest;
-use smash::fit::Calibration;
-use smash::report::TextTable;
-use smash::stats::t_statistic;
+use super::CalibrateReport;
+use crate::diagnose::honest;
+use crate::fit::Calibration;
+use crate::report::TextTable;
+use crate::stats::t_statistic;
 
 /// The "Measurement model:" line: what the fit took as noisy, and how much.
 pub fn measurement_line(cal: &Calibration) -> String {
@@ -21,7 +22,7 @@ pub fn measurement_line(cal: &Calibration) -> String {
     if let Some(n) = &cal.delivery_noise {
         parts.push(format!(
             "delivery with 1σ noise {} (model at the expected true delivery)",
-            crate::delivery_noise::describe(n)
+            crate::report::delivery_noise::describe(n)
         ));
     }
     if parts.is_empty() {
@@ -31,9 +32,23 @@ pub fn measurement_line(cal: &Calibration) -> String {
     }
 }
 
-/// The human-readable report: the parameter table, correlations, warnings (stand-ins, aliases,
-/// unidentifiable parameters), the fit's statistics, the shaft relation and the error tables.
-pub fn text_report(cal: &Calibration, n_shots: usize, wide: bool) -> String {
+/// The human-readable report of `r`: the parameter table, correlations, warnings (stand-ins,
+/// aliases, unidentifiable parameters), the fit's statistics, the shaft relation and the error
+/// tables; `wide`: the tables side by side. Headed by a NO FINDINGS line when the shots are
+/// another club's.
+pub fn render(r: &CalibrateReport, wide: bool) -> String {
+    let mut s = match &r.club_mismatch {
+        Some(why) => crate::report::text::wrap_long(&format!(
+            "NO FINDINGS: the shots do not match the club ({why}); the fitted values describe \
+             another club's shots, not this head\n"
+        )),
+        None => String::new(),
+    };
+    s.push_str(&body(&r.calibration, r.n_shots, wide));
+    s
+}
+
+fn body(cal: &Calibration, n_shots: usize, wide: bool) -> String {
     let labels: Vec<String> = cal.params.iter().map(|p| p.label()).collect();
     let unidentified = cal.identifiability.unidentified();
     let mut s = format!(
@@ -42,11 +57,11 @@ pub fn text_report(cal: &Calibration, n_shots: usize, wide: bool) -> String {
         cal.params.len(),
         n_shots
     );
-    s.push_str(&crate::text::wrap_long(&measurement_line(cal)));
+    s.push_str(&crate::report::text::wrap_long(&measurement_line(cal)));
     s.push('\n');
     s.push_str(&parameter_table(cal, &labels, &unidentified));
     s.push_str(&correlation_table(cal, &labels));
-    s.push_str(&crate::text::wrap_long(&warnings(
+    s.push_str(&crate::report::text::wrap_long(&warnings(
         cal,
         &labels,
         &unidentified,
@@ -54,7 +69,7 @@ pub fn text_report(cal: &Calibration, n_shots: usize, wide: bool) -> String {
     s.push_str(&fit_statistics(cal, &labels));
     s.push_str(&shaft_relation_text(cal));
     s.push_str("\nErrors (model − measured), per group:\n");
-    s.push_str(&crate::text::before_after(
+    s.push_str(&crate::report::text::before_after(
         &cal.before,
         &cal.after,
         ("before (nominal)", "after (calibrated)"),
@@ -157,7 +172,7 @@ fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> Str
 /// The fit's statistics: the models' likelihood scores on one scale, the fit's own chi2 and
 /// whitening scales, the solver's work and the paper's stage of each parameter.
 fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
-    let mut s = crate::likelihood::text(
+    let mut s = crate::report::likelihood::text(
         &[
             ("nominal", &cal.likelihood_nominal),
             ("calibrated", &cal.likelihood),
@@ -172,7 +187,7 @@ fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
         cal.params.len(),
         cal.reduced_chi2,
     ));
-    s.push_str(&crate::likelihood::scales_text(
+    s.push_str(&crate::report::likelihood::scales_text(
         "whitening scales:",
         "",
         &cal.noise_scales,
@@ -190,8 +205,8 @@ fn fit_statistics(cal: &Calibration, labels: &[String]) -> String {
                 a.linear_sensitivity,
                 a.angular_sensitivity,
                 match a.stage {
-                    smash::fit::Stage::Linear => "W = inf (velocity)",
-                    smash::fit::Stage::Angular => "W = 0 (spin)",
+                    crate::fit::Stage::Linear => "W = inf (velocity)",
+                    crate::fit::Stage::Angular => "W = 0 (spin)",
                 }
             ));
         }
@@ -217,7 +232,7 @@ fn shaft_relation_text(cal: &Calibration) -> String {
         r.line.slope,
         r.line.intercept,
         r.line.r,
-        crate::counted(r.line.n, "group")
+        crate::report::text::counted(r.line.n, "group")
     ));
     s
 }

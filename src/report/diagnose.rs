@@ -1,0 +1,364 @@
+//! What `smash diagnose` reports, as one value: [`DiagnoseReport`]. Its text is [`text`], its
+//! JSON its `Serialize` (the schema: `docs/json.md`), its HTML page
+//! [`crate::report::html::diagnose_page`].
+
+pub mod text;
+
+use serde::{Serialize, Serializer};
+use serde_json::json;
+
+use crate::diagnose::honest;
+use crate::diagnose::noise_floor::{NoiseFloor, SpreadBand};
+use crate::diagnose::Diagnosis;
+use crate::fit::ParamEstimate;
+use crate::physics::LaunchComponent;
+
+/// The version of diagnose's JSON schema (`schema_version`); raised when a key changes meaning
+/// or goes away (a new key does not raise it).
+pub const SCHEMA_VERSION: u32 = 1;
+
+/// What `smash diagnose` reports: the diagnosis and the noise floor its errors were judged
+/// against. Text, JSON and HTML all render this one value.
+#[derive(Debug, Clone)]
+pub struct DiagnoseReport {
+    /// The selection, its steps and its final model.
+    pub diagnosis: Diagnosis,
+    /// The instruments' noise floor of the final model's errors.
+    pub floor: NoiseFloor,
+}
+
+impl Serialize for DiagnoseReport {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        super::json::head_first(&to_json(&self.diagnosis, &self.floor), s)
+    }
+}
+
+impl DiagnoseReport {
+    /// What the diagnosis concludes about the structure left in the errors ([`conclusion`]).
+    pub fn conclusion(&self) -> String {
+        conclusion(&self.diagnosis, &self.floor)
+    }
+}
+
+/// An impact-location noise in mm as printed: to 1e-6 mm, so that 1.8 mm shows as 1.8 after
+/// the metre round trip.
+pub fn location_mm(m: f64) -> f64 {
+    (m * 1e9).round() / 1e6
+}
+
+fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
+    estimates_json_with(ps, |_| None)
+}
+
+/// Estimates as JSON, each with its plausibility and (when `status` says) its status.
+fn estimates_json_with(
+    ps: &[ParamEstimate],
+    status: impl Fn(&ParamEstimate) -> Option<&'static str>,
+) -> Vec<serde_json::Value> {
+    ps.iter()
+        .map(|p| {
+            let mut v = json!({
+                "effect": p.effect, "param": p.param, "group": p.group,
+                "value": p.value, "stderr": p.stderr, "unit": p.unit,
+            });
+            if let (Some(o), serde_json::Value::Object(h)) =
+                (v.as_object_mut(), honest::plausibility_json(p))
+            {
+                o.extend(h);
+                if let Some(st) = status(p) {
+                    o.insert("status".into(), st.into());
+                }
+            }
+            v
+        })
+        .collect()
+}
+
+/// `finding`, `stand_in`, `absent` (on its no-effect bound), `unchanged` (not significantly
+/// different from its no-effect value), `provisional` (its value differs
+/// across strata of the shots) or `ambiguous` (a plausible value with a plausible rival, or
+/// aliased with another effect).
+pub fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
+    if d.club_mismatch.is_some() {
+        "wrong_club"
+    } else if honest::is_plausible(p) == Some(false) {
+        "stand_in"
+    } else if honest::is_absent(p) {
+        "absent"
+    } else if honest::is_unchanged(p, d.estimates.len()) {
+        "unchanged"
+    } else if d.is_finding(p) {
+        "finding"
+    } else if d.provisional(p).is_some() {
+        "provisional"
+    } else {
+        "ambiguous"
+    }
+}
+
+/// The machine-readable report (the JSON of [`DiagnoseReport`]).
+fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
+    let comp_map = |v: &[f64; 5]| -> serde_json::Value {
+        LaunchComponent::ALL
+            .iter()
+            .map(|c| (c.column().to_owned(), json!(v[c.index()])))
+            .collect::<serde_json::Map<_, _>>()
+            .into()
+    };
+    let steps: Vec<serde_json::Value> = d
+        .steps
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            json!({
+                "step": i + 1,
+                "base": s.base,
+                "noise_scales": comp_map(&s.noise_scales),
+                "base_cv_chi2": s.base_cv_chi2,
+                "selected": s.selected,
+                "swap": s.swap.as_ref().map(|w| json!({
+                    "out": w.out,
+                    "in": w.inn,
+                    "cv_chi2_before": w.cv_before,
+                    "cv_chi2_after": w.cv_after,
+                    "text": w.text(),
+                })),
+                "at_noise_floor": s.at_noise_floor,
+                "alias": s.alias.as_ref().map(|a| a.to_json()),
+                "rivals": s.rivals.iter().map(honest::Rival::to_json).collect::<Vec<_>>(),
+                "candidates": s.candidates.iter().map(|c| json!({
+                    "effect": c.label,
+                    "n_params": c.n_params,
+                    "cv_chi2": c.cv_chi2,
+                    "gain": c.gain,
+                    "score": if c.spread_gain.is_some() { "spread_likelihood" } else { "cv_chi2" },
+                    "penalty": c.penalty,
+                    "margin": c.margin(),
+                    "eligible": c.eligible(),
+                    "converged": c.converged,
+                    "unidentified": c.unidentified,
+                    "failure": c.failure,
+                    "rms_reduction": comp_map(&c.rms_reduction),
+                    "params": estimates_json(&c.params),
+                })).collect::<Vec<_>>(),
+                "after": s.after.to_json(),
+                "fit": crate::report::likelihood::score_json(&s.fit),
+            })
+        })
+        .collect();
+    json!({
+        "schema_version": SCHEMA_VERSION,
+        "command": "diagnose",
+        "selected": d.selected,
+        "impact_noise_mm": d.impact_noise.map(|n| json!({
+            "y": location_mm(n.sigma_y_m),
+            "z": location_mm(n.sigma_z_m),
+            "estimated": d.impact_noise_estimated,
+        })),
+        "delivery_noise": d.delivery_noise.filter(|n| n.is_active()).map(|n| json!({
+            "sd": crate::report::delivery_noise::to_json(&n),
+            "estimated": d.delivery_noise_estimated,
+        })),
+        "calibrate_flags": calibrate_flags(d),
+        "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
+        "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
+        "provisional": d.estimates.iter().filter_map(|p| d.provisional(p).map(|why| json!({
+            "param": p.label(), "failed_check": why,
+        }))).collect::<Vec<_>>(),
+        "strata": d.strata.as_ref().map(crate::report::strata::to_json),
+        "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
+        "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
+            "param": p.label(), "value": p.value, "unit": p.unit,
+            "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
+            "most_alike": d.alike(p).iter().map(|(l, r)| json!({"candidate": l, "r": r}))
+                .collect::<Vec<_>>(),
+        }))).collect::<Vec<_>>(),
+        "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
+        "likelihood": crate::report::likelihood::to_json("final", &d.final_fit, &d.nominal_fit),
+        "noise_floor": floor.to_json(),
+        "conclusion": conclusion(d, floor),
+        "steps": steps,
+        "folds": d.folds,
+        "fold_by": d.fold_by.name(),
+        "club_mismatch": d.club_mismatch,
+        "n_shots": d.n_shots,
+        "warnings": d.warnings,
+        "before": d.before.to_json(),
+        "after": d.after.to_json(),
+    })
+}
+
+/// What the diagnosis concludes about the structure left in the errors, and, when the
+/// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
+pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    format!("{}{}", verdict(d, floor), assumed_note(floor))
+}
+
+/// Without `--noise` or `--instrument`: the verdict rests on the assumed class's noise; the
+/// observed-to-expected spread ratio per component, and what a ratio well below or well above
+/// 1 means (empty when the noise was given).
+fn assumed_note(floor: &NoiseFloor) -> String {
+    if !floor.assumed {
+        return String::new();
+    }
+    let ratios: Vec<String> = floor
+        .components
+        .iter()
+        .map(|c| format!("{} {:.2}", c.component.column(), c.ratio))
+        .collect();
+    let band = |b: SpreadBand| -> Vec<&str> {
+        floor
+            .components
+            .iter()
+            .filter(|c| floor.spread_band(c) == b)
+            .map(|c| c.component.column())
+            .collect()
+    };
+    let h = floor.band_half_width();
+    let mut s = format!(
+        ". This verdict rests on the ASSUMED {} instrument noise (no --noise or --instrument \
+         given); observed/expected spread: {}",
+        floor.instrument.name,
+        ratios.join(", ")
+    );
+    let below = band(SpreadBand::WellBelow);
+    if !below.is_empty() {
+        s.push_str(&format!(
+            "; well below 1 (under {:.2}) in {}: the assumed noise is too large for these \
+             errors, so the test cannot see structure there",
+            1.0 - h,
+            below.join(", ")
+        ));
+    }
+    let above = band(SpreadBand::WellAbove);
+    if !above.is_empty() {
+        s.push_str(&format!(
+            "; well above 1 (over {:.2}) in {}: structure remains there, or the instruments \
+             are noisier than assumed",
+            1.0 + h,
+            above.join(", ")
+        ));
+    }
+    if below.is_empty() && above.is_empty() {
+        s.push_str(&format!("; each within {h:.2} of 1"));
+    }
+    s.push_str("; give the instruments' noise with --noise to test it");
+    s
+}
+
+/// The verdict on the structure left in the errors.
+fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
+    let stand_ins: Vec<String> = d
+        .estimates
+        .iter()
+        .filter(|p| honest::is_plausible(p) == Some(false))
+        .map(|p| p.label())
+        .collect();
+    let mut stand_in_note = String::new();
+    if !stand_ins.is_empty() {
+        stand_in_note = format!(
+            "; {} stand(s) in for physics the library lacks and is not a finding",
+            stand_ins.join(", ")
+        );
+    }
+    // Each kind of value that is not a finding, with why, when there is any.
+    let mut not_findings = |why: &str, labels: Vec<String>, sep: &str| {
+        if !labels.is_empty() {
+            stand_in_note.push_str(&format!("; {why}: {}", labels.join(sep)));
+        }
+    };
+    not_findings(
+        "ambiguous, not findings (each has a plausible alternative the data cannot tell apart \
+         from it)",
+        d.ambiguities
+            .iter()
+            .filter(|a| a.is_ambiguous())
+            .map(|a| a.selected.clone())
+            .collect(),
+        ", ",
+    );
+    not_findings(
+        "aliased, not findings (the data cannot tell which effect carries the signal)",
+        d.aliases
+            .iter()
+            .filter(|a| a.across_effects())
+            .map(|a| format!("{} and {}", a.a, a.b))
+            .collect(),
+        "; ",
+    );
+    not_findings(
+        "provisional, not findings (the value differs between parts of the shots beyond its \
+         uncertainty, or its signal shares the trend of structure left)",
+        d.estimates
+            .iter()
+            .filter(|p| d.provisional(p).is_some())
+            .map(|p| p.label())
+            .collect(),
+        ", ",
+    );
+    if !floor.structure_remains() {
+        return format!(
+            "what remains is noise: the errors scatter as the instruments alone explain{stand_in_note}"
+        );
+    }
+    let structured: Vec<&str> = floor
+        .components
+        .iter()
+        .filter(|c| c.structure)
+        .map(|c| c.component.column())
+        .collect();
+    // The last forward step (swap steps follow forward selection).
+    let last = d.steps.iter().rfind(|s| s.swap.is_none());
+    let stopped_by_limit = last.is_none_or(|s| s.selected.is_some());
+    if stopped_by_limit {
+        format!(
+            "unexplained structure remains in {}, and the step limit was reached: raise \
+             --max-steps to keep looking{stand_in_note}",
+            structured.join(", ")
+        )
+    } else {
+        let best = last
+            .and_then(|s| s.candidates.first())
+            .map_or(String::new(), |c| {
+                format!(" (best: {}, margin {:.1})", c.label, c.margin())
+            });
+        format!(
+            "unexplained structure remains in {}; no library candidate reduces it by more than \
+             its penalty{best}: the data contain physics the library lacks (or the instrument \
+             noise given is too small){stand_in_note}",
+            structured.join(", ")
+        )
+    }
+}
+
+/// The `smash calibrate` flags that fit the diagnosis's final model (its effects and its
+/// measurement model), each with its value.
+pub fn calibrate_flag_pairs(d: &Diagnosis) -> Vec<(&'static str, String)> {
+    let mut flags = Vec::new();
+    if !d.selected.is_empty() {
+        flags.push(("--effects", d.selected.join(",")));
+    }
+    if let Some(n) = d.impact_noise {
+        flags.push((
+            "--impact-noise-mm",
+            format!("{},{}", location_mm(n.sigma_y_m), location_mm(n.sigma_z_m)),
+        ));
+    }
+    if let Some(spec) = d
+        .delivery_noise
+        .as_ref()
+        .and_then(crate::report::delivery_noise::spec)
+    {
+        flags.push(("--delivery-noise", spec));
+    }
+    flags
+}
+
+/// [`calibrate_flag_pairs`] as one string (JSON's `calibrate_flags`).
+fn calibrate_flags(d: &Diagnosis) -> String {
+    calibrate_flag_pairs(d)
+        .into_iter()
+        .map(|(f, v)| format!("{f} {v}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}

@@ -1,0 +1,43 @@
+//! What the JSON reports share: an object's `schema_version` and `command` first.
+
+use serde::ser::SerializeMap;
+use serde::Serializer;
+
+/// The keys every JSON report opens with, in this order.
+const HEAD: [&str; 2] = ["schema_version", "command"];
+
+/// `value` serialised with its [`HEAD`] keys first and its other keys after them in their
+/// own order (a value that is not an object as it is).
+pub(crate) fn head_first<S: Serializer>(
+    value: &serde_json::Value,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::Serialize;
+    let Some(object) = value.as_object() else {
+        return value.serialize(s);
+    };
+    let mut map = s.serialize_map(Some(object.len()))?;
+    for key in HEAD {
+        if let Some(v) = object.get(key) {
+            map.serialize_entry(key, v)?;
+        }
+    }
+    for (k, v) in object.iter().filter(|(k, _)| !HEAD.contains(&k.as_str())) {
+        map.serialize_entry(k, v)?;
+    }
+    map.end()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn head_keys_come_first_and_nothing_is_lost() {
+        let v = serde_json::json!({"a": 1, "command": "x", "z": [2], "schema_version": 3});
+        let mut out = Vec::new();
+        head_first(&v, &mut serde_json::Serializer::new(&mut out)).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        assert_eq!(text, r#"{"schema_version":3,"command":"x","a":1,"z":[2]}"#);
+    }
+}
