@@ -324,9 +324,7 @@ pub(super) fn delivery_jacobians(
     let mut models = std::collections::BTreeMap::new();
     for s in shots {
         if !models.contains_key(s.group.as_str()) {
-            let m = club
-                .model_for_group(&s.group)
-                .map_err(|e| format!("noise floor: {e}"));
+            let m = club.model_for_group(&s.group);
             models.insert(s.group.as_str(), m);
         }
     }
@@ -335,7 +333,10 @@ pub(super) fn delivery_jacobians(
         .map(|s| {
             let model = models[s.group.as_str()]
                 .as_ref()
-                .map_err(|e| FitError::Solver(e.clone()))?;
+                .map_err(|e| FitError::GroupModel {
+                    group: s.group.clone(),
+                    source: e.clone(),
+                })?;
             let x0 = delivery_to_file_units(&s.delivery);
             let launch_at = |x: &[f64; N_DELIVERY]| {
                 // The file-unit vector has no shaft mass: carry the shot's own.
@@ -345,8 +346,8 @@ pub(super) fn delivery_jacobians(
                 };
                 model.solve(&d).ok().map(|o| o.launch().to_file_units())
             };
-            let f0 = launch_at(&x0).ok_or_else(|| {
-                FitError::Solver(format!("noise floor: shot '{}' cannot be solved", s.id))
+            let f0 = launch_at(&x0).ok_or_else(|| FitError::Unsolvable {
+                shot_id: s.id.clone(),
             })?;
             Ok(std::array::from_fn(|j| {
                 let h = steps[j];

@@ -258,11 +258,17 @@ impl<'a> Search<'a> {
         effects.extend(
             self.base
                 .to_effects(self.theta_base.as_slice())
-                .map_err(|e| FitError::Solver(format!("base effects: {e}")))?,
+                .map_err(|source| FitError::ValuesOutOfBounds {
+                    which: "base",
+                    source,
+                })?,
         );
         self.club
             .with_effects(effects)
-            .map_err(|e| FitError::Solver(format!("base club: {e}")))
+            .map_err(|source| FitError::ClubNotPhysical {
+                which: "base",
+                source,
+            })
     }
 
     /// With a known noise floor: are the base model's errors already at it?

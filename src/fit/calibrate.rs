@@ -316,10 +316,11 @@ pub fn calibrate_data_scored(
     given: Option<&GivenScales>,
     progress: Option<Arc<dyn Progress>>,
 ) -> Result<Calibration, FitError> {
-    if given.is_some_and(|g| g.variances.len() != data.len()) {
-        return Err(FitError::Solver(
-            "the given noise variances are not one row a shot".into(),
-        ));
+    if let Some(g) = given.filter(|g| g.variances.len() != data.len()) {
+        return Err(FitError::ScalesPerShot {
+            rows: g.variances.len(),
+            shots: data.len(),
+        });
     }
     let p = layout.len();
     if data.len() <= p {
@@ -385,14 +386,18 @@ pub fn calibrate_data_scored(
     let strongly_correlated = correlated_pairs(cov.correlation.as_ref());
     let shaft_relation = shaft_relation(data, &params);
     let mut effects = club.effects.clone();
-    effects.extend(
-        layout
-            .to_effects(theta.as_slice())
-            .map_err(|e| FitError::Solver(format!("fitted values out of bounds: {e}")))?,
-    );
+    effects.extend(layout.to_effects(theta.as_slice()).map_err(|source| {
+        FitError::ValuesOutOfBounds {
+            which: "fitted",
+            source,
+        }
+    })?);
     let calibrated = club
         .with_effects(effects)
-        .map_err(|e| FitError::Solver(format!("calibrated club is not physical: {e}")))?;
+        .map_err(|source| FitError::ClubNotPhysical {
+            which: "calibrated",
+            source,
+        })?;
     Ok(Calibration {
         method: opts.method,
         params,

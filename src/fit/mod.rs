@@ -44,6 +44,30 @@ pub use spec::{parse_effect_list, parse_request, EffectRequest, FreeEffect, Para
 use crate::effects::EffectError;
 use crate::physics::LaunchComponent;
 
+/// argmin's error, shared so that a [`FitError`] can be cloned, and compared by its message.
+#[derive(Debug, Clone)]
+pub struct SolverError(pub std::sync::Arc<argmin::core::Error>);
+
+impl std::fmt::Display for SolverError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::error::Error for SolverError {}
+
+impl PartialEq for SolverError {
+    fn eq(&self, other: &Self) -> bool {
+        self.to_string() == other.to_string()
+    }
+}
+
+impl From<argmin::core::Error> for SolverError {
+    fn from(e: argmin::core::Error) -> Self {
+        Self(std::sync::Arc::new(e))
+    }
+}
+
 /// Why a fit cannot be done or did not succeed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum FitError {
@@ -118,7 +142,51 @@ pub enum FitError {
         /// Which stage of the procedure.
         stage: String,
     },
-    /// The solver itself failed.
+    /// The solver itself failed (argmin's error: bounds it refuses, an operator failure).
     #[error("solver: {0}")]
-    Solver(String),
+    Solver(#[source] SolverError),
+    /// Given noise variances that are not one row a shot.
+    #[error(
+        "the given noise variances have {rows} row(s) for {shots} shot(s): one row a shot is \
+         needed"
+    )]
+    ScalesPerShot {
+        /// Rows of variances given.
+        rows: usize,
+        /// Shots fitted.
+        shots: usize,
+    },
+    /// Fitted (or base) values that do not make effects: outside an effect's bounds.
+    #[error("{which} values out of bounds: {source}")]
+    ValuesOutOfBounds {
+        /// Whose values: `fitted` or `base`.
+        which: &'static str,
+        /// Why.
+        #[source]
+        source: EffectError,
+    },
+    /// The club with the fitted (or base) effects is not physical.
+    #[error("{which} club is not physical: {source}")]
+    ClubNotPhysical {
+        /// Which club: `calibrated` or `base`.
+        which: &'static str,
+        /// Why.
+        #[source]
+        source: crate::physics::ParamError,
+    },
+    /// A group's model cannot be made from the club (the noise floor's per-group models).
+    #[error("noise floor: the model of group '{group}': {source}")]
+    GroupModel {
+        /// The group.
+        group: String,
+        /// Why.
+        #[source]
+        source: crate::physics::ParamError,
+    },
+    /// A shot the model cannot solve at its measured delivery (the noise floor's propagation).
+    #[error("noise floor: shot '{shot_id}' cannot be solved at its measured delivery")]
+    Unsolvable {
+        /// The shot's id.
+        shot_id: String,
+    },
 }

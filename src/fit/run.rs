@@ -87,7 +87,7 @@ impl Observe<LmState> for Observer {
 fn map_err(e: ArgminError) -> FitError {
     match e.downcast::<EvalError>() {
         Ok(eval) => FitError::Start(eval),
-        Err(other) => FitError::Solver(other.to_string()),
+        Err(other) => FitError::Solver(other.into()),
     }
 }
 
@@ -318,7 +318,7 @@ fn execute_with(
 ) -> Result<FitRun, FitError> {
     let n_active = problem.active().len();
     let mut solver = LevenbergMarquardt::new(problem.active_lower(), problem.active_upper())
-        .map_err(|e| FitError::Solver(e.to_string()))?;
+        .map_err(|e| FitError::Solver(e.into()))?;
     if !final_jacobian {
         solver = solver.without_final_jacobian();
     }
