@@ -56,6 +56,7 @@ pub mod predict;
 pub mod report;
 pub mod stats;
 pub mod study;
+pub mod suggest;
 pub mod sweep;
 pub mod synth;
 pub mod units;

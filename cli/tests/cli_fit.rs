@@ -200,7 +200,7 @@ fn bad_input_gets_one_clear_line_and_writes_nothing() {
         &good,
         "added_mas",
         &[],
-        "unknown effect 'added_mas'; the library has: added_mass, ball_offset",
+        "unknown effect 'added_mas' (did you mean 'added_mass'?); the library has: added_mass, ball_offset",
     );
     cal(
         &good,

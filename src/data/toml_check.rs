@@ -220,16 +220,7 @@ pub fn unknown_message(what: &str, given: &str, allowed: &[&str]) -> String {
     )
 }
 
-/// The candidate nearest to `given`, when it is near enough to be a typing slip: a
-/// Jaro–Winkler similarity of at least 0.8 (the threshold cargo and clap use for their
-/// suggestions).
-pub fn did_you_mean<'c>(given: &str, candidates: impl Iterator<Item = &'c str>) -> Option<&'c str> {
-    candidates
-        .map(|c| (strsim::jaro_winkler(given, c), c))
-        .filter(|(s, _)| *s >= 0.8)
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-        .map(|(_, c)| c)
-}
+pub use crate::suggest::did_you_mean;
 
 /// A list of numbers of fixed shape in a TOML file (`[f64; N]`, or `N` rows of `M`): read with
 /// [`exact`] / [`exact_opt`] so that a list of the wrong length is refused, not truncated (serde's

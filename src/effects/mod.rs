@@ -349,7 +349,12 @@ impl fmt::Display for EffectId {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum EffectError {
     /// No effect has this name.
-    #[error("unknown effect '{name}'; the library has: {}", EffectId::all_names())]
+    #[error(
+        "unknown effect '{name}'{}; the library has: {}",
+        crate::suggest::did_you_mean(name, EffectId::all_names().split(", "))
+            .map_or_else(String::new, |m| format!(" (did you mean '{m}'?)")),
+        EffectId::all_names()
+    )]
     UnknownName {
         /// The name given.
         name: String,
