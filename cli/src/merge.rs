@@ -35,6 +35,11 @@ pub struct MergeArgs {
     #[command(flatten)]
     pub wide: crate::text::WideArgs,
 
+    /// Print the merged study's report as one JSON object on stdout (as `smash run --json`)
+    /// instead of the text summary (which goes to stderr).
+    #[arg(long)]
+    pub json: bool,
+
     /// The user-defined effects the shards were run with (`smash run --effect-defs`).
     #[command(flatten)]
     pub effect_defs: super::EffectDefsArgs,
@@ -110,7 +115,7 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
             yards: None,
         },
     );
-    print_summary(&report, &args.out, n_files, args.wide.wide, false)?;
+    print_summary(&report, &args.out, n_files, args.wide.wide, args.json)?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }

@@ -254,4 +254,56 @@ fn the_optimiser_and_the_yards_are_on_the_page() {
     assert!(summary.contains("Optimum (maximise the objective)"));
     assert!(html.contains("<details><summary>Optimiser path</summary>"));
     assert!(html.contains("data-kind=\"optimiser\""));
+
+    let (json, html, _) = run("configs/studies/yards_driver.toml", dir.path());
+    let rows = json["yards"]["rows"].as_array().unwrap();
+    assert!(rows.len() >= 2, "the base and the [yards.optimise] optimum");
+    assert_eq!(rows[0]["label"], "base");
+    let summary = &html[..html.find("<section id=\"details\">").unwrap()];
+    assert!(summary.contains("In yards, against the base"));
+    // Each head's change of mean carry, ± the quadrature's error, in the summary.
+    for r in rows {
+        let d = r["deltas"][0].as_f64().unwrap();
+        let u = r["uncertainties"][0].as_f64().unwrap();
+        assert!(summary.contains(&format!("{d:+.3} ± {u:.3}")), "{d} ± {u}");
+    }
+    assert!(!html.contains("measured"));
+}
+
+#[test]
+fn a_merge_reports_what_the_unsharded_run_reports() {
+    let dir = tempfile::tempdir().unwrap();
+    let (whole, _, _) = run("configs/studies/com_sweep.toml", dir.path());
+    let mut shards = Vec::new();
+    for k in 0..3 {
+        let d = dir.path().join(format!("shard{k}"));
+        let out = smash(&[
+            "run",
+            "configs/studies/com_sweep.toml",
+            "--shard",
+            &format!("{k}/3"),
+            "--out",
+            s(&d),
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        shards.push(d);
+    }
+    let merged = dir.path().join("merged");
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|d| s(d)));
+    args.extend(["--out", s(&merged), "--json"]);
+    let out = smash(&args);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+    // The text went to stderr.
+    assert!(String::from_utf8_lossy(&out.stderr).contains("study 'com_sweep'"));
+    assert_eq!(json, whole);
 }

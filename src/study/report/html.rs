@@ -119,7 +119,12 @@ fn summary_section(r: &StudyReport) -> String {
     let _ = writeln!(
         s,
         "<p>{}</p>",
-        esc(&if r.base_is_club {
+        esc(&if r.variants.len() == 1 {
+            match r.base_is_club {
+                true => "One design: the club as given.".to_owned(),
+                false => format!("One design: {}.", base.changes),
+            }
+        } else if r.base_is_club {
             format!(
                 "The base is variant {}, the club as given; every change below is a variant \
                  minus the base.",
@@ -160,29 +165,7 @@ fn summary_section(r: &StudyReport) -> String {
             esc(&listed.join("; "))
         );
     }
-    if !r.highlights.is_empty() && r.variants.len() > 1 {
-        let rows: Vec<Vec<String>> = r
-            .highlights
-            .iter()
-            .map(|h| {
-                let dp = r
-                    .metric_index(&h.metric)
-                    .map_or(3, |j| r.metric_decimals[j]);
-                vec![
-                    h.metric.clone(),
-                    h.unit.clone(),
-                    num(h.base, dp),
-                    format!("{} (variant {})", signed(h.lowest.1, dp), h.lowest.0),
-                    format!("{} (variant {})", signed(h.highest.1, dp), h.highest.0),
-                ]
-            })
-            .collect();
-        let header =
-            ["metric", "unit", "base", "lowest change", "highest change"].map(String::from);
-        s.push_str(&table(&header, &rows));
-    } else if r.variants.len() == 1 {
-        s.push_str(&metrics_tables(r, &[0]));
-    }
+    s.push_str(&key_numbers(r));
     if let Some(o) = &r.optimiser {
         let gain = o.best_objective - o.base_objective;
         let dp = super::decimals_apart(&[o.base_objective, o.best_objective]).max(3);
@@ -209,16 +192,56 @@ fn summary_section(r: &StudyReport) -> String {
     s
 }
 
+/// The key numbers: each headline metric's base value and its lowest and highest change (a
+/// study of one design: every metric's value).
+fn key_numbers(r: &StudyReport) -> String {
+    if !r.highlights.is_empty() && r.variants.len() > 1 {
+        let rows: Vec<Vec<String>> = r
+            .highlights
+            .iter()
+            .map(|h| {
+                let dp = r
+                    .metric_index(&h.metric)
+                    .map_or(3, |j| r.metric_decimals[j]);
+                vec![
+                    h.metric.clone(),
+                    h.unit.clone(),
+                    num(h.base, dp),
+                    format!("{} (variant {})", signed(h.lowest.1, dp), h.lowest.0),
+                    format!("{} (variant {})", signed(h.highest.1, dp), h.highest.0),
+                ]
+            })
+            .collect();
+        let header =
+            ["metric", "unit", "base", "lowest change", "highest change"].map(String::from);
+        table(&header, &rows)
+    } else if r.variants.len() == 1 {
+        let v = &r.variants[0];
+        let rows: Vec<Vec<String>> = r
+            .metrics
+            .iter()
+            .enumerate()
+            .map(|(j, m)| {
+                vec![
+                    m.name.clone(),
+                    m.unit.clone(),
+                    num(v.metrics[j], r.metric_decimals[j]),
+                ]
+            })
+            .collect();
+        table(&["metric", "unit", "value"].map(String::from), &rows)
+    } else {
+        String::new()
+    }
+}
+
 /// The yard table: per head its changes of the quantities `cols` (± the quadrature's error).
 fn yards_table(y: &super::YardsReport, cols: &[usize]) -> String {
     let mut header = vec!["head".to_owned()];
-    header.extend(cols.iter().map(|&q| {
-        format!(
-            "Δ {}, {}",
-            y.quantities[q].name.replace('_', " "),
-            y.quantities[q].unit
-        )
-    }));
+    header.extend(
+        cols.iter()
+            .map(|&q| format!("Δ {}", y.quantities[q].name.replace('_', " "))),
+    );
     let rows: Vec<Vec<String>> = y
         .rows
         .iter()
