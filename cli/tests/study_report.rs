@@ -251,7 +251,18 @@ fn the_optimiser_and_the_yards_are_on_the_page() {
     assert_eq!(o["goal"], "maximise");
     assert!(o["best_objective"].as_f64().unwrap() > o["base_objective"].as_f64().unwrap());
     let summary = &html[..html.find("<section id=\"details\">").unwrap()];
-    assert!(summary.contains("Optimum (maximise the objective)"));
+    assert!(summary.contains("<h3>Optimum</h3>\n<p>Maximising the objective"));
+    // The optimum's design to a thousandth of a millimetre, and the objective's metrics at the
+    // base and the optimum.
+    for (k, v) in o["best_design"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| (p[0].as_str().unwrap(), p[1].as_f64().unwrap()))
+    {
+        assert!(summary.contains(&format!("{k} = {v:.3}")), "{k}");
+    }
+    assert!(summary.contains("<td class=\"l\">mean_ball_speed_mph</td><td>mph</td>"));
     assert!(html.contains("<details><summary>Optimiser path</summary>"));
     assert!(html.contains("data-kind=\"optimiser\""));
 

@@ -472,7 +472,7 @@ mod tests {
         Prepared::new(parse_study(Path::new("t.toml"), &text).unwrap()).unwrap()
     }
 
-    fn write(p: &Prepared, dir: &Path, budget: usize) {
+    fn write(p: &Prepared, dir: &Path, budget: usize) -> Vec<Vec<BlockMeans>> {
         let metrics = p.all_metrics();
         write_study_holding(
             dir,
@@ -482,7 +482,8 @@ mod tests {
             TableFormat::Csv,
             budget,
         )
-        .unwrap();
+        .unwrap()
+        .1
     }
 
     /// A map value as the standard library rounds it to ten significant digits, empty when
@@ -503,9 +504,9 @@ mod tests {
         assert!(ny > band_rows(nz), "the grid must span several bands");
         let dir = std::env::temp_dir().join(format!("smash-output-test-{}", std::process::id()));
         let (held, twice) = (dir.join("held"), dir.join("twice"));
-        write(&p, &held, HELD_MATRIX_BYTES);
+        let blocks = write(&p, &held, HELD_MATRIX_BYTES);
         // No memory for the matrix lines: the matrices take the second (top-down) pass.
-        write(&p, &twice, 0);
+        let blocks_twice = write(&p, &twice, 0);
         let (a, b) = (tree(&held), tree(&twice));
         assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
         for (k, v) in &a {
@@ -535,6 +536,23 @@ mod tests {
                         long += &format!(",{}", value(o.file_value(&r.grid, k, club_speed)));
                     }
                     long.push('\n');
+                }
+            }
+            // The report's maps: the block means of the whole map, coarsened.
+            for (k, o) in s.outputs.iter().enumerate() {
+                let whole: Vec<f64> = (0..ny * nz)
+                    .map(|c| o.file_value(&r.grid, c, club_speed))
+                    .collect();
+                let mut b = BlockMeans::new(ny, nz);
+                b.add_rows(&whole);
+                let want = b.coarsened(REPORT_MAP_CELLS).cells(&p.zs_mm, &p.ys_mm);
+                for got in [&blocks[i][k], &blocks_twice[i][k]] {
+                    let got = got.cells(&p.zs_mm, &p.ys_mm);
+                    assert_eq!((&got.0, &got.1), (&want.0, &want.1));
+                    assert!(got.0.len() <= REPORT_MAP_CELLS && got.1.len() <= REPORT_MAP_CELLS);
+                    for (a, e) in got.2.iter().zip(&want.2) {
+                        assert!(a == e || (a.is_nan() && e.is_nan()), "{a} against {e}");
+                    }
                 }
             }
             for o in &s.outputs {

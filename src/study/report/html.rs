@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 
 use super::{OutputMaps, StudyReport};
-use crate::report::charts::scatter_trend_svg;
+use crate::report::charts::path_svg;
 use crate::report::heatmap::{
     colour_bar_svg, heatmap_svg, small_map_svg, Heatmap, Scale, SmallMap,
 };
@@ -167,22 +167,7 @@ fn summary_section(r: &StudyReport) -> String {
     }
     s.push_str(&key_numbers(r));
     if let Some(o) = &r.optimiser {
-        let gain = o.best_objective - o.base_objective;
-        let dp = super::decimals_apart(&[o.base_objective, o.best_objective]).max(3);
-        let _ = writeln!(
-            s,
-            "<p>Optimum ({} the objective): {}; objective {} → {} ({}, {:+.3} %), {} iterations, \
-             {} evaluations, {}.</p>",
-            o.goal,
-            esc(&o.best),
-            num(o.base_objective, dp),
-            num(o.best_objective, dp),
-            signed(gain, dp),
-            100.0 * gain / o.base_objective.abs().max(f64::MIN_POSITIVE),
-            o.iterations,
-            o.evaluations,
-            esc(&o.termination)
-        );
+        s.push_str(&optimum(r, o));
     }
     if let Some(y) = &r.yards {
         s.push_str("<h3>In yards, against the base</h3>\n");
@@ -233,6 +218,63 @@ fn key_numbers(r: &StudyReport) -> String {
     } else {
         String::new()
     }
+}
+
+/// The optimiser's answer: the optimum's design, the objective before and after, and the
+/// objective's and headline metrics at the base and the optimum.
+fn optimum(r: &StudyReport, o: &super::OptimiserReport) -> String {
+    let gain = o.best_objective - o.base_objective;
+    let dp = super::decimals_apart(&[o.base_objective, o.best_objective]).max(3);
+    let design: Vec<String> = o
+        .best_design
+        .iter()
+        .map(|(k, v)| format!("{k} = {v:.3}"))
+        .collect();
+    let mut s = format!(
+        "<h3>Optimum</h3>\n<p>{} the objective: {}; objective {} → {} ({}, {:+.3} %) at {}; \
+         {} iterations, {} evaluations, {}.</p>\n",
+        match o.goal {
+            "minimise" => "Minimising",
+            _ => "Maximising",
+        },
+        esc(&super::objective_text(
+            o.objective.iter().map(|(w, m)| (*w, m.as_str()))
+        )),
+        num(o.base_objective, dp),
+        num(o.best_objective, dp),
+        signed(gain, dp),
+        100.0 * gain / o.base_objective.abs().max(f64::MIN_POSITIVE),
+        esc(&design.join(", ")),
+        o.iterations,
+        o.evaluations,
+        esc(&o.termination)
+    );
+    let mut names: Vec<&str> = o.objective.iter().map(|(_, m)| m.as_str()).collect();
+    names.extend(super::HEADLINE.iter().map(|h| h.0));
+    let mut seen = Vec::new();
+    let rows: Vec<Vec<String>> = names
+        .into_iter()
+        .filter_map(|n| r.metric_index(n))
+        .filter(|j| {
+            let new = !seen.contains(j);
+            seen.push(*j);
+            new
+        })
+        .map(|j| {
+            let (b, x) = (o.base_metrics[j], o.best_metrics[j]);
+            let dp = super::decimals_apart(&[b, x]);
+            vec![
+                r.metrics[j].name.clone(),
+                r.metrics[j].unit.clone(),
+                num(b, dp),
+                num(x, dp),
+                signed(x - b, dp),
+            ]
+        })
+        .collect();
+    let header = ["metric", "unit", "base", "optimum", "change"].map(String::from);
+    s.push_str(&table(&header, &rows));
+    s
 }
 
 /// The yard table: per head its changes of the quantities `cols` (± the quadrature's error).
@@ -479,12 +521,10 @@ fn details_section(r: &StudyReport) -> Result<String, String> {
     }
     if let Some(o) = &r.optimiser {
         let pts: Vec<(f64, f64)> = o.path.iter().map(|(i, v)| (*i as f64, *v)).collect();
-        let svg = scatter_trend_svg(
+        let svg = path_svg(
             "Optimiser path",
             "Nelder–Mead iteration",
-            "objective (best design so far)",
-            &pts,
-            None,
+            "objective of the best design so far",
             &pts,
         )?;
         let _ = writeln!(

@@ -11,6 +11,8 @@
 pub mod html;
 pub mod text;
 
+use std::fmt::Write as _;
+
 use serde::Serialize;
 
 use super::design::DesignVar;
@@ -172,6 +174,8 @@ pub struct OptimiserReport {
     pub best_objective: f64,
     /// The optimum's changes, `key = value, …`.
     pub best: String,
+    /// The optimum's changed design variables: key and value (unit in the key).
+    pub best_design: Vec<(String, f64)>,
     /// Iterations run.
     pub iterations: u64,
     /// Objective evaluations.
@@ -363,14 +367,9 @@ fn question(p: &Prepared) -> String {
             Goal::Minimise => "minimises",
             Goal::Maximise => "maximises",
         };
-        let terms: Vec<String> = o
-            .objective
-            .iter()
-            .map(|(m, w)| format!("{w} × {m}"))
-            .collect();
         q.push_str(&format!(
             "; and which design within the bounds {goal} {}",
-            terms.join(" + ")
+            objective_text(o.objective.iter().map(|(m, w)| (*w, m.as_str())))
         ));
     }
     if s.yards.is_some() {
@@ -378,6 +377,21 @@ fn question(p: &Prepared) -> String {
     }
     q.push('?');
     q
+}
+
+/// An objective `Σ weight · metric` as text: `1 × a − 0.001 × b`.
+pub fn objective_text<'a>(terms: impl IntoIterator<Item = (f64, &'a str)>) -> String {
+    let mut s = String::new();
+    for (k, (w, m)) in terms.into_iter().enumerate() {
+        let sign = match (k, w < 0.0) {
+            (0, true) => "−",
+            (0, false) => "",
+            (_, true) => " − ",
+            (_, false) => " + ",
+        };
+        let _ = write!(s, "{sign}{} × {m}", crate::limits::fmt_value(w.abs()));
+    }
+    s
 }
 
 /// Per headline metric the study computes (and `mean_*`/`std_*` of ball speed with a
@@ -488,6 +502,11 @@ fn optimiser(p: &Prepared, o: &OptimiseResult) -> OptimiserReport {
         base_objective: o.base_objective,
         best_objective: o.best_objective,
         best: o.best.describe(),
+        best_design: DesignVar::ALL
+            .iter()
+            .filter(|v| o.best.get(**v) != v.neutral())
+            .map(|v| (v.key().to_owned(), o.best.get(*v)))
+            .collect(),
         iterations: o.path.last().map_or(0, |p| p.iteration),
         evaluations: o.evaluations,
         termination: o.termination.clone(),
@@ -556,5 +575,12 @@ mod tests {
         // Equal values: a fixed default; NaN is ignored.
         assert_eq!(decimals_apart(&[146.0, 146.0, f64::NAN]), 1);
         assert_eq!(decimals_apart(&[0.5]), 3);
+    }
+
+    #[test]
+    fn objectives_read_with_their_signs() {
+        let t = objective_text([(1.0, "a"), (-0.001, "b"), (2.5, "c")]);
+        assert_eq!(t, "1 × a − 0.001 × b + 2.5 × c");
+        assert_eq!(objective_text([(-1.0, "a")]), "−1 × a");
     }
 }
