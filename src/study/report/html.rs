@@ -22,7 +22,7 @@ const STUDY_CSS: &str =
     ".multiples{display:grid;grid-template-columns:repeat(auto-fill,minmax(200px,1fr));gap:6px}\
 .multiples figure{padding:2px}figure.bar{border:none;max-width:480px;margin:.4em 0}\
 details{margin:.8em 0}details>summary{cursor:pointer;font-weight:bold;font-size:1.05em}\
-.question{font-size:1.1em}table{max-width:100%}th,td.l{overflow-wrap:anywhere}\
+.question{font-size:1.1em}table{max-width:100%}th{overflow-wrap:anywhere}td.l{overflow-wrap:break-word}\
 @media print{.multiples{grid-template-columns:repeat(3,1fr)}}";
 
 /// `v` with `dp` decimals; a dash when not finite.
