@@ -380,9 +380,9 @@ fn maps_section(r: &StudyReport, m: &OutputMaps, open: bool) -> String {
     };
     let _ = writeln!(
         s,
-        "<p>{} One colour scale for every map; across each map the impact location toward \
-         the toe (z, mm), up it the location up the face (y, mm); the circle is the face \
-         centre; ids as in the legend.</p>",
+        "<p>{} One colour scale for every map. In each map the impact \
+         location runs toward the toe (z, mm) across and up the face (y, mm) upward; the \
+         circle is the face centre; ids as in the legend.</p>",
         esc(&shown)
     );
     s.push_str(&multiples(r, m, false));
