@@ -7,7 +7,8 @@ use clap::Args;
 use crate::study_output::{print_summary, TableFormatArg};
 use smash::data::output_plan::OutputPlan;
 use smash::study::finish;
-use smash::study::output::write_study;
+use smash::study::output::write_study_maps;
+use smash::study::report::{RunResults, StudyReport};
 use smash::study::shard::merge_shards;
 
 /// Arguments of `smash merge`.
@@ -33,6 +34,11 @@ pub struct MergeArgs {
     /// `--wide`: one line per variant with every metric.
     #[command(flatten)]
     pub wide: crate::text::WideArgs,
+
+    /// Print the merged study's report as one JSON object on stdout (as `smash run --json`)
+    /// instead of the text summary (which goes to stderr).
+    #[arg(long)]
+    pub json: bool,
 
     /// The user-defined effects the shards were run with (`smash run --effect-defs`).
     #[command(flatten)]
@@ -84,28 +90,32 @@ pub fn run(args: MergeArgs) -> anyhow::Result<()> {
     let (prepared, metrics, grids) = merged.map_err(|e| hidden(e.into()))?;
     let (sens, opt) = finish(&prepared, &metrics)?;
     let mut staging = plan.stage();
+    let mut face_maps = Vec::new();
     let n_files = staging
         .folder_with(&args.out, |tmp| {
-            write_study(
+            let (n, maps) = write_study_maps(
                 tmp,
                 &prepared,
                 &grids,
-                &metrics,
-                &sens,
-                opt.as_ref(),
+                (&metrics, &sens, opt.as_ref()),
                 args.format.into(),
-            )
+            )?;
+            face_maps = maps;
+            Ok(n)
         })
         .map_err(|e| hidden(e.into()))?;
     staging.commit()?;
-    print_summary(
+    let report = StudyReport::new(
         &prepared,
-        &metrics,
-        opt.as_ref(),
-        &args.out,
-        n_files,
-        args.wide.wide,
-    )?;
+        &RunResults {
+            metrics: &metrics,
+            face_maps: &face_maps,
+            sensitivities: &sens,
+            optimiser: opt.as_ref(),
+            yards: None,
+        },
+    );
+    print_summary(&report, &args.out, n_files, args.wide.wide, args.json)?;
     eprintln!("merged {} shard(s)", args.shards.len());
     Ok(())
 }

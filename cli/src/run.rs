@@ -8,7 +8,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 use crate::study_output::TableFormatArg;
 use smash::data::output_plan::OutputPlan;
-use smash::study::output::write_study;
+use smash::study::output::write_study_maps;
+use smash::study::report::{RunResults, StudyReport};
 use smash::study::shard::{parse_shard_spec, shard_files};
 use smash::study::{finish, read_study, Prepared, Study, StudyError};
 
@@ -44,9 +45,15 @@ pub struct RunArgs {
     /// read with pandas, polars or Arrow). Matrices and pictures are the same either way.
     #[arg(long, value_enum, default_value = "csv")]
     pub format: TableFormatArg,
-    /// Also write a self-contained HTML report of the study (face maps and tables).
+    /// Also write a self-contained HTML report of the study: a summary, the face maps of the
+    /// variants on shared colour scales and their differences from the base, the tables.
     #[arg(long, value_name = "FILE.html")]
     pub report: Option<PathBuf>,
+
+    /// Print the study's report as one JSON object on stdout instead of the text summary
+    /// (which goes to stderr).
+    #[arg(long)]
+    pub json: bool,
 
     /// `--wide`: one line per variant with every metric, the yards table on one line per row.
     #[command(flatten)]
@@ -228,16 +235,16 @@ fn run_whole(
     };
     let kernels = prepared.kernels();
     let mut staging = plan.stage();
+    let mut face_maps = Vec::new();
     let n_files = staging.folder_with(dir, |tmp| {
-        let n = write_study(
+        let (n, maps) = write_study_maps(
             tmp,
             prepared,
             &kernels,
-            &metrics,
-            &sens,
-            opt.as_ref(),
+            (&metrics, &sens, opt.as_ref()),
             args.format.into(),
         )?;
+        face_maps = maps;
         Ok(n + match &yards {
             Some(r) => write_yards(tmp, prepared, r)?,
             None => 0,
@@ -250,19 +257,25 @@ fn run_whole(
         );
     }
     let seconds = start.elapsed().as_secs_f64();
+    let report = StudyReport::new(
+        prepared,
+        &RunResults {
+            metrics: &metrics,
+            face_maps: &face_maps,
+            sensitivities: &sens,
+            optimiser: opt.as_ref(),
+            yards: yards.as_ref(),
+        },
+    );
     if let Some(path) = &args.report {
-        // Read back from the staged folder: the study's outputs and the report go in together.
-        let staged = staging.staged(dir).unwrap_or(dir).to_owned();
-        let html = smash::report::html::study_page(&prepared.study.name, &report_inputs(&staged)?)
-            .map_err(anyhow::Error::msg)?;
+        let html = smash::study::report::html::page(&report).map_err(anyhow::Error::msg)?;
         staging.file(path, html.as_bytes())?;
     }
     staging.commit()?;
     if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
-    let wide = args.wide.wide;
-    crate::study_output::print_summary(prepared, &metrics, opt.as_ref(), dir, n_files, wide)?;
+    crate::study_output::print_summary(&report, dir, n_files, args.wide.wide, args.json)?;
     eprintln!(
         "swept {impacts} impact evaluations ({})\n  and wrote {n_files} file(s) in {seconds:.3} s \
          (face-map kernel: {} impacts in {:.3} s, {:.0} impacts/s)",
@@ -290,35 +303,4 @@ fn write_yards(
             .map_err(|e| std::io::Error::new(e.kind(), format!("{}: {e}", rel.display())))?;
     }
     Ok(files.len())
-}
-
-/// The written outputs a study report shows (the face-map pictures and the small summary,
-/// sensitivity, optimiser and variant tables), read back from the output folder: the maps
-/// themselves were streamed to disk and are not held in memory.
-fn report_inputs(dir: &Path) -> anyhow::Result<Vec<(PathBuf, Vec<u8>)>> {
-    use anyhow::Context;
-    let mut out = Vec::new();
-    let mut stack = vec![dir.to_path_buf()];
-    while let Some(d) = stack.pop() {
-        for entry in std::fs::read_dir(&d).with_context(|| d.display().to_string())? {
-            let path = entry?.path();
-            if path.is_dir() {
-                stack.push(path);
-                continue;
-            }
-            let rel = path.strip_prefix(dir).unwrap_or(&path).to_path_buf();
-            let name = rel.to_string_lossy();
-            let wanted = name.ends_with(".svg")
-                || (name.ends_with(".csv")
-                    && ["summary", "sensitiv", "optim", "variants"]
-                        .iter()
-                        .any(|k| name.contains(k)));
-            if wanted {
-                let bytes = std::fs::read(&path).with_context(|| path.display().to_string())?;
-                out.push((rel, bytes));
-            }
-        }
-    }
-    out.sort();
-    Ok(out)
 }

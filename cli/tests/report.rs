@@ -42,6 +42,8 @@ struct Reports {
     calibrate: (PathBuf, Value),
     diagnose: (PathBuf, Value),
     study: PathBuf,
+    /// A study of 18 variants (small multiples and difference maps).
+    sweep: PathBuf,
 }
 
 fn reports() -> Reports {
@@ -101,11 +103,21 @@ fn reports() -> Reports {
         "--report",
         study.to_str().unwrap(),
     ]));
+    let sweep = path("sweep.html");
+    ok(smash(&[
+        "run",
+        "configs/studies/com_sweep.toml",
+        "--out",
+        path("sweep").to_str().unwrap(),
+        "--report",
+        sweep.to_str().unwrap(),
+    ]));
     Reports {
         compare: (compare, serde_json::from_str(&cj).unwrap()),
         calibrate: (calibrate, serde_json::from_str(&kj).unwrap()),
         diagnose: (diagnose, serde_json::from_str(&dj).unwrap()),
         study,
+        sweep,
         _dir: dir,
     }
 }
@@ -299,6 +311,11 @@ fn pages_have_charts_and_the_json_numbers() {
     let html = std::fs::read_to_string(&r.study).unwrap();
     assert_self_contained(&html, "study");
     assert!(charts(&html).iter().any(|k| k == "face"));
+    let html = std::fs::read_to_string(&r.sweep).unwrap();
+    assert_self_contained(&html, "study of 18 variants");
+    let kinds = charts(&html);
+    assert_eq!(kinds.iter().filter(|k| *k == "face").count(), 4 * 18);
+    assert_eq!(kinds.iter().filter(|k| *k == "diff").count(), 4 * 17);
 }
 
 /// Chromium's binary, if installed.
@@ -402,6 +419,7 @@ fn pages_render_in_chromium() {
         ("calibrate", &r.calibrate.0, 4),
         ("diagnose", &r.diagnose.0, 2),
         ("study", &r.study, 1),
+        ("study of 18 variants", &r.sweep, 4 * 35),
     ] {
         let (png, console, dom) = render(&chrome, page, &dir.path().join(format!("{name}.png")));
         assert!(png.starts_with(b"\x89PNG"), "{name}: not a PNG");
@@ -490,6 +508,7 @@ fn labels_are_legible_in_the_narrowest_figure() {
         ("diagnose", &r.diagnose.0),
         ("diagnose, default candidates", &page),
         ("study", &r.study),
+        ("study of 18 variants", &r.sweep),
     ] {
         let html = std::fs::read_to_string(page).unwrap();
         let sizes = label_sizes(&html);
@@ -501,5 +520,68 @@ fn labels_are_legible_in_the_narrowest_figure() {
                  {NARROWEST_FIGURE_PX} px figure (at least {MIN_LABEL_PX} px)"
             );
         }
+    }
+}
+
+/// `page`'s document height and width, CSS px, laid out in a window `window_px` wide: a copy of
+/// the page with a script that writes them into its title, read from the browser's DOM.
+fn page_size(chrome: &Path, page: &Path, window_px: u32) -> (f64, f64) {
+    let dir = tempfile::tempdir().unwrap();
+    let copy = dir.path().join("measured.html");
+    let html = std::fs::read_to_string(page).unwrap().replace(
+        "</body>",
+        "<script>document.title='size '+document.documentElement.scrollHeight+' '\
+         +document.documentElement.scrollWidth</script></body>",
+    );
+    std::fs::write(&copy, html).unwrap();
+    let out = Command::new(chrome)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+        ])
+        .arg(format!(
+            "--user-data-dir={}",
+            dir.path().join("p").display()
+        ))
+        .arg(format!("--window-size={window_px},1000"))
+        .arg("--dump-dom")
+        .arg(format!("file://{}", copy.display()))
+        .output()
+        .expect("chromium runs");
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let title = &dom[dom.find("<title>size ").expect("the measuring script ran") + 12..];
+    let mut it = title[..title.find('<').unwrap()]
+        .split(' ')
+        .map(|v| v.parse::<f64>().unwrap());
+    (it.next().unwrap(), it.next().unwrap())
+}
+
+/// Width of an A4 page's printable area, CSS px (210 mm less 2 × 10 mm margins at 96 px per
+/// inch).
+const PRINT_WIDTH_PX: u32 = 718;
+
+#[test]
+fn study_pages_are_of_reasonable_height_and_fit_the_page_width() {
+    let Some(chrome) = chromium() else {
+        if std::env::var("CI").is_ok_and(|v| v == "true") {
+            panic!("Chromium is not installed in CI: .ci/run must install it (apt-get install chromium)");
+        }
+        eprintln!("\n*** SKIPPED: chromium is not installed. ***\n");
+        return;
+    };
+    let r = reports();
+    for (name, page, max_height_px) in [("study", &r.study, 2500.0), ("sweep", &r.sweep, 6000.0)] {
+        let (height, width) = page_size(&chrome, page, 1280);
+        eprintln!("{name}: {height} px tall, {width} px wide in a 1280 px window");
+        assert!(height <= max_height_px, "{name}: {height} px tall");
+        assert!(width <= 1280.0, "{name}: {width} px wide");
+        // No horizontal scroll at print width: the tables and maps fit.
+        let (_, width) = page_size(&chrome, page, PRINT_WIDTH_PX);
+        assert!(
+            width <= f64::from(PRINT_WIDTH_PX),
+            "{name}: {width} px wide at print width"
+        );
     }
 }

@@ -4,6 +4,10 @@
 
 use plotters::prelude::*;
 
+mod path;
+
+pub use path::path_svg;
+
 /// Width and height of a chart, px (scaled by the page's CSS).
 const SIZE: (u32, u32) = (560, 340);
 

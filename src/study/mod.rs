@@ -13,6 +13,7 @@
 //! - [`sensitivity`]: central differences at the base design, maps and a ranked table.
 //! - [`optimise`]: an argmin cost function over bounded design variables (Nelder–Mead).
 //! - [`output`]: the output files as bytes; [`shard`]: shard files and their merge.
+//! - [`report`]: the run's report as one typed value, and its text, JSON and HTML renderers.
 //! - [`yards`]: studies in yards (impact then ball flight): carry maps, robust carry and
 //!   dispersion over a distribution, head constraints (mass, Rules MOI limit, CoM box) and a
 //!   discretionary-mass optimiser for expected carry or dispersion; [`yards_variants`]: every
@@ -26,6 +27,7 @@ pub mod evaluate;
 pub mod metrics;
 pub mod optimise;
 pub mod output;
+pub mod report;
 pub mod sensitivity;
 pub mod shard;
 pub mod spec;

@@ -5,8 +5,12 @@
 //! no data) are NaN in memory, grey in the picture and empty in the CSV: no NaN reaches a file.
 
 mod draw;
+mod small;
 
 use self::draw::draw_svg;
+pub use self::small::{
+    colour_bar_svg, scale_colour, shared_limits, small_map_svg, SmallMap, SMALL_WIDTH_PX,
+};
 use crate::data::number::{push_cell, push_f64};
 
 /// How values map to colours.
@@ -288,6 +292,50 @@ impl BlockMeans {
         }
     }
 
+    /// The same sums in blocks of whole blocks, at most `max_cells` per axis (sums and counts
+    /// add, so the means are those of the map's cells in the larger blocks).
+    pub fn coarsened(&self, max_cells: usize) -> BlockMeans {
+        let by = self.sum.len() / self.bx.max(1);
+        let (gy, gx) = (
+            by.div_ceil(max_cells.max(1)).max(1),
+            self.bx.div_ceil(max_cells.max(1)).max(1),
+        );
+        let (cy, cx) = (by.div_ceil(gy), self.bx.div_ceil(gx));
+        let mut out = BlockMeans {
+            next_row: self.next_row,
+            fy: self.fy * gy,
+            fx: self.fx * gx,
+            nx: self.nx,
+            bx: cx,
+            sum: vec![0.0; cy * cx],
+            count: vec![0; cy * cx],
+        };
+        for b in 0..by {
+            for bj in 0..self.bx {
+                let (k, c) = (b * self.bx + bj, (b / gy) * cx + bj / gx);
+                out.sum[c] += self.sum[k];
+                out.count[c] += self.count[k];
+            }
+        }
+        out
+    }
+
+    /// The blocks as a map: their centres along `xs` and `ys` (the map's cell centres) and
+    /// their means, row-major (NaN where a block has no finite value).
+    pub fn cells(&self, xs: &[f64], ys: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        let values = self
+            .sum
+            .iter()
+            .zip(&self.count)
+            .map(|(s, &n)| if n > 0 { s / n as f64 } else { f64::NAN })
+            .collect();
+        (
+            block_centres(xs, self.fx),
+            block_centres(ys, self.fy),
+            values,
+        )
+    }
+
     /// The SVG picture of `map` (whose `values` are ignored; its blocks were added here).
     pub fn svg(&self, map: &Heatmap<'_>) -> String {
         let values: Vec<f64> = self
@@ -388,6 +436,34 @@ mod tests {
         assert!(cells < 150 * 150, "{cells} rects");
         assert!(svg.contains("block means"));
         assert!(!svg.to_lowercase().contains("nan"));
+    }
+
+    #[test]
+    fn coarsened_blocks_are_the_means_of_their_cells() {
+        let (ny, nx) = (7, 5);
+        let xs: Vec<f64> = (0..nx).map(|i| i as f64).collect();
+        let ys: Vec<f64> = (0..ny).map(|i| 10.0 * i as f64).collect();
+        let v: Vec<f64> = (0..ny * nx)
+            .map(|k| if k == 3 { f64::NAN } else { k as f64 })
+            .collect();
+        let mut b = BlockMeans::new(ny, nx);
+        b.add_rows(&v);
+        let (cx, cy, means) = b.coarsened(3).cells(&xs, &ys);
+        assert_eq!((cx.len(), cy.len()), (3, 3));
+        assert_eq!(cx, vec![0.5, 2.5, 4.0]);
+        assert_eq!(cy, vec![10.0, 40.0, 60.0]);
+        // The first block: rows 0–2, columns 0–1 (cells 0, 1, 5, 6, 10, 11).
+        assert_eq!(means[0], 33.0 / 6.0);
+        // The block holding the NaN cell: cells 2, 3 (NaN), 7, 8, 12, 13.
+        assert_eq!(means[1], 42.0 / 5.0);
+        // The last row of blocks is row 6 alone, the last column column 4 alone.
+        assert_eq!(means[8], 34.0);
+        // Coarsening to at least the map's size changes nothing.
+        let same = b.coarsened(100).cells(&xs, &ys).2;
+        assert_eq!(same.len(), v.len());
+        for (a, e) in same.iter().zip(&v) {
+            assert!(a == e || (a.is_nan() && e.is_nan()), "{a} against {e}");
+        }
     }
 
     #[test]

@@ -7,7 +7,6 @@ mod diagnose;
 mod figures;
 mod flight;
 mod pages;
-mod study;
 
 use std::fmt::Write as _;
 
@@ -17,7 +16,6 @@ use crate::physics::LaunchComponent;
 pub use diagnose::diagnose_page;
 pub use flight::flight_page;
 pub use pages::{calibrate_page, compare_page};
-pub use study::study_page;
 
 /// Escape text for HTML.
 pub fn esc(s: &str) -> String {
@@ -60,7 +58,8 @@ pub struct Page {
     pub sections: Vec<Section>,
 }
 
-const CSS: &str = "body{font-family:sans-serif;color:#222;margin:0 auto;max-width:1240px;padding:16px 24px;line-height:1.4}\
+/// The pages' style (shared with the study page of `crate::study::report`).
+pub const CSS: &str = "body{font-family:sans-serif;color:#222;margin:0 auto;max-width:1240px;padding:16px 24px;line-height:1.4}\
 h1{font-size:1.5em;margin:.2em 0}h2{font-size:1.2em;border-bottom:1px solid #ccc;margin-top:1.6em}\
 .sub{color:#555}.grid{display:grid;grid-template-columns:repeat(auto-fill,minmax(480px,1fr));gap:12px}\
 figure{margin:0;border:1px solid #e4e4e4;padding:6px;background:#fff}figure svg{width:100%;height:auto;display:block}\

@@ -40,7 +40,7 @@ use rayon::prelude::*;
 
 use crate::data::fmt_f64;
 use crate::data::number::push_cell;
-use crate::report::heatmap::Scale;
+use crate::report::heatmap::{BlockMeans, Scale};
 use crate::sweep::kernel::LaunchGrid;
 use crate::units::{mm, mph};
 
@@ -160,6 +160,23 @@ pub fn write_study(
     opt: Option<&OptimiseResult>,
     format: TableFormat,
 ) -> std::io::Result<usize> {
+    Ok(write_study_maps(root, p, grids, (metrics, sens, opt), format)?.0)
+}
+
+/// Most blocks per axis of the face maps [`write_study_maps`] keeps for a report: a small
+/// multiple is drawn 200 px wide, so finer blocks would not show.
+pub const REPORT_MAP_CELLS: usize = 40;
+
+/// [`write_study`], also returning every variant's face maps (per variant, one per study
+/// output) as block means of at most [`REPORT_MAP_CELLS`] per axis: the maps of the report,
+/// summed as the maps are written (they are never held whole).
+pub fn write_study_maps(
+    root: &Path,
+    p: &Prepared,
+    grids: &dyn GridSource,
+    (metrics, sens, opt): (&[Vec<f64>], &[Sensitivity], Option<&OptimiseResult>),
+    format: TableFormat,
+) -> std::io::Result<(usize, Vec<Vec<BlockMeans>>)> {
     write_study_holding(
         root,
         p,
@@ -178,14 +195,15 @@ fn write_study_holding(
     (metrics, sens, opt): (&[Vec<f64>], &[Sensitivity], Option<&OptimiseResult>),
     format: TableFormat,
     held_matrix_bytes: usize,
-) -> std::io::Result<usize> {
+) -> std::io::Result<(usize, Vec<Vec<BlockMeans>>)> {
     let s = &p.study;
     put(root, Path::new("study.toml"), resolved_toml(s).as_bytes())?;
     let axes: Vec<DesignVar> = s.design.axes.iter().map(|(v, _)| *v).collect();
     let names = metric_names(s.distribution.is_some());
     let variants = tables::variants_table(p, &axes, &names, metrics);
     put(root, Path::new("variants.csv"), variants.as_bytes())?;
-    let mut n_files = 2 + write_face_maps(root, p, grids, &axes, format, held_matrix_bytes)?;
+    let (n_maps, face_maps) = write_face_maps(root, p, grids, &axes, format, held_matrix_bytes)?;
+    let mut n_files = 2 + n_maps;
     if !sens.is_empty() {
         let t = tables::sensitivity_table(sens, &names);
         put(root, Path::new("sensitivity.csv"), t.as_bytes())?;
@@ -200,12 +218,12 @@ fn write_study_holding(
             n_files += 1;
         }
     }
-    Ok(n_files)
+    Ok((n_files, face_maps))
 }
 
 /// The long table and every variant's maps (matrices and pictures), one variant at a time: its
 /// long-table rows (ascending, which also sums the pictures' block means), then its matrices
-/// (top row first). Returns the number of files written.
+/// (top row first). Returns the number of files written and the maps' coarse block means.
 fn write_face_maps(
     root: &Path,
     p: &Prepared,
@@ -213,7 +231,7 @@ fn write_face_maps(
     axes: &[DesignVar],
     format: TableFormat,
     held_matrix_bytes: usize,
-) -> std::io::Result<usize> {
+) -> std::io::Result<(usize, Vec<Vec<BlockMeans>>)> {
     let s = &p.study;
     let long_rel = Path::new(match format {
         TableFormat::Csv => "maps_long.csv",
@@ -248,14 +266,17 @@ fn write_face_maps(
         read_error: Mutex::new(None),
     };
     let mut n_files = 1;
+    let mut face_maps = Vec::with_capacity(p.variants.len());
     for i in 0..p.variants.len() {
-        n_files += w.write(i, &mut long, long_rel)?;
+        let (n, blocks) = w.write(i, &mut long, long_rel)?;
+        n_files += n;
+        face_maps.push(blocks);
     }
     if let LongWriter::Parquet(w) = long {
         w.close()
             .map_err(|e| io_err(long_rel, std::io::Error::other(e)))?;
     }
-    Ok(n_files)
+    Ok((n_files, face_maps))
 }
 
 /// What every variant's maps are written with.
@@ -274,8 +295,14 @@ struct VariantWriter<'a> {
 }
 
 impl VariantWriter<'_> {
-    /// Variant `i`'s long-table rows into `long` and its maps; the number of map files.
-    fn write(&self, i: usize, long: &mut LongWriter, long_rel: &Path) -> std::io::Result<usize> {
+    /// Variant `i`'s long-table rows into `long` and its maps; the number of map files and the
+    /// maps' block means, coarsened to [`REPORT_MAP_CELLS`].
+    fn write(
+        &self,
+        i: usize,
+        long: &mut LongWriter,
+        long_rel: &Path,
+    ) -> std::io::Result<(usize, Vec<BlockMeans>)> {
         let (p, s) = (self.p, &self.p.study);
         let d = &p.variants[i];
         let mut prefix = i.to_string();
@@ -338,7 +365,12 @@ impl VariantWriter<'_> {
             return Err(e);
         }
         n += maps::write_svgs(self.root, p, &maps, &pass.blocks)?;
-        Ok(n)
+        let coarse = pass
+            .blocks
+            .iter()
+            .map(|b| b.coarsened(REPORT_MAP_CELLS))
+            .collect();
+        Ok((n, coarse))
     }
 
     /// Validity and each output's values of variant `i` on `rows` (row-major).
@@ -440,7 +472,7 @@ mod tests {
         Prepared::new(parse_study(Path::new("t.toml"), &text).unwrap()).unwrap()
     }
 
-    fn write(p: &Prepared, dir: &Path, budget: usize) {
+    fn write(p: &Prepared, dir: &Path, budget: usize) -> Vec<Vec<BlockMeans>> {
         let metrics = p.all_metrics();
         write_study_holding(
             dir,
@@ -450,7 +482,8 @@ mod tests {
             TableFormat::Csv,
             budget,
         )
-        .unwrap();
+        .unwrap()
+        .1
     }
 
     /// A map value as the standard library rounds it to ten significant digits, empty when
@@ -471,9 +504,9 @@ mod tests {
         assert!(ny > band_rows(nz), "the grid must span several bands");
         let dir = std::env::temp_dir().join(format!("smash-output-test-{}", std::process::id()));
         let (held, twice) = (dir.join("held"), dir.join("twice"));
-        write(&p, &held, HELD_MATRIX_BYTES);
+        let blocks = write(&p, &held, HELD_MATRIX_BYTES);
         // No memory for the matrix lines: the matrices take the second (top-down) pass.
-        write(&p, &twice, 0);
+        let blocks_twice = write(&p, &twice, 0);
         let (a, b) = (tree(&held), tree(&twice));
         assert_eq!(a.keys().collect::<Vec<_>>(), b.keys().collect::<Vec<_>>());
         for (k, v) in &a {
@@ -503,6 +536,23 @@ mod tests {
                         long += &format!(",{}", value(o.file_value(&r.grid, k, club_speed)));
                     }
                     long.push('\n');
+                }
+            }
+            // The report's maps: the block means of the whole map, coarsened.
+            for (k, o) in s.outputs.iter().enumerate() {
+                let whole: Vec<f64> = (0..ny * nz)
+                    .map(|c| o.file_value(&r.grid, c, club_speed))
+                    .collect();
+                let mut b = BlockMeans::new(ny, nz);
+                b.add_rows(&whole);
+                let want = b.coarsened(REPORT_MAP_CELLS).cells(&p.zs_mm, &p.ys_mm);
+                for got in [&blocks[i][k], &blocks_twice[i][k]] {
+                    let got = got.cells(&p.zs_mm, &p.ys_mm);
+                    assert_eq!((&got.0, &got.1), (&want.0, &want.1));
+                    assert!(got.0.len() <= REPORT_MAP_CELLS && got.1.len() <= REPORT_MAP_CELLS);
+                    for (a, e) in got.2.iter().zip(&want.2) {
+                        assert!(a == e || (a.is_nan() && e.is_nan()), "{a} against {e}");
+                    }
                 }
             }
             for o in &s.outputs {
