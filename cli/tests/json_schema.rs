@@ -127,4 +127,14 @@ fn every_json_report_is_documented_and_versioned() {
     let flight = json_of(&["flight", "--shots", s(&launch), "--out", s(&out), "--json"]);
     let flight = check("flight", &flight, &[]);
     assert!(flight["diagnosis"].is_null(), "{flight}");
+    let study = dir.path().join("study");
+    let run = json_of(&[
+        "run",
+        s(&repo("configs/studies/optimise.toml")),
+        "--out",
+        s(&study),
+        "--json",
+    ]);
+    let run = check("run", &run, &["yards"]);
+    assert!(run["optimiser"].is_object(), "optimise.toml optimises");
 }

@@ -69,7 +69,8 @@ fn pair(v: &Value) -> (f64, f64) {
 fn the_study_page_is_read_at_a_meeting() {
     let dir = tempfile::tempdir().unwrap();
     let (json, html, _) = run("configs/studies/com_sweep.toml", dir.path());
-    assert_eq!(json["schema"], "smash.study_report/1");
+    assert_eq!(json["schema_version"], 1);
+    assert_eq!(json["command"], "run");
     let variants = json["variants"].as_array().unwrap();
     assert_eq!(variants.len(), 18);
     // The base is the variant that changes nothing (com_dx 0, com_dy 0, inertia scale 1).

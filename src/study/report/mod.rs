@@ -25,8 +25,9 @@ use super::yards_run::YardsResult;
 use super::yards_variants::{delta, QUANTITIES};
 use crate::report::heatmap::{shared_limits, BlockMeans, Scale};
 
-/// Version of the JSON form of [`StudyReport`]; raised when a field changes meaning or goes.
-pub const SCHEMA: &str = "smash.study_report/1";
+/// Version of the JSON form of [`StudyReport`] (`schema_version`, as every command's JSON);
+/// raised when a field changes meaning or goes away (`docs/json.md`).
+pub const SCHEMA_VERSION: u32 = 1;
 
 /// Most variants drawn as small multiples: the base and the variants whose maps differ most
 /// from it (a meeting reads two dozen maps; every map is in the output folder).
@@ -46,8 +47,10 @@ pub const HEADLINE: [(&str, &str, usize); 7] = [
 /// Everything a study run reports.
 #[derive(Debug, Clone, Serialize)]
 pub struct StudyReport {
-    /// [`SCHEMA`].
-    pub schema: &'static str,
+    /// [`SCHEMA_VERSION`].
+    pub schema_version: u32,
+    /// `"run"` (a merge of shards reports the unsharded run).
+    pub command: &'static str,
     /// The study's name.
     pub name: String,
     /// The club's name.
@@ -292,7 +295,8 @@ impl StudyReport {
             })
             .collect();
         Self {
-            schema: SCHEMA,
+            schema_version: SCHEMA_VERSION,
+            command: "run",
             name: s.name.clone(),
             club: s.club.name.clone(),
             group: s.group.clone(),
