@@ -89,21 +89,13 @@ pub struct CalibrateArgs {
 
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
-    let noise: Vec<(&str, &std::path::Path)> = args
-        .noise
-        .as_deref()
-        .map(|n| ("--noise", n))
-        .into_iter()
-        .collect();
     let crate::measured::Loaded {
         plan,
         club,
         mut table,
-    } = args.inputs.load(
-        &noise,
-        |p| p.file("--out-club", args.out_club.as_deref()),
-        || Ok(()),
-    )?;
+    } = args
+        .inputs
+        .load_for_fit(args.noise.as_deref(), args.out_club.as_deref())?;
     super::to_model_convention(&club, &mut table, true, true)?;
     super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
     let mismatch =

@@ -125,21 +125,13 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
-    let noise: Vec<(&str, &std::path::Path)> = args
-        .noise
-        .as_deref()
-        .map(|n| ("--noise", n))
-        .into_iter()
-        .collect();
     let crate::measured::Loaded {
         plan,
         club,
         mut table,
-    } = args.inputs.load(
-        &noise,
-        |p| p.file("--out-club", args.out_club.as_deref()),
-        || Ok(()),
-    )?;
+    } = args
+        .inputs
+        .load_for_fit(args.noise.as_deref(), args.out_club.as_deref())?;
     let conventions = super::to_model_convention(&club, &mut table, args.inputs.json, true)?;
     super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
     let bar = Bar(job_bar(1, "fits"));

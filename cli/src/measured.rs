@@ -96,12 +96,23 @@ impl MeasuredArgs {
         self.effect_defs.load()?;
         let mut all = vec![("--club", self.club.as_path()), ("--shots", &self.shots)];
         all.extend_from_slice(inputs);
-        let plan = outputs(OutputPlan::new(&all).file("--report", self.report.as_deref()));
+        let plan = outputs(OutputPlan::new(&all)).file("--report", self.report.as_deref());
         plan.check()?;
         check()?;
         let club = read_club(&self.club)?;
         let table = self.shots_format.read(&self.shots)?;
         plan.check()?;
         Ok(Loaded { plan, club, table })
+    }
+
+    /// [`Self::load`] for the commands that fit and may write a club (`calibrate`,
+    /// `diagnose`): `--noise` is an input, `--out-club` an output.
+    pub fn load_for_fit(
+        &self,
+        noise: Option<&Path>,
+        out_club: Option<&Path>,
+    ) -> anyhow::Result<Loaded> {
+        let noise: Vec<(&str, &Path)> = noise.map(|n| ("--noise", n)).into_iter().collect();
+        self.load(&noise, |p| p.file("--out-club", out_club), || Ok(()))
     }
 }
