@@ -32,6 +32,36 @@
 //!
 //! The `smash` command line is a separate package of the workspace (`cli/`), a thin layer over
 //! this library; the library itself has no command-line dependencies.
+//!
+//! # Example: from delivery to landing
+//!
+//! The paper's driver at 100 mph and 12° of dynamic loft, struck at the face centre, then the
+//! ball flown in the default air. Deliveries and launches are in SI inside; the file units
+//! (mph, degrees, rpm, mm) are the shots file's.
+//!
+//! ```
+//! use std::path::Path;
+//! use smash::data::club_file::read_club;
+//! use smash::flight::{fly, FlightConfig, FlightLaunch};
+//! use smash::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
+//!
+//! let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/clubs/paper_driver.toml");
+//! let club = read_club(&path)?;
+//! let model = club.model_for_group("all")?;
+//! let mut x = [0.0; N_DELIVERY]; // file units, in DeliveryVar::ALL order
+//! x[DeliveryVar::ClubSpeed.index()] = 100.0; // mph
+//! x[DeliveryVar::DynamicLoft.index()] = 12.0; // degrees
+//! let launch = model.solve(&delivery_from_file_units(&x))?.launch();
+//! let [ball_speed_mph, launch_deg, _, backspin_rpm, _] = launch.to_file_units();
+//! // A driver's smash factor is about 1.4 to 1.5; loft launches the ball up with backspin.
+//! assert!((135.0..=155.0).contains(&ball_speed_mph), "{ball_speed_mph} mph");
+//! assert!(launch_deg > 5.0 && backspin_rpm > 1500.0, "{launch_deg}°, {backspin_rpm} rpm");
+//!
+//! let flight = fly(&FlightConfig::default(), &[FlightLaunch::from_launch(&launch)]).remove(0)?;
+//! let carry_yd = flight.carry_m / 0.9144;
+//! assert!((200.0..=280.0).contains(&carry_yd), "{carry_yd} yd");
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
