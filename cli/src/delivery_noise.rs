@@ -113,7 +113,7 @@ pub fn parse(s: &str) -> Result<DeliveryNoise, String> {
     Ok(DeliveryNoise::new(sd))
 }
 
-pub use smash::report::delivery_noise::{describe, spec, to_json};
+pub use smash::report::delivery_noise::spec;
 
 #[cfg(test)]
 mod tests {

@@ -1,5 +1,5 @@
 //! The scales the models of `calibrate` and `diagnose` are scored by, and the instrument class
-//! argument that gives them; the likelihood table itself is the library's
+//! argument that gives them; the likelihood table is the library's
 //! [`smash::report::likelihood`].
 
 use std::path::Path;
@@ -53,5 +53,3 @@ pub fn parse_instrument(s: &str) -> Result<InstrumentClass, String> {
         )
     })
 }
-
-pub use smash::report::likelihood::{scales_text, score_json, text, to_json};
