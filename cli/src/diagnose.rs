@@ -255,11 +255,7 @@ fn layout(args: &DiagnoseArgs) -> Layout {
         words.extend(["--format".to_owned(), shell_word(format)]);
     }
     if let Some(side) = f.impact_offset_positive {
-        let side = match side {
-            crate::OffsetSideArg::Toe => "toe",
-            crate::OffsetSideArg::Heel => "heel",
-        };
-        words.extend(["--impact-offset-positive".to_owned(), side.into()]);
+        words.extend(["--impact-offset-positive".to_owned(), side.name().into()]);
     }
     for (on, flag) in [
         (f.ignore_unknown_columns, "--ignore-unknown-columns"),

@@ -511,11 +511,30 @@ pub enum OffsetSideArg {
     Heel,
 }
 
+impl OffsetSideArg {
+    /// The value as the flag and a project file write it (`toe`, `heel`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Toe => "toe",
+            Self::Heel => "heel",
+        }
+    }
+}
+
 impl From<OffsetSideArg> for smash::data::import::OffsetSide {
     fn from(side: OffsetSideArg) -> Self {
         match side {
             OffsetSideArg::Toe => Self::Toe,
             OffsetSideArg::Heel => Self::Heel,
+        }
+    }
+}
+
+impl From<smash::data::import::OffsetSide> for OffsetSideArg {
+    fn from(side: smash::data::import::OffsetSide) -> Self {
+        match side {
+            smash::data::import::OffsetSide::Toe => Self::Toe,
+            smash::data::import::OffsetSide::Heel => Self::Heel,
         }
     }
 }

@@ -44,7 +44,7 @@ pub struct Defaults {
     /// `--format`.
     pub format: Option<String>,
     /// `--impact-offset-positive` (`toe` or `heel`).
-    pub impact_offset_positive: Option<Side>,
+    pub impact_offset_positive: Option<smash::data::import::OffsetSide>,
     /// `--instrument`.
     pub instrument: Option<String>,
     /// `--noise`.
@@ -106,16 +106,6 @@ pub fn read(path: &Path) -> anyhow::Result<Defaults> {
     Ok(d)
 }
 
-/// A side of `impact_offset_positive` as the file writes it.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Side {
-    /// Toward the toe.
-    Toe,
-    /// Toward the heel.
-    Heel,
-}
-
 /// The options of one command that a project file may set, borrowed from its parsed flags.
 #[derive(Default)]
 pub struct Layered<'a> {
@@ -148,12 +138,10 @@ impl Defaults {
                 f.format = Some(v.clone());
                 taken.push(format!("format = {v}"));
             }
-            if let (None, Some(side)) = (f.impact_offset_positive, &self.impact_offset_positive) {
-                f.impact_offset_positive = Some(match side {
-                    Side::Toe => crate::OffsetSideArg::Toe,
-                    Side::Heel => crate::OffsetSideArg::Heel,
-                });
-                taken.push(format!("impact_offset_positive = {}", side_name(*side)));
+            if let (None, Some(side)) = (f.impact_offset_positive, self.impact_offset_positive) {
+                let side = crate::OffsetSideArg::from(side);
+                f.impact_offset_positive = Some(side);
+                taken.push(format!("impact_offset_positive = {}", side.name()));
             }
         }
         if let (Some((m, exact)), Some(noise), Some([y, z])) =
@@ -178,12 +166,5 @@ impl Defaults {
             }
         }
         taken
-    }
-}
-
-fn side_name(s: Side) -> &'static str {
-    match s {
-        Side::Toe => "toe",
-        Side::Heel => "heel",
     }
 }
