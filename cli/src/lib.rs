@@ -116,20 +116,11 @@ impl Command {
                 shots_format: Some(&mut a.format),
                 ..Layered::default()
             },
-            Command::Effects(a) => Layered {
-                effect_defs: Some(&mut a.effect_defs),
-                ..Layered::default()
-            },
-            Command::Synth(a) => Layered {
-                effect_defs: Some(&mut a.effect_defs),
-                ..Layered::default()
-            },
-            Command::Run(a) => Layered {
-                effect_defs: Some(&mut a.effect_defs),
-                ..Layered::default()
-            },
-            Command::Merge(a) => Layered {
-                effect_defs: Some(&mut a.effect_defs),
+            Command::Effects(effects::EffectsArgs { effect_defs, .. })
+            | Command::Synth(synth::SynthArgs { effect_defs, .. })
+            | Command::Run(run::RunArgs { effect_defs, .. })
+            | Command::Merge(merge::MergeArgs { effect_defs, .. }) => Layered {
+                effect_defs: Some(effect_defs),
                 ..Layered::default()
             },
             Command::Flight(_) | Command::Whatif(_) => Layered::default(),
