@@ -138,11 +138,10 @@ fn to_json(cal: &Calibration) -> serde_json::Value {
 
 /// The impact-location (mm, to 1e-6) and delivery noise the fit assumed (`null`: as measured).
 fn measurement_json(cal: &Calibration) -> serde_json::Value {
-    let mm = |m: f64| (m * 1e9).round() / 1e6;
     json!({
         "impact_noise_mm": cal.impact_noise.map(|n| json!({
-            "y": mm(n.sigma_y_m),
-            "z": mm(n.sigma_z_m),
+            "y": super::location_mm(n.sigma_y_m),
+            "z": super::location_mm(n.sigma_z_m),
         })),
         "delivery_noise": cal.delivery_noise.as_ref().map(crate::report::delivery_noise::to_json),
     })

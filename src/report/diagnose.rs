@@ -12,6 +12,7 @@ use crate::diagnose::noise_floor::{NoiseFloor, SpreadBand};
 use crate::diagnose::Diagnosis;
 use crate::fit::ParamEstimate;
 use crate::physics::LaunchComponent;
+use crate::report::location_mm;
 
 /// The version of diagnose's JSON schema (`schema_version`); raised when a key changes meaning
 /// or goes away (a new key does not raise it).
@@ -38,12 +39,6 @@ impl DiagnoseReport {
     pub fn conclusion(&self) -> String {
         conclusion(&self.diagnosis, &self.floor)
     }
-}
-
-/// An impact-location noise in mm as printed: to 1e-6 mm, so that 1.8 mm shows as 1.8 after
-/// the metre round trip.
-pub fn location_mm(m: f64) -> f64 {
-    (m * 1e9).round() / 1e6
 }
 
 fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {

@@ -18,3 +18,9 @@ pub mod wrap;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
 pub use tables::{error_table_text, error_tables_side_by_side, fmt_value, TextTable};
+
+/// An impact-location noise in mm as the reports print it: to 1e-6 mm, so that 1.8 mm shows as
+/// 1.8 after the metre round trip.
+pub fn location_mm(m: f64) -> f64 {
+    (m * 1e9).round() / 1e6
+}

@@ -10,13 +10,12 @@ use crate::stats::t_statistic;
 
 /// The "Measurement model:" line: what the fit took as noisy, and how much.
 pub fn measurement_line(cal: &Calibration) -> String {
-    let mm = |m: f64| (m * 1e9).round() / 1e6;
     let mut parts = Vec::new();
     if let Some(n) = cal.impact_noise {
         parts.push(format!(
             "impact locations with 1σ noise {} mm (vertical), {} mm (heel-toe)",
-            mm(n.sigma_y_m),
-            mm(n.sigma_z_m)
+            crate::report::location_mm(n.sigma_y_m),
+            crate::report::location_mm(n.sigma_z_m)
         ));
     }
     if let Some(n) = &cal.delivery_noise {

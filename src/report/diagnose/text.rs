@@ -2,12 +2,13 @@
 //! strata, the model comparison, the noise floor and the errors before and after, in
 //! [`crate::report::text::WIDTH`] columns (`--wide`: the full candidate and noise-floor tables).
 
-use super::{calibrate_flag_pairs, conclusion, location_mm, DiagnoseReport};
+use super::{calibrate_flag_pairs, conclusion, DiagnoseReport};
 use crate::diagnose::honest;
 use crate::diagnose::noise_floor::NoiseFloor;
 use crate::diagnose::{Diagnosis, Step};
 use crate::fit::ParamEstimate;
 use crate::physics::LaunchComponent;
+use crate::report::location_mm;
 use crate::report::text::{shell_command, shell_word, wrap_long};
 use crate::report::{error_table_text, TextTable};
 
