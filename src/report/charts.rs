@@ -69,6 +69,24 @@ fn draw_category_mesh<'a, 'b: 'a>(
         .map_err(err)
 }
 
+/// The mesh of a chart with a value on each axis, both labelled.
+fn draw_value_mesh<'a, 'b: 'a>(
+    chart: &mut Chart<'a, 'b>,
+    x_label: &str,
+    y_label: &str,
+) -> Result<(), String> {
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style(("sans-serif", 13))
+        .light_line_style(BLACK.mix(0.05))
+        .draw()
+        .map_err(err)
+}
+
 /// The legend box at `position`.
 fn draw_legend<'a, 'b: 'a>(
     chart: &mut Chart<'a, 'b>,
@@ -327,16 +345,7 @@ pub fn scatter_trend_svg(
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let mut chart = build_chart(&root, title, (40, 64), x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .label_style(("sans-serif", 13))
-            .light_line_style(BLACK.mix(0.05))
-            .draw()
-            .map_err(err)?;
+        draw_value_mesh(&mut chart, x_label, y_label)?;
         chart
             .draw_series(LineSeries::new(
                 [(x0, 0.0), (x1, 0.0)],

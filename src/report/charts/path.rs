@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{build_chart, err, range, tick, BLUE_C, SIZE};
+use super::{build_chart, draw_value_mesh, err, range, BLUE_C, SIZE};
 
 /// `points` (iteration, value) as a line with markers, titled, with both axes labelled.
 pub fn path_svg(
@@ -25,16 +25,7 @@ pub fn path_svg(
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         root.fill(&WHITE).map_err(err)?;
         let mut chart = build_chart(&root, title, (40, 80), x0..x1, y0..y1)?;
-        chart
-            .configure_mesh()
-            .x_desc(x_label)
-            .y_desc(y_label)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .label_style(("sans-serif", 13))
-            .light_line_style(BLACK.mix(0.05))
-            .draw()
-            .map_err(err)?;
+        draw_value_mesh(&mut chart, x_label, y_label)?;
         chart
             .draw_series(LineSeries::new(pts.iter().copied(), BLUE_C.stroke_width(2)))
             .map_err(err)?;
