@@ -35,7 +35,8 @@ impl Serialize for DiagnoseReport {
 }
 
 impl DiagnoseReport {
-    /// What the diagnosis concludes about the structure left in the errors ([`conclusion`]).
+    /// What the diagnosis concludes about the structure left in the errors and, when the
+    /// instrument noise was assumed, what that verdict rests on.
     pub fn conclusion(&self) -> String {
         conclusion(&self.diagnosis, &self.floor)
     }
@@ -73,7 +74,7 @@ fn estimates_json_with(
 /// different from its no-effect value), `provisional` (its value differs
 /// across strata of the shots) or `ambiguous` (a plausible value with a plausible rival, or
 /// aliased with another effect).
-pub fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
+fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
     if d.club_mismatch.is_some() {
         "wrong_club"
     } else if honest::is_plausible(p) == Some(false) {
@@ -185,7 +186,7 @@ fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
 
 /// What the diagnosis concludes about the structure left in the errors, and, when the
 /// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
-pub fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
+fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
     format!("{}{}", verdict(d, floor), assumed_note(floor))
 }
 
@@ -328,7 +329,7 @@ fn verdict(d: &Diagnosis, floor: &NoiseFloor) -> String {
 
 /// The `smash calibrate` flags that fit the diagnosis's final model (its effects and its
 /// measurement model), each with its value.
-pub fn calibrate_flag_pairs(d: &Diagnosis) -> Vec<(&'static str, String)> {
+fn calibrate_flag_pairs(d: &Diagnosis) -> Vec<(&'static str, String)> {
     let mut flags = Vec::new();
     if !d.selected.is_empty() {
         flags.push(("--effects", d.selected.join(",")));
