@@ -9,7 +9,7 @@ use clap::{Args, ValueEnum};
 use smash::data::club_file::club_toml_checked;
 use smash::data::shots::ShotTable;
 use smash::fit::{
-    calibrate_scored, parse_effect_list, CalibrateOptions, Calibration, FitError, Method, Progress,
+    calibrate_scored, parse_effect_list, CalibrateOptions, FitError, Method, Progress,
 };
 use smash::report::calibrate::CalibrateReport;
 use smash::ClubSpec;
@@ -103,13 +103,9 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             .club_check
             .check(&args.inputs.club, &club, &args.inputs.shots, &table.shots)?;
     let line = Arc::new(IterationLine::new());
-    let cal = compute(&args, &club, &table, Some(line.clone()));
+    let report = compute(&args, &club, &table, mismatch, Some(line.clone()));
     line.finish();
-    let report = CalibrateReport {
-        calibration: cal?,
-        n_shots: table.shots.len(),
-        club_mismatch: mismatch,
-    };
+    let report = report?;
     let cal = &report.calibration;
     let mut staging = plan.stage();
     if let Some(out) = &args.out_club {
@@ -180,15 +176,17 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The calibration of `table` with `club` under `args`' options (its `--club` and `--shots`
-/// only name them in messages), refused when any reported number is not finite; `progress`
-/// sees the solver's iterations. What `run` reports.
+/// The report of the calibration of `table` with `club` under `args`' options (its `--club`
+/// and `--shots` only name them in messages), refused when any reported number is not finite;
+/// `club_mismatch`: why the shots are another club's, when the caller's club check let them
+/// through. `progress` sees the solver's iterations. What `run` reports.
 pub fn compute(
     args: &CalibrateArgs,
     club: &ClubSpec,
     table: &ShotTable,
+    club_mismatch: Option<String>,
     progress: Option<Arc<dyn Progress>>,
-) -> anyhow::Result<Calibration> {
+) -> anyhow::Result<CalibrateReport> {
     if !table.has_measurements() {
         return Err(FitError::NoMeasurements).context(args.inputs.shots.display().to_string());
     }
@@ -238,5 +236,9 @@ pub fn compute(
             args.inputs.shots.display()
         );
     }
-    Ok(cal)
+    Ok(CalibrateReport {
+        calibration: cal,
+        n_shots: table.shots.len(),
+        club_mismatch,
+    })
 }

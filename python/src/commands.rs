@@ -231,11 +231,7 @@ fn calibrate(
                 &a.inputs.shots,
                 &table.shots,
             )?;
-            let report = smash::report::calibrate::CalibrateReport {
-                calibration: smash_cli::calibrate::compute(&a, &club.spec, &table, progress)?,
-                n_shots: table.shots.len(),
-                club_mismatch: mismatch,
-            };
+            let report = smash_cli::calibrate::compute(&a, &club.spec, &table, mismatch, progress)?;
             let json = serde_json::to_string_pretty(&report)?;
             Ok((json, report.calibration.club, warnings))
         })
