@@ -24,7 +24,7 @@ use rayon::prelude::*;
 
 use super::aero::{CoefficientModel, ModelVisitor};
 use super::{Flight, FlightConfig, FlightError, FlightLaunch, SpinDecay, G_M_S2};
-use crate::lanes::{each2, each3, simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
+use crate::lanes::{simd_level, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 
@@ -372,6 +372,27 @@ fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
     ]
 }
 
+/// [`rk4`] for one lane group: the same operations lane by lane, so the same bits (the
+/// contact refinement re-integrates only the group that needs it).
+#[inline(always)]
+fn rk4_one<L: Lanes, C: CoefficientModel, const WIND: bool>(
+    k: &Consts,
+    cfg: &FlightConfig,
+    model: &C,
+    axis: &[L; 3],
+    s: &St<L>,
+) -> St<L> {
+    let h = k.dt;
+    let r1 = rate::<L, C, WIND>(k, cfg, model, axis, s);
+    let s2 = axpy(s, 0.5 * h, &s.v, &r1);
+    let r2 = rate::<L, C, WIND>(k, cfg, model, axis, &s2);
+    let s3 = axpy(s, 0.5 * h, &s2.v, &r2);
+    let r3 = rate::<L, C, WIND>(k, cfg, model, axis, &s3);
+    let s4 = axpy(s, h, &s3.v, &r3);
+    let r4 = rate::<L, C, WIND>(k, cfg, model, axis, &s4);
+    combine(h / 6.0, [s, &s2, &s3, &s4], [&r1, &r2, &r3, &r4])
+}
+
 /// The RK4 step from the stages' states `s` and rates `r`, `h6 = h/6`.
 #[inline(always)]
 fn combine<L: Lanes>(h6: f64, s: [&St<L>; 4], r: [&Rate<L>; 4]) -> St<L> {
@@ -399,6 +420,11 @@ fn batches<L: Lanes, C: CoefficientModel, const WIND: bool>(k: &Consts, args: Ar
     let b = G * L::N;
     let mut idx = [0usize; MAX_B];
     let mut n = 0;
+    // The contact refinement's substep states, one buffer a group, reused by every batch.
+    let mut fine: [Vec<Lanewise<L>>; G] = [
+        Vec::with_capacity(REFINE + 1),
+        Vec::with_capacity(REFINE + 1),
+    ];
     for (i, l) in launches.iter().enumerate() {
         match l.check() {
             Err(e) => out[i] = Err(e),
@@ -406,7 +432,7 @@ fn batches<L: Lanes, C: CoefficientModel, const WIND: bool>(k: &Consts, args: Ar
                 idx[n] = i;
                 n += 1;
                 if n == b {
-                    batch::<L, C, WIND>(cfg, k, model, launches, &idx[..b], b, out);
+                    batch::<L, C, WIND>(cfg, k, model, (launches, &idx[..b], b), out, &mut fine);
                     n = 0;
                 }
             }
@@ -416,7 +442,7 @@ fn batches<L: Lanes, C: CoefficientModel, const WIND: bool>(k: &Consts, args: Ar
         for j in n..b {
             idx[j] = idx[n - 1];
         }
-        batch::<L, C, WIND>(cfg, k, model, launches, &idx[..b], n, out);
+        batch::<L, C, WIND>(cfg, k, model, (launches, &idx[..b], n), out, &mut fine);
     }
 }
 
@@ -444,16 +470,23 @@ fn start<L: Lanes>(launches: &[FlightLaunch], idx: &[usize]) -> ([St<L>; G], [[L
             ax[2][lane] = 1.0;
         }
     }
-    let part = |a: &[f64; MAX_B], g: usize| L::load(&a[g * L::N..]);
+    // Written out, no closure around the loads (see `crate::lanes::each2`).
     let zero = L::splat(0.0);
-    (
-        each2(|g| St {
-            p: [zero; 3],
-            v: each3(|j| part(&v[j], g)),
-            w: part(&w, g),
-        }),
-        each2(|g| each3(|j| part(&ax[j], g))),
-    )
+    let mut st = [St {
+        p: [zero; 3],
+        v: [zero; 3],
+        w: zero,
+    }; G];
+    let mut axes = [[zero; 3]; G];
+    for g in 0..G {
+        let at = g * L::N;
+        for j in 0..3 {
+            st[g].v[j] = L::load(&v[j][at..]);
+            axes[g][j] = L::load(&ax[j][at..]);
+        }
+        st[g].w = L::load(&w[at..]);
+    }
+    (st, axes)
 }
 
 /// A state's lanes as arrays (to follow one lane through an event).
@@ -466,25 +499,25 @@ struct Lanewise<L: Lanes> {
 impl<L: Lanes> St<L> {
     #[inline(always)]
     fn lanewise(&self) -> Lanewise<L> {
+        let (p, v) = (&self.p, &self.v);
         Lanewise {
-            p: each3(|j| self.p[j].to_array()),
-            v: each3(|j| self.v[j].to_array()),
+            p: [p[0].to_array(), p[1].to_array(), p[2].to_array()],
+            v: [v[0].to_array(), v[1].to_array(), v[2].to_array()],
             w: self.w.to_array(),
         }
     }
 }
 
 /// Integrate the launches `idx` (the first `n` are real, the rest padding copies). Lane `L` is
-/// lane `L % N` of group `L / N`.
+/// lane `L % N` of group `L / N`. `fine` is scratch for the contact refinement.
 #[inline(always)]
 fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     cfg: &FlightConfig,
     k: &Consts,
     model: &C,
-    launches: &[FlightLaunch],
-    idx: &[usize],
-    n: usize,
+    (launches, idx, n): (&[FlightLaunch], &[usize], usize),
     out: &mut [Result<Flight, FlightError>],
+    fine: &mut [Vec<Lanewise<L>>; G],
 ) {
     let (mut s, axis) = start::<L>(launches, idx);
     let zero = L::splat(0.0);
@@ -497,9 +530,10 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     let mut steps = 0u64;
     while left > 0 && t < k.max_time {
         let ns = rk4::<L, C, WIND>(k, cfg, model, &axis, &s);
-        let (s_all, axis_all) = (s, axis);
-        let mut fine: Option<[Vec<Lanewise<L>>; G]> = None;
         for g in 0..G {
+            // This group's step re-integrated in substeps, made once when a lane needs it.
+            let mut refined = false;
+            let (axis_g, s_g) = (&axis[g], &s[g]);
             let (s, ns) = (&s[g], &ns[g]);
             // The apex before this step (a lane that lands in it keeps only the part of the
             // step before its landing) and after it.
@@ -519,7 +553,11 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
             let pair = [s.lanewise(), ns.lanewise()];
             let mut top = apex[g].to_array();
             let before = before.to_array();
-            let ax = each3(|j| axis[g][j].to_array());
+            let ax = [
+                axis[g][0].to_array(),
+                axis[g][1].to_array(),
+                axis[g][2].to_array(),
+            ];
             for i in 0..L::N {
                 if done[g][i] || !event.get(i) {
                     continue;
@@ -528,10 +566,14 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
                 let mut lane_top = before[i];
                 // A contact is searched on the step re-integrated in REFINE substeps (made once
                 // a step for every lane that needs it), an apex on the step itself.
+                // (Plain code, no `get_or_insert_with`: a closure does not inherit the target
+                // feature of this function, so the lane operations of `substeps` inlined into one
+                // become out-of-line calls; `.ci/no_outlined_intrinsics.py` checks the binary.)
+                if contact.get(i) && !refined {
+                    substeps::<L, C, WIND>(k, cfg, model, axis_g, s_g, &mut fine[g]);
+                    refined = true;
+                }
                 let (states, hs): (&[Lanewise<L>], f64) = if contact.get(i) {
-                    let fine = fine.get_or_insert_with(|| {
-                        substeps::<L, C, WIND>(k, cfg, model, &axis_all, &s_all)
-                    });
                     (&fine[g], h / REFINE as f64)
                 } else {
                     (&pair, h)
@@ -569,28 +611,28 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
 /// same place at any step (`tests/flight_step.rs`).
 const REFINE: usize = 8;
 
-/// The states of both lane groups at the ends of [`REFINE`] substeps of the step from `s`
-/// (the start first), lane by lane.
+/// The states of one lane group at the ends of [`REFINE`] substeps of the step from `s` (the
+/// start first), lane by lane, into `out`.
 #[inline(always)]
 fn substeps<L: Lanes, C: CoefficientModel, const WIND: bool>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
-    axis: &[[L; 3]; G],
-    s: &[St<L>; G],
-) -> [Vec<Lanewise<L>>; G] {
+    axis: &[L; 3],
+    s: &St<L>,
+    out: &mut Vec<Lanewise<L>>,
+) {
     let fine = Consts {
         dt: k.dt / REFINE as f64,
         ..*k
     };
     let mut cur = *s;
-    let mut out = [vec![cur[0].lanewise()], vec![cur[1].lanewise()]];
+    out.clear();
+    out.push(cur.lanewise());
     for _ in 0..REFINE {
-        cur = rk4::<L, C, WIND>(&fine, cfg, model, axis, &cur);
-        out[0].push(cur[0].lanewise());
-        out[1].push(cur[1].lanewise());
+        cur = rk4_one::<L, C, WIND>(&fine, cfg, model, axis, &cur);
+        out.push(cur.lanewise());
     }
-    out
 }
 
 mod land;
