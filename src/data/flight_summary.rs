@@ -120,75 +120,151 @@ pub struct FlightSummary {
 /// cell is empty are not counted for that quantity. `None` when the table has no `err_`
 /// column of [`SUMMARY_QUANTITIES`] (nothing measured to compare with).
 pub fn summarise(headers: &[String], rows: &[Vec<&str>]) -> Option<FlightSummary> {
-    let col = |name: &str| headers.iter().position(|h| h == name);
-    let group = col("group");
-    let quantities: Vec<(usize, usize, usize)> = SUMMARY_QUANTITIES
-        .iter()
-        .enumerate()
-        .filter_map(|(q, (name, _, _))| Some((q, col(&format!("err_{name}"))?, col(name)?)))
-        .collect();
-    if quantities.is_empty() {
-        return None;
+    let mut t = Compact::new(headers)?;
+    for row in rows {
+        t.push(|c| row.get(c).copied());
     }
-    let mut groups: Vec<String> = Vec::new();
-    let mut members: Vec<Vec<usize>> = Vec::new();
-    for (r, row) in rows.iter().enumerate() {
-        let g = group.and_then(|c| row.get(c).copied()).unwrap_or("");
+    Some(t.summary())
+}
+
+/// What the summary reads of a flight output, row by row: each row's group and the values of
+/// the compared quantities' `err_` and measured columns (so that a file of millions of rows is
+/// summarised without holding its cells).
+struct Compact {
+    group: Option<usize>,
+    /// Per compared quantity: (index in [`SUMMARY_QUANTITIES`], err column, measured column).
+    quantities: Vec<(usize, usize, usize)>,
+    groups: Vec<String>,
+    members: Vec<Vec<usize>>,
+    /// Per row and quantity, the (error, measured) pair when both cells hold a finite number.
+    values: Vec<Option<(f64, f64)>>,
+    rows: usize,
+}
+
+impl Compact {
+    /// `None` when the header has no compared quantity.
+    fn new(headers: &[String]) -> Option<Self> {
+        let col = |name: &str| headers.iter().position(|h| h == name);
+        let quantities: Vec<(usize, usize, usize)> = SUMMARY_QUANTITIES
+            .iter()
+            .enumerate()
+            .filter_map(|(q, (name, _, _))| Some((q, col(&format!("err_{name}"))?, col(name)?)))
+            .collect();
+        if quantities.is_empty() {
+            return None;
+        }
+        Some(Self {
+            group: col("group"),
+            quantities,
+            groups: Vec::new(),
+            members: Vec::new(),
+            values: Vec::new(),
+            rows: 0,
+        })
+    }
+
+    /// Adds the row whose cell in column `c` is `cell(c)`.
+    fn push<'a>(&mut self, cell: impl Fn(usize) -> Option<&'a str>) {
+        let value = |c: usize| {
+            cell(c)
+                .and_then(crate::data::number::parse_f64)
+                .filter(|x| x.is_finite())
+        };
+        let g = self.group.and_then(&cell).unwrap_or("");
         let g = if g.is_empty() { "(no group)" } else { g };
-        match groups.iter().position(|x| x == g) {
-            Some(k) => members[k].push(r),
+        let r = self.rows;
+        match self.groups.iter().position(|x| x == g) {
+            Some(k) => self.members[k].push(r),
             None => {
-                groups.push(g.to_string());
-                members.push(vec![r]);
+                self.groups.push(g.to_string());
+                self.members.push(vec![r]);
             }
         }
+        for &(_, e, m) in &self.quantities {
+            self.values.push(value(e).zip(value(m)));
+        }
+        self.rows += 1;
     }
-    let value = |row: &Vec<&str>, c: usize| {
-        row.get(c)
-            .and_then(|s| crate::data::number::parse_f64(s))
-            .filter(|x| x.is_finite())
-    };
-    let stats_of = |idx: &[usize]| -> Vec<(String, ErrorStats)> {
-        quantities
-            .iter()
-            .filter_map(|&(q, e, m)| {
-                let pairs: Vec<(f64, f64)> = idx
-                    .iter()
-                    .filter_map(|&r| Some((value(&rows[r], e)?, value(&rows[r], m)?)))
-                    .collect();
-                let stats = ErrorStats::new(&pairs, q == 0)?;
-                Some((SUMMARY_QUANTITIES[q].0.to_string(), stats))
-            })
-            .collect()
-    };
-    let mut out: Vec<SummaryRow> = groups
-        .iter()
-        .zip(&members)
-        .map(|(g, idx)| SummaryRow {
-            group: g.clone(),
-            shots: idx.len(),
-            errors: stats_of(idx),
-        })
-        .collect();
-    let all: Vec<usize> = (0..rows.len()).collect();
-    out.push(SummaryRow {
-        group: "all".into(),
-        shots: rows.len(),
-        errors: stats_of(&all),
-    });
-    let carry_points = quantities
-        .iter()
-        .find(|q| q.0 == 0)
-        .map(|&(_, e, m)| {
-            rows.iter()
-                .filter_map(|r| Some((value(r, m)?, value(r, e)?)))
+
+    fn summary(&self) -> FlightSummary {
+        let nq = self.quantities.len();
+        let stats_of = |idx: &mut dyn Iterator<Item = usize>| -> Vec<(String, ErrorStats)> {
+            let idx: Vec<usize> = idx.collect();
+            self.quantities
+                .iter()
+                .enumerate()
+                .filter_map(|(k, &(q, _, _))| {
+                    let pairs: Vec<(f64, f64)> = idx
+                        .iter()
+                        .filter_map(|&r| self.values[r * nq + k])
+                        .collect();
+                    let stats = ErrorStats::new(&pairs, q == 0)?;
+                    Some((SUMMARY_QUANTITIES[q].0.to_string(), stats))
+                })
                 .collect()
-        })
-        .unwrap_or_default();
-    Some(FlightSummary {
-        rows: out,
-        carry_points,
-    })
+        };
+        let mut out: Vec<SummaryRow> = self
+            .groups
+            .iter()
+            .zip(&self.members)
+            .map(|(g, idx)| SummaryRow {
+                group: g.clone(),
+                shots: idx.len(),
+                errors: stats_of(&mut idx.iter().copied()),
+            })
+            .collect();
+        out.push(SummaryRow {
+            group: "all".into(),
+            shots: self.rows,
+            errors: stats_of(&mut (0..self.rows)),
+        });
+        let carry_points = self
+            .quantities
+            .iter()
+            .position(|q| q.0 == 0)
+            .map(|k| {
+                (0..self.rows)
+                    .filter_map(|r| self.values[r * nq + k].map(|(e, m)| (m, e)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        FlightSummary {
+            rows: out,
+            carry_points,
+        }
+    }
+}
+
+/// Summarise a flight output file (see [`summarise`]), streamed: the header first (a file
+/// without measured columns is not read further), then row by row, holding only the compared
+/// values (a 2-million-row output is summarised in a few MB, not read into memory whole).
+pub fn summarise_file(
+    path: &std::path::Path,
+) -> Result<Option<FlightSummary>, crate::data::DataError> {
+    use crate::data::DataError;
+    let file = std::fs::File::open(path)
+        .map_err(|e| DataError::file(path, format!("cannot be read: {e}")))?;
+    let mut reader = csv::ReaderBuilder::new()
+        .flexible(true)
+        .from_reader(std::io::BufReader::with_capacity(1 << 20, file));
+    let bad = |e: csv::Error| {
+        let line = e.position().map(|p| p.line() as usize);
+        DataError::at(path, line, None, crate::data::csv_message(&e))
+    };
+    let headers: Vec<String> = reader
+        .headers()
+        .map_err(bad)?
+        .iter()
+        .map(|h| h.trim_start_matches('\u{feff}').to_string())
+        .collect();
+    let Some(mut t) = Compact::new(&headers) else {
+        return Ok(None);
+    };
+    let mut record = csv::StringRecord::new();
+    while reader.read_record(&mut record).map_err(bad)? {
+        t.push(|c| record.get(c));
+    }
+    Ok(Some(t.summary()))
 }
 
 impl FlightSummary {
@@ -230,16 +306,6 @@ impl FlightSummary {
         }
         t
     }
-}
-
-/// Summarise a flight output file (see [`summarise`]).
-pub fn summarise_file(
-    path: &std::path::Path,
-) -> Result<Option<FlightSummary>, crate::data::DataError> {
-    let text = crate::data::read_text(path)?;
-    let raw = crate::data::flight_files::parse_raw_csv(path, text.as_bytes())?;
-    let rows: Vec<Vec<&str>> = raw.records.iter().map(|r| r.iter().collect()).collect();
-    Ok(summarise(&raw.headers, &rows))
 }
 
 #[cfg(test)]
