@@ -13,7 +13,10 @@
 //! [`crate::physics::user_terms::DEFAULT_SHAFT_MASS_G`], when the shots file has none). The
 //! mass differs from shot to shot, so it is applied per shot through the same pre-solve term a
 //! user-defined `club_mass_g` expression uses ([`crate::physics::user_terms`]): the law is
-//! written once. Two of them on one shot add.
+//! written once. Two of them on one shot add. Its lane form is that term's: the fits evaluate
+//! it on lane vectors of shots, each lane with its own shaft mass
+//! ([`crate::physics::ImpactModel::shot_consts_of`]), never one shot at a time
+//! (`tests/lane_path.rs` counts).
 
 use std::sync::OnceLock;
 

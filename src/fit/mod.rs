@@ -34,7 +34,10 @@ pub use covariance::{covariance, Covariance, Identifiability};
 pub(crate) use data::distinct_groups;
 pub use likelihood::{GivenScales, Likelihood, ScaleSource};
 pub use lm::{Converged, LevenbergMarquardt, LmState};
-pub use problem::{EvalError, FitData, FitProblem, Weighting, FD_STEP_OF_RANGE};
+pub use problem::{
+    scalar_path_counts, EvalError, FitData, FitProblem, ScalarPathCounts, Weighting,
+    FD_STEP_OF_RANGE,
+};
 pub use run::{
     fit_quietly, fit_quietly_chord_from, fit_quietly_from, run_lm, run_lm_point, run_lm_point_from,
     run_lm_point_near, FitPoint, FitRun, IterInfo, Progress,

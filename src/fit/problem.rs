@@ -43,6 +43,7 @@ use argmin::core::{Error as ArgminError, Jacobian, Operator};
 use nalgebra::{DMatrix, DVector, Vector3};
 
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 pub use super::data::FitData;
 use super::data::SiteCache;
@@ -64,6 +65,31 @@ const PARALLEL_MIN_SITES: usize = 2048;
 
 /// Shots per parallel task of a residual evaluation.
 pub(crate) const SHOTS_PER_TASK: usize = 128;
+
+/// Shots whose residuals were evaluated one at a time by the scalar solve (the fallback of a
+/// chunk the lanes could not take), since the process started.
+static SCALAR_SHOTS: AtomicU64 = AtomicU64::new(0);
+/// Jacobians made column by column (the fallback of the one-pass lane Jacobian).
+static COLUMN_JACOBIANS: AtomicU64 = AtomicU64::new(0);
+
+/// How often the fits left the lanes since the process started: the guard that every library
+/// effect (and every user-defined one but a loft or face-angle term) is evaluated on the
+/// lanes (`tests/lane_path.rs` runs a diagnose over every library effect and asserts zero).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ScalarPathCounts {
+    /// Shots evaluated one at a time by the scalar solve.
+    pub shots: u64,
+    /// Jacobians made column by column.
+    pub jacobians: u64,
+}
+
+/// The counts so far ([`ScalarPathCounts`]).
+pub fn scalar_path_counts() -> ScalarPathCounts {
+    ScalarPathCounts {
+        shots: SCALAR_SHOTS.load(Ordering::Relaxed),
+        jacobians: COLUMN_JACOBIANS.load(Ordering::Relaxed),
+    }
+}
 
 /// How model − measured becomes residual rows (see the module docs).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -411,6 +437,7 @@ impl<'a> FitProblem<'a> {
                 if groups.is_some_and(|g| !g[self.data.group_of[i]]) {
                     continue;
                 }
+                SCALAR_SHOTS.fetch_add(1, Ordering::Relaxed);
                 self.residual_rows(&models, cache, i, r)?;
             }
             Ok(())
@@ -492,6 +519,7 @@ impl<'a> FitProblem<'a> {
 
     /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
     fn jacobian_by_columns(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
+        COLUMN_JACOBIANS.fetch_add(1, Ordering::Relaxed);
         let m = self.rows();
         let mut jac = DMatrix::zeros(m, self.active.len());
         let column = |(k, col): (usize, &mut [f64])| -> Result<(), EvalError> {

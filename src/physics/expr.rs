@@ -112,6 +112,11 @@ impl Program {
         self.reads & (1 << i) != 0
     }
 
+    /// Every variable it reads: bit `i` for variable `i`.
+    pub fn read_mask(&self) -> u64 {
+        self.reads
+    }
+
     /// Compile `text`; `resolve` maps a name to its variable number (< 64) or says why the name
     /// is not allowed here.
     pub fn compile(
@@ -149,8 +154,10 @@ impl Program {
         Ok(p.out)
     }
 
-    /// Evaluate on variables `vars` (indexed as at compile time). No allocation.
-    #[inline]
+    /// Evaluate on variables `vars` (indexed as at compile time). No allocation. Always
+    /// inlined: on the fits' lanes it runs inside a `#[target_feature]` function, whose
+    /// instruction set only inlined code shares.
+    #[inline(always)]
     pub fn eval<R: Real>(&self, vars: &[R]) -> R {
         let mut stack = [R::splat(0.0); MAX_STACK];
         let mut sp = 0usize;

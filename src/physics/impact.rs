@@ -27,14 +27,16 @@ use super::delivery::{face_orientation, Delivery, FrameTrig};
 use super::face::{ContactFrame, FaceError, FaceGeometry};
 use super::launch::Launch;
 use super::laws::{
-    BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact, LawWithCor, Laws,
-    Real, Restitution, TangentialLaw, Vec3,
+    tangential_speed, BallContact, CollisionMatrix, ContactGeometry, FiniteContact, FiniteImpact,
+    InstantLaw, LawWithUser, Laws, Real, Restitution, TangentialLaw, Vec3,
 };
 pub use super::params::{validate_inertia, ModelParams, ParamError, DRIVER_HOSEL_MM};
-use super::user_terms::UserEvalError;
+use super::user_terms::{UserEvalError, NV, VAR_U1N, VAR_UT};
 use crate::lanes::each3;
 
+mod shot;
 mod user;
+pub use shot::ShotConsts;
 pub use user::{pre_solve_base, ShotModel};
 
 /// Reference normal approach speed of the `cor_speed` effect, m/s (`docs/conventions.md`).
@@ -480,24 +482,53 @@ impl ImpactModel {
     /// [`crate::limits::MIN_NORMAL_APPROACH_M_S`]) or that the result is finite: the caller does.
     #[inline(always)]
     pub fn solve_contact<R: Real>(&self, x: &ContactInputs<R>) -> ContactSolution<R> {
-        if self.laws.tangential.mu.is_some() {
-            self.solve_contact_with::<R, true>(x)
+        debug_assert!(
+            !self.laws.user.has_contact(),
+            "a model with user-defined contact terms solves through solve_contact_shot"
+        );
+        let shot = self.shot_consts::<R>();
+        let (mut vars, mut valid) = ([R::splat(0.0); NV], !R::no());
+        self.solve_contact_shot(x, &shot, &mut vars, &mut valid)
+    }
+
+    /// [`ImpactModel::solve_contact`] of shots with constants of their own (`shot`:
+    /// [`ImpactModel::shot_consts_of`]) and with the model's user-defined `cor`, `et` and `mu`
+    /// terms evaluated on `vars` (each lane's delivery variables at its impact location; the
+    /// approach speeds are written here). Lanes whose user-defined values are not allowed are
+    /// cleared from `valid`. The one definition of an impact's contact mechanics, on one shot
+    /// and on the lanes, with or without user-defined effects.
+    #[inline(always)]
+    pub fn solve_contact_shot<R: Real>(
+        &self,
+        x: &ContactInputs<R>,
+        shot: &ShotConsts<R>,
+        vars: &mut [R; NV],
+        valid: &mut R::Mask,
+    ) -> ContactSolution<R> {
+        let friction = self.laws.tangential.mu.is_some() || self.laws.user.sets_mu();
+        if friction {
+            self.solve_contact_with::<R, true>(x, shot, vars, valid)
         } else {
-            self.solve_contact_with::<R, false>(x)
+            self.solve_contact_with::<R, false>(x, shot, vars, valid)
         }
     }
 
+    /// The contact solve; `FRICTION` is whether a friction limit applies (the model's or a
+    /// user-defined `mu`).
     #[inline(always)]
     fn solve_contact_with<R: Real, const FRICTION: bool>(
         &self,
         x: &ContactInputs<R>,
+        shot: &ShotConsts<R>,
+        vars: &mut [R; NV],
+        valid: &mut R::Mask,
     ) -> ContactSolution<R> {
         let p = &self.params;
-        let com = &p.club_com_m;
+        let com = &shot.club_com_m;
         let r_c = [
-            x.point_m[0] - com.x,
-            x.point_m[1] - com.y,
-            x.point_m[2] - com.z,
+            x.point_m[0] - com[0],
+            x.point_m[1] - com[1],
+            x.point_m[2] - com[2],
         ];
         let wr = cross(&x.club_omega_f_rad_s, &r_c);
         let v_c = &x.club_velocity_f_m_s;
@@ -505,38 +536,49 @@ impl ImpactModel {
         let n = &x.normal;
         let u1n = u1[0] * n[0] + u1[1] * n[1] + u1[2] * n[2];
         let laws = &self.laws;
-        let e = laws.restitution.cor(u1n, x.y_m, x.z_m);
+        let mut e = laws.restitution.cor(u1n, x.y_m, x.z_m);
+        let mut e_t = R::splat(laws.tangential.e_t);
+        let mut mu = R::splat(laws.tangential.mu.unwrap_or(f64::INFINITY));
+        if laws.user.has_contact() {
+            vars[VAR_U1N as usize] = u1n;
+            vars[VAR_UT as usize] = tangential_speed(&u1, n, u1n);
+            (e, e_t, mu) = laws.user.contact(vars, [e, e_t, mu], valid);
+        }
         // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
-        let r_b = laws.ball.lever(n, &x.tangent_y, &x.tangent_z_xz);
+        let [dy, dz] = shot.ball_offset_m;
+        let r_b = laws
+            .ball
+            .lever_with(dy, dz, n, &x.tangent_y, &x.tangent_z_xz);
+        let collision = &shot.collision;
+        // The tangential law with this impact's e, e_t and mu (without user-defined terms the
+        // law's own, the same operations as `TangentialLaw::impulse`).
+        let law = LawWithUser::<R, FRICTION> {
+            law: &laws.tangential,
+            e,
+            e_t,
+            mu,
+        };
         // The instantaneous law, wrapped by the finite contact (`contact_time`; with τ = 0 it is
         // the law itself at the first contact, bit for bit).
         let fi = if laws.contact.tau_s == 0.0 {
             // What `FiniteContact::impact` returns for τ = 0, the same operations, written out
-            // so that the tangential law is inlined here (through the wrapper's closure, called
-            // twice there, the compiler keeps it out of line: a call with every argument spilled
-            // to the stack for each lane vector the fits solve).
-            let k = laws.collision.matrix(&r_c, &r_b);
-            let (impulse, slipped) = laws.tangential.impulse::<R, FRICTION>(&k, n, &u1, u1n, e);
+            // so that the tangential law is inlined here.
+            let k = collision.matrix(&r_c, &r_b);
+            let (impulse, slipped) = law.impulse(&k, n, &u1, u1n);
             FiniteImpact::at_first_contact(impulse, slipped, r_c, r_b)
         } else {
-            laws.contact.impact(
-                LawWithCor::<R, FRICTION> {
-                    law: &laws.tangential,
-                    e,
-                },
-                &laws.collision,
-                laws.ball.radius_m,
-                &ContactGeometry {
-                    normal: *n,
-                    tangent_y: x.tangent_y,
-                    tangent_z_xz: x.tangent_z_xz,
-                    r_c,
-                    r_b,
-                    u1,
-                    u1n,
-                    w_c: x.club_omega_f_rad_s,
-                },
-            )
+            let geometry = ContactGeometry {
+                normal: *n,
+                tangent_y: x.tangent_y,
+                tangent_z_xz: x.tangent_z_xz,
+                r_c,
+                r_b,
+                u1,
+                u1n,
+                w_c: x.club_omega_f_rad_s,
+            };
+            laws.contact
+                .impact(law, collision, laws.ball.radius_m, &geometry)
         };
         let (impulse, ball_angular_impulse, slipped) =
             (fi.impulse, fi.ball_angular_impulse, fi.slipped);

@@ -152,7 +152,22 @@ impl BallContact {
     /// `docs/conventions.md`, face geometry).
     #[inline(always)]
     pub fn lever<R: Real>(&self, n: &Vec3<R>, t_y: &Vec3<R>, t_z_xz: &[R; 2]) -> Vec3<R> {
-        let (nr, dy, dz) = (-self.radius_m, self.offset_y_m, self.offset_z_m);
+        let (dy, dz) = (R::splat(self.offset_y_m), R::splat(self.offset_z_m));
+        self.lever_with(dy, dz, n, t_y, t_z_xz)
+    }
+
+    /// [`BallContact::lever`] with the offsets `dy`, `dz` (m) given per lane (a shot's own, set
+    /// by user-defined effects); the model's offsets give its bits.
+    #[inline(always)]
+    pub fn lever_with<R: Real>(
+        &self,
+        dy: R,
+        dz: R,
+        n: &Vec3<R>,
+        t_y: &Vec3<R>,
+        t_z_xz: &[R; 2],
+    ) -> Vec3<R> {
+        let nr = -self.radius_m;
         [
             n[0] * nr + t_y[0] * dy + t_z_xz[0] * dz,
             n[1] * nr + t_y[1] * dy,
@@ -176,9 +191,43 @@ pub struct CollisionMatrix {
 }
 
 impl CollisionMatrix {
+    /// The constants on lanes: every lane the model's values (a shot whose own mass and inertia
+    /// user-defined effects set has its own, [`CollisionLanes`]).
+    #[inline(always)]
+    pub fn lanes<R: Real>(&self) -> CollisionLanes<R> {
+        let [a, b, c, d, e, f] = self.club_inv_inertia;
+        let s = R::splat;
+        CollisionLanes {
+            inv_mass_sum: s(self.inv_mass_sum),
+            club_inv_inertia: [s(a), s(b), s(c), s(d), s(e), s(f)],
+            ball_inv_inertia: self.ball_inv_inertia,
+        }
+    }
+
     /// `K` for lever arms `r_c` (contact from clubhead CoM) and `r_b` (contact from ball CoM).
     #[inline(always)]
     pub fn matrix<R: Real>(&self, r_c: &Vec3<R>, r_b: &Vec3<R>) -> Sym3<R> {
+        self.lanes::<R>().matrix(r_c, r_b)
+    }
+}
+
+/// [`CollisionMatrix`] with the clubhead's mass and inertia given per lane: a shot's own, when
+/// user-defined effects (or `shaft_fraction`) set them shot by shot. A lane holding the model's
+/// values gives the model's bits (`x·splat(c)` is `x·c`).
+#[derive(Debug, Clone, Copy)]
+pub struct CollisionLanes<R> {
+    /// `1/m_c + 1/m_b`, 1/kg.
+    pub inv_mass_sum: R,
+    /// Symmetrised inverse clubhead inertia in F, `[xx, xy, xz, yy, yz, zz]`, 1/(kg·m²).
+    pub club_inv_inertia: [R; 6],
+    /// `1/I_b`, 1/(kg·m²).
+    pub ball_inv_inertia: f64,
+}
+
+impl<R: Real> CollisionLanes<R> {
+    /// `K` for lever arms `r_c` (contact from clubhead CoM) and `r_b` (contact from ball CoM).
+    #[inline(always)]
+    pub fn matrix(&self, r_c: &Vec3<R>, r_b: &Vec3<R>) -> Sym3<R> {
         // −[r_c]× J [r_c]× = Cᵀ J C with C = [r_c]×, whose columns are
         // c0 = (0, a2, −a1), c1 = (−a2, 0, a0), c2 = (a1, −a0, 0).
         let [a0, a1, a2] = *r_c;
@@ -362,6 +411,34 @@ impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithCor<'_, R, FRICTION
     #[inline(always)]
     fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
         self.law.impulse::<R, FRICTION>(k, n, u, un, self.e)
+    }
+}
+
+/// The tangential law with the impact's COR `e` and the `e_t` and `mu` user-defined effects
+/// set per lane (`tangential_compliance`'s rise with the incidence added to that `e_t`): the
+/// instantaneous law of an impact with user-defined contact terms. `FRICTION` must be
+/// `law.mu.is_some()` or a term sets `mu`.
+pub struct LawWithUser<'a, R, const FRICTION: bool> {
+    /// The law (its `e_t_slope` and `e_g`).
+    pub law: &'a TangentialLaw,
+    /// The COR.
+    pub e: R,
+    /// Tangential restitution before the incidence rise.
+    pub e_t: R,
+    /// Friction coefficient (infinite: none).
+    pub mu: R,
+}
+
+impl<R: Real, const FRICTION: bool> InstantLaw<R> for LawWithUser<'_, R, FRICTION> {
+    #[inline(always)]
+    fn impulse(&self, k: &Sym3<R>, n: &Vec3<R>, u: &Vec3<R>, un: R) -> (Vec3<R>, R::Mask) {
+        let law = self.law;
+        let e_t = if law.e_t_slope == 0.0 {
+            self.e_t
+        } else {
+            tangential_speed(u, n, un) / un * law.e_t_slope + self.e_t
+        };
+        TangentialLaw::impulse_with::<R, FRICTION>(k, n, u, un, self.e, e_t, law.e_g, self.mu)
     }
 }
 

@@ -187,6 +187,20 @@ pub fn delivery_vars(d: &Delivery) -> [f64; NV] {
     v
 }
 
+/// Variable `k` of [`delivery_vars`] alone (a shot column in file units, or the shaft mass),
+/// the same value; 0 for the other slots.
+#[inline]
+pub fn delivery_var(d: &Delivery, k: usize) -> f64 {
+    let at = VAR_DELIVERY as usize;
+    if k == VAR_SHAFT_MASS as usize {
+        d.shaft_mass_g.unwrap_or(DEFAULT_SHAFT_MASS_G)
+    } else if (at..at + N_DELIVERY).contains(&k) {
+        DeliveryVar::ALL[k - at].file_value(d)
+    } else {
+        0.0
+    }
+}
+
 /// One quantity a user-defined effect sets: its compiled expression, the text it came from and
 /// the effect's name (for messages). Created once when a definition is read, and kept for the
 /// life of the process.
@@ -238,21 +252,22 @@ pub struct UserTerms {
     pub overflow: bool,
 }
 
-/// The mass and geometry a shot's user terms set (file units), before the solve.
+/// The mass and geometry a shot's user terms set (file units), before the solve: on one shot
+/// (`R = f64`) or on lanes of shots.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PreSolve {
+pub struct PreSolve<R = f64> {
     /// Clubhead mass, g.
-    pub club_mass_g: f64,
+    pub club_mass_g: R,
     /// Ball offsets along `y_I`, `z_I`, mm.
-    pub ball_d_mm: [f64; 2],
+    pub ball_d_mm: [R; 2],
     /// Clubhead CoM shift, mm.
-    pub com_d_mm: [f64; 3],
+    pub com_d_mm: [R; 3],
     /// Factor on the clubhead inertia.
-    pub inertia_scale: f64,
+    pub inertia_scale: R,
     /// Delivered dynamic loft with the loft bias, deg.
-    pub loft_deg: f64,
+    pub loft_deg: R,
     /// Delivered face angle with the face bias, deg.
-    pub face_deg: f64,
+    pub face_deg: R,
 }
 
 /// A user-defined term gave a value outside what its quantity allows ([`Quantity::allowed`]:
@@ -310,6 +325,11 @@ impl UserTerms {
         self.items[..self.len as usize].iter().flatten()
     }
 
+    /// The variables any term reads: bit `i` for variable `i` ([`NV`] of them).
+    pub fn read_mask(&self) -> u64 {
+        self.iter().fold(0, |m, t| m | t.def().program.read_mask())
+    }
+
     /// Does any term set a mass or geometry quantity (evaluated before the solve)?
     pub fn has_pre_solve(&self) -> bool {
         self.iter().any(|t| !t.def().quantity.in_contact())
@@ -334,11 +354,48 @@ impl UserTerms {
         self.iter().any(|t| t.def().quantity == Quantity::Mu)
     }
 
+    /// Does a term set the delivered loft or face angle (so that the face orientation differs
+    /// shot by shot from the delivery frame a fit caches)?
+    pub fn sets_orientation(&self) -> bool {
+        self.iter()
+            .any(|t| matches!(t.def().quantity, Quantity::LoftDeg | Quantity::FaceDeg))
+    }
+
     /// Evaluate the mass and geometry terms for one shot whose delivery variables are `vars`
     /// ([`delivery_vars`]), starting from the model's values `base`.
     pub fn pre_solve(&self, vars: &[f64; NV], base: PreSolve) -> Result<PreSolve, UserEvalError> {
-        let mut out = base;
         let mut v = *vars;
+        self.pre_solve_with(&mut v, base, &mut Refuse)
+    }
+
+    /// [`UserTerms::pre_solve`] on lanes of shots (or one): `vars` holds each lane's delivery
+    /// variables. Lanes where any term's value is not allowed ([`Quantity::ok`], the decision
+    /// [`UserTerms::pre_solve`] makes on one shot) are cleared from `valid`. The same
+    /// operations as [`UserTerms::pre_solve`], so a lane gets the bits of its shot.
+    #[inline(always)]
+    pub fn pre_solve_lanes<R: Real>(
+        &self,
+        vars: &mut [R; NV],
+        base: PreSolve<R>,
+        valid: &mut R::Mask,
+    ) -> PreSolve<R> {
+        match self.pre_solve_with(vars, base, &mut Clear(valid)) {
+            Ok(q) => q,
+            Err(never) => match never {},
+        }
+    }
+
+    /// The one loop of [`UserTerms::pre_solve`] and [`UserTerms::pre_solve_lanes`]: each mass
+    /// or geometry term in turn, its nominal the value so far, `check` asked about every value
+    /// it makes.
+    #[inline(always)]
+    fn pre_solve_with<R: Real, E>(
+        &self,
+        v: &mut [R; NV],
+        base: PreSolve<R>,
+        verdict: &mut impl Verdict<R, Error = E>,
+    ) -> Result<PreSolve<R>, E> {
+        let mut out = base;
         for t in self.iter() {
             let def = t.def();
             let slot = match def.quantity {
@@ -354,12 +411,11 @@ impl UserTerms {
                 Quantity::Cor | Quantity::Et | Quantity::Mu => continue,
             };
             v[VAR_NOMINAL as usize] = *slot;
-            v[VAR_PARAM0 as usize..VAR_PARAM0 as usize + MAX_USER_PARAMS]
-                .copy_from_slice(&t.params);
-            let value = def.program.eval(&v);
-            if !def.quantity.ok(value) {
-                return Err(t.error(value));
+            for (k, p) in t.params.iter().enumerate() {
+                v[VAR_PARAM0 as usize + k] = R::splat(*p);
             }
+            let value = def.program.eval(&v[..]);
+            verdict.check(t, value)?;
             *slot = value;
         }
         Ok(out)
@@ -370,22 +426,14 @@ impl UserTerms {
     /// values of the library laws. Lanes where any term's value is not allowed
     /// ([`Quantity::ok`], the decision [`UserTerms::contact_checked`] makes on one shot) are
     /// cleared from `valid`. No allocation.
-    #[inline]
+    #[inline(always)]
     pub fn contact<R: Real>(
         &self,
         vars: &mut [R; NV],
         [e, et, mu]: [R; 3],
         valid: &mut R::Mask,
     ) -> (R, R, R) {
-        let checked = self.contact_with(vars, [e, et, mu], |t, value: R| {
-            let q = t.def().quantity;
-            *valid = *valid
-                & value
-                    .map(|x| f64::from(u8::from(q.ok(x))))
-                    .gt(R::splat(0.5));
-            Ok::<(), Infallible>(())
-        });
-        match checked {
+        match self.contact_with(vars, [e, et, mu], &mut Clear(valid)) {
             Ok(q) => q,
             Err(never) => match never {},
         }
@@ -400,23 +448,17 @@ impl UserTerms {
         et: f64,
         mu: f64,
     ) -> Result<(f64, f64, f64), UserEvalError> {
-        self.contact_with(vars, [e, et, mu], |t, value| {
-            if t.def().quantity.ok(value) {
-                Ok(())
-            } else {
-                Err(t.error(value))
-            }
-        })
+        self.contact_with(vars, [e, et, mu], &mut Refuse)
     }
 
     /// The one loop of [`UserTerms::contact`] and [`UserTerms::contact_checked`]: each contact
-    /// term in turn, its nominal the value so far, `check` asked about every value it makes.
+    /// term in turn, its nominal the value so far, `verdict` asked about every value it makes.
     #[inline(always)]
     fn contact_with<R: Real, E>(
         &self,
         vars: &mut [R; NV],
         mut q: [R; 3],
-        mut check: impl FnMut(&AppliedTerm, R) -> Result<(), E>,
+        verdict: &mut impl Verdict<R, Error = E>,
     ) -> Result<(R, R, R), E> {
         for t in self.iter() {
             let def = t.def();
@@ -431,10 +473,50 @@ impl UserTerms {
                 vars[VAR_PARAM0 as usize + k] = R::splat(*p);
             }
             let value = def.program.eval(&vars[..]);
-            check(t, value)?;
+            verdict.check(t, value)?;
             q[i] = value;
         }
         Ok((q[0], q[1], q[2]))
+    }
+}
+
+/// What the term loops do with each value a term makes: on one shot, refuse it naming the term
+/// ([`Refuse`]); on lanes, clear the lanes where it is not allowed ([`Clear`]). A trait rather
+/// than a closure so that it is always inlined: a closure does not inherit the lane code's
+/// `#[target_feature]`, and the lane operations in it would become out-of-line calls.
+trait Verdict<R: Real> {
+    type Error;
+    fn check(&mut self, t: &AppliedTerm, value: R) -> Result<(), Self::Error>;
+}
+
+/// Refuse a value its quantity does not allow, naming the term.
+struct Refuse;
+
+impl Verdict<f64> for Refuse {
+    type Error = UserEvalError;
+    #[inline(always)]
+    fn check(&mut self, t: &AppliedTerm, value: f64) -> Result<(), UserEvalError> {
+        if t.def().quantity.ok(value) {
+            Ok(())
+        } else {
+            Err(t.error(value))
+        }
+    }
+}
+
+/// Clear the lanes whose value its quantity does not allow, by [`Quantity::ok`] lane by lane.
+struct Clear<'a, M>(&'a mut M);
+
+impl<R: Real> Verdict<R> for Clear<'_, R::Mask> {
+    type Error = Infallible;
+    #[inline(always)]
+    fn check(&mut self, t: &AppliedTerm, value: R) -> Result<(), Infallible> {
+        let q = t.def().quantity;
+        let ok = value
+            .map(|x| f64::from(u8::from(q.ok(x))))
+            .gt(R::splat(0.5));
+        *self.0 = *self.0 & ok;
+        Ok(())
     }
 }
 
@@ -451,7 +533,7 @@ impl AppliedTerm {
     }
 }
 
-impl PreSolve {
+impl PreSolve<f64> {
     /// The clubhead CoM shift, m.
     pub fn com_shift_m(&self) -> Vector3<f64> {
         Vector3::new(self.com_d_mm[0], self.com_d_mm[1], self.com_d_mm[2]) * 1e-3

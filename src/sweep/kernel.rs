@@ -53,7 +53,7 @@ mod located;
 use super::fastmath::atan2_v;
 pub use crate::lanes::{simd_level, SimdLevel};
 use crate::lanes::{M, V, W};
-use crate::physics::laws::{Laws, TangentialLaw};
+use crate::physics::laws::{LawWithCor, LawWithUser, Laws};
 use crate::physics::{Delivery, ImpactModel, ModelParams};
 pub use eval::{face_map, face_map_into};
 use grid::fill_invalid;
@@ -416,44 +416,34 @@ impl FaceMapKernel {
         let tyz = tzx * ny;
         let r_b = laws.ball.lever(&n, &[tyx, tyy, tyz], &[tzx, tzz]);
         let w_c = self.w_c.map(V::splat);
-        let fi = laws.contact.impact(
-            |k: &[V; 6], n: &[V; 3], u: &[V; 3], un: V| {
-                if USER {
-                    // As the scalar solve: the user's e_t, plus tangential_compliance's rise.
-                    let e_t = if laws.tangential.e_t_slope == 0.0 {
-                        e_t
-                    } else {
-                        crate::physics::laws::tangential_speed(u, n, un) / un
-                            * laws.tangential.e_t_slope
-                            + e_t
-                    };
-                    TangentialLaw::impulse_with::<V, FRICTION>(
-                        k,
-                        n,
-                        u,
-                        un,
-                        e,
-                        e_t,
-                        laws.tangential.e_g,
-                        mu,
-                    )
-                } else {
-                    laws.tangential.impulse::<V, FRICTION>(k, n, u, un, e)
-                }
-            },
-            &laws.collision,
-            laws.ball.radius_m,
-            &crate::physics::laws::ContactGeometry {
-                normal: n,
-                tangent_y: [tyx, tyy, tyz],
-                tangent_z_xz: [tzx, tzz],
-                r_c: a.r_c,
-                r_b,
-                u1: a.u1,
-                u1n: a.u1n,
-                w_c,
-            },
-        );
+        let geometry = crate::physics::laws::ContactGeometry {
+            normal: n,
+            tangent_y: [tyx, tyy, tyz],
+            tangent_z_xz: [tzx, tzz],
+            r_c: a.r_c,
+            r_b,
+            u1: a.u1,
+            u1n: a.u1n,
+            w_c,
+        };
+        let (collision, radius) = (&laws.collision.lanes::<V>(), laws.ball.radius_m);
+        // The scalar solve's laws: with user-defined terms the user's e_t (plus
+        // tangential_compliance's rise) and mu (`ImpactModel::solve_contact_shot`).
+        let fi = if USER {
+            let law = LawWithUser::<V, FRICTION> {
+                law: &laws.tangential,
+                e,
+                e_t,
+                mu,
+            };
+            laws.contact.impact(law, collision, radius, &geometry)
+        } else {
+            let law = LawWithCor::<V, FRICTION> {
+                law: &laws.tangential,
+                e,
+            };
+            laws.contact.impact(law, collision, radius, &geometry)
+        };
         let (p, w_f) = (fi.impulse, fi.ball_angular_impulse);
         (p, w_f)
     }

@@ -58,7 +58,7 @@ impl FitProblem<'_> {
                 touched,
             });
         }
-        let usable = |m: &ImpactModel| m.laws().user.is_empty() && *m.face() == cache.face;
+        let usable = |m: &ImpactModel| !m.laws().user.sets_orientation() && *m.face() == cache.face;
         if !columns
             .iter()
             .all(|c| c.plus.iter().chain(&c.minus).flatten().all(usable))

@@ -10,6 +10,9 @@ use crate::lanes::{each3, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 use crate::physics::impact::ContactInputs;
+use crate::physics::user_terms::{
+    delivery_var, NV, VAR_DELIVERY, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N,
+};
 use crate::physics::{DeliveryFrame, FaceGeometry, ImpactModel, Launch};
 use crate::sweep::fastmath::{atan2_v, hypot_v};
 
@@ -184,8 +187,9 @@ impl FitProblem<'_> {
         chunk: &mut [f64],
         groups: Option<&[bool]>,
     ) -> bool {
-        // User-defined effects are evaluated per shot by the scalar solve.
-        if models.iter().any(|m| !m.laws().user.is_empty()) {
+        // A user-defined loft or face-angle term turns the face shot by shot: such models are
+        // evaluated per shot by the scalar solve (every other term runs on the lanes).
+        if models.iter().any(|m| m.laws().user.sets_orientation()) {
             return false;
         }
         let rows = self.weighting.rows_per_shot();
@@ -254,10 +258,16 @@ impl FitProblem<'_> {
     ) -> Option<LanePrediction<L>> {
         let frame = self.frame_lanes::<L>(model, cache, idx);
         let face = (*model.face() != cache.face).then(|| model.face());
+        // (An `if`, not `bool::then` with a closure: see `crate::lanes::each2`.)
+        let vars = if model.laws().user.is_empty() {
+            None
+        } else {
+            Some(self.user_vars::<L>(idx, model.laws().user.read_mask()))
+        };
         let mut out = LanePrediction::zero();
         for k in 0..cache.sites_per_shot {
             let site = self.site_lanes(cache, idx, k, face)?;
-            let (launch, v, w) = solve_lanes(model, &frame, &site)?;
+            let (launch, v, w) = solve_lanes(model, &frame, &site, vars.as_ref())?;
             self.accumulate(&mut out, &site, launch, v, w);
         }
         Some(out)
@@ -293,18 +303,49 @@ impl FitProblem<'_> {
             });
         }
         outs.fill(LanePrediction::zero());
+        let mut reads = 0;
+        let mut user = false;
+        for m in models {
+            user |= !m.laws().user.is_empty();
+            reads |= m.laws().user.read_mask();
+        }
+        let vars = if user {
+            Some(self.user_vars::<L>(idx, reads))
+        } else {
+            None
+        };
         for k in 0..cache.sites_per_shot {
             let Some(site) = self.site_lanes(cache, idx, k, None) else {
                 return false;
             };
             for ((model, frame), out) in models.iter().zip(frames.iter()).zip(outs.iter_mut()) {
-                let Some((launch, v, w)) = solve_lanes(model, frame, &site) else {
+                let Some((launch, v, w)) = solve_lanes(model, frame, &site, vars.as_ref()) else {
                     return false;
                 };
                 self.accumulate(out, &site, launch, v, w);
             }
         }
         true
+    }
+
+    /// The variables user-defined expressions read of the shots `idx`, one shot a lane
+    /// ([`delivery_vars`]: the shot columns in file units and the shaft mass), those in `reads`
+    /// (bit `i`: variable `i`) only; the others are 0.
+    #[inline(always)]
+    fn user_vars<L: Lanes>(&self, idx: &[usize], reads: u64) -> [L; NV] {
+        let d = &self.data.deliveries;
+        let mut out = [L::splat(0.0); NV];
+        for k in VAR_DELIVERY as usize..VAR_U1N as usize {
+            if reads & (1 << k) == 0 {
+                continue;
+            }
+            let mut lanes = [0.0; MAX_LANES];
+            for l in 0..L::N {
+                lanes[l] = delivery_var(&d[idx[l]], k);
+            }
+            out[k] = L::load(&lanes);
+        }
+        out
     }
 
     /// The delivery-frame lanes of the shots `idx` for `model` (cached when its biases are the
@@ -459,11 +500,18 @@ fn prefetch<T>(items: &[T]) {
 /// One site of [`Lanes::N`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
 /// `G`. `None` unless the club approaches the ball and the ball's and club's states after impact
 /// are finite in every lane (the scalar solve's checks).
+///
+/// `vars`: the shots' variables for the model's user-defined effects ([`FitProblem::user_vars`];
+/// `None` when it has none): their mass and geometry terms and their `cor`, `et` and `mu` are
+/// evaluated on the lanes at the site's impact location, the scalar solve's own definitions
+/// ([`ImpactModel::shot_consts_of`], [`ImpactModel::solve_contact_shot`]). `None` also when a
+/// term's value is not allowed in any lane (the scalar solve then names it).
 #[inline(always)]
 fn solve_lanes<L: Lanes>(
     model: &ImpactModel,
     f: &FrameLanes<L>,
     site: &SiteLanes<L>,
+    vars: Option<&[L; NV]>,
 ) -> Option<([L; 5], [L; 3], [L; 3])> {
     let x = ContactInputs {
         club_velocity_f_m_s: f.v_c,
@@ -475,12 +523,28 @@ fn solve_lanes<L: Lanes>(
         y_m: site.y_m,
         z_m: site.z_m,
     };
-    let s = model.solve_contact(&x);
+    // The shot path for every model: without user-defined effects its constants are the
+    // model's and no term is evaluated (one instance of the contact mechanics, not two).
+    let mut vars = match vars {
+        Some(v) => {
+            let mut vars = *v;
+            vars[VAR_IMPACT_Y as usize] = site.y_m * 1e3;
+            vars[VAR_IMPACT_Z as usize] = site.z_m * 1e3;
+            vars
+        }
+        None => [L::splat(0.0); NV],
+    };
+    let mut valid = !L::no();
+    let c = model.shot_consts_of(&mut vars, &mut valid);
+    let s = model.solve_contact_shot(&x, &c, &mut vars, &mut valid);
+    if !valid.all() {
+        return None;
+    }
+    let inv_mc = L::splat(1.0) / c.club_mass_kg;
 
     let p = &s.impulse_n_s;
     // Only its finiteness is read (the scalar solve's check of the club's state after impact).
-    let inv_mc = 1.0 / model.params().club_mass_kg;
-    let club_dv = each3(|a| p[a] * inv_mc);
+    let club_dv = [p[0] * inv_mc, p[1] * inv_mc, p[2] * inv_mc];
     let r_c = &s.contact_from_club_com_m;
     let moment = [
         r_c[1] * p[2] - r_c[2] * p[1],

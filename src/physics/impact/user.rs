@@ -4,7 +4,10 @@
 
 use nalgebra::{Matrix3, Vector3};
 
-use super::{FaceOutcome, ImpactError, ImpactModel, ImpactOutcome, ModelParams};
+use super::{
+    ContactInputs, DeliveryFrame, FaceOutcome, ImpactError, ImpactModel, ImpactOutcome,
+    ModelParams, ShotConsts,
+};
 use crate::physics::delivery::{face_orientation, Delivery};
 use crate::physics::laws::{self, Laws};
 use crate::physics::user_terms as user;
@@ -36,71 +39,116 @@ pub struct ShotModel {
     pub club_mass_kg: f64,
     /// Inverse clubhead inertia, F, 1/(kg·m²).
     pub club_inv_inertia: Matrix3<f64>,
+    /// The shot's constants of the contact solve.
+    pub consts: ShotConsts<f64>,
 }
 
 impl ImpactModel {
     /// [`ImpactModel::solve`] with user-defined effects: the shot's mass and geometry, then the
-    /// impact with the user-defined `cor`, `et` and `mu`.
+    /// impact with the user-defined `cor`, `et` and `mu`, through the contact solve the fits'
+    /// lanes run ([`ImpactModel::solve_contact_shot`]), so both give the same bits.
     pub(super) fn solve_user(&self, d: &Delivery) -> Result<ImpactOutcome, ImpactError> {
-        if !self.laws.user.has_pre_solve() {
-            let r_gf = self.face_orientation(d);
-            return self.solve_with(
-                d,
-                &self.laws,
-                r_gf,
-                &self.params.club_com_m,
-                self.params.club_mass_kg,
-                &self.club_inv_inertia,
-            );
-        }
         let s = self.shot(d)?;
-        self.solve_with(
-            d,
-            &s.laws,
-            s.r_gf,
-            &s.club_com_m,
-            s.club_mass_kg,
-            &s.club_inv_inertia,
-        )
+        let frame = if self.laws.user.sets_orientation() {
+            let r_fg = s.r_gf.transpose();
+            DeliveryFrame {
+                r_gf: s.r_gf,
+                club_velocity_f_m_s: r_fg * d.club_velocity_m_s(),
+                club_omega_f_rad_s: r_fg * d.club_omega_rad_s,
+                ..self.delivery_frame(d)
+            }
+        } else {
+            self.delivery_frame(d)
+        };
+        let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        let (v_c, w_c) = (frame.club_velocity_f_m_s, frame.club_omega_f_rad_s);
+        let x = ContactInputs {
+            club_velocity_f_m_s: arr(&v_c),
+            club_omega_f_rad_s: arr(&w_c),
+            point_m: arr(&cf.point_m),
+            normal: arr(&cf.normal),
+            tangent_y: arr(&cf.tangent_y),
+            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
+            y_m: d.impact_y_m,
+            z_m: d.impact_z_m,
+        };
+        let mut vars = user::delivery_vars(d);
+        let mut valid = true;
+        let sol = self.solve_contact_shot(&x, &s.consts, &mut vars, &mut valid);
+        let u1n = sol.normal_approach_speed_m_s;
+        if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
+            return Err(ImpactError::NotApproaching {
+                normal_speed_m_s: u1n,
+            });
+        }
+        if !valid {
+            // The same evaluation again, to name the term whose value is not allowed.
+            let mut vars = user::delivery_vars(d);
+            vars[user::VAR_U1N as usize] = u1n;
+            vars[user::VAR_UT as usize] =
+                laws::tangential_speed(&arr(&x_u1(&x, &s)), &x.normal, u1n);
+            let t = &self.laws.tangential;
+            let e = self.laws.restitution.cor(u1n, d.impact_y_m, d.impact_z_m);
+            self.laws
+                .user
+                .contact_checked(&mut vars, e, t.e_t, t.mu.unwrap_or(f64::INFINITY))?;
+            return Err(ImpactError::NonFinite);
+        }
+        let impulse = Vector3::from(sol.impulse_n_s);
+        let r_c = Vector3::from(sol.contact_from_club_com_m);
+        FaceOutcome {
+            ball_velocity_m_s: Vector3::from(sol.ball_velocity_f_m_s),
+            ball_spin_rad_s: Vector3::from(sol.ball_spin_f_rad_s),
+            club_velocity_after_m_s: v_c - impulse / s.club_mass_kg,
+            club_omega_after_rad_s: w_c - s.club_inv_inertia * r_c.cross(&impulse),
+            impulse_n_s: impulse,
+            contact_from_club_com_m: r_c,
+            contact_from_ball_com_m: Vector3::from(sol.contact_from_ball_com_m),
+            normal: cf.normal,
+            normal_approach_speed_m_s: u1n,
+            cor_effective: sol.cor_effective,
+            slipped: sol.slipped,
+            club_speed_m_s: d.club_speed_m_s,
+        }
+        .into_ground(&frame.r_gf)
     }
 
     /// The model for one delivery with its user-defined mass and geometry evaluated
-    /// ([`crate::physics::user_terms::UserTerms::pre_solve`]). A quantity no term changed keeps the
-    /// model's own value, bit for bit.
+    /// ([`ImpactModel::shot_consts_of`], the lanes' own definition, and the loft and face
+    /// terms). A quantity no term changed keeps the model's own value, bit for bit.
     pub fn shot(&self, d: &Delivery) -> Result<ShotModel, ImpactError> {
         let p = &self.params;
+        let mut vars = user::delivery_vars(d);
+        let mut valid = true;
+        let consts = self.shot_consts_of::<f64>(&mut vars, &mut valid);
         let base = pre_solve_base(p, d);
-        let pre = self.laws.user.pre_solve(&user::delivery_vars(d), base)?;
+        if !valid {
+            // Name the cause: a term's value, or the ball offset.
+            self.laws.user.pre_solve(&user::delivery_vars(d), base)?;
+            let [oy, oz] = consts.ball_offset_m;
+            return Err(ImpactError::UserBallOffset {
+                offset_mm: oy.hypot(oz) * 1e3,
+                radius_mm: p.ball_radius_m * 1e3,
+            });
+        }
         let mut s = ShotModel {
             laws: self.laws,
             r_gf: self.face_orientation(d),
-            club_com_m: p.club_com_m,
-            club_mass_kg: p.club_mass_kg,
+            club_com_m: Vector3::from(consts.club_com_m),
+            club_mass_kg: consts.club_mass_kg,
             club_inv_inertia: self.club_inv_inertia,
+            consts,
         };
-        if pre.club_mass_g != base.club_mass_g {
-            s.club_mass_kg = pre.club_mass_g * 1e-3;
-            s.laws.collision.inv_mass_sum = 1.0 / s.club_mass_kg + 1.0 / p.ball_mass_kg;
+        s.laws.collision.inv_mass_sum = consts.collision.inv_mass_sum;
+        s.laws.collision.club_inv_inertia = consts.collision.club_inv_inertia;
+        [s.laws.ball.offset_y_m, s.laws.ball.offset_z_m] = consts.ball_offset_m;
+        if !self.laws.user.has_pre_solve() {
+            return Ok(s);
         }
+        let pre = self.laws.user.pre_solve(&user::delivery_vars(d), base)?;
         if pre.inertia_scale != base.inertia_scale {
             s.club_inv_inertia /= pre.inertia_scale;
-            for c in &mut s.laws.collision.club_inv_inertia {
-                *c /= pre.inertia_scale;
-            }
-        }
-        if pre.com_d_mm != base.com_d_mm {
-            s.club_com_m += pre.com_shift_m();
-        }
-        if pre.ball_d_mm != base.ball_d_mm {
-            s.laws.ball.offset_y_m = pre.ball_d_mm[0] * 1e-3;
-            s.laws.ball.offset_z_m = pre.ball_d_mm[1] * 1e-3;
-            let offset = s.laws.ball.offset_y_m.hypot(s.laws.ball.offset_z_m);
-            if !(offset < p.ball_radius_m) {
-                return Err(ImpactError::UserBallOffset {
-                    offset_mm: offset * 1e3,
-                    radius_mm: p.ball_radius_m * 1e3,
-                });
-            }
         }
         if pre.loft_deg != base.loft_deg || pre.face_deg != base.face_deg {
             let loft = if pre.loft_deg != base.loft_deg {
@@ -117,114 +165,11 @@ impl ImpactModel {
         }
         Ok(s)
     }
+}
 
-    /// The impact with given laws, face orientation, clubhead CoM, mass and inverse inertia.
-    #[inline(always)]
-    fn solve_with(
-        &self,
-        d: &Delivery,
-        laws: &Laws,
-        r_gf: Matrix3<f64>,
-        club_com_m: &Vector3<f64>,
-        club_mass_kg: f64,
-        club_inv_inertia: &Matrix3<f64>,
-    ) -> Result<ImpactOutcome, ImpactError> {
-        let p = &self.params;
-        let r_fg = r_gf.transpose();
-        let v_c_g = d.club_velocity_m_s();
-        let v_c = r_fg * v_c_g;
-        let w_c = r_fg * d.club_omega_rad_s;
-
-        let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
-        let n = cf.normal;
-        let r_c = cf.point_m - club_com_m;
-
-        let u1 = v_c + w_c.cross(&r_c);
-        let u1n = u1.dot(&n);
-        if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
-            return Err(ImpactError::NotApproaching {
-                normal_speed_m_s: u1n,
-            });
-        }
-        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
-        let mut e = laws.restitution.cor(u1n, d.impact_y_m, d.impact_z_m);
-        let mut tangential = laws.tangential;
-        if laws.user.has_contact() {
-            let mut vars = user::delivery_vars(d);
-            vars[user::VAR_U1N as usize] = u1n;
-            vars[user::VAR_UT as usize] = laws::tangential_speed(&arr(&u1), &arr(&n), u1n);
-            let (e_u, et_u, mu_u) = laws.user.contact_checked(
-                &mut vars,
-                e,
-                tangential.e_t,
-                tangential.mu.unwrap_or(f64::INFINITY),
-            )?;
-            e = e_u;
-            tangential.e_t = et_u;
-            if laws.user.sets_mu() {
-                tangential.mu = Some(mu_u);
-            }
-        }
-        // z_I = (−z, 0, X)/ρ: its y component is exactly 0.
-        let r_b_arr = laws.ball.lever(
-            &arr(&n),
-            &arr(&cf.tangent_y),
-            &[cf.tangent_z.x, cf.tangent_z.z],
-        );
-        let geometry = laws::ContactGeometry {
-            normal: arr(&n),
-            tangent_y: arr(&cf.tangent_y),
-            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
-            r_c: arr(&r_c),
-            r_b: r_b_arr,
-            u1: arr(&u1),
-            u1n,
-            w_c: arr(&w_c),
-        };
-        let (collision, radius) = (&laws.collision, laws.ball.radius_m);
-        let fi = if tangential.mu.is_some() {
-            laws.contact.impact(
-                |k: &laws::Sym3<f64>, n: &[f64; 3], u: &[f64; 3], un: f64| {
-                    tangential.impulse::<f64, true>(k, n, u, un, e)
-                },
-                collision,
-                radius,
-                &geometry,
-            )
-        } else {
-            laws.contact.impact(
-                |k: &laws::Sym3<f64>, n: &[f64; 3], u: &[f64; 3], un: f64| {
-                    tangential.impulse::<f64, false>(k, n, u, un, e)
-                },
-                collision,
-                radius,
-                &geometry,
-            )
-        };
-        let (impulse, ball_ang, slipped) = (fi.impulse, fi.ball_angular_impulse, fi.slipped);
-        let (r_c, r_b) = (Vector3::from(fi.r_c), Vector3::from(fi.r_b));
-        let impulse = Vector3::from(impulse);
-
-        let (v_b, w_b) = super::ball_response(
-            p.ball_mass_kg,
-            laws.collision.ball_inv_inertia,
-            &fi.impulse,
-            &ball_ang,
-        );
-        FaceOutcome {
-            ball_velocity_m_s: Vector3::from(v_b),
-            ball_spin_rad_s: Vector3::from(w_b),
-            club_velocity_after_m_s: v_c - impulse / club_mass_kg,
-            club_omega_after_rad_s: w_c - club_inv_inertia * r_c.cross(&impulse),
-            impulse_n_s: impulse,
-            contact_from_club_com_m: r_c,
-            contact_from_ball_com_m: r_b,
-            normal: n,
-            normal_approach_speed_m_s: u1n,
-            cor_effective: e,
-            slipped,
-            club_speed_m_s: d.club_speed_m_s,
-        }
-        .into_ground(&r_gf)
-    }
+/// The approach velocity `u1 = v_c + ω_c × r_c` of one shot at its contact point (for the
+/// message of a user-defined term whose value is not allowed).
+fn x_u1(x: &ContactInputs<f64>, s: &ShotModel) -> Vector3<f64> {
+    let r_c = Vector3::from(x.point_m) - s.club_com_m;
+    Vector3::from(x.club_velocity_f_m_s) + Vector3::from(x.club_omega_f_rad_s).cross(&r_c)
 }

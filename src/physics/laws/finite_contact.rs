@@ -1,7 +1,7 @@
 //! The finite contact (`contact_time`): the head's turning and the ball's travel over the face
 //! while the impulse is delivered, to first order in the contact time. See [`FiniteContact`].
 
-use super::{cross, dot, sym_mul, CollisionMatrix, Real, Sym3, Vec3};
+use super::{cross, dot, sym_mul, CollisionLanes, Real, Sym3, Vec3};
 use crate::lanes::each3;
 
 /// The instantaneous law [`FiniteContact::impact`] wraps: the impulse on the ball (and whether
@@ -162,7 +162,7 @@ impl FiniteContact {
     pub fn impact<R: Real>(
         &self,
         law: impl InstantLaw<R>,
-        collision: &CollisionMatrix,
+        collision: &CollisionLanes<R>,
         radius_m: f64,
         g: &ContactGeometry<R>,
     ) -> FiniteImpact<R> {
@@ -172,10 +172,7 @@ impl FiniteContact {
         if self.tau_s == 0.0 {
             return FiniteImpact::at_first_contact(p, slip, g.r_c, g.r_b);
         }
-        let j = &collision.club_inv_inertia;
-        let s = R::splat;
-        let jm: Sym3<R> = [s(j[0]), s(j[1]), s(j[2]), s(j[3]), s(j[4]), s(j[5])];
-        let dw = sym_mul(&jm, &cross(&g.r_c, &p));
+        let dw = sym_mul(&collision.club_inv_inertia, &cross(&g.r_c, &p));
         let (a, b) = (0.5 * self.tau_s, HERTZ_MEAN_SPIN_UP * self.tau_s);
         let theta = [
             g.w_c[0] * a - dw[0] * b,
@@ -212,7 +209,7 @@ impl FiniteContact {
     #[inline(always)]
     fn travelled<R: Real>(
         &self,
-        inv_mass_sum: f64,
+        inv_mass_sum: R,
         radius_m: f64,
         g: &ContactGeometry<R>,
         p: &Vec3<R>,

@@ -1,0 +1,58 @@
+//! The fits stay on the lanes: a diagnose over every library effect (each one fitted as a
+//! candidate, `shaft_fraction` among them) evaluates no shot one at a time by the scalar solve
+//! and makes no Jacobian column by column (`smash::fit::scalar_path_counts`), and neither does a
+//! calibration with user-defined effects of every kind the lanes take. A count, not a time: it
+//! cannot flake on a busy machine, and it fails the day an effect's law leaves the lanes.
+//!
+//! One test binary of its own: the counts are process-wide, so no other test may run beside it.
+
+#[path = "../benches/support/worlds.rs"]
+mod worlds;
+
+use std::path::Path;
+
+use smash::data::effect_defs::read_effect_defs;
+use smash::diagnose::{diagnose, DiagnoseOptions};
+use smash::effects::EffectKind;
+use smash::fit::{calibrate, parse_effect_list, scalar_path_counts, CalibrateOptions};
+
+#[test]
+fn fits_never_leave_the_lanes() {
+    let club = worlds::paper_club();
+    let shots = worlds::paper_world(20);
+    let before = scalar_path_counts();
+    let opts = DiagnoseOptions {
+        max_steps: 3,
+        max_iters: 30,
+        ..DiagnoseOptions::default()
+    };
+    let d = diagnose(&club, &shots, &opts, None).expect("diagnose runs");
+    // Every library effect was a candidate and fitted.
+    let tried: Vec<&str> = d.steps[0]
+        .candidates
+        .iter()
+        .map(|c| c.label.as_str())
+        .collect();
+    for kind in EffectKind::ALL {
+        assert!(
+            tried.iter().any(|t| t.starts_with(kind.name())),
+            "{} was not fitted: {tried:?}",
+            kind.name()
+        );
+    }
+    assert_eq!(scalar_path_counts(), before, "a diagnose left the lanes");
+
+    // User-defined effects: a COR law, a mass law reading the shaft mass, a CoM shift reading
+    // the impact location and a friction law, fitted together.
+    let defs = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/lane_path_effects.toml");
+    read_effect_defs(&defs).expect("definitions read");
+    let effects = parse_effect_list("my_cor_power,my_shaft_mass,my_com_shift,my_friction")
+        .expect("effects parse");
+    let cal = calibrate(&club, &shots, &effects, &CalibrateOptions::default(), None).expect("fits");
+    assert!(cal.chi2.is_finite());
+    assert_eq!(
+        scalar_path_counts(),
+        before,
+        "user-defined effects left the lanes"
+    );
+}
