@@ -23,8 +23,18 @@ pub fn paper_world(golfers: usize) -> Vec<Shot> {
     let cfg_path = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs/synth/paper_world.toml");
     let mut cfg = read_config(&cfg_path).expect("paper world reads");
     cfg.golfers = golfers;
+    shots_of(&cfg)
+}
+
+/// The world of the synth config at `path`, as read back from the CSV `smash synth` writes.
+#[allow(dead_code)] // not every bench that includes this file uses it
+pub fn world(path: &Path) -> Vec<Shot> {
+    shots_of(&read_config(path).expect("world reads"))
+}
+
+fn shots_of(cfg: &smash::synth::SynthConfig) -> Vec<Shot> {
     let club = read_club(&cfg.club).expect("base club reads");
-    let run = generate(&cfg, &club).expect("world generates");
+    let run = generate(cfg, &club).expect("world generates");
     let dir = tempfile::tempdir().expect("temp dir");
     let path = dir.path().join("shots.csv");
     std::fs::write(&path, synth_shots_csv(&run)).expect("shots written");

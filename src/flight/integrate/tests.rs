@@ -2,6 +2,7 @@
 
 use super::*;
 use crate::flight::aero::{Fmm2022Re, NathanLyu};
+use crate::flight::G_M_S2;
 use crate::flight::{Atmosphere, FlightLaunch};
 
 fn drive() -> FlightLaunch {

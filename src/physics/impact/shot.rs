@@ -144,6 +144,47 @@ mod tests {
         ImpactModel::new(p).expect("a valid model")
     }
 
+    /// Each delivery's contact inputs on `m`'s face, and the same as lanes (one a delivery).
+    fn contact_inputs(
+        m: &ImpactModel,
+        shots: &[Delivery],
+    ) -> (Vec<ContactInputs<f64>>, ContactInputs<V>) {
+        let inputs: Vec<ContactInputs<f64>> = shots
+            .iter()
+            .map(|d| {
+                let f = m.delivery_frame(d);
+                let cf = m
+                    .face()
+                    .contact(d.impact_y_m, d.impact_z_m)
+                    .expect("on the face");
+                let a = |v: &Vector3<f64>| [v.x, v.y, v.z];
+                ContactInputs {
+                    club_velocity_f_m_s: a(&f.club_velocity_f_m_s),
+                    club_omega_f_rad_s: a(&f.club_omega_f_rad_s),
+                    point_m: a(&cf.point_m),
+                    normal: a(&cf.normal),
+                    tangent_y: a(&cf.tangent_y),
+                    tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
+                    y_m: d.impact_y_m,
+                    z_m: d.impact_z_m,
+                }
+            })
+            .collect();
+        let lane =
+            |f: &dyn Fn(&ContactInputs<f64>) -> f64| V(std::array::from_fn(|l| f(&inputs[l])));
+        let x = ContactInputs::<V> {
+            club_velocity_f_m_s: std::array::from_fn(|a| lane(&|c| c.club_velocity_f_m_s[a])),
+            club_omega_f_rad_s: std::array::from_fn(|a| lane(&|c| c.club_omega_f_rad_s[a])),
+            point_m: std::array::from_fn(|a| lane(&|c| c.point_m[a])),
+            normal: std::array::from_fn(|a| lane(&|c| c.normal[a])),
+            tangent_y: std::array::from_fn(|a| lane(&|c| c.tangent_y[a])),
+            tangent_z_xz: std::array::from_fn(|a| lane(&|c| c.tangent_z_xz[a])),
+            y_m: lane(&|c| c.y_m),
+            z_m: lane(&|c| c.z_m),
+        };
+        (inputs, x)
+    }
+
     /// Every lane of the lane solve with user-defined terms and a shaft fraction is its shot's
     /// scalar solve, bit for bit: the shot constants, the impulse, the ball's velocity and spin,
     /// and which shots a term's value refuses. Random deliveries, impact locations and shaft
@@ -180,39 +221,7 @@ mod tests {
                     }),
                 })
                 .collect();
-            let inputs: Vec<ContactInputs<f64>> = shots
-                .iter()
-                .map(|d| {
-                    let f = m.delivery_frame(d);
-                    let cf = m
-                        .face()
-                        .contact(d.impact_y_m, d.impact_z_m)
-                        .expect("on the face");
-                    let a = |v: &Vector3<f64>| [v.x, v.y, v.z];
-                    ContactInputs {
-                        club_velocity_f_m_s: a(&f.club_velocity_f_m_s),
-                        club_omega_f_rad_s: a(&f.club_omega_f_rad_s),
-                        point_m: a(&cf.point_m),
-                        normal: a(&cf.normal),
-                        tangent_y: a(&cf.tangent_y),
-                        tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
-                        y_m: d.impact_y_m,
-                        z_m: d.impact_z_m,
-                    }
-                })
-                .collect();
-            let lane =
-                |f: &dyn Fn(&ContactInputs<f64>) -> f64| V(std::array::from_fn(|l| f(&inputs[l])));
-            let x = ContactInputs::<V> {
-                club_velocity_f_m_s: std::array::from_fn(|a| lane(&|c| c.club_velocity_f_m_s[a])),
-                club_omega_f_rad_s: std::array::from_fn(|a| lane(&|c| c.club_omega_f_rad_s[a])),
-                point_m: std::array::from_fn(|a| lane(&|c| c.point_m[a])),
-                normal: std::array::from_fn(|a| lane(&|c| c.normal[a])),
-                tangent_y: std::array::from_fn(|a| lane(&|c| c.tangent_y[a])),
-                tangent_z_xz: std::array::from_fn(|a| lane(&|c| c.tangent_z_xz[a])),
-                y_m: lane(&|c| c.y_m),
-                z_m: lane(&|c| c.z_m),
-            };
+            let (inputs, x) = contact_inputs(&m, &shots);
             let rows: Vec<[f64; NV]> = shots.iter().map(delivery_vars).collect();
             let mut vars: [V; NV] = std::array::from_fn(|k| V(std::array::from_fn(|l| rows[l][k])));
             let mut valid = !V::no();
