@@ -331,6 +331,8 @@ impl FitProblem<'_> {
     /// The variables user-defined expressions read of the shots `idx`, one shot a lane
     /// ([`delivery_vars`]: the shot columns in file units and the shaft mass), those in `reads`
     /// (bit `i`: variable `i`) only; the others are 0.
+    // Index loops, not iterators, in lane code (see `crate::lanes::each2`).
+    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     fn user_vars<L: Lanes>(&self, idx: &[usize], reads: u64) -> [L; NV] {
         let d = &self.data.deliveries;

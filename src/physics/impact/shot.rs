@@ -51,6 +51,8 @@ impl ImpactModel {
     /// the ball's contact offset leaves the ball, are cleared from `valid` (the scalar
     /// [`ImpactModel::shot`] names the cause). Loft and face-angle terms are not applied here:
     /// they turn the face, which [`ImpactModel::shot`] does.
+    // Index loops, not iterators, in lane code (see `crate::lanes::each2`).
+    #[allow(clippy::needless_range_loop)]
     #[inline(always)]
     pub fn shot_consts_of<R: Real>(
         &self,
