@@ -23,7 +23,9 @@ use criterion::{criterion_group, criterion_main, Criterion};
 
 use smash::data::shots::Shot;
 use smash::diagnose::noise_floor::{noise_floor, InstrumentClass};
-use smash::diagnose::{diagnose, DiagnoseOptions};
+use smash::diagnose::{default_candidates_without, diagnose, DiagnoseOptions};
+use smash::effects::{EffectId, EffectKind};
+use smash::fit::EffectRequest;
 use smash::ClubSpec;
 
 fn bench_one(
@@ -62,8 +64,53 @@ fn bench(c: &mut Criterion) {
     g.measurement_time(Duration::from_secs(100));
     let name = "real-format TrackMan season, 2,200 shots, default options";
     bench_one(&mut g, name, (&club, &shots, &opts));
+    // The same without `added_mass`: the export has no shaft column, so `shaft_fraction` (the
+    // added mass as a share of the default shaft's, per shot) takes the mass's part and is
+    // selected with the other effects: the path that once sent every later fit one shot at a
+    // time through the scalar solve.
+    let without = [EffectRequest::Global(EffectKind::AddedMass.into())];
+    let opts = DiagnoseOptions {
+        candidates: Some(default_candidates_without(&shots, &without).expect("candidates")),
+        ..opts
+    };
+    let name = "real-format TrackMan season, 2,200 shots, without added_mass";
+    bench_one(&mut g, name, (&club, &shots, &opts));
     g.finish();
 }
 
-criterion_group!(benches, bench);
+/// A user-defined law against its library twin: the power-law COR world
+/// (`configs/synth/cor_power_world.toml`) diagnosed with `cor_power`, and with `my_cor_power`
+/// (the same law as an expression, `tests/data/lane_path_effects.toml`) offered in its place.
+fn bench_user(c: &mut Criterion) {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let club = worlds::paper_club();
+    let shots = worlds::world(&root.join("configs/synth/cor_power_world.toml"));
+    smash::data::effect_defs::read_effect_defs(&root.join("tests/data/lane_path_effects.toml"))
+        .expect("definitions read");
+    let mut g = c.benchmark_group("diagnose user law");
+    g.sample_size(10);
+    let all = default_candidates_without(&shots, &[]).expect("candidates");
+    let user = |e: &EffectRequest| matches!(e, EffectRequest::Global(EffectId::User(_)));
+    let library: Vec<EffectRequest> = all.iter().filter(|e| !user(e)).cloned().collect();
+    let twin: Vec<EffectRequest> = all
+        .iter()
+        .filter(|e| {
+            !matches!(
+                e,
+                EffectRequest::Global(EffectId::Library(EffectKind::CorPower))
+            ) && (!user(e) || e.label() == "my_cor_power")
+        })
+        .cloned()
+        .collect();
+    for (name, candidates) in [("cor_power", library), ("my_cor_power", twin)] {
+        let opts = DiagnoseOptions {
+            candidates: Some(candidates),
+            ..DiagnoseOptions::default()
+        };
+        bench_one(&mut g, name, (&club, &shots, &opts));
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bench, bench_user);
 criterion_main!(benches);

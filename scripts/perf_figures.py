@@ -1,0 +1,200 @@
+#!/usr/bin/env python3
+"""Regenerate the figures of the README's performance summary from measurements on this machine.
+
+What it does, in order:
+
+1. reads the CPU model, core count and instruction sets (`/proc/cpuinfo`) and the load average;
+2. with `--bench`, runs `cargo bench --bench flight`, `--bench diagnose` and `--bench study`
+   (criterion; about 15 minutes on two cores), else uses the last results criterion left in
+   `target/criterion/`;
+3. times the whole-process commands a user runs, with the release binary `target/release/smash`
+   (built first with `cargo build --release -p smash-cli`): `smash flight` on 200,000 drives,
+   `smash diagnose` on the 600-shot paper world and on the 2,200-shot real-format season (with
+   and without `added_mass`, so that `shaft_fraction` is selected), and a diagnose of the
+   power-law COR world with `cor_power` against one with the user-defined `my_cor_power`;
+4. rewrites the block between `<!-- perf:begin -->` and `<!-- perf:end -->` in README.md.
+
+Each whole-process figure is the median of `--runs` runs (default 3), wall and CPU (user + sys)
+from `os.wait4`. Nothing is copied from an earlier run: a figure that could not be measured is
+written as "not measured" with the reason.
+
+Usage: python3 scripts/perf_figures.py [--bench] [--runs N] [--dry-run]
+"""
+
+import argparse
+import json
+import os
+import random
+import re
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+SMASH = ROOT / "target" / "release" / "smash"
+CLUB = "configs/clubs/paper_driver.toml"
+BEGIN, END = "<!-- perf:begin -->", "<!-- perf:end -->"
+
+
+def cpu():
+    info = Path("/proc/cpuinfo").read_text()
+    model = re.search(r"model name\s*:\s*(.*)", info).group(1).strip()
+    flags = re.search(r"flags\s*:\s*(.*)", info).group(1).split()
+    isa = "AVX-512F" if "avx512f" in flags else ("AVX2" if "avx2" in flags else "no AVX2")
+    return f"{model}, {os.cpu_count()} cores, {isa}"
+
+
+def run(cmd, cwd):
+    """Wall and CPU seconds of one run of `cmd` (which must succeed)."""
+    t0 = time.perf_counter()
+    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, status, usage = os.wait4(p.pid, 0)
+    wall = time.perf_counter() - t0
+    err = p.stderr.read().decode(errors="replace")
+    p.stderr.close()
+    if os.waitstatus_to_exitcode(status) != 0:
+        raise RuntimeError(f"{' '.join(map(str, cmd))} failed:\n{err[-2000:]}")
+    return wall, usage.ru_utime + usage.ru_stime
+
+
+def timed(cmd, cwd, runs):
+    walls, cpus = zip(*(run(cmd, cwd) for _ in range(runs)))
+    return statistics.median(walls), statistics.median(cpus)
+
+
+def criterion(group, name):
+    """Median and 95 % interval (s) of a criterion bench's last run, or None."""
+    slug = lambda s: re.sub(r"[^A-Za-z0-9_]+", "_", s).strip("_")
+    for d in (ROOT / "target" / "criterion").glob("*"):
+        if slug(d.name) != slug(group):
+            continue
+        for b in d.glob("*"):
+            if slug(b.name) == slug(name):
+                est = json.loads((b / "new" / "estimates.json").read_text())["median"]
+                ci = est["confidence_interval"]
+                return est["point_estimate"] / 1e9, ci["lower_bound"] / 1e9, ci["upper_bound"] / 1e9
+    return None
+
+
+def fmt_s(s):
+    return f"{s * 1e3:.0f} ms" if s < 1 else f"{s:.2f} s"
+
+
+def drives(path, n):
+    rnd = random.Random(2026)
+    with open(path, "w") as f:
+        f.write("ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm\n")
+        for _ in range(n):
+            f.write(
+                f"{rnd.uniform(150, 180):.2f},{rnd.uniform(8, 14):.2f},{rnd.uniform(-3, 3):.2f},"
+                f"{rnd.uniform(2000, 3200):.0f},{rnd.uniform(-600, 600):.0f}\n"
+            )
+
+
+def measure(runs, tmp):
+    s = str(SMASH)
+    rows = []
+    flight_in = tmp / "drives.csv"
+    drives(flight_in, 200_000)
+    w, c = timed([s, "flight", "--shots", flight_in, "--out", tmp / "f.csv"], ROOT, runs)
+    rows.append(("`smash flight`, 200,000 drives", w, c, f"{200_000 / w / 1e6:.2f} M drives/s", "≥ 1 M drives/s"))
+    paper = tmp / "paper.csv"
+    subprocess.run([s, "synth", "--config", "configs/synth/paper_world.toml", "--out", paper],
+                   cwd=ROOT, check=True, capture_output=True)
+    w, c = timed([s, "diagnose", "--club", CLUB, "--shots", paper], ROOT, runs)
+    rows.append(("`smash diagnose`, paper world, 600 shots", w, c, "", "≤ 0.15 s"))
+    world = tmp / "season_world.csv"
+    subprocess.run([s, "synth", "--config", "configs/synth/trackman_real_scale_world.toml",
+                    "--out", world], cwd=ROOT, check=True, capture_output=True)
+    tm = tmp / "season_tm.csv"
+    subprocess.run(["cargo", "run", "--release", "-q", "--example", "trackman_session", "--",
+                    world, "cli/tests/fixtures/import/trackman_normalized.csv", CLUB, tm,
+                    "--radar-face"], cwd=ROOT, check=True, capture_output=True)
+    season = tmp / "season.csv"
+    subprocess.run([s, "import", "--format", "trackman", tm, "--impact-offset-positive", "toe",
+                    "--out", season], cwd=ROOT, check=True, capture_output=True)
+    base = [s, "diagnose", "--club", CLUB, "--shots", season]
+    w, c = timed(base, ROOT, runs)
+    rows.append(("`smash diagnose`, real-format season, 2,200 shots", w, c, "", "≤ 10 s"))
+    w, c = timed(base + ["--without", "added_mass"], ROOT, runs)
+    rows.append(("the same `--without added_mass` (`shaft_fraction` selected)", w, c, "", "≤ 10 s"))
+    cor = tmp / "cor_power.csv"
+    subprocess.run([s, "synth", "--config", "configs/synth/cor_power_world.toml", "--out", cor],
+                   cwd=ROOT, check=True, capture_output=True)
+    defs = "tests/data/lane_path_effects.toml"
+    lib = [s, "diagnose", "--club", CLUB, "--shots", cor]
+    twin = lib + ["--effect-defs", defs, "--candidates", twin_candidates(s, cor)]
+    wl, cl = timed(lib, ROOT, runs)
+    wt, ct = timed(twin, ROOT, runs)
+    rows.append(("`smash diagnose`, power-law COR world, `cor_power` offered", wl, cl, "", ""))
+    rows.append(("the same with `my_cor_power` in its place", wt, ct, f"{ct / cl:.2f}× the CPU", "≤ 1.5×"))
+    return rows
+
+
+def twin_candidates(s, shots):
+    """The default candidates of `shots` with `cor_power` replaced by `my_cor_power`."""
+    out = subprocess.run([s, "effects"], cwd=ROOT, check=True, capture_output=True, text=True).stdout
+    names = [l.split()[0] for l in out.splitlines() if re.match(r"^[a-z_]+\s", l)]
+    names = [n for n in names if n != "cor_power"]
+    return ",".join(names + ["my_cor_power"])
+
+
+def block(rows, bench_rows, machine, load):
+    today = time.strftime("%d %b %Y")
+    out = [BEGIN, "",
+           f"Measured by `scripts/perf_figures.py` on {today}: {machine}; release build; load "
+           f"average {load} before the runs. Whole process (median of the runs; CPU is user + sys):",
+           "", "| command | wall | CPU | rate | target |", "|---|---:|---:|---:|---:|"]
+    for name, w, c, rate, target in rows:
+        out.append(f"| {name} | **{fmt_s(w)}** | {fmt_s(c)} | {rate} | {target} |")
+    if bench_rows:
+        out += ["", "Criterion, in process (median [95 % interval]):", "",
+                "| bench | median |", "|---|---:|"]
+        for name, r in bench_rows:
+            cell = f"{fmt_s(r[0])} [{fmt_s(r[1])}, {fmt_s(r[2])}]" if r else "not measured (run with `--bench`)"
+            out.append(f"| {name} | {cell} |")
+    out += ["", END]
+    return "\n".join(out)
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bench", action="store_true")
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--dry-run", action="store_true", help="print the block, leave README.md")
+    a = ap.parse_args()
+    subprocess.run(["cargo", "build", "--release", "-q", "-p", "smash-cli"], cwd=ROOT, check=True)
+    if a.bench:
+        for b in ("flight", "diagnose", "study"):
+            subprocess.run(["cargo", "bench", "--bench", b], cwd=ROOT, check=True)
+    load = f"{os.getloadavg()[0]:.1f}"
+    with tempfile.TemporaryDirectory() as t:
+        rows = measure(a.runs, Path(t))
+    benches = [
+        ("flight, 100,000 drives as a launch CSV (read, fly, write)", criterion("flight", "smash_flight_csv_100k")),
+        ("diagnose, paper world, 600 shots", criterion("diagnose", "paper world, 600 shots, default options")),
+        ("diagnose, real-format season, 2,200 shots", criterion("diagnose", "real-format TrackMan season, 2,200 shots, default options")),
+        ("the same without added_mass", criterion("diagnose", "real-format TrackMan season, 2,200 shots, without added_mass")),
+        ("diagnose, power-law COR world, cor_power", criterion("diagnose user law", "cor_power")),
+        ("the same, my_cor_power", criterion("diagnose user law", "my_cor_power")),
+    ]
+    text = block(rows, benches, cpu(), load)
+    if a.dry_run:
+        print(text)
+        return 0
+    readme = ROOT / "README.md"
+    s = readme.read_text()
+    if BEGIN not in s or END not in s:
+        print(f"README.md has no {BEGIN} … {END} block", file=sys.stderr)
+        return 1
+    s = s[: s.index(BEGIN)] + text + s[s.index(END) + len(END):]
+    readme.write_text(s)
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
