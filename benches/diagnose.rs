@@ -80,12 +80,12 @@ fn bench(c: &mut Criterion) {
 
 /// A user-defined law against its library twin: the power-law COR world
 /// (`configs/synth/cor_power_world.toml`) diagnosed with `cor_power`, and with `my_cor_power`
-/// (the same law as an expression, `tests/data/lane_path_effects.toml`) offered in its place.
+/// (the same law as an expression, `tests/data/my_cor_power.toml`) offered in its place.
 fn bench_user(c: &mut Criterion) {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let club = worlds::paper_club();
     let shots = worlds::world(&root.join("configs/synth/cor_power_world.toml"));
-    smash::data::effect_defs::read_effect_defs(&root.join("tests/data/lane_path_effects.toml"))
+    smash::data::effect_defs::read_effect_defs(&root.join("tests/data/my_cor_power.toml"))
         .expect("definitions read");
     let mut g = c.benchmark_group("diagnose user law");
     g.sample_size(10);

@@ -11,7 +11,7 @@ What it does, in order:
    (built first with `cargo build --release -p smash-cli`): `smash flight` on 200,000 drives,
    `smash diagnose` on the 600-shot paper world and on the 2,200-shot real-format season (with
    and without `added_mass`, so that `shaft_fraction` is selected), and a diagnose of the
-   power-law COR world with `cor_power` against one with the user-defined `my_cor_power`;
+   power-law COR world with `cor_power` against one with the user-defined `my_cor_power` (`tests/data/my_cor_power.toml`, offered `--without cor_power`);
 4. rewrites the block between `<!-- perf:begin -->` and `<!-- perf:end -->` in README.md.
 
 Each whole-process figure is the median of `--runs` runs (default 3), wall and CPU (user + sys)
@@ -124,22 +124,13 @@ def measure(runs, tmp):
     cor = tmp / "cor_power.csv"
     subprocess.run([s, "synth", "--config", "configs/synth/cor_power_world.toml", "--out", cor],
                    cwd=ROOT, check=True, capture_output=True)
-    defs = "tests/data/lane_path_effects.toml"
     lib = [s, "diagnose", "--club", CLUB, "--shots", cor]
-    twin = lib + ["--effect-defs", defs, "--candidates", twin_candidates(s, cor)]
+    twin = lib + ["--effect-defs", "tests/data/my_cor_power.toml", "--without", "cor_power"]
     wl, cl = timed(lib, ROOT, runs)
     wt, ct = timed(twin, ROOT, runs)
     rows.append(("`smash diagnose`, power-law COR world, `cor_power` offered", wl, cl, "", ""))
     rows.append(("the same with `my_cor_power` in its place", wt, ct, f"{ct / cl:.2f}× the CPU", "≤ 1.5×"))
     return rows
-
-
-def twin_candidates(s, shots):
-    """The default candidates of `shots` with `cor_power` replaced by `my_cor_power`."""
-    out = subprocess.run([s, "effects"], cwd=ROOT, check=True, capture_output=True, text=True).stdout
-    names = [l.split()[0] for l in out.splitlines() if re.match(r"^[a-z_]+\s", l)]
-    names = [n for n in names if n != "cor_power"]
-    return ",".join(names + ["my_cor_power"])
 
 
 def block(rows, bench_rows, machine, load):
