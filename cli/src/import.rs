@@ -37,8 +37,9 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     if format == "shots" {
         anyhow::bail!(
             "--format shots: `shots` is the shots-file format itself, so there is nothing to \
-             convert; give the export's format: a preset (trackman, flightscope, foresight, \
-             uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file NAME.toml"
+             convert; give the export's format: auto (the default: recognised from the header), \
+             a preset (trackman, foresight, …: smash import --help lists them) or a mapping \
+             file NAME.toml"
         );
     }
     smash::data::safe_write::refuse_inputs(

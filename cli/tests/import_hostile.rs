@@ -145,7 +145,7 @@ fn units_rows_above_the_header_or_under_the_first_shot_are_read() {
     let units_kmh = lines[1].replace("[mph]", "[km/h]");
     let first = lines[2];
     let want = 250.1 / 1.609344; // 155.4 mph written as 250.1 km/h
-    // Above the header.
+                                 // Above the header.
     let above = format!("{units_kmh}\n{}\n{}", lines[0], lines[2..].join("\n"));
     let (h, rows, err, _) = import(dir.path(), "a.csv", above.as_bytes(), "trackman", TOE);
     let bs: f64 = col(&h, &rows, "ball_speed_mph")[0].parse().unwrap();

@@ -385,7 +385,10 @@ fn encodings_and_shifted_rows() {
         ])
     };
     let err = ok(&args(&utf16));
-    assert!(err.contains("UTF-16 text (little-endian, with a byte-order mark)"), "{err}");
+    assert!(
+        err.contains("UTF-16 text (little-endian, with a byte-order mark)"),
+        "{err}"
+    );
     std::fs::write(&utf16, b"\xFF\xFEC\x00l\x00u\x00b").unwrap();
     common::assert_refused(&args(&utf16), &["not valid UTF-16", ":1:"]);
 }

@@ -205,7 +205,7 @@ mod tests {
         );
         let k = fold_keys(&t, 5).unwrap().unwrap();
         assert_eq!(k.kind, KeyKind::Session);
-        assert_eq!(k.keys, ["5/6/2026", "5/7/2026", "5/6/2026"]);
+        assert_eq!(k.keys, ["2026-05-06", "2026-05-07", "2026-05-06"]);
         // One day: 6 shots out of order in 3 blocks of 2 consecutive shots.
         let t = table(
             "time",

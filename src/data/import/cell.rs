@@ -123,7 +123,18 @@ pub(super) fn parse_cell(
         .map(str::to_owned)
         .collect();
     // `2.4°L`, `11.7°R`: a unit glued to a letter.
-    if words.len() == 1 && words[0].len() > 1 && Unit::parse(&words[0]).is_none() {
+    let is_side = |w: &str| {
+        let upper = w.to_ascii_uppercase();
+        ["R+", "U+", "I-O+"]
+            .iter()
+            .filter_map(|d| direction_words(d))
+            .any(|(p, n)| p.contains(&upper.as_str()) || n.contains(&upper.as_str()))
+    };
+    if words.len() == 1
+        && words[0].len() > 1
+        && Unit::parse(&words[0]).is_none()
+        && !is_side(&words[0])
+    {
         let w = words[0].clone();
         for (i, _) in w.char_indices().skip(1) {
             let (a, b) = w.split_at(i);
@@ -142,11 +153,7 @@ pub(super) fn parse_cell(
     for w in words {
         let upper = w.to_ascii_uppercase();
         // Every family of words, so that a misplaced one is named, not read as a unit.
-        let side = ["R+", "U+", "I-O+"]
-            .iter()
-            .filter_map(|d| direction_words(d))
-            .any(|(p, n)| p.contains(&upper.as_str()) || n.contains(&upper.as_str()));
-        if side {
+        if is_side(&w) {
             let Some(words) = direction.and_then(direction_words) else {
                 return Err(format!(
                     "'{raw}': this column does not take L/R, U/D or I-O/O-I directions ('{w}')"
@@ -241,9 +248,7 @@ mod tests {
         let e = p("3.1 U", Some("R+")).unwrap_err();
         assert!(e.contains("takes R or L"), "{e}");
         assert!(p("3 L R", Some("R+")).is_err());
-        assert!(p("3 U", None)
-            .unwrap_err()
-            .contains("does not take directions"));
+        assert!(p("3 U", None).unwrap_err().contains("does not take L/R"));
     }
 
     #[test]

@@ -375,7 +375,7 @@ pub fn load_mapping(format: &str) -> Result<Mapping, DataError> {
     Err(DataError::file(
         path,
         format!(
-            "unknown format '{format}': use shots, a preset ({}) or a mapping file NAME.toml",
+            "unknown format '{format}': use shots, auto, a preset ({}) or a mapping file NAME.toml",
             names.join(", ")
         ),
     ))
