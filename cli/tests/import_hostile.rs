@@ -287,3 +287,58 @@ fn speeds_in_the_wrong_unit_are_caught() {
     ]);
     common::assert_refused(&res, &["ball speed / club speed", "ball speed in mph"]);
 }
+
+/// A mutation sweep over the vendor fixtures: the last shot cut at every cell boundary is left
+/// out (never written with a cut cell) or, cut after its last mapped cell, kept whole; the
+/// import never fails for it.
+#[test]
+fn every_fixture_cut_anywhere_loses_at_most_its_last_shot() {
+    let dir = tempfile::tempdir().unwrap();
+    for (file, preset, flags) in [
+        ("trackman_older.csv", "trackman", TOE),
+        ("uneekor_refine.csv", "uneekor", &[][..]),
+        ("garmin_r10.csv", "garmin-r10", &[][..]),
+        ("gspro.csv", "gspro", &[][..]),
+        ("corpus/garmin_r50.csv", "garmin-r10", &[][..]),
+        (
+            "corpus/flightscope_cloud.csv",
+            "flightscope-scrape",
+            &[][..],
+        ),
+    ] {
+        let text = fixture(file);
+        let full = import(dir.path(), "full.csv", text.as_bytes(), preset, flags).1;
+        // The last line holding a shot: the last whose first cell is not a summary word.
+        let lines: Vec<&str> = text.lines().collect();
+        let last = (0..lines.len())
+            .rev()
+            .find(|&i| {
+                let c = lines[i].split(',').next().unwrap_or("").to_lowercase();
+                !lines[i].trim().is_empty() && !["average", "avg", ""].contains(&c.as_str())
+            })
+            .unwrap();
+        let cuts: Vec<usize> = lines[last].match_indices(',').map(|(i, _)| i).collect();
+        for &at in &cuts {
+            // Cut inside the next cell when it has two characters or more, else at the comma.
+            let end = (at + 3).min(lines[last].len());
+            let mut cut: Vec<&str> = lines[..last].to_vec();
+            cut.push(&lines[last][..end]);
+            let (_, rows, err, _) = import(
+                dir.path(),
+                "cut.csv",
+                cut.join("\n").as_bytes(),
+                preset,
+                flags,
+            );
+            assert!(
+                rows.len() == full.len() || rows.len() + 1 == full.len(),
+                "{file} cut at {end}: {} of {} shots: {err}",
+                rows.len(),
+                full.len()
+            );
+            if rows.len() == full.len() {
+                assert_eq!(rows.last(), full.last(), "{file} cut at {end}: {err}");
+            }
+        }
+    }
+}

@@ -279,14 +279,17 @@ impl RowAt<'_> {
         Ok(())
     }
 
-    /// A row with fewer cells than the header, missing a mapped column: a line cut short (a
-    /// truncated file's last row), whose last cell may be cut too (`16` for `162.4`).
+    /// A row with fewer cells than the header whose last cell, or a column after it, is mapped:
+    /// a line cut short (a truncated file's last row), whose last cell may be cut too (`16` for
+    /// `162.4`).
     fn too_short(&self, table: &Table, layout: &Layout) -> Result<(), Bad> {
         let n = self.cells.len();
         if n >= table.header.len() {
             return Ok(());
         }
-        let cut = |r: &&super::columns::Resolved| r.index >= n && r.index != super::columns::ABSENT;
+        // A mapped column missing, or the last cell there is mapped: it may be cut itself.
+        let cut =
+            |r: &&super::columns::Resolved| r.index + 1 >= n && r.index != super::columns::ABSENT;
         if let Some(r) = layout.resolved.iter().find(cut) {
             let e = self.error_in(
                 Some(&r.header),
