@@ -466,6 +466,12 @@ impl RowAt<'_> {
         let condition = layout
             .of(Target::Condition)
             .and_then(|c| Condition::parse(self.cell(c.index)));
+        // A condition the sentence states, when inside its range (a sentence's number is a
+        // cell too: `1e400 ℉` is not a temperature).
+        let stated = |c: &str, v: Option<f64>| {
+            let range = Target::parse(c).and_then(Target::range);
+            v.filter(|x| x.is_finite() && range.is_none_or(|r| r.check(*x).is_ok()))
+        };
         let numeric_value = |c: &str| match c {
             "impact_z_mm" if layout.from_offset => {
                 get("impact_offset_mm").map(|o| match layout.offset_side {
@@ -475,8 +481,10 @@ impl RowAt<'_> {
             }
             "backspin_rpm" => back,
             "sidespin_rpm" => side,
-            "altitude_m" => get(c).or(condition.as_ref().and_then(|k| k.altitude_m)),
-            "air_temperature_c" => get(c).or(condition.as_ref().and_then(|k| k.temperature_c)),
+            "altitude_m" => get(c).or(stated(c, condition.as_ref().and_then(|k| k.altitude_m))),
+            "air_temperature_c" => {
+                get(c).or(stated(c, condition.as_ref().and_then(|k| k.temperature_c)))
+            }
             c => get(c),
         };
         let mut delivery_missing: Vec<&str> = Vec::new();
@@ -485,7 +493,7 @@ impl RowAt<'_> {
             if v.is_none() && DeliveryVar::from_column(c).is_some_and(|d| d.required()) {
                 delivery_missing.push(c);
             }
-            rec.push(v.map(fmt_f64).unwrap_or_default());
+            rec.push(v.filter(|x| x.is_finite()).map(fmt_f64).unwrap_or_default());
         }
         let (lacks, lack_error) = self.lacks(layout, &delivery_missing)?;
         let mut flags = Vec::new();
