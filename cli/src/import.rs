@@ -11,9 +11,11 @@ use smash::data::write_atomic;
 #[command(
     after_help = "Examples:\n  smash import --format trackman session.csv --impact-offset-positive toe --out shots.csv\n  \
                   smash import --format my_monitor.toml export.csv --out shots.csv\n\n\
-                  Presets: trackman, flightscope (mevo), foresight (gc3, gcquad, fsx), uneekor,\n\
-                  garmin-r10 (garmin, r10), rapsodo (mlm2pro), skytrak, gspro. A mapping file\n\
-                  (TOML) describes any other export; see docs/import.md."
+                  --format auto (the default) recognises the layout from the header or JSON keys.\n\
+                  Presets: trackman, flightscope (mevo), foresight (gc3, gcquad, fsx),\n\
+                  foresight-session (FSX .session JSON), uneekor, garmin-r10 (garmin, r10),\n\
+                  rapsodo (mlm2pro), skytrak, gspro. A mapping file (TOML) describes any other\n\
+                  export; see docs/import.md."
 )]
 pub struct ImportArgs {
     /// The export (CSV).
@@ -31,14 +33,13 @@ pub struct ImportArgs {
 
 /// Run `smash import`.
 pub fn run(args: ImportArgs) -> anyhow::Result<()> {
-    let Some(format) = args.format.format.as_deref() else {
-        anyhow::bail!("--format is required: a preset (trackman, flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file NAME.toml");
-    };
+    let format = args.format.format.as_deref().unwrap_or("auto");
     if format == "shots" {
         anyhow::bail!(
             "--format shots: `shots` is the shots-file format itself, so there is nothing to \
-             convert; give the export's format: a preset (trackman, flightscope, foresight, \
-             uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file NAME.toml"
+             convert; give the export's format: auto (the default: recognised from the header), \
+             a preset (trackman, foresight, …: smash import --help lists them) or a mapping \
+             file NAME.toml"
         );
     }
     smash::data::safe_write::refuse_inputs(

@@ -357,9 +357,10 @@ pub fn impact_noise_from_mm(sy: f64, sz: f64) -> Result<smash::measurement::Impa
 /// the fly, exactly as `smash import` would.
 #[derive(Debug, Clone, Default, clap::Args)]
 pub struct ShotsFormatArgs {
-    /// Format of the shots input: `shots` (default), a launch-monitor preset (trackman,
-    /// flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a mapping file
-    /// NAME.toml (docs/import.md).
+    /// Format of the shots input: `shots` (default; `auto` for `smash import`), `auto` (the
+    /// layout recognised from the header or the JSON keys), a launch-monitor preset (trackman,
+    /// flightscope, foresight, foresight-session, uneekor, garmin-r10, rapsodo, skytrak, gspro)
+    /// or a mapping file NAME.toml (docs/import.md).
     #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
     pub format: Option<String>,
 
@@ -413,11 +414,18 @@ impl ShotsFormatArgs {
         path: &std::path::Path,
         format: &str,
     ) -> anyhow::Result<smash::data::import::Imported> {
-        use smash::data::import::{import, load_mapping, ImportOptions};
-        let mapping = load_mapping(format)?;
+        use smash::data::import::{detect, import, load_mapping, preset_for, ImportOptions};
         smash::data::safe_write::note_input(path);
         let bytes = std::fs::read(path)
             .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
+        let format = if format.eq_ignore_ascii_case("auto") {
+            let d = detect(path, &bytes)?;
+            eprintln!("import: {}", d.note);
+            d.preset.to_owned()
+        } else {
+            preset_for(format, &bytes)
+        };
+        let mapping = load_mapping(&format)?;
         let opts = ImportOptions {
             impact_offset_positive: self.impact_offset_positive.map(Into::into),
             ignore_unknown_columns: self.ignore_unknown_columns,

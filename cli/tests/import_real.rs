@@ -294,7 +294,7 @@ fn a_flipped_sidespin_is_caught() {
 
 /// Quirks: a Windows-1252 byte is read and named; a decimal comma in the last column of a
 /// comma-separated file shifts the row, which is left out with its line (never read as −3);
-/// an unnamed column holding data is reported; UTF-16 is refused with the line.
+/// an unnamed column holding data is reported; UTF-16 is read as such.
 #[test]
 fn encodings_and_shifted_rows() {
     let dir = tempfile::tempdir().unwrap();
@@ -365,17 +365,32 @@ fn encodings_and_shifted_rows() {
     ]);
     common::assert_refused(&res, &["unknown column(s)", "column 36 (no name"]);
 
+    // UTF-16 (here with a byte-order mark) is read as such, and said; broken UTF-16 is refused
+    // in one line.
     let utf16 = dir.path().join("utf16.csv");
-    std::fs::write(&utf16, b"\xFF\xFEC\x00l\x00u\x00b\x00").unwrap();
-    let res = smash(&[
-        "import",
-        "--format",
-        "trackman",
-        s(&utf16),
-        "--out",
-        s(&dir.path().join("u.csv")),
-    ]);
-    common::assert_refused(&res, &["UTF-16", ":1:"]);
+    let text = std::fs::read_to_string(fixture("trackman_older.csv")).unwrap();
+    let mut bytes = vec![0xFF, 0xFE];
+    bytes.extend(text.encode_utf16().flat_map(u16::to_le_bytes));
+    std::fs::write(&utf16, &bytes).unwrap();
+    let args = |f: &Path| {
+        smash(&[
+            "import",
+            "--format",
+            "trackman",
+            s(f),
+            "--out",
+            s(&dir.path().join("u.csv")),
+            "--impact-offset-positive",
+            "toe",
+        ])
+    };
+    let err = ok(&args(&utf16));
+    assert!(
+        err.contains("UTF-16 text (little-endian, with a byte-order mark)"),
+        "{err}"
+    );
+    std::fs::write(&utf16, b"\xFF\xFEC\x00l\x00u\x00b").unwrap();
+    common::assert_refused(&args(&utf16), &["not valid UTF-16", ":1:"]);
 }
 
 /// A mapping's `skip_lines` past the end of the file is refused at once (it used to spin).
@@ -452,7 +467,7 @@ fn shots_without_impact_location_are_left_out_and_counted() {
     assert!(!out2.exists());
 }
 
-/// TrackMan's `Date` cell (the date and the time of day) is kept as `datetime`, so that an
+/// TrackMan's `Date` cell (the date and the time of day) is kept as `datetime` (in one form), so that an
 /// export without golfers is cross-validated by session or by blocks of consecutive shots, never
 /// shot by shot: here one evening's session, so time blocks.
 #[test]
@@ -467,9 +482,10 @@ fn trackman_dates_become_the_folds() {
     );
     let (h, rows) = read(&out);
     let dates = column(&h, &rows, "datetime");
-    assert_eq!(dates[0], "5/6/2026 7:01:07 PM", "{dates:?}");
+    // Written in one form (`5/6/2026 7:01:07 PM` in the export).
+    assert_eq!(dates[0], "2026-05-06 19:01:07", "{dates:?}");
     assert!(
-        dates.iter().all(|d| d.starts_with("5/6/2026 ")),
+        dates.iter().all(|d| d.starts_with("2026-05-06 ")),
         "{dates:?}"
     );
     let opts = smash::data::shots::ReadOptions {

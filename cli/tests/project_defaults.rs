@@ -64,17 +64,22 @@ fn the_file_fills_what_the_flags_leave_unset_and_says_so() {
         std::fs::read(&flagged).unwrap(),
         std::fs::read(sub.join("from_file.csv")).unwrap()
     );
-    // SMASH_CONFIG=none: no file, so no format.
+    // SMASH_CONFIG=none: no file, so import's own default, --format auto, which recognises the
+    // layout and writes the same shots.
     let o = smash_in(
         &sub,
         Some("none"),
         &["import", s(&export), "--out", "x.csv"],
     );
-    assert!(!o.status.success());
+    assert!(o.status.success(), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("--format is required"),
+        stderr(&o).contains("--format auto: read as rapsodo"),
         "{}",
         stderr(&o)
+    );
+    assert_eq!(
+        std::fs::read(&flagged).unwrap(),
+        std::fs::read(sub.join("x.csv")).unwrap()
     );
 }
 

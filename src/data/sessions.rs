@@ -40,36 +40,7 @@ fn split_date_time(cell: &str) -> (Option<&str>, Option<&str>) {
     (Some(date), time)
 }
 
-/// Seconds since midnight of `h:mm[:ss[.fff]][ AM|PM]`, when it is a time of day.
-fn seconds_of_day(t: &str) -> Option<f64> {
-    let lower = t.trim().to_ascii_lowercase();
-    let (clock, pm) = match lower.strip_suffix("pm") {
-        Some(c) => (c.trim(), Some(true)),
-        None => match lower.strip_suffix("am") {
-            Some(c) => (c.trim(), Some(false)),
-            None => (lower.trim(), None),
-        },
-    };
-    let mut parts = clock.split(':');
-    let h: f64 = parts.next()?.parse().ok()?;
-    let m: f64 = parts.next()?.parse().ok()?;
-    let s: f64 = match parts.next() {
-        Some(s) => s.parse().ok()?,
-        None => 0.0,
-    };
-    if parts.next().is_some() || !(0.0..24.0).contains(&h) || !(0.0..60.0).contains(&m) {
-        return None;
-    }
-    if !(0.0..61.0).contains(&s) {
-        return None;
-    }
-    let h = match pm {
-        Some(true) if h < 12.0 => h + 12.0,
-        Some(false) if h == 12.0 => 0.0,
-        _ => h,
-    };
-    Some(h * 3600.0 + m * 60.0 + s)
-}
+use super::datetime::seconds_of_day;
 
 /// The keys to group `table`'s folds by when it names no golfer, for `folds` folds: sessions
 /// (two or more dates), else time blocks (`folds` runs of consecutive shots of equal size by
@@ -83,11 +54,22 @@ pub fn fold_keys(table: &ShotTable, folds: usize) -> Result<Option<FoldKeys>, Da
         .position(|h| TIME_COLUMNS.iter().any(|c| h.eq_ignore_ascii_case(c)));
     if let Some(i) = col {
         let column = table.headers[i].clone();
-        let cells: Vec<(Option<&str>, Option<&str>)> = table
+        // One day written two ways (`5/1/2026`, `2026-05-01`) is one session; an Excel serial
+        // (`46143.79`) is a day and a time, not a session of its own.
+        let raw: Vec<&str> = table
             .records
             .iter()
-            .map(|r| split_date_time(r.get(i).map_or("", String::as_str)))
+            .map(|r| r.get(i).map_or("", String::as_str))
             .collect();
+        let day_first = super::datetime::day_first(raw.iter().copied());
+        let normal: Vec<String> = raw
+            .iter()
+            .map(|c| {
+                super::datetime::parse(c, day_first).map_or_else(|| (*c).to_owned(), |d| d.format())
+            })
+            .collect();
+        let cells: Vec<(Option<&str>, Option<&str>)> =
+            normal.iter().map(|c| split_date_time(c)).collect();
         let mut dates: Vec<&str> = cells.iter().filter_map(|c| c.0).collect();
         dates.sort_unstable();
         dates.dedup();
@@ -223,7 +205,7 @@ mod tests {
         );
         let k = fold_keys(&t, 5).unwrap().unwrap();
         assert_eq!(k.kind, KeyKind::Session);
-        assert_eq!(k.keys, ["5/6/2026", "5/7/2026", "5/6/2026"]);
+        assert_eq!(k.keys, ["2026-05-06", "2026-05-07", "2026-05-06"]);
         // One day: 6 shots out of order in 3 blocks of 2 consecutive shots.
         let t = table(
             "time",

@@ -47,7 +47,7 @@ pub fn ball_types(table: &LaunchTable) -> Option<Vec<String>> {
 
 /// Column names (without case) whose cells name a shot's session: a `session` label, or the
 /// date of a `date`, `datetime`, `date_time` or `timestamp` cell (`2026-05-06 19:03:21`,
-/// `2026-05-06T19:03`, `5/6/2026 7:03 PM`: the part before the first space or `T`).
+/// `2026-05-06T19:03`, `5/6/2026 7:03 PM`, an Excel serial day: the date, in one form).
 const SESSION_COLUMNS: [&str; 5] = ["session", "date", "datetime", "date_time", "timestamp"];
 
 /// Each shot's session and the column it was read from, when a session or date column names
@@ -58,13 +58,16 @@ pub fn sessions(table: &LaunchTable) -> Option<(String, Vec<String>)> {
         .iter()
         .position(|h| SESSION_COLUMNS.iter().any(|c| h.eq_ignore_ascii_case(c)))?;
     let whole = table.headers[i].eq_ignore_ascii_case("session");
-    let keys: Vec<String> = table
-        .records
-        .iter()
-        .map(|r| {
-            let cell = r.get(i).unwrap_or("").trim();
+    // One day written two ways (`5/1/2026`, `2026-05-01`) is one session, and an Excel serial
+    // (`46143.79`) is a day, not a session of its own (smash::data::datetime).
+    let cells = || table.records.iter().map(|r| r.get(i).unwrap_or("").trim());
+    let day_first = smash::data::datetime::day_first(cells());
+    let keys: Vec<String> = cells()
+        .map(|cell| {
             if whole {
                 cell.to_string()
+            } else if let Some(d) = smash::data::datetime::parse(cell, day_first) {
+                d.date()
             } else {
                 cell.split([' ', 'T']).next().unwrap_or("").to_string()
             }

@@ -1,74 +1,195 @@
-//! One cell of an export: a number with an optional L/R direction letter or unit suffix.
+//! One cell of an export, in the one grammar every preset and mapping file shares: a number
+//! (with thousands separators, a decimal comma in a decimal-comma file), optionally with a side
+//! letter or word before or after it (`5.4 L`, `L5.4`, `2.4° R`, `U 3`, `4.1 I-O`) when the
+//! column takes directions, and optionally the column's own unit (`152 mph`, `11.7°`), in any
+//! order, case and spacing.
 
 use super::units::Unit;
 
 pub(super) use crate::data::shots::list_lines;
 
-/// Parse one cell: a number, optionally with an L/R letter before or after it (when the column
-/// takes directions) or the column's own unit after it. Returns the value in the column's unit.
-pub(super) fn parse_cell(raw: &str, unit: Unit, direction: Option<&str>) -> Result<f64, String> {
-    let s = raw.trim();
-    let mut letter: Option<char> = None;
-    let mut rest = s;
-    if let Some(c) = s.chars().next() {
-        if matches!(c, 'L' | 'R' | 'l' | 'r')
-            && s[1..]
-                .trim_start()
-                .starts_with(|d: char| d.is_ascii_digit() || d == '.')
-        {
-            letter = Some(c.to_ascii_uppercase());
-            rest = s[1..].trim_start();
-        }
+/// The directions a column's cells may carry, as `direction = "…"` names them: the words that
+/// mean positive and the words that mean negative (compared ignoring case).
+pub(super) fn direction_words(
+    direction: &str,
+) -> Option<(&'static [&'static str], &'static [&'static str])> {
+    const R: &[&str] = &["R", "RIGHT", "RT"];
+    const L: &[&str] = &["L", "LEFT", "LT"];
+    const U: &[&str] = &["U", "UP"];
+    const D: &[&str] = &["D", "DOWN", "DN"];
+    const IO: &[&str] = &["I-O", "IN-OUT", "IN-TO-OUT", "I/O", "IO"];
+    const OI: &[&str] = &["O-I", "OUT-IN", "OUT-TO-IN", "O/I", "OI"];
+    Some(match direction {
+        "R+" => (R, L),
+        "L+" => (L, R),
+        "U+" => (U, D),
+        "D+" => (D, U),
+        "I-O+" => (IO, OI),
+        "O-I+" => (OI, IO),
+        _ => return None,
+    })
+}
+
+/// The `direction` values a mapping may give.
+pub(super) const DIRECTIONS: [&str; 6] = ["R+", "L+", "U+", "D+", "I-O+", "O-I+"];
+
+/// Parse a number as an export writes it: `1,234.5` (thousands commas) or, in a file that
+/// writes decimal commas, `1.234,5` / `3.083` (thousands dots) and `3,5`. `None`: not a number.
+pub(super) fn parse_number(text: &str, decimal_comma: bool) -> Option<f64> {
+    let t = text.trim();
+    let (thousands, decimal) = if decimal_comma {
+        ('.', ',')
+    } else {
+        (',', '.')
+    };
+    let body = t.strip_prefix(['-', '+']).unwrap_or(t);
+    let int_part = body.split(decimal).next().unwrap_or("");
+    let grouped = int_part.contains(thousands) && {
+        let groups: Vec<&str> = int_part.split(thousands).collect();
+        (1..=3).contains(&groups[0].len())
+            && !groups[0].starts_with('0')
+            && groups.iter().all(|g| g.bytes().all(|b| b.is_ascii_digit()))
+            && groups[1..].iter().all(|g| g.len() == 3)
+    };
+    let mut s = if grouped {
+        t.replace(thousands, "")
+    } else {
+        t.to_owned()
+    };
+    if decimal_comma {
+        s = s.replace(',', ".");
     }
-    // The numeric prefix.
-    let bytes = rest.as_bytes();
-    let mut end = 0;
-    while end < bytes.len() {
-        let b = bytes[end];
-        let ok = b.is_ascii_digit()
-            || b == b'.'
-            || ((b == b'-' || b == b'+') && (end == 0 || matches!(bytes[end - 1], b'e' | b'E')))
-            || ((b == b'e' || b == b'E')
-                && end > 0
-                && bytes
-                    .get(end + 1)
+    if s.contains(',') {
+        return None;
+    }
+    crate::data::number::parse_f64(&s)
+}
+
+/// Split a cell into the number's text and the words around it (before and after).
+fn split_number(s: &str) -> Option<(&str, &str, &str)> {
+    let b = s.as_bytes();
+    let start = (0..b.len()).find(|&i| {
+        let digit = |j: usize| b.get(j).is_some_and(u8::is_ascii_digit);
+        digit(i)
+            || (b[i] == b'.' && digit(i + 1))
+            || (matches!(b[i], b'-' | b'+')
+                && (digit(i + 1) || (b.get(i + 1) == Some(&b'.') && digit(i + 2)))
+                // `I-O` and `O-I` are words, not a sign.
+                && !(i > 0 && b[i - 1].is_ascii_alphabetic()))
+    })?;
+    let mut end = start;
+    while end < b.len() {
+        let c = b[end];
+        let ok = c.is_ascii_digit()
+            || c == b'.'
+            || c == b','
+            || ((c == b'-' || c == b'+') && (end == start || matches!(b[end - 1], b'e' | b'E')))
+            || ((c == b'e' || c == b'E')
+                && end > start
+                && b.get(end + 1)
                     .is_some_and(|n| n.is_ascii_digit() || *n == b'-' || *n == b'+'));
         if !ok {
             break;
         }
         end += 1;
     }
-    let number = &rest[..end];
-    let v: f64 = number
-        .parse()
-        .map_err(|_| format!("{} is not a number", crate::data::quote_cell(raw)))?;
-    let tail = rest[end..].trim();
-    if !tail.is_empty() {
-        if letter.is_none() && matches!(tail, "L" | "R" | "l" | "r") {
-            letter = Some(tail.chars().next().expect("one").to_ascii_uppercase());
+    // A trailing separator belongs to no number (`5,` in a list).
+    while end > start && matches!(b[end - 1], b',' | b'.') && !b[start..end - 1].is_empty() {
+        if b[start..end - 1].iter().any(u8::is_ascii_digit) {
+            end -= 1;
         } else {
-            match Unit::parse(tail) {
-                Some(u) if u.name == unit.name => {}
-                Some(u) => {
-                    return Err(format!(
-                        "mixed units: '{raw}' is in {} but the column is in {}",
-                        u.name, unit.name
-                    ))
-                }
-                None => return Err(format!("{} is not a number", crate::data::quote_cell(raw))),
+            break;
+        }
+    }
+    Some((&s[..start], &s[start..end], &s[end..]))
+}
+
+/// Parse one cell: a number, optionally with a direction word before or after it (when the
+/// column takes directions: `direction` is one of [`DIRECTIONS`]) and the column's own unit,
+/// in any order. Returns the value in the column's unit.
+pub(super) fn parse_cell(
+    raw: &str,
+    unit: Unit,
+    direction: Option<&str>,
+    decimal_comma: bool,
+) -> Result<f64, String> {
+    let s = raw.trim();
+    let not_a_number = || format!("{} is not a number", crate::data::quote_cell(raw));
+    let (before, number, after) = split_number(s).ok_or_else(not_a_number)?;
+    let v = parse_number(number, decimal_comma).ok_or_else(not_a_number)?;
+    let mut words: Vec<String> = before
+        .split_whitespace()
+        .chain(after.split_whitespace())
+        .map(str::to_owned)
+        .collect();
+    // `2.4°L`, `11.7°R`: a unit glued to a letter.
+    let is_side = |w: &str| {
+        let upper = w.to_ascii_uppercase();
+        ["R+", "U+", "I-O+"]
+            .iter()
+            .filter_map(|d| direction_words(d))
+            .any(|(p, n)| p.contains(&upper.as_str()) || n.contains(&upper.as_str()))
+    };
+    if words.len() == 1
+        && words[0].len() > 1
+        && Unit::parse(&words[0]).is_none()
+        && !is_side(&words[0])
+    {
+        let w = words[0].clone();
+        for (i, _) in w.char_indices().skip(1) {
+            let (a, b) = w.split_at(i);
+            if Unit::parse(a).is_some() && b.chars().all(|c| c.is_ascii_alphabetic()) {
+                words = vec![a.to_owned(), b.to_owned()];
+                break;
+            }
+            if Unit::parse(b).is_some() && a.chars().all(|c| c.is_ascii_alphabetic()) {
+                words = vec![a.to_owned(), b.to_owned()];
+                break;
             }
         }
     }
-    match (letter, direction) {
-        (None, _) => Ok(v),
-        (Some(_), None) => Err(format!("'{raw}': this column does not take L/R directions")),
-        (Some(_), Some(_)) if number.starts_with(['-', '+']) => {
-            Err(format!("'{raw}': both a sign and an L/R letter; write one"))
+    let mut letter: Option<bool> = None;
+    let mut side_word: Option<String> = None;
+    for w in words {
+        let upper = w.to_ascii_uppercase();
+        // Every family of words, so that a misplaced one is named, not read as a unit.
+        if is_side(&w) {
+            let Some(words) = direction.and_then(direction_words) else {
+                return Err(format!(
+                    "'{raw}': this column does not take L/R, U/D or I-O/O-I directions ('{w}')"
+                ));
+            };
+            let is_pos = words.0.contains(&upper.as_str());
+            let is_neg = words.1.contains(&upper.as_str());
+            if !(is_pos || is_neg) || letter.is_some() {
+                return Err(format!(
+                    "'{raw}': '{w}' is not a direction of this column (it takes {} or {})",
+                    words.0[0], words.1[0]
+                ));
+            }
+            letter = Some(is_pos);
+            side_word = Some(w);
+            continue;
         }
-        (Some(l), Some(d)) => {
-            let positive = if d == "R+" { 'R' } else { 'L' };
-            Ok(if l == positive { v } else { -v })
+        match Unit::parse(&w) {
+            Some(u) if u.name == unit.name => {}
+            Some(u) => {
+                return Err(format!(
+                    "mixed units: '{raw}' is in {} but the column is in {}",
+                    u.name, unit.name
+                ))
+            }
+            None => return Err(not_a_number()),
         }
+    }
+    match letter {
+        None => Ok(v),
+        Some(_) if number.starts_with(['-', '+']) => Err(format!(
+            "'{raw}': both a sign and a direction ('{}'); write one",
+            side_word.unwrap_or_default()
+        )),
+        Some(true) => Ok(v),
+        Some(false) => Ok(-v),
     }
 }
 
@@ -80,20 +201,68 @@ mod tests {
         Unit::parse("deg").unwrap()
     }
 
+    fn p(raw: &str, d: Option<&str>) -> Result<f64, String> {
+        parse_cell(raw, deg(), d, false)
+    }
+
     #[test]
     fn directions_and_units_in_cells() {
-        assert_eq!(parse_cell("5.4 L", deg(), Some("R+")), Ok(-5.4));
-        assert_eq!(parse_cell("5.4R", deg(), Some("R+")), Ok(5.4));
-        assert_eq!(parse_cell("L5.4", deg(), Some("R+")), Ok(-5.4));
-        assert_eq!(parse_cell("R 5.4", deg(), Some("L+")), Ok(-5.4));
-        assert_eq!(parse_cell("-2.5", deg(), Some("R+")), Ok(-2.5));
-        assert_eq!(parse_cell("1e-3", deg(), None), Ok(1e-3));
-        assert!(parse_cell("-5.4 L", deg(), Some("R+")).is_err());
-        assert!(parse_cell("5.4 L", deg(), None).is_err());
+        assert_eq!(p("5.4 L", Some("R+")), Ok(-5.4));
+        assert_eq!(p("5.4R", Some("R+")), Ok(5.4));
+        assert_eq!(p("L5.4", Some("R+")), Ok(-5.4));
+        assert_eq!(p("R 5.4", Some("L+")), Ok(-5.4));
+        assert_eq!(p("-2.5", Some("R+")), Ok(-2.5));
+        assert_eq!(p("1e-3", None), Ok(1e-3));
+        assert!(p("-5.4 L", Some("R+")).is_err());
+        assert!(p("5.4 L", None).is_err());
         let mph = Unit::parse("mph").unwrap();
-        assert_eq!(parse_cell("152.5 mph", mph, None), Ok(152.5));
-        let e = parse_cell("245 km/h", mph, None).unwrap_err();
+        assert_eq!(parse_cell("152.5 mph", mph, None, false), Ok(152.5));
+        let f = Unit::parse("°F").unwrap();
+        assert_eq!(parse_cell("77 °F", f, None, false), Ok(77.0));
+        assert_eq!(parse_cell("77°F", f, None, false), Ok(77.0));
+        let e = parse_cell("245 km/h", mph, None, false).unwrap_err();
         assert!(e.contains("mixed units"), "{e}");
-        assert!(parse_cell("fast", mph, None).is_err());
+        assert!(parse_cell("fast", mph, None, false).is_err());
+    }
+
+    /// Units and side words in any order, case and spacing; the other families of words.
+    #[test]
+    fn one_grammar_for_every_cell() {
+        for (raw, want) in [
+            ("2.4° L", -2.4),
+            ("2.4°L", -2.4),
+            ("L 2.4°", -2.4),
+            ("l2.4 deg", -2.4),
+            ("2.4 Left", -2.4),
+            ("right 2.4", 2.4),
+            ("R 14.3°", 14.3),
+            ("14.3 °R", 14.3),
+        ] {
+            assert_eq!(p(raw, Some("R+")), Ok(want), "{raw}");
+        }
+        assert_eq!(p("3.1 U", Some("U+")), Ok(3.1));
+        assert_eq!(p("D 3.1", Some("U+")), Ok(-3.1));
+        assert_eq!(p("4.2 I-O", Some("I-O+")), Ok(4.2));
+        assert_eq!(p("4.2° O-I", Some("I-O+")), Ok(-4.2));
+        assert_eq!(p("O-I 4.2", Some("I-O+")), Ok(-4.2));
+        let e = p("3.1 U", Some("R+")).unwrap_err();
+        assert!(e.contains("takes R or L"), "{e}");
+        assert!(p("3 L R", Some("R+")).is_err());
+        assert!(p("3 U", None).unwrap_err().contains("does not take L/R"));
+    }
+
+    #[test]
+    fn thousands_separators() {
+        assert_eq!(parse_number("3,083", false), Some(3083.0));
+        assert_eq!(parse_number("-1,234.5", false), Some(-1234.5));
+        assert_eq!(parse_number("3.083", true), Some(3083.0));
+        assert_eq!(parse_number("1.234,5", true), Some(1234.5));
+        assert_eq!(parse_number("3,5", true), Some(3.5));
+        assert_eq!(parse_number("0.5", true), Some(0.5));
+        assert_eq!(parse_number("0.364", true), Some(0.364));
+        assert_eq!(parse_number("3,5", false), None);
+        assert_eq!(parse_number("12,34", false), None);
+        let rpm = Unit::parse("rpm").unwrap();
+        assert_eq!(parse_cell("3.083 rpm", rpm, None, true), Ok(3083.0));
     }
 }

@@ -15,6 +15,10 @@ pub(super) struct SpinCheck {
     side_rpm: f64,
     rate_rpm: f64,
     axis_deg: f64,
+    /// How far the ball curved off its launch line (offline − carry·tan(azimuth)), yd, + right,
+    /// when the export gives the offline distance: the evidence that settles which of side spin
+    /// and spin axis has the wrong sign.
+    curve_yd: Option<f64>,
 }
 
 impl SpinCheck {
@@ -28,6 +32,10 @@ impl SpinCheck {
             side_rpm: get("sidespin_rpm")?,
             rate_rpm: get("spin_rate_rpm")?,
             axis_deg: get("spin_axis_deg")?,
+            curve_yd: get("offline_yd")
+                .zip(get("carry_yd"))
+                .zip(get("azimuth_deg"))
+                .map(|((off, carry), az)| off - carry * az.to_radians().tan()),
         })
     }
 
@@ -73,6 +81,32 @@ pub(super) struct Redundancy {
     smash_checked: usize,
     smash_bad: Vec<usize>,
     smash_first: Option<String>,
+    /// Of the shots whose spins disagree in sign and that curved clearly (more than 2 yd): how
+    /// many, and how many curved the way the side spin (as read) or the spin axis says.
+    curved: usize,
+    side_agrees: usize,
+    axis_agrees: usize,
+    /// Ball speed over club speed, and carry over the carry the launch would reach in a vacuum,
+    /// of every shot that gives them: the units checked by physics.
+    speed_ratios: Vec<f64>,
+    carry_ratios: Vec<f64>,
+}
+
+/// The median of `v` (not empty).
+fn median(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+/// What the offline distances say about a sign disagreement between side spin and axis.
+enum Verdict {
+    /// Too few curved shots, or they do not agree enough: nothing is recommended.
+    Unsettled,
+    /// The side spin as read is right (the axis is what disagrees): the shots use it.
+    SideRight,
+    /// The spin axis is right: the side spin is read with the wrong sign.
+    AxisRight,
 }
 
 impl Redundancy {
@@ -88,6 +122,11 @@ impl Redundancy {
             if let Some((what, flipped)) = s.disagreement() {
                 self.spin_bad.push(line);
                 self.spin_flipped += usize::from(flipped);
+                if let Some(c) = s.curve_yd.filter(|c| flipped && c.abs() > 2.0) {
+                    self.curved += 1;
+                    self.side_agrees += usize::from(c * s.side_rpm > 0.0);
+                    self.axis_agrees += usize::from(c * s.axis_deg > 0.0);
+                }
                 self.spin_first
                     .get_or_insert(format!("line {line}: {what}"));
             }
@@ -104,15 +143,116 @@ impl Redundancy {
         }
     }
 
-    /// Refuse the export when the spin disagrees on most of at least three shots.
+    /// Record a shot's speeds, launch angle and carry (shots-file units) for the unit checks.
+    pub(super) fn add_physics(
+        &mut self,
+        ball_mph: Option<f64>,
+        club_mph: Option<f64>,
+        launch_deg: Option<f64>,
+        carry_yd: Option<f64>,
+    ) {
+        if let (Some(b), Some(c)) = (ball_mph, club_mph) {
+            if b > 0.0 && c > 0.0 {
+                self.speed_ratios.push(b / c);
+            }
+        }
+        if let (Some(b), Some(l), Some(carry)) = (ball_mph, launch_deg, carry_yd) {
+            let v = b * 0.44704;
+            let vacuum_yd = v * v * (2.0 * l.to_radians()).sin() / 9.80665 / 0.9144;
+            if vacuum_yd > 1.0 && carry > 0.0 {
+                self.carry_ratios.push(carry / vacuum_yd);
+            }
+        }
+    }
+
+    /// Refuse an export whose speeds or carries no golf shot could give, in the median of at
+    /// least three shots: ball speed over club speed outside 0.7–1.75 (a smash factor; m/s read
+    /// as mph or km/h as mph in one of the two), or carries longer than the launch would reach
+    /// in a vacuum three times over (the ball speed in too small a unit: m/s read as mph gives
+    /// five times). `units` names the
+    /// units the speeds and carry were read in.
+    pub(super) fn refuse_units(&self, path: &Path, units: &str) -> Result<(), DataError> {
+        if self.speed_ratios.len() >= 3 {
+            let m = median(&self.speed_ratios);
+            if !(0.7..=1.75).contains(&m) {
+                return Err(DataError::file(
+                    path,
+                    format!(
+                        "ball speed / club speed is {m:.2} in the median of {} shots, where a golf \
+                         shot's smash factor is 0.7–1.75: one of the two is read in the wrong unit \
+                         ({units}); state the right one with unit = \"…\" in a mapping file",
+                        self.speed_ratios.len()
+                    ),
+                ));
+            }
+        }
+        if self.carry_ratios.len() >= 3 {
+            let m = median(&self.carry_ratios);
+            // Lift carries a low, spinning launch past its vacuum range (a driver by up to
+            // about 1.5 times); m/s read as mph shrinks the vacuum range five times.
+            if m > 3.0 {
+                return Err(DataError::file(
+                    path,
+                    format!(
+                        "the median of {} carries is {m:.1} times what the launch would carry in a \
+                         vacuum: the ball speed is read in too small a unit (m/s as mph?) or the \
+                         carry in too large a one ({units}); state the right one with unit = \"…\" \
+                         in a mapping file",
+                        self.carry_ratios.len()
+                    ),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The offline distances' verdict on the sign disagreements: settled only when at least
+    /// three shots curved clearly and 80 % of them agree with one reading and at most 20 % with
+    /// the other.
+    fn verdict(&self) -> Verdict {
+        let (n, side, axis) = (self.curved, self.side_agrees, self.axis_agrees);
+        if n < 3 {
+            Verdict::Unsettled
+        } else if 5 * side >= 4 * n && 5 * axis <= n {
+            Verdict::SideRight
+        } else if 5 * axis >= 4 * n && 5 * side <= n {
+            Verdict::AxisRight
+        } else {
+            Verdict::Unsettled
+        }
+    }
+
+    /// Refuse the export when the spin disagrees on most of at least three shots, unless the
+    /// offline distances show the side spin as read is right (then it is used, and a note
+    /// says so).
     pub(super) fn refuse_systematic(&self, path: &Path, vendor: &str) -> Result<(), DataError> {
         let bad = self.spin_bad.len();
         if self.spin_checked >= 3 && 2 * bad > self.spin_checked {
-            let hint = if 2 * self.spin_flipped > bad {
-                "with the sign of sidespin flipped they agree: the mapping reads sidespin (or the \
-                 spin axis) with the wrong sign"
-            } else {
-                "the mapping reads a spin column with the wrong meaning or unit"
+            let sign = 2 * self.spin_flipped > bad;
+            let hint = match (sign, self.verdict()) {
+                (true, Verdict::SideRight) => return Ok(()),
+                (true, Verdict::AxisRight) => format!(
+                    "with the sign of sidespin flipped they agree, and the offline distances side \
+                     with the spin axis ({} of {} clearly curved shots): the mapping reads sidespin \
+                     with the wrong sign",
+                    self.axis_agrees, self.curved
+                ),
+                (true, Verdict::Unsettled) => format!(
+                    "they agree with the sign of sidespin or of the spin axis flipped, and {}: \
+                     check which of the two the mapping reads with the wrong sign",
+                    if self.curved >= 3 {
+                        format!(
+                            "the offline distances do not settle which ({} of {} clearly curved \
+                             shots curve the way the sidespin says, {} the way the axis says)",
+                            self.side_agrees, self.curved, self.axis_agrees
+                        )
+                    } else {
+                        "the file gives too few offline distances to tell which".to_owned()
+                    }
+                ),
+                (false, _) => {
+                    "the mapping reads a spin column with the wrong meaning or unit".to_owned()
+                }
             };
             return Err(DataError::file(
                 path,
@@ -129,7 +269,19 @@ impl Redundancy {
 
     /// Notes on disagreements that did not refuse the file.
     pub(super) fn notes(&self, notes: &mut Vec<String>) {
-        if !self.spin_bad.is_empty() {
+        if !self.spin_bad.is_empty() && matches!(self.verdict(), Verdict::SideRight) {
+            notes.push(format!(
+                "back and side spin disagree in sign with spin rate and axis on {} of {} shots \
+                 (the first, {}); the offline distances side with the sidespin as read ({} of {} \
+                 clearly curved shots), so back and side spin were used: the spin axis column is \
+                 what disagrees",
+                self.spin_bad.len(),
+                self.spin_checked,
+                self.spin_first.as_deref().unwrap_or_default(),
+                self.side_agrees,
+                self.curved
+            ));
+        } else if !self.spin_bad.is_empty() {
             notes.push(format!(
                 "back and side spin disagree with spin rate and axis on {} of {} shots (line(s) \
                  {}; the first, {}): back and side spin were used",

@@ -12,6 +12,9 @@ use super::units::Unit;
 use super::{ColumnSpec, ImportOptions, Mapping, UnknownColumns};
 use crate::data::DataError;
 
+/// The index of a column the file does not have (read as empty cells).
+pub(super) const ABSENT: usize = usize::MAX;
+
 /// A mapped column found in the export.
 pub(super) struct Resolved<'a> {
     /// The mapping's entry.
@@ -47,6 +50,16 @@ pub(super) fn resolve_columns<'a>(
         let Some(index) = find_column(table, &spec.source, target, &used) else {
             if !spec.optional {
                 missing.push(format!("'{}' ({})", spec.source[0], spec.target));
+            } else if spec.assume.is_some() {
+                // A column the mapping assumes a value for is there even when the file has
+                // none of it: every shot gets the assumed value, counted in the summary.
+                resolved.push(Resolved {
+                    spec,
+                    target,
+                    index: ABSENT,
+                    header: format!("{} (absent)", spec.source[0]),
+                    unit: target.unit(),
+                });
             }
             continue;
         };
@@ -99,6 +112,15 @@ pub(super) fn resolve_columns<'a>(
     let mut notes = Vec::new();
     let unknown = unknown_columns(table, mapping, &used);
     let lenient = mapping.export.unknown_columns == UnknownColumns::Note;
+    // A file of thousands of unknown columns gets a line, not a page.
+    let listed = |names: &[String], sep: &str| {
+        const SHOWN: usize = 20;
+        let mut s = names[..names.len().min(SHOWN)].join(sep);
+        if names.len() > SHOWN {
+            s.push_str(&format!(" … and {} more", names.len() - SHOWN));
+        }
+        s
+    };
     if !unknown.is_empty() && !opts.ignore_unknown_columns && !lenient {
         return Err(DataError::at(
             path,
@@ -107,7 +129,7 @@ pub(super) fn resolve_columns<'a>(
             format!(
                 "unknown column(s) for the {vendor} format: '{}'; map or ignore them in a mapping file (--format FILE.toml), \
                  or pass --ignore-unknown-columns",
-                unknown.join("', '")
+                listed(&unknown, "', '")
             ),
         ));
     }
@@ -115,7 +137,7 @@ pub(super) fn resolve_columns<'a>(
         notes.push(format!(
             "{} column(s) not used by the {vendor} format (left in the export): {}",
             unknown.len(),
-            unknown.join(", ")
+            listed(&unknown, ", ")
         ));
     }
     if !assumed.is_empty() {
@@ -133,7 +155,12 @@ pub(super) fn resolve_columns<'a>(
 /// written with a unit (`Club (mph)`) takes only a column with a unit, a text target prefers the
 /// column without one, and a numeric target the column with one. Columns already `used` are
 /// skipped.
-fn find_column(table: &Table, source: &[String], target: Target, used: &[bool]) -> Option<usize> {
+pub(super) fn find_column(
+    table: &Table,
+    source: &[String],
+    target: Target,
+    used: &[bool],
+) -> Option<usize> {
     for name in source {
         let (want, want_unit) = split_header(name);
         let candidates: Vec<usize> = (0..table.headers.len())

@@ -26,6 +26,9 @@ pub(super) struct Layout<'r, 'a> {
     pub from_offset: bool,
     /// Back and side spin are derived from spin rate and axis.
     pub use_rate_axis: bool,
+    /// Side spin is derived from back spin and spin axis (`side = back · tan a`), for an
+    /// export that gives back spin and axis but no side spin or total.
+    pub use_back_axis: bool,
     /// Back and side spin and spin rate and axis are all given: they are checked against each
     /// other.
     pub check_spin: bool,
@@ -76,7 +79,9 @@ impl<'r, 'a> Layout<'r, 'a> {
             launch_all,
         )?;
         let spin_pair = has("backspin_rpm") && has("sidespin_rpm");
-        let use_rate_axis = launch_all && !spin_pair;
+        let back_axis = has("backspin_rpm") && has("spin_axis_deg") && !has("sidespin_rpm");
+        let use_rate_axis = launch_all && !spin_pair && has("spin_rate_rpm");
+        let use_back_axis = launch_all && !spin_pair && !use_rate_axis && back_axis;
         let check_spin = launch_all && spin_pair && has("spin_rate_rpm") && has("spin_axis_deg");
         let from_offset = has("impact_offset_mm");
         let condition = has("condition");
@@ -86,7 +91,8 @@ impl<'r, 'a> Layout<'r, 'a> {
             .filter(|c| {
                 has(c)
                     || (*c == "impact_z_mm" && from_offset)
-                    || (use_rate_axis && (*c == "backspin_rpm" || *c == "sidespin_rpm"))
+                    || ((use_rate_axis || use_back_axis)
+                        && (*c == "backspin_rpm" || *c == "sidespin_rpm"))
                     || (condition && matches!(*c, "altitude_m" | "air_temperature_c"))
             })
             .collect();
@@ -124,6 +130,7 @@ impl<'r, 'a> Layout<'r, 'a> {
             offset_side,
             from_offset,
             use_rate_axis,
+            use_back_axis,
             check_spin,
             launch_all,
             delivery_all,
@@ -146,6 +153,20 @@ impl<'r, 'a> Layout<'r, 'a> {
     /// The resolved columns of one kind of target.
     pub(super) fn of(&self, target: Target) -> Option<&'r Resolved<'a>> {
         self.resolved.iter().find(|r| r.target == target)
+    }
+
+    /// The units the speeds and the carry were read in, for messages
+    /// (`ball speed in m/s, club speed in mph, carry in yd`).
+    pub(super) fn units_read(&self) -> String {
+        ["ball_speed_mph", "club_speed_mph", "carry_yd"]
+            .iter()
+            .filter_map(|t| {
+                let r = self.column(t)?;
+                let what = t.rsplit_once('_').map_or(*t, |(w, _)| w).replace('_', " ");
+                Some(format!("{what} in {}", r.unit?.name))
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// The shots file's header row.
@@ -180,7 +201,7 @@ fn check_delivery(
     let offset_held = |r: &&Resolved| {
         table.rows.iter().any(|(_, cells)| {
             cells.get(r.index).is_some_and(|c| {
-                !super::rows::not_measured(c.trim(), &r.spec.missing, &export.missing)
+                !super::missing::not_measured(c.trim(), &r.spec.missing, &export.missing)
             })
         })
     };
@@ -234,7 +255,7 @@ fn check_launch(
     has: &dyn Fn(&str) -> bool,
 ) -> Result<bool, DataError> {
     let spin_pair = has("backspin_rpm") && has("sidespin_rpm");
-    let rate_axis = has("spin_rate_rpm") && has("spin_axis_deg");
+    let rate_axis = (has("spin_rate_rpm") || has("backspin_rpm")) && has("spin_axis_deg");
     let launch_any = LAUNCH.iter().any(|c| has(c))
         || [
             "backspin_rpm",
@@ -250,8 +271,8 @@ fn check_launch(
             path,
             Some(header_line),
             None,
-            "measured launch is incomplete: ball speed, launch angle, launch direction and either back and side spin \
-             or spin rate and spin axis are all needed (or none of them)",
+            "measured launch is incomplete: ball speed, launch angle, launch direction and back and side spin, \
+             spin rate and spin axis, or back spin and spin axis are all needed (or none of them)",
         ));
     }
     Ok(launch_all)

@@ -17,7 +17,10 @@ mod checks;
 mod columns;
 mod condition;
 mod conventions;
+mod detect;
+mod json;
 mod layout;
+mod missing;
 mod rows;
 mod summary;
 mod table;
@@ -31,6 +34,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use self::columns::resolve_columns;
+pub use self::detect::{detect, Detected};
 use self::layout::Layout;
 use self::rows::write_shots;
 use self::table::{read_table, split_header};
@@ -40,7 +44,7 @@ use super::shots::{parse_shots_with, ReadOptions, ShotTable};
 use super::DataError;
 
 /// The presets: name and the mapping TOML built into the binary.
-pub const PRESETS: [(&str, &str); 8] = [
+pub const PRESETS: [(&str, &str); 12] = [
     (
         "trackman",
         include_str!("../../../configs/import/trackman.toml"),
@@ -70,10 +74,26 @@ pub const PRESETS: [(&str, &str); 8] = [
         include_str!("../../../configs/import/skytrak.toml"),
     ),
     ("gspro", include_str!("../../../configs/import/gspro.toml")),
+    (
+        "foresight-session",
+        include_str!("../../../configs/import/foresight-session.toml"),
+    ),
+    (
+        "trackman-report",
+        include_str!("../../../configs/import/trackman-report.toml"),
+    ),
+    (
+        "openflight",
+        include_str!("../../../configs/import/openflight.toml"),
+    ),
+    (
+        "flightscope-scrape",
+        include_str!("../../../configs/import/flightscope-scrape.toml"),
+    ),
 ];
 
 /// Other names of the presets: `(alias, preset)`.
-pub const PRESET_ALIASES: [(&str, &str); 7] = [
+pub const PRESET_ALIASES: [(&str, &str); 8] = [
     ("gc3", "foresight"),
     ("gcquad", "foresight"),
     ("fsx", "foresight"),
@@ -81,7 +101,33 @@ pub const PRESET_ALIASES: [(&str, &str); 7] = [
     ("garmin", "garmin-r10"),
     ("r10", "garmin-r10"),
     ("mlm2pro", "rapsodo"),
+    ("fsx-session", "foresight-session"),
 ];
+
+/// Presets whose vendor also writes JSON, and the preset that reads that JSON: `--format fsx`
+/// given a `.session` file reads it as one.
+pub const JSON_SIBLINGS: [(&str, &str); 2] = [
+    ("foresight", "foresight-session"),
+    ("trackman", "trackman-report"),
+];
+
+/// The preset `format` names (an alias resolved), or `format` itself; for a JSON export, the
+/// JSON sibling of the preset when it has one.
+pub fn preset_for(format: &str, bytes: &[u8]) -> String {
+    let key = format.to_ascii_lowercase();
+    let key = PRESET_ALIASES
+        .iter()
+        .find(|(a, _)| *a == key)
+        .map_or(key.as_str(), |(_, p)| *p)
+        .to_owned();
+    let json = std::str::from_utf8(bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes))
+        .is_ok_and(json::is_json);
+    match JSON_SIBLINGS.iter().find(|(p, _)| *p == key) {
+        Some((_, sibling)) if json => (*sibling).to_owned(),
+        _ if PRESETS.iter().any(|(n, _)| *n == key) => key,
+        _ => format.to_owned(),
+    }
+}
 
 /// Which way a positive heel–toe impact offset points.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
@@ -201,6 +247,11 @@ pub struct ColumnSpec {
     /// 0 for a dynamic loft or impact location its monitor does not measure).
     #[serde(default)]
     pub missing: Vec<String>,
+    /// The value (in the shots file's unit) used when a cell is not measured, each use counted
+    /// in the summary: for a monitor that does not measure a launch component on most shots
+    /// (OpenFlight's launch direction), so that its shots can still be flown.
+    #[serde(default)]
+    pub assume: Option<f64>,
     /// For the delivery's angles and velocity: where the vendor defines the value. Dynamic
     /// loft and face angle: `contact_point` or `face_centre`; club speed, attack angle and
     /// path: `com`, `geometric_centre` or `face_centre` ([`crate::conventions`]). Absent:
@@ -324,7 +375,7 @@ pub fn load_mapping(format: &str) -> Result<Mapping, DataError> {
     Err(DataError::file(
         path,
         format!(
-            "unknown format '{format}': use shots, a preset ({}) or a mapping file NAME.toml",
+            "unknown format '{format}': use shots, auto, a preset ({}) or a mapping file NAME.toml",
             names.join(", ")
         ),
     ))
@@ -383,10 +434,11 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
         }
         conventions::check_column(c).map_err(err)?;
         if let Some(d) = &c.direction {
-            if !matches!(d.as_str(), "R+" | "L+") {
+            if cell::direction_words(d).is_none() {
                 return Err(err(format!(
-                    "target '{}': direction must be \"R+\" or \"L+\", got '{d}'",
-                    c.target
+                    "target '{}': direction must be one of {}, got '{d}'",
+                    c.target,
+                    cell::DIRECTIONS.join(", ")
                 )));
             }
         }
@@ -450,6 +502,9 @@ fn export_places(layout: &Layout) -> Vec<(&'static str, String)> {
     for &c in &layout.numeric {
         let place = match c {
             "backspin_rpm" | "sidespin_rpm" if layout.use_rate_axis => header("spin_rate_rpm")
+                .zip(header("spin_axis_deg"))
+                .map(|(r, a)| format!("columns '{r}' and '{a}' (the {c} they give)")),
+            "sidespin_rpm" if layout.use_back_axis => header("backspin_rpm")
                 .zip(header("spin_axis_deg"))
                 .map(|(r, a)| format!("columns '{r}' and '{a}' (the {c} they give)")),
             "impact_z_mm" if layout.from_offset => {

@@ -6,14 +6,20 @@
 //! line, and the import ends with one summary (`--strict` refuses the file at the first). A shot
 //! that lacks part of its delivery (a session without impact-location hardware) keeps those
 //! cells empty, so its launch can still be flown.
+//!
+//! Size: one row's way from cells to a shot (skip rules, shape, values, spin, delivery, flags)
+//! is one sequence, read best in one file; what "not measured" means is in `missing.rs`.
 
 use std::collections::HashSet;
 use std::path::Path;
 
-use super::cell::parse_cell;
+use super::cell::{parse_cell, parse_number};
 use super::checks::SpinCheck;
 use super::condition::Condition;
 use super::layout::{Layout, LAUNCH};
+use super::missing::{
+    club_zeros_not_measured, flight_range, launch_target, not_measured, sentinel,
+};
 use super::summary::{summarise, Tally};
 use super::table::{split_header, Table};
 use super::target::Target;
@@ -37,6 +43,9 @@ const SUMMARY: [&str; 12] = [
     "std. deviation",
     "consistency",
 ];
+
+/// The group of shots whose club cell is empty.
+pub(super) const NO_CLUB: &str = "(no club)";
 
 /// The shots CSV (bytes), the number of shots written and the export's file line of each.
 pub(super) struct Shots {
@@ -66,6 +75,18 @@ pub(super) fn write_shots(
     let mut ids = HashSet::new();
     let mut lines = Vec::new();
     let mut complete = 0usize;
+    let not_summary: Vec<usize> = ["golfer", "datetime", "ball_type", "shot_id"]
+        .iter()
+        .filter_map(|t| layout.column(t).map(|c| c.index))
+        .collect();
+    let day_first = layout.column("datetime").is_some_and(|c| {
+        crate::data::datetime::day_first(
+            table
+                .rows
+                .iter()
+                .map(|(_, cells)| cells.get(c.index).map_or("", String::as_str)),
+        )
+    });
     for (line, cells) in &table.rows {
         let row = RowAt {
             path,
@@ -73,8 +94,10 @@ pub(super) fn write_shots(
             cells,
             decimal_comma: table.decimal_comma,
             export_missing: &export.missing,
+            strict,
+            day_first,
         };
-        if let Some(label) = row.skipped_by(skip_rules, table) {
+        if let Some(label) = row.skipped_by(skip_rules, table, &not_summary) {
             match tally.summary.iter_mut().find(|(l, _)| *l == label) {
                 Some((_, v)) => v.push(*line),
                 None => tally.summary.push((label, vec![*line])),
@@ -98,7 +121,12 @@ pub(super) fn write_shots(
                 for flag in shot.flags {
                     Tally::push_to(&mut tally.flags, flag, *line);
                 }
+                for (reason, e) in &shot.blanked {
+                    tally.blank(reason.clone(), *line, e);
+                }
                 tally.redundancy.add(*line, &shot.spin, shot.smash);
+                let [b, c, l, carry] = shot.physics;
+                tally.redundancy.add_physics(b, c, l, carry);
                 w.write_record(&shot.record).expect("writing to memory");
                 lines.push(*line);
             }
@@ -111,6 +139,7 @@ pub(super) fn write_shots(
         }
     }
     tally.redundancy.refuse_systematic(path, vendor)?;
+    tally.redundancy.refuse_units(path, &layout.units_read())?;
     summarise(&tally, lines.len(), notes);
     if lines.is_empty() {
         let why = tally
@@ -139,9 +168,14 @@ struct Converted {
     lack_error: Option<DataError>,
     /// The flags set on it.
     flags: Vec<&'static str>,
+    /// Cells read as not measured (a sentinel, a 0 the vendor writes for "no value", a value
+    /// outside its range in a column the launch does not need): why, and the message.
+    blanked: Vec<(String, String)>,
     /// Values given twice, to check against each other.
     spin: Option<SpinCheck>,
     smash: Option<(f64, f64, f64)>,
+    /// Ball speed, club speed, launch angle and carry, for the unit checks.
+    physics: [Option<f64>; 4],
 }
 
 /// One row of the export, for conversion and messages.
@@ -152,6 +186,10 @@ struct RowAt<'r> {
     decimal_comma: bool,
     /// The export's values meaning "not measured".
     export_missing: &'r [String],
+    /// Refuse the file at a cell that would be read as not measured for being out of range.
+    strict: bool,
+    /// Slash dates in the datetime column are day-first.
+    day_first: bool,
 }
 
 /// A row left out: its reason (the key of the summary) and its full message.
@@ -175,7 +213,12 @@ impl RowAt<'_> {
 
     /// The label of the first skip rule the row matches, or `summary` for a row of statistics
     /// (a cell reading Average, Avg, Dev, Deviation, Std. Dev., …).
-    fn skipped_by(&self, rules: &[SkipRule], table: &Table) -> Option<String> {
+    fn skipped_by(
+        &self,
+        rules: &[SkipRule],
+        table: &Table,
+        skip_for_summary: &[usize],
+    ) -> Option<String> {
         let rule = rules.iter().find(|rule| {
             let hit = |c: &str| rule.values.iter().any(|v| v.eq_ignore_ascii_case(c.trim()));
             match &rule.column {
@@ -193,8 +236,15 @@ impl RowAt<'_> {
         if let Some(rule) = rule {
             return Some(rule.label.clone().unwrap_or_else(|| "summary".into()));
         }
+        // A golfer named Dev or Mean is a golfer: the golfer, date and text columns are not
+        // looked at.
         let summary = |c: &String| SUMMARY.iter().any(|s| s.eq_ignore_ascii_case(c.trim()));
-        self.cells.iter().any(summary).then(|| "summary".into())
+        self.cells
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| !skip_for_summary.contains(i))
+            .any(|(_, c)| summary(c))
+            .then(|| "summary".into())
     }
 
     /// `column = 'value'` when the monitor's status column flags the shot as not measured
@@ -229,8 +279,39 @@ impl RowAt<'_> {
         Ok(())
     }
 
-    /// The numeric cells converted to the shots file's units, by target (`None`: empty, `-`).
-    fn values<'a>(&self, layout: &Layout<'_, 'a>) -> Result<Vec<(&'a str, Option<f64>)>, Bad> {
+    /// A row with fewer cells than the header whose last cell, or a column after it, is mapped:
+    /// a line cut short (a truncated file's last row), whose last cell may be cut too (`16` for
+    /// `162.4`).
+    fn too_short(&self, table: &Table, layout: &Layout) -> Result<(), Bad> {
+        let n = self.cells.len();
+        if n >= table.header.len() {
+            return Ok(());
+        }
+        // A mapped column missing, or the last cell there is mapped: it may be cut itself.
+        let cut =
+            |r: &&super::columns::Resolved| r.index + 1 >= n && r.index != super::columns::ABSENT;
+        if let Some(r) = layout.resolved.iter().find(cut) {
+            let e = self.error_in(
+                Some(&r.header),
+                format!(
+                    "{n} cells where the header has {} columns: the row is cut short (a truncated \
+                     file?), so its last cell is not trusted either",
+                    table.header.len()
+                ),
+            );
+            return Err(("fewer cells than the header has columns".to_owned(), e));
+        }
+        Ok(())
+    }
+
+    /// The numeric cells converted to the shots file's units, by target (`None`: empty, `-`,
+    /// a sentinel, a 0 that means "not measured", or, in a column the launch does not need, a
+    /// value outside its range: those go to `blanked`, with why).
+    fn values<'a>(
+        &self,
+        layout: &Layout<'_, 'a>,
+        blanked: &mut Vec<(String, String)>,
+    ) -> Result<Vec<(&'a str, Option<f64>)>, Bad> {
         let mut values = Vec::new();
         for r in layout.resolved {
             let raw = self.cell(r.index);
@@ -238,8 +319,18 @@ impl RowAt<'_> {
             if !numeric {
                 continue;
             }
+            let target = r.spec.target.as_str();
             if not_measured(raw, &r.spec.missing, self.export_missing) {
-                values.push((r.spec.target.as_str(), None));
+                if let Some(a) = r.spec.assume {
+                    blanked.push((
+                        format!(
+                            "column '{}': not measured, {a} assumed (the mapping's assume)",
+                            r.header
+                        ),
+                        format!("line {}", self.line),
+                    ));
+                }
+                values.push((target, r.spec.assume));
                 continue;
             }
             let bad = |kind: &str, m: String| {
@@ -248,35 +339,47 @@ impl RowAt<'_> {
                     self.error_in(Some(&r.header), m),
                 )
             };
-            let text = if self.decimal_comma {
-                raw.replace(',', ".")
-            } else {
-                raw.to_owned()
-            };
-            let v = match r.unit {
+            let not_a_number = || format!("{} is not a number", crate::data::quote_cell(raw));
+            let (v, raw_v) = match r.unit {
                 Some(from) => {
                     let to = r.target.unit().expect("numeric");
-                    let v = parse_cell(&text, from, r.spec.direction.as_deref())
+                    let v = parse_cell(raw, from, r.spec.direction.as_deref(), self.decimal_comma)
                         .map_err(|m| bad("is not a number", m))?;
-                    from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1))
+                    (from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1)), v)
                 }
-                None => crate::data::number::parse_f64(&text).ok_or_else(|| {
-                    bad(
-                        "is not a number",
-                        format!("{} is not a number", crate::data::quote_cell(raw)),
-                    )
-                })?,
+                None => {
+                    let v = parse_number(raw, self.decimal_comma)
+                        .ok_or_else(|| bad("is not a number", not_a_number()))?;
+                    (v, v)
+                }
             };
             if !v.is_finite() {
                 let m = format!("{} is not a finite number", crate::data::quote_cell(raw));
                 return Err(bad("is not a finite number", m));
             }
-            if let Some(range) = r.target.range() {
-                range
-                    .check(v)
-                    .map_err(|m| bad("is outside its physical range", m))?;
+            if let Some(why) = sentinel(target, raw_v) {
+                blanked.push((
+                    format!("column '{}': {why}", r.header),
+                    format!("line {}: {}", self.line, crate::data::quote_cell(raw)),
+                ));
+                values.push((target, None));
+                continue;
             }
-            values.push((r.spec.target.as_str(), Some(v)));
+            let range = r.target.range().or_else(|| flight_range(target));
+            if let Some(range) = range {
+                if let Err(m) = range.check(v) {
+                    if self.strict || launch_target(target) {
+                        return Err(bad("is outside its physical range", m));
+                    }
+                    blanked.push((
+                        format!("column '{}': outside its physical range", r.header),
+                        format!("line {}: {m}", self.line),
+                    ));
+                    values.push((target, None));
+                    continue;
+                }
+            }
+            values.push((target, Some(v)));
         }
         Ok(values)
     }
@@ -316,7 +419,10 @@ impl RowAt<'_> {
         ids: &mut HashSet<String>,
     ) -> Result<Converted, Bad> {
         self.too_long(table)?;
-        let values = self.values(layout)?;
+        self.too_short(table, layout)?;
+        let mut blanked = Vec::new();
+        let mut values = self.values(layout, &mut blanked)?;
+        club_zeros_not_measured(&mut values, &mut blanked, self.line);
         let get = |name: &str| {
             values
                 .iter()
@@ -326,9 +432,11 @@ impl RowAt<'_> {
         let mut rec: Vec<String> = vec![self.shot_id(layout, ids)?];
         for col in [layout.group, layout.golfer].into_iter().flatten() {
             let v = self.cell(col.index);
+            // A shot without a club name is a shot: flight needs no club. Such shots are a
+            // group of their own.
             if v.is_empty() && col.spec.target == "group" {
-                let e = self.error_in(Some(&col.header), "empty group (club) name");
-                return Err(("an empty club (group) name".into(), e));
+                rec.push(NO_CLUB.to_owned());
+                continue;
             }
             rec.push(v.to_owned());
         }
@@ -341,6 +449,14 @@ impl RowAt<'_> {
                 }
                 _ => (None, None),
             }
+        } else if layout.use_back_axis {
+            // Back spin is the component about the horizontal axis: side = back · tan(axis).
+            match (get("backspin_rpm"), get("spin_axis_deg")) {
+                (Some(b), Some(axis)) if axis.abs() < 89.0 => {
+                    (Some(b), Some(b * axis.to_radians().tan()))
+                }
+                _ => (None, None),
+            }
         } else {
             (get("backspin_rpm"), get("sidespin_rpm"))
         };
@@ -350,6 +466,12 @@ impl RowAt<'_> {
         let condition = layout
             .of(Target::Condition)
             .and_then(|c| Condition::parse(self.cell(c.index)));
+        // A condition the sentence states, when inside its range (a sentence's number is a
+        // cell too: `1e400 ℉` is not a temperature).
+        let stated = |c: &str, v: Option<f64>| {
+            let range = Target::parse(c).and_then(Target::range);
+            v.filter(|x| x.is_finite() && range.is_none_or(|r| r.check(*x).is_ok()))
+        };
         let numeric_value = |c: &str| match c {
             "impact_z_mm" if layout.from_offset => {
                 get("impact_offset_mm").map(|o| match layout.offset_side {
@@ -359,8 +481,10 @@ impl RowAt<'_> {
             }
             "backspin_rpm" => back,
             "sidespin_rpm" => side,
-            "altitude_m" => get(c).or(condition.as_ref().and_then(|k| k.altitude_m)),
-            "air_temperature_c" => get(c).or(condition.as_ref().and_then(|k| k.temperature_c)),
+            "altitude_m" => get(c).or(stated(c, condition.as_ref().and_then(|k| k.altitude_m))),
+            "air_temperature_c" => {
+                get(c).or(stated(c, condition.as_ref().and_then(|k| k.temperature_c)))
+            }
             c => get(c),
         };
         let mut delivery_missing: Vec<&str> = Vec::new();
@@ -369,7 +493,7 @@ impl RowAt<'_> {
             if v.is_none() && DeliveryVar::from_column(c).is_some_and(|d| d.required()) {
                 delivery_missing.push(c);
             }
-            rec.push(v.map(fmt_f64).unwrap_or_default());
+            rec.push(v.filter(|x| x.is_finite()).map(fmt_f64).unwrap_or_default());
         }
         let (lacks, lack_error) = self.lacks(layout, &delivery_missing)?;
         let mut flags = Vec::new();
@@ -389,8 +513,15 @@ impl RowAt<'_> {
             lacks,
             lack_error,
             flags,
+            blanked,
             spin,
             smash,
+            physics: [
+                get("ball_speed_mph"),
+                get("club_speed_mph"),
+                get("launch_angle_deg"),
+                get("carry_yd"),
+            ],
         })
     }
 
@@ -403,6 +534,8 @@ impl RowAt<'_> {
     ) -> Result<(), Bad> {
         let spin_cols: &[&str] = if layout.use_rate_axis {
             &["spin_rate_rpm", "spin_axis_deg"]
+        } else if layout.use_back_axis {
+            &["backspin_rpm", "spin_axis_deg"]
         } else {
             &["backspin_rpm", "sidespin_rpm"]
         };
@@ -465,7 +598,11 @@ impl RowAt<'_> {
         match column {
             "datetime" => layout
                 .column("datetime")
-                .map(|c| self.cell(c.index).trim().to_owned())
+                .map(|c| {
+                    let cell = self.cell(c.index).trim();
+                    crate::data::datetime::parse(cell, self.day_first)
+                        .map_or_else(|| cell.to_owned(), |d| d.format())
+                })
                 .unwrap_or_default(),
             "ball_type" => layout
                 .column("ball_type")
@@ -497,20 +634,6 @@ impl RowAt<'_> {
             }
         }
     }
-}
-
-/// Whether a (trimmed) cell means "not measured": empty, `-`, `--`, `N/A`, or one of the
-/// column's or the export's `missing` values (compared as numbers, else as text).
-pub(super) fn not_measured(raw: &str, column: &[String], export: &[String]) -> bool {
-    let num = crate::data::number::parse_f64;
-    matches!(raw, "" | "-" | "--" | "—" | "N/A" | "n/a" | "NA")
-        || column
-            .iter()
-            .chain(export)
-            .any(|m| match (num(m.trim()), num(raw)) {
-                (Some(a), Some(b)) => a == b,
-                _ => m.trim().eq_ignore_ascii_case(raw),
-            })
 }
 
 /// Whether a carry of `carry_yd` whose radar track ends at `tracked_yd` is the vendor's model

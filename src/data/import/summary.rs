@@ -19,6 +19,8 @@ pub(super) struct Tally {
     pub summary: Vec<(String, Vec<usize>)>,
     pub flagged: Vec<(usize, String)>,
     pub left_out: Vec<LeftOut>,
+    /// Cells read as not measured, by reason (the `first` is the first cell's line and text).
+    pub blanked: Vec<LeftOut>,
     pub lacking: Vec<(&'static str, Vec<usize>)>,
     pub flags: Vec<(&'static str, Vec<usize>)>,
     pub redundancy: Redundancy,
@@ -33,6 +35,18 @@ impl Tally {
         match list.iter_mut().find(|(w, _)| *w == what) {
             Some((_, v)) => v.push(line),
             None => list.push((what, vec![line])),
+        }
+    }
+
+    pub(super) fn blank(&mut self, reason: String, line: usize, first: &str) {
+        match self.blanked.iter_mut().find(|l| l.reason == reason) {
+            Some(l) if l.lines.last() == Some(&line) => {}
+            Some(l) => l.lines.push(line),
+            None => self.blanked.push(LeftOut {
+                reason,
+                lines: vec![line],
+                first: first.to_owned(),
+            }),
         }
     }
 
@@ -69,6 +83,15 @@ pub(super) fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
     for l in &t.left_out {
         notes.push(format!(
             "left out {} row(s): {} (line(s) {}; the first: {})",
+            l.lines.len(),
+            l.reason,
+            list_lines(&l.lines),
+            l.first
+        ));
+    }
+    for l in &t.blanked {
+        notes.push(format!(
+            "read cells of {} row(s) as not measured: {} (line(s) {}; the first: {})",
             l.lines.len(),
             l.reason,
             list_lines(&l.lines),

@@ -47,20 +47,43 @@ pub(super) fn read_table(
 ) -> Result<Table, DataError> {
     let (text, encoding_note) = decode(path, bytes)?;
     let mut notes: Vec<String> = encoding_note.into_iter().collect();
+    if super::json::is_json(&text) {
+        let (header, rows) = super::json::read_json(path, &text, known, &mut notes)?;
+        let headers = header.iter().map(|h| split_header(h)).collect();
+        return Ok(Table {
+            header_line: 1,
+            header,
+            headers,
+            unit_row: None,
+            rows,
+            decimal_comma: false,
+            notes,
+        });
+    }
     let (body, offset_lines, sep) = strip_preamble(path, &text, skip_lines)?;
     let delimiter = sep.unwrap_or_else(|| sniff_delimiter(body));
-    let decimal_comma = delimiter != b',';
+    let mut rows = read_rows(path, body, offset_lines, delimiter)?;
+    // A file separated by semicolons or tabs writes decimal commas when some cell is one
+    // (`3,5`); then a dot groups thousands (`3.083`). Without such a cell, dots are decimal.
+    let decimal_comma = delimiter != b','
+        && rows
+            .iter()
+            .any(|(_, cells)| cells.iter().any(|c| is_decimal_comma(c)));
     if sep.is_none() && delimiter != b',' {
         notes.push(format!(
-            "separated by {}, with decimal commas accepted in numbers",
+            "separated by {}, with decimal {} in numbers",
             if delimiter == b';' {
                 "semicolons"
             } else {
                 "tabs"
+            },
+            if decimal_comma {
+                "commas (a dot groups thousands)"
+            } else {
+                "points"
             }
         ));
     }
-    let mut rows = read_rows(path, body, offset_lines, delimiter)?;
     let header_at = rows
         .iter()
         .take(HEADER_SEARCH_ROWS)
@@ -74,6 +97,11 @@ pub(super) fn read_table(
             super::cell::list_lines(&lines)
         ));
     }
+    // A units row above the header (in the title lines) counts as one under it.
+    let above = header_at
+        .checked_sub(1)
+        .filter(|&i| is_unit_row(&rows[i].1))
+        .map(|i| rows[i].clone());
     let mut rows = rows.split_off(header_at).into_iter();
     let (header_line, header) = rows.next().ok_or_else(|| {
         DataError::file(
@@ -83,7 +111,12 @@ pub(super) fn read_table(
     })?;
     let headers = header.iter().map(|h| split_header(h)).collect();
     let mut rows: Vec<Row> = rows.collect();
-    let unit_row = take_unit_row(&mut rows);
+    let unit_row = above.or_else(|| take_unit_row(&mut rows));
+    if let Some((line, _)) = unit_row.as_ref().filter(|(l, _)| *l > header_line + 1) {
+        notes.push(format!(
+            "the units row is line {line}, not the line under the header: read as the units row"
+        ));
+    }
     Ok(Table {
         header_line,
         header,
@@ -93,6 +126,18 @@ pub(super) fn read_table(
         decimal_comma,
         notes,
     })
+}
+
+/// Whether a cell is a number written with a decimal comma: `-3,5`, `105,6`.
+fn is_decimal_comma(cell: &str) -> bool {
+    let t = cell.trim().trim_start_matches(['-', '+']);
+    let Some((int, frac)) = t.split_once(',') else {
+        return false;
+    };
+    !int.is_empty()
+        && !frac.is_empty()
+        && int.bytes().all(|b| b.is_ascii_digit() || b == b'.')
+        && frac.bytes().all(|b| b.is_ascii_digit())
 }
 
 /// The separator of a file without a `sep=` line: semicolons or tabs when its first line has
@@ -192,20 +237,36 @@ fn read_rows(
     Ok(rows)
 }
 
-/// Remove and return the first row when it is a units row: every non-empty cell a unit or
-/// bracketed text, at least one of them a unit.
-fn take_unit_row(rows: &mut Vec<Row>) -> Option<Row> {
-    let (_, cells) = rows.first()?;
+/// Whether `cells` is a units row: every non-empty cell a unit or bracketed text (`[mph]`,
+/// `[]`), at least one of them a unit, except that the first non-empty cell may be a legend
+/// naming units (TrackMan's web sheets write `"Yds/Ft, Mph"` there) when two or more other cells
+/// are units.
+fn is_unit_row(cells: &[String]) -> bool {
     let non_empty: Vec<&String> = cells.iter().filter(|c| !c.is_empty()).collect();
-    let is_unitish = |c: &str| Unit::parse(c).is_some() || (c.starts_with('[') && c.ends_with(']'));
-    if !non_empty.is_empty()
-        && non_empty.iter().all(|c| is_unitish(c))
-        && non_empty.iter().any(|c| Unit::parse(c).is_some())
-    {
-        Some(rows.remove(0))
-    } else {
-        None
+    let unit = |c: &str| Unit::parse(c).is_some();
+    let is_unitish = |c: &str| unit(c) || (c.starts_with('[') && c.ends_with(']'));
+    let legend = |c: &str| {
+        c.split(['/', ',', ' ', ';'])
+            .filter(|w| !w.is_empty())
+            .all(|w| unit(w) || w.eq_ignore_ascii_case("yds") || w.eq_ignore_ascii_case("units"))
+    };
+    let Some((first, rest)) = non_empty.split_first() else {
+        return false;
+    };
+    let units = non_empty.iter().filter(|c| unit(c)).count();
+    if non_empty.iter().all(|c| is_unitish(c)) && units >= 1 {
+        return true;
     }
+    legend(first)
+        && rest.iter().all(|c| is_unitish(c))
+        && rest.iter().filter(|c| unit(c)).count() >= 2
+}
+
+/// Remove and return the units row under the header: the first row, or the second when the
+/// first is a shot (a units row that slipped under the first shot).
+fn take_unit_row(rows: &mut Vec<Row>) -> Option<Row> {
+    let at = (0..rows.len().min(2)).find(|&i| is_unit_row(&rows[i].1))?;
+    Some(rows.remove(at))
 }
 
 /// Column names compared without case, spacing or a trailing unit in brackets.

@@ -1,7 +1,8 @@
 //! Export bytes to text: any number of UTF-8 byte-order marks, and bytes that are not UTF-8
 //! read as Windows-1252 (the code page of spreadsheets saved on Windows, where `°` is the single
-//! byte 0xB0), each such byte counted and the first one's line named. A byte that Windows-1252
-//! leaves undefined, or UTF-16 text, is refused with its line and byte.
+//! byte 0xB0), each such byte counted and the first one's line named, and UTF-16 text, with or
+//! without a byte-order mark, read as such. A byte that Windows-1252 leaves undefined, or broken
+//! UTF-16, is refused in one line.
 
 use std::borrow::Cow;
 use std::path::Path;
@@ -15,14 +16,21 @@ pub(super) fn decode<'b>(
     path: &Path,
     bytes: &'b [u8],
 ) -> Result<(Cow<'b, str>, Option<String>), DataError> {
-    if bytes.starts_with(b"\xFF\xFE") || bytes.starts_with(b"\xFE\xFF") {
-        return Err(DataError::at(
-            path,
-            Some(1),
-            None,
-            "UTF-16 text (byte-order mark 0xFF 0xFE or 0xFE 0xFF): save the export as CSV in \
-             UTF-8 (or Windows-1252)",
-        ));
+    if let Some((encoding, skip, how)) = utf16(bytes) {
+        let (text, bad) = encoding.decode_without_bom_handling(&bytes[skip..]);
+        if bad {
+            return Err(DataError::at(
+                path,
+                Some(1),
+                None,
+                format!(
+                    "{how} that is not valid UTF-16 (an odd number of bytes, or a broken \
+                     surrogate); save the export as CSV in UTF-8"
+                ),
+            ));
+        }
+        let text = text.trim_start_matches('\u{feff}').to_owned();
+        return Ok((Cow::Owned(text), Some(format!("{how}: read as such"))));
     }
     let mut body = bytes;
     while let Some(rest) = body.strip_prefix(UTF8_BOM) {
@@ -63,6 +71,56 @@ pub(super) fn decode<'b>(
     Ok((Cow::Owned(text), Some(note)))
 }
 
+/// Whether `bytes` are UTF-16 text: a byte-order mark (0xFF 0xFE little-endian, 0xFE 0xFF
+/// big-endian), or, without one, a zero byte in most odd (little-endian) or most even
+/// (big-endian) places of the first 256 bytes, as ASCII text saved as UTF-16 has. The
+/// encoding, the bytes to skip and how the text was recognised, for the note.
+fn utf16(bytes: &[u8]) -> Option<(&'static encoding_rs::Encoding, usize, &'static str)> {
+    use encoding_rs::{UTF_16BE, UTF_16LE};
+    if bytes.starts_with(b"\xFF\xFE") {
+        return Some((
+            UTF_16LE,
+            2,
+            "UTF-16 text (little-endian, with a byte-order mark)",
+        ));
+    }
+    if bytes.starts_with(b"\xFE\xFF") {
+        return Some((
+            UTF_16BE,
+            2,
+            "UTF-16 text (big-endian, with a byte-order mark)",
+        ));
+    }
+    let head = &bytes[..bytes.len().min(256)];
+    if head.len() < 4 {
+        return None;
+    }
+    let zeros = |parity: usize| {
+        head.iter()
+            .skip(parity)
+            .step_by(2)
+            .filter(|&&b| b == 0)
+            .count()
+    };
+    let pairs = head.len() / 2;
+    let (even, odd) = (zeros(0), zeros(1));
+    if 10 * odd >= 7 * pairs && 10 * even <= pairs {
+        Some((
+            UTF_16LE,
+            0,
+            "UTF-16 text (little-endian, without a byte-order mark)",
+        ))
+    } else if 10 * even >= 7 * pairs && 10 * odd <= pairs {
+        Some((
+            UTF_16BE,
+            0,
+            "UTF-16 text (big-endian, without a byte-order mark)",
+        ))
+    } else {
+        None
+    }
+}
+
 /// The character a Windows-1252 byte stands for (WHATWG's table: the five bytes the code page
 /// leaves undefined come out as C1 control characters).
 fn windows_1252(b: u8) -> char {
@@ -90,6 +148,17 @@ mod tests {
         );
         let e = decode(p, b"a\nb\n\x81\n").unwrap_err().to_string();
         assert!(e.contains(":3") && e.contains("0x81"), "{e}");
-        assert!(decode(p, b"\xFF\xFEa\x00").is_err());
+        let (t, n) = decode(p, b"\xFF\xFEC\x00l\x00u\x00b\x00").unwrap();
+        assert_eq!(t, "Club");
+        assert!(n.unwrap().contains("little-endian, with a byte-order mark"));
+        let (t, n) = decode(p, b"C\x00l\x00u\x00b\x00,\x00x\x00").unwrap();
+        assert_eq!(t, "Club,x");
+        assert!(n.unwrap().contains("without a byte-order mark"));
+        let (t, _) = decode(p, b"\x00C\x00l\x00u\x00b").unwrap();
+        assert_eq!(t, "Club");
+        assert!(decode(p, b"\xFF\xFEa\x00b")
+            .unwrap_err()
+            .to_string()
+            .contains("not valid UTF-16"));
     }
 }

@@ -207,7 +207,8 @@ impl Unit {
             "mm" => "mm",
             "cm" => "cm",
             "in" | "inch" | "inches" | "\"" => "in",
-            "deg" | "°" | "degree" | "degrees" | "º" => "deg",
+            // `(*)`: FlightScope's web export writes its degree sign as an asterisk.
+            "deg" | "°" | "degree" | "degrees" | "º" | "*" => "deg",
             "rpm" | "r/min" => "rpm",
             "s" | "sec" | "secs" | "seconds" => "s",
             "°c" | "c" | "degc" | "deg c" | "celsius" | "℃" => "°C",

@@ -1,0 +1,111 @@
+//! What "not measured" looks like in an export, beyond an empty cell: the words (`-`, `N/A`)
+//! and the values a mapping names, the vendors' sentinels, the zeros no shot can have, the
+//! club angles of exactly 0 a monitor writes when it did not see the club, and, in a column the
+//! launch does not need, a value `smash flight` would refuse. Each is read as no value, so that
+//! a shot keeps what was measured and nothing the import writes sinks a later command.
+
+use super::layout::LAUNCH;
+
+/// Whether a (trimmed) cell means "not measured": empty, `-`, `--`, `N/A`, or one of the
+/// column's or the export's `missing` values (compared as numbers, else as text).
+pub(super) fn not_measured(raw: &str, column: &[String], export: &[String]) -> bool {
+    let num = crate::data::number::parse_f64;
+    matches!(raw, "" | "-" | "--" | "—" | "N/A" | "n/a" | "NA")
+        || column
+            .iter()
+            .chain(export)
+            .any(|m| match (num(m.trim()), num(raw)) {
+                (Some(a), Some(b)) => a == b,
+                _ => m.trim().eq_ignore_ascii_case(raw),
+            })
+}
+
+/// Targets whose 0 a vendor writes for "not measured" (GSPro's `Carry` and `ClubSpeed`,
+/// TrackMan's carry and flight time of an untracked flight, Garmin's spin floor): no shot
+/// flies 0 yd, for 0 s, or leaves or meets the ball at 0 mph.
+const ZERO_IS_MISSING: [&str; 8] = [
+    "carry_yd",
+    "total_yd",
+    "flight_time_s",
+    "apex_yd",
+    "ball_speed_mph",
+    "club_speed_mph",
+    "spin_rate_rpm",
+    "land_angle_deg",
+];
+
+/// Why a cell's value (in the file's own unit) means "not measured", when it does: a vendor's
+/// sentinel (TrackMan's −2147483648 and 2147483647, Foresight's 2²⁴ − 1 = 16777215 and 2²⁴
+/// give or take a few), or a 0 in a column of [`ZERO_IS_MISSING`].
+pub(super) fn sentinel(target: &str, v: f64) -> Option<&'static str> {
+    const TWO_24: f64 = 16_777_216.0;
+    if v == f64::from(i32::MIN) || v == f64::from(i32::MAX) || (v.abs() - TWO_24).abs() <= 16.0 {
+        return Some("a vendor's sentinel for not measured (−2147483648, 2147483647, 16777215, …)");
+    }
+    if v == 0.0 && ZERO_IS_MISSING.contains(&target) {
+        return Some("0, which vendors write when they did not measure it");
+    }
+    None
+}
+
+/// The club's angles that monitors write as exact zeros when they did not measure the club
+/// (Garmin's `Club Face` 0.0 beside a blank club speed; camera range exports' `L0.0`, `0.0`).
+const CLUB_ANGLES: [&str; 4] = [
+    "attack_angle_deg",
+    "club_path_deg",
+    "face_angle_deg",
+    "dynamic_loft_deg",
+];
+
+/// Read a shot's club angles of exactly 0 as not measured when the club was not measured: its
+/// club speed is not measured, or every club angle it gives is exactly 0 (no swing has a
+/// square face, a square path and a level attack to the last decimal at once).
+pub(super) fn club_zeros_not_measured(
+    values: &mut [(&str, Option<f64>)],
+    blanked: &mut Vec<(String, String)>,
+    line: usize,
+) {
+    let given = |values: &[(&str, Option<f64>)], t: &str| {
+        values.iter().find(|(n, _)| *n == t).map(|(_, v)| *v)
+    };
+    let speed_missing = matches!(given(values, "club_speed_mph"), Some(None));
+    let angles: Vec<Option<f64>> = CLUB_ANGLES
+        .iter()
+        .filter_map(|t| given(values, t))
+        .collect();
+    let all_zero = angles.len() >= 2 && angles.iter().all(|v| *v == Some(0.0));
+    if !(speed_missing || all_zero) {
+        return;
+    }
+    let why = if all_zero {
+        "club angles all exactly 0 (the club was not measured)"
+    } else {
+        "club angle exactly 0 beside an unmeasured club speed"
+    };
+    for (n, v) in values.iter_mut() {
+        if CLUB_ANGLES.contains(n) && *v == Some(0.0) {
+            *v = None;
+            blanked.push((why.to_owned(), format!("line {line}: {n} 0")));
+        }
+    }
+}
+
+/// Whether `target` is part of the measured launch (a bad cell there leaves the row out).
+pub(super) fn launch_target(target: &str) -> bool {
+    LAUNCH.contains(&target)
+        || matches!(
+            target,
+            "backspin_rpm" | "sidespin_rpm" | "spin_rate_rpm" | "spin_axis_deg"
+        )
+}
+
+/// The range `smash flight` accepts for a measured flight column (a value outside it is read
+/// as not measured, so the import never writes a file flight refuses).
+pub(super) fn flight_range(target: &str) -> Option<crate::limits::PhysicalRange> {
+    use crate::data::flight_files::FLIGHT_COLUMNS;
+    use crate::data::flight_measured::MEASURED_FLIGHT_RANGES;
+    FLIGHT_COLUMNS
+        .iter()
+        .position(|c| *c == target)
+        .map(|k| MEASURED_FLIGHT_RANGES[k])
+}
