@@ -14,10 +14,10 @@ code (`objdump -d`) and counts every `call` whose target is in `core::core_arch`
 One target is allowed: the CPU feature detection's `_xgetbv` (std_detect reads the XCR0
 register once, not in a loop).
 
-Usage: no_outlined_intrinsics.py BINARY [BINARY ...]
-Prints the count per calling function and exits 1 if any call is found; prints a summary and
-exits 0 otherwise. Exits 2 when objdump is missing or a binary cannot be read (a check that
-cannot run must not pass).
+Usage: no_outlined_intrinsics.py [--warn-only] BINARY [BINARY ...]
+Prints the count per calling function and exits 1 if any call is found (0 with `--warn-only`,
+after a loud warning); prints a summary and exits 0 otherwise. Exits 2 when objdump is missing
+or a binary cannot be read (a check that cannot run must not pass).
 """
 
 import collections
@@ -56,6 +56,8 @@ def outlined_calls(binary):
 
 
 def main(argv):
+    warn_only = "--warn-only" in argv
+    argv = [a for a in argv if a != "--warn-only"]
     if len(argv) < 2:
         print(__doc__.strip().splitlines()[-6], file=sys.stderr)
         return 2
@@ -85,6 +87,9 @@ def main(argv):
                 print(f"         -> {', '.join(t.split('::')[-1] for t in targets)[:160]}")
         else:
             print(f"{binary}: no call into core::core_arch ({lines} instructions read)")
+    if failed and warn_only:
+        print("WARNING: out-of-line intrinsics found (--warn-only: not failing)", file=sys.stderr)
+        return 0
     return 1 if failed else 0
 
 
