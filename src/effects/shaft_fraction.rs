@@ -16,7 +16,7 @@
 //! written once. Two of them on one shot add. Its lane form is that term's: the fits evaluate
 //! it on lane vectors of shots, each lane with its own shaft mass
 //! ([`crate::physics::ImpactModel::shot_consts_of`]), never one shot at a time
-//! (`tests/lane_path.rs` counts).
+//! (`tests/lane_path.rs` counts the lanes' refusals).
 
 use std::sync::OnceLock;
 

@@ -66,28 +66,32 @@ const PARALLEL_MIN_SITES: usize = 2048;
 /// Shots per parallel task of a residual evaluation.
 pub(crate) const SHOTS_PER_TASK: usize = 128;
 
-/// Shots whose residuals were evaluated one at a time by the scalar solve (the fallback of a
-/// chunk the lanes could not take), since the process started.
+/// Residual evaluations the lanes refused by design (a model whose law has no lane form: a
+/// user-defined loft or face-angle term), whose shots then went one at a time through the scalar
+/// solve, since the process started.
+pub(crate) static LANE_REFUSALS: AtomicU64 = AtomicU64::new(0);
+/// Shots evaluated one at a time by the scalar solve for any reason: a refusal above, or a lane
+/// vector holding a shot that cannot be computed (off the face, not approaching; the scalar
+/// solve then names the first such shot).
 static SCALAR_SHOTS: AtomicU64 = AtomicU64::new(0);
-/// Jacobians made column by column (the fallback of the one-pass lane Jacobian).
-static COLUMN_JACOBIANS: AtomicU64 = AtomicU64::new(0);
 
 /// How often the fits left the lanes since the process started: the guard that every library
-/// effect (and every user-defined one but a loft or face-angle term) is evaluated on the
-/// lanes (`tests/lane_path.rs` runs a diagnose over every library effect and asserts zero).
+/// effect (and every user-defined one but a loft or face-angle term) is evaluated on the lanes
+/// (`tests/lane_path.rs` runs a diagnose over every library effect and asserts no refusal).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ScalarPathCounts {
-    /// Shots evaluated one at a time by the scalar solve.
+    /// Residual evaluations the lanes refused because a law has no lane form.
+    pub refusals: u64,
+    /// Shots evaluated one at a time by the scalar solve (refusals, and shots the lanes could
+    /// not compute).
     pub shots: u64,
-    /// Jacobians made column by column.
-    pub jacobians: u64,
 }
 
 /// The counts so far ([`ScalarPathCounts`]).
 pub fn scalar_path_counts() -> ScalarPathCounts {
     ScalarPathCounts {
+        refusals: LANE_REFUSALS.load(Ordering::Relaxed),
         shots: SCALAR_SHOTS.load(Ordering::Relaxed),
-        jacobians: COLUMN_JACOBIANS.load(Ordering::Relaxed),
     }
 }
 
@@ -519,7 +523,6 @@ impl<'a> FitProblem<'a> {
 
     /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
     fn jacobian_by_columns(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
-        COLUMN_JACOBIANS.fetch_add(1, Ordering::Relaxed);
         let m = self.rows();
         let mut jac = DMatrix::zeros(m, self.active.len());
         let column = |(k, col): (usize, &mut [f64])| -> Result<(), EvalError> {

@@ -190,6 +190,7 @@ impl FitProblem<'_> {
         // A user-defined loft or face-angle term turns the face shot by shot: such models are
         // evaluated per shot by the scalar solve (every other term runs on the lanes).
         if models.iter().any(|m| m.laws().user.sets_orientation()) {
+            super::LANE_REFUSALS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             return false;
         }
         let rows = self.weighting.rows_per_shot();
