@@ -50,17 +50,7 @@ fn contact_inputs(
                 .face()
                 .contact(d.impact_y_m, d.impact_z_m)
                 .expect("on the face");
-            let a = |v: &Vector3<f64>| [v.x, v.y, v.z];
-            ContactInputs {
-                club_velocity_f_m_s: a(&f.club_velocity_f_m_s),
-                club_omega_f_rad_s: a(&f.club_omega_f_rad_s),
-                point_m: a(&cf.point_m),
-                normal: a(&cf.normal),
-                tangent_y: a(&cf.tangent_y),
-                tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
-                y_m: d.impact_y_m,
-                z_m: d.impact_z_m,
-            }
+            ContactInputs::of(&f, &cf, d.impact_y_m, d.impact_z_m)
         })
         .collect();
     let lane = |f: &dyn Fn(&ContactInputs<f64>) -> f64| V(std::array::from_fn(|l| f(&inputs[l])));

@@ -389,17 +389,7 @@ impl ImpactModel {
         let r_gf = frame.r_gf;
         let v_c = frame.club_velocity_f_m_s;
         let w_c = frame.club_omega_f_rad_s;
-        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
-        let s = self.solve_contact(&ContactInputs {
-            club_velocity_f_m_s: arr(&v_c),
-            club_omega_f_rad_s: arr(&w_c),
-            point_m: arr(&cf.point_m),
-            normal: arr(&cf.normal),
-            tangent_y: arr(&cf.tangent_y),
-            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
-            y_m,
-            z_m,
-        });
+        let s = self.solve_contact(&ContactInputs::of(frame, cf, y_m, z_m));
         let u1n = s.normal_approach_speed_m_s;
         if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
             return Err(ImpactError::NotApproaching {

@@ -4,7 +4,10 @@
 //! solve ([`ImpactModel::solve_in`], [`ImpactModel::solve`] with user-defined effects) and the
 //! fits' lanes run.
 
-use super::{ball_response, cross, ImpactModel, Real, ShotConsts, Vec3};
+use nalgebra::Vector3;
+
+use super::{ball_response, cross, DeliveryFrame, ImpactModel, Real, ShotConsts, Vec3};
+use crate::physics::face::ContactFrame;
 use crate::physics::laws::{
     tangential_speed, ContactGeometry, FiniteImpact, InstantLaw, LawWithUser,
 };
@@ -31,6 +34,24 @@ pub struct ContactInputs<R> {
     pub y_m: R,
     /// Impact location toward the toe, m.
     pub z_m: R,
+}
+
+impl ContactInputs<f64> {
+    /// One impact's inputs: the delivery frame's clubhead velocities and the contact frame `cf`
+    /// at the impact location `(y_m, z_m)` (what the scalar solves hand the contact solve).
+    pub fn of(frame: &DeliveryFrame, cf: &ContactFrame, y_m: f64, z_m: f64) -> Self {
+        let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
+        Self {
+            club_velocity_f_m_s: arr(&frame.club_velocity_f_m_s),
+            club_omega_f_rad_s: arr(&frame.club_omega_f_rad_s),
+            point_m: arr(&cf.point_m),
+            normal: arr(&cf.normal),
+            tangent_y: arr(&cf.tangent_y),
+            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
+            y_m,
+            z_m,
+        }
+    }
 }
 
 /// The contact mechanics of [`ImpactModel::solve_contact`], face frame `F`, SI units.

@@ -63,16 +63,7 @@ impl ImpactModel {
         let cf = self.face.contact(d.impact_y_m, d.impact_z_m)?;
         let arr = |v: &Vector3<f64>| [v.x, v.y, v.z];
         let (v_c, w_c) = (frame.club_velocity_f_m_s, frame.club_omega_f_rad_s);
-        let x = ContactInputs {
-            club_velocity_f_m_s: arr(&v_c),
-            club_omega_f_rad_s: arr(&w_c),
-            point_m: arr(&cf.point_m),
-            normal: arr(&cf.normal),
-            tangent_y: arr(&cf.tangent_y),
-            tangent_z_xz: [cf.tangent_z.x, cf.tangent_z.z],
-            y_m: d.impact_y_m,
-            z_m: d.impact_z_m,
-        };
+        let x = ContactInputs::of(&frame, &cf, d.impact_y_m, d.impact_z_m);
         let mut vars = user::delivery_vars(d);
         let mut valid = true;
         let sol = self.solve_contact_shot(&x, &s.consts, &mut vars, &mut valid);
