@@ -123,25 +123,28 @@ fn dispatch_on<C: CoefficientModel>(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    let k = Consts::new(cfg, model.reynolds_at_reference_air());
+    let k = Consts::new(cfg, model.reynolds_at_reference_air(), wind);
     let (k, args) = (&k, (cfg, model, launches, out));
-    match (level.or_supported(), wind) {
+    match level.or_supported() {
         #[cfg(target_arch = "x86_64")]
         // SAFETY: `or_supported` keeps a level only where `simd_level()` reports it, which it
         // does only when the CPU (and operating system) have AVX-512F.
-        (SimdLevel::Avx512, true) => unsafe { batches_avx512::<C, true>(k, args) },
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: as above.
-        (SimdLevel::Avx512, false) => unsafe { batches_avx512::<C, false>(k, args) },
+        SimdLevel::Avx512 => unsafe { batches_avx512::<C>(k, args) },
         #[cfg(target_arch = "x86_64")]
         // SAFETY: as above, AVX2.
-        (SimdLevel::Avx2, true) => unsafe { batches_avx2::<C, true>(k, args) },
-        #[cfg(target_arch = "x86_64")]
-        // SAFETY: as above, AVX2.
-        (SimdLevel::Avx2, false) => unsafe { batches_avx2::<C, false>(k, args) },
-        (_, true) => batches::<V, C, true>(k, args),
-        (_, false) => batches::<V, C, false>(k, args),
+        SimdLevel::Avx2 => unsafe { batches_avx2::<C>(k, args) },
+        _ => batches_portable::<C>(k, args),
     }
+}
+
+/// [`batches`] on the portable lanes [`V`] (no instruction set assumed), a function of its own:
+/// inlined into `dispatch_on`, every lane operation's little loop would sit in one function with
+/// the rest of the dispatch, and LLVM's loop passes (loop rotation above all) take time
+/// quadratic in a function's size — the test profile's build of the library spent most of its
+/// 40 CPU-minutes there.
+#[inline(never)]
+fn batches_portable<C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
+    batches::<V, C>(k, args)
 }
 
 /// What [`batches`] integrates: the configuration, the coefficient model, the launches and
@@ -159,8 +162,8 @@ type Args<'a, C> = (
 /// The CPU must have AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx512f")]
-unsafe fn batches_avx512<C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
-    batches::<F64x8, C, WIND>(k, args)
+unsafe fn batches_avx512<C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
+    batches::<F64x8, C>(k, args)
 }
 
 /// [`batches`] on [`F64x4`], compiled for AVX2.
@@ -169,8 +172,8 @@ unsafe fn batches_avx512<C: CoefficientModel, const WIND: bool>(k: &Consts, args
 /// The CPU must have AVX2.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn batches_avx2<C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
-    batches::<F64x4, C, WIND>(k, args)
+unsafe fn batches_avx2<C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
+    batches::<F64x4, C>(k, args)
 }
 
 /// Constants of the equations of motion for one configuration.
@@ -194,12 +197,16 @@ struct Consts {
     centre_above_ground: f64,
     dt: f64,
     max_time: f64,
+    /// Whether the air moves: the wind profile is then evaluated lane by lane at each stage.
+    /// (A flag, not a type parameter: one copy of the integrator serves both, at the cost of
+    /// a branch every stage that always goes the same way.)
+    wind: bool,
 }
 
 impl Consts {
     /// `reference_re`: the Reynolds number in the reference air
     /// ([`CoefficientModel::reynolds_at_reference_air`]).
-    fn new(cfg: &FlightConfig, reference_re: bool) -> Self {
+    fn new(cfg: &FlightConfig, reference_re: bool, wind: bool) -> Self {
         let b = &cfg.ball;
         let rho = cfg.air.density_kg_m3;
         let area = std::f64::consts::PI * b.radius_m * b.radius_m;
@@ -224,6 +231,7 @@ impl Consts {
             centre_above_ground: b.radius_m + cfg.tee_height_m,
             dt: cfg.dt(),
             max_time: cfg.max_time_s,
+            wind,
         }
     }
 }
@@ -237,34 +245,37 @@ const G: usize = 2;
 const MAX_B: usize = G * MAX_LANES;
 
 #[inline(always)]
-fn batches<L: Lanes, C: CoefficientModel, const WIND: bool>(k: &Consts, args: Args<'_, C>) {
+fn batches<L: Lanes, C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
     let (cfg, model, launches, out) = args;
     let b = G * L::N;
     let mut idx = [0usize; MAX_B];
-    let mut n = 0;
     // The contact refinement's substep states, one buffer a group, reused by every batch.
     let mut fine: [Vec<Lanewise<L>>; G] = [
         Vec::with_capacity(REFINE + 1),
         Vec::with_capacity(REFINE + 1),
     ];
-    for (i, l) in launches.iter().enumerate() {
-        match l.check() {
-            Err(e) => out[i] = Err(e),
-            Ok(()) => {
-                idx[n] = i;
-                n += 1;
-                if n == b {
-                    batch::<L, C, WIND>(cfg, k, model, (launches, &idx[..b], b), out, &mut fine);
-                    n = 0;
+    let mut next = 0;
+    loop {
+        // The next `b` valid launches (fewer at the end); invalid ones get their error.
+        let mut n = 0;
+        while n < b && next < launches.len() {
+            match launches[next].check() {
+                Err(e) => out[next] = Err(e),
+                Ok(()) => {
+                    idx[n] = next;
+                    n += 1;
                 }
             }
+            next += 1;
         }
-    }
-    if n > 0 {
+        if n == 0 {
+            break;
+        }
         for j in n..b {
             idx[j] = idx[n - 1];
         }
-        batch::<L, C, WIND>(cfg, k, model, (launches, &idx[..b], n), out, &mut fine);
+        // One call site: `batch` is inlined once per instruction set and coefficient model.
+        batch::<L, C>(cfg, k, model, (launches, &idx[..b], n), out, &mut fine);
     }
 }
 
@@ -333,7 +344,7 @@ impl<L: Lanes> St<L> {
 /// Integrate the launches `idx` (the first `n` are real, the rest padding copies). Lane `L` is
 /// lane `L % N` of group `L / N`. `fine` is scratch for the contact refinement.
 #[inline(always)]
-fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
+fn batch<L: Lanes, C: CoefficientModel>(
     cfg: &FlightConfig,
     k: &Consts,
     model: &C,
@@ -351,7 +362,7 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
     let mut t = 0.0;
     let mut steps = 0u64;
     while left > 0 && t < k.max_time {
-        let ns = rk4::<L, C, WIND>(k, cfg, model, &axis, &s);
+        let ns = rk4::<L, C>(k, cfg, model, &axis, &s);
         for g in 0..G {
             // This group's step re-integrated in substeps, made once when a lane needs it.
             let mut refined = false;
@@ -392,7 +403,7 @@ fn batch<L: Lanes, C: CoefficientModel, const WIND: bool>(
                 // feature of this function, so the lane operations of `substeps` inlined into one
                 // become out-of-line calls; `.ci/no_outlined_intrinsics.py` checks the binary.)
                 if contact.get(i) && !refined {
-                    substeps::<L, C, WIND>(k, cfg, model, axis_g, s_g, &mut fine[g]);
+                    substeps::<L, C>(k, cfg, model, axis_g, s_g, &mut fine[g]);
                     refined = true;
                 }
                 let (states, hs): (&[Lanewise<L>], f64) = if contact.get(i) {
@@ -436,7 +447,7 @@ const REFINE: usize = 8;
 /// The states of one lane group at the ends of [`REFINE`] substeps of the step from `s` (the
 /// start first), lane by lane, into `out`.
 #[inline(always)]
-fn substeps<L: Lanes, C: CoefficientModel, const WIND: bool>(
+fn substeps<L: Lanes, C: CoefficientModel>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
@@ -452,7 +463,7 @@ fn substeps<L: Lanes, C: CoefficientModel, const WIND: bool>(
     out.clear();
     out.push(cur.lanewise());
     for _ in 0..REFINE {
-        cur = rk4_one::<L, C, WIND>(&fine, cfg, model, axis, &cur);
+        cur = rk4_one::<L, C>(&fine, cfg, model, axis, &cur);
         out.push(cur.lanewise());
     }
 }

@@ -1,13 +1,12 @@
 //! The portable lane type: [`W`] doubles processed lane-wise.
 //!
-//! Every operation is a fixed-length loop over a `[f64; W]` (or `[u64; W]` mask), marked
-//! `#[inline(always)]`, which LLVM's SLP vectoriser turns into packed instructions where it
-//! can (pairs of SSE2 instructions on baseline x86-64). Only IEEE-754 correctly rounded
+//! Every operation is written out for each of the four lanes of a `[f64; W]` (or `[u64; W]`
+//! mask), marked `#[inline(always)]`, which LLVM's SLP vectoriser turns into packed
+//! instructions where it can (pairs of SSE2 instructions on baseline x86-64). No loops: a loop
+//! per operation gave LLVM's loop passes tens of thousands of four-trip loops to rotate and
+//! unroll in each kernel, most of the library's build time. Only IEEE-754 correctly rounded
 //! operations (`+ − × ÷ √`) and bit operations are used, and never fused multiply–add, so it
 //! gives the same bits as the explicit SIMD types (`super::x86`).
-
-// Fixed-length index loops over several arrays are the clearest form here (and vectorise).
-#![allow(clippy::needless_range_loop)]
 
 use std::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
@@ -28,15 +27,40 @@ pub struct V(pub [f64; W]);
 #[repr(transparent)]
 pub struct M(pub [u64; W]);
 
+/// `[e(0), e(1), e(2), e(3)]`: an expression of the lane index written out for each lane.
+macro_rules! each {
+    (|$i:ident| $e:expr) => {
+        [
+            {
+                let $i = 0;
+                $e
+            },
+            {
+                let $i = 1;
+                $e
+            },
+            {
+                let $i = 2;
+                $e
+            },
+            {
+                let $i = 3;
+                $e
+            },
+        ]
+    };
+}
+
+// `each!` writes out four lanes.
+const _: () = assert!(W == 4);
+
 macro_rules! lanewise {
     ($a:expr, $b:expr, |$x:ident, $y:ident| $e:expr) => {{
         let (a, b) = ($a, $b);
-        let mut r = a;
-        for i in 0..W {
+        each!(|i| {
             let ($x, $y) = (a[i], b[i]);
-            r[i] = $e;
-        }
-        r
+            $e
+        })
     }};
 }
 
@@ -56,41 +80,28 @@ impl V {
     /// Lane-wise square root (correctly rounded).
     #[inline(always)]
     pub fn sqrt(self) -> Self {
-        let mut r = self.0;
-        for v in &mut r {
-            *v = v.sqrt();
-        }
-        Self(r)
+        let a = self.0;
+        Self(each!(|i| a[i].sqrt()))
     }
 
     /// Lane-wise `self^e` (libm `pow` per lane: the same bits as the scalar `f64::powf`).
     #[inline(always)]
     pub fn powf(self, e: f64) -> Self {
-        let mut r = self.0;
-        for v in &mut r {
-            *v = v.powf(e);
-        }
-        Self(r)
+        let a = self.0;
+        Self(each!(|i| a[i].powf(e)))
     }
 
     /// Raw bits.
     #[inline(always)]
     pub fn to_bits(self) -> [u64; W] {
-        let mut r = [0u64; W];
-        for i in 0..W {
-            r[i] = self.0[i].to_bits();
-        }
-        r
+        let a = self.0;
+        each!(|i| a[i].to_bits())
     }
 
     /// From raw bits.
     #[inline(always)]
     pub fn from_bits(b: [u64; W]) -> Self {
-        let mut r = [0.0; W];
-        for i in 0..W {
-            r[i] = f64::from_bits(b[i]);
-        }
-        Self(r)
+        Self(each!(|i| f64::from_bits(b[i])))
     }
 
     /// Lane-wise `|x|`.
@@ -144,23 +155,16 @@ impl V {
 
 #[inline(always)]
 fn cmp(a: V, b: V, f: impl Fn(f64, f64) -> bool) -> [u64; W] {
-    let mut r = [0u64; W];
-    for i in 0..W {
-        r[i] = if f(a.0[i], b.0[i]) { !0 } else { 0 };
-    }
-    r
+    let (a, b) = (a.0, b.0);
+    each!(|i| if f(a[i], b[i]) { !0 } else { 0 })
 }
 
 impl M {
     /// Lane-wise `if self { a } else { b }`.
     #[inline(always)]
     pub fn select(self, a: V, b: V) -> V {
-        let (a, b) = (a.to_bits(), b.to_bits());
-        let mut r = [0u64; W];
-        for i in 0..W {
-            r[i] = (a[i] & self.0[i]) | (b[i] & !self.0[i]);
-        }
-        V::from_bits(r)
+        let (a, b, m) = (a.to_bits(), b.to_bits(), self.0);
+        V::from_bits(each!(|i| (a[i] & m[i]) | (b[i] & !m[i])))
     }
 
     /// Lane-wise `if self { a } else { b }` on masks.
@@ -172,11 +176,8 @@ impl M {
     /// Whether any lane is set.
     #[inline(always)]
     pub fn any(self) -> bool {
-        let mut r = 0;
-        for i in 0..W {
-            r |= self.0[i];
-        }
-        r != 0
+        let m = self.0;
+        (m[0] | m[1] | m[2] | m[3]) != 0
     }
 
     /// Lane `i` as a `bool`.
@@ -256,11 +257,8 @@ impl LaneMask for M {
     }
     #[inline(always)]
     fn all(self) -> bool {
-        let mut r = !0;
-        for i in 0..W {
-            r &= self.0[i];
-        }
-        r != 0
+        let m = self.0;
+        (m[0] & m[1] & m[2] & m[3]) != 0
     }
     #[inline(always)]
     fn get(self, i: usize) -> bool {

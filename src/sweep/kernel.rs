@@ -519,8 +519,20 @@ impl FaceMapKernel {
             SimdLevel::Avx2 | SimdLevel::Avx512 => unsafe {
                 self.avx2::<FRICTION, POWER, USER>(job, out)
             },
-            _ => job.run::<FRICTION, POWER, USER>(self, out),
+            _ => self.portable::<FRICTION, POWER, USER>(job, out),
         }
+    }
+
+    /// The point code on the portable lanes, a function of its own for each instance (inlined
+    /// into `dispatch`, twelve instances' lane loops would make one function whose loop passes
+    /// take time quadratic in its size: see `flight::integrate::batches_portable`).
+    #[inline(never)]
+    fn portable<const FRICTION: bool, const POWER: bool, const USER: bool>(
+        &self,
+        job: &impl Job,
+        out: RowOut<'_>,
+    ) {
+        job.run::<FRICTION, POWER, USER>(self, out)
     }
 
     #[cfg(target_arch = "x86_64")]

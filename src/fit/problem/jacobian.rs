@@ -111,10 +111,22 @@ impl FitProblem<'_> {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, AVX2.
             SimdLevel::Avx2 => unsafe { self.jacobian_block_avx2(columns, cache, start, out) },
-            _ => self
-                .jacobian_block_impl::<V>(columns, cache, start, out)
-                .is_some(),
+            _ => self.jacobian_block_portable(columns, cache, start, out),
         }
+    }
+
+    /// [`FitProblem::jacobian_block_impl`] on the portable lanes [`V`], a function of its own
+    /// (see [`FitProblem::lanes_portable`]).
+    #[inline(never)]
+    fn jacobian_block_portable(
+        &self,
+        columns: &[Column],
+        cache: &SiteCache,
+        start: usize,
+        out: &mut [&mut [f64]],
+    ) -> bool {
+        self.jacobian_block_impl::<V>(columns, cache, start, out)
+            .is_some()
     }
 
     /// [`FitProblem::jacobian_block_impl`] on [`F64x8`], compiled for AVX-512F.

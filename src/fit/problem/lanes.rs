@@ -138,8 +138,24 @@ impl FitProblem<'_> {
             #[cfg(target_arch = "x86_64")]
             // SAFETY: as above, AVX2.
             SimdLevel::Avx2 => unsafe { self.lanes_avx2(models, cache, start, chunk, groups) },
-            _ => self.lanes_impl::<V>(models, cache, start, chunk, groups),
+            _ => self.lanes_portable(models, cache, start, chunk, groups),
         }
+    }
+
+    /// [`FitProblem::lanes_impl`] on the portable lanes [`V`], a function of its own (inlined
+    /// into `residuals_on_lanes`, its lane loops would share one function with the dispatch,
+    /// and LLVM's loop passes take time quadratic in a function's size: see
+    /// `flight::integrate::batches_portable`).
+    #[inline(never)]
+    fn lanes_portable(
+        &self,
+        models: &[ImpactModel],
+        cache: &SiteCache,
+        start: usize,
+        chunk: &mut [f64],
+        groups: Option<&[bool]>,
+    ) -> bool {
+        self.lanes_impl::<V>(models, cache, start, chunk, groups)
     }
 
     /// [`FitProblem::lanes_impl`] on [`F64x8`], compiled for AVX-512F (everything it calls in

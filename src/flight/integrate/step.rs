@@ -27,7 +27,7 @@ struct Rate<L> {
 }
 
 #[inline(always)]
-fn rate<L: Lanes, C: CoefficientModel, const WIND: bool>(
+fn rate<L: Lanes, C: CoefficientModel>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
@@ -35,7 +35,7 @@ fn rate<L: Lanes, C: CoefficientModel, const WIND: bool>(
     s: &St<L>,
 ) -> Rate<L> {
     let mut vr = s.v;
-    if WIND {
+    if k.wind {
         let y = s.p[1].to_array();
         let (mut wx, mut wz) = ([0.0; MAX_LANES], [0.0; MAX_LANES]);
         for i in 0..L::N {
@@ -97,7 +97,7 @@ fn axpy<L: Lanes>(s: &St<L>, h: f64, v: &[L; 3], r: &Rate<L>) -> St<L> {
 }
 
 #[inline(always)]
-pub(super) fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
+pub(super) fn rk4<L: Lanes, C: CoefficientModel>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
@@ -108,32 +108,32 @@ pub(super) fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
     let h = k.dt;
     let (a0, a1) = (&axis[0], &axis[1]);
     let r1 = [
-        rate::<L, C, WIND>(k, cfg, model, a0, &s[0]),
-        rate::<L, C, WIND>(k, cfg, model, a1, &s[1]),
+        rate::<L, C>(k, cfg, model, a0, &s[0]),
+        rate::<L, C>(k, cfg, model, a1, &s[1]),
     ];
     let s2 = [
         axpy(&s[0], 0.5 * h, &s[0].v, &r1[0]),
         axpy(&s[1], 0.5 * h, &s[1].v, &r1[1]),
     ];
     let r2 = [
-        rate::<L, C, WIND>(k, cfg, model, a0, &s2[0]),
-        rate::<L, C, WIND>(k, cfg, model, a1, &s2[1]),
+        rate::<L, C>(k, cfg, model, a0, &s2[0]),
+        rate::<L, C>(k, cfg, model, a1, &s2[1]),
     ];
     let s3 = [
         axpy(&s[0], 0.5 * h, &s2[0].v, &r2[0]),
         axpy(&s[1], 0.5 * h, &s2[1].v, &r2[1]),
     ];
     let r3 = [
-        rate::<L, C, WIND>(k, cfg, model, a0, &s3[0]),
-        rate::<L, C, WIND>(k, cfg, model, a1, &s3[1]),
+        rate::<L, C>(k, cfg, model, a0, &s3[0]),
+        rate::<L, C>(k, cfg, model, a1, &s3[1]),
     ];
     let s4 = [
         axpy(&s[0], h, &s3[0].v, &r3[0]),
         axpy(&s[1], h, &s3[1].v, &r3[1]),
     ];
     let r4 = [
-        rate::<L, C, WIND>(k, cfg, model, a0, &s4[0]),
-        rate::<L, C, WIND>(k, cfg, model, a1, &s4[1]),
+        rate::<L, C>(k, cfg, model, a0, &s4[0]),
+        rate::<L, C>(k, cfg, model, a1, &s4[1]),
     ];
     let h6 = h / 6.0;
     [
@@ -153,7 +153,7 @@ pub(super) fn rk4<L: Lanes, C: CoefficientModel, const WIND: bool>(
 /// [`rk4`] for one lane group: the same operations lane by lane, so the same bits (the
 /// contact refinement re-integrates only the group that needs it).
 #[inline(always)]
-pub(super) fn rk4_one<L: Lanes, C: CoefficientModel, const WIND: bool>(
+pub(super) fn rk4_one<L: Lanes, C: CoefficientModel>(
     k: &Consts,
     cfg: &FlightConfig,
     model: &C,
@@ -161,13 +161,13 @@ pub(super) fn rk4_one<L: Lanes, C: CoefficientModel, const WIND: bool>(
     s: &St<L>,
 ) -> St<L> {
     let h = k.dt;
-    let r1 = rate::<L, C, WIND>(k, cfg, model, axis, s);
+    let r1 = rate::<L, C>(k, cfg, model, axis, s);
     let s2 = axpy(s, 0.5 * h, &s.v, &r1);
-    let r2 = rate::<L, C, WIND>(k, cfg, model, axis, &s2);
+    let r2 = rate::<L, C>(k, cfg, model, axis, &s2);
     let s3 = axpy(s, 0.5 * h, &s2.v, &r2);
-    let r3 = rate::<L, C, WIND>(k, cfg, model, axis, &s3);
+    let r3 = rate::<L, C>(k, cfg, model, axis, &s3);
     let s4 = axpy(s, h, &s3.v, &r3);
-    let r4 = rate::<L, C, WIND>(k, cfg, model, axis, &s4);
+    let r4 = rate::<L, C>(k, cfg, model, axis, &s4);
     combine(h / 6.0, [s, &s2, &s3, &s4], [&r1, &r2, &r3, &r4])
 }
 

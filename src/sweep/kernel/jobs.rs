@@ -100,35 +100,20 @@ impl<const FRICTION: bool, const POWER: bool, const USER: bool> ChunkFn
     }
 }
 
-/// Run `f` over full chunks of `(a, b)`, then over the tail padded to a full chunk (with the
-/// last point repeated), so every point goes through the same code whatever its position.
+/// Run `f` over the chunks of `(a, b)`, the tail padded to a full chunk (with the last point
+/// repeated), so every point goes through the same code whatever its position. One call site
+/// of `f`: the point code is inlined once per instance, not once for the full chunks and again
+/// for the tail (inputs and outputs go through a chunk's buffers, a copy per point that costs
+/// little beside an impact).
 #[inline(always)]
 fn for_chunks(a: &[f64], b: &[f64], out: RowOut<'_>, f: &impl ChunkFn) {
     let n = b.len();
-    let full = n - n % LANES;
     let mut i = 0;
-    while i < full {
-        let r = i..i + LANES;
-        f.call(
-            a[r.clone()].try_into().unwrap(),
-            b[r.clone()].try_into().unwrap(),
-            Chunk {
-                speed: (&mut out.ball_speed_m_s[r.clone()]).try_into().unwrap(),
-                launch: (&mut out.launch_angle_rad[r.clone()]).try_into().unwrap(),
-                azimuth: (&mut out.azimuth_rad[r.clone()]).try_into().unwrap(),
-                backspin: (&mut out.backspin_rad_s[r.clone()]).try_into().unwrap(),
-                sidespin: (&mut out.sidespin_rad_s[r.clone()]).try_into().unwrap(),
-                valid: (&mut out.valid[r]).try_into().unwrap(),
-            },
-        );
-        i += LANES;
-    }
-    if full < n {
-        let m = n - full;
-        let mut pa = [a[n - 1]; LANES];
-        let mut pb = [b[n - 1]; LANES];
-        pa[..m].copy_from_slice(&a[full..]);
-        pb[..m].copy_from_slice(&b[full..]);
+    while i < n {
+        let m = LANES.min(n - i);
+        let (mut pa, mut pb) = ([a[i + m - 1]; LANES], [b[i + m - 1]; LANES]);
+        pa[..m].copy_from_slice(&a[i..i + m]);
+        pb[..m].copy_from_slice(&b[i..i + m]);
         let mut o = [[0.0; LANES]; 5];
         let mut v = [false; LANES];
         let [o0, o1, o2, o3, o4] = &mut o;
@@ -144,12 +129,14 @@ fn for_chunks(a: &[f64], b: &[f64], out: RowOut<'_>, f: &impl ChunkFn) {
                 valid: &mut v,
             },
         );
-        out.ball_speed_m_s[full..].copy_from_slice(&o[0][..m]);
-        out.launch_angle_rad[full..].copy_from_slice(&o[1][..m]);
-        out.azimuth_rad[full..].copy_from_slice(&o[2][..m]);
-        out.backspin_rad_s[full..].copy_from_slice(&o[3][..m]);
-        out.sidespin_rad_s[full..].copy_from_slice(&o[4][..m]);
-        out.valid[full..].copy_from_slice(&v[..m]);
+        let r = i..i + m;
+        out.ball_speed_m_s[r.clone()].copy_from_slice(&o[0][..m]);
+        out.launch_angle_rad[r.clone()].copy_from_slice(&o[1][..m]);
+        out.azimuth_rad[r.clone()].copy_from_slice(&o[2][..m]);
+        out.backspin_rad_s[r.clone()].copy_from_slice(&o[3][..m]);
+        out.sidespin_rad_s[r.clone()].copy_from_slice(&o[4][..m]);
+        out.valid[r].copy_from_slice(&v[..m]);
+        i += m;
     }
 }
 
