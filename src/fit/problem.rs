@@ -525,30 +525,7 @@ impl<'a> FitProblem<'a> {
     fn jacobian_by_columns(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
         let m = self.rows();
         let mut jac = DMatrix::zeros(m, self.active.len());
-        let column = |(k, col): (usize, &mut [f64])| -> Result<(), EvalError> {
-            let j = self.active[k];
-            let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
-            let mut plus = theta.clone();
-            let mut minus = theta.clone();
-            plus[j] = (theta[j] + h).min(self.upper[j]);
-            minus[j] = (theta[j] - h).max(self.lower[j]);
-            let span = plus[j] - minus[j];
-            // Groups whose model the parameter changes: the other shots' residuals are the same
-            // at both points, so their rows stay 0 (what (r − r)/span gives).
-            let touched: Vec<bool> = self
-                .applies
-                .iter()
-                .map(|a| a.contains(&self.owner[j]))
-                .collect();
-            let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
-            let mut r_minus = vec![0.0; m];
-            self.residuals_of_groups(plus.as_slice(), col, groups)?;
-            self.residuals_of_groups(minus.as_slice(), &mut r_minus, groups)?;
-            for (c, rm) in col.iter_mut().zip(&r_minus) {
-                *c = (*c - rm) / span;
-            }
-            Ok(())
-        };
+        let column = |(k, col): (usize, &mut [f64])| self.jacobian_column(theta.as_slice(), k, col);
         if self.parallel_jacobian {
             jac.as_mut_slice()
                 .par_chunks_mut(m)
@@ -561,6 +538,32 @@ impl<'a> FitProblem<'a> {
                 .try_for_each(column)?;
         }
         Ok(jac)
+    }
+
+    /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
+    /// entry), from the residuals at `θ ± h e_j`.
+    fn jacobian_column(&self, theta: &[f64], k: usize, col: &mut [f64]) -> Result<(), EvalError> {
+        let j = self.active[k];
+        let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
+        let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
+        plus[j] = (theta[j] + h).min(self.upper[j]);
+        minus[j] = (theta[j] - h).max(self.lower[j]);
+        let span = plus[j] - minus[j];
+        // Groups whose model the parameter changes: the other shots' residuals are the same
+        // at both points, so their rows stay 0 (what (r − r)/span gives).
+        let touched: Vec<bool> = self
+            .applies
+            .iter()
+            .map(|a| a.contains(&self.owner[j]))
+            .collect();
+        let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
+        let mut r_minus = vec![0.0; col.len()];
+        self.residuals_of_groups(&plus, col, groups)?;
+        self.residuals_of_groups(&minus, &mut r_minus, groups)?;
+        for (c, rm) in col.iter_mut().zip(&r_minus) {
+            *c = (*c - rm) / span;
+        }
+        Ok(())
     }
 }
 

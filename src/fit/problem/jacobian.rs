@@ -15,7 +15,7 @@ use crate::fit::data::SiteCache;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 use crate::lanes::{Lanes, SimdLevel, V};
-use crate::physics::ImpactModel;
+use crate::physics::{FaceGeometry, ImpactModel};
 
 /// The two shifted models of one Jacobian column, per group it touches (`None` for the
 /// others), and the groups it touches.
@@ -29,18 +29,34 @@ struct Column {
 }
 
 impl FitProblem<'_> {
-    /// [`FitProblem::jacobian_full`] in one pass (see the module docs), or `None` when it cannot
-    /// be done that way: no site cache, a shifted model that cannot be built or has user-defined
-    /// effects or another face than the cache's, or a shot that cannot be computed. The caller
-    /// then takes the columns one at a time, which gives the same bits or reports the error.
+    /// [`FitProblem::jacobian_full`] in one pass (see the module docs), the columns whose shifted
+    /// models have another face than the cache's (or user-defined loft or face terms) taken one
+    /// at a time after it; or `None` when it cannot be done that way: no site cache, a shifted
+    /// model that cannot be built, no column for the pass, or a shot that cannot be computed.
+    /// The caller then takes every column one at a time, which gives the same bits or reports
+    /// the error.
     pub(super) fn jacobian_on_lanes(&self, theta: &[f64]) -> Option<DMatrix<f64>> {
         let cache = self.cache()?;
         if self.active.is_empty() {
             return Some(DMatrix::zeros(self.rows(), 0));
         }
         // Every group's model at `theta` must exist, as the column-by-column Jacobian needs.
-        self.models(theta).ok()?;
+        let base = self.models(theta).ok()?;
+        // The face the pass solves on: the models' at `theta` when they share one (with face
+        // radii fitted it is not the club's, whose contact frames the cache holds: each site's
+        // frame is then made on this face, as the residuals make it), else the cache's.
+        let shared = match base.first() {
+            Some(m) if base.iter().all(|o| o.face() == m.face()) => m.face(),
+            _ => &cache.face,
+        };
+        let face = (*shared != cache.face).then_some(shared);
         let mut columns = Vec::with_capacity(self.active.len());
+        let usable = |m: &ImpactModel| !m.laws().user.sets_orientation() && m.face() == shared;
+        // Active parameters whose column is taken on the lanes in the one pass (`true`), or one
+        // column at a time (a shifted model with another face than the cache's, e.g. a
+        // `face_curvature` parameter: the same bits either way, the residuals re-make the
+        // contact frames on that face).
+        let mut on_lanes = Vec::with_capacity(self.active.len());
         for &j in &self.active {
             let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
             let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
@@ -51,35 +67,46 @@ impl FitProblem<'_> {
                 .iter()
                 .map(|a| a.contains(&self.owner[j]))
                 .collect();
-            columns.push(Column {
+            let column = Column {
                 span: plus[j] - minus[j],
                 plus: self.models_of(&plus, &touched).ok()?,
                 minus: self.models_of(&minus, &touched).ok()?,
                 touched,
-            });
+            };
+            let lane = column
+                .plus
+                .iter()
+                .chain(&column.minus)
+                .flatten()
+                .all(usable);
+            on_lanes.push(lane);
+            if lane {
+                columns.push(column);
+            }
         }
-        let usable = |m: &ImpactModel| !m.laws().user.sets_orientation() && *m.face() == cache.face;
-        if !columns
-            .iter()
-            .all(|c| c.plus.iter().chain(&c.minus).flatten().all(usable))
-        {
+        if columns.is_empty() {
             return None;
         }
         let n = self.data.len();
-        // Each task writes its shots' rows of every column in place: column k's rows of task t
-        // are `parts[t][k]`.
+        // Each task writes its shots' rows of every lane column in place: lane column k's rows
+        // of task t are `parts[t][k]`; the other columns are made after the pass.
         let (m, seg) = (self.rows(), SHOTS_PER_TASK * self.weighting.rows_per_shot());
-        let mut jac = DMatrix::zeros(m, columns.len());
+        let mut jac = DMatrix::zeros(m, self.active.len());
         let mut parts: Vec<Vec<&mut [f64]>> = (0..n.div_ceil(SHOTS_PER_TASK))
             .map(|_| Vec::with_capacity(columns.len()))
             .collect();
-        for col in jac.as_mut_slice().chunks_mut(m) {
+        let mut apart = Vec::new();
+        for (k, col) in jac.as_mut_slice().chunks_mut(m).enumerate() {
+            if !on_lanes[k] {
+                apart.push((k, col));
+                continue;
+            }
             for (t, rows) in col.chunks_mut(seg).enumerate() {
                 parts[t].push(rows);
             }
         }
         let task = |(t, mut out): (usize, Vec<&mut [f64]>)| {
-            self.jacobian_block(&columns, cache, t * SHOTS_PER_TASK, &mut out)
+            self.jacobian_block(&columns, (cache, face), t * SHOTS_PER_TASK, &mut out)
         };
         // Split by size alone: below it the lane vectors of a task finish sooner than waking,
         // stealing and joining threads takes (a 600-shot, 5-parameter calibration: 2.01 ms
@@ -90,7 +117,13 @@ impl FitProblem<'_> {
         } else {
             parts.into_iter().enumerate().all(task)
         };
-        done.then_some(jac)
+        if !done {
+            return None;
+        }
+        for (k, col) in apart {
+            self.jacobian_column(theta, k, col).ok()?;
+        }
+        Some(jac)
     }
 
     /// The Jacobian rows of the shots `start..` (at most [`SHOTS_PER_TASK`]) into `out` (one
@@ -99,7 +132,7 @@ impl FitProblem<'_> {
     fn jacobian_block(
         &self,
         columns: &[Column],
-        cache: &SiteCache,
+        cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
@@ -121,7 +154,7 @@ impl FitProblem<'_> {
     fn jacobian_block_portable(
         &self,
         columns: &[Column],
-        cache: &SiteCache,
+        cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
@@ -138,7 +171,7 @@ impl FitProblem<'_> {
     unsafe fn jacobian_block_avx512(
         &self,
         columns: &[Column],
-        cache: &SiteCache,
+        cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
@@ -155,7 +188,7 @@ impl FitProblem<'_> {
     unsafe fn jacobian_block_avx2(
         &self,
         columns: &[Column],
-        cache: &SiteCache,
+        cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
     ) -> bool {
@@ -170,7 +203,7 @@ impl FitProblem<'_> {
     fn jacobian_block_impl<L: Lanes>(
         &self,
         columns: &[Column],
-        cache: &SiteCache,
+        (cache, face): (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         block: &mut [&mut [f64]],
     ) -> Option<()> {
@@ -210,7 +243,8 @@ impl FitProblem<'_> {
                     .map_or(&[][..], |r| &r[..r.len().min(n)]);
                 self.prefetch_shots(cache, next);
                 let idx = padded(shots);
-                if !self.predict_lanes_multi(&models, cache, &idx[..n], &mut frames, outs) {
+                let at = (cache, face);
+                if !self.predict_lanes_multi(&models, at, &idx[..n], &mut frames, outs) {
                     return None;
                 }
                 for (q, &k) in which.iter().enumerate() {
@@ -244,7 +278,8 @@ mod tests {
     use crate::measurement::ImpactNoise;
 
     /// The one-pass Jacobian is the column-by-column one bit for bit: per-group and global
-    /// parameters, a loft bias (whose shifted models make their own delivery frames), with and
+    /// parameters, a loft bias (whose shifted models make their own delivery frames), face
+    /// radii (whose shifted models have another face: those columns are taken apart), with and
     /// without impact-location noise (split over threads with it: 240 shots × 9 nodes is above
     /// the split size), the columns serial and parallel.
     #[test]
@@ -257,7 +292,9 @@ mod tests {
             .expect("club reads");
         let run = crate::synth::generate(&cfg, &club).expect("world generates");
         let shots: Vec<_> = run.shots.iter().map(|s| s.to_shot()).collect();
-        let list = parse_effect_list("added_mass@group,ball_offset,loft_bias,cor_level").unwrap();
+        let list =
+            parse_effect_list("added_mass@group,ball_offset,loft_bias,cor_level,face_curvature")
+                .unwrap();
         for noise in [None, Some(ImpactNoise::from_mm(2.0, 2.0).unwrap())] {
             let data = FitData::from_shots(&shots)
                 .unwrap()

@@ -292,18 +292,20 @@ impl FitProblem<'_> {
 
     /// [`FitProblem::predict_lanes`] for several models of one group at once (`outs[m]` for
     /// `models[m]`, the same bits as one at a time): each site's inputs are gathered once for all
-    /// of them (the models must share the cache's face). `frames` is scratch. `false` if any lane
-    /// of any model cannot be computed.
+    /// of them (the models must share one face: `face`, or the cache's when `None`). `frames` is
+    /// scratch. `false` if any lane of any model cannot be computed.
     #[inline(always)]
     pub(super) fn predict_lanes_multi<L: Lanes>(
         &self,
         models: &[&ImpactModel],
-        cache: &SiteCache,
+        (cache, face): (&SiteCache, Option<&FaceGeometry>),
         idx: &[usize],
         frames: &mut Vec<FrameLanes<L>>,
         outs: &mut [LanePrediction<L>],
     ) -> bool {
-        debug_assert!(models.iter().all(|m| *m.face() == cache.face));
+        debug_assert!(models
+            .iter()
+            .all(|m| m.face() == face.unwrap_or(&cache.face)));
         frames.clear();
         // A delivery frame depends on the model only through its loft and face biases: models
         // that share them share the frame (the shifted models of a fit with a bias parameter
@@ -332,7 +334,7 @@ impl FitProblem<'_> {
             None
         };
         for k in 0..cache.sites_per_shot {
-            let Some(site) = self.site_lanes(cache, idx, k, None) else {
+            let Some(site) = self.site_lanes(cache, idx, k, face) else {
                 return false;
             };
             for ((model, frame), out) in models.iter().zip(frames.iter()).zip(outs.iter_mut()) {
