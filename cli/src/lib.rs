@@ -275,6 +275,19 @@ impl ClubCheckArgs {
     }
 }
 
+/// The comment line a written club file carries when the fit ran under
+/// `--ignore-club-mismatch` (`mismatch`: why the shots are not this club's), else nothing: the
+/// file itself then says that its values were fitted to another club's shots.
+pub fn mismatch_comment(mismatch: Option<&str>) -> String {
+    mismatch.map_or(String::new(), |why| {
+        format!(
+            "\nWARNING: fitted under --ignore-club-mismatch: the shots do not match this club \
+             ({}); the values describe those shots, not this club.",
+            smash::data::escape(why)
+        )
+    })
+}
+
 /// One line: the error and its causes, joined by `: `, with control characters from the input
 /// (ESC, CR, …) escaped so that they cannot act on the terminal.
 pub fn error_chain(e: &anyhow::Error) -> String {

@@ -239,3 +239,155 @@ fn no_output_may_replace_the_project_file() {
     let o = smash_in(d, &args);
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// The paper driver's club file with `from` replaced by `to`, written to `dir/name`.
+fn club_with(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
+    let text = std::fs::read_to_string(repo("configs/clubs/paper_driver.toml")).unwrap();
+    assert!(text.contains(from), "{from}");
+    write(dir, name, &text.replace(from, to))
+}
+
+/// Item 4: a club's loft outside any club's, a what-if head beyond a club file's limits and a
+/// discretionary mass as heavy as the head are refused in one line with the allowed range; a
+/// club written under `--ignore-club-mismatch` says so in the file.
+#[test]
+fn club_files_and_changed_heads_are_checked() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let one = ["--speed", "100", "--loft", "12"];
+    for loft in ["1000", "-5", "80.5"] {
+        let c = club_with(d, "c.toml", "loft_deg = 9.8", &format!("loft_deg = {loft}"));
+        let mut args = vec!["predict", "--club", s(&c)];
+        args.extend_from_slice(&one);
+        common::assert_refused(
+            &smash(&args),
+            &["c.toml:", "club.loft_deg", loft, "[0, 80] deg"],
+        );
+    }
+    // The edges are clubs: a zero-loft putter, an 80° wedge.
+    for loft in ["0", "80"] {
+        let c = club_with(d, "c.toml", "loft_deg = 9.8", &format!("loft_deg = {loft}"));
+        let mut args = vec!["predict", "--club", s(&c)];
+        args.extend_from_slice(&one);
+        let o = smash(&args);
+        assert!(o.status.success(), "{loft}: {}", stderr(&o));
+    }
+    // A what-if scaling re-checked against the club file's inertia cap.
+    let c = club();
+    let whatif = |extra: &[&str]| {
+        let mut args = vec!["whatif", "--club", c.as_str(), "--speed", "95"];
+        args.extend_from_slice(extra);
+        smash(&args)
+    };
+    common::assert_refused(
+        &whatif(&["--moi-scale", "1e6"]),
+        &[
+            "the changed head: club.inertia_gcm2",
+            "e9 is outside the physical range [-1000000, 1000000] g·cm²",
+        ],
+    );
+    common::assert_refused(
+        &whatif(&["--com-shift-mm", "0,600,0"]),
+        &["the changed head: club.com_mm", "[-500, 500] mm"],
+    );
+    common::assert_refused(
+        &whatif(&["--move-mass", "204g:-70,0,0:-80,0,0"]),
+        &[
+            "204 g is not part of the head",
+            "below the head mass, 204 g",
+        ],
+    );
+    // A discretionary mass as heavy as the head, in a study's [design] and [yards].
+    let study = |table: &str| {
+        format!(
+            "[study]\nname = \"m\"\nclub = {:?}\noutputs = [\"ball_speed_mph\"]\n\n\
+             [delivery]\nclub_speed_mph = 100.0\ndynamic_loft_deg = 12.0\n\n\
+             [grid]\ny_mm = {{ from = -2.0, to = 2.0, count = 3 }}\n\
+             z_mm = {{ from = -2.0, to = 2.0, count = 3 }}\n\n{table}",
+            club()
+        )
+    };
+    let design = write(
+        d,
+        "design.toml",
+        &study(
+            "[design]\ndiscretionary_mass = { mass_g = 204.0, at_mm = [-70.0, -10.0, 0.0] }\n\
+             mass_dz_mm = [0.0, 5.0]\n",
+        ),
+    );
+    let out = d.join("out");
+    let o = smash(&["run", s(&design), "--out", s(&out)]);
+    common::assert_refused(
+        &o,
+        &[
+            "design.toml:",
+            "design.discretionary_mass.mass_g",
+            "below the head mass, 204 g",
+        ],
+    );
+    assert!(!out.exists());
+    let yards = write(
+        d,
+        "yards.toml",
+        &study(
+            "[distribution]\nmethod = \"quadrature\"\nnodes = 2\nsigma_y_mm = 4.0\n\n\
+             [yards]\nstatic_loft_deg = 10.5\n\n\
+             [yards.mass]\nmass_g = 204.0\nat_mm = [-70.0, -10.0, 0.0]\n\
+             bounds_mm = [[-5.0, 5.0], [-5.0, 5.0], [-5.0, 5.0]]\n",
+        ),
+    );
+    let o = smash(&["run", s(&yards), "--out", s(&out)]);
+    common::assert_refused(
+        &o,
+        &[
+            "yards.toml:",
+            "yards.mass.mass_g",
+            "below the head mass, 204 g",
+        ],
+    );
+    // Fitted to another club's shots: the written club says so.
+    let wedge = club_with(d, "wedge.toml", "loft_deg = 9.8", "loft_deg = 56.0");
+    let shots = measured_shots(d);
+    let out_club = d.join("fitted.toml");
+    let o = smash(&[
+        "calibrate",
+        "--club",
+        s(&wedge),
+        "--shots",
+        s(&shots),
+        "--effects",
+        "loft_bias",
+        "--ignore-club-mismatch",
+        "--out-club",
+        s(&out_club),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = std::fs::read_to_string(&out_club).unwrap();
+    let mark = written
+        .lines()
+        .find(|l| l.contains("--ignore-club-mismatch"))
+        .unwrap_or_else(|| panic!("no mark in:\n{written}"));
+    assert!(
+        mark.starts_with("# WARNING: fitted under --ignore-club-mismatch: the shots do not match"),
+        "{mark}"
+    );
+    // And the file still reads as a club.
+    let mut args = vec!["predict", "--club", s(&out_club)];
+    args.extend_from_slice(&one);
+    assert!(smash(&args).status.success());
+    // Without the flag (shots that match) there is no such line.
+    let o = smash(&[
+        "calibrate",
+        "--club",
+        &club(),
+        "--shots",
+        s(&shots),
+        "--effects",
+        "loft_bias",
+        "--out-club",
+        s(&out_club),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let written = std::fs::read_to_string(&out_club).unwrap();
+    assert!(!written.contains("WARNING"), "{written}");
+}
