@@ -391,3 +391,69 @@ fn club_files_and_changed_heads_are_checked() {
     let written = std::fs::read_to_string(&out_club).unwrap();
     assert!(!written.contains("WARNING"), "{written}");
 }
+
+/// Item 2: balls driven into the ground are counted and named; when most of the distribution
+/// never flies, carry and dispersion are refused in one line (they were 0 yd and "−100 %", exit
+/// 0), in a what-if and in a `[yards]` study alike, and no output file is written.
+#[test]
+fn balls_that_never_fly_are_counted_and_too_many_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let c = club();
+    let csv = d.join("w.csv");
+    let whatif = |change: &str| {
+        smash(&[
+            "whatif",
+            "--club",
+            &c,
+            "--speed",
+            "95",
+            "--loft-change-deg",
+            change,
+            "--out",
+            s(&csv),
+        ])
+    };
+    let o = whatif("-20");
+    common::assert_refused(
+        &o,
+        &[
+            "the changed head: 25 of 25 impacts (100.0 % of the distribution's weight)",
+            "never fly",
+            "not reported when more than 50 % of the weight never flies",
+        ],
+    );
+    assert!(o.stdout.is_empty());
+    assert!(!csv.exists());
+    // A few topped balls among many: reported, counted with 0 yd, and named.
+    let o = whatif("-12.5");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        out.contains("changed head: 10 of 25 impacts (23.3 % of the distribution's weight) launch into the ground"),
+        "{out}"
+    );
+    assert!(!out.contains("base head:"), "{out}");
+    assert!(!common::has_non_finite(&out), "{out}");
+    let written = std::fs::read_to_string(&csv).unwrap();
+    let head: Vec<&str> = written.lines().next().unwrap().split(',').collect();
+    assert_eq!(head.last(), Some(&"grounded_pct"));
+    assert!(written.lines().nth(1).unwrap().ends_with(",0"), "{written}");
+    // A [yards] study whose swing drives every ball into the ground.
+    let study = write(
+        d,
+        "low.toml",
+        &format!(
+            "[study]\nname = \"low\"\nclub = {c:?}\noutputs = [\"ball_speed_mph\"]\n\n\
+             [delivery]\nclub_speed_mph = 95.0\ndynamic_loft_deg = -8.0\n\n\
+             [distribution]\nmethod = \"quadrature\"\nnodes = 2\nsigma_y_mm = 4.0\n\n\
+             [grid]\ny_mm = {{ from = -2.0, to = 2.0, count = 2 }}\n\
+             z_mm = {{ from = -2.0, to = 2.0, count = 2 }}\n\n\
+             [yards]\nstatic_loft_deg = 10.5\n"
+        ),
+    );
+    let out = d.join("low_out");
+    let o = smash(&["run", s(&study), "--out", s(&out)]);
+    common::assert_refused(&o, &["[yards] base design", "never fly"]);
+    assert!(!out.exists());
+}
