@@ -17,6 +17,7 @@ pub mod predict;
 pub mod progress;
 pub mod project;
 pub mod run;
+pub mod shots_hint;
 pub mod signals;
 pub mod stdout;
 pub mod study_output;
@@ -395,6 +396,11 @@ pub struct ShotsFormatArgs {
     /// (`spin_estimated`/`club_estimated` = 1); by default they are left out and counted.
     #[arg(long, help_heading = "Input format")]
     pub include_estimated: bool,
+
+    /// The project file `format` came from, when it did (named in the hint that a shots file
+    /// needs `--format shots`).
+    #[arg(skip)]
+    pub format_from: Option<std::path::PathBuf>,
 }
 
 impl ShotsFormatArgs {
@@ -405,7 +411,9 @@ impl ShotsFormatArgs {
         let table = match self.format.as_deref() {
             None | Some("shots") => smash::data::shots::read_shots_with(path, opts)?,
             Some(format) => {
-                let imported = self.import(path, format)?;
+                let imported = self
+                    .import(path, format)
+                    .map_err(|e| shots_hint::add(path, format, self.format_from.as_deref(), e))?;
                 imported.read_back_with(path, opts)?
             }
         };

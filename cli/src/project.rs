@@ -60,6 +60,9 @@ pub struct Defaults {
     /// `impact_noise_mm`, checked.
     #[serde(skip)]
     impact_noise: Option<smash::measurement::ImpactNoise>,
+    /// The project file these defaults were read from.
+    #[serde(skip)]
+    file: Option<PathBuf>,
 }
 
 /// What a project file holds, for the message that lists the allowed keys.
@@ -89,6 +92,7 @@ pub fn read(path: &Path) -> anyhow::Result<Defaults> {
     })?;
     let file: ProjectFile = parse_toml(path, &text, LAYOUT)?;
     let mut d = file.defaults;
+    d.file = Some(path.to_owned());
     let bad = |key: &str, msg: String| -> anyhow::Error {
         smash::data::DataError::at(path, None, Some(format!("key defaults.{key}")), msg).into()
     };
@@ -157,6 +161,7 @@ impl Defaults {
         if let Some(f) = opts.shots_format {
             if let (None, Some(v)) = (&f.format, &self.format) {
                 f.format = Some(v.clone());
+                f.format_from.clone_from(&self.file);
                 taken.push(format!("format = {v}"));
             }
             if let (None, Some(side)) = (f.impact_offset_positive, self.impact_offset_positive) {

@@ -457,3 +457,128 @@ fn balls_that_never_fly_are_counted_and_too_many_are_refused() {
     common::assert_refused(&o, &["[yards] base design", "never fly"]);
     assert!(!out.exists());
 }
+
+/// `text` as UTF-16 (little- or big-endian), with or without a byte-order mark.
+fn utf16(text: &str, little: bool, bom: bool) -> Vec<u8> {
+    let mut out: Vec<u8> = Vec::new();
+    let units = bom.then_some(0xFEFF).into_iter().chain(text.encode_utf16());
+    for u in units {
+        out.extend(if little {
+            u.to_le_bytes()
+        } else {
+            u.to_be_bytes()
+        });
+    }
+    out
+}
+
+/// Item 6: the loud ones. UTF-16 given to a reader of UTF-8 is named in one short line with
+/// the conversion; a header of thousands of columns is listed as its first few names and "and N
+/// more"; a project's `format` applied to a shots file hints at `--format shots`.
+#[test]
+fn loud_messages_are_short_and_give_the_hint() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let shots_text = std::fs::read_to_string(measured_shots(d)).unwrap();
+    let club_text = std::fs::read_to_string(repo("configs/clubs/paper_driver.toml")).unwrap();
+    let launch_text = "shot_id,ball_speed_mph,launch_angle_deg,backspin_rpm\nd1,150,12,2600\n";
+    let c = club();
+    let out = d.join("out.csv");
+    for (little, bom) in [(true, false), (false, false), (true, true)] {
+        let name = if little { "UTF-16LE" } else { "UTF-16BE" };
+        let want = if bom {
+            format!("the file is {name} text (it starts with a byte-order mark)")
+        } else {
+            format!("the file looks like {name} text without a byte-order mark")
+        };
+        let iconv = format!("iconv -f {name} -t UTF-8");
+        let file = |n: &str, text: &str| {
+            let p = d.join(n);
+            std::fs::write(&p, utf16(text, little, bom)).unwrap();
+            p
+        };
+        let shots = file("s16.csv", &shots_text);
+        let launch = file("l16.csv", launch_text);
+        let club16 = file("c16.toml", &club_text);
+        for args in [
+            vec![
+                "predict",
+                "--club",
+                &c,
+                "--shots",
+                s(&shots),
+                "--out",
+                s(&out),
+            ],
+            vec!["compare", "--club", &c, "--shots", s(&shots)],
+            vec!["flight", "--shots", s(&launch), "--out", s(&out)],
+            vec![
+                "predict",
+                "--club",
+                s(&club16),
+                "--speed",
+                "100",
+                "--loft",
+                "12",
+            ],
+        ] {
+            let o = smash(&args);
+            common::assert_refused(&o, &[":1: ", &want, &iconv]);
+            assert!(stderr(&o).len() < 400, "{}", stderr(&o));
+            assert!(!stderr(&o).contains("\\0"), "{}", stderr(&o));
+            assert!(!out.exists());
+        }
+    }
+    // An export missing the preset's columns, with 5,000 others and one 100 kB name.
+    let mut head: Vec<String> = (0..5000).map(|i| format!("Extra {i}")).collect();
+    head.insert(3, "N".repeat(100_000));
+    let wide = write(
+        d,
+        "wide.csv",
+        &format!("{}\n{}\n", head.join(","), vec!["1"; head.len()].join(",")),
+    );
+    let o = smash(&["import", "--format", "trackman", s(&wide), "--out", s(&out)]);
+    common::assert_refused(
+        &o,
+        &[
+            "not a TrackMan export as expected",
+            "the file has: Extra 0, Extra 1, Extra 2, NNNN",
+            "N…, Extra 3,",
+            "… and 4981 more",
+        ],
+    );
+    assert!(stderr(&o).len() < 1500, "{} bytes", stderr(&o).len());
+    // A project's format on a shots file: the refusal says to read it with --format shots.
+    let proj = d.join("proj");
+    std::fs::create_dir(&proj).unwrap();
+    write(&proj, "smash.toml", "[defaults]\nformat = \"trackman\"\n");
+    let shots = write(&proj, "shots.csv", &shots_text);
+    let args = [
+        "predict",
+        "--club",
+        &c,
+        "--shots",
+        "shots.csv",
+        "--out",
+        "p.csv",
+    ];
+    let o = smash_in(&proj, &args);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    let line = err.lines().find(|l| l.starts_with("error: ")).unwrap();
+    assert!(
+        line.contains("shots.csv looks like a shots file already")
+            && line.contains("read it with --format shots")
+            && line.contains(&format!(
+                "format = trackman is the project file {}'s",
+                proj.join("smash.toml").display()
+            )),
+        "{line}"
+    );
+    // And so it reads.
+    let mut with = args.to_vec();
+    with.extend(["--format", "shots"]);
+    let o = smash_in(&proj, &with);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(shots.exists());
+}
