@@ -430,10 +430,15 @@ fn balls_that_never_fly_are_counted_and_too_many_are_refused() {
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8(o.stdout).unwrap();
     assert!(
-        out.contains("changed head: 10 of 25 impacts (23.3 % of the distribution's weight) launch into the ground"),
+        out.contains(
+            "changed head: 10 of 25 impacts (23.3 % of the weight) launch into the ground and \
+             never fly (counted as 0 yd carry)"
+        ),
         "{out}"
     );
     assert!(!out.contains("base head:"), "{out}");
+    let note = out.lines().find(|l| l.contains("into the ground")).unwrap();
+    assert!(note.chars().count() <= 120, "{note}");
     assert!(!common::has_non_finite(&out), "{out}");
     let written = std::fs::read_to_string(&csv).unwrap();
     let head: Vec<&str> = written.lines().next().unwrap().split(',').collect();

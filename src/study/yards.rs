@@ -143,8 +143,8 @@ impl YardMetrics {
     pub fn grounded_note(&self) -> Option<String> {
         (self.grounded > 0).then(|| {
             format!(
-                "{} of {} impacts ({:.1} % of the distribution's weight) launch into the ground \
-                 and never fly: counted with 0 yd carry",
+                "{} of {} impacts ({:.1} % of the weight) launch into the ground and never fly \
+                 (counted as 0 yd carry)",
                 self.grounded,
                 self.impacts,
                 100.0 * self.grounded_share
