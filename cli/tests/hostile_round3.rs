@@ -233,6 +233,19 @@ fn no_output_may_replace_the_project_file() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_kept(&file, project);
+    // The project file SMASH_CONFIG names is protected the same way, by its real path.
+    let named = write(d, "team.toml", project);
+    std::fs::create_dir_all(d.join("sub")).unwrap();
+    let o = Command::new(SMASH)
+        .args(["predict", "--club", &c, "--shots", &sh, "--out"])
+        .arg(d.join("sub/../team.toml"))
+        .current_dir(d)
+        .env("SMASH_CONFIG", &named)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("(the project file)"), "{}", stderr(&o));
+    assert_kept(&named, project);
     // A one-delivery predict writes nothing and is not refused.
     let mut args = vec!["predict", "--club", c.as_str()];
     args.extend_from_slice(&one);
@@ -284,6 +297,13 @@ fn club_files_and_changed_heads_are_checked() {
         &[
             "the changed head: club.inertia_gcm2",
             "e9 is outside the physical range [-1000000, 1000000] g·cm²",
+        ],
+    );
+    common::assert_refused(
+        &whatif(&["--loft-change-deg", "100"]),
+        &[
+            "loft change",
+            "dynamic loft 113 is outside the physical range [-90, 90] deg",
         ],
     );
     common::assert_refused(

@@ -174,11 +174,11 @@ pub fn what_if(
     s: &YardSetting<'_>,
 ) -> Result<WhatIf, String> {
     let changed_params = change.apply(nominal)?;
-    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
     let swing = change.swing(s.swing);
     crate::limits::DYNAMIC_LOFT_DEG
         .check(swing.dynamic_loft_deg)
         .map_err(|e| format!("the changed head's delivery (loft change): {e}"))?;
+    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
     let changed = head_yards(
         &changed_params,
         &YardSetting {
