@@ -51,6 +51,32 @@ pub fn note_input(path: &Path) {
     }
 }
 
+/// What some inputs are, for messages (`the project file`), by canonical path.
+static NAMES: Mutex<Vec<(PathBuf, &'static str)>> = Mutex::new(Vec::new());
+
+/// [`note_input`], with what the file is (`the project file`) for the message that refuses an
+/// output over it.
+pub fn note_input_named(path: &Path, name: &'static str) {
+    note_input(path);
+    let c = canonical(path);
+    let mut names = NAMES
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
+    if !names.iter().any(|(p, _)| *p == c) {
+        names.push((c, name));
+    }
+}
+
+/// What the recorded input at the canonical path `c` is, when [`note_input_named`] said.
+pub fn name_of(c: &Path) -> Option<&'static str> {
+    NAMES
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+        .iter()
+        .find(|(p, _)| p == c)
+        .map(|(_, n)| *n)
+}
+
 /// The recorded inputs (canonical paths), locked for the caller's look.
 pub fn recorded() -> MutexGuard<'static, Vec<PathBuf>> {
     INPUTS

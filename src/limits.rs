@@ -226,6 +226,32 @@ pub fn check_behind_face_mm(what: &str, x_mm: f64) -> Result<f64, String> {
     }
 }
 
+/// A club's static (address) loft, deg, as a club file's `loft_deg` states it. Real clubs run
+/// from putters' 2–4° (the Equipment Rules allow a putter at most 10°) through drivers' 8–12°
+/// to lob wedges' 60–64°, the most lofted clubs the makers sell (a few novelty wedges reach
+/// 70–72°); 80° leaves room for any of them. Below 0 the face points down at the ground, which
+/// no club does; 1000° is not an angle a face can have.
+pub const STATIC_LOFT_DEG: PhysicalRange = PhysicalRange::closed("static loft", "deg", 0.0, 80.0);
+
+/// `Err` with the value and the allowed range when a part of the head of `m_g` grams (a
+/// discretionary mass, a mass moved within the head) is not a part of a head of `head_kg`
+/// kilograms: it must weigh more than nothing and less than the whole head. Compared in the
+/// head's own unit, so that a 204 g part of a 204 g head (0.204 kg read back as
+/// 204.00000000000003 g) is refused, not let through by rounding.
+pub fn check_head_part_mass_g(what: &str, m_g: f64, head_kg: f64) -> Result<f64, String> {
+    if m_g.is_finite() && m_g > 0.0 && crate::units::g(m_g) < head_kg {
+        Ok(m_g)
+    } else {
+        Err(format!(
+            "{what} {} g is not part of the head: it must be above 0 g and below the head mass, \
+             {} g (the rest of the head holds the face)",
+            fmt_value(m_g),
+            // To the microgram: the head's 0.204 kg is shown as 204, not 204.00000000000003.
+            fmt_value((head_kg / crate::units::KG_PER_G * 1e6).round() / 1e6)
+        ))
+    }
+}
+
 /// One component of the hosel's position (where the shaft joins the head) from the centre of
 /// face, mm: like the CoM, somewhere on a head that is nowhere near half a metre long.
 pub const HOSEL_MM: PhysicalRange = PhysicalRange::closed("hosel position", "mm", -500.0, 500.0);

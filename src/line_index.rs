@@ -112,9 +112,106 @@ impl RecordLines for LineIndex<'_> {
     }
 }
 
+/// How a file is UTF-16 text, when it is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Utf16 {
+    /// Little-endian (`UTF-16LE`, what Windows writes) rather than big-endian.
+    pub little_endian: bool,
+    /// Recognised by its byte-order mark (0xFF 0xFE or 0xFE 0xFF, two bytes to skip).
+    pub bom: bool,
+}
+
+impl Utf16 {
+    /// The encoding's name as `iconv` takes it.
+    pub fn name(self) -> &'static str {
+        if self.little_endian {
+            "UTF-16LE"
+        } else {
+            "UTF-16BE"
+        }
+    }
+
+    /// How it was recognised, for a note (`UTF-16 text (little-endian, without a byte-order
+    /// mark)`).
+    pub fn describe(self) -> &'static str {
+        match (self.little_endian, self.bom) {
+            (true, true) => "UTF-16 text (little-endian, with a byte-order mark)",
+            (false, true) => "UTF-16 text (big-endian, with a byte-order mark)",
+            (true, false) => "UTF-16 text (little-endian, without a byte-order mark)",
+            (false, false) => "UTF-16 text (big-endian, without a byte-order mark)",
+        }
+    }
+
+    /// The one-line refusal of a reader that takes UTF-8 only: what the file looks like and
+    /// how to convert it (ASCII saved as UTF-16 is valid UTF-8 with a zero byte beside every
+    /// character, so without this the reader names the header `C\0l\0u\0b…` as unknown).
+    pub fn refusal(self) -> String {
+        let looks = if self.bom {
+            format!(
+                "the file is {} text (it starts with a byte-order mark)",
+                self.name()
+            )
+        } else {
+            format!(
+                "the file looks like {} text without a byte-order mark (a zero byte beside \
+                 every character)",
+                self.name()
+            )
+        };
+        format!(
+            "{looks}; smash reads UTF-8: convert it, e.g. `iconv -f {} -t UTF-8 FILE > NEW`, or \
+             save it as \"CSV UTF-8\"",
+            self.name()
+        )
+    }
+}
+
+/// Whether `bytes` are UTF-16 text: a byte-order mark (0xFF 0xFE little-endian, 0xFE 0xFF
+/// big-endian), or, without one, a zero byte in most odd (little-endian) or most even
+/// (big-endian) places of the first 256 bytes, as ASCII text saved as UTF-16 has (no UTF-8 text
+/// holds zero bytes there: a zero byte is the character NUL).
+pub fn utf16(bytes: &[u8]) -> Option<Utf16> {
+    if bytes.starts_with(b"\xFF\xFE") || bytes.starts_with(b"\xFE\xFF") {
+        return Some(Utf16 {
+            little_endian: bytes[0] == 0xFF,
+            bom: true,
+        });
+    }
+    let head = &bytes[..bytes.len().min(256)];
+    if head.len() < 4 {
+        return None;
+    }
+    let zeros = |parity: usize| {
+        head.iter()
+            .skip(parity)
+            .step_by(2)
+            .filter(|&&b| b == 0)
+            .count()
+    };
+    let pairs = head.len() / 2;
+    let (even, odd) = (zeros(0), zeros(1));
+    let without = |little_endian| {
+        Some(Utf16 {
+            little_endian,
+            bom: false,
+        })
+    };
+    if 10 * odd >= 7 * pairs && 10 * even <= pairs {
+        without(true)
+    } else if 10 * even >= 7 * pairs && 10 * odd <= pairs {
+        without(false)
+    } else {
+        None
+    }
+}
+
 /// `bytes` as text; otherwise the 1-based line of the first byte that is not UTF-8 and a message
-/// naming its place on the line (a file saved as Latin-1 or UTF-16, say).
+/// naming its place on the line (a file saved as Latin-1, say), or, for UTF-16 text, line 1 and
+/// [`Utf16::refusal`].
 pub fn utf8_text(bytes: Vec<u8>) -> Result<String, (usize, String)> {
+    if let Some(u) = utf16(&bytes) {
+        return Err((1, u.refusal()));
+    }
     String::from_utf8(bytes).map_err(|e| {
         let at = e.utf8_error().valid_up_to();
         let bytes = e.as_bytes();

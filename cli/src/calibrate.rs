@@ -111,14 +111,15 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     if let Some(out) = &args.out_club {
         let comment = format!(
             "Calibrated by smash calibrate --effects {} --method {} on {} ({} shots).\n\
-             chi2 = {:.3}, reduced chi2 = {:.4}; {}",
+             chi2 = {:.3}, reduced chi2 = {:.4}; {}{}",
             args.effects,
             cal.method.name(),
             args.inputs.shots.display(),
             table.shots.len(),
             cal.chi2,
             cal.reduced_chi2,
-            cal.termination
+            cal.termination,
+            super::mismatch_comment(report.club_mismatch.as_deref())
         );
         staging.file(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
     }

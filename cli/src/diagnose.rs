@@ -145,14 +145,15 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let mut staging = plan.stage();
     if let Some(out) = &args.out_club {
         let comment = format!(
-            "Club with the effects selected by smash diagnose on {} ({} shots): {}",
+            "Club with the effects selected by smash diagnose on {} ({} shots): {}{}",
             args.inputs.shots.display(),
             d.n_shots,
             if d.selected.is_empty() {
                 "none".to_owned()
             } else {
                 d.selected.join(", ")
-            }
+            },
+            super::mismatch_comment(d.club_mismatch.as_deref())
         );
         staging.file(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
     }

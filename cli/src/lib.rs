@@ -17,6 +17,7 @@ pub mod predict;
 pub mod progress;
 pub mod project;
 pub mod run;
+pub mod shots_hint;
 pub mod signals;
 pub mod stdout;
 pub mod study_output;
@@ -275,6 +276,19 @@ impl ClubCheckArgs {
     }
 }
 
+/// The comment line a written club file carries when the fit ran under
+/// `--ignore-club-mismatch` (`mismatch`: why the shots are not this club's), else nothing: the
+/// file itself then says that its values were fitted to another club's shots.
+pub fn mismatch_comment(mismatch: Option<&str>) -> String {
+    mismatch.map_or(String::new(), |why| {
+        format!(
+            "\nWARNING: fitted under --ignore-club-mismatch: the shots do not match this club \
+             ({}); the values describe those shots, not this club.",
+            smash::data::escape(why)
+        )
+    })
+}
+
 /// One line: the error and its causes, joined by `: `, with control characters from the input
 /// (ESC, CR, …) escaped so that they cannot act on the terminal.
 pub fn error_chain(e: &anyhow::Error) -> String {
@@ -382,6 +396,11 @@ pub struct ShotsFormatArgs {
     /// (`spin_estimated`/`club_estimated` = 1); by default they are left out and counted.
     #[arg(long, help_heading = "Input format")]
     pub include_estimated: bool,
+
+    /// The project file `format` came from, when it did (named in the hint that a shots file
+    /// needs `--format shots`).
+    #[arg(skip)]
+    pub format_from: Option<std::path::PathBuf>,
 }
 
 impl ShotsFormatArgs {
@@ -392,7 +411,9 @@ impl ShotsFormatArgs {
         let table = match self.format.as_deref() {
             None | Some("shots") => smash::data::shots::read_shots_with(path, opts)?,
             Some(format) => {
-                let imported = self.import(path, format)?;
+                let imported = self
+                    .import(path, format)
+                    .map_err(|e| shots_hint::add(path, format, self.format_from.as_deref(), e))?;
                 imported.read_back_with(path, opts)?
             }
         };

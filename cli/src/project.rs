@@ -8,7 +8,8 @@
 //! the instruments' noise class or file, the impact-location noise and the user-defined
 //! effects. A flag given on the command line wins over the file; a key the file leaves out
 //! keeps the built-in default. Every value taken from the file is named on stderr, so a run
-//! never depends on it silently. Paths in the file are relative to the file's directory.
+//! never depends on it silently. Paths in the file (`noise`, `effect_defs`, a mapping file
+//! named by `format`) are relative to the file's directory, wherever the command runs.
 //!
 //! ```toml
 //! [defaults]
@@ -59,6 +60,9 @@ pub struct Defaults {
     /// `impact_noise_mm`, checked.
     #[serde(skip)]
     impact_noise: Option<smash::measurement::ImpactNoise>,
+    /// The project file these defaults were read from.
+    #[serde(skip)]
+    file: Option<PathBuf>,
 }
 
 /// What a project file holds, for the message that lists the allowed keys.
@@ -81,11 +85,14 @@ pub fn find(dir: &Path) -> Option<PathBuf> {
 /// The defaults of the project file at `path`, its paths made relative to where the command
 /// runs (they are written relative to the file).
 pub fn read(path: &Path) -> anyhow::Result<Defaults> {
+    // An input like any other: no output of the command may be written over it.
+    smash::data::safe_write::note_input_named(path, "the project file");
     let text = std::fs::read_to_string(path).map_err(|e| {
         smash::data::DataError::file(path, format!("cannot read the project file: {e}"))
     })?;
     let file: ProjectFile = parse_toml(path, &text, LAYOUT)?;
     let mut d = file.defaults;
+    d.file = Some(path.to_owned());
     let bad = |key: &str, msg: String| -> anyhow::Error {
         smash::data::DataError::at(path, None, Some(format!("key defaults.{key}")), msg).into()
     };
@@ -97,13 +104,31 @@ pub fn read(path: &Path) -> anyhow::Result<Defaults> {
         d.impact_noise =
             Some(crate::impact_noise_from_mm(y, z).map_err(|e| bad("impact_noise_mm", e))?);
     }
+    // Every path the file names is relative to the file's folder, not to where the command
+    // runs: `noise`, `effect_defs`, and `format` when it names a mapping file, not a preset.
     let base = path.parent().unwrap_or(Path::new(""));
     for p in [&mut d.noise, &mut d.effect_defs].into_iter().flatten() {
         if p.is_relative() {
             *p = base.join(&*p);
         }
     }
+    if let Some(f) = &mut d.format {
+        if !is_named_format(f) && Path::new(f.as_str()).is_relative() {
+            *f = base.join(f.as_str()).to_string_lossy().into_owned();
+        }
+    }
     Ok(d)
+}
+
+/// Whether `format` names a format rather than a mapping file: `shots`, `auto`, a preset or
+/// one of its aliases (what [`smash::data::import::load_mapping`] looks up before a path).
+fn is_named_format(format: &str) -> bool {
+    use smash::data::import::{PRESETS, PRESET_ALIASES};
+    let key = format.to_ascii_lowercase();
+    key == "shots"
+        || key == "auto"
+        || PRESETS.iter().any(|(n, _)| *n == key)
+        || PRESET_ALIASES.iter().any(|(a, _)| *a == key)
 }
 
 /// The options of one command that a project file may set, borrowed from its parsed flags.
@@ -136,6 +161,7 @@ impl Defaults {
         if let Some(f) = opts.shots_format {
             if let (None, Some(v)) = (&f.format, &self.format) {
                 f.format = Some(v.clone());
+                f.format_from.clone_from(&self.file);
                 taken.push(format!("format = {v}"));
             }
             if let (None, Some(side)) = (f.impact_offset_positive, self.impact_offset_positive) {

@@ -306,6 +306,11 @@ fn table_text(w: &WhatIf) -> String {
             100.0 * (w.changed.metrics.ellipse_area_yd2 - a) / a
         );
     }
+    for (head, m) in [("base", &w.base.metrics), ("changed", &w.changed.metrics)] {
+        if let Some(note) = m.grounded_note() {
+            let _ = writeln!(t, "{head} head: {note}");
+        }
+    }
     t
 }
 

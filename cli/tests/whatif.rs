@@ -229,7 +229,7 @@ fn whatif_refuses_what_it_cannot_answer_in_one_line() {
         ),
         (
             &["--speed", "95", "--move-mass", "500g:-70,0,0:-80,0,0"],
-            "below the head's 204.0 g",
+            "below the head mass, 204 g",
         ),
     ];
     for (extra, want) in cases {

@@ -20,6 +20,7 @@ threads; in a notebook, diagnose and calibrate show a tqdm progress bar when tqd
 
 from __future__ import annotations
 
+import csv as _csv
 import io
 import json
 import os
@@ -91,6 +92,37 @@ def _read_csv(data: bytes) -> pd.DataFrame:
         keep_default_na=False,
         na_values=[""],
     )
+
+
+def _record_positions(text: str) -> Dict[int, int]:
+    """For a CSV with a header line: the line where each data record starts (1-based, as the
+    library counts lines) → the record's position among the data rows, blank lines skipped (as
+    ``pd.read_csv`` skips them). A quoted cell may span lines."""
+    reader = _csv.reader(io.StringIO(text, newline=""))
+    positions: Dict[int, int] = {}
+    previous = 0
+    header = True
+    for record in reader:
+        start, previous = previous + 1, reader.line_num
+        if not record:
+            continue
+        if header:
+            header = False
+            continue
+        positions[start] = len(positions)
+    return positions
+
+
+def _with_input_index(frame: pd.DataFrame, index: Optional[pd.Index], text: str,
+                      lines: Sequence[int]) -> pd.DataFrame:
+    """``frame`` (one row per predicted shot, ``lines`` the line of ``text`` where each shot's
+    row starts) with the index labels of the input rows they came from (``index``; ``None``:
+    the rows' positions, as ``pd.read_csv`` numbers them)."""
+    positions = _record_positions(text)
+    if index is None:
+        index = pd.RangeIndex(len(positions))
+    frame.index = index.take([positions[line] for line in lines])
+    return frame
 
 
 def _flag(name: str) -> str:
@@ -221,15 +253,30 @@ def predict(
     ``pred_launch_angle_deg`` (deg), ``pred_azimuth_deg`` (deg), ``pred_backspin_rpm`` (rpm),
     ``pred_sidespin_rpm`` (rpm), ``pred_smash_factor`` (1) and, where the shots have measured
     launch, ``err_*`` = predicted − measured in the same units.
+
+    Index: each row keeps the index label of the input row it predicts. Rows the reader leaves
+    out, as the CLI does (an empty or NaN delivery cell, a value the monitor estimated), are
+    absent from the result and named in a :class:`SmashWarning`; the other rows keep their
+    labels, so ``df["p"] = pred["pred_ball_speed_mph"]`` aligns by label and puts NaN at the
+    rows left out (never the next shot's prediction). For a shots-file path (``format`` unset
+    or ``"shots"``) the labels are those ``pd.read_csv(path)`` gives (0, 1, … over the data
+    rows); for an export read with ``format``, 0, 1, … over the predicted rows.
     """
     c = _club(club)
-    csv, warns = _native.predict(
+    table = _table(shots, "shots")
+    csv, warns, lines = _native.predict(
         c,
         _format_args(format, impact_offset_positive, ignore_unknown_columns),
-        **_table(shots, "shots"),
+        **table,
     )
     _warn(warns)
-    return _read_csv(csv)
+    out = _read_csv(csv)
+    if isinstance(shots, pd.DataFrame):
+        return _with_input_index(out, shots.index, table["shots_csv"].decode("utf-8"), lines)
+    if format in (None, "shots"):
+        text = Path(os.fspath(shots)).read_bytes().decode("utf-8", errors="replace")
+        return _with_input_index(out, None, text.lstrip("\ufeff"), lines)
+    return out
 
 
 def flight(

@@ -73,7 +73,9 @@ def predict(
 ) -> pd.DataFrame:
     """`smash predict`: input columns, pred_ball_speed_mph (mph), pred_launch_angle_deg (deg),
     pred_azimuth_deg (deg), pred_backspin_rpm (rpm), pred_sidespin_rpm (rpm),
-    pred_smash_factor (1), err_* (predicted - measured) where measured."""
+    pred_smash_factor (1), err_* (predicted - measured) where measured. Each row keeps the
+    index label of its input row; rows left out (a NaN delivery cell) are absent, so assigning
+    a column back to the input aligns by label (NaN there)."""
 
 def flight(
     launch: TableLike,

@@ -60,12 +60,22 @@ fn table_and_warnings(
     smash::conventions::ConventionSummary,
 )> {
     let mut table = shots.read(format)?;
+    // Rows a DataFrame's reader left out (an empty or NaN delivery cell), which the CLI names
+    // on stderr: a warning each reason (a path's reader has printed them already).
+    let left_out: Vec<String> = match shots {
+        Shots::Csv { .. } => table
+            .left_out_notes()
+            .into_iter()
+            .map(|n| format!("shots: {n}"))
+            .collect(),
+        Shots::File(_) => Vec::new(),
+    };
     // As the CLI: each shot in the model's own delivery convention, converted once (`fit`:
     // shots whose face angle the monitor derived from the launch are left out).
     let conventions = smash_cli::to_model_convention(&club.spec, &mut table, false, fit)?;
-    let warnings = conventions
-        .lines()
+    let warnings = left_out
         .into_iter()
+        .chain(conventions.lines())
         .chain(smash_cli::groups_without_effects(
             &club.label,
             &club.spec,
@@ -75,7 +85,9 @@ fn table_and_warnings(
     Ok((table, warnings, conventions))
 }
 
-/// `smash predict --shots … --out …`: the predictions file's bytes, and warnings.
+/// `smash predict --shots … --out …`: the predictions file's bytes, warnings, and the line of
+/// the input where each predicted shot's row starts (1-based, the header on line 1), so that
+/// the caller can give each prediction its input row's index when the reader left rows out.
 #[pyfunction]
 #[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None))]
 fn predict(
@@ -85,10 +97,10 @@ fn predict(
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
-) -> PyResult<(Py<PyBytes>, Vec<String>)> {
+) -> PyResult<(Py<PyBytes>, Vec<String>, Vec<usize>)> {
     let shots = Shots::new(shots_path, shots_csv, label)?;
     let club: &Club = &club;
-    let (csv, warnings) = py
+    let (csv, warnings, lines) = py
         .detach(|| -> anyhow::Result<_> {
             let Command::Predict(a) = parse_cli(argv(
                 "predict",
@@ -110,10 +122,11 @@ fn predict(
             Ok((
                 smash::data::predictions::predictions_csv(&table, &outcomes),
                 warnings,
+                table.lines.clone(),
             ))
         })
         .map_err(to_py)?;
-    Ok((bytes(py, &csv), warnings))
+    Ok((bytes(py, &csv), warnings, lines))
 }
 
 /// `smash flight --shots … --out …`: the flight file's bytes.

@@ -112,10 +112,11 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
         ));
     }
     let loft = match &c.loft_deg {
-        Some(l) if !l.get_ref().is_finite() => {
-            return Err(ctx.err(l.span(), "club.loft_deg", "must be a finite number (deg)"));
-        }
-        Some(l) => Some(deg(*l.get_ref())),
+        Some(l) => Some(deg(ctx.ranged(
+            l,
+            "club.loft_deg",
+            limits::STATIC_LOFT_DEG,
+        )?)),
         None => None,
     };
     let hosel_mm = match &c.hosel_mm {
@@ -288,6 +289,40 @@ fn parse_effect(
         values.push(v);
     }
     Effect::new(kind, &values, group).map_err(|e| here(e.to_string()))
+}
+
+/// Check a head made in code (a what-if's or a design variant's, from a club file's nominal
+/// head) against the limits a club file is read with ([`parse_club`]): mass, CoM (behind the
+/// face), every inertia entry and the tensor's physical validity, the face radii. `Err` names
+/// the club-file key, the value and the allowed range, so that a scaling or a move cannot make
+/// a head the club file itself would refuse.
+pub fn check_head(p: &ModelParams) -> Result<(), String> {
+    let at = |key: &str, m: String| format!("{key}: {m}");
+    // In the file's units, the shortest decimal of each value (as a club file is written).
+    let (in_g, in_mm) = (|v| file_value(v, g, 1e3), |v| file_value(v, mm, 1e3));
+    limits::CLUB_MASS_G
+        .check(in_g(p.club_mass_kg))
+        .map_err(|m| at("club.mass_g", m))?;
+    let com_mm = p.club_com_m.map(in_mm);
+    for x in com_mm.iter() {
+        limits::CLUB_COM_MM
+            .check(*x)
+            .map_err(|m| at("club.com_mm", m))?;
+    }
+    limits::check_club_com_x_mm(com_mm.x).map_err(|m| at("club.com_mm", m))?;
+    for x in p.club_inertia_kgm2.iter() {
+        limits::CLUB_INERTIA_GCM2
+            .check(file_value(*x, gcm2, 1e7))
+            .map_err(|m| at("club.inertia_gcm2", m))?;
+    }
+    validate_inertia(&p.club_inertia_kgm2, "club.inertia_gcm2")
+        .map_err(|e| at("club.inertia_gcm2", e.problem))?;
+    for (key, r) in [("club.bulge_mm", p.bulge_m), ("club.roll_mm", p.roll_m)] {
+        limits::FACE_RADIUS_MM
+            .check(in_mm(r))
+            .map_err(|m| at(key, m))?;
+    }
+    Ok(())
 }
 
 /// [`club_toml`], checked to read back as a valid club before it is written to `path`: no

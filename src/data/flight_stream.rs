@@ -138,8 +138,10 @@ struct Piece {
     stop: Option<Stop>,
 }
 
+/// Whether the streamed path can take `bytes`: no quoting, no CR, and no zero byte (UTF-16
+/// text, which the one-piece path's reader refuses in words, looks like UTF-8 with zero bytes).
 fn is_plain(bytes: &[u8]) -> bool {
-    !bytes.iter().any(|&b| b == b'"' || b == b'\r')
+    !bytes.iter().any(|&b| b == b'"' || b == b'\r' || b == 0)
 }
 
 fn trim(b: &[u8]) -> &[u8] {

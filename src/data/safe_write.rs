@@ -117,7 +117,7 @@ pub fn check_replaceable(dir: &Path) -> Result<(), DataError> {
     Ok(())
 }
 
-pub use crate::inputs::{canonical, note_input};
+pub use crate::inputs::{canonical, note_input, note_input_named};
 
 /// What an existing non-regular path is, in words (`None` for a regular file or a folder).
 fn special_kind(meta: &std::fs::Metadata) -> Option<&'static str> {
@@ -162,11 +162,16 @@ pub fn check_output(out: &Path, folder: bool) -> Result<(), DataError> {
         }
     }
     let o = canonical(out);
+    let named = crate::inputs::name_of(&o);
     for input in crate::inputs::recorded().iter() {
         if *input == o {
+            let what = named.map_or(String::new(), |n| format!(" ({n})"));
             return Err(DataError::file(
                 out,
-                "the output is the same file as one of this command's inputs: writing it would replace the input; give the output a new path",
+                format!(
+                    "the output is the same file as one of this command's inputs{what}: writing \
+                     it would replace the input; give the output a new path"
+                ),
             ));
         }
         if folder && input.starts_with(&o) {

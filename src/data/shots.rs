@@ -232,6 +232,9 @@ pub fn parse_shots_with<R: std::io::Read>(
     reader
         .read_to_end(&mut bytes)
         .map_err(|e| DataError::file(path, format!("cannot read: {e}")))?;
+    if let Some(u) = crate::line_index::utf16(&bytes) {
+        return Err(DataError::at(path, Some(1), None, u.refusal()));
+    }
     let lines = LineIndex::new(&bytes);
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)

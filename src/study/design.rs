@@ -344,6 +344,8 @@ impl Design {
         }
         validate_inertia(&p.club_inertia_kgm2, "club inertia tensor")
             .map_err(|e| err(e.to_string()))?;
+        // Within the limits a club file is read with, as the base head is.
+        crate::data::club_file::check_head(&p).map_err(err)?;
         Ok(p)
     }
 }

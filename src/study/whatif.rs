@@ -104,13 +104,11 @@ impl HeadChange {
         let mut d = Design::default();
         let mut mass = None;
         if let Some(m) = &self.mass_move {
-            if !(m.mass_g > 0.0 && g(m.mass_g) < nominal.club_mass_kg) {
-                return Err(format!(
-                    "the moved mass must be above 0 g and below the head's {:.1} g, got {} g",
-                    nominal.club_mass_kg / crate::units::KG_PER_G,
-                    crate::limits::fmt_value(m.mass_g)
-                ));
-            }
+            crate::limits::check_head_part_mass_g(
+                "the moved mass",
+                m.mass_g,
+                nominal.club_mass_kg,
+            )?;
             mass = Some(DiscretionaryMass {
                 mass_kg: g(m.mass_g),
                 at_m: Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])),
@@ -132,13 +130,16 @@ impl HeadChange {
         }
         let mut p = d
             .apply(nominal, mass.as_ref())
-            .map_err(|e| e.problem.clone())?;
+            .map_err(|e| format!("the changed head: {}", e.problem))?;
         if let Some(b) = self.bulge_mm {
             p.bulge_m = mm(b);
         }
         if let Some(r) = self.roll_mm {
             p.roll_m = mm(r);
         }
+        // The limits a club file is read with hold for the changed head too: a scaling or a
+        // move may not make a head the club file itself would refuse (`--moi-scale 1e6`).
+        crate::data::club_file::check_head(&p).map_err(|e| format!("the changed head: {e}"))?;
         ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
         Ok(p)
     }
@@ -173,8 +174,11 @@ pub fn what_if(
     s: &YardSetting<'_>,
 ) -> Result<WhatIf, String> {
     let changed_params = change.apply(nominal)?;
-    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
     let swing = change.swing(s.swing);
+    crate::limits::DYNAMIC_LOFT_DEG
+        .check(swing.dynamic_loft_deg)
+        .map_err(|e| format!("the changed head's delivery (loft change): {e}"))?;
+    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
     let changed = head_yards(
         &changed_params,
         &YardSetting {
@@ -268,7 +272,7 @@ mod tests {
             ..HeadChange::default()
         };
         let e = c.apply(&p).unwrap_err();
-        assert!(e.contains("below the head's 204.0 g"), "{e}");
+        assert!(e.contains("below the head mass, 204 g"), "{e}");
     }
 
     #[test]

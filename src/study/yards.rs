@@ -121,6 +121,36 @@ pub struct YardMetrics {
     pub mean_backspin_rpm: f64,
     /// Weighted mean sidespin at launch, rpm (+ curves right).
     pub mean_sidespin_rpm: f64,
+    /// Impacts of the distribution (its points, every one on the face).
+    pub impacts: usize,
+    /// Impacts whose ball never left the ground (a launch below horizontal from the ground
+    /// lands at once: `Flight::flight_time_s` 0); they are in the means with 0 yd of carry.
+    pub grounded: usize,
+    /// Their share of the distribution's weight, in [0, 1].
+    pub grounded_share: f64,
+}
+
+/// Largest share of a distribution's weight whose balls may never leave the ground (launched
+/// below horizontal from the ground: 0 yd carry) for its carry and dispersion to be reported.
+/// Such a ball is a topped shot, and a few among many are part of a real pattern (counted, with
+/// 0 yd, and named beside the figures); but when most of the weight never flies, mean carry is
+/// mostly zeros, the ellipse shrinks toward the tee, and a change reads as "−100 %": figures
+/// about balls that did not fly. Half is where the median shot is one of them.
+pub const MAX_GROUNDED_SHARE: f64 = 0.5;
+
+impl YardMetrics {
+    /// `Some("3 of 25 impacts (4.2 % of the weight) …")` when some balls never left the ground.
+    pub fn grounded_note(&self) -> Option<String> {
+        (self.grounded > 0).then(|| {
+            format!(
+                "{} of {} impacts ({:.1} % of the weight) launch into the ground and never fly \
+                 (counted as 0 yd carry)",
+                self.grounded,
+                self.impacts,
+                100.0 * self.grounded_share
+            )
+        })
+    }
 }
 
 /// Robust metrics over `dist` around `base` (see the module documentation). Every impact of
@@ -177,14 +207,32 @@ pub fn yard_metrics(
     // Carry is the landing's signed coordinate along the target line (`Flight::carry_m`), so
     // the mean and spread of carry are those of the landing points' `x`.
     let (mut sw, mut sx, mut sz) = (0.0, 0.0, 0.0);
+    let (mut grounded, mut grounded_w) = (0usize, 0.0);
     let mut pts = Vec::with_capacity(flights.len());
     for (f, &w) in flights.iter().zip(&weights) {
         let f = f.as_ref().map_err(|e| format!("flight: {e}"))?;
+        if f.flight_time_s <= 0.0 {
+            grounded += 1;
+            grounded_w += w;
+        }
         let (x, z) = (f.carry_yd(), f.offline_yd());
         pts.push((x, z, w));
         sw += w;
         sx += w * x;
         sz += w * z;
+    }
+    let grounded_share = grounded_w / sw;
+    if grounded == pts.len() || grounded_share > MAX_GROUNDED_SHARE {
+        return Err(format!(
+            "{grounded} of {} impacts ({:.1} % of the distribution's weight) launch below \
+             horizontal from the ground and never fly (mean launch angle {:.1} deg); carry and \
+             dispersion are not reported when more than {:.0} % of the weight never flies: \
+             give the head and swing more loft, or more attack angle",
+            pts.len(),
+            100.0 * grounded_share,
+            launch_mean(|l| l.launch_angle_rad).to_degrees(),
+            100.0 * MAX_GROUNDED_SHARE
+        ));
     }
     let (mx, mz) = (sx / sw, sz / sw);
     let (mut vxx, mut vzz, mut vxz) = (0.0, 0.0, 0.0);
@@ -206,6 +254,9 @@ pub fn yard_metrics(
         mean_ball_speed_mph,
         mean_backspin_rpm,
         mean_sidespin_rpm,
+        impacts: pts.len(),
+        grounded,
+        grounded_share,
     })
 }
 

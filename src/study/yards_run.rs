@@ -6,7 +6,7 @@
 //! | file | content |
 //! |---|---|
 //! | `yards/carry_yd.csv` / `.svg`, `yards/offline_yd.csv` / `.svg` | carry and offline of the study's swing at each grid point |
-//! | `yards/mean_carry_yd`, `yards/std_carry_yd`, `yards/ellipse_area_yd2` (`.csv` / `.svg`) | robust metrics of the distribution centred at each grid point (empty where part of it is off the face) |
+//! | `yards/mean_carry_yd`, `yards/std_carry_yd`, `yards/ellipse_area_yd2` (`.csv` / `.svg`) | robust metrics of the distribution centred at each grid point (empty where part of it is off the face, or most of its balls never leave the ground) |
 //! | `yards/metrics.csv` | base (and optimum) design: mean and spread of carry and offline, dispersion-ellipse area and its confidence |
 //! | `yards/constraints.csv` | every constraint at the base (and optimum): value, limit, margin, holds |
 //! | `yards/optimise.csv` | goal, evaluations, rejected designs, mass move, active bounds (or why it did not run) |
@@ -301,12 +301,12 @@ fn yard_maps(study: &Study, r: &YardsResult) -> Files {
 fn metrics_csv(r: &YardsResult, opt: Option<&YardOptimum>) -> Vec<u8> {
     let mut t = String::from(
         "design,mass_dx_mm,mass_dy_mm,mass_dz_mm,mean_carry_yd,std_carry_yd,mean_offline_yd,\
-         std_offline_yd,ellipse_area_yd2,confidence\n",
+         std_offline_yd,ellipse_area_yd2,confidence,grounded_pct\n",
     );
     let mut row = |name: &str, mv: [f64; 3], m: &YardMetrics| {
         let _ = writeln!(
             t,
-            "{name},{},{},{},{},{},{},{},{},{}",
+            "{name},{},{},{},{},{},{},{},{},{},{}",
             cell(mv[0]),
             cell(mv[1]),
             cell(mv[2]),
@@ -315,7 +315,8 @@ fn metrics_csv(r: &YardsResult, opt: Option<&YardOptimum>) -> Vec<u8> {
             cell(m.mean_offline_yd),
             cell(m.std_offline_yd),
             cell(m.ellipse_area_yd2),
-            cell(m.confidence)
+            cell(m.confidence),
+            cell(100.0 * m.grounded_share)
         );
     };
     row("base", [0.0; 3], &r.base);
@@ -411,6 +412,9 @@ pub fn yards_summary(study: &Study, r: &YardsResult, wide: bool) -> String {
         "yards: base design mean carry {:.2} yd (sd {:.2}), offline {:+.2} yd (sd {:.2}), {pct}% ellipse {:.1} yd²",
         m.mean_carry_yd, m.std_carry_yd, m.mean_offline_yd, m.std_offline_yd, m.ellipse_area_yd2
     );
+    if let Some(note) = m.grounded_note() {
+        let _ = writeln!(t, "yards: base design: {note}");
+    }
     for c in r.base_constraints.iter().filter(|c| !c.holds()) {
         let _ = writeln!(
             t,

@@ -233,18 +233,8 @@ fn parse_mass(
     club: &ClubSpec,
 ) -> Result<(DiscretionaryMass, [[f64; 2]; 3]), DataError> {
     let mg = *m.mass_g.get_ref();
-    let head_g = club.nominal.club_mass_kg * 1e3;
-    if !(mg > 0.0 && mg < head_g) {
-        return Err(doc.err(
-            m.mass_g.span(),
-            "yards.mass.mass_g",
-            format!(
-                "must be > 0 and below the head mass {} g, got {}",
-                crate::limits::fmt_value(head_g),
-                crate::limits::fmt_value(mg)
-            ),
-        ));
-    }
+    limits::check_head_part_mass_g("the movable mass", mg, club.nominal.club_mass_kg)
+        .map_err(|e| doc.err(m.mass_g.span(), "yards.mass.mass_g", e))?;
     let at = doc.each_ranged(&m.at_mm, "yards.mass.at_mm", limits::CLUB_COM_MM)?;
     limits::check_behind_face_mm("the discretionary mass", at[0])
         .map_err(|e| doc.err(m.at_mm.span(), "yards.mass.at_mm", e))?;

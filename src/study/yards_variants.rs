@@ -147,14 +147,15 @@ pub fn delta(q: &Quantity, base: &HeadYards, head: &HeadYards) -> (f64, Option<f
 }
 
 /// `yards/variants.csv`: one row per head (the base first), each quantity, its change from the
-/// base and the change's quadrature uncertainty (empty where there is none), and the ellipse
-/// area's change in per cent.
+/// base and the change's quadrature uncertainty (empty where there is none), the ellipse
+/// area's change in per cent, and the share of the distribution's weight whose balls never
+/// left the ground (`grounded_pct`, counted with 0 yd carry).
 pub fn rows_csv(base: &HeadYards, rows: &[YardRow]) -> Vec<u8> {
     let mut t = String::from("row,label,design");
     for q in &QUANTITIES {
         let _ = write!(t, ",{c},d_{c},d_{c}_unc", c = q.column);
     }
-    t.push_str(",d_ellipse_area_pct,confidence\n");
+    t.push_str(",d_ellipse_area_pct,confidence,grounded_pct\n");
     for (i, r) in rows.iter().enumerate() {
         let _ = write!(t, "{i},{},\"{}\"", r.label, r.design.replace('"', "'"));
         for q in &QUANTITIES {
@@ -173,7 +174,12 @@ pub fn rows_csv(base: &HeadYards, rows: &[YardRow]) -> Vec<u8> {
         } else {
             String::new()
         };
-        let _ = writeln!(t, ",{pct},{}", cell(r.head.metrics.confidence));
+        let _ = writeln!(
+            t,
+            ",{pct},{},{}",
+            cell(r.head.metrics.confidence),
+            cell(100.0 * r.head.metrics.grounded_share)
+        );
     }
     t.into_bytes()
 }
@@ -287,6 +293,11 @@ pub fn rows_text(
             rows.len() - max_rows
         );
     }
+    for (r, n) in shown.iter().zip(&names) {
+        if let Some(note) = r.head.metrics.grounded_note() {
+            let _ = writeln!(t, "{n}: {note}");
+        }
+    }
     t
 }
 
@@ -305,6 +316,9 @@ mod tests {
             mean_ball_speed_mph: 140.0,
             mean_backspin_rpm: 2500.0,
             mean_sidespin_rpm: 0.0,
+            impacts: 25,
+            grounded: 0,
+            grounded_share: 0.0,
         }
     }
 
@@ -361,7 +375,7 @@ mod tests {
             "{}",
             lines[2]
         );
-        assert!(lines[2].ends_with(",10,0.95"), "{}", lines[2]);
+        assert!(lines[2].ends_with(",10,0.95,0"), "{}", lines[2]);
     }
 
     #[test]

@@ -92,11 +92,11 @@ pub(super) fn resolve_columns<'a>(
         });
     }
     if !missing.is_empty() {
-        let present: Vec<&str> = table
+        let present: Vec<String> = table
             .header
             .iter()
             .filter(|h| !h.is_empty())
-            .map(String::as_str)
+            .cloned()
             .collect();
         return Err(DataError::at(
             path,
@@ -105,22 +105,13 @@ pub(super) fn resolve_columns<'a>(
             format!(
                 "not a {vendor} export as expected: missing column(s) {}; the file has: {}",
                 missing.join(", "),
-                present.join(", ")
+                listed(&present, ", ")
             ),
         ));
     }
     let mut notes = Vec::new();
     let unknown = unknown_columns(table, mapping, &used);
     let lenient = mapping.export.unknown_columns == UnknownColumns::Note;
-    // A file of thousands of unknown columns gets a line, not a page.
-    let listed = |names: &[String], sep: &str| {
-        const SHOWN: usize = 20;
-        let mut s = names[..names.len().min(SHOWN)].join(sep);
-        if names.len() > SHOWN {
-            s.push_str(&format!(" … and {} more", names.len() - SHOWN));
-        }
-        s
-    };
     if !unknown.is_empty() && !opts.ignore_unknown_columns && !lenient {
         return Err(DataError::at(
             path,
@@ -148,6 +139,32 @@ pub(super) fn resolve_columns<'a>(
     }
     Ok((resolved, notes))
 }
+
+/// Column names for a message: a file of thousands of columns (or of one 100 kB name) gets a
+/// line, not a page: the first [`SHOWN_NAMES`] names, each cut after [`SHOWN_NAME_CHARS`]
+/// characters, then `… and N more`.
+fn listed(names: &[String], sep: &str) -> String {
+    let cut = |n: &String| -> String {
+        if n.chars().count() <= SHOWN_NAME_CHARS {
+            n.clone()
+        } else {
+            let head: String = n.chars().take(SHOWN_NAME_CHARS).collect();
+            format!("{head}…")
+        }
+    };
+    let shown: Vec<String> = names.iter().take(SHOWN_NAMES).map(cut).collect();
+    let mut s = shown.join(sep);
+    if names.len() > SHOWN_NAMES {
+        s.push_str(&format!(" … and {} more", names.len() - SHOWN_NAMES));
+    }
+    s
+}
+
+/// Most column names a message lists.
+const SHOWN_NAMES: usize = 20;
+
+/// Most characters of one column name a message shows.
+const SHOWN_NAME_CHARS: usize = 48;
 
 /// The export column a mapping entry reads: the first of its `source` names the header has
 /// (case and spacing ignored). A header may name a column twice when a unit tells the two apart

@@ -71,54 +71,16 @@ pub(super) fn decode<'b>(
     Ok((Cow::Owned(text), Some(note)))
 }
 
-/// Whether `bytes` are UTF-16 text: a byte-order mark (0xFF 0xFE little-endian, 0xFE 0xFF
-/// big-endian), or, without one, a zero byte in most odd (little-endian) or most even
-/// (big-endian) places of the first 256 bytes, as ASCII text saved as UTF-16 has. The
-/// encoding, the bytes to skip and how the text was recognised, for the note.
+/// [`crate::line_index::utf16`] as the encoding to decode with, the bytes to skip and how the
+/// text was recognised, for the note.
 fn utf16(bytes: &[u8]) -> Option<(&'static encoding_rs::Encoding, usize, &'static str)> {
-    use encoding_rs::{UTF_16BE, UTF_16LE};
-    if bytes.starts_with(b"\xFF\xFE") {
-        return Some((
-            UTF_16LE,
-            2,
-            "UTF-16 text (little-endian, with a byte-order mark)",
-        ));
-    }
-    if bytes.starts_with(b"\xFE\xFF") {
-        return Some((
-            UTF_16BE,
-            2,
-            "UTF-16 text (big-endian, with a byte-order mark)",
-        ));
-    }
-    let head = &bytes[..bytes.len().min(256)];
-    if head.len() < 4 {
-        return None;
-    }
-    let zeros = |parity: usize| {
-        head.iter()
-            .skip(parity)
-            .step_by(2)
-            .filter(|&&b| b == 0)
-            .count()
-    };
-    let pairs = head.len() / 2;
-    let (even, odd) = (zeros(0), zeros(1));
-    if 10 * odd >= 7 * pairs && 10 * even <= pairs {
-        Some((
-            UTF_16LE,
-            0,
-            "UTF-16 text (little-endian, without a byte-order mark)",
-        ))
-    } else if 10 * even >= 7 * pairs && 10 * odd <= pairs {
-        Some((
-            UTF_16BE,
-            0,
-            "UTF-16 text (big-endian, without a byte-order mark)",
-        ))
+    let u = crate::line_index::utf16(bytes)?;
+    let encoding = if u.little_endian {
+        encoding_rs::UTF_16LE
     } else {
-        None
-    }
+        encoding_rs::UTF_16BE
+    };
+    Some((encoding, if u.bom { 2 } else { 0 }, u.describe()))
 }
 
 /// The character a Windows-1252 byte stands for (WHATWG's table: the five bytes the code page

@@ -148,18 +148,8 @@ fn parse_mass(
         .get("mass_g")
         .ok_or_else(|| doc.err(v.span(), key, format!("missing `mass_g`; {MASS_FORM}")))
         .and_then(|x| doc.number(x, v.span(), "design.discretionary_mass.mass_g"))?;
-    let head_g = club.nominal.club_mass_kg * 1e3;
-    if !(m > 0.0 && m < head_g) {
-        return Err(doc.err(
-            v.span(),
-            "design.discretionary_mass.mass_g",
-            format!(
-                "must be > 0 and below the head mass {} g, got {}",
-                crate::limits::fmt_value(head_g),
-                crate::limits::fmt_value(m)
-            ),
-        ));
-    }
+    limits::check_head_part_mass_g("the discretionary mass", m, club.nominal.club_mass_kg)
+        .map_err(|e| doc.err(v.span(), "design.discretionary_mass.mass_g", e))?;
     let at_key = "design.discretionary_mass.at_mm";
     let at = match t.get("at_mm") {
         Some(toml::Value::Array(a)) if a.len() == 3 => a
