@@ -131,3 +131,28 @@ pub trait Lanes: Real + Debug + Send + Sync + 'static {
         self.abs().lt(Self::splat(f64::INFINITY))
     }
 }
+
+/// Prefetch hint for every cache line of `items` (no effect off x86-64).
+#[inline(always)]
+pub(crate) fn prefetch<T>(items: &[T]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
+        const LINE: usize = 64;
+        let start = items.as_ptr().cast::<i8>();
+        let bytes = std::mem::size_of_val(items);
+        let mut off = 0;
+        while off < bytes {
+            // SAFETY: a prefetch never faults; the address is inside `items`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(off)) };
+            off += LINE;
+        }
+        if bytes > 0 {
+            // The last line, when `items` does not start on a line boundary.
+            // SAFETY: as above, the last byte of `items`.
+            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(bytes - 1)) };
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = items;
+}

@@ -6,7 +6,7 @@ use nalgebra::Vector3;
 
 use super::{FitProblem, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
-use crate::lanes::{each3, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
+use crate::lanes::{each3, prefetch, LaneMask, Lanes, SimdLevel, MAX_LANES, V};
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 use crate::physics::impact::ContactInputs;
@@ -491,31 +491,6 @@ fn gather<'a, L: Lanes>(
     field: impl Fn(&DeliveryFrame) -> f64,
 ) -> L {
     L::from_fn(|l| field(frame(l)))
-}
-
-/// Prefetch hint for every cache line of `items` (no effect off x86-64).
-#[inline(always)]
-fn prefetch<T>(items: &[T]) {
-    #[cfg(target_arch = "x86_64")]
-    {
-        use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
-        const LINE: usize = 64;
-        let start = items.as_ptr().cast::<i8>();
-        let bytes = std::mem::size_of_val(items);
-        let mut off = 0;
-        while off < bytes {
-            // SAFETY: a prefetch never faults; the address is inside `items`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(off)) };
-            off += LINE;
-        }
-        if bytes > 0 {
-            // The last line, when `items` does not start on a line boundary.
-            // SAFETY: as above, the last byte of `items`.
-            unsafe { _mm_prefetch::<_MM_HINT_T0>(start.add(bytes - 1)) };
-        }
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = items;
 }
 
 /// One site of [`Lanes::N`] shots solved by `model`: the launch (SI) and the ball's velocity and spin in
