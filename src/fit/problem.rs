@@ -540,22 +540,29 @@ impl<'a> FitProblem<'a> {
         Ok(jac)
     }
 
-    /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
-    /// entry), from the residuals at `θ ± h e_j`.
-    fn jacobian_column(&self, theta: &[f64], k: usize, col: &mut [f64]) -> Result<(), EvalError> {
-        let j = self.active[k];
+    /// The central difference's two points for parameter `j` at `theta`, `θ ± h e_j` (kept
+    /// within the bounds), and per group whether the parameter changes its model: the other
+    /// groups' residuals are the same at both points, so their rows stay 0 (what (r − r)/span
+    /// gives).
+    pub(super) fn shifted(&self, theta: &[f64], j: usize) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
         let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
         let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
         plus[j] = (theta[j] + h).min(self.upper[j]);
         minus[j] = (theta[j] - h).max(self.lower[j]);
-        let span = plus[j] - minus[j];
-        // Groups whose model the parameter changes: the other shots' residuals are the same
-        // at both points, so their rows stay 0 (what (r − r)/span gives).
-        let touched: Vec<bool> = self
+        let touched = self
             .applies
             .iter()
             .map(|a| a.contains(&self.owner[j]))
             .collect();
+        (plus, minus, touched)
+    }
+
+    /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
+    /// entry), from the residuals at `θ ± h e_j`.
+    fn jacobian_column(&self, theta: &[f64], k: usize, col: &mut [f64]) -> Result<(), EvalError> {
+        let j = self.active[k];
+        let (plus, minus, touched) = self.shifted(theta, j);
+        let span = plus[j] - minus[j];
         let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
         let mut r_minus = vec![0.0; col.len()];
         self.residuals_of_groups(&plus, col, groups)?;

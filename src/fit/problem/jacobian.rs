@@ -10,7 +10,7 @@ use nalgebra::DMatrix;
 use rayon::prelude::*;
 
 use super::lanes::{padded, FrameLanes, LanePrediction};
-use super::{FitProblem, FD_STEP_OF_RANGE, SHOTS_PER_TASK};
+use super::{FitProblem, SHOTS_PER_TASK};
 use crate::fit::data::SiteCache;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
@@ -58,15 +58,7 @@ impl FitProblem<'_> {
         // contact frames on that face).
         let mut on_lanes = Vec::with_capacity(self.active.len());
         for &j in &self.active {
-            let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
-            let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
-            plus[j] = (theta[j] + h).min(self.upper[j]);
-            minus[j] = (theta[j] - h).max(self.lower[j]);
-            let touched: Vec<bool> = self
-                .applies
-                .iter()
-                .map(|a| a.contains(&self.owner[j]))
-                .collect();
+            let (plus, minus, touched) = self.shifted(theta, j);
             let column = Column {
                 span: plus[j] - minus[j],
                 plus: self.models_of(&plus, &touched).ok()?,
