@@ -4,9 +4,9 @@
 
 mod cli_support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use cli_support::{club, s, smash};
+use cli_support::{club, s, smash, write};
 
 /// The command failed cleanly: exit 1 (not a panic's 101), one line on stderr starting
 /// `error: ` and holding every needle. (A message may quote the user's `NaN` cell.)
@@ -21,12 +21,6 @@ fn assert_refused(o: &std::process::Output, needles: &[&str]) {
     for n in needles {
         assert!(err.contains(n), "missing {n:?} in: {err}");
     }
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p
 }
 
 fn table(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {

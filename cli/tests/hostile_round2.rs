@@ -7,18 +7,12 @@ mod cli_support;
 #[path = "../../tests/common/mod.rs"]
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use cli_support::{club, repo, s, smash, stderr};
+use cli_support::{club, repo, s, smash, stderr, write};
 
 const SHOTS_HEAD: &str = "shot_id,club_speed_mph,attack_angle_deg,club_path_deg,\
                           dynamic_loft_deg,face_angle_deg,impact_y_mm,impact_z_mm";
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
 
 fn definition(name: &str, cor: &str) -> String {
     format!("[[define_effect]]\nname = \"{name}\"\nparams = []\ncor = \"{cor}\"\n")

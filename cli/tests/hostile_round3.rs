@@ -9,7 +9,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use cli_support::{assert_kept, club, measured_shots, repo, s, smash, stderr, SMASH};
+use cli_support::{assert_kept, club, measured_shots, repo, s, smash, stderr, write, SMASH};
 
 /// `smash ARGS` run in `dir` with whatever project file is found there (`SMASH_CONFIG` unset).
 fn smash_in(dir: &Path, args: &[&str]) -> Output {
@@ -19,12 +19,6 @@ fn smash_in(dir: &Path, args: &[&str]) -> Output {
         .env_remove("SMASH_CONFIG")
         .output()
         .unwrap()
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
 }
 
 const EXPORT: &str = "tests/data/real/rapsodo_mlm2pro_7i.csv";

@@ -11,13 +11,7 @@ mod common;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use cli_support::{assert_kept, club, measured_shots, repo, s, smash, stderr, SMASH};
-
-fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
-    let path = dir.join(name);
-    std::fs::write(&path, text).unwrap();
-    path
-}
+use cli_support::{assert_kept, club, measured_shots, repo, s, smash, stderr, write, SMASH};
 
 /// Names in `dir` starting with a dot (the commands' temporaries and kept-aside outputs).
 fn hidden_in(dir: &Path) -> Vec<String> {
