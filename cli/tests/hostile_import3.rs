@@ -364,3 +364,137 @@ fn a_json_lines_log_cut_short_keeps_its_shots() {
     ]);
     common::assert_refused(&o, &[&format!("c.jsonl:{n}: not valid JSON")]);
 }
+
+/// 41.8 in the flight commands and diagnose: one day written `5/1/2026`, `2026-05-01` and as
+/// Excel serials is one session, so `flight --calibrate-by session` fits two sessions, not a
+/// shot each; serials of eight days (a session of one shot each) are refused by
+/// `--calibrate-by session` in one line and named by `--diagnose` as folds by shot; the
+/// impact `diagnose` reads one day's serials as time blocks, and warns when every shot is a
+/// session of its own.
+#[test]
+fn excel_serials_and_two_date_forms_make_sessions_not_shots() {
+    let dir = tempfile::tempdir().unwrap();
+    let tm = fixture("trackman_older.csv");
+    let lines: Vec<&str> = tm.lines().collect();
+    let with_dates = |dates: &[&str]| {
+        let mut text = format!("Date,{}\n,{}\n", lines[0], lines[1]);
+        for (d, l) in dates.iter().zip(&lines[2..]) {
+            text.push_str(&format!("{d},{l}\n"));
+        }
+        text
+    };
+    let toe = ["--impact-offset-positive", "toe"];
+    let two_days = [
+        "5/1/2026 10:00",
+        "2026-05-01 10:05",
+        "46143.4236",
+        "46143.43",
+        "46144.40",
+        "5/2/2026 11:00",
+        "2026-05-02 11:30",
+        "46144.6",
+    ];
+    let (o, _, rows, two) = import(
+        dir.path(),
+        "two.csv",
+        &with_dates(&two_days),
+        "trackman",
+        &toe,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(rows.len(), 8);
+    let flight = |shots: &Path, extra: &[&str]| {
+        let out = dir.path().join("f.csv");
+        let mut args = vec!["flight", "--shots", s(shots), "--out", s(&out)];
+        args.extend_from_slice(extra);
+        smash(&args)
+    };
+    let o = flight(&two, &["--calibrate", "drag", "--calibrate-by", "session"]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert_eq!(
+        err.matches("calibrated fmm2022 for datetime '").count(),
+        2,
+        "{err}"
+    );
+    assert!(
+        err.contains("for datetime '2026-05-01'") && err.contains("for datetime '2026-05-02'"),
+        "{err}"
+    );
+    let o = flight(&two, &["--diagnose"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("folds by session (sessions from column 'datetime')"),
+        "{}",
+        stderr(&o)
+    );
+
+    let days: Vec<String> = (0..8).map(|i| format!("{}.5", 46143 + i)).collect();
+    let days: Vec<&str> = days.iter().map(String::as_str).collect();
+    let (o, _, _, eight) = import(
+        dir.path(),
+        "eight.csv",
+        &with_dates(&days),
+        "trackman",
+        &toe,
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = flight(
+        &eight,
+        &["--calibrate", "drag", "--calibrate-by", "session"],
+    );
+    common::assert_refused(
+        &o,
+        &[
+            "--calibrate-by session: 8 of the 8 sessions hold a single shot",
+            "at least 2 shots",
+        ],
+    );
+    let o = flight(&eight, &["--diagnose"]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("folds by shot (column 'datetime' names a session of its own for every shot)"),
+        "{err}"
+    );
+
+    // The impact model's diagnose, on a shots file with a date column of Excel serials.
+    let shots = cli_support::measured_shots(dir.path());
+    let text = std::fs::read_to_string(&shots).unwrap();
+    let diagnose = |serial: &dyn Fn(usize) -> String| {
+        let mut out = String::new();
+        for (i, l) in text.lines().enumerate() {
+            let cell = if i == 0 { "date".to_owned() } else { serial(i) };
+            out.push_str(&format!("{l},{cell}\n"));
+        }
+        let path = dir.path().join("dated.csv");
+        std::fs::write(&path, out).unwrap();
+        let o = smash(&[
+            "diagnose",
+            "--club",
+            &cli_support::club(),
+            "--shots",
+            s(&path),
+            "--json",
+            "--candidates",
+            "added_mass",
+            "--max-steps",
+            "1",
+            "--exact-impact-locations",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        let warned = json["warnings"].as_array().unwrap().iter().any(|w| {
+            w.as_str()
+                .unwrap()
+                .contains("gives every shot a session of its own")
+        });
+        (json["fold_by"].as_str().unwrap().to_owned(), warned)
+    };
+    // One afternoon, a shot a minute: time blocks, not 40 sessions.
+    let by = diagnose(&|i| format!("{:.6}", 46143.5 + i as f64 / 1440.0));
+    assert_eq!(by, ("time block".to_owned(), false));
+    // A day each: session folds, and the warning that they are folds by shot.
+    let by = diagnose(&|i| format!("{}.5", 46100 + i));
+    assert_eq!(by, ("session".to_owned(), true));
+}

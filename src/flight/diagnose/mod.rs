@@ -189,8 +189,9 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         }
     }
     let (balls, ball_index) = index_balls(input.balls, n);
+    // Sessions of one shot each are folds by shot, and are named so.
     let (folds_by, fold) = match input.sessions {
-        Some(s) if distinct(s) >= 2 => ("session", grouped_folds(s, input.folds)),
+        Some(s) if (2..n).contains(&distinct(s)) => ("session", grouped_folds(s, input.folds)),
         _ => ("shot", item_folds(n, input.folds)),
     };
     let k_folds = fold.iter().max().map_or(1, |m| m + 1);
