@@ -168,6 +168,9 @@ pub struct FlightDiagnosis {
     params: Vec<f64>,
     #[serde(skip)]
     ball_index: Vec<usize>,
+    /// Flights flown to make the diagnosis (its cost, for the tests; not reported).
+    #[serde(skip)]
+    pub flights_flown: usize,
 }
 
 /// Most steps (there are five candidates).
@@ -201,6 +204,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         shots: input.shots,
         ball: &ball_index,
         sigma: crate::flight::calibrate::SIGMA,
+        flown: std::sync::atomic::AtomicUsize::new(0),
     };
     let mut layout = Layout {
         terms: Vec::new(),
@@ -219,6 +223,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         }
     }
     let final_fit = fit::fit(&data, &layout, &all, &params)?;
+    let flown = &data.flown;
     let values = named_values(&layout, &balls, &final_fit);
     let rmse = |l: &Layout, p: &[f64]| fit::errors(&data, l, p, &all).map(|e| rmse_of(&e));
     let none = Layout {
@@ -238,6 +243,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         rmse_after: rmse(&layout, &final_fit.p)?,
         params: final_fit.p,
         layout,
+        flights_flown: flown.load(std::sync::atomic::Ordering::Relaxed),
         ball_index,
     })
 }
