@@ -485,6 +485,7 @@ impl<'a> Search<'a> {
             at: None,
             max_iters: self.opts.max_iters,
             progress: None,
+            cancel: self.opts.cancel.as_ref(),
             spread: None,
         };
         let mut out = Vec::new();
