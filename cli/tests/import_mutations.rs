@@ -129,9 +129,13 @@ fn count_after(text: &str, prefix: &str) -> usize {
         .sum()
 }
 
+/// Imports run, for the summary line.
+static IMPORTS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
 /// Import `bytes` as `f` would be; checks the first invariants: no panic, exit 0 or one line
 /// of error, no NaN or infinity written.
 fn import(dir: &Path, f: &Fixture, bytes: &[u8], what: &str) -> Import {
+    IMPORTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let ext = f.file.rsplit('.').next().unwrap();
     let input = dir.join(format!("m.{ext}"));
     let out = dir.join("m.shots.csv");
@@ -736,6 +740,8 @@ fn every_preset_survives_its_mutations() {
         decimal_commas(dir.path(), f, &text, &orig);
         golfers_named_like_summaries(dir.path(), f, &text, &orig);
     }
+    let n = IMPORTS.load(std::sync::atomic::Ordering::Relaxed);
+    eprintln!("{n} imports of {} fixtures", FIXTURES.len());
 }
 
 /// The character of a Windows-1252 byte, for the bytes the fixtures hold (Latin-1 from 0xA0;
