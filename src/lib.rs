@@ -66,6 +66,7 @@
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod cancel;
 pub mod club;
 pub mod club_match;
 pub mod compare;

@@ -187,6 +187,18 @@ pub fn compute(
     table: &ShotTable,
     progress: Option<&dyn DiagnoseProgress>,
 ) -> anyhow::Result<DiagnoseReport> {
+    compute_cancellable(args, club, table, progress, None)
+}
+
+/// [`compute`] stopping with [`FitError::Cancelled`] once `cancel` is cancelled (checked
+/// between fits): the Python package's Ctrl-C.
+pub fn compute_cancellable(
+    args: &DiagnoseArgs,
+    club: &ClubSpec,
+    table: &ShotTable,
+    progress: Option<&dyn DiagnoseProgress>,
+    cancel: Option<&smash::cancel::Cancel>,
+) -> anyhow::Result<DiagnoseReport> {
     let mismatch =
         args.inputs
             .club_check
@@ -228,10 +240,14 @@ pub fn compute(
         noise_floor: known_noise,
         // Without golfers, whole sessions (dates), time blocks or clubs form the folds.
         fold_keys: smash::data::sessions::fold_keys(table, args.folds)?,
+        cancel: cancel.cloned(),
         ..DiagnoseOptions::default()
     };
     let mut d = diagnose(club, &table.shots, &opts, progress)
         .with_context(|| args.inputs.shots.display().to_string())?;
+    if smash::cancel::cancelled(cancel) {
+        return Err(FitError::Cancelled.into());
+    }
     d.club_mismatch = mismatch;
     let mut floor = noise_floor(&d, &table.shots, &instrument)?;
     floor.assumed = assumed;

@@ -462,6 +462,9 @@ def diagnose(
     Returns the ``--json`` report as a dict (``selected``, ``estimates``, ``steps``, noise
     floor, error tables; with ``tables``, lists of records and error tables as DataFrames) and
     the club with the selected effects under ``"club"`` (what ``--out-club`` writes).
+
+    Ctrl-C stops the run within a fraction of a second (the fits in progress finish, no other
+    starts) and raises ``KeyboardInterrupt``.
     """
     if candidates is not None and not isinstance(candidates, str):
         candidates = ",".join(candidates)

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
+use smash::cancel::Cancel;
 use smash::data::shots::ShotTable;
 use smash_cli::Command;
 
@@ -273,29 +274,66 @@ fn diagnose(
     let shots = Shots::new(shots_path, shots_csv, label)?;
     let club: &Club = &club;
     let progress = progress.map(PyProgress);
-    let (json, spec, warnings) = py
-        .detach(|| -> anyhow::Result<_> {
-            let Command::Diagnose(a) =
-                parse_cli(argv("diagnose", Some(club), &shots, &["--json"], args))?
-            else {
-                unreachable!("parsed as diagnose")
-            };
-            let (table, mut warnings, _) =
-                table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
-            let p = progress
-                .as_ref()
-                .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);
-            let report = smash_cli::diagnose::compute(&a, &club.spec, &table, p)?;
-            warnings.extend(report.diagnosis.warnings.iter().cloned());
-            let json = serde_json::to_string_pretty(&report)?;
-            Ok((json, report.diagnosis.club, warnings))
-        })
-        .map_err(to_py)?;
+    let cancel = Cancel::new();
+    let (json, spec, warnings) = interruptible(py, &cancel, || -> anyhow::Result<_> {
+        let Command::Diagnose(a) =
+            parse_cli(argv("diagnose", Some(club), &shots, &["--json"], args))?
+        else {
+            unreachable!("parsed as diagnose")
+        };
+        let (table, mut warnings, _) =
+            table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
+        let p = progress
+            .as_ref()
+            .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);
+        let report =
+            smash_cli::diagnose::compute_cancellable(&a, &club.spec, &table, p, Some(&cancel))?;
+        warnings.extend(report.diagnosis.warnings.iter().cloned());
+        let json = serde_json::to_string_pretty(&report)?;
+        Ok((json, report.diagnosis.club, warnings))
+    })?;
     let selected = Club {
         spec,
         label: club.label.clone(),
     };
     Ok((json, selected, warnings))
+}
+
+/// How often a command that can be interrupted looks for Python's signals: Ctrl-C takes
+/// effect within this, plus the fit running when it came.
+const SIGNAL_POLL: std::time::Duration = std::time::Duration::from_millis(50);
+
+/// Run `work` with the GIL released on a thread of its own while this thread looks for
+/// Python's signals every [`SIGNAL_POLL`] (`Python::check_signals`: Ctrl-C raises
+/// `KeyboardInterrupt` there). On a signal `cancel` is cancelled, the work (which checks it
+/// between its fits) is waited for, and the signal's exception is returned; otherwise the
+/// work's result, an error as [`SmashError`](crate::SmashError).
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    cancel: &Cancel,
+    work: impl FnOnce() -> anyhow::Result<T> + Send,
+) -> PyResult<T> {
+    py.detach(|| {
+        std::thread::scope(|scope| {
+            let worker = std::thread::Builder::new()
+                .name("smash-interruptible".into())
+                .stack_size(smash_cli::WORKER_STACK_BYTES)
+                .spawn_scoped(scope, work)
+                .map_err(|e| to_py(e.into()))?;
+            while !worker.is_finished() {
+                std::thread::park_timeout(SIGNAL_POLL);
+                if let Err(signal) = Python::attach(|py| py.check_signals()) {
+                    cancel.cancel();
+                    let _ = worker.join();
+                    return Err(signal);
+                }
+            }
+            match worker.join() {
+                Ok(result) => result.map_err(to_py),
+                Err(panic) => std::panic::resume_unwind(panic),
+            }
+        })
+    })
 }
 
 /// `smash import`: the shots file's bytes converted from the export at `path` with `format`

@@ -74,10 +74,14 @@ pub(super) fn cv_chi2(
     at: Option<AllShots>,
     max_iters: u64,
     progress: Option<&dyn DiagnoseProgress>,
+    cancel: Option<&crate::cancel::Cancel>,
 ) -> Result<f64, FitError> {
     let parts: Vec<Result<f64, FitError>> = (0..folds.train.len())
         .into_par_iter()
         .map(|f| {
+            if crate::cancel::cancelled(cancel) {
+                return Err(FitError::Cancelled);
+            }
             let r = if layout.is_empty() {
                 chi2_at(club, layout, &folds.test[f], w, start)
             } else {
@@ -173,6 +177,8 @@ pub(super) struct StepBase<'a> {
     pub(super) at: Option<AllShots<'a>>,
     pub(super) max_iters: u64,
     pub(super) progress: Option<&'a dyn DiagnoseProgress>,
+    /// The caller's token: a fit not yet started is not started once it is cancelled.
+    pub(super) cancel: Option<&'a crate::cancel::Cancel>,
     /// With known instrument noise: the base model's covariance model and the base errors'
     /// `−2 ln L` under it (exact locations), to score impact-noise levels by the spread.
     pub(super) spread: Option<(&'a SpreadModel, f64)>,
@@ -211,6 +217,15 @@ pub(super) fn evaluate_effect(
     multiplicity: f64,
 ) -> EffectFit {
     let n_folds = b.folds.train.len();
+    if crate::cancel::cancelled(b.cancel) {
+        let mut res = empty_result(cand.label(), 0, multiplicity);
+        res.failure = Some(FitError::Cancelled.to_string());
+        return EffectFit {
+            result: res,
+            fit: None,
+            explained: None,
+        };
+    }
     let fitted = candidate_layout(b.layout, b.theta, cand, &b.data.groups).and_then(|l| {
         let at_start = start_evaluation(b, &l);
         let run = fit_quietly_chord_from(
@@ -266,6 +281,7 @@ pub(super) fn evaluate_effect(
         Some((&run.residuals, &run.jacobian)),
         b.max_iters,
         b.progress,
+        b.cancel,
     ) {
         Ok(cv) => {
             res.cv_chi2 = cv;
@@ -358,6 +374,9 @@ pub(super) fn measurement_candidate(
     let mut res = empty_result(label, 1, penalty_per_param);
     res.converged = true;
     let outcome = (|| -> Result<NoiseOutcome, FitError> {
+        if crate::cancel::cancelled(b.cancel) {
+            return Err(FitError::Cancelled);
+        }
         let run = if b.layout.is_empty() {
             None
         } else {
@@ -385,6 +404,7 @@ pub(super) fn measurement_candidate(
             run.as_ref().map(|r| (&r.residuals, &r.jacobian)),
             b.max_iters,
             b.progress,
+            b.cancel,
         )?;
         Ok((cv, errs, theta))
     })();
@@ -504,7 +524,7 @@ mod tests {
             let w = Weighting::launch(&[1.4, 1.0, 0.7, 400.0, 190.0]);
             let run = fit(&club, &layout, &data, w, &layout.defaults(), 100).unwrap();
             let cv = |start: &DVector<f64>, at: Option<AllShots>| {
-                cv_chi2(&club, &layout, &folds, w, start, at, 100, None).unwrap()
+                cv_chi2(&club, &layout, &folds, w, start, at, 100, None, None).unwrap()
             };
             // The first fold's fit with and without its rows given: the same point, one
             // residual and one Jacobian evaluation (2 per parameter) fewer.

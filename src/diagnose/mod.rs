@@ -106,6 +106,9 @@ pub struct DiagnoseOptions {
     /// Keys to group the folds by when the shots have no golfers (sessions, time blocks or
     /// clubs, read from the input's columns: [`crate::data::sessions`]); `None`: by shot.
     pub fold_keys: Option<crate::stats::FoldKeys>,
+    /// A token the caller may cancel: the diagnosis checks it between fits and stops with
+    /// [`FitError::Cancelled`]. `None`: it runs to its end.
+    pub cancel: Option<crate::cancel::Cancel>,
 }
 
 /// Delivery-noise levels diagnose tries by default when the instruments' noise is unknown:
@@ -139,6 +142,7 @@ impl Default for DiagnoseOptions {
             noise_floor: None,
             delivery_noise_scales: DEFAULT_DELIVERY_NOISE_SCALES.to_vec(),
             fold_keys: None,
+            cancel: None,
         }
     }
 }
@@ -509,8 +513,17 @@ pub fn diagnose(
     let mut forward = 0;
     let mut changes = 0;
     let mut checked = Vec::new();
+    let halt = || {
+        if crate::cancel::cancelled(opts.cancel.as_ref()) {
+            Err(FitError::Cancelled)
+        } else {
+            Ok(())
+        }
+    };
     loop {
+        halt()?;
         while forward < opts.max_steps {
+            halt()?;
             forward += 1;
             let Some(step) = search.step(steps.len(), &candidates)? else {
                 break;
@@ -530,13 +543,16 @@ pub fn diagnose(
             }
             break;
         }
+        halt()?;
         if let Some(step) = search.swap_round(&candidates)? {
             steps.push(step);
             changes += 1;
             continue;
         }
         // No single or pair change pays: the last resort, re-selection (`search/reselect.rs`).
+        halt()?;
         let Some(more) = search.reselect(&candidates, steps.len())? else {
+            halt()?;
             // Backward elimination: an effect the final model does not need is removed, and
             // the rounds run again on the smaller model (`search/earned.rs`).
             if let Some(step) = search.prune()? {
@@ -559,6 +575,7 @@ pub fn diagnose(
         steps.extend(more);
         changes += 1;
     }
+    halt()?;
     search.finish((fold_by, n_folds), steps, (before, nominal_fit), warnings)
 }
 

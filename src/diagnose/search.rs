@@ -66,6 +66,17 @@ pub(super) fn fold_assignment(
                 stats::KeyKind::TimeBlock => FoldBy::TimeBlock,
                 stats::KeyKind::Club => FoldBy::Club,
             };
+            if distinct.len() == k.keys.len() {
+                warnings.push(format!(
+                    "column '{}' gives every shot a {} of its own ({} of one shot): folds by {} \
+                     are folds by shot; if the column holds each shot's time rather than its \
+                     session, name the sessions in a `session` column",
+                    k.column,
+                    by.name(),
+                    k.keys.len(),
+                    by.name()
+                ));
+            }
             return (stats::grouped_folds(&k.keys, folds), by);
         }
     }
@@ -474,6 +485,7 @@ impl<'a> Search<'a> {
             at: None,
             max_iters: self.opts.max_iters,
             progress: None,
+            cancel: self.opts.cancel.as_ref(),
             spread: None,
         };
         let mut out = Vec::new();

@@ -145,6 +145,9 @@ pub enum FitError {
         /// Which stage of the procedure.
         stage: String,
     },
+    /// The caller cancelled the work ([`crate::cancel::Cancel`]).
+    #[error("cancelled: the work was stopped on request before its end")]
+    Cancelled,
     /// The solver itself failed (argmin's error: bounds it refuses, an operator failure).
     #[error("solver: {0}")]
     Solver(#[source] SolverError),

@@ -115,5 +115,25 @@ fn parts_by(
             None => parts.push((Some(label), vec![i])),
         }
     }
+    let single: Vec<&str> = parts
+        .iter()
+        .filter(|(_, idx)| idx.len() < MIN_SHOTS_PER_PART)
+        .filter_map(|(l, _)| l.as_deref())
+        .collect();
+    if let Some(first) = single.first() {
+        anyhow::bail!(
+            "--calibrate-by {by}: {} of the {} {by}s hold a single shot (the first: {first}); \
+             a scaling fitted to one shot fits that shot's own errors (its carry, apex and land \
+             angle set up to three scalings exactly): each {by} needs at least \
+             {MIN_SHOTS_PER_PART} shots, or leave out --calibrate-by to fit all shots together",
+            single.len(),
+            parts.len()
+        );
+    }
     Ok(parts)
 }
+
+/// Fewest shots a part of `--calibrate-by` is fitted on: one shot's three measured values
+/// (carry, apex, land angle) are matched exactly by up to three scalings, so its fit says
+/// nothing of the ball or the session, only of that shot's errors.
+const MIN_SHOTS_PER_PART: usize = 2;

@@ -48,6 +48,9 @@ pub fn diagnose_and_fly(
     if !args.json {
         let from = match (&sessions, d.folds_by) {
             (Some((col, _)), "session") => format!(" (sessions from column '{col}')"),
+            (Some((col, keys)), _) if keys.len() >= 2 && distinct(keys) == keys.len() => {
+                format!(" (column '{col}' names a session of its own for every shot)")
+            }
             _ => " (no session or date column with two or more sessions)".to_string(),
         };
         eprint!("{}", d.text());
@@ -55,4 +58,8 @@ pub fn diagnose_and_fly(
     }
     let results = d.fly(cfg, &table.launches);
     Ok((super::write_flown(args, cfg, table, results)?, d))
+}
+
+fn distinct(keys: &[String]) -> usize {
+    keys.iter().collect::<std::collections::BTreeSet<_>>().len()
 }

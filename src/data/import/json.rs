@@ -16,18 +16,33 @@ use crate::data::DataError;
 /// Whether `text` is JSON rather than CSV: its first non-blank character opens an object or
 /// an array.
 pub(super) fn is_json(text: &str) -> bool {
-    text.trim_start().starts_with(['{', '['])
+    let t = text.trim_start();
+    // An array of shots opens with an object (or is empty); a CSV's first cell may be a unit
+    // in brackets (`[m]`, `[ft]`).
+    t.starts_with('{')
+        || t.strip_prefix('[')
+            .is_some_and(|r| r.trim_start().starts_with(['{', '[', ']']))
+}
+
+/// What [`read_json`] read: the header, the shots' rows, and the lines of JSON Lines that are
+/// not JSON (a log cut short while it was written), each with its error.
+pub(super) struct JsonRows {
+    pub header: Vec<String>,
+    pub rows: Vec<Row>,
+    pub broken: Vec<(usize, DataError)>,
 }
 
 /// The header (every flattened name, in first-seen order) and the rows of the shots. A row is
 /// a shot when `known` recognises at least two of its names (JSON Lines' other events and a
-/// session's own fields are not shots). `notes` says where the shots were found.
+/// session's own fields are not shots). `notes` says where the shots were found. In JSON
+/// Lines, a line after the first that is not JSON is a bad row (left out and counted by the
+/// import), not a reason to lose the others.
 pub(super) fn read_json(
     path: &Path,
     text: &str,
     known: &dyn Fn(&str) -> bool,
     notes: &mut Vec<String>,
-) -> Result<(Vec<String>, Vec<Row>), DataError> {
+) -> Result<JsonRows, DataError> {
     let bad = |line: usize, e: serde_json::Error| {
         DataError::at(
             path,
@@ -37,6 +52,7 @@ pub(super) fn read_json(
         )
     };
     let mut shots: Vec<(usize, Vec<(String, String)>)> = Vec::new();
+    let mut broken = Vec::new();
     match serde_json::from_str::<Value>(text) {
         Ok(v @ (Value::Array(_) | Value::Object(_))) => {
             for (n, cells) in rows_in(&v, &[], known).into_iter().enumerate() {
@@ -62,7 +78,7 @@ pub(super) fn read_json(
                 match serde_json::from_str::<Value>(line) {
                     Ok(v) => shots.extend(rows_in(&v, &[], known).into_iter().map(|c| (n + 1, c))),
                     Err(_) if n == 0 => return Err(bad(whole.line(), whole)),
-                    Err(e) => return Err(bad(n + 1, e)),
+                    Err(e) => broken.push((n + 1, bad(n + 1, e))),
                 }
             }
         }
@@ -90,7 +106,11 @@ pub(super) fn read_json(
             (line, row)
         })
         .collect();
-    Ok((header, rows))
+    Ok(JsonRows {
+        header,
+        rows,
+        broken,
+    })
 }
 
 /// The shots in `v`: the objects deepest in the tree that name at least two columns `known`
@@ -183,7 +203,9 @@ mod tests {
         let p = Path::new("s.session");
         let mut notes = Vec::new();
         let text = r#"{"PlayerName":"P","Date":"2024.01.29","Shots":[{"ClubName":"7","BallData":{"BallSpeed_MS":40.5,"Spin":null}},{"ClubName":null,"BallData":{"BallSpeed_MS":41}}]}"#;
-        let (h, rows) = read_json(p, text, &known, &mut notes).unwrap();
+        let JsonRows {
+            header: h, rows, ..
+        } = read_json(p, text, &known, &mut notes).unwrap();
         // serde_json's objects iterate in key order; a shot's own cells follow the session's.
         let strings = |v: &[&str]| v.iter().map(|c| c.to_string()).collect::<Vec<String>>();
         assert_eq!(
@@ -200,7 +222,9 @@ mod tests {
         assert_eq!(rows[1].1[4], "");
         let lines = "{\"type\":\"start\",\"x\":1}\n\
                      {\"type\":\"shot\",\"ball_speed_mph\":120.5,\"club\":\"7-iron\"}\n";
-        let (h, rows) = read_json(p, lines, &known, &mut notes).unwrap();
+        let JsonRows {
+            header: h, rows, ..
+        } = read_json(p, lines, &known, &mut notes).unwrap();
         assert_eq!(h, strings(&["ball_speed_mph", "club", "type"]));
         assert_eq!(rows, vec![(2, strings(&["120.5", "7-iron", "shot"]))]);
         assert!(read_json(p, "{\"a\":1", &known, &mut notes).is_err());

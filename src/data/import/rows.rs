@@ -21,8 +21,9 @@ use super::missing::{
     club_zeros_not_measured, flight_range, launch_target, not_measured, sentinel,
 };
 use super::summary::{summarise, Tally};
-use super::table::{split_header, Table};
+use super::table::{is_unit_row, split_header, Table};
 use super::target::Target;
+use super::units::Unit;
 use super::{ExportSpec, SkipRule};
 use crate::data::{fmt_f64, DataError};
 use crate::model::DeliveryVar;
@@ -87,7 +88,25 @@ pub(super) fn write_shots(
                 .map(|(_, cells)| cells.get(c.index).map_or("", String::as_str)),
         )
     });
+    for (line, e) in &table.broken {
+        if strict {
+            return Err(e.clone());
+        }
+        tally.leave_out("not valid JSON (a line cut short?)".into(), *line, e);
+    }
     for (line, cells) in &table.rows {
+        if is_unit_row(cells) {
+            repeated_units(path, *line, cells, layout)?;
+            match tally
+                .summary
+                .iter_mut()
+                .find(|(l, _)| l == "repeated units")
+            {
+                Some((_, v)) => v.push(*line),
+                None => tally.summary.push(("repeated units".into(), vec![*line])),
+            }
+            continue;
+        }
         let row = RowAt {
             path,
             line: *line,
@@ -134,7 +153,10 @@ pub(super) fn write_shots(
                 if strict {
                     return Err(e);
                 }
-                tally.leave_out(reason, *line, &e);
+                // A row whose quoted cell ran over its line's end took the lines it ran into.
+                for l in *line..=row.last_line() {
+                    tally.leave_out(reason.clone(), l, &e);
+                }
             }
         }
     }
@@ -158,6 +180,39 @@ pub(super) fn write_shots(
         lines,
         complete,
     })
+}
+
+/// A units row among the shots (a second export pasted under the first, a units row moved):
+/// skipped when it states the units the columns are read in, else the file is refused, since
+/// which shots it holds for is not clear.
+fn repeated_units(
+    path: &Path,
+    line: usize,
+    cells: &[String],
+    layout: &Layout,
+) -> Result<(), DataError> {
+    for r in layout.resolved {
+        let (Some(unit), Some(cell)) = (r.unit, cells.get(r.index)) else {
+            continue;
+        };
+        if cell.is_empty() || cell == "[]" {
+            continue;
+        }
+        if Unit::parse(cell).is_none_or(|u| u.name != unit.name) {
+            return Err(DataError::at(
+                path,
+                Some(line),
+                Some(format!("column '{}'", r.header)),
+                format!(
+                    "a units row among the shots says '{cell}', but the column is read in {} \
+                     (the header, the units row above the shots or the mapping): which shots \
+                     it holds for is not clear; keep one units row, under the header",
+                    unit.name
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A row converted to a shot.
@@ -201,6 +256,51 @@ impl RowAt<'_> {
         self.cells.get(i).map_or("", |c| c.trim())
     }
 
+    /// The file line the row ends on: a quoted cell may run over line ends.
+    fn last_line(&self) -> usize {
+        let breaks: usize = self
+            .cells
+            .iter()
+            .map(|c| c.matches('\n').count() + c.matches('\r').count() - c.matches("\r\n").count())
+            .sum();
+        self.line + breaks
+    }
+
+    /// A row the file cut short inside a quoted cell, or one whose mapped cell runs over its
+    /// line's end (a quote left open by a cut line takes the next line into the cell): its
+    /// cells are not trusted.
+    fn cut_or_run_on(&self, table: &Table, layout: &Layout) -> Result<(), Bad> {
+        if table.cut_last == Some(self.line) {
+            let e = self.error_in(
+                None,
+                "the file ends inside a quoted cell of this row: the row is cut short (a \
+                 truncated file?), so its cells are not trusted",
+            );
+            return Err((
+                "cut short inside a quoted cell (the file ends there)".into(),
+                e,
+            ));
+        }
+        let run_on = layout.resolved.iter().find(|r| {
+            self.cells
+                .get(r.index)
+                .is_some_and(|c| c.contains(['\n', '\r']))
+        });
+        if let Some(r) = run_on {
+            let e = self.error_in(
+                Some(&r.header),
+                format!(
+                    "a quoted cell runs from line {} to line {} (a quote left open by a cut \
+                     line?), so the row's cells are not trusted",
+                    self.line,
+                    self.last_line()
+                ),
+            );
+            return Err(("a quoted cell runs over its line's end".into(), e));
+        }
+        Ok(())
+    }
+
     /// An error at this row, in the column headed `header`.
     fn error_in(&self, header: Option<&str>, message: impl Into<String>) -> DataError {
         DataError::at(
@@ -230,7 +330,13 @@ impl RowAt<'_> {
                         .position(|(h, _)| *h == want)
                         .is_some_and(|i| hit(self.cell(i)))
                 }
-                None => self.cells.iter().any(|c| hit(c)),
+                // Any cell but the golfer's, date's, ball's and shot id's: a golfer named
+                // Average is a golfer.
+                None => self
+                    .cells
+                    .iter()
+                    .enumerate()
+                    .any(|(i, c)| !skip_for_summary.contains(&i) && hit(c)),
             }
         });
         if let Some(rule) = rule {
@@ -418,6 +524,7 @@ impl RowAt<'_> {
         layout: &Layout,
         ids: &mut HashSet<String>,
     ) -> Result<Converted, Bad> {
+        self.cut_or_run_on(table, layout)?;
         self.too_long(table)?;
         self.too_short(table, layout)?;
         let mut blanked = Vec::new();

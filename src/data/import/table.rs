@@ -28,6 +28,12 @@ pub(super) struct Table {
     pub decimal_comma: bool,
     /// What was read differently from a plain UTF-8 CSV (encoding, separator, title lines).
     pub notes: Vec<String>,
+    /// The file line of the last row when the file ends inside a quoted cell of it (the row
+    /// was cut short).
+    pub cut_last: Option<usize>,
+    /// Lines that could not be read as a row at all (JSON Lines that are not JSON), each with
+    /// why: bad rows, left out and counted.
+    pub broken: Vec<(usize, DataError)>,
 }
 
 /// How many rows the header may be preceded by (title lines, a date, a place): an export whose
@@ -48,21 +54,23 @@ pub(super) fn read_table(
     let (text, encoding_note) = decode(path, bytes)?;
     let mut notes: Vec<String> = encoding_note.into_iter().collect();
     if super::json::is_json(&text) {
-        let (header, rows) = super::json::read_json(path, &text, known, &mut notes)?;
-        let headers = header.iter().map(|h| split_header(h)).collect();
+        let json = super::json::read_json(path, &text, known, &mut notes)?;
+        let headers = json.header.iter().map(|h| split_header(h)).collect();
         return Ok(Table {
             header_line: 1,
-            header,
+            header: json.header,
             headers,
             unit_row: None,
-            rows,
+            rows: json.rows,
             decimal_comma: false,
             notes,
+            cut_last: None,
+            broken: json.broken,
         });
     }
     let (body, offset_lines, sep) = strip_preamble(path, &text, skip_lines)?;
     let delimiter = sep.unwrap_or_else(|| sniff_delimiter(body));
-    let mut rows = read_rows(path, body, offset_lines, delimiter)?;
+    let (mut rows, last_start) = read_rows(path, body, offset_lines, delimiter)?;
     // A file separated by semicolons or tabs writes decimal commas when some cell is one
     // (`3,5`); then a dot groups thousands (`3.083`). Without such a cell, dots are decimal.
     let decimal_comma = delimiter != b','
@@ -97,11 +105,12 @@ pub(super) fn read_table(
             super::cell::list_lines(&lines)
         ));
     }
-    // A units row above the header (in the title lines) counts as one under it.
-    let above = header_at
-        .checked_sub(1)
-        .filter(|&i| is_unit_row(&rows[i].1))
-        .map(|i| rows[i].clone());
+    // A units row among the title lines above the header counts as one under it.
+    let mut found: Vec<Row> = rows[..header_at]
+        .iter()
+        .filter(|(_, cells)| is_unit_row(cells))
+        .cloned()
+        .collect();
     let mut rows = rows.split_off(header_at).into_iter();
     let (header_line, header) = rows.next().ok_or_else(|| {
         DataError::file(
@@ -111,12 +120,14 @@ pub(super) fn read_table(
     })?;
     let headers = header.iter().map(|h| split_header(h)).collect();
     let mut rows: Vec<Row> = rows.collect();
-    let unit_row = above.or_else(|| take_unit_row(&mut rows));
-    if let Some((line, _)) = unit_row.as_ref().filter(|(l, _)| *l > header_line + 1) {
+    found.extend(take_unit_row(&mut rows));
+    for (line, _) in found.iter().filter(|(l, _)| *l != header_line + 1) {
         notes.push(format!(
             "the units row is line {line}, not the line under the header: read as the units row"
         ));
     }
+    let unit_row = merge_unit_rows(path, found)?;
+    let cut_last = cut_in_quotes(body, &rows, last_start, delimiter);
     Ok(Table {
         header_line,
         header,
@@ -125,7 +136,81 @@ pub(super) fn read_table(
         rows,
         decimal_comma,
         notes,
+        cut_last,
+        broken: Vec::new(),
     })
+}
+
+/// The units rows found (above the header, under it, under the first shot) as one: each
+/// column's unit from the row that states one. Two rows that state different units for one
+/// column are refused: which one holds is not clear.
+fn merge_unit_rows(path: &Path, found: Vec<Row>) -> Result<Option<Row>, DataError> {
+    let mut found = found.into_iter();
+    let Some((line, mut cells)) = found.next() else {
+        return Ok(None);
+    };
+    for (other, more) in found {
+        if let Some(i) = unit_conflict(&cells, &more) {
+            return Err(DataError::at(
+                path,
+                Some(other),
+                Some(format!("column {}", i + 1)),
+                format!(
+                    "a second units row: line {line} says '{}' and line {other} says '{}' for                      this column; which one holds is not clear: keep one units row, under the                      header",
+                    cells[i], more[i]
+                ),
+            ));
+        }
+        if more.len() > cells.len() {
+            cells.resize(more.len(), String::new());
+        }
+        for (c, m) in cells.iter_mut().zip(more) {
+            if c.is_empty() {
+                *c = m;
+            }
+        }
+    }
+    Ok(Some((line, cells)))
+}
+
+/// The first column for which two units rows state different units (units compared by what
+/// they are, so `[yds]` and `[yd]` agree).
+pub(super) fn unit_conflict(a: &[String], b: &[String]) -> Option<usize> {
+    let unit = |c: &String| Unit::parse(c).map(|u| u.name);
+    (0..a.len().min(b.len()))
+        .find(|&i| matches!((unit(&a[i]), unit(&b[i])), (Some(x), Some(y)) if x != y))
+}
+
+/// The line of the last row when the file ends inside a quoted cell that row opened (a
+/// truncated file whose last line was cut in a quoted cell: the CSV reader closes the cell at
+/// the end of the file, and the row would be read whole). `last_start` is the byte where the
+/// reader started that row.
+fn cut_in_quotes(body: &str, rows: &[Row], last_start: usize, delimiter: u8) -> Option<usize> {
+    let (last_line, _) = rows.last()?;
+    ends_in_quotes(body, last_start, delimiter).then_some(*last_line)
+}
+
+/// Whether the text from `start` (the start of a row) to the end of `body` ends inside a
+/// quoted cell: a quote that opens a cell (after `delimiter` or a line end) is not closed.
+fn ends_in_quotes(body: &str, start: usize, delimiter: u8) -> bool {
+    let Some(text) = body.get(start..) else {
+        return false;
+    };
+    let mut in_quotes = false;
+    let mut field_start = true;
+    let mut chars = text.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if in_quotes && chars.peek() == Some(&'"') => {
+                chars.next();
+            }
+            '"' if in_quotes => in_quotes = false,
+            '"' if field_start => in_quotes = true,
+            _ => {}
+        }
+        field_start = !in_quotes && (c == char::from(delimiter) || matches!(c, '\n' | '\r'));
+    }
+    in_quotes
 }
 
 /// Whether a cell is a number written with a decimal comma: `-3,5`, `105,6`.
@@ -206,42 +291,64 @@ fn next_line(text: &str) -> (&str, &str) {
 }
 
 /// Parse the CSV body into trimmed cells, each row with its file line (`offset_lines` lines
-/// precede the body); blank rows are dropped.
+/// precede the body); blank rows are dropped. Also the byte where the last row starts.
 fn read_rows(
     path: &Path,
     body: &str,
     offset_lines: usize,
     delimiter: u8,
-) -> Result<Vec<Row>, DataError> {
+) -> Result<(Vec<Row>, usize), DataError> {
     let lines = crate::line_index::LineIndex::new(body.as_bytes());
     let line_of = |p: &csv::Position| lines.line_of(p) + offset_lines;
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(false)
         .flexible(true)
-        .trim(csv::Trim::All)
         .delimiter(delimiter)
         .from_reader(body.as_bytes());
     let mut rows: Vec<Row> = Vec::new();
+    let mut last_start = 0;
+    let mut blank_last = None;
     for rec in rdr.records() {
         let rec =
             rec.map_err(|e| DataError::at(path, e.position().map(line_of), None, e.to_string()))?;
         let line = rec
             .position()
             .map_or(rows.len() + 1 + offset_lines, line_of);
-        let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
+        // Spaces around a cell go, and a byte-order mark that is not at the file's start (a
+        // line added above an export's header); line breaks stay: a quoted cell that runs over
+        // its line's end (a quote a cut line left open) is found by them (`rows.rs`).
+        let blank =
+            |c: char| (c.is_ascii_whitespace() && c != '\n' && c != '\r') || c == '\u{feff}';
+        let cells: Vec<String> = rec
+            .iter()
+            .map(|c| c.trim_matches(blank).to_owned())
+            .collect();
+        let start = rec
+            .position()
+            .map_or(0, |p| usize::try_from(p.byte()).unwrap_or(0));
         if cells.iter().all(|c| c.is_empty()) {
+            // Blank, unless it is the file's last row cut inside its first quoted cell.
+            blank_last = Some((line, cells, start));
             continue;
         }
+        blank_last = None;
+        last_start = start;
         rows.push((line, cells));
     }
-    Ok(rows)
+    if let Some((line, cells, start)) = blank_last {
+        if ends_in_quotes(body, start, delimiter) {
+            rows.push((line, cells));
+            last_start = start;
+        }
+    }
+    Ok((rows, last_start))
 }
 
 /// Whether `cells` is a units row: every non-empty cell a unit or bracketed text (`[mph]`,
 /// `[]`), at least one of them a unit, except that the first non-empty cell may be a legend
 /// naming units (TrackMan's web sheets write `"Yds/Ft, Mph"` there) when two or more other cells
 /// are units.
-fn is_unit_row(cells: &[String]) -> bool {
+pub(super) fn is_unit_row(cells: &[String]) -> bool {
     let non_empty: Vec<&String> = cells.iter().filter(|c| !c.is_empty()).collect();
     let unit = |c: &str| Unit::parse(c).is_some();
     let is_unitish = |c: &str| unit(c) || (c.starts_with('[') && c.ends_with(']'));

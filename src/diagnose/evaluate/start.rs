@@ -103,6 +103,7 @@ mod tests {
             at: Some((&at.0, &at.1)),
             max_iters: 100,
             progress: None,
+            cancel: None,
             spread: None,
         };
         let mut taken = Vec::new();

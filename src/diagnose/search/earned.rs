@@ -97,6 +97,7 @@ impl Search<'_> {
             at,
             self.opts.max_iters,
             None,
+            self.opts.cancel.as_ref(),
         )
     }
 

@@ -76,6 +76,7 @@ impl Search<'_> {
             at: at_base.as_ref().map(|(r, j)| (r, j)),
             max_iters: self.opts.max_iters,
             progress: self.progress,
+            cancel: self.opts.cancel.as_ref(),
             spread: spread_base,
         };
         let (base_cv, (mut fits, mut noise, mut delivery)) = rayon::join(
@@ -89,10 +90,14 @@ impl Search<'_> {
                     b.at,
                     b.max_iters,
                     b.progress,
+                    b.cancel,
                 )
             },
             || self.candidates(&b, open, n_noise),
         );
+        if crate::cancel::cancelled(b.cancel) {
+            return Err(FitError::Cancelled);
+        }
         let base_cv = base_cv?;
         let complete = |r: &mut CandidateResult| {
             if r.spread_gain.is_none() && !r.cv_chi2.is_nan() {

@@ -247,6 +247,7 @@ impl Search<'_> {
             at,
             max_iters: self.opts.max_iters,
             progress: None,
+            cancel: self.opts.cancel.as_ref(),
             spread: None,
         }
     }

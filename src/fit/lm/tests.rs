@@ -386,4 +386,22 @@ fn gram_is_tr_mul_bit_for_bit() {
                 .all(|(u, v)| u.to_bits() == v.to_bits()));
         }
     }
+    // Mostly zeros (the sparse path): a block per ball type as the flight diagnosis makes,
+    // dense columns beside them, −0 entries among the zeros, every tail length.
+    for (n, p) in [(5, 12), (8, 9), (17, 12), (250, 40), (1003, 64)] {
+        let j = DMatrix::from_fn(n, p, |r, c| {
+            let v = next();
+            match c {
+                0 | 1 => v * 10f64.powi(c as i32),
+                _ if r % (p - 2) == c - 2 => v,
+                _ if v > 0.45 => -0.0,
+                _ => 0.0,
+            }
+        });
+        assert!(2 * j.iter().filter(|v| **v == 0.0).count() > j.len());
+        let (a, b) = (super::gram(&j), j.tr_mul(&j));
+        for (u, v) in a.iter().zip(b.iter()) {
+            assert_eq!(u.to_bits(), v.to_bits(), "{n}x{p}: {u} against {v}");
+        }
+    }
 }

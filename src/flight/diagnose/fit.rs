@@ -128,10 +128,23 @@ impl Layout {
     fn per_ball(&self) -> bool {
         self.terms.contains(&Term::DragByBall)
     }
+    /// The ball type parameter `k` belongs to, when it is one of the ball-dependent drag's
+    /// (it changes the flights of that ball type's shots only).
+    fn ball_of_param(&self, k: usize) -> Option<usize> {
+        let mut start = 0;
+        for &t in &self.terms {
+            let np = self.term_params(t);
+            if (start..start + np).contains(&k) {
+                return (t == Term::DragByBall).then_some(k - start);
+            }
+            start += np;
+        }
+        None
+    }
 }
 
 /// The measured flights, their ball types and the noise scales residuals are divided by.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Data<'a> {
     /// Flight configuration (its model the one adjusted).
     pub cfg: &'a FlightConfig,
@@ -141,6 +154,9 @@ pub struct Data<'a> {
     pub ball: &'a [usize],
     /// Noise scale of carry (m), apex (m), land angle (rad).
     pub sigma: [f64; 3],
+    /// Flights flown so far (every evaluation of the model counts its shots), for the tests of
+    /// the diagnosis's cost.
+    pub flown: std::sync::atomic::AtomicUsize,
 }
 
 /// Predicted − measured carry (m), apex (m) and land angle (rad) of shots `idx` at `p`
@@ -165,6 +181,8 @@ pub fn errors(
             .filter(|&j| !layout.per_ball() || data.ball[idx[j]] == g)
             .collect();
         let launches: Vec<FlightLaunch> = pos.iter().map(|&j| data.shots[idx[j]].launch).collect();
+        data.flown
+            .fetch_add(launches.len(), std::sync::atomic::Ordering::Relaxed);
         let model = layout.model(&data.cfg.aero, p, g);
         for (&j, f) in pos.iter().zip(fly_with(data.cfg, &model, &launches)) {
             let f = f.map_err(|e| e.to_string())?;
@@ -187,6 +205,11 @@ pub fn residuals(
     idx: &[usize],
 ) -> Result<DVector<f64>, String> {
     let e = errors(data, layout, p, idx)?;
+    Ok(weighted(data, &e))
+}
+
+/// Errors divided by the noise scales, measured values only, shot by shot.
+fn weighted(data: &Data<'_>, e: &[[Option<f64>; 3]]) -> DVector<f64> {
     let r: Vec<f64> = e
         .iter()
         .flat_map(|q| {
@@ -195,7 +218,7 @@ pub fn residuals(
                 .filter_map(|(x, s)| x.map(|x| x / s))
         })
         .collect();
-    Ok(DVector::from_vec(r))
+    DVector::from_vec(r)
 }
 
 #[derive(Clone)]
@@ -217,18 +240,56 @@ impl Jacobian for Problem<'_> {
     type Param = DVector<f64>;
     type Jacobian = DMatrix<f64>;
     fn jacobian(&self, p: &Self::Param) -> Result<Self::Jacobian, ArgminError> {
-        let r0 = self.apply(p)?;
-        let mut j = DMatrix::zeros(r0.len(), p.len());
-        for k in 0..p.len() {
-            // Forward difference, 1e-6 of the parameter's scale (as in the calibration: the
-            // landing is interpolated, so a flight is smooth in every parameter).
-            let h = 1e-6 * p[k].abs().max(1.0);
-            let mut q = p.clone();
-            q[k] += h;
-            j.set_column(k, &((self.apply(&q)? - &r0) / h));
-        }
-        Ok(j)
+        jacobian(self.data, self.layout, p.as_slice(), self.idx).map_err(ArgminError::msg)
     }
+}
+
+/// The Jacobian of [`residuals`] by forward differences. A ball type's drag changes only that
+/// ball type's flights: its column is made by flying those shots alone (the others' entries
+/// are 0, as flying them would give), so the columns of `B` ball types cost one evaluation of
+/// the shots together, not `B` (with 500 ball types a diagnosis took more than 16 minutes).
+pub fn jacobian(
+    data: &Data<'_>,
+    layout: &Layout,
+    p: &[f64],
+    idx: &[usize],
+) -> Result<DMatrix<f64>, String> {
+    let e0 = errors(data, layout, p, idx)?;
+    let r0 = weighted(data, &e0);
+    // Each shot's first row in the residuals (its measured values, in order).
+    let mut first_row = Vec::with_capacity(idx.len());
+    let mut rows = 0;
+    for q in &e0 {
+        first_row.push(rows);
+        rows += q.iter().flatten().count();
+    }
+    let mut j = DMatrix::zeros(r0.len(), p.len());
+    for k in 0..p.len() {
+        // Forward difference, 1e-6 of the parameter's scale (as in the calibration: the
+        // landing is interpolated, so a flight is smooth in every parameter).
+        let h = 1e-6 * p[k].abs().max(1.0);
+        let mut q = p.to_vec();
+        q[k] += h;
+        let Some(ball) = layout.ball_of_param(k) else {
+            j.set_column(k, &((residuals(data, layout, &q, idx)? - &r0) / h));
+            continue;
+        };
+        let shots: Vec<usize> = (0..idx.len())
+            .filter(|&s| data.ball[idx[s]] == ball)
+            .collect();
+        let sub: Vec<usize> = shots.iter().map(|&s| idx[s]).collect();
+        let e = errors(data, layout, &q, &sub)?;
+        for (&s, es) in shots.iter().zip(&e) {
+            let mut row = first_row[s];
+            for (c, x) in es.iter().enumerate() {
+                if let (Some(x), Some(x0)) = (x, e0[s][c]) {
+                    j[(row, k)] = (x / data.sigma[c] - x0 / data.sigma[c]) / h;
+                    row += 1;
+                }
+            }
+        }
+    }
+    Ok(j)
 }
 
 /// A fit's result.
@@ -286,7 +347,7 @@ pub fn fit(
     if m <= n {
         return Err(format!("{m} measured value(s) for {n} parameter(s)"));
     }
-    let j = problem.jacobian(&p).map_err(|e| e.to_string())?;
+    let j = jacobian(data, layout, p.as_slice(), idx)?;
     let chi2 = r.norm_squared();
     let s2 = chi2 / (m - n) as f64;
     let cov = (j.transpose() * &j).try_inverse();

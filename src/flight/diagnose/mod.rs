@@ -168,6 +168,9 @@ pub struct FlightDiagnosis {
     params: Vec<f64>,
     #[serde(skip)]
     ball_index: Vec<usize>,
+    /// Flights flown to make the diagnosis (its cost, for the tests; not reported).
+    #[serde(skip)]
+    pub flights_flown: usize,
 }
 
 /// Most steps (there are five candidates).
@@ -189,8 +192,9 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         }
     }
     let (balls, ball_index) = index_balls(input.balls, n);
+    // Sessions of one shot each are folds by shot, and are named so.
     let (folds_by, fold) = match input.sessions {
-        Some(s) if distinct(s) >= 2 => ("session", grouped_folds(s, input.folds)),
+        Some(s) if (2..n).contains(&distinct(s)) => ("session", grouped_folds(s, input.folds)),
         _ => ("shot", item_folds(n, input.folds)),
     };
     let k_folds = fold.iter().max().map_or(1, |m| m + 1);
@@ -200,6 +204,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         shots: input.shots,
         ball: &ball_index,
         sigma: crate::flight::calibrate::SIGMA,
+        flown: std::sync::atomic::AtomicUsize::new(0),
     };
     let mut layout = Layout {
         terms: Vec::new(),
@@ -218,6 +223,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         }
     }
     let final_fit = fit::fit(&data, &layout, &all, &params)?;
+    let flown = &data.flown;
     let values = named_values(&layout, &balls, &final_fit);
     let rmse = |l: &Layout, p: &[f64]| fit::errors(&data, l, p, &all).map(|e| rmse_of(&e));
     let none = Layout {
@@ -237,6 +243,7 @@ pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDi
         rmse_after: rmse(&layout, &final_fit.p)?,
         params: final_fit.p,
         layout,
+        flights_flown: flown.load(std::sync::atomic::Ordering::Relaxed),
         ball_index,
     })
 }

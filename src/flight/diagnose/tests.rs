@@ -213,6 +213,7 @@ fn too_few_shots_and_mismatched_lengths_are_refused() {
         shots: &shots,
         ball: &[0; 12],
         sigma: SIGMA,
+        flown: std::sync::atomic::AtomicUsize::new(0),
     };
     let all: Vec<usize> = (0..12).collect();
     let none = Layout {
@@ -222,4 +223,69 @@ fn too_few_shots_and_mismatched_lengths_are_refused() {
     let a = fit::errors(&data, &l, &l.start(), &all).unwrap();
     let b = fit::errors(&data, &none, &[], &all).unwrap();
     assert_eq!(a, b);
+}
+
+/// The ball-dependent drag's Jacobian costs one flight of each shot for all its ball types
+/// together, not one per ball type (500 ball types took more than 16 minutes), and is, bit
+/// for bit, the Jacobian flying every shot for every column gives (so a diagnosis is the
+/// same). Counted in flights, not timed.
+#[test]
+fn many_ball_types_cost_no_more_flights() {
+    let aero = crate::flight::AeroModel::default();
+    let (launches, _) = world(5, 36);
+    let mut shots = measured(&adjusted(&aero, 1.0, 1.0), &launches, 5);
+    shots[3].apex_m = None;
+    shots[7].carry_m = None;
+    let cfg = FlightConfig::default();
+    for balls in [2, 12, 36] {
+        let ball: Vec<usize> = (0..shots.len()).map(|i| i % balls).collect();
+        let data = Data {
+            cfg: &cfg,
+            shots: &shots,
+            ball: &ball,
+            sigma: SIGMA,
+            flown: std::sync::atomic::AtomicUsize::new(0),
+        };
+        let l = Layout {
+            terms: vec![Term::Lift, Term::DragByBall],
+            balls,
+        };
+        // Away from the start, so every column is non-zero.
+        let p: Vec<f64> = l
+            .start()
+            .iter()
+            .enumerate()
+            .map(|(k, v)| v * (1.0 + 0.01 * k as f64))
+            .collect();
+        let idx: Vec<usize> = (0..shots.len()).filter(|i| i % 5 != 1).collect();
+        let j = fit::jacobian(&data, &l, &p, &idx).unwrap();
+        let n = idx.len();
+        // The residuals, the lift's column, and all ball types' columns: three flights a shot.
+        assert_eq!(
+            data.flown.load(std::sync::atomic::Ordering::Relaxed),
+            3 * n,
+            "{balls} ball types"
+        );
+        // Each column as flying every shot gives it.
+        let r0 = fit::residuals(&data, &l, &p, &idx).unwrap();
+        for k in 0..p.len() {
+            let h = 1e-6 * p[k].abs().max(1.0);
+            let mut q = p.clone();
+            q[k] += h;
+            let want = (fit::residuals(&data, &l, &q, &idx).unwrap() - &r0) / h;
+            // Bit for bit: a shot's flight does not depend on the others flown beside it.
+            for r in 0..want.len() {
+                assert_eq!(
+                    j[(r, k)].to_bits(),
+                    want[r].to_bits(),
+                    "{balls} ball types, row {r}, column {k}: {} against {}",
+                    j[(r, k)],
+                    want[r]
+                );
+            }
+            if k == 0 || idx.iter().any(|&i| ball[i] == k - 1) {
+                assert!(want.iter().any(|x| *x != 0.0), "column {k} is all zero");
+            }
+        }
+    }
 }
