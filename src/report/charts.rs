@@ -56,13 +56,14 @@ fn draw_category_mesh<'a, 'b: 'a>(
     y_label: &str,
     font_px: u32,
 ) -> Result<(), String> {
+    let y_tick = tick_for(chart.y_range());
     chart
         .configure_mesh()
         .disable_x_mesh()
         .x_label_formatter(&|_| String::new())
         .set_tick_mark_size(LabelAreaPosition::Bottom, 0)
         .y_desc(y_label)
-        .y_label_formatter(&tick)
+        .y_label_formatter(&y_tick)
         .light_line_style(BLACK.mix(0.04))
         .label_style(("sans-serif", font_px))
         .draw()
@@ -75,12 +76,13 @@ fn draw_value_mesh<'a, 'b: 'a>(
     x_label: &str,
     y_label: &str,
 ) -> Result<(), String> {
+    let (x_tick, y_tick) = (tick_for(chart.x_range()), tick_for(chart.y_range()));
     chart
         .configure_mesh()
         .x_desc(x_label)
         .y_desc(y_label)
-        .x_label_formatter(&tick)
-        .y_label_formatter(&tick)
+        .x_label_formatter(&x_tick)
+        .y_label_formatter(&y_tick)
         .label_style(("sans-serif", 13))
         .light_line_style(BLACK.mix(0.05))
         .draw()
@@ -129,19 +131,31 @@ fn draw_row_labels<'l>(
     Ok(())
 }
 
-/// Tick label: at most four decimals, no trailing zeros, no `-0`.
-pub fn tick(v: &f64) -> String {
-    let v = *v;
-    if v.abs() < 1e-9 {
+/// The tick labeller of an axis spanning `range`: as many decimals as the ticks' spacing
+/// needs to tell neighbours apart (plotters puts about ten ticks on an axis; a spacing of a
+/// fiftieth of the span is taken, so ticks up to five times denser still differ), scientific
+/// notation on an axis whose values are all tiny or huge, no trailing zeros, no `-0`, and 0
+/// only for a tick at zero (within a millionth of the span).
+pub fn tick_for(range: std::ops::Range<f64>) -> impl Fn(&f64) -> String {
+    let span = (range.end - range.start).abs();
+    let largest = range.start.abs().max(range.end.abs());
+    move |v: &f64| tick_label(*v, span, largest)
+}
+
+fn tick_label(v: f64, span: f64, largest: f64) -> String {
+    if !(span > 0.0 && span.is_finite()) {
+        return crate::compare::sig3(v);
+    }
+    if v.abs() <= 1e-6 * span {
         return "0".into();
     }
-    let digits = if v.abs() >= 100.0 {
-        0
-    } else if v.abs() >= 1.0 {
-        2
-    } else {
-        4
-    };
+    let spacing = span / 50.0;
+    if !(1e-3..1e6).contains(&largest) {
+        // Mantissa digits to resolve the spacing at the axis's magnitude.
+        let digits = (largest.log10().floor() - spacing.log10().floor()).clamp(0.0, 12.0) as usize;
+        return format!("{v:.digits$e}");
+    }
+    let digits = (-spacing.log10().floor()).clamp(0.0, 12.0) as usize;
     let s = format!("{v:.digits$}");
     if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_owned()
@@ -441,7 +455,7 @@ pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<Strin
             .y_label_formatter(&|_| String::new())
             .set_tick_mark_size(LabelAreaPosition::Left, 0)
             .x_desc(unit)
-            .x_label_formatter(&tick)
+            .x_label_formatter(&tick_for(x0..x1))
             .label_style(("sans-serif", 12))
             .draw()
             .map_err(err)?;
@@ -524,7 +538,7 @@ pub fn bars_with_line_svg(
             .y_label_formatter(&|_| String::new())
             .set_tick_mark_size(LabelAreaPosition::Left, 0)
             .x_desc(axis)
-            .x_label_formatter(&tick)
+            .x_label_formatter(&tick_for(lo..hi))
             .light_line_style(BLACK.mix(0.04))
             .label_style(("sans-serif", 12))
             .draw()

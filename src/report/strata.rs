@@ -9,7 +9,7 @@ use crate::diagnose::Diagnosis;
 use crate::report::TextTable;
 
 /// A value in 4 significant figures (scientific when small), with its standard error.
-fn value_text(v: Option<(f64, f64)>) -> String {
+pub(crate) fn value_text(v: Option<(f64, f64)>) -> String {
     let num = |x: f64| {
         if x != 0.0 && x.abs() < 1e-3 {
             format!("{x:.2e}")

@@ -223,7 +223,7 @@ fn strata_table(c: &StrataCheck) -> String {
             );
             for v in &st.values {
                 let cell = match v {
-                    Some((x, se)) => format!("{x:.4} ± {se:.4}"),
+                    Some(_) => crate::report::strata::value_text(*v),
                     None => "–".into(),
                 };
                 let _ = write!(html, "<td>{cell}</td>");
