@@ -333,6 +333,7 @@ impl Imported {
             for line in l.lines.iter_mut() {
                 *line = export_line(*line);
             }
+            l.first = l.first.take().map(|e| self.in_export(e));
         }
         Ok(table)
     }
