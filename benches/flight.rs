@@ -63,7 +63,7 @@ fn bench(c: &mut Criterion) {
     let (shots, out) = (dir.path().join("drives.csv"), dir.path().join("f.csv"));
     std::fs::write(&shots, drives_csv(n)).expect("writing the launch file");
     g.bench_function("smash_flight_csv_100k", |b| {
-        b.iter(|| fly_csv_file(&shots, &out, &cfg, None, CHUNK_BYTES).expect("flies"))
+        b.iter(|| fly_csv_file(&shots, &out, &cfg, Default::default(), CHUNK_BYTES).expect("flies"))
     });
     g.finish();
 }

@@ -173,9 +173,10 @@ pub const PROBE_HALF_WIDTH_MM: PhysicalRange =
 /// Shaft mass, g. Real shafts weigh 40–130 g.
 pub const SHAFT_MASS_G: PhysicalRange = PhysicalRange::above("shaft mass", "g", 0.0, 1000.0);
 
-/// Measured ball speed, mph. The fastest measured drives launch near 230 mph.
+/// Measured ball speed, mph. The fastest measured drives launch near 230 mph. A ball speed of
+/// 0 is no launch (TrackMan and GSPro write 0 for a shot they did not measure): above 0.
 pub const BALL_SPEED_MPH: PhysicalRange =
-    PhysicalRange::closed("measured ball speed", "mph", 0.0, 400.0);
+    PhysicalRange::above("measured ball speed", "mph", 0.0, 400.0);
 
 /// Measured launch angle or azimuth, deg: a ball leaving the face goes forward.
 pub const LAUNCH_DIRECTION_DEG: PhysicalRange =

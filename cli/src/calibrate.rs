@@ -241,5 +241,6 @@ pub fn compute(
         calibration: cal,
         n_shots: table.shots.len(),
         club_mismatch,
+        warnings: table.left_out_notes(),
     })
 }

@@ -193,10 +193,11 @@ pub fn compute(
     let user =
         smash::compare::UserHints::measure(club, &table.shots, &smash::effects::user::registered());
     let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
-    let report = match mismatch {
+    let mut report = match mismatch {
         Some(why) => report.mismatched(why),
         None => report,
     };
+    report.warnings = table.left_out_notes();
     Ok((report, launches))
 }
 

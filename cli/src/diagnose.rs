@@ -139,7 +139,8 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     bar.0.finish_and_clear();
     let report = result?;
     let d = &report.diagnosis;
-    for w in &d.warnings {
+    let left_out = table.left_out_notes();
+    for w in d.warnings.iter().filter(|w| !left_out.contains(w)) {
         eprintln!("warning: {}", smash::data::escape(w));
     }
     let mut staging = plan.stage();
@@ -249,6 +250,8 @@ pub fn compute_cancellable(
         return Err(FitError::Cancelled.into());
     }
     d.club_mismatch = mismatch;
+    // The rows the shots reader left out (printed on stderr as it read them), in the report.
+    d.warnings.extend(table.left_out_notes());
     let mut floor = noise_floor(&d, &table.shots, &instrument)?;
     floor.assumed = assumed;
     d.shared_signals = smash::diagnose::shared::shared_signals(&d, &table.shots, &floor)?;

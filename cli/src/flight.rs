@@ -14,8 +14,9 @@ use smash::data::flight_conditions::{
     columns_used, file_headers, fly_with_conditions, UserConditions,
 };
 use smash::data::flight_files::{flight_csv, flight_error_at, read_atmosphere, LaunchSource};
-use smash::data::flight_stream::{fly_csv_file, Flown, CHUNK_BYTES};
+use smash::data::flight_stream::{fly_csv_file, split_results, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
+use smash::data::launch_read::LaunchRead;
 use smash::data::DataError;
 use smash::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 use smash::report::flight::FlightReport;
@@ -399,6 +400,11 @@ pub struct FlightArgs {
     /// by shot); the selected terms are then flown and compared.
     #[arg(long)]
     pub diagnose: bool,
+    /// Refuse the whole file at the first row that cannot be used. By default such a row (a
+    /// cell that is not a number, a value outside its physical range, a launch that cannot be
+    /// flown) is left out and counted, one note per reason.
+    #[arg(long)]
+    pub strict: bool,
     /// Flight options.
     #[command(flatten)]
     pub flight: FlightOptions,
@@ -420,6 +426,11 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         "predicted" => LaunchSource::Predicted,
         _ => LaunchSource::Measured,
     });
+    let read = LaunchRead {
+        source,
+        with_total: cfg.ground.is_some(),
+        strict: args.strict,
+    };
     let user = args.flight.user_conditions();
     let headers = file_headers(&args.shots)?;
     let from_file = columns_used(&headers, user);
@@ -441,24 +452,28 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         }
         match &args.calibrate {
             Some(terms) => (
-                calibrate::calibrate_and_fly(&args, &cfg, source, terms)?,
+                calibrate::calibrate_and_fly(&args, &cfg, read, terms)?,
                 None,
             ),
             None => {
-                let (flown, d) = diagnose::diagnose_and_fly(&args, &cfg, source)?;
+                let (flown, d) = diagnose::diagnose_and_fly(&args, &cfg, read)?;
                 diagnosis = Some(d);
                 (flown, None)
             }
         }
     } else if from_file.is_empty() {
-        let flown = fly_csv_file(&args.shots, &args.out, &cfg, source, CHUNK_BYTES)?;
+        let flown = fly_csv_file(&args.shots, &args.out, &cfg, read, CHUNK_BYTES)?;
         (flown, None)
     } else {
         let base = args.flight.atmosphere()?;
-        let (flown, used) = fly_with_conditions(&args.shots, &args.out, &cfg, &base, user, source)?;
+        let (flown, used) = fly_with_conditions(&args.shots, &args.out, &cfg, &base, user, read)?;
         (flown, Some(used))
     };
     let secs = t0.elapsed().as_secs_f64();
+    let warnings = flown.notes();
+    for note in &warnings {
+        eprintln!("shots: {}", smash::data::escape(note));
+    }
     let air = match &conditions {
         None => format!("air {:.4} kg/m³", cfg.air.density_kg_m3),
         Some(c) => format!(
@@ -493,7 +508,8 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         flown.shots,
         cfg.aero.name()
     );
-    let report = FlightReport::new(flown, summary, diagnosis);
+    let mut report = FlightReport::new(flown, summary, diagnosis);
+    report.warnings = warnings;
     if args.json {
         crate::stdout::println(serde_json::to_string_pretty(&report)?)?;
     } else {
@@ -509,14 +525,16 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
 }
 
 /// The flights of every launch of `table` (`results`, in its order) written to `--out` with
-/// the table's own columns, or the first failure as one line naming file, line and column.
+/// the table's own columns; a launch that did not land is left out and counted (under
+/// `--strict`, the first is refused in one line naming file, line and column).
 fn write_flown(
     args: &FlightArgs,
     cfg: &FlightConfig,
-    table: smash::data::flight_files::LaunchTable,
+    mut table: smash::data::flight_files::LaunchTable,
     results: Vec<Result<smash::flight::Flight, smash::flight::FlightError>>,
 ) -> anyhow::Result<Flown> {
-    let flights = collect(&args.shots, &table.lines, table.source.prefix(), results)?;
+    let (flights, errs) = split_results(&args.shots, &table.lines, table.source.prefix(), results);
+    table.leave_out(&args.shots, errs, args.strict)?;
     let bytes = flight_csv(
         &table.headers,
         &table.records,
@@ -527,6 +545,7 @@ fn write_flown(
     Ok(Flown {
         shots: flights.len(),
         source: table.source,
+        left_out: table.left_out,
     })
 }
 

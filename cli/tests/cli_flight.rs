@@ -277,12 +277,15 @@ fn bad_input_is_one_clear_line_and_no_file() {
     for (k, (text, extra, expect)) in cases.into_iter().enumerate() {
         let shots = write(dir.path(), &format!("bad{k}.csv"), text);
         let out = dir.path().join(format!("out{k}.csv"));
+        // --strict: a bad row refuses the file (without it the row is left out:
+        // `bad_rows.rs`); a file of one bad row is refused either way.
         let mut args = vec![
             "flight",
             "--shots",
             shots.to_str().unwrap(),
             "--out",
             out.to_str().unwrap(),
+            "--strict",
         ];
         args.extend(extra);
         let o = smash(&args);
@@ -299,12 +302,13 @@ fn bad_input_is_one_clear_line_and_no_file() {
     }
 }
 
-/// `smash flight` on `text` (written to `dir/name`) with `extra` flags must be refused with one
-/// line holding every needle, and write nothing; the message is returned.
+/// `smash flight --strict` on `text` (written to `dir/name`) with `extra` flags must be refused
+/// with one line holding every needle, and write nothing; the message is returned. (Without
+/// `--strict` a bad row among good ones is left out and counted: `bad_rows.rs`.)
 fn refused(dir: &Path, name: &str, text: &str, extra: &[&str], needles: &[&str]) -> String {
     let shots = write(dir, name, text);
     let out = dir.join(format!("{name}.out.csv"));
-    let mut args = vec!["flight", "--shots", s(&shots), "--out", s(&out)];
+    let mut args = vec!["flight", "--shots", s(&shots), "--out", s(&out), "--strict"];
     args.extend(extra);
     let o = smash(&args);
     assert_refused(&o, needles);
@@ -375,6 +379,7 @@ fn measured_flight_columns_are_checked() {
         "--out",
         s(&out),
         "--flight",
+        "--strict",
     ];
     assert_refused(
         &smash(&args),
@@ -443,6 +448,7 @@ fn messages_name_the_right_line_with_any_line_ends() {
             s(&shots),
             "--out",
             s(&out),
+            "--strict",
         ];
         assert_refused(&smash(&args), &[&format!("s{k}.csv:4:")]);
         // A coefficient table with a comment and a blank line: the bad cl is on line 5.

@@ -212,7 +212,17 @@ c,7i,120,16.3,7097,172,0,35,,Range,1,0,0\n";
         "bad.csv",
         &text.replace("0,35,,Range", "0,hot,,Range"),
     );
+    // Without --strict the row is left out and counted; with it the file is refused.
     let o = smash(&["flight", "--shots", s(&bad), "--out", s(&out)]);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("left out 1 of 3 rows: a cell that is not a number in column 'air_temperature_c' (line(s) 4; the first: ")
+            && err.contains("bad.csv:4: column 'air_temperature_c': 'hot' is not a finite number"),
+        "{err}"
+    );
+    assert_eq!(column(&out, "pred_carry_yd").len(), 2);
+    let o = smash(&["flight", "--shots", s(&bad), "--out", s(&out), "--strict"]);
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(

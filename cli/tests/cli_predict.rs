@@ -35,20 +35,29 @@ impl Case {
     fn out(&self) -> PathBuf {
         self.dir.path().join("pred.csv")
     }
-    /// Run predict on a club text and shots text; return stderr of a failed run, checking that it
-    /// failed, said one line, and wrote nothing.
+    /// Run predict `--strict` on a club text and shots text; return stderr of a failed run,
+    /// checking that it failed, said one line, and wrote nothing. (Without `--strict` a bad row
+    /// among good ones is left out and counted: `bad_rows.rs`.)
     fn fails(&self, club: &str, shots: &str) -> String {
+        self.fails_with(club, shots, &["--strict"])
+    }
+
+    /// [`Self::fails`] with `extra` flags in place of `--strict`.
+    fn fails_with(&self, club: &str, shots: &str, extra: &[&str]) -> String {
         let c = self.file("club.toml", club);
         let s = self.file("shots.csv", shots);
-        let o = smash(&[
+        let out = self.out();
+        let mut args = vec![
             "predict",
             "--club",
             c.to_str().unwrap(),
             "--shots",
             s.to_str().unwrap(),
             "--out",
-            self.out().to_str().unwrap(),
-        ]);
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = smash(&args);
         let err = String::from_utf8_lossy(&o.stderr).to_string();
         assert!(
             !o.status.success(),
@@ -199,12 +208,6 @@ fn bad_shots_files_name_the_row_and_column() {
             vec![":3", "dynamic_loft_deg", "not finite"],
         ),
         (
-            // A row without its impact location is left out (and counted); with nothing left
-            // the file is refused, pointing at --strict, which names the cell.
-            format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,,0\n"),
-            vec!["no shots", "line 2: no impact location", "--strict"],
-        ),
-        (
             format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,0,0\ns1,A,100,0,0,12,0,0,0\n"),
             vec![":3", "used twice"],
         ),
@@ -231,6 +234,21 @@ fn bad_shots_files_name_the_row_and_column() {
         assert_has(&err, &parts);
         assert_has(&err, &["shots.csv"]);
     }
+    // A row without its impact location is left out (and counted); with nothing left the file
+    // is refused, pointing at --strict, which names the cell.
+    let text = format!("{SHOTS_HEADER}\ns1,A,100,0,0,12,0,,0\n");
+    let err = case.fails_with(&club, &text, &[]);
+    assert_has(
+        &err,
+        &[
+            "shots.csv",
+            "no shots",
+            "line 2: no impact location",
+            "--strict",
+        ],
+    );
+    let err = case.fails(&club, &text);
+    assert_has(&err, &["shots.csv:2: column 'impact_y_mm': empty cell"]);
 }
 
 #[test]

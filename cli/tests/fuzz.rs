@@ -292,20 +292,20 @@ fn launch_corpus() -> Vec<u8> {
 /// Read and fly a launch file through both of `smash flight`'s readers (in memory, and streamed
 /// in small chunks to an output file); an output written must hold only finite numbers.
 fn fly_launch_file(b: &[u8]) -> Result<(), anyhow::Error> {
-    use smash::data::flight_files::read_launches;
+    use smash::data::launch_read::read_launches;
     let dir = std::env::temp_dir().join(format!("smash-fuzz-{}", std::process::id()));
     std::fs::create_dir_all(&dir)?;
     let (input, out) = (dir.join("launch.csv"), dir.join("flown.csv"));
     std::fs::write(&input, b)?;
     let cfg = smash::flight::FlightConfig::default();
-    let table = read_launches(&input, None)?;
+    let table = read_launches(&input, Default::default())?;
     smash_cli::flight::collect(
         &input,
         &table.lines,
         table.source.prefix(),
         smash::flight::fly(&cfg, &table.launches),
     )?;
-    smash::data::flight_stream::fly_csv_file(&input, &out, &cfg, None, 64)?;
+    smash::data::flight_stream::fly_csv_file(&input, &out, &cfg, Default::default(), 64)?;
     // The columns the flight adds (after the input's, which are copied as given) are finite
     // numbers or empty.
     let mut r = csv::Reader::from_path(&out)?;

@@ -163,8 +163,15 @@ fn flight(
                 }
                 Shots::Csv { bytes, .. } => bytes,
             };
-            let (csv, _) =
-                smash::data::flight_stream::fly_csv_bytes(shots.label(), input, &cfg, source)?;
+            let (csv, _) = smash::data::flight_stream::fly_csv_bytes(
+                shots.label(),
+                input,
+                &cfg,
+                smash::data::launch_read::LaunchRead {
+                    source,
+                    ..Default::default()
+                },
+            )?;
             Ok(csv)
         })
         .map_err(to_py)?;

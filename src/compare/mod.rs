@@ -334,6 +334,9 @@ pub struct CompareReport {
     /// JSON only when there is a mismatch.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub club_mismatch: Option<String>,
+    /// What the run warned about: rows of the shots file left out, one note per reason (set
+    /// by the caller that read the file).
+    pub warnings: Vec<String>,
 }
 
 impl CompareReport {
@@ -459,6 +462,7 @@ pub fn compare_with_hints(
         flags,
         findings,
         club_mismatch: None,
+        warnings: Vec::new(),
     })
 }
 

@@ -7,9 +7,9 @@
 
 use std::path::Path;
 
-use crate::data::flight_files::{flight_csv, flight_error_at, read_launches, LaunchSource};
-use crate::data::flight_measured::check_measured;
+use crate::data::flight_files::flight_csv;
 use crate::data::flight_stream::Flown;
+use crate::data::launch_read::{read_launches, LaunchRead};
 use crate::data::number::parse_f64;
 use crate::data::{quote_cell, write_atomic, DataError};
 use crate::flight::{Atmosphere, Flight, FlightConfig};
@@ -135,57 +135,26 @@ pub struct ConditionsUsed {
 
 /// Fly every shot of `input` in its own atmosphere (`base` with the file's conditions, those
 /// in `user` left as the user set them) and write the flight file `out`. A condition cell out
-/// of its range or not a number is refused with file, line and column.
+/// of its range or not a number leaves its row out, counted, as does a launch that cannot be
+/// flown (under `read.strict` the first is refused with file, line and column).
 pub fn fly_with_conditions(
     input: &Path,
     out: &Path,
     cfg: &FlightConfig,
     base: &Atmosphere,
     user: UserConditions,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
 ) -> Result<(Flown, ConditionsUsed), DataError> {
-    let table = read_launches(input, source)?;
-    let layout = crate::data::flight_files::OutputLayout::new(&table.headers, cfg.ground.is_some());
-    check_measured(input, &layout, &table.records, &table.lines)?;
+    let read = LaunchRead {
+        with_total: cfg.ground.is_some(),
+        ..read
+    };
+    let mut table = read_launches(input, read)?;
     let used = columns_used(&table.headers, user);
-    // Each shot's air, and the shots of each distinct air (by its bits).
-    let mut airs: Vec<crate::flight::Air> = Vec::new();
-    let mut members: Vec<Vec<usize>> = Vec::new();
-    for (r, (rec, &line)) in table.records.iter().zip(&table.lines).enumerate() {
-        let cells: Vec<(&str, &str)> = used
-            .iter()
-            .map(|&(i, c)| (c, rec.get(i).unwrap_or("").trim()))
-            .collect();
-        let at = |col: &str, msg: String| {
-            DataError::at(input, Some(line), Some(format!("column '{col}'")), msg)
-        };
-        let atm = shot_atmosphere(base, &cells).map_err(|m| {
-            let col = cells
-                .iter()
-                .find(|c| parse_f64(c.1).filter(|x| x.is_finite()).is_none() && !c.1.is_empty())
-                .map_or("", |c| c.0);
-            at(col, m)
-        })?;
-        let air = atm.air().map_err(|e| {
-            let col = match e.key {
-                "temperature_c" => "air_temperature_c",
-                "humidity_pct" => "relative_humidity_pct",
-                "elevation_m" => "altitude_m",
-                "pressure_hpa" => "air_pressure_pa",
-                k => k,
-            };
-            at(col, e.to_string())
-        })?;
-        match airs.iter().position(|a| *a == air) {
-            Some(k) => members[k].push(r),
-            None => {
-                airs.push(air);
-                members.push(vec![r]);
-            }
-        }
-    }
-    let mut flights: Vec<Option<Flight>> = vec![None; table.launches.len()];
-    let prefix = table.source.prefix();
+    let airs = shot_airs(input, &mut table, base, &used, read.strict)?;
+    let (airs, members) = distinct_airs(airs);
+    let mut results: Vec<Option<Result<Flight, crate::flight::FlightError>>> =
+        vec![None; table.launches.len()];
     for (air, idx) in airs.iter().zip(&members) {
         let group_cfg = FlightConfig {
             air: *air,
@@ -193,13 +162,20 @@ pub fn fly_with_conditions(
         };
         let launches: Vec<_> = idx.iter().map(|&r| table.launches[r]).collect();
         for (&r, res) in idx.iter().zip(crate::flight::fly(&group_cfg, &launches)) {
-            flights[r] = Some(res.map_err(|e| flight_error_at(input, table.lines[r], prefix, &e))?);
+            results[r] = Some(res);
         }
     }
-    let flights: Vec<Flight> = flights
+    let results = results
         .into_iter()
         .map(|f| f.expect("every shot flown"))
         .collect();
+    let (flights, errs) = crate::data::flight_stream::split_results(
+        input,
+        &table.lines,
+        table.source.prefix(),
+        results,
+    );
+    table.leave_out(input, errs, read.strict)?;
     write_atomic(
         out,
         &flight_csv(
@@ -213,12 +189,87 @@ pub fn fly_with_conditions(
         Flown {
             shots: flights.len(),
             source: table.source,
+            left_out: table.left_out,
         },
         ConditionsUsed {
             columns: used.iter().map(|c| c.1).collect(),
             atmospheres: airs.len(),
         },
     ))
+}
+
+/// The distinct airs of `airs` (by value) and the shots of each.
+fn distinct_airs(airs: Vec<crate::flight::Air>) -> (Vec<crate::flight::Air>, Vec<Vec<usize>>) {
+    let mut out: Vec<crate::flight::Air> = Vec::new();
+    let mut members: Vec<Vec<usize>> = Vec::new();
+    for (r, air) in airs.into_iter().enumerate() {
+        match out.iter().position(|a| *a == air) {
+            Some(k) => members[k].push(r),
+            None => {
+                out.push(air);
+                members.push(vec![r]);
+            }
+        }
+    }
+    (out, members)
+}
+
+/// Each kept shot's air from its condition cells (`used`); a row whose cells are bad is left
+/// out of `table` and counted (under `strict`, refused).
+fn shot_airs(
+    input: &Path,
+    table: &mut crate::data::flight_files::LaunchTable,
+    base: &Atmosphere,
+    used: &[(usize, &'static str)],
+    strict: bool,
+) -> Result<Vec<crate::flight::Air>, DataError> {
+    let mut airs = Vec::with_capacity(table.launches.len());
+    let mut errs = Vec::with_capacity(table.launches.len());
+    for (rec, &line) in table.records.iter().zip(&table.lines) {
+        match shot_air(input, rec, line, base, used) {
+            Ok(air) => {
+                airs.push(air);
+                errs.push(None);
+            }
+            Err(e) => errs.push(Some(e)),
+        }
+    }
+    table.leave_out(input, errs, strict)?;
+    Ok(airs)
+}
+
+/// One shot's air, or the error naming its file, line and column.
+fn shot_air(
+    input: &Path,
+    rec: &csv::StringRecord,
+    line: usize,
+    base: &Atmosphere,
+    used: &[(usize, &'static str)],
+) -> Result<crate::flight::Air, DataError> {
+    let cells: Vec<(&str, &str)> = used
+        .iter()
+        .map(|&(i, c)| (c, rec.get(i).unwrap_or("").trim()))
+        .collect();
+    let at = |col: &str, msg: String| {
+        DataError::at(input, Some(line), Some(format!("column '{col}'")), msg)
+    };
+    let atm = shot_atmosphere(base, &cells).map_err(|m| {
+        let col = cells
+            .iter()
+            .find(|c| parse_f64(c.1).filter(|x| x.is_finite()).is_none() && !c.1.is_empty())
+            .map_or("", |c| c.0);
+        at(col, m)
+    })?;
+    atm.air().map_err(|e| {
+        let col = match e.key {
+            "temperature_c" => "air_temperature_c",
+            "humidity_pct" => "relative_humidity_pct",
+            "elevation_m" => "altitude_m",
+            "pressure_hpa" => "air_pressure_pa",
+            k => k,
+        };
+        at(col, e.to_string())
+    })
 }
 
 #[cfg(test)]

@@ -53,7 +53,7 @@ impl LaunchSource {
     }
 }
 
-/// A CSV of launches: the raw table and the parsed launches.
+/// A CSV of launches: the raw table and the parsed launches (of the rows kept).
 #[derive(Debug, Clone, PartialEq)]
 pub struct LaunchTable {
     /// Header as in the file.
@@ -66,6 +66,8 @@ pub struct LaunchTable {
     pub launches: Vec<FlightLaunch>,
     /// Which columns were flown.
     pub source: LaunchSource,
+    /// Rows left out (a value that cannot be used), by reason, in file order.
+    pub left_out: Vec<crate::data::left_out::LeftOut>,
 }
 
 /// A raw CSV table with the line of each record.
@@ -294,56 +296,6 @@ fn check_header(path: &Path, headers: &[String]) -> Result<(), DataError> {
         }
     }
     Ok(())
-}
-
-/// Read launches from a CSV: `source` picks the columns; `None` takes measured columns when
-/// `ball_speed_mph` is present, else predicted ones. `azimuth_deg` and `sidespin_rpm` may be
-/// absent (0).
-pub fn read_launches(path: &Path, source: Option<LaunchSource>) -> Result<LaunchTable, DataError> {
-    let text = read_text(path)?;
-    parse_launches(path, text.as_bytes(), source)
-}
-
-/// [`read_launches`] from the file's bytes (`path` names it in messages).
-pub fn parse_launches(
-    path: &Path,
-    bytes: &[u8],
-    source: Option<LaunchSource>,
-) -> Result<LaunchTable, DataError> {
-    let raw = parse_raw_csv(path, bytes)?;
-    let (source, idx) = launch_columns(path, &raw.headers, source)?;
-    let p = source.prefix();
-    let names = LAUNCH_COLUMNS;
-    use rayon::prelude::*;
-    let launches = raw
-        .records
-        .par_iter()
-        .zip(&raw.lines)
-        .map(|(rec, &line)| {
-            let mut v = [0.0; 5];
-            for k in 0..5 {
-                if let Some(i) = idx[k] {
-                    let cell = rec.get(i).unwrap_or("");
-                    v[k] = parse_f64(cell).filter(|x| x.is_finite()).ok_or_else(|| {
-                        DataError::at(
-                            path,
-                            Some(line),
-                            Some(format!("column '{p}{}'", names[k])),
-                            format!("{} is not a finite number", crate::data::quote_cell(cell)),
-                        )
-                    })?;
-                }
-            }
-            Ok(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]))
-        })
-        .collect::<Result<Vec<_>, DataError>>()?;
-    Ok(LaunchTable {
-        headers: raw.headers,
-        records: raw.records,
-        lines: raw.lines,
-        launches,
-        source,
-    })
 }
 
 /// A flight error at a record, as a file error (`prefix` is the launch columns' prefix).

@@ -16,11 +16,13 @@ use std::path::Path;
 use rayon::prelude::*;
 
 use crate::data::flight_files::{
-    flight_csv, flight_error_at, flight_value, launch_columns, parse_launches, split_at_line_ends,
-    LaunchSource, OutputLayout, FLIGHT_COLUMNS, LAUNCH_COLUMNS,
+    flight_csv, flight_error_at, flight_value, launch_columns, split_at_line_ends, LaunchSource,
+    OutputLayout, FLIGHT_COLUMNS, LAUNCH_COLUMNS,
 };
-use crate::data::flight_measured::{check_measured, measured_flight_value};
+use crate::data::flight_measured::measured_flight_value;
 use crate::data::flight_output::Temporary;
+use crate::data::launch_read::{parse_launches, LaunchRead};
+use crate::data::left_out::{push_bad, refuse_when_unusable, LeftOut};
 use crate::data::number::{parse_f64, push_cell};
 use crate::data::{safe_write, write_atomic, DataError};
 use crate::flight::integrate::fly_serial;
@@ -33,28 +35,42 @@ pub const CHUNK_BYTES: usize = 1 << 22;
 const PIECE_BYTES: usize = 1 << 16;
 
 /// What a run flew.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Flown {
     /// Launches flown (data rows).
     pub shots: usize,
     /// Which launch columns were flown.
     pub source: LaunchSource,
+    /// Rows left out (a value that cannot be used, a launch that cannot be flown), by reason.
+    pub left_out: Vec<LeftOut>,
+}
+
+impl Flown {
+    /// One note per reason rows were left out ([`crate::data::left_out::notes`]).
+    pub fn notes(&self) -> Vec<String> {
+        let total = self.shots + self.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
+        crate::data::left_out::notes(&self.left_out, total)
+    }
 }
 
 /// Fly every launch of `input` and write the flight file `out` (see the module
 /// documentation). `chunk_bytes`: input read per chunk ([`CHUNK_BYTES`] in use; tests make it
-/// small). The first bad row (in file order) stops the run with an error naming the file, line
-/// and column; then `out` is left as it was.
+/// small). A row that cannot be used (a cell that is not a number, a launch the flight model
+/// does not take or that does not land, a bad measured flight cell) is left out and counted in
+/// [`Flown::left_out`]; under `read.strict` the first (in file order) stops the run with an
+/// error naming the file, line and column, as does a row of the wrong width, and as does a
+/// file with no usable row or more than half bad ([`refuse_when_unusable`]); then `out` is left
+/// as it was. `read.with_total` is taken from `cfg`'s ground model.
 pub fn fly_csv_file(
     input: &Path,
     out: &Path,
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
     chunk_bytes: usize,
 ) -> Result<Flown, DataError> {
-    match stream(input, out, cfg, source, chunk_bytes.max(1))? {
+    match stream(input, out, cfg, read, chunk_bytes.max(1))? {
         Some(flown) => Ok(flown),
-        None => in_memory(input, out, cfg, source),
+        None => in_memory(input, out, cfg, read),
     }
 }
 
@@ -64,10 +80,10 @@ fn in_memory(
     input: &Path,
     out: &Path,
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
 ) -> Result<Flown, DataError> {
     let text = crate::data::read_text(input)?;
-    let (bytes, flown) = fly_csv_bytes(input, text.as_bytes(), cfg, source)?;
+    let (bytes, flown) = fly_csv_bytes(input, text.as_bytes(), cfg, read)?;
     write_atomic(out, &bytes)?;
     Ok(flown)
 }
@@ -78,18 +94,17 @@ pub fn fly_csv_bytes(
     input: &Path,
     bytes: &[u8],
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
 ) -> Result<(Vec<u8>, Flown), DataError> {
-    let table = parse_launches(input, bytes, source)?;
-    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
-    check_measured(input, &layout, &table.records, &table.lines)?;
+    let read = LaunchRead {
+        with_total: cfg.ground.is_some(),
+        ..read
+    };
+    let mut table = parse_launches(input, bytes, read)?;
     let results = crate::flight::fly(cfg, &table.launches);
     let prefix = table.source.prefix();
-    let flights = results
-        .into_iter()
-        .zip(&table.lines)
-        .map(|(r, &line)| r.map_err(|e| flight_error_at(input, line, prefix, &e)))
-        .collect::<Result<Vec<Flight>, DataError>>()?;
+    let (flights, errs) = split_results(input, &table.lines, prefix, results);
+    table.leave_out(input, errs, read.strict)?;
     let csv = flight_csv(
         &table.headers,
         &table.records,
@@ -101,8 +116,32 @@ pub fn fly_csv_bytes(
         Flown {
             shots: flights.len(),
             source: table.source,
+            left_out: table.left_out,
         },
     ))
+}
+
+/// The flights of `results` (one per line of `lines`) that landed, and per result the error of
+/// one that did not, as a file error at its line (`prefix`: the launch columns').
+pub fn split_results(
+    input: &Path,
+    lines: &[usize],
+    prefix: &str,
+    results: Vec<Result<Flight, FlightError>>,
+) -> (Vec<Flight>, Vec<Option<DataError>>) {
+    let mut flights = Vec::with_capacity(results.len());
+    let errs = results
+        .into_iter()
+        .zip(lines)
+        .map(|(r, &line)| match r {
+            Ok(f) => {
+                flights.push(f);
+                None
+            }
+            Err(e) => Some(flight_error_at(input, line, prefix, &e)),
+        })
+        .collect();
+    (flights, errs)
 }
 
 /// Where the columns are, from the header.
@@ -117,7 +156,7 @@ struct Plan {
 enum Stop {
     /// Not plain CSV: the whole file goes the one-piece way.
     NotPlain,
-    /// A bad row at this 0-based line of the piece.
+    /// A row of the wrong width at this 0-based line of the piece.
     Bad(usize, Bad),
 }
 
@@ -136,6 +175,8 @@ struct Piece {
     newlines: usize,
     shots: usize,
     stop: Option<Stop>,
+    /// Rows left out, at their 0-based lines of the piece, in line order.
+    bad: Vec<(usize, Bad)>,
 }
 
 /// Whether the streamed path can take `bytes`: no quoting, no CR, and no zero byte (UTF-16
@@ -165,7 +206,7 @@ fn stream(
     input: &Path,
     out: &Path,
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
     chunk_bytes: usize,
 ) -> Result<Option<Flown>, DataError> {
     let read_err = |e: std::io::Error| DataError::file(input, format!("cannot read: {e}"));
@@ -184,17 +225,10 @@ fn stream(
         let want = buf.len() + PIECE_BYTES;
         eof = fill(&mut file, &mut buf, want).map_err(read_err)?;
     };
-    let head = &buf[..head_end];
-    let head_text = match std::str::from_utf8(head) {
-        Ok(t) if is_plain(head) && !t.starts_with('\u{feff}') && !trim(head).is_empty() => t,
-        _ => return Ok(None),
+    let Some(headers) = plain_headers(&buf[..head_end]) else {
+        return Ok(None);
     };
-    let headers: Vec<String> = head_text
-        .trim_end_matches('\n')
-        .split(',')
-        .map(|h| h.trim_ascii().to_string())
-        .collect();
-    let (source, launch) = launch_columns(input, &headers, source)?;
+    let (source, launch) = launch_columns(input, &headers, read.source)?;
     let plan = Plan {
         width: headers.len(),
         launch,
@@ -217,11 +251,12 @@ fn stream(
             }
             Ok(())
         });
-        let run = (|| -> Result<Option<usize>, DataError> {
+        let run = (|| -> Result<Option<(usize, Vec<LeftOut>)>, DataError> {
             if tx.send(vec![plan.layout.header_line()]).is_err() {
-                return Ok(Some(0));
+                return Ok(Some((0, Vec::new())));
             }
             let (mut line, mut shots) = (2usize, 0usize);
+            let mut left_out = Vec::new();
             loop {
                 if !eof {
                     eof = fill(&mut file, &mut buf, chunk_bytes).map_err(read_err)?;
@@ -246,12 +281,8 @@ fn stream(
                 let pieces = fly_chunk(&plan, cfg, chunk);
                 let mut parts = Vec::with_capacity(pieces.len());
                 for p in pieces {
-                    match p.stop {
-                        None => {}
-                        Some(Stop::NotPlain) => return Ok(None),
-                        Some(Stop::Bad(at, bad)) => {
-                            return Err(bad_row(input, &plan, line + at, bad));
-                        }
+                    if !take_piece(input, &plan, read.strict, line, &mut left_out, &p)? {
+                        return Ok(None);
                     }
                     line += p.newlines;
                     shots += p.shots;
@@ -265,16 +296,21 @@ fn stream(
                     break;
                 }
             }
-            Ok(Some(shots))
+            refuse_when_unusable(input, &left_out, shots)?;
+            Ok(Some((shots, left_out)))
         })();
         drop(tx);
         let wrote = writer.join().expect("the writer thread does not panic");
         (run, wrote)
     });
     match written {
-        (Ok(Some(shots)), Ok(())) => {
+        (Ok(Some((shots, left_out))), Ok(())) => {
             tmp.commit()?;
-            Ok(Some(Flown { shots, source }))
+            Ok(Some(Flown {
+                shots,
+                source,
+                left_out,
+            }))
         }
         (Ok(None), _) => Ok(None),
         (Err(e), _) => Err(e),
@@ -282,27 +318,70 @@ fn stream(
     }
 }
 
-fn bad_row(input: &Path, plan: &Plan, line: usize, bad: Bad) -> DataError {
+/// The header line's names, or `None` when the line is not plain (the one-piece path reads it).
+fn plain_headers(head: &[u8]) -> Option<Vec<String>> {
+    match std::str::from_utf8(head) {
+        Ok(t) if is_plain(head) && !t.starts_with('\u{feff}') && !trim(head).is_empty() => Some(
+            t.trim_end_matches('\n')
+                .split(',')
+                .map(|h| h.trim_ascii().to_string())
+                .collect(),
+        ),
+        _ => None,
+    }
+}
+
+/// Take the stops and bad rows of piece `p`, whose first line is `line` of the file: `false`
+/// when it is not plain CSV (the file goes the one-piece way), an error for a row of the wrong
+/// width, or (under `strict`) for its first bad row; else its bad rows go to `left_out`.
+fn take_piece(
+    input: &Path,
+    plan: &Plan,
+    strict: bool,
+    line: usize,
+    left_out: &mut Vec<LeftOut>,
+    p: &Piece,
+) -> Result<bool, DataError> {
+    let first_bad = p.bad.first().map(|b| b.0);
+    match &p.stop {
+        None => {}
+        Some(Stop::NotPlain) => return Ok(false),
+        Some(Stop::Bad(at, bad)) if !strict || first_bad.is_none_or(|b| *at < b) => {
+            return Err(bad_row(input, plan, line + at, bad));
+        }
+        Some(Stop::Bad(..)) => {}
+    }
+    for (at, bad) in &p.bad {
+        let e = bad_row(input, plan, line + at, bad);
+        if strict {
+            return Err(e);
+        }
+        push_bad(left_out, line + at, e);
+    }
+    Ok(true)
+}
+
+fn bad_row(input: &Path, plan: &Plan, line: usize, bad: &Bad) -> DataError {
     match bad {
         Bad::Width(n) => DataError::at(
             input,
             Some(line),
             None,
-            crate::line_index::field_count_message(n as u64, plan.width as u64),
+            crate::line_index::field_count_message(*n as u64, plan.width as u64),
         ),
         Bad::Cell(k, cell) => DataError::at(
             input,
             Some(line),
-            Some(format!("column '{}{}'", plan.prefix, LAUNCH_COLUMNS[k])),
-            format!("{} is not a finite number", crate::data::quote_cell(&cell)),
+            Some(format!("column '{}{}'", plan.prefix, LAUNCH_COLUMNS[*k])),
+            format!("{} is not a finite number", crate::data::quote_cell(cell)),
         ),
         Bad::Measured(k, message) => DataError::at(
             input,
             Some(line),
-            Some(format!("column '{}'", FLIGHT_COLUMNS[k])),
-            message,
+            Some(format!("column '{}'", FLIGHT_COLUMNS[*k])),
+            message.clone(),
         ),
-        Bad::Flight(e) => flight_error_at(input, line, plan.prefix, &e),
+        Bad::Flight(e) => flight_error_at(input, line, plan.prefix, e),
     }
 }
 
@@ -314,8 +393,9 @@ fn fly_chunk(plan: &Plan, cfg: &FlightConfig, chunk: &[u8]) -> Vec<Piece> {
         .collect()
 }
 
-/// Parse, fly and format one piece of whole lines. Stops at its first bad row (parse errors
-/// and flight errors in line order).
+/// Parse, fly and format one piece of whole lines. A row that cannot be used is left out and
+/// listed in [`Piece::bad`] (parse errors and flight errors in line order); a row of the wrong
+/// width stops the piece.
 fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
     let newlines = bytes.iter().filter(|&&b| b == b'\n').count();
     let mut piece = Piece {
@@ -323,6 +403,7 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
         newlines,
         shots: 0,
         stop: None,
+        bad: Vec::new(),
     };
     if std::str::from_utf8(bytes).is_err() {
         piece.stop = Some(Stop::NotPlain);
@@ -385,25 +466,25 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
         }
         if let Some(b) = bad {
             spans.truncate(first);
-            parse_stop = Some((li, b));
-            break;
+            piece.bad.push((li, b));
+            continue;
         }
         rows.push(li);
         launches.push(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]));
     }
     let mut results = vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); launches.len()];
     fly_serial(cfg, &launches, &mut results);
-    if let Some(r) = results.iter().position(|r| r.is_err()) {
-        if let Err(e) = results[r] {
-            piece.stop = Some(Stop::Bad(rows[r], Bad::Flight(e)));
-            return piece;
+    for (r, res) in results.iter().enumerate() {
+        if let Err(e) = res {
+            piece.bad.push((rows[r], Bad::Flight(*e)));
         }
     }
+    piece.bad.sort_by_key(|b| b.0);
     if let Some((li, bad)) = parse_stop {
         piece.stop = Some(Stop::Bad(li, bad));
         return piece;
     }
-    piece.shots = launches.len();
+    piece.shots = results.iter().filter(|r| r.is_ok()).count();
     piece.bytes = format_rows(plan, bytes, &spans, &results);
     piece
 }
@@ -473,107 +554,5 @@ fn format_rows(
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn launch_file(n: usize, extra: &str) -> String {
-        let mut t = String::from("shot_id, ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm,carry_yd\n");
-        for k in 0..n {
-            let f = |a: f64| (k as f64 * a).fract();
-            t.push_str(&format!(
-                "s{k}, {} ,{},{},{},{},{}\n",
-                150.0 + 30.0 * f(0.618),
-                8.0 + 6.0 * f(0.755),
-                -3.0 + 6.0 * f(0.57),
-                2000.0 + 1200.0 * f(0.439),
-                -600.0 + 1200.0 * f(0.352),
-                if k % 7 == 0 {
-                    String::new()
-                } else {
-                    format!("{}", 250 + k % 40)
-                }
-            ));
-            if k % 500 == 0 {
-                t.push('\n');
-            }
-        }
-        t.push_str(extra);
-        t
-    }
-
-    #[test]
-    fn streamed_output_equals_the_one_piece_output() {
-        let dir = tempfile::tempdir().unwrap();
-        let input = dir.path().join("l.csv");
-        // No final newline, blank lines, padded cells, an empty measured cell.
-        std::fs::write(&input, launch_file(3000, "last,160,11,0,2500,0,270")).unwrap();
-        let cfg = FlightConfig {
-            ground: Some(crate::flight::Ground::default()),
-            ..FlightConfig::default()
-        };
-        let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
-        let fa = fly_csv_file(&input, &a, &cfg, None, 10_000).unwrap();
-        let fb = in_memory(&input, &b, &cfg, None).unwrap();
-        assert_eq!(fa, fb);
-        assert_eq!(fa.shots, 3001);
-        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-        // One chunk or many: the same bytes.
-        let c = dir.path().join("c.csv");
-        fly_csv_file(&input, &c, &cfg, None, CHUNK_BYTES).unwrap();
-        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&c).unwrap());
-    }
-
-    #[test]
-    fn the_first_bad_row_is_reported_and_nothing_written() {
-        let dir = tempfile::tempdir().unwrap();
-        let out = dir.path().join("o.csv");
-        std::fs::write(&out, "keep me").unwrap();
-        let cfg = FlightConfig::default();
-        let text = launch_file(2000, "");
-        let lines: Vec<&str> = text.lines().collect();
-        // Line 1500 of the file gets a bad speed, line 1800 a short row: the first is named.
-        let mut bad = String::new();
-        for (i, l) in lines.iter().enumerate() {
-            let l = match i + 1 {
-                1500 => "bad, abc ,10,0,2500,0,".to_string(),
-                1800 => "x,1".to_string(),
-                _ => l.to_string(),
-            };
-            bad.push_str(&l);
-            bad.push('\n');
-        }
-        let input = dir.path().join("bad.csv");
-        std::fs::write(&input, &bad).unwrap();
-        let one = in_memory(&input, &out, &cfg, None).unwrap_err().to_string();
-        for chunk in [4096, CHUNK_BYTES] {
-            let e = fly_csv_file(&input, &out, &cfg, None, chunk)
-                .unwrap_err()
-                .to_string();
-            assert!(e.contains("bad.csv:1500"), "{e}");
-            assert!(
-                one.contains("bad.csv:1500") || one.contains("bad.csv:1800"),
-                "{one}"
-            );
-        }
-        assert_eq!(std::fs::read_to_string(&out).unwrap(), "keep me");
-        let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-        assert_eq!(left.len(), 2, "no temporary left");
-    }
-
-    #[test]
-    fn quoted_files_take_the_one_piece_path() {
-        let dir = tempfile::tempdir().unwrap();
-        let input = dir.path().join("q.csv");
-        let mut text = launch_file(200, "");
-        text.push_str("\"a, quoted\",150,10,0,2500,0,\n");
-        std::fs::write(&input, &text).unwrap();
-        let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
-        let cfg = FlightConfig::default();
-        fly_csv_file(&input, &a, &cfg, None, 1000).unwrap();
-        in_memory(&input, &b, &cfg, None).unwrap();
-        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-        assert!(std::fs::read_to_string(&a)
-            .unwrap()
-            .contains("\"a, quoted\""));
-    }
-}
+#[path = "flight_stream_tests.rs"]
+mod tests;

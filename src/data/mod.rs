@@ -14,6 +14,8 @@ mod flight_output;
 pub mod flight_stream;
 pub mod flight_summary;
 pub mod import;
+pub mod launch_read;
+pub mod left_out;
 pub mod noise_file;
 pub mod number;
 pub mod output_plan;

@@ -75,7 +75,8 @@ pub struct ShotTable {
     pub shots: Vec<Shot>,
     /// 1-based line of the file where each shot's record starts (parallel to `shots`).
     pub lines: Vec<usize>,
-    /// Rows left out (a delivery cell empty, estimated values), by reason, in file order.
+    /// Rows left out (a delivery cell empty, estimated values, a value that cannot be used),
+    /// by reason, in file order.
     pub left_out: Vec<LeftOut>,
     /// Where and how each shot's delivery is defined (parallel to `shots`): the
     /// `face_at`, `velocity_at` and `face_angle_from` columns, the model's own convention
@@ -83,20 +84,15 @@ pub struct ShotTable {
     pub conventions: Vec<DeliveryConvention>,
 }
 
-/// Rows of a shots file left out for one reason.
-#[derive(Debug, Clone, PartialEq)]
-pub struct LeftOut {
-    /// Why (`no impact location`).
-    pub reason: String,
-    /// Their file lines.
-    pub lines: Vec<usize>,
-}
+pub use super::left_out::{list_lines, LeftOut};
 
 /// How to read a shots file.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ReadOptions {
-    /// Refuse the file at the first row with an empty delivery cell (the default leaves such
-    /// rows out and counts them in [`ShotTable::left_out`]).
+    /// Refuse the file at the first row with an empty delivery cell or a value that cannot be
+    /// used (the default leaves such rows out and counts them in [`ShotTable::left_out`],
+    /// refusing the file only when no row is left or more than half hold bad values:
+    /// [`super::left_out::refuse_when_unusable`]).
     pub strict: bool,
     /// Use shots whose spin or club data the monitor estimated (`spin_estimated = 1`,
     /// `club_estimated = 1`); by default they are left out and counted.
@@ -109,32 +105,12 @@ pub const ESTIMATED_FLAGS: [(&str, &str); 2] = [
     ("club_estimated", "estimated club data"),
 ];
 
-/// File lines for a note: the first ten, then `…` when there are more.
-pub fn list_lines(lines: &[usize]) -> String {
-    let shown: Vec<String> = lines.iter().take(10).map(usize::to_string).collect();
-    if lines.len() > 10 {
-        format!("{}, …", shown.join(", "))
-    } else {
-        shown.join(", ")
-    }
-}
-
 impl ShotTable {
     /// One note per reason rows were left out: how many of all the rows, why, and their first
     /// file lines (`left out 2 of 40 rows: no impact location (line(s) 5, 9; …)`).
     pub fn left_out_notes(&self) -> Vec<String> {
         let total = self.shots.len() + self.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
-        self.left_out
-            .iter()
-            .map(|l| {
-                format!(
-                    "left out {} of {total} rows: {} (line(s) {}; --strict refuses the file)",
-                    l.lines.len(),
-                    l.reason,
-                    list_lines(&l.lines)
-                )
-            })
-            .collect()
+        super::left_out::notes(&self.left_out, total)
     }
 
     /// Do the shots carry measured launch conditions?
@@ -183,6 +159,7 @@ impl ShotTable {
         table.left_out.push(LeftOut {
             reason: DERIVED_LEFT_OUT.to_owned(),
             lines,
+            first: None,
         });
         n
     }
@@ -259,11 +236,9 @@ pub fn parse_shots_with<R: std::io::Read>(
         conventions: Vec::new(),
     };
     let mut ids = HashSet::new();
-    for rec in rdr.records() {
+    for (row_index, rec) in rdr.records().enumerate() {
         let rec = rec.map_err(csv_err)?;
-        let line = rec
-            .position()
-            .map_or(table.records.len() + 2, |p| lines.line_of(p));
+        let line = rec.position().map_or(row_index + 2, |p| lines.line_of(p));
         let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
         let row = Row {
             path,
@@ -271,31 +246,26 @@ pub fn parse_shots_with<R: std::io::Read>(
             headers: &table.headers,
             cells: &cells,
         };
-        if let Some(reason) = row.left_out(&cols, opts)? {
-            match table.left_out.iter_mut().find(|l| l.reason == reason) {
-                Some(l) => l.lines.push(line),
-                None => table.left_out.push(LeftOut {
-                    reason,
-                    lines: vec![line],
-                }),
+        // A row with a value that cannot be used is left out and counted (under `strict`, the
+        // file is refused at it): one bad row of a real export does not sink the others.
+        let parsed = row.left_out(&cols, opts).and_then(|why| match why {
+            Some(reason) => Ok(Err(reason)),
+            None => Ok(Ok((row.shot(&cols, &ids)?, row.convention(&cols)?))),
+        });
+        match parsed {
+            Ok(Ok((shot, convention))) => {
+                ids.insert(shot.id.clone());
+                table.lines.push(line);
+                table.shots.push(shot);
+                table.conventions.push(convention);
+                table.records.push(cells);
             }
-            continue;
+            Ok(Err(reason)) => super::left_out::push_reason(&mut table.left_out, line, reason),
+            Err(e) if opts.strict => return Err(e),
+            Err(e) => super::left_out::push_bad(&mut table.left_out, line, e),
         }
-        table.lines.push(line);
-        table.shots.push(row.shot(&cols, &mut ids)?);
-        table.conventions.push(row.convention(&cols)?);
-        table.records.push(cells);
     }
-    if table.shots.is_empty() {
-        let why = match table.left_out.first() {
-            Some(l) => format!(
-                "no shots: every row is left out (the first, line {}: {}; --strict names the cell)",
-                l.lines[0], l.reason
-            ),
-            None => "no shots: the file has a header but no rows".into(),
-        };
-        return Err(DataError::file(path, why));
-    }
+    super::left_out::refuse_when_unusable(path, &table.left_out, table.shots.len())?;
     Ok(table)
 }
 
@@ -523,14 +493,14 @@ impl Row<'_> {
         range.check(v).map_err(|m| self.error(&self.headers[i], m))
     }
 
-    /// The shot of this row; `ids` are those of the rows before (ids must be unique).
-    fn shot(&self, cols: &Columns, ids: &mut HashSet<String>) -> Result<Shot, DataError> {
+    /// The shot of this row; `ids` are those of the rows kept before (ids must be unique).
+    fn shot(&self, cols: &Columns, ids: &HashSet<String>) -> Result<Shot, DataError> {
         self.printable(cols)?;
         let id = self.cells[cols.id].clone();
         if id.is_empty() {
             return Err(self.error("shot_id", "empty shot id"));
         }
-        if !ids.insert(id.clone()) {
+        if ids.contains(&id) {
             return Err(self.error(
                 "shot_id",
                 format!("shot id '{id}' is used twice; ids must be unique"),

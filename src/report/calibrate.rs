@@ -27,12 +27,15 @@ pub struct CalibrateReport {
     /// Why the shots do not match the club, when they do not (the fit then describes another
     /// club's shots: no findings).
     pub club_mismatch: Option<String>,
+    /// What the run warned about: rows of the shots file left out, one note per reason.
+    pub warnings: Vec<String>,
 }
 
 impl Serialize for CalibrateReport {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         let mut json = to_json(&self.calibration);
         json["club_mismatch"] = json!(self.club_mismatch);
+        json["warnings"] = json!(self.warnings);
         super::json::head_first(&json, s)
     }
 }

@@ -26,6 +26,8 @@ pub struct FlightReport {
     pub errors: FlightSummary,
     /// The aerodynamic diagnosis (`--diagnose`), else `null`.
     pub diagnosis: Option<FlightDiagnosis>,
+    /// What the run warned about: rows of the launch file left out, one note per reason.
+    pub warnings: Vec<String>,
 }
 
 impl FlightReport {
@@ -37,6 +39,7 @@ impl FlightReport {
             flown,
             errors,
             diagnosis,
+            warnings: Vec::new(),
         }
     }
 

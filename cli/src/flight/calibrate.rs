@@ -2,9 +2,8 @@
 //! drag, lift and spin decay fitted to the measured flights, for all shots or per ball or
 //! session, then the shots flown with them.
 
-use smash::data::flight_files::{read_launches, LaunchSource, OutputLayout};
-use smash::data::flight_measured::check_measured;
 use smash::data::flight_stream::Flown;
+use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};
 
@@ -16,7 +15,7 @@ use super::FlightArgs;
 pub fn calibrate_and_fly(
     args: &FlightArgs,
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
     names: &str,
 ) -> anyhow::Result<Flown> {
     let terms = names
@@ -24,9 +23,7 @@ pub fn calibrate_and_fly(
         .map(|n| Term::from_name(n.trim()))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
-    let table = read_launches(&args.shots, source)?;
-    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
-    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let table = read_launches(&args.shots, read)?;
     let shots = measured_flights(&table);
     let parts = match args.calibrate_by.as_deref() {
         None => vec![(None, (0..shots.len()).collect())],

@@ -1,8 +1,7 @@
 //! `smash flight --diagnose`: which aerodynamic term do the measured flights ask for?
 
-use smash::data::flight_files::{read_launches, LaunchSource, OutputLayout};
-use smash::data::flight_measured::check_measured;
 use smash::data::flight_stream::Flown;
+use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
 use smash::flight::FlightConfig;
 
@@ -17,11 +16,9 @@ const FOLDS: usize = 5;
 pub fn diagnose_and_fly(
     args: &FlightArgs,
     cfg: &FlightConfig,
-    source: Option<LaunchSource>,
+    read: LaunchRead,
 ) -> anyhow::Result<(Flown, FlightDiagnosis)> {
-    let table = read_launches(&args.shots, source)?;
-    let layout = OutputLayout::new(&table.headers, cfg.ground.is_some());
-    check_measured(&args.shots, &layout, &table.records, &table.lines)?;
+    let table = read_launches(&args.shots, read)?;
     let shots = measured_flights(&table);
     if !shots
         .iter()

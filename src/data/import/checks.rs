@@ -90,6 +90,9 @@ pub(super) struct Redundancy {
     /// of every shot that gives them: the units checked by physics.
     speed_ratios: Vec<f64>,
     carry_ratios: Vec<f64>,
+    /// Each shot's launch and carry, for the check of the carry's unit against the flight
+    /// model ([`super::carry_units`]).
+    carries: Vec<super::carry_units::CarryShot>,
 }
 
 /// The median of `v` (not empty).
@@ -143,14 +146,25 @@ impl Redundancy {
         }
     }
 
-    /// Record a shot's speeds, launch angle and carry (shots-file units) for the unit checks.
+    /// Record a shot's speeds, launch angle, carry and backspin (shots-file units) for the
+    /// unit checks.
     pub(super) fn add_physics(
         &mut self,
         ball_mph: Option<f64>,
         club_mph: Option<f64>,
         launch_deg: Option<f64>,
         carry_yd: Option<f64>,
+        backspin_rpm: Option<f64>,
     ) {
+        if let (Some(b), Some(l), Some(c), Some(s)) = (ball_mph, launch_deg, carry_yd, backspin_rpm)
+        {
+            self.carries.push(super::carry_units::CarryShot {
+                ball_mph: b,
+                launch_deg: l,
+                backspin_rpm: s,
+                carry_yd: c,
+            });
+        }
         if let (Some(b), Some(c)) = (ball_mph, club_mph) {
             if b > 0.0 && c > 0.0 {
                 self.speed_ratios.push(b / c);
@@ -204,6 +218,13 @@ impl Redundancy {
             }
         }
         Ok(())
+    }
+
+    /// The note when the carries (export column `header`, read in `unit`) are systematically
+    /// what metres read as yards, or yards read as metres, give ([`super::carry_units`]).
+    pub(super) fn carry_units_note(&self, header: &str, unit: &str) -> Option<String> {
+        let (ratio, n) = super::carry_units::median_ratio(&self.carries)?;
+        super::carry_units::note(header, unit, ratio, n)
     }
 
     /// The offline distances' verdict on the sign disagreements: settled only when at least

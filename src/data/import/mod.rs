@@ -12,6 +12,7 @@
 //! and rows a monitor flags as estimated (skipped and reported). The heel–toe sign of the impact
 //! location is stated by the user when the vendor does not document it: the import never guesses.
 
+mod carry_units;
 mod cell;
 mod checks;
 mod columns;
@@ -333,6 +334,7 @@ impl Imported {
             for line in l.lines.iter_mut() {
                 *line = export_line(*line);
             }
+            l.first = l.first.take().map(|e| self.in_export(e));
         }
         Ok(table)
     }

@@ -97,14 +97,7 @@ pub(super) fn write_shots(
     for (line, cells) in &table.rows {
         if is_unit_row(cells) {
             repeated_units(path, *line, cells, layout)?;
-            match tally
-                .summary
-                .iter_mut()
-                .find(|(l, _)| l == "repeated units")
-            {
-                Some((_, v)) => v.push(*line),
-                None => tally.summary.push(("repeated units".into(), vec![*line])),
-            }
+            tally.skip("repeated units".into(), *line);
             continue;
         }
         let row = RowAt {
@@ -117,10 +110,7 @@ pub(super) fn write_shots(
             day_first,
         };
         if let Some(label) = row.skipped_by(skip_rules, table, &not_summary) {
-            match tally.summary.iter_mut().find(|(l, _)| *l == label) {
-                Some((_, v)) => v.push(*line),
-                None => tally.summary.push((label, vec![*line])),
-            }
+            tally.skip(label, *line);
             continue;
         }
         if let Some(flag) = row.flag(layout) {
@@ -144,8 +134,8 @@ pub(super) fn write_shots(
                     tally.blank(reason.clone(), *line, e);
                 }
                 tally.redundancy.add(*line, &shot.spin, shot.smash);
-                let [b, c, l, carry] = shot.physics;
-                tally.redundancy.add_physics(b, c, l, carry);
+                let [b, c, l, carry, back] = shot.physics;
+                tally.redundancy.add_physics(b, c, l, carry, back);
                 w.write_record(&shot.record).expect("writing to memory");
                 lines.push(*line);
             }
@@ -163,6 +153,9 @@ pub(super) fn write_shots(
     tally.redundancy.refuse_systematic(path, vendor)?;
     tally.redundancy.refuse_units(path, &layout.units_read())?;
     summarise(&tally, lines.len(), notes);
+    notes.extend(layout.column("carry_yd").and_then(|c| {
+        (tally.redundancy).carry_units_note(&c.header, c.unit.map_or("", |u| u.name))
+    }));
     if lines.is_empty() {
         let why = tally
             .left_out
@@ -230,7 +223,7 @@ struct Converted {
     spin: Option<SpinCheck>,
     smash: Option<(f64, f64, f64)>,
     /// Ball speed, club speed, launch angle and carry, for the unit checks.
-    physics: [Option<f64>; 4],
+    physics: [Option<f64>; 5],
 }
 
 /// One row of the export, for conversion and messages.
@@ -628,6 +621,10 @@ impl RowAt<'_> {
                 get("club_speed_mph"),
                 get("launch_angle_deg"),
                 get("carry_yd"),
+                get("backspin_rpm").or_else(|| {
+                    let rate = get("spin_rate_rpm")?;
+                    Some(rate * get("spin_axis_deg").unwrap_or(0.0).to_radians().cos())
+                }),
             ],
         })
     }

@@ -38,6 +38,14 @@ impl Tally {
         }
     }
 
+    /// A row skipped as `label` (never a shot: a summary row, a repeated units row).
+    pub(super) fn skip(&mut self, label: String, line: usize) {
+        match self.summary.iter_mut().find(|(l, _)| *l == label) {
+            Some((_, v)) => v.push(line),
+            None => self.summary.push((label, vec![line])),
+        }
+    }
+
     pub(super) fn blank(&mut self, reason: String, line: usize, first: &str) {
         match self.blanked.iter_mut().find(|l| l.reason == reason) {
             Some(l) if l.lines.last() == Some(&line) => {}
