@@ -475,14 +475,14 @@ pub fn fmt_t(t: f64) -> String {
     }
 }
 
-/// Three significant figures (scientific notation from a million up and below 0.01, so that
-/// no value other than zero prints as zero: a COR falloff of 2.5e-4 per mm² is `2.50e-4`, not
-/// `0.000`).
+/// Three significant figures (scientific notation from a million up and below 0.001, where three
+/// decimals would print a value that is not zero as zero: a COR falloff of 2.5e-4 per mm² is
+/// `2.50e-4`, not `0.000`).
 pub fn sig3(v: f64) -> String {
     let a = v.abs();
     if a == 0.0 {
         "0".into()
-    } else if !(1e-2..1e6).contains(&a) {
+    } else if !(1e-3..1e6).contains(&a) {
         format!("{v:.2e}")
     } else if a >= 100.0 {
         format!("{v:.0}")

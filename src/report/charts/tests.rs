@@ -108,7 +108,8 @@ fn tick_labels_are_distinct_and_zero_only_at_zero() {
 fn sig3_keeps_small_values_off_zero() {
     use crate::compare::sig3;
     assert_eq!(sig3(2.5e-4), "2.50e-4");
-    assert_eq!(sig3(-0.004), "-4.00e-3");
+    assert_eq!(sig3(-0.0004), "-4.00e-4");
+    assert_eq!(sig3(-0.004), "-0.004");
     assert_eq!(sig3(0.0), "0");
     assert_eq!(sig3(0.25), "0.250");
     assert_eq!(sig3(41.26), "41.3");
