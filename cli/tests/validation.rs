@@ -226,6 +226,7 @@ fn a_shots_row_outside_the_physical_ranges_is_named_and_nothing_is_written() {
     for (col, value, range) in cases {
         let bad = write(dir.path(), "bad.csv", &with_cell(&text, 3, col, value));
         let out = dir.path().join("pred.csv");
+        // Without --strict the row is left out with a note naming the same (`bad_rows.rs`).
         let o = smash(&[
             "predict",
             "--club",
@@ -234,6 +235,7 @@ fn a_shots_row_outside_the_physical_ranges_is_named_and_nothing_is_written() {
             &bad,
             "--out",
             out.to_str().unwrap(),
+            "--strict",
         ]);
         common::assert_refused(&o, &["bad.csv:5", &format!("column '{col}'"), value, range]);
         assert!(!out.exists(), "{col} = {value} wrote predictions");
@@ -260,6 +262,7 @@ fn calibrate_refuses_an_unphysical_measurement_and_writes_no_club() {
         "ball_offset",
         "--out-club",
         out.to_str().unwrap(),
+        "--strict",
     ]);
     common::assert_refused(&o, &["bad.csv:2", "backspin_rpm", "1e300", "rpm"]);
     assert!(!out.exists());
