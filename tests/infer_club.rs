@@ -279,6 +279,13 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
                 at_truth,
                 mean_z
             );
+            if within + 1 < det.len() {
+                let z: Vec<String> = ws
+                    .iter()
+                    .map(|w| format!("{:+.1}", (w.value[j] - t[j]) / w.stderr[j]))
+                    .collect();
+                println!("    z by seed: {}", z.join(" "));
+            }
             if !det.is_empty() && within + 1 < det.len() {
                 literal_failures.push(format!(
                     "head {} {}: {within}/{}",

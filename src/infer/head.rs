@@ -5,7 +5,7 @@
 //! |---|---|---|---|
 //! | `com_mm[0]`, `com_mm[1]`, `com_mm[2]` | `com_offset.dx_mm`, `dy_mm`, `dz_mm` | start + offset | 6, 3, 3 mm |
 //! | `inertia_gcm2[1][1]`, `inertia_gcm2[2][2]` | `inertia_axes.sy`, `sz` | start × factor | 25 % of the start's |
-//! | `bulge_mm`, `roll_mm` | `face_curvature.d_bulge_mm`, `d_roll_mm` | start + change | 130 mm |
+//! | `bulge_mm`, `roll_mm` | `face_curvature.d_bulge_mm`, `d_roll_mm` | start + change (a `face_curvature` effect when roll > bulge, which a club file's fields do not allow) | 130 mm |
 //! | `cor` | `cor_level.dcor` | start + change | 0.035 |
 //! | `cor_radial.c_per_mm2` | `cor_radial.c_per_mm2` | start's global one + fitted | 1.5e-4 1/mm² |
 //! | `loft_bias.deg`, `face_bias.deg` | the same | start's global one + fitted | 3 deg |
@@ -263,8 +263,15 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
     p.club_com_m.z += theta[2] * 1e-3;
     // The moments as the fit moved them (`inertia_axes`: mass moved, `I_xx` following).
     EffectKind::InertiaAxes.apply(&[theta[3], theta[4]], &mut p);
-    p.bulge_m += theta[5] * 1e-3;
-    p.roll_m += theta[6] * 1e-3;
+    // A club file's face has bulge >= roll (its reader's rule); a face the shots find rounder
+    // crown to sole than heel to toe keeps the start's radii and carries the change as a
+    // `face_curvature` effect, which the model takes either way.
+    let radii_in_effect =
+        start.nominal.bulge_m + theta[5] * 1e-3 < start.nominal.roll_m + theta[6] * 1e-3;
+    if !radii_in_effect {
+        p.bulge_m += theta[5] * 1e-3;
+        p.roll_m += theta[6] * 1e-3;
+    }
     p.cor += theta[7];
     let s = start_values(start);
     let mut effects: Vec<Effect> = start
@@ -273,6 +280,12 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
         .filter(|e| !(e.group().is_none() && MERGED.iter().any(|&k| e.kind() == EffectId::from(k))))
         .cloned()
         .collect();
+    if radii_in_effect {
+        effects.push(
+            Effect::new(EffectKind::FaceCurvature, &[theta[5], theta[6]], None)
+                .map_err(|e| e.to_string())?,
+        );
+    }
     for (j, kind) in [
         (8, EffectKind::CorRadial),
         (9, EffectKind::LoftBias),

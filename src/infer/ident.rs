@@ -107,6 +107,30 @@ pub fn posterior_cov(fisher: &DMatrix<f64>, sd: &[f64]) -> DMatrix<f64> {
     }
 }
 
+/// The estimate's covariance when the shots' noise is not what the weights assume (the
+/// sandwich): `H⁻¹ (M + P) H⁻¹` with `H = F + P`, `P = D⁻²` and `M` the covariance of the data
+/// rows' score, `Σ_i J_iᵀ r_i r_iᵀ J_i` over the shots' blocks of rows (or its expectation).
+/// With `M = F` (every shot as noisy as the weights say) it is the posterior `H⁻¹`.
+pub fn sandwich_cov(fisher: &DMatrix<f64>, meat: &DMatrix<f64>, sd: &[f64]) -> DMatrix<f64> {
+    let h_inv = posterior_cov(fisher, sd);
+    let mut m = meat.clone();
+    for (j, s) in sd.iter().enumerate() {
+        m[(j, j)] += 1.0 / (s * s);
+    }
+    &h_inv * m * &h_inv
+}
+
+/// `Σ_i J_iᵀ A_i J_i` over the blocks of five rows (one a shot) of the data Jacobian `jac`.
+pub fn block_meat(jac: &DMatrix<f64>, a: impl Fn(usize) -> nalgebra::Matrix5<f64>) -> DMatrix<f64> {
+    let p = jac.ncols();
+    let mut m = DMatrix::zeros(p, p);
+    for i in 0..jac.nrows() / 5 {
+        let ji = jac.rows(5 * i, 5);
+        m += ji.transpose() * a(i) * ji;
+    }
+    m
+}
+
 fn direction_text(leading: &[(String, f64)], words: &[&str], se: Option<f64>) -> String {
     let se_text = se.map_or("the shots do not see it at all".to_owned(), |s| {
         format!("data SE along it {s:.2} prior widths")

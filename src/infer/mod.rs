@@ -13,11 +13,13 @@
 //!    averaged over the likely impact locations, given the instruments' delivery noise
 //!    (regression calibration, as `smash calibrate --delivery-noise --impact-noise-mm`);
 //! 2. **before fitting**, the Fisher information of the shots at the start head with the
-//!    instruments' noise ([`plan::instrument_cov`]) and what it determines ([`ident`]);
+//!    instruments' noise ([`plan::instrument_covs`]) and what it determines ([`ident`]);
 //! 3. the fit: bounded Levenberg–Marquardt on data and prior rows, the launch errors whitened by
 //!    their full 5 × 5 covariance estimated robustly from the start head's errors, then again
 //!    from the first fit's errors and the fit repeated from its solution;
-//! 4. at the fit: the Fisher information again, the posterior covariance `(F + P)⁻¹`, each
+//! 4. at the fit: the Fisher information again, the posterior covariance `(F + P)⁻¹` and the
+//!    reported standard errors from its sandwich with the shots' own scores
+//!    ([`ident::sandwich_cov`]: a shot far off-centre carries more noise than the average), each
 //!    parameter's data-only standard error, whether it is determined, the prior's share, and
 //!    profile-likelihood intervals of the determined ones (the others refitted with it fixed on
 //!    a grid of its standard error; the `Δχ² = 1` crossings of the posterior's `−2 ln`).
@@ -238,10 +240,14 @@ fn solve(
     })
 }
 
-/// The data rows' Fisher information `JᵀJ` of `problem` at full `theta`.
-fn fisher(problem: &HeadProblem<'_>, theta: &DVector<f64>) -> Result<DMatrix<f64>, FitError> {
+/// The data rows' Jacobian of `problem` at full `theta` and their Fisher information `JᵀJ`.
+fn fisher(
+    problem: &HeadProblem<'_>,
+    theta: &DVector<f64>,
+) -> Result<(DMatrix<f64>, DMatrix<f64>), FitError> {
     let j = problem.data_jacobian(theta).map_err(FitError::Start)?;
-    Ok(j.transpose() * j)
+    let f = j.transpose() * &j;
+    Ok((j, f))
 }
 
 /// Model − measured errors (file units) of full `theta`.
@@ -363,23 +369,33 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
     let sd = DVector::from_vec(settings.prior_sd());
     let f = settings.determined_fraction;
     // Before fitting: the start head, the instruments' noise.
-    let inst = plan::instrument_cov(
+    let inst = plan::average_cov(&plan::instrument_covs(
         club,
         shots,
         &settings.launch_noise_sd,
         &settings.delivery_noise_sd,
         settings.correct_measurement,
-    )?;
+    )?);
     let base = FitProblem::new(club, layout.clone(), &data, Weighting::launch(&[1.0; 5]));
     let before_pr = HeadProblem::new(base.clone(), &inst, theta0.clone(), sd.clone());
-    let fisher0 = fisher(&before_pr, &theta0)?;
+    let (_, fisher0) = fisher(&before_pr, &theta0)?;
     let before = identifiability(&fisher0, sd.as_slice(), f);
     // The fit.
     let fit = fit_stages(settings, club, &data, &theta0, &sd)?;
     let pr = HeadProblem::new(base.clone(), &fit.noise, theta0.clone(), sd.clone());
-    let fisher1 = fisher(&pr, &fit.theta)?;
+    let (jac1, fisher1) = fisher(&pr, &fit.theta)?;
     let after = identifiability(&fisher1, sd.as_slice(), f);
     let post = posterior_cov(&fisher1, sd.as_slice());
+    // The standard errors: the sandwich of the shots' own scores (each shot's errors as they
+    // are, not as noisy as the average the weights assume).
+    let r1 = pr
+        .data_residuals(fit.theta.as_slice())
+        .map_err(FitError::Start)?;
+    let meat = ident::block_meat(&jac1, |i| {
+        let v = r1.fixed_rows::<5>(5 * i).into_owned();
+        v * v.transpose()
+    });
+    let robust = ident::sandwich_cov(&fisher1, &meat, sd.as_slice());
     let data_var = data_variances(&fisher1, sd.as_slice());
     let shares = prior_shares(&post, &data_var);
     let profiles: Vec<Option<[f64; 2]>> = (0..layout.len())
@@ -404,7 +420,8 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
                 words: h.words,
                 unit: h.unit,
                 value,
-                stderr: post[(j, j)].sqrt() * k,
+                stderr: robust[(j, j)].sqrt() * k,
+                stderr_model: post[(j, j)].sqrt() * k,
                 start: start[j],
                 determined: after.determined[j],
                 data_stderr: after.data_se[j].map(|s| s * k),
@@ -478,21 +495,24 @@ pub fn run_plan(
     let data = fit_data(settings, &design)?;
     let theta0 = layout.defaults();
     let sd = DVector::from_vec(settings.prior_sd());
-    let inst = plan::instrument_cov(
+    let covs = plan::instrument_covs(
         club,
         &design,
         &settings.launch_noise_sd,
         &settings.delivery_noise_sd,
         settings.correct_measurement,
     )?;
+    let inst = plan::average_cov(&covs);
     let base = FitProblem::new(club, layout, &data, Weighting::launch(&[1.0; 5]));
     let pr = HeadProblem::new(base, &inst, theta0.clone(), sd.clone());
-    let fisher0 = fisher(&pr, &theta0)?;
+    let (jac0, fisher0) = fisher(&pr, &theta0)?;
+    let w = inst.whitening();
+    let meat0 = ident::block_meat(&jac0, |i| w * covs[i] * w.transpose());
     let n0 = design.len();
     let n = n.unwrap_or(n0).max(1);
     let params = plan::plan_params(
         club,
-        &fisher0,
+        (&fisher0, &meat0),
         (n0, n),
         sd.as_slice(),
         settings.determined_fraction,

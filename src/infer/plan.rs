@@ -11,13 +11,16 @@
 //! measurement noise and `var_j` the spread of its measured values: the error that remains
 //! after the regression calibration the fit applies (`crate::measurement`; pooled over golfers,
 //! so slightly more than remains when golfers differ). The shots' average covariance whitens the
-//! rows, as the fit's does.
+//! rows, as the fit's does; each shot's own covariance `Σ_i` enters the planned standard error
+//! through the sandwich `H⁻¹(Σ_i J_iᵀ W Σ_i Wᵀ J_i + P)H⁻¹` (`W` the whitening), since a shot
+//! far off-centre carries more noise than the average (its location error moves speed and
+//! spin more).
 
 use nalgebra::{DMatrix, Matrix5, Vector5};
 use serde::Serialize;
 
 use super::head::{reported, start_values, HEAD_PARAMS};
-use super::ident::{data_variances, posterior_cov};
+use super::ident::{data_variances, posterior_cov, sandwich_cov};
 use super::problem::NoiseCov;
 use crate::club::ClubSpec;
 use crate::diagnose::noise_floor::delivery_jacobians;
@@ -26,15 +29,15 @@ use crate::model::Shot;
 use crate::physics::delivery_vars::{DeliveryVar, N_DELIVERY};
 use crate::stats;
 
-/// The launch errors' covariance a right model leaves under the instruments' noise (module
-/// docs), averaged over `shots`, at the model `club`.
-pub fn instrument_cov(
+/// Each shot's launch-error covariance (file units) a right model leaves under the
+/// instruments' noise (module docs), at the model `club`.
+pub fn instrument_covs(
     club: &ClubSpec,
     shots: &[Shot],
     launch_sd: &[f64; 5],
     delivery_sd: &[f64; N_DELIVERY],
     corrected: bool,
-) -> Result<NoiseCov, FitError> {
+) -> Result<Vec<Matrix5<f64>>, FitError> {
     let remaining: [f64; N_DELIVERY] = std::array::from_fn(|j| {
         let s2 = delivery_sd[j].powi(2);
         if !(s2.is_finite() && s2 > 0.0) {
@@ -51,19 +54,26 @@ pub fn instrument_cov(
         s2 * (1.0 - s2 / var.max(f64::MIN_POSITIVE)).max(0.0)
     });
     let steps = delivery_sd.map(|s| if s > 0.0 { 0.5 * s } else { 0.0 });
-    let jac = delivery_jacobians(club, shots, &steps)?;
-    let mut cov = Matrix5::from_diagonal(&Vector5::from(launch_sd.map(|s| s * s)));
-    let mut dsum = Matrix5::zeros();
-    for g in &jac {
-        for (j, rem) in remaining.iter().enumerate() {
-            if *rem > 0.0 {
-                let v = Vector5::from(g[j]);
-                dsum += v * v.transpose() * *rem;
+    let launch = Matrix5::from_diagonal(&Vector5::from(launch_sd.map(|s| s * s)));
+    Ok(delivery_jacobians(club, shots, &steps)?
+        .iter()
+        .map(|g| {
+            let mut cov = launch;
+            for (j, rem) in remaining.iter().enumerate() {
+                if *rem > 0.0 {
+                    let v = Vector5::from(g[j]);
+                    cov += v * v.transpose() * *rem;
+                }
             }
-        }
-    }
-    cov += dsum / jac.len().max(1) as f64;
-    Ok(NoiseCov::from_matrix(&cov))
+            cov
+        })
+        .collect())
+}
+
+/// The shots' average of [`instrument_covs`]: the covariance the rows are whitened by.
+pub fn average_cov(covs: &[Matrix5<f64>]) -> NoiseCov {
+    let sum: Matrix5<f64> = covs.iter().sum();
+    NoiseCov::from_matrix(&(sum / covs.len().max(1) as f64))
 }
 
 /// Shots with the measured impact locations spread about their mean to `sd_mm` (y, z) instead
@@ -97,8 +107,12 @@ pub struct PlanParam {
     pub start: f64,
     /// Prior 1σ.
     pub prior_sd: f64,
-    /// Posterior standard error with the planned number of shots.
+    /// Standard error of the estimate with the planned number of shots (sandwich: the noise of
+    /// each shot through the fit's weights, prior included).
     pub stderr: f64,
+    /// The model's posterior standard error `√((F + P)⁻¹)_jj`, which assumes every shot as
+    /// noisy as the average.
+    pub stderr_model: f64,
     /// Data-only standard error with the planned number of shots (`None`: the design does not
     /// determine it at any number of shots).
     pub data_stderr: Option<f64>,
@@ -118,20 +132,24 @@ fn shots_for(v0: f64, n0: usize, want: f64) -> Option<u64> {
     (v0.is_finite() && want > 0.0).then(|| (n0 as f64 * v0 / want).ceil().max(1.0) as u64)
 }
 
-/// The plan for `n` shots from the Fisher information `fisher0` of a design of `n0` shots
-/// (fitted units) at the start `club`, prior widths `sd` (fitted units), determined fraction
-/// `f`, optional targets (reported units) per parameter.
+/// The plan for `n` shots from the Fisher information `fisher0` and the score covariance
+/// `meat0` (the shots' own noise through the fit's weights: [`super::ident::sandwich_cov`]) of
+/// a design of `n0` shots (fitted units) at the start `club`, prior widths `sd` (fitted
+/// units), determined fraction `f`, optional targets (reported units) per parameter. Both scale
+/// as `n/n0`.
 pub fn plan_params(
     club: &ClubSpec,
-    fisher0: &DMatrix<f64>,
+    (fisher0, meat0): (&DMatrix<f64>, &DMatrix<f64>),
     (n0, n): (usize, usize),
     sd: &[f64],
     f: f64,
     targets: &[Option<f64>],
 ) -> Vec<PlanParam> {
-    let fisher = fisher0 * (n as f64 / n0 as f64);
+    let k = n as f64 / n0 as f64;
+    let fisher = fisher0 * k;
     let var = data_variances(&fisher, sd);
     let post = posterior_cov(&fisher, sd);
+    let robust = sandwich_cov(&fisher, &(meat0 * k), sd);
     let var0 = data_variances(fisher0, sd);
     let start = start_values(club);
     HEAD_PARAMS
@@ -139,6 +157,9 @@ pub fn plan_params(
         .enumerate()
         .map(|(j, h)| {
             let unit_k = reported(j, start[j], 1.0).1;
+            // The sandwich's inflation of the variance over the model's, applied to the data
+            // variance a target needs.
+            let inflation = (robust[(j, j)] / post[(j, j)]).max(1.0);
             let target = targets.get(j).copied().flatten();
             let prior = sd[j];
             // Posterior variance t² = 1/(1/v_data + 1/σ²) → v_data = 1/(1/t² − 1/σ²).
@@ -148,7 +169,7 @@ pub fn plan_params(
                 if inv <= 0.0 {
                     Some(0)
                 } else {
-                    shots_for(var0[j], n0, 1.0 / inv)
+                    shots_for(var0[j] * inflation, n0, 1.0 / inv)
                 }
             });
             PlanParam {
@@ -156,7 +177,8 @@ pub fn plan_params(
                 unit: h.unit,
                 start: start[j],
                 prior_sd: prior * unit_k,
-                stderr: post[(j, j)].sqrt() * unit_k,
+                stderr: robust[(j, j)].sqrt() * unit_k,
+                stderr_model: post[(j, j)].sqrt() * unit_k,
                 data_stderr: var[j].is_finite().then(|| var[j].sqrt() * unit_k),
                 determined: var[j].is_finite() && var[j].sqrt() < f * prior,
                 shots_to_determine: shots_for(var0[j], n0, (f * prior).powi(2)),

@@ -82,6 +82,11 @@ impl NoiseCov {
         Self::checked(sd, corr)
     }
 
+    /// `L⁻¹ D⁻¹`: errors (file units) to whitened rows.
+    pub fn whitening(&self) -> Matrix5<f64> {
+        self.whitener() * Matrix5::from_diagonal(&Vector5::from(self.sd.map(|s| 1.0 / s)))
+    }
+
     /// `L⁻¹`, the whitening of standardised errors.
     pub fn whitener(&self) -> Matrix5<f64> {
         let l = self.corr.cholesky().expect("checked positive definite").l();

@@ -25,8 +25,12 @@ pub struct ParamReport {
     pub unit: &'static str,
     /// The estimate (posterior mode).
     pub value: f64,
-    /// Its standard error (posterior, prior included).
+    /// Its standard error: the sandwich `H⁻¹(M + P)H⁻¹` of the shots' own scores, prior
+    /// included (`ident::sandwich_cov`).
     pub stderr: f64,
+    /// The model's posterior standard error `√((F + P)⁻¹)_jj` (every shot as noisy as the
+    /// average the weights assume).
+    pub stderr_model: f64,
     /// The start club's value (the prior's centre).
     pub start: f64,
     /// Do the data determine it (data-only SE below the determined fraction of the prior)?
