@@ -294,5 +294,6 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
         let v = s[j] + theta[j];
         effects.push(Effect::new(kind, &[v], None).map_err(|e| e.to_string())?);
     }
-    ClubSpec::new(start.name.clone(), start.static_loft_rad, p, effects).map_err(|e| e.to_string())
+    let name = format!("{} (inferred by infer-club)", start.name);
+    ClubSpec::new(name, start.static_loft_rad, p, effects).map_err(|e| e.to_string())
 }

@@ -219,8 +219,8 @@ pub fn render(r: &Report) -> String {
     );
     let _ = writeln!(
         s,
-        "{:<22} {:>12} {:>10} {:>12} {:>10} {:>7} {:>6}  {}",
-        "parameter", "value", "SE", "start", "data SE", "prior%", "det.", "profile (dchi2 = 1)"
+        "{:<22} {:>12} {:>10} {:>12} {:>10} {:>7} {:>6}  profile (dchi2 = 1)",
+        "parameter", "value", "SE", "start", "data SE", "prior%", "det."
     );
     for p in &r.params {
         let prof = p.profile.map_or("-".to_owned(), |[a, b]| {
