@@ -44,6 +44,11 @@ pub struct InferClubArgs {
     #[arg(long)]
     pub json: bool,
 
+    /// Write a self-contained HTML report: the estimates, what the shots determine, and the
+    /// uncertainty ellipses of the correlated pairs.
+    #[arg(long, value_name = "FILE.html", conflicts_with = "plan")]
+    pub report: Option<PathBuf>,
+
     /// Plan instead of fitting: the standard error each parameter would have, and the shots
     /// needed to determine it, for the session's swings and impact spread at the start head.
     #[arg(long)]
@@ -176,7 +181,9 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
     if let Some(s) = &args.settings {
         inputs.push(("--settings", s));
     }
-    let plan = OutputPlan::new(&inputs).file("--out-club", args.out_club.as_deref());
+    let plan = OutputPlan::new(&inputs)
+        .file("--out-club", args.out_club.as_deref())
+        .file("--report", args.report.as_deref());
     plan.check()?;
     let settings = settings(&args)?;
     let club = read_club(&args.start)?;
@@ -218,9 +225,16 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
             club_toml_checked(&r.club, &club_comment(&args, &r), out)?.as_bytes(),
         )?;
     }
+    if let Some(path) = &args.report {
+        let title = format!("{} inferred from {}", club.name, args.shots.display());
+        staging.file(path, smash::report::html::infer_page(&r, &title).as_bytes())?;
+    }
     staging.commit()?;
     if let Some(out) = &args.out_club {
         eprintln!("inferred club -> {}", out.display());
+    }
+    if let Some(path) = &args.report {
+        eprintln!("report -> {}", path.display());
     }
     if args.json {
         crate::stdout::println(serde_json::to_string_pretty(&r)?)?;

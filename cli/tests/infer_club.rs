@@ -12,6 +12,7 @@ fn infers_a_head_writes_a_club_compare_reads_and_plans() {
     let shots = synth_world(dir.path(), "face_curvature_world", 3);
     let start = club();
     let out = dir.path().join("head.toml");
+    let page = dir.path().join("head.html");
     let o = smash(&[
         "infer-club",
         "--start",
@@ -20,8 +21,21 @@ fn infers_a_head_writes_a_club_compare_reads_and_plans() {
         s(&shots),
         "--out-club",
         s(&out),
+        "--report",
+        s(&page),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    // The page: self-contained, the estimates' table and an ellipse of a correlated pair.
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.starts_with("<!DOCTYPE html>") && !html.contains("<script"),
+        "{html}"
+    );
+    assert!(
+        html.contains("bulge_mm") && html.contains("data-kind=\"ellipse\""),
+        "{html}"
+    );
+    assert!(!html.contains("NaN") && !html.contains("inf<"));
     let text = String::from_utf8(o.stdout).unwrap();
     for want in [
         "Before fitting",

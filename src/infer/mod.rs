@@ -444,6 +444,13 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
         params,
         before,
         after,
+        correlation: (0..layout.len())
+            .map(|a| {
+                (0..layout.len())
+                    .map(|b| robust[(a, b)] / (robust[(a, a)] * robust[(b, b)]).sqrt())
+                    .collect()
+            })
+            .collect(),
         noise: NoiseReport::of(&fit.noise),
         instrument_noise: NoiseReport::of(&inst),
         chi2_data: fit.cost - chi2_prior,

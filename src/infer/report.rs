@@ -92,6 +92,8 @@ pub struct Report {
     pub before: Identifiability,
     /// What they determine at the inferred head (the fit's noise).
     pub after: Identifiability,
+    /// Correlation matrix of the estimates (from the reported covariance), in `params` order.
+    pub correlation: Vec<Vec<f64>>,
     /// The errors' noise covariance the fit whitened by (estimated from its errors).
     pub noise: NoiseReport,
     /// The instruments' noise carried through the start head (the before-fit analysis).
