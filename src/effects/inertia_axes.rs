@@ -22,10 +22,10 @@
 //!
 //! with the `M` of the diagonal entries as they are when the effect applies. Neutral at
 //! `(1, 1)`; two of them on one shot compose (each scales the moments it names), and they
-//! commute with `inertia_scale` (every step is linear and homogeneous in the tensor). A head
-//! whose heel–toe spread would turn negative (`s_y·I_yy < s_z·M_xx`: only far outside the
-//! plausible range for a driver) is refused by the model's validation, as any club's
-//! unphysical tensor is. Its lane form is the collision matrix's: the effect only changes
+//! commute with `inertia_scale` (every step is linear and homogeneous in the tensor); at
+//! `s_y = s_z = s` it is `inertia_scale` with `s`. The heel–toe spread is floored at a fifth of
+//! the head's own (`s_y/s_z` far below the plausible range for a driver; `I_yy` is then above
+//! `s_y·I_yy`), so that every point of the physical box leaves a tensor a head can have. Its lane form is the collision matrix's: the effect only changes
 //! [`ModelParams::club_inertia_kgm2`], which the scalar solve and the lanes read alike
 //! (`docs/adding-an-effect.md`).
 
@@ -35,6 +35,9 @@ use crate::physics::delivery_vars::DeliveryVar;
 use crate::physics::LaunchComponent;
 use crate::physics::ModelParams;
 
+/// Smallest heel-toe second moment of mass the effect leaves, as a fraction of the head's own.
+const HEEL_TOE_FLOOR: f64 = 0.2;
+
 /// Name in files and on the command line.
 pub const NAME: &str = "inertia_axes";
 
@@ -42,8 +45,9 @@ pub const NAME: &str = "inertia_axes";
 pub const DESCRIPTION: &str =
     "clubhead moments about the vertical (y_F) and heel-toe (z_F) axes scaled by moving mass (I_xx follows)";
 
-/// Parameters, in file order. Physical: a factor of 2 either way keeps a driver-sized head's
-/// tensor within what a head can be (the model refuses one that is not positive definite).
+/// Parameters, in file order. Physical: 0.5–2 about the vertical axis; 0.6–2 about the heel–toe
+/// axis, whose factor also scales the crown–sole spread, which the paper driver's product of
+/// inertia `I_xy` needs above about half its own for the tensor to stay one a head can have.
 /// Plausible: ±25 % (`docs/plausible-ranges.md`).
 pub const PARAMS: &[ParamSpec] = &[
     spec(
@@ -59,7 +63,7 @@ pub const PARAMS: &[ParamSpec] = &[
         "sz",
         "1",
         1.0,
-        0.5,
+        0.6,
         2.0,
         (0.75, 1.25),
         "factor on the moment of inertia about the heel-toe axis z_F (I_zz)",
@@ -73,7 +77,10 @@ pub fn apply(v: &[f64], p: &mut ModelParams) {
     let (ixx, iyy, izz) = (i[(0, 0)], i[(1, 1)], i[(2, 2)]);
     let m_xx = 0.5 * (iyy + izz - ixx);
     let m_yy = 0.5 * (ixx + izz - iyy);
-    let m_zz = sy * iyy - sz * m_xx;
+    // Floored at a fifth of the head's own heel-toe spread: beyond it (s_y/s_z far below the
+    // plausible range) the tensor would stop being one a mass distribution can have, and every
+    // point of the box [lower, upper] must stay evaluable for a fit.
+    let m_zz = (sy * iyy - sz * m_xx).max(HEEL_TOE_FLOOR * 0.5 * (ixx + iyy - izz));
     i[(0, 0)] = sz * m_yy + m_zz;
     i[(1, 1)] = sy * iyy;
     i[(2, 2)] = sz * izz;

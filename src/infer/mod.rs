@@ -413,7 +413,12 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
         .iter()
         .enumerate()
         .map(|(j, h)| {
-            let (value, k) = reported(j, start[j], fit.theta[j]);
+            let (mut value, k) = reported(j, start[j], fit.theta[j]);
+            // The moments as the inferred club holds them (`inertia_axes` floors the heel-toe
+            // spread far outside the plausible range, where I_yy is not start × factor).
+            if let Some(axis) = [3, 4].iter().position(|&i| i == j) {
+                value = inferred.nominal.club_inertia_kgm2[(axis + 1, axis + 1)] * 1e7;
+            }
             let at = |b: f64| (fit.theta[j] - b).abs() <= 1e-9 * (upper[j] - lower[j]);
             ParamReport {
                 name: h.key.to_owned(),
