@@ -76,6 +76,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod fit;
 pub mod flight;
+pub mod infer;
 pub mod inputs;
 pub mod lanes;
 pub mod limits;

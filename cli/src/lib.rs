@@ -10,6 +10,7 @@ pub mod diagnose;
 pub mod effects;
 pub mod flight;
 pub mod import;
+pub mod infer_club;
 pub mod likelihood;
 pub mod measured;
 pub mod merge;
@@ -67,6 +68,10 @@ pub enum Command {
     /// Answer one design change (a mass moved, the CoM shifted, the MOI scaled, loft, bulge
     /// or roll changed) in yards against the base head, for a stated golfer and mishits.
     Whatif(whatif::WhatIfArgs),
+    /// Infer the head's effective properties (CoM, moments, face radii, COR and its falloff,
+    /// loft and face biases) from the shots, with the start club as a stated weak prior, what
+    /// the shots determine, and a plan of the shots needed (--plan).
+    InferClub(infer_club::InferClubArgs),
 }
 
 /// Run a parsed command line, its unset options first taken from the project file, if any
@@ -91,6 +96,7 @@ pub fn run(mut cli: Cli) -> anyhow::Result<()> {
         Command::Diagnose(args) => diagnose::run(args),
         Command::Import(args) => import::run(args),
         Command::Whatif(args) => whatif::run(args),
+        Command::InferClub(args) => infer_club::run(args),
     }
 }
 
@@ -122,6 +128,10 @@ impl Command {
             | Command::Run(run::RunArgs { effect_defs, .. })
             | Command::Merge(merge::MergeArgs { effect_defs, .. }) => Layered {
                 effect_defs: Some(effect_defs),
+                ..Layered::default()
+            },
+            Command::InferClub(a) => Layered {
+                shots_format: Some(&mut a.shots_format),
                 ..Layered::default()
             },
             Command::Flight(_) | Command::Whatif(_) => Layered::default(),

@@ -138,3 +138,32 @@ fn every_json_report_is_documented_and_versioned() {
     let run = check("run", &run, &["yards"]);
     assert!(run["optimiser"].is_object(), "optimise.toml optimises");
 }
+
+#[test]
+fn infer_club_json_is_documented_and_versioned() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = synth_world(dir.path(), "face_curvature_world", 3);
+    let club = club();
+    let base = [
+        "infer-club",
+        "--start",
+        club.as_str(),
+        "--shots",
+        s(&shots),
+        "--json",
+    ];
+    let mut fit = base.to_vec();
+    fit.push("--no-profile");
+    let json = check("infer-club", &json_of(&fit), &[]);
+    let params = json["params"].as_array().unwrap();
+    assert_eq!(params.len(), 11, "{json}");
+    for p in params {
+        for key in ["name", "value", "stderr", "start", "determined"] {
+            assert!(!p[key].is_null(), "{key} missing in {p}");
+        }
+    }
+    let mut plan = base.to_vec();
+    plan.extend(["--plan", "--plan-shots", "1200"]);
+    let json = check("infer-club --plan", &json_of(&plan), &[]);
+    assert_eq!(json["n_planned"], 1200, "{json}");
+}

@@ -314,7 +314,7 @@ pub(super) fn corrected_location_variance(sigma_mm: f64, var_measured_mm2: f64) 
 /// delivery variable (file units per file unit): central differences over `±steps[j]`
 /// (one-sided when one side cannot be solved; a zero column when `steps[j]` is 0 or neither
 /// side can be solved).
-pub(super) fn delivery_jacobians(
+pub(crate) fn delivery_jacobians(
     club: &ClubSpec,
     shots: &[Shot],
     steps: &[f64; N_DELIVERY],

@@ -25,13 +25,14 @@
 //! | `face_curvature` | `d_bulge_mm`, `d_roll_mm` | bulge and roll radii + the changes |
 //! | `cor_spot` | `y0_mm`, `z0_mm`, `c_per_mm2` | `e = cor − c·((y − y0)² + (z − z0)²)`, y and z in mm |
 //! | `shaft_fraction` | `f` | `m_c → m_c + f·m_shaft`, per shot (the paper's Figure 3 relation) |
+//! | `inertia_axes` | `sy`, `sz` | `I_yy → s_y·I_yy`, `I_zz → s_z·I_zz` by moving mass (`I_xx` follows) |
 //!
 //! Each effect is one file in this folder plus one line in the `library!` registration below
 //! (`docs/adding-an-effect.md`). An effect only changes [`ModelParams`]; the laws that read
 //! them are written once in [`crate::physics::laws`], for the scalar solve and the kernel alike.
 //!
 //! When several listed effects of one name apply to the same shot (a global one and a per-group
-//! one, say), they compose: additive parameters add, `inertia_scale` multiplies, and `friction`
+//! one, say), they compose: additive parameters add, `inertia_scale` and `inertia_axes` multiply, and `friction`
 //! takes the smallest `mu`.
 
 use std::fmt;
@@ -194,6 +195,7 @@ library! {
     face_curvature => FaceCurvature,
     cor_spot => CorSpot,
     shaft_fraction => ShaftFraction,
+    inertia_axes => InertiaAxes,
 }
 
 impl EffectKind {

@@ -6,6 +6,7 @@
 mod diagnose;
 mod figures;
 mod flight;
+mod infer;
 mod pages;
 
 use std::fmt::Write as _;
@@ -15,6 +16,7 @@ use crate::physics::LaunchComponent;
 
 pub use diagnose::diagnose_page;
 pub use flight::flight_page;
+pub use infer::infer_page;
 pub use pages::{calibrate_page, compare_page};
 
 /// Escape text for HTML.
