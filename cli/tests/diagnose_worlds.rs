@@ -98,12 +98,10 @@ fn each_hidden_library_effect_is_named_first() {
         let sel = selected(&d);
         // On launch data alone some library effects are aliases: `added_mass` and `cor_level`
         // change ball speed alike (so does `hosel_mass` at the centre), `cor_speed` and
-        // `cor_power` differ only by curvature over the speeds of one experiment, and
-        // `inertia_axes` at `sy = sz = s` is `inertia_scale` exactly (it nests it). Naming the
+        // `cor_power` differ only by curvature over the speeds of one experiment. Naming the
         // alias first is the data's limit, not a wrong diagnosis.
         let aliases: Vec<&str> = match *effect {
             "added_mass" => vec!["added_mass", "cor_level", "hosel_mass"],
-            "inertia_scale" => vec!["inertia_scale", "inertia_axes"],
             "cor_speed" => vec!["cor_speed", "cor_power"],
             e => vec![e],
         };

@@ -4,11 +4,16 @@ use crate::effects::{EffectId, EffectKind};
 use crate::fit::{EffectRequest, FitError};
 use crate::model::Shot;
 
-/// Library effects that are searched only when named with `--candidates`. None at present:
-/// `cor_level`, `hosel_mass` and `cor_power` were here because they alias `added_mass` and
-/// `cor_speed` on launch data alone; alias arbitration (a plausible alias is preferred to an
-/// implausible best candidate, and the pair reported) made them default candidates.
-pub const OPT_IN_CANDIDATES: [EffectKind; 0] = [];
+/// Library effects that are searched only when named with `--candidates`: `inertia_axes`, the
+/// two moments of `smash infer-club` (`docs/infer-club.md`). At equal factors it is
+/// `inertia_scale` exactly, so as a default candidate it only doubles that one's chance to
+/// stand in: offered by default it was selected in six of six seeds of the curved-face world
+/// outside the library (`cli/tests/library_forms.rs`), with a false finding in one, and moved
+/// the paper world's `ball_offset.dy` outside 2 SE in three of twenty seeds
+/// (`cli/tests/world_seeds.rs`). (`cor_level`, `hosel_mass` and `cor_power` were once here
+/// because they alias `added_mass` and `cor_speed` on launch data alone; alias arbitration
+/// made them default candidates.)
+pub const OPT_IN_CANDIDATES: [EffectKind; 1] = [EffectKind::InertiaAxes];
 
 /// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
 /// `added_mass@group` and `hosel_mass@group` with several groups, plus every registered user-defined effect
