@@ -1,5 +1,5 @@
 //! The fits stay on the lanes: in a diagnose over every library effect (each one fitted as a
-//! candidate, `shaft_fraction` among them) the lanes refuse no evaluation for want of a lane
+//! candidate, `shaft_fraction` among them, and those searched only when named) the lanes refuse no evaluation for want of a lane
 //! form (`smash::fit::scalar_path_counts`), and neither do they in a calibration with
 //! user-defined effects of every kind the lanes take. (Shots the lanes cannot compute at a
 //! trial parameter value, off the face say, still go one at a time so that the first is named;
@@ -14,18 +14,28 @@ mod worlds;
 use std::path::Path;
 
 use smash::data::effect_defs::read_effect_defs;
-use smash::diagnose::{diagnose, DiagnoseOptions};
+use smash::diagnose::{default_candidates_without, diagnose, DiagnoseOptions, OPT_IN_CANDIDATES};
 use smash::effects::EffectKind;
-use smash::fit::{calibrate, parse_effect_list, scalar_path_counts, CalibrateOptions};
+use smash::fit::{
+    calibrate, parse_effect_list, scalar_path_counts, CalibrateOptions, EffectRequest,
+};
 
 #[test]
 fn fits_never_leave_the_lanes() {
     let club = worlds::paper_club();
     let shots = worlds::paper_world(20);
     let before = scalar_path_counts();
+    // The default candidates and those searched only when named (`OPT_IN_CANDIDATES`).
+    let mut candidates = default_candidates_without(&shots, &[]).expect("defaults");
+    candidates.extend(
+        OPT_IN_CANDIDATES
+            .iter()
+            .map(|&k| EffectRequest::Global(k.into())),
+    );
     let opts = DiagnoseOptions {
         max_steps: 3,
         max_iters: 30,
+        candidates: Some(candidates),
         ..DiagnoseOptions::default()
     };
     let d = diagnose(&club, &shots, &opts, None).expect("diagnose runs");
