@@ -234,7 +234,7 @@ fn calibrate(
 ) -> PyResult<(String, Club, Vec<String>)> {
     let shots = Shots::new(shots_path, shots_csv, label)?;
     let club: &Club = &club;
-    let progress = progress.map(|p| Arc::new(PyProgress(p)) as Arc<dyn smash::fit::Progress>);
+    let progress = progress.map(|p| Arc::new(PyProgress(p, None)) as Arc<dyn smash::fit::Progress>);
     let (json, spec, warnings) = py
         .detach(|| -> anyhow::Result<_> {
             let Command::Calibrate(a) =
@@ -280,7 +280,8 @@ fn diagnose(
 ) -> PyResult<(String, Club, Vec<String>)> {
     let shots = Shots::new(shots_path, shots_csv, label)?;
     let club: &Club = &club;
-    let progress = progress.map(PyProgress);
+    // The signal poller of `interruptible` is this thread: woken after every job.
+    let progress = progress.map(|p| PyProgress(p, Some(std::thread::current())));
     let cancel = Cancel::new();
     let (json, spec, warnings) = interruptible(py, &cancel, || -> anyhow::Result<_> {
         let Command::Diagnose(a) =

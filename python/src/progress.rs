@@ -9,8 +9,19 @@ use smash::diagnose::DiagnoseProgress;
 use smash::fit::{IterInfo, Progress};
 
 /// A Python object with `step(step, jobs)` and `job_done()` (diagnose), or
-/// `iteration(stage, iter, chi2, lambda_, evaluations)` (calibrate).
-pub struct PyProgress(pub Py<PyAny>);
+/// `iteration(stage, iter, chi2, lambda_, evaluations)` (calibrate), and the thread that looks
+/// for Python's signals while the work runs, when there is one: woken after every finished job,
+/// so that a Ctrl-C (or a signal the callback itself raised) is seen before the next fits
+/// start, not only at the next poll.
+pub struct PyProgress(pub Py<PyAny>, pub Option<std::thread::Thread>);
+
+impl PyProgress {
+    fn wake_poller(&self) {
+        if let Some(t) = &self.1 {
+            t.unpark();
+        }
+    }
+}
 
 impl DiagnoseProgress for PyProgress {
     fn step(&self, step: usize, jobs: usize) {
@@ -22,6 +33,7 @@ impl DiagnoseProgress for PyProgress {
         Python::attach(|py| {
             let _ = self.0.call_method0(py, "job_done");
         });
+        self.wake_poller();
     }
 }
 
