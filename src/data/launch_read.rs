@@ -149,12 +149,9 @@ impl LaunchTable {
         for (line, e) in fresh {
             crate::data::left_out::push_bad(&mut self.left_out, line, e);
         }
-        let mut k = keep.iter();
-        self.records.retain(|_| *k.next().expect("parallel"));
-        let mut k = keep.iter();
-        self.lines.retain(|_| *k.next().expect("parallel"));
-        let mut k = keep.iter();
-        self.launches.retain(|_| *k.next().expect("parallel"));
+        crate::data::left_out::retain_kept(&mut self.records, &keep);
+        crate::data::left_out::retain_kept(&mut self.lines, &keep);
+        crate::data::left_out::retain_kept(&mut self.launches, &keep);
         crate::data::left_out::refuse_when_unusable(path, &self.left_out, self.launches.len())
     }
 

@@ -46,6 +46,13 @@ fn kind(message: &str) -> &'static str {
     }
 }
 
+/// Keep the items of `items` whose entry in `keep` (parallel to it) is true: the rows of one
+/// table held in several parallel vectors are left out of each alike.
+pub fn retain_kept<T>(items: &mut Vec<T>, keep: &[bool]) {
+    let mut k = keep.iter();
+    items.retain(|_| *k.next().expect("parallel"));
+}
+
 /// Add the row at `line` that `e` says cannot be used to `list`, under the reason of its kind
 /// and column (`a cell that is not a number in column 'backspin_rpm'`).
 pub fn push_bad(list: &mut Vec<LeftOut>, line: usize, e: DataError) {

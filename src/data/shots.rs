@@ -148,12 +148,9 @@ impl ShotTable {
             return 0;
         }
         let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
-        let mut k = keep.iter();
-        table.shots.retain(|_| *k.next().expect("parallel"));
-        let mut k = keep.iter();
-        table.records.retain(|_| *k.next().expect("parallel"));
-        let mut k = keep.iter();
-        table.lines.retain(|_| *k.next().expect("parallel"));
+        crate::data::left_out::retain_kept(&mut table.shots, &keep);
+        crate::data::left_out::retain_kept(&mut table.records, &keep);
+        crate::data::left_out::retain_kept(&mut table.lines, &keep);
         table.conventions.retain(|c| !derived(c));
         let n = lines.len();
         table.left_out.push(LeftOut {
