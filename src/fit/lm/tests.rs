@@ -187,8 +187,9 @@ fn a_start_evaluation_given_gives_the_same_fit_one_evaluation_cheaper() {
 /// Keeping the start's Jacobian (chord steps) from a start near the solution, as a
 /// cross-validation fold starts: no Jacobian is computed and the fit ends far closer to the
 /// solution than it started (second order: the excess χ² falls by more than 10⁴); from a
-/// start far away the kept Jacobian fails, the fit computes its own and ends where the plain
-/// fit does.
+/// start far away the kept Jacobian fails, the fit computes its own, keeps that one in its
+/// turn (refreshed chord steps) and ends where the plain fit does to second order, with fewer
+/// Jacobians than the plain fit takes from there.
 #[test]
 fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
     let inner = noisy_decay();
@@ -203,7 +204,7 @@ fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
         (o.p, o.cost, o.jacobians)
     };
     let far = DVector::from_vec(vec![1.0, 2.0]);
-    let (p_full, cost_full, _) = run(&far, false);
+    let (p_full, cost_full, j_full) = run(&far, false);
     let near = &p_full + DVector::from_vec(vec![0.02, -0.01]);
     let cost_near = inner.apply(&near).unwrap().norm_squared();
     let (p_kept, cost_kept, jacobians) = run(&near, true);
@@ -216,7 +217,9 @@ fn a_kept_start_jacobian_reaches_the_solution_from_near_and_far() {
     assert_relative_eq!(p_kept, p_full, max_relative = 1e-4);
     let (p_far, cost_far, jacobians) = run(&far, true);
     assert!(jacobians > 0);
-    assert_relative_eq!(p_far, p_full, max_relative = 1e-7);
+    assert!(jacobians < j_full, "{jacobians} Jacobians, plain {j_full}");
+    assert_relative_eq!(p_far, p_full, max_relative = 1e-6);
+    assert!(cost_far >= cost_full * (1.0 - 1e-12));
     assert_relative_eq!(cost_far, cost_full, max_relative = 1e-9);
 }
 
