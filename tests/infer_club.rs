@@ -37,6 +37,7 @@ use smash::infer::head::{head_layout, HEAD_PARAMS};
 use smash::infer::{fit_data, run, run_plan, Settings};
 use smash::measurement::ImpactNoise;
 use smash::model::Shot;
+use smash::physics::delivery_vars::DeliveryVar;
 use smash::synth::{generate, SynthConfig};
 use smash::ModelParams;
 
@@ -152,12 +153,47 @@ fn truth(h: &Head) -> [f64; 11] {
 }
 
 fn session(h: &Head, seed: u64) -> Vec<Shot> {
+    session_with_noise(h, seed, NoiseOn::All)
+}
+
+/// Which of `smash synth`'s delivery noise a world carries (the launch noise always).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NoiseOn {
+    /// The default: every delivery variable, impact location included.
+    All,
+    /// The impact location's only.
+    Location,
+    /// The other delivery variables' only.
+    Delivery,
+    /// None.
+    None,
+}
+
+impl NoiseOn {
+    /// Keep variable `v`'s noise?
+    fn keeps(self, v: DeliveryVar) -> bool {
+        let location = matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ);
+        match self {
+            Self::All => true,
+            Self::Location => location,
+            Self::Delivery => !location,
+            Self::None => false,
+        }
+    }
+}
+
+fn session_with_noise(h: &Head, seed: u64, noise: NoiseOn) -> Vec<Shot> {
     let (club, hidden) = true_world(h);
-    let cfg = SynthConfig {
+    let mut cfg = SynthConfig {
         seed,
         hidden,
         ..SynthConfig::default()
     };
+    for v in DeliveryVar::ALL {
+        if !noise.keeps(v) {
+            cfg.delivery_noise[v.index()] = 0.0;
+        }
+    }
     generate(&cfg, &club)
         .unwrap()
         .shots
@@ -419,4 +455,86 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
         failures.push(format!("pooled coverage {coverage:.3} < 0.90"));
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// Held-out diagnosis of the coverage (not part of the validation above, whose heads and seeds
+/// were fixed first): the same four heads, 40 further seeds each (`synth` seed
+/// `90_000 + 100·h + s`, s = 1–40), with the synthetic world's delivery noise as shipped or
+/// switched off in part (`SMASH_HELDOUT_NOISE` = `all` (default), `location`, `delivery` or
+/// `none`; the fit's correction follows). Prints, per head and parameter, the z-scores'
+/// mean and SD and the estimates within 2 SE, the radii's z also on the curvature scale `1/R`.
+/// `cargo test -p smash --test infer_club -- --ignored --nocapture`; the figures are in
+/// docs/infer-club.md ("Validation").
+#[test]
+#[ignore = "diagnosis on held-out seeds: 160 fits a run, figures in docs/infer-club.md"]
+fn held_out_seeds_locate_the_coverage_shortfall() {
+    let noise = match std::env::var("SMASH_HELDOUT_NOISE").as_deref() {
+        Ok("location") => NoiseOn::Location,
+        Ok("delivery") => NoiseOn::Delivery,
+        Ok("none") => NoiseOn::None,
+        _ => NoiseOn::All,
+    };
+    let mut settings = Settings {
+        profile_grid_se: vec![],
+        ..Settings::default()
+    };
+    for v in DeliveryVar::ALL {
+        if !noise.keeps(v) {
+            settings.delivery_noise_sd[v.index()] = 0.0;
+        }
+    }
+    let start = start_club();
+    let jobs: Vec<(usize, u64)> = (0..HEADS.len())
+        .flat_map(|h| (1..=40).map(move |s| (h, s)))
+        .collect();
+    let fits: Vec<(usize, [f64; 11], [f64; 11])> = jobs
+        .par_iter()
+        .map(|&(hi, s)| {
+            let shots = session_with_noise(&HEADS[hi], 90_000 + 100 * (hi as u64 + 1) + s, noise);
+            let r = run(&settings, &start, &shots).unwrap();
+            let value = std::array::from_fn(|j| r.params[j].value);
+            (hi, value, std::array::from_fn(|j| r.params[j].stderr))
+        })
+        .collect();
+    let summary = |z: &[f64]| {
+        let n = z.len() as f64;
+        let mean = z.iter().sum::<f64>() / n;
+        let sd = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let within = z.iter().filter(|v| v.abs() <= 2.0).count();
+        (mean, sd, within)
+    };
+    let mut pooled = (0, 0);
+    println!("delivery noise: {noise:?}");
+    for (hi, h) in HEADS.iter().enumerate() {
+        let t = truth(h);
+        let ws: Vec<_> = fits.iter().filter(|f| f.0 == hi).collect();
+        println!("head {}:", hi + 1);
+        for (j, hp) in HEAD_PARAMS.iter().enumerate() {
+            let z: Vec<f64> = ws.iter().map(|w| (w.1[j] - t[j]) / w.2[j]).collect();
+            let (mean, sd, within) = summary(&z);
+            pooled.0 += within;
+            pooled.1 += z.len();
+            let mut line = format!(
+                "  {:<22} z mean {mean:+.2}  SD {sd:.2}  within 2 SE {within}/{}",
+                hp.key,
+                z.len()
+            );
+            if hp.unit == "mm" && hp.key.ends_with("_mm") {
+                // Curvature 1/R, its SE by the delta method, SE_R / R².
+                let zk: Vec<f64> = ws
+                    .iter()
+                    .map(|w| (1.0 / w.1[j] - 1.0 / t[j]) / (w.2[j] / w.1[j].powi(2)))
+                    .collect();
+                let (km, ksd, kw) = summary(&zk);
+                line += &format!("  (on 1/R: z mean {km:+.2}  SD {ksd:.2}  within {kw})");
+            }
+            println!("{line}");
+        }
+    }
+    println!(
+        "pooled: {}/{} = {:.3} within 2 SE",
+        pooled.0,
+        pooled.1,
+        pooled.0 as f64 / pooled.1 as f64
+    );
 }
