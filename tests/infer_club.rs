@@ -37,6 +37,7 @@ use smash::infer::head::{head_layout, HEAD_PARAMS};
 use smash::infer::{fit_data, run, run_plan, Settings};
 use smash::measurement::ImpactNoise;
 use smash::model::Shot;
+use smash::physics::delivery_vars::DeliveryVar;
 use smash::synth::{generate, SynthConfig};
 use smash::ModelParams;
 
@@ -152,12 +153,47 @@ fn truth(h: &Head) -> [f64; 11] {
 }
 
 fn session(h: &Head, seed: u64) -> Vec<Shot> {
+    session_with_noise(h, seed, NoiseOn::All)
+}
+
+/// Which of `smash synth`'s delivery noise a world carries (the launch noise always).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum NoiseOn {
+    /// The default: every delivery variable, impact location included.
+    All,
+    /// The impact location's only.
+    Location,
+    /// The other delivery variables' only.
+    Delivery,
+    /// None.
+    None,
+}
+
+impl NoiseOn {
+    /// Keep variable `v`'s noise?
+    fn keeps(self, v: DeliveryVar) -> bool {
+        let location = matches!(v, DeliveryVar::ImpactY | DeliveryVar::ImpactZ);
+        match self {
+            Self::All => true,
+            Self::Location => location,
+            Self::Delivery => !location,
+            Self::None => false,
+        }
+    }
+}
+
+fn session_with_noise(h: &Head, seed: u64, noise: NoiseOn) -> Vec<Shot> {
     let (club, hidden) = true_world(h);
-    let cfg = SynthConfig {
+    let mut cfg = SynthConfig {
         seed,
         hidden,
         ..SynthConfig::default()
     };
+    for v in DeliveryVar::ALL {
+        if !noise.keeps(v) {
+            cfg.delivery_noise[v.index()] = 0.0;
+        }
+    }
     generate(&cfg, &club)
         .unwrap()
         .shots
@@ -186,8 +222,11 @@ struct World {
     value: [f64; 11],
     stderr: [f64; 11],
     determined: [bool; 11],
-    /// The plan's predicted SE at the start head for this session's design.
+    /// The plan's predicted SE at the start head for this session's design (before any shot).
     planned_se: [f64; 11],
+    /// The plan's predicted SE at the fitted head for this session's design: the plan a user
+    /// makes for the next session with the head this one inferred (`--start head.toml --plan`).
+    planned_fit_se: [f64; 11],
     /// Data-only SE at the true head (the plan's machinery at the truth).
     truth_data_se: [Option<f64>; 11],
     /// The plan's SE at the true head (information only: the plan a user makes is the start's).
@@ -207,6 +246,7 @@ fn world(hi: usize, s: u64) -> World {
     let shots = session(h, base + s);
     let r = run(&settings, &start, &shots).unwrap();
     let plan = run_plan(&settings, &start, &shots, None, None, &[]).unwrap();
+    let plan_fit = run_plan(&settings, &r.club, &shots, None, None, &[]).unwrap();
     let (true_club, hidden) = true_world(h);
     let true_full = true_club.with_effects(hidden).unwrap();
     let at_truth = run_plan(&settings, &true_full, &shots, None, None, &[]).unwrap();
@@ -216,6 +256,7 @@ fn world(hi: usize, s: u64) -> World {
         stderr: std::array::from_fn(|j| r.params[j].stderr),
         determined: std::array::from_fn(|j| r.params[j].determined),
         planned_se: std::array::from_fn(|j| plan.params[j].stderr),
+        planned_fit_se: std::array::from_fn(|j| plan_fit.params[j].stderr),
         truth_data_se: std::array::from_fn(|j| at_truth.params[j].data_stderr),
         truth_se: std::array::from_fn(|j| at_truth.params[j].stderr),
         inferred_floor: floor_sums(&settings, &r.club, &held_out),
@@ -234,6 +275,10 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
     let start = start_club();
     let start_vals = smash::infer::head::start_values(&start);
     let mut pooled = (0usize, 0usize);
+    // Per parameter, the heads' (observed SD / plan at the fitted head)² (determined in every
+    // seed only), and the pairs within 30 % one by one.
+    let mut plan_by_param: Vec<Vec<f64>> = vec![Vec::new(); HEAD_PARAMS.len()];
+    let mut plan_one_by_one = (0usize, 0usize);
     let mut literal_failures = Vec::new();
     let mut failures = Vec::new();
     for (hi, h) in HEADS.iter().enumerate() {
@@ -255,6 +300,7 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
                 / (vals.len() - 1) as f64)
                 .sqrt();
             let planned = ws.iter().map(|w| w.planned_se[j]).sum::<f64>() / ws.len() as f64;
+            let planned_fit = ws.iter().map(|w| w.planned_fit_se[j]).sum::<f64>() / ws.len() as f64;
             let at_truth = ws.iter().map(|w| w.truth_se[j]).sum::<f64>() / ws.len() as f64;
             let reported_se = ws.iter().map(|w| w.stderr[j]).sum::<f64>() / ws.len() as f64;
             let mean_z = ws
@@ -265,14 +311,17 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
             let prior = hp.prior_sd * smash::infer::head::reported(j, start_vals[j], 1.0).1;
             println!(
                 "  {:<22} truth {:>10.4e}  determined {:>2}/10  within 2 SE {:>2}/{:<2}  \
-                 observed SD {:.3e}  planned SE {:.3e}  ratio {:.2}  (reported SE {:.3e}, \
-                 plan at the true head {:.3e}, mean z {:+.2})",
+                 observed SD {:.3e}  planned SE at the fitted head {:.3e}  ratio {:.2}  \
+                 (at the start head {:.3e}, ratio {:.2}; reported SE {:.3e}, plan at the true \
+                 head {:.3e}, mean z {:+.2})",
                 hp.key,
                 t[j],
                 det.len(),
                 within,
                 det.len(),
                 sd_obs,
+                planned_fit,
+                sd_obs / planned_fit,
                 planned,
                 sd_obs / planned,
                 reported_se,
@@ -324,7 +373,11 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
                 }
             }
             if det.len() == ws.len() {
-                plan_ratios.push(sd_obs / planned);
+                let ratio = sd_obs / planned_fit;
+                plan_ratios.push(ratio);
+                plan_by_param[j].push(ratio);
+                plan_one_by_one.0 += usize::from((ratio - 1.0).abs() <= 0.3);
+                plan_one_by_one.1 += 1;
             }
         }
         // Plan against the seeds' spread, pooled over the parameters determined in every seed.
@@ -336,8 +389,8 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
             .filter(|r| (**r - 1.0).abs() <= 0.3)
             .count();
         println!(
-            "  plan: observed/planned pooled {pooled_ratio:.3} over {} parameters; {within30} \
-             within 30 % one by one",
+            "  plan at the fitted head: observed/planned pooled {pooled_ratio:.3} over {} \
+             parameters; {within30} within 30 % one by one",
             plan_ratios.len()
         );
         if plan_ratios.is_empty() || (pooled_ratio - 1.0).abs() > 0.3 {
@@ -367,6 +420,29 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
             ));
         }
     }
+    // The plan against the seeds' spread, each parameter pooled over the heads (4 × 9 degrees
+    // of freedom: the ratio is then known to about 12 %, where one head's 10 seeds know it to
+    // 24 % only and a right plan misses 30 % in about one (head, parameter) pair of five).
+    for (j, hp) in HEAD_PARAMS.iter().enumerate() {
+        let r = &plan_by_param[j];
+        let rms = (r.iter().map(|x| x * x).sum::<f64>() / r.len().max(1) as f64).sqrt();
+        println!(
+            "plan {:<22} observed/planned at the fitted head, pooled over {} heads: {rms:.3}",
+            hp.key,
+            r.len()
+        );
+        if r.is_empty() || (rms - 1.0).abs() > 0.3 {
+            failures.push(format!(
+                "{}: plan at the fitted head against the seeds' spread {rms:.3} over {} heads",
+                hp.key,
+                r.len()
+            ));
+        }
+    }
+    println!(
+        "plan one by one: {}/{} (head, parameter) pairs within 30 %",
+        plan_one_by_one.0, plan_one_by_one.1
+    );
     let coverage = pooled.0 as f64 / pooled.1.max(1) as f64;
     println!(
         "pooled coverage of determined estimates: {}/{} = {coverage:.3}; literal rule (>= 9 of \
@@ -379,4 +455,86 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
         failures.push(format!("pooled coverage {coverage:.3} < 0.90"));
     }
     assert!(failures.is_empty(), "{failures:#?}");
+}
+
+/// Held-out diagnosis of the coverage (not part of the validation above, whose heads and seeds
+/// were fixed first): the same four heads, 40 further seeds each (`synth` seed
+/// `90_000 + 100·h + s`, s = 1–40), with the synthetic world's delivery noise as shipped or
+/// switched off in part (`SMASH_HELDOUT_NOISE` = `all` (default), `location`, `delivery` or
+/// `none`; the fit's correction follows). Prints, per head and parameter, the z-scores'
+/// mean and SD and the estimates within 2 SE, the radii's z also on the curvature scale `1/R`.
+/// `cargo test -p smash --test infer_club -- --ignored --nocapture`; the figures are in
+/// docs/infer-club.md ("Validation").
+#[test]
+#[ignore = "diagnosis on held-out seeds: 160 fits a run, figures in docs/infer-club.md"]
+fn held_out_seeds_locate_the_coverage_shortfall() {
+    let noise = match std::env::var("SMASH_HELDOUT_NOISE").as_deref() {
+        Ok("location") => NoiseOn::Location,
+        Ok("delivery") => NoiseOn::Delivery,
+        Ok("none") => NoiseOn::None,
+        _ => NoiseOn::All,
+    };
+    let mut settings = Settings {
+        profile_grid_se: vec![],
+        ..Settings::default()
+    };
+    for v in DeliveryVar::ALL {
+        if !noise.keeps(v) {
+            settings.delivery_noise_sd[v.index()] = 0.0;
+        }
+    }
+    let start = start_club();
+    let jobs: Vec<(usize, u64)> = (0..HEADS.len())
+        .flat_map(|h| (1..=40).map(move |s| (h, s)))
+        .collect();
+    let fits: Vec<(usize, [f64; 11], [f64; 11])> = jobs
+        .par_iter()
+        .map(|&(hi, s)| {
+            let shots = session_with_noise(&HEADS[hi], 90_000 + 100 * (hi as u64 + 1) + s, noise);
+            let r = run(&settings, &start, &shots).unwrap();
+            let value = std::array::from_fn(|j| r.params[j].value);
+            (hi, value, std::array::from_fn(|j| r.params[j].stderr))
+        })
+        .collect();
+    let summary = |z: &[f64]| {
+        let n = z.len() as f64;
+        let mean = z.iter().sum::<f64>() / n;
+        let sd = (z.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (n - 1.0)).sqrt();
+        let within = z.iter().filter(|v| v.abs() <= 2.0).count();
+        (mean, sd, within)
+    };
+    let mut pooled = (0, 0);
+    println!("delivery noise: {noise:?}");
+    for (hi, h) in HEADS.iter().enumerate() {
+        let t = truth(h);
+        let ws: Vec<_> = fits.iter().filter(|f| f.0 == hi).collect();
+        println!("head {}:", hi + 1);
+        for (j, hp) in HEAD_PARAMS.iter().enumerate() {
+            let z: Vec<f64> = ws.iter().map(|w| (w.1[j] - t[j]) / w.2[j]).collect();
+            let (mean, sd, within) = summary(&z);
+            pooled.0 += within;
+            pooled.1 += z.len();
+            let mut line = format!(
+                "  {:<22} z mean {mean:+.2}  SD {sd:.2}  within 2 SE {within}/{}",
+                hp.key,
+                z.len()
+            );
+            if hp.unit == "mm" && hp.key.ends_with("_mm") {
+                // Curvature 1/R, its SE by the delta method, SE_R / R².
+                let zk: Vec<f64> = ws
+                    .iter()
+                    .map(|w| (1.0 / w.1[j] - 1.0 / t[j]) / (w.2[j] / w.1[j].powi(2)))
+                    .collect();
+                let (km, ksd, kw) = summary(&zk);
+                line += &format!("  (on 1/R: z mean {km:+.2}  SD {ksd:.2}  within {kw})");
+            }
+            println!("{line}");
+        }
+    }
+    println!(
+        "pooled: {}/{} = {:.3} within 2 SE",
+        pooled.0,
+        pooled.1,
+        pooled.0 as f64 / pooled.1 as f64
+    );
 }

@@ -35,6 +35,11 @@ fn infers_a_head_writes_a_club_compare_reads_and_plans() {
         html.contains("bulge_mm") && html.contains("data-kind=\"ellipse\""),
         "{html}"
     );
+    // The face map of the inferred COR.
+    assert!(
+        html.contains("data-kind=\"face\"") && html.contains("inferred COR over the face"),
+        "{html}"
+    );
     assert!(!html.contains("NaN") && !html.contains("inf<"));
     let text = String::from_utf8(o.stdout).unwrap();
     for want in [

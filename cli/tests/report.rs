@@ -44,6 +44,8 @@ struct Reports {
     study: PathBuf,
     /// A study of 18 variants (small multiples and difference maps).
     sweep: PathBuf,
+    /// `infer-club`'s page (the inferred COR's face map, the ellipses).
+    infer: PathBuf,
 }
 
 fn reports() -> Reports {
@@ -112,12 +114,24 @@ fn reports() -> Reports {
         "--report",
         sweep.to_str().unwrap(),
     ]));
+    let infer = path("infer.html");
+    ok(smash(&[
+        "infer-club",
+        "--start",
+        CLUB,
+        "--shots",
+        s,
+        "--no-profile",
+        "--report",
+        infer.to_str().unwrap(),
+    ]));
     Reports {
         compare: (compare, serde_json::from_str(&cj).unwrap()),
         calibrate: (calibrate, serde_json::from_str(&kj).unwrap()),
         diagnose: (diagnose, serde_json::from_str(&dj).unwrap()),
         study,
         sweep,
+        infer,
         _dir: dir,
     }
 }
@@ -420,6 +434,7 @@ fn pages_render_in_chromium() {
         ("diagnose", &r.diagnose.0, 2),
         ("study", &r.study, 1),
         ("study of 18 variants", &r.sweep, 4 * 35),
+        ("infer-club", &r.infer, 1),
     ] {
         let (png, console, dom) = render(&chrome, page, &dir.path().join(format!("{name}.png")));
         assert!(png.starts_with(b"\x89PNG"), "{name}: not a PNG");
@@ -431,6 +446,12 @@ fn pages_render_in_chromium() {
         );
         assert!(console.is_empty(), "{name}: console messages: {console:?}");
         let svgs = dom.matches("<svg").count();
+        if name == "infer-club" {
+            assert!(
+                dom.contains("data-kind=\"face\"") && dom.contains("inferred COR over the face"),
+                "infer-club: the browser's DOM has no face map of the inferred COR"
+            );
+        }
         assert!(
             svgs >= min_charts,
             "{name}: the browser's DOM has {svgs} SVG charts"

@@ -203,6 +203,20 @@ pub fn head_layout() -> ParamLayout {
     .expect("the head effects are distinct")
 }
 
+/// How far behind the face plane the CoM must stay, mm: the club file's rule is only that it
+/// lie behind the face (`x < 0`); 1 µm keeps a fit that stops there writable.
+pub const FACE_CLEARANCE_MM: f64 = 1e-3;
+
+/// The fit's upper bounds for start club `club`: [`head_layout`]'s, with the CoM depth offset
+/// stopped where the CoM would reach the face (`com_offset`'s own range allows any head's
+/// CoM to pass it, and a club with its CoM at or in front of the face is not a club).
+pub fn upper_bounds(club: &ClubSpec) -> DVector<f64> {
+    let mut upper = head_layout().upper();
+    let to_face_mm = -club.nominal.club_com_m.x * 1e3 - FACE_CLEARANCE_MM;
+    upper[0] = upper[0].min(to_face_mm);
+    upper
+}
+
 /// The requests of [`head_layout`] (for the variation check and reports).
 pub fn head_requests() -> Vec<EffectRequest> {
     HEAD_EFFECTS
@@ -296,4 +310,25 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
     }
     let name = format!("{} (inferred by infer-club)", start.name);
     ClubSpec::new(name, start.static_loft_rad, p, effects).map_err(|e| e.to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_com_depth_offset_stops_short_of_the_face() {
+        let mut p = crate::ModelParams::paper_driver();
+        p.club_com_m.x = -5e-3;
+        let club = ClubSpec::new("iron-like".into(), None, p, vec![]).unwrap();
+        let upper = upper_bounds(&club);
+        assert!(
+            (upper[0] - (5.0 - FACE_CLEARANCE_MM)).abs() < 1e-12,
+            "{}",
+            upper[0]
+        );
+        // The other bounds are the layout's.
+        let layout = head_layout().upper();
+        assert!((1..upper.len()).all(|j| upper[j] == layout[j]));
+    }
 }

@@ -213,7 +213,7 @@ fn solve(
     max_iters: u64,
 ) -> Result<Solved, FitError> {
     let inner = problem.inner().clone();
-    let solver = LevenbergMarquardt::new(inner.active_lower(), inner.active_upper())
+    let solver = LevenbergMarquardt::new(inner.active_lower(), problem.active_upper())
         .map_err(|e| FitError::Solver(e.into()))?
         .without_final_jacobian();
     let init = inner.active_part(start);
@@ -266,10 +266,7 @@ fn profile(
     j: usize,
     se: f64,
 ) -> Option<[f64; 2]> {
-    let (lo, hi) = (
-        base.inner().layout().lower()[j],
-        base.inner().layout().upper()[j],
-    );
+    let (lo, hi) = (base.inner().layout().lower()[j], base.upper_of(j));
     let points: Vec<(f64, f64)> = settings
         .profile_grid_se
         .par_iter()
@@ -330,7 +327,8 @@ fn fit_stages(
     let mut last = None;
     for stage in 1..=2 {
         let noise = NoiseCov::from_errors(&errors(&base, &theta)?);
-        let pr = HeadProblem::new(base.clone(), &noise, theta0.clone(), sd.clone());
+        let pr = HeadProblem::new(base.clone(), &noise, theta0.clone(), sd.clone())
+            .with_upper(&head::upper_bounds(club));
         let s = solve(pr, &theta, settings.max_iters)?;
         iterations += s.iterations;
         if !s.converged {
@@ -382,7 +380,8 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
     let before = identifiability(&fisher0, sd.as_slice(), f);
     // The fit.
     let fit = fit_stages(settings, club, &data, &theta0, &sd)?;
-    let pr = HeadProblem::new(base.clone(), &fit.noise, theta0.clone(), sd.clone());
+    let pr = HeadProblem::new(base.clone(), &fit.noise, theta0.clone(), sd.clone())
+        .with_upper(&head::upper_bounds(club));
     let (jac1, fisher1) = fisher(&pr, &fit.theta)?;
     let after = identifiability(&fisher1, sd.as_slice(), f);
     let post = posterior_cov(&fisher1, sd.as_slice());
@@ -408,7 +407,7 @@ pub fn run(settings: &Settings, club: &ClubSpec, shots: &[Shot]) -> Result<Repor
         .collect();
     let inferred = inferred_club(club, &fit.theta).map_err(InferError::Club)?;
     let start = start_values(club);
-    let (lower, upper) = (layout.lower(), layout.upper());
+    let (lower, upper) = (layout.lower(), head::upper_bounds(club));
     let params = HEAD_PARAMS
         .iter()
         .enumerate()

@@ -101,6 +101,8 @@ pub struct HeadProblem<'a> {
     whiten: Matrix5<f64>,
     centre: DVector<f64>,
     prior_sd: DVector<f64>,
+    /// The solver's upper bounds, full vector (the layout's unless narrowed).
+    upper: DVector<f64>,
 }
 
 impl<'a> HeadProblem<'a> {
@@ -112,12 +114,32 @@ impl<'a> HeadProblem<'a> {
         centre: DVector<f64>,
         prior_sd: DVector<f64>,
     ) -> Self {
+        let upper = inner.layout().upper();
         Self {
             inner: inner.with_weighting(Weighting::launch(&noise.sd)),
             whiten: noise.whitener(),
             centre,
             prior_sd,
+            upper,
         }
+    }
+
+    /// The solver's upper bounds `upper` (full vector; [`super::head::upper_bounds`]), where
+    /// they are tighter than the layout's.
+    pub fn with_upper(mut self, upper: &DVector<f64>) -> Self {
+        self.upper = self.upper.zip_map(upper, f64::min);
+        self
+    }
+
+    /// The solver's upper bound of parameter `j` (full-vector index).
+    pub fn upper_of(&self, j: usize) -> f64 {
+        self.upper[j]
+    }
+
+    /// The solver's upper bounds of the active parameters.
+    pub fn active_upper(&self) -> DVector<f64> {
+        let active = self.inner.active();
+        DVector::from_iterator(active.len(), active.iter().map(|&j| self.upper[j]))
     }
 
     /// The residual problem inside.

@@ -1,18 +1,82 @@
 //! The `smash infer-club --report` page: the prior and the rule, the estimates with their
 //! standard errors, prior shares and profile intervals, what the shots determine before and
-//! after fitting, and the uncertainty ellipses of the correlated pairs.
+//! after fitting, the face map of the inferred COR and the uncertainty ellipses of the
+//! correlated pairs.
 
 use std::fmt::Write as _;
 
 use super::{esc, Figure, Page, Section};
 use crate::infer::report::fmt_num;
 use crate::infer::Report;
+use crate::physics::laws::{Restitution, COR_REFERENCE_SPEED_M_S};
+use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
 
 /// Correlation beyond which a pair gets an ellipse.
 const ELLIPSE_MIN_CORRELATION: f64 = 0.5;
 
 /// Most ellipses drawn (the strongest correlations).
 const MAX_ELLIPSES: usize = 8;
+
+/// Cells of the COR face map along each axis.
+const FACE_CELLS: usize = 41;
+
+/// Half-width of the COR face map per axis, in SDs of the session's impact locations (about
+/// every shot inside), and its smallest half-width, mm.
+const FACE_HALF_WIDTH_SD: f64 = 2.5;
+const FACE_MIN_HALF_WIDTH_MM: f64 = 10.0;
+
+/// The inferred club's COR over the face (the model's restitution law, `physics::laws`, at its
+/// reference approach speed, where the speed terms vanish), centred on the face centre and
+/// spanning the session's impact locations.
+fn cor_face_map(r: &Report) -> Figure {
+    let law = Restitution::of(&r.club.params_for_group("all"));
+    let axis = |sd_mm: f64| -> Vec<f64> {
+        let half_mm = (FACE_HALF_WIDTH_SD * sd_mm).max(FACE_MIN_HALF_WIDTH_MM);
+        (0..FACE_CELLS)
+            .map(|i| -half_mm + 2.0 * half_mm * i as f64 / (FACE_CELLS - 1) as f64)
+            .collect()
+    };
+    let (ys_mm, zs_mm) = (axis(r.impact_spread_mm[0]), axis(r.impact_spread_mm[1]));
+    let values: Vec<f64> = ys_mm
+        .iter()
+        .flat_map(|&y_mm| {
+            zs_mm
+                .iter()
+                .map(move |&z_mm| law.cor(COR_REFERENCE_SPEED_M_S, y_mm * 1e-3, z_mm * 1e-3))
+        })
+        .collect();
+    let svg = heatmap_svg(&Heatmap {
+        title: "inferred COR over the face",
+        x_label: "impact z (toward toe), mm",
+        y_label: "impact y (up), mm",
+        value_label: "COR",
+        xs: &zs_mm,
+        ys: &ys_mm,
+        values: &values,
+        marker: Some((0.0, 0.0)),
+        scale: Scale::Sequential,
+    });
+    let cor = |key: &str| r.params.iter().find(|p| p.name == key);
+    let words = match (cor("cor"), cor("cor_radial.c_per_mm2")) {
+        (Some(c), Some(f)) => format!(
+            " (COR {} ± {} at the centre, falling by {} ± {} per mm² of squared distance)",
+            fmt_num(c.value),
+            fmt_num(c.stderr),
+            fmt_num(f.value),
+            fmt_num(f.stderr)
+        ),
+        _ => String::new(),
+    };
+    Figure {
+        kind: "face",
+        caption: format!(
+            "The inferred head's COR over the face at the model's reference approach speed \
+             ({COR_REFERENCE_SPEED_M_S} m/s){words}, over {FACE_HALF_WIDTH_SD} SDs of the \
+             session's impact locations each way; + marks the face centre."
+        ),
+        svg,
+    }
+}
 
 fn estimates_table(r: &Report) -> String {
     let mut s = String::from(
@@ -178,6 +242,11 @@ pub fn infer_page(r: &Report, title: &str) -> String {
             figures: vec![],
         },
     ];
+    sections.push(Section {
+        heading: "The inferred COR over the face".into(),
+        html: vec![],
+        figures: vec![cor_face_map(r)],
+    });
     let figures = ellipses(r);
     sections.push(Section {
         heading: "Correlated pairs".into(),
