@@ -174,6 +174,9 @@ pub(super) struct Search<'a> {
     /// The candidates of the last step that selected nothing, at its base
     /// ([`unresolved`]).
     last_scored: Option<unresolved::LastScored>,
+    /// The effects whose gain beat `k·ln n` at the last step that scored any: the only ones
+    /// [`unresolved`] scores again when it must.
+    promising: Vec<String>,
 }
 
 impl<'a> Search<'a> {
@@ -241,6 +244,7 @@ impl<'a> Search<'a> {
             checked_fit: None,
             given,
             last_scored: None,
+            promising: Vec::new(),
         })
     }
 
@@ -400,6 +404,11 @@ impl<'a> Search<'a> {
         }
         let sigma = noise_scales(&base_errors);
         let scored = self.score(step_index, &open, &base_errors, sigma)?;
+        self.promising = scored.results[..scored.n_effects]
+            .iter()
+            .filter(|r| r.gain > r.n_params as f64 * self.penalty_per_param)
+            .map(|r| r.label.clone())
+            .collect();
         let order = select::by_margin(&scored.results);
         let (winner, alias) =
             select::arbitrate(&scored.results, &scored.explained, &order, scored.n_effects);

@@ -5,8 +5,9 @@
 //! delivery-noise levels share, falls short by a few units of χ² in most seeds).
 //!
 //! Scored at the final model: the last forward step's candidates when its base is the final
-//! selection (nothing is refitted), else one more scoring of the open candidates (only when
-//! the noise floor closed the selection, or swaps changed the model after the last step).
+//! selection (nothing is refitted), else one more scoring (when the noise floor closed the
+//! selection, or swaps changed the model after the last step) of the open candidates that beat
+//! `k·ln n` at the last step that scored any.
 
 use super::super::honest::{self, Unresolved};
 use super::super::CandidateResult;
@@ -45,12 +46,23 @@ impl Search<'_> {
         let last = match self.last_scored.take() {
             Some(l) if l.base == labels => l,
             _ => {
-                let open = self.open(candidates);
+                // Only the effects that beat `k·ln n` when last scored: a near miss now was
+                // one then (the model has only lost their rivals since, or gained a level).
+                let all = self.open(candidates);
+                let multiplicity = 2.0 * (all.len().max(1) as f64).ln();
+                let open: Vec<&EffectRequest> = all
+                    .into_iter()
+                    .filter(|c| self.promising.contains(&c.label()))
+                    .collect();
                 if open.is_empty() {
                     return Ok(None);
                 }
                 let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
-                let scored = self.score(step_index, &open, &errors, noise_scales(&errors))?;
+                let mut scored = self.score(step_index, &open, &errors, noise_scales(&errors))?;
+                // The penalty of a choice among every open candidate, not among those scored.
+                for r in &mut scored.results[..scored.n_effects] {
+                    r.penalty = r.n_params as f64 * self.penalty_per_param + multiplicity;
+                }
                 LastScored {
                     base: labels,
                     results: scored.results,
