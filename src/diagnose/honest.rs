@@ -519,3 +519,64 @@ mod tests {
         assert_eq!(effect_of_label("loft_bias.deg"), "loft_bias");
     }
 }
+
+/// The best physical candidate the final model leaves out whose held-out gain beats its
+/// parameters' penalty `k·ln n` but not the selection's (`k·ln n + 2·ln m`): what the data
+/// nearly show, with the candidates they cannot tell it from (`search/unresolved.rs`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unresolved {
+    /// The candidate (`name` or `name@group`).
+    pub label: String,
+    /// Its values fitted beside the final model.
+    pub params: Vec<ParamEstimate>,
+    /// Held-out gain in χ².
+    pub gain: f64,
+    /// Its full penalty, `k·ln n + 2·ln m`.
+    pub penalty: f64,
+    /// Other near misses whose fit changed the predictions like its own (`r > 0.9`).
+    pub alike: Vec<(String, f64)>,
+    /// How many times the shots would have to grow for a gain growing with them to beat the
+    /// penalty.
+    pub growth: f64,
+}
+
+impl Unresolved {
+    /// One line of text.
+    pub fn text(&self) -> String {
+        let alike = if self.alike.is_empty() {
+            String::new()
+        } else {
+            let names: Vec<String> = self
+                .alike
+                .iter()
+                .map(|(l, r)| format!("{l} (r = {r:.2})"))
+                .collect();
+            format!(
+                "; the data cannot tell it from {}, which change the predictions alike",
+                names.join(", ")
+            )
+        };
+        format!(
+            "not resolved: {} ({}) gains {:.1} held out against a penalty of {:.1}{alike}; about \
+             {:.1}× the shots would decide",
+            self.label,
+            values_text(&self.params),
+            self.gain,
+            self.penalty,
+            self.growth
+        )
+    }
+
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        json!({
+            "effect": self.label,
+            "params": self.params.iter().map(estimate_json).collect::<Vec<_>>(),
+            "gain": self.gain,
+            "penalty": self.penalty,
+            "alike": self.alike.iter().map(|(l, r)| json!({"candidate": l, "r": r})).collect::<Vec<_>>(),
+            "shots_factor": self.growth,
+            "text": self.text(),
+        })
+    }
+}

@@ -63,6 +63,7 @@ mod candidates;
 mod evaluate;
 pub mod honest;
 pub mod noise_floor;
+pub mod rival_family;
 mod search;
 pub mod select;
 pub mod shared;
@@ -365,6 +366,10 @@ pub struct Diagnosis {
     /// Estimates whose signal trends with structure the final model leaves ([`shared`]): set
     /// by the caller once the noise floor is known (empty until then).
     pub shared_signals: Vec<shared::SharedSignal>,
+    /// Each selected effect's held-out gain over its rival family ([`rival_family`]).
+    pub rival_families: Vec<rival_family::FamilyCheck>,
+    /// What the data nearly show ([`honest::Unresolved`]).
+    pub unresolved: Option<honest::Unresolved>,
 }
 
 impl Diagnosis {
@@ -428,12 +433,19 @@ impl Diagnosis {
     fn own_check_failed(&self, p: &ParamEstimate) -> Option<String> {
         let label = p.label();
         let strata = self.strata.as_ref().and_then(|s| s.failed(&label));
-        strata.or_else(|| {
-            self.shared_signals
-                .iter()
-                .find(|s| s.label == label)
-                .map(|s| format!("{label}: {}", s.text()))
-        })
+        strata
+            .or_else(|| {
+                self.shared_signals
+                    .iter()
+                    .find(|s| s.label == label)
+                    .map(|s| format!("{label}: {}", s.text()))
+            })
+            .or_else(|| {
+                self.rival_families
+                    .iter()
+                    .find(|f| f.is_stand_in() && rival_family::estimate_of(p, &f.label))
+                    .map(|f| format!("{label}: {}", f.text()))
+            })
     }
 
     /// The checks of [`Self::is_finding`] but the strata's.
@@ -576,7 +588,12 @@ pub fn diagnose(
         changes += 1;
     }
     halt()?;
-    search.finish((fold_by, n_folds), steps, (before, nominal_fit), warnings)
+    search.finish(
+        (fold_by, n_folds),
+        steps,
+        (before, nominal_fit),
+        (warnings, &candidates),
+    )
 }
 
 /// Launch components in report order (re-exported for the CLI).

@@ -3,10 +3,7 @@
 //! ([`super::select`]), adopting the winner, and at the end the calibration of what was selected.
 //! The measurement candidates' data (impact- and delivery-noise levels) are in [`measure`].
 
-use nalgebra::DVector;
-use rayon::prelude::*;
-
-use super::evaluate::{self, make_folds, Folds, StepBase};
+use super::evaluate::{make_folds, Folds};
 use super::{
     default_candidates, honest, noise_floor, select, DiagnoseOptions, DiagnoseProgress, Diagnosis,
     FoldBy, Step,
@@ -19,15 +16,18 @@ use crate::fit::{
 use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::stats::{self, launch_error_table, ErrorTable};
+use nalgebra::DVector;
 use score::Scored;
 
 mod alias;
 mod earned;
 mod final_fit;
 mod measure;
+mod readings;
 mod reselect;
 mod score;
 mod swap;
+mod unresolved;
 
 fn group_names(data: &FitData) -> Vec<String> {
     data.group_of
@@ -171,6 +171,12 @@ pub(super) struct Search<'a> {
     /// The instruments' noise as fixed variances per shot when it is known, for the
     /// likelihood every step's model is scored by (`None`: profiled scales).
     given: Option<std::sync::Arc<GivenScales>>,
+    /// The candidates of the last step that selected nothing, at its base
+    /// ([`unresolved`]).
+    last_scored: Option<unresolved::LastScored>,
+    /// The effects whose gain beat `k·ln n` at the last step that scored any: the only ones
+    /// [`unresolved`] scores again when it must.
+    promising: Vec<String>,
 }
 
 impl<'a> Search<'a> {
@@ -237,6 +243,8 @@ impl<'a> Search<'a> {
             reselected: false,
             checked_fit: None,
             given,
+            last_scored: None,
+            promising: Vec::new(),
         })
     }
 
@@ -396,6 +404,11 @@ impl<'a> Search<'a> {
         }
         let sigma = noise_scales(&base_errors);
         let scored = self.score(step_index, &open, &base_errors, sigma)?;
+        self.promising = scored.results[..scored.n_effects]
+            .iter()
+            .filter(|r| r.gain > r.n_params as f64 * self.penalty_per_param)
+            .map(|r| r.label.clone())
+            .collect();
         let order = select::by_margin(&scored.results);
         let (winner, alias) =
             select::arbitrate(&scored.results, &scored.explained, &order, scored.n_effects);
@@ -427,11 +440,19 @@ impl<'a> Search<'a> {
                 }
                 (Some(label), after, fit)
             }
-            None => (
-                None,
-                launch_error_table(&self.groups, &base_errors),
-                self.likelihood_of(&base_errors),
-            ),
+            None => {
+                self.last_scored = Some(unresolved::LastScored {
+                    base: base_labels.clone(),
+                    results: scored.results.clone(),
+                    explained: scored.explained.clone(),
+                    n_effects: scored.n_effects,
+                });
+                (
+                    None,
+                    launch_error_table(&self.groups, &base_errors),
+                    self.likelihood_of(&base_errors),
+                )
+            }
         };
         Ok(Some(Step {
             base: base_labels,
@@ -449,87 +470,13 @@ impl<'a> Search<'a> {
         }))
     }
 
-    /// Each selected effect with the kin that, swapped in for it in the final model, fit the
-    /// shots nearly as well: `χ² + k·ln n` at most [`select::RIVAL_MARGIN`] above the final
-    /// model's, on all shots with the final model's noise scales.
-    fn ambiguities(
-        &self,
-        estimates: &[crate::fit::ParamEstimate],
-    ) -> Result<Vec<honest::Ambiguity>, FitError> {
-        if self.kin_of.iter().all(|(_, _, k)| k.is_empty()) {
-            return Ok(Vec::new());
-        }
-        let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
-        let sigma = noise_scales(&errors);
-        let w = Weighting::launch(&sigma);
-        let final_run = crate::fit::fit_quietly(
-            self.club,
-            &self.base,
-            &self.data,
-            w,
-            &self.theta_base,
-            self.opts.max_iters,
-        )?;
-        let final_score = final_run.cost + self.base.len() as f64 * self.penalty_per_param;
-        let b = StepBase {
-            club: self.club,
-            data: &self.data,
-            folds: &self.folds,
-            layout: &self.base,
-            theta: &final_run.theta,
-            errors: &errors,
-            sigma,
-            w,
-            rms: evaluate::rms_per_component(&errors),
-            cv: f64::NAN,
-            at: None,
-            max_iters: self.opts.max_iters,
-            progress: None,
-            cancel: self.opts.cancel.as_ref(),
-            spread: None,
-        };
-        let mut out = Vec::new();
-        for (label, req, kin) in &self.kin_of {
-            let rivals: Vec<honest::Rival> = kin
-                .par_iter()
-                .filter_map(|(c, r)| {
-                    let (params, gap) =
-                        evaluate::swap_score(&b, req, c, self.penalty_per_param, final_score)?;
-                    (gap <= select::RIVAL_MARGIN).then(|| honest::Rival {
-                        label: c.label(),
-                        plausible: params
-                            .iter()
-                            .all(|p| honest::is_plausible(p).unwrap_or(true)),
-                        params,
-                        margin_gap: gap,
-                        r: *r,
-                    })
-                })
-                .collect();
-            if rivals.is_empty() {
-                continue;
-            }
-            let effect = label.split('@').next().unwrap_or(label);
-            out.push(honest::Ambiguity {
-                selected: label.clone(),
-                estimates: estimates
-                    .iter()
-                    .filter(|p| p.effect == effect)
-                    .cloned()
-                    .collect(),
-                rivals,
-            });
-        }
-        Ok(out)
-    }
-
     /// Calibrate the selected effects on all shots and read aliases and ambiguities.
     pub(super) fn finish(
         mut self,
         (fold_by, n_folds): (FoldBy, usize),
         steps: Vec<Step>,
         (before, nominal_fit): (ErrorTable, Likelihood),
-        warnings: Vec<String>,
+        (warnings, candidates): (Vec<String>, &[EffectRequest]),
     ) -> Result<Diagnosis, FitError> {
         // A level selected from the data, refined once more on the final model.
         if let (Some(noise), None) = (self.chosen_noise, self.opts.impact_noise) {
@@ -543,6 +490,7 @@ impl<'a> Search<'a> {
                 self.checked_fit = None;
             }
         }
+        let unresolved = self.unresolved(candidates, steps.len())?;
         let (estimates, after, out_club, aliases) = match self.take_final_calibration()? {
             None => (Vec::new(), before.clone(), self.club.clone(), Vec::new()),
             Some(cal) => {
@@ -566,7 +514,8 @@ impl<'a> Search<'a> {
                 self.opts.max_iters,
             )
         });
-        let ambiguities = self.ambiguities(&estimates)?;
+        let mut ambiguities = self.ambiguities(&estimates)?;
+        let rival_families = self.rival_families(&out_club, &estimates, &mut ambiguities)?;
         Ok(Diagnosis {
             fold_by,
             folds: n_folds,
@@ -590,6 +539,8 @@ impl<'a> Search<'a> {
             final_fit,
             strata,
             shared_signals: Vec::new(),
+            rival_families,
+            unresolved,
         })
     }
 }

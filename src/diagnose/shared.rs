@@ -117,7 +117,7 @@ pub fn shared_signals(
 /// The launch change per unit of `p` for every shot (file units per parameter unit), by
 /// central differences of the final club with `p` moved (one-sided at a bound); `None` when
 /// the club holds no effect for `p`.
-fn signal_of(
+pub(super) fn signal_of(
     club: &ClubSpec,
     data: &FitData,
     p: &ParamEstimate,

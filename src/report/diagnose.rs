@@ -163,6 +163,9 @@ fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
         }))).collect::<Vec<_>>(),
         "strata": d.strata.as_ref().map(crate::report::strata::to_json),
         "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
+        "unresolved": d.unresolved.as_ref().map(honest::Unresolved::to_json),
+        "rival_families": d.rival_families.iter()
+            .map(crate::diagnose::rival_family::FamilyCheck::to_json).collect::<Vec<_>>(),
         "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
             "param": p.label(), "value": p.value, "unit": p.unit,
             "plausible_range": honest::plausible_range_text(p), "behaves_like": w,

@@ -355,6 +355,9 @@ fn summary_text(d: &Diagnosis) -> String {
     for a in &d.aliases {
         s.push_str(&format!("  alias: {}\n", a.text()));
     }
+    if let Some(u) = &d.unresolved {
+        s.push_str(&wrap_long(&format!("  {}\n", u.text())));
+    }
     s.push_str(&measurement_model_line(d));
     s
 }

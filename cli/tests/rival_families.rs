@@ -1,0 +1,215 @@
+//! Issue 43's worlds over seeds, as a user runs them (`smash synth --config WORLD --seed N`,
+//! then `smash diagnose --json`, with the world's true noise and without noise figures). The
+//! worlds and seeds were written down before the first run (`docs/rival-families.md`, "Plan");
+//! the bounds are the rates measured when the tests were written (28 Nov 2026) and may only
+//! tighten. Where they fall short of the issue's done-when, the doc says so.
+//!
+//! - `aniso_paper_world` (the paper world with a world-only COR falloff 2.5e-4·y² + 1e-4·z²),
+//!   seeds 1–20: before the rival-family check (`src/diagnose/rival_family.rs`) `cor_radial`
+//!   was a false finding in 9 of 20 seeds in each setting; measured now 0 of 20 with the true
+//!   noise and 2 of 20 without (seeds 14, 18: the location terms gain 27.6 and 31.0 beyond
+//!   `cor_radial`'s form against a penalty of 32.0). `ball_offset` is a finding in 20 of 20.
+//!   The added mass is named in none: `cor_radial`'s uncentred falloff takes its ball-speed
+//!   level (`docs/rival-families.md`).
+//! - `paper_world`, seeds 1–20: the added mass (per shaft, `shaft_fraction` or an alias
+//!   carrying it) is named — selected, or ambiguous with a plausible rival — or stated as not
+//!   resolved with the candidates it cannot be told from, in 15 of 20 with the true noise
+//!   (9 named, 6 stated) and 15 of 20 without (13 named, 2 stated).
+//! - `plateau_paper_world`, seeds 1–10, with the true noise: no false finding (10 of 10).
+//! - The design worlds (`cli/tests/fixtures/rivals/`, seeds 301–310, `--instrument camera`
+//!   and without): `#[ignore]`d, about 100 diagnoses; the rates are in the doc.
+
+mod cli_support;
+
+use cli_support::{diagnose_json, repo, s, smash, stderr};
+use std::path::{Path, PathBuf};
+
+/// `smash synth --config CONFIG --out DIR/NAME_SEED.csv --seed SEED`.
+fn synth(dir: &Path, config: &Path, seed: u32) -> PathBuf {
+    let name = config.file_stem().unwrap().to_string_lossy();
+    let shots = dir.join(format!("{name}_{seed}.csv"));
+    let seed_arg = seed.to_string();
+    let o = smash(&[
+        "synth",
+        "--config",
+        s(config),
+        "--out",
+        s(&shots),
+        "--seed",
+        &seed_arg,
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    shots
+}
+
+fn strings(v: &serde_json::Value) -> Vec<String> {
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(|f| f.as_str().map(str::to_owned))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// Is `label` (`name.param`, `name@A.param`, `name` or `name@group`) of one of `family`?
+fn of(label: &str, family: &[&str]) -> bool {
+    let name = label.split(['.', '@']).next().unwrap_or(label);
+    family.contains(&name)
+}
+
+/// One diagnosis read against the truth: (a finding outside `truth`, per family: named,
+/// stated as not resolved).
+fn read(d: &serde_json::Value, truth: &[&[&str]]) -> (Vec<String>, Vec<(bool, bool)>) {
+    let findings = strings(&d["findings"]);
+    let all: Vec<&str> = truth.iter().flat_map(|f| f.iter().copied()).collect();
+    let wrong = findings.iter().filter(|f| !of(f, &all)).cloned().collect();
+    let ambiguous: Vec<&serde_json::Value> = d["ambiguous"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|a| a["ambiguous"] == true)
+        .collect();
+    let per_family = truth
+        .iter()
+        .map(|fam| {
+            let found = findings.iter().any(|f| of(f, fam));
+            let selected_ambiguous = ambiguous
+                .iter()
+                .any(|a| of(a["selected"].as_str().unwrap(), fam));
+            let plausible_rival = ambiguous.iter().any(|a| {
+                a["rivals"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .any(|r| r["plausible"] == true && of(r["effect"].as_str().unwrap(), fam))
+            });
+            let u = &d["unresolved"];
+            let stated = !u.is_null()
+                && (of(u["effect"].as_str().unwrap(), fam)
+                    || u["alike"]
+                        .as_array()
+                        .unwrap()
+                        .iter()
+                        .any(|a| of(a["candidate"].as_str().unwrap(), fam)));
+            (found || selected_ambiguous || plausible_rival, stated)
+        })
+        .collect();
+    (wrong, per_family)
+}
+
+/// Over `seeds` of `config` diagnosed with `args`: seeds with a false finding, and per family
+/// of `truth` the seeds naming it and the seeds only stating it as not resolved.
+fn tally(
+    config: &Path,
+    seeds: std::ops::RangeInclusive<u32>,
+    args: &[&str],
+    truth: &[&[&str]],
+) -> (usize, Vec<(usize, usize)>) {
+    let dir = tempfile::tempdir().unwrap();
+    let mut false_seeds = 0;
+    let mut counts = vec![(0, 0); truth.len()];
+    for seed in seeds {
+        let d = diagnose_json(&synth(dir.path(), config, seed), args);
+        let (wrong, fams) = read(&d, truth);
+        println!(
+            "{} seed {seed} {args:?}: selected {:?}, findings {:?}, false {wrong:?}, \
+             named/stated {fams:?}",
+            config.display(),
+            strings(&d["selected"]),
+            strings(&d["findings"])
+        );
+        false_seeds += usize::from(!wrong.is_empty());
+        for (c, (named, stated)) in counts.iter_mut().zip(fams) {
+            c.0 += usize::from(named);
+            c.1 += usize::from(!named && stated);
+        }
+    }
+    println!(
+        "{}: false {false_seeds}, named/stated {counts:?}",
+        config.display()
+    );
+    (false_seeds, counts)
+}
+
+const MASS: &[&str] = &["added_mass", "shaft_fraction"];
+const OFFSET: &[&str] = &["ball_offset"];
+
+#[test]
+fn anisotropic_cor_world_over_twenty_seeds() {
+    let world = repo("configs/synth/aniso_paper_world.toml");
+    let noise = repo("configs/noise/paper_world.toml");
+    for (args, bound) in [(vec!["--noise", s(&noise)], 0), (vec![], 2)] {
+        let (false_seeds, counts) = tally(&world, 1..=20, &args, &[MASS, OFFSET]);
+        assert!(
+            false_seeds <= bound,
+            "{args:?}: {false_seeds} seeds with a false finding"
+        );
+        assert!(
+            counts[1].0 >= 18,
+            "{args:?}: ball_offset named in {}",
+            counts[1].0
+        );
+    }
+}
+
+#[test]
+fn paper_world_mass_named_or_stated() {
+    let world = repo("configs/synth/paper_world.toml");
+    let noise = repo("configs/noise/paper_world.toml");
+    for args in [vec!["--noise", s(&noise)], vec![]] {
+        let (false_seeds, counts) = tally(&world, 1..=20, &args, &[MASS, OFFSET]);
+        let (named, stated) = counts[0];
+        assert!(
+            named + stated >= 15,
+            "{args:?}: mass named {named}, stated {stated}"
+        );
+        assert!(
+            counts[1].0 >= 18,
+            "{args:?}: ball_offset named in {}",
+            counts[1].0
+        );
+        // Without noise figures `hosel_mass` is a finding in two seeds (15, 17), as before.
+        assert!(
+            false_seeds <= 2,
+            "{args:?}: {false_seeds} seeds with a false finding"
+        );
+    }
+}
+
+#[test]
+fn plateau_world_has_no_false_finding() {
+    let world = repo("configs/synth/plateau_paper_world.toml");
+    let noise = repo("configs/noise/paper_world.toml");
+    let (false_seeds, _) = tally(&world, 1..=10, &["--noise", s(&noise)], &[MASS, OFFSET]);
+    assert_eq!(false_seeds, 0, "{false_seeds} seeds with a false finding");
+}
+
+/// A design world: its file stem, the families of its truth, and per family the seeds of ten
+/// naming it as measured when written (the lower of the two settings).
+type DesignWorld = (&'static str, &'static [&'static [&'static str]], [usize; 2]);
+
+/// The design worlds of `docs/rival-families.md`: at most one seed of ten with a false
+/// finding per world and setting, and every world's truth named at least as often as measured
+/// when written. `cargo test --release -p smash-cli --test rival_families -- --ignored`.
+#[test]
+#[ignore = "about 100 diagnoses; run with --ignored"]
+fn design_worlds_over_ten_seeds() {
+    let worlds: [DesignWorld; 5] = [
+        ("spot_mass", &[&["cor_spot"], MASS], [9, 2]),
+        ("fraction_offset", &[MASS, OFFSET], [10, 10]),
+        ("mass_loft", &[MASS, &["loft_bias"]], [7, 10]),
+        ("mass_loft_flex", &[MASS, &["loft_bias"]], [1, 10]),
+        ("fraction_offset_speed", &[MASS, OFFSET], [10, 0]),
+    ];
+    for (world, truth, named) in worlds {
+        let config = repo(&format!("cli/tests/fixtures/rivals/{world}.toml"));
+        for args in [vec!["--instrument", "camera"], vec![]] {
+            let (false_seeds, counts) = tally(&config, 301..=310, &args, truth);
+            assert!(false_seeds <= 1, "{world} {args:?}: {false_seeds} false");
+            for ((n, _), min) in counts.iter().zip(named) {
+                assert!(*n >= min, "{world} {args:?}: named {counts:?}");
+            }
+        }
+    }
+}

@@ -1,0 +1,572 @@
+//! Stand-in or finding by what it predicts (issue 43): does a *rival family* explain the same
+//! held-out gain as a selected effect?
+//!
+//! A stand-in takes structure another family of explanations also takes. For every selected
+//! effect `E` of the final model the check asks how much held-out χ² `E` gains over its rival
+//! family — the other selected effects plus impact-location structure — and compares it with
+//! what `E` gains over the other selected effects alone:
+//!
+//! - `t`: the whitened errors (model − measured over the final model's robust noise scales) of
+//!   the final club with `E` taken out, nothing refitted;
+//! - `J_E`, `J_O`: the signals of `E`'s and the other selected parameters (the change of every
+//!   shot's launch per unit of the parameter at the final club, [`super::shared`]), whitened;
+//! - `L`: impact-location structure, per launch component the columns `y, z, y², z², y·z`
+//!   (measured location in cm, *uncentred* and without an intercept: structure that vanishes
+//!   at the face centre, so a level shift of the whole face is not location structure);
+//! - the gains are linear, cross-validated over the diagnosis's own folds:
+//!   `own = CV(t ~ J_O) − CV(t ~ J_O + J_E)`, `over_family = CV(t ~ J_O + L) −
+//!   CV(t ~ J_O + L + J_E)`.
+//!
+//! When `own` beats `E`'s penalty `k·ln n` and `over_family` does not, `E` only absorbs what
+//! the location family absorbs as well: a stand-in, not a finding (its estimates are
+//! provisional, the failed check naming the family). An effect whose own signal *is* location
+//! structure (the shot-to-shot variation of every parameter's signal within the span of `L`
+//! and a level per component, R² ≥ [`LOCATION_FORM_R2`]: `cor_spot`, `cor_radial`,
+//! `face_curvature`) cannot be told from `L` by construction; its family is the other selected
+//! effects only, and it is asked instead whether `L`, on the components its signal moves,
+//! gains beyond it (`ln n` a column): then the location structure in the data has another
+//! shape than its form, and it is a stand-in for that.
+//!
+//! When the location family takes more than one parameter's worth of `E`'s gain
+//! (`own − over_family > ln n`), `E`'s kin (candidates whose fit changed the predictions like
+//! `E`'s at its step) are read again with `L` beside them: a kin whose reading is then
+//! plausible and whose margin comes within [`super::select::RIVAL_MARGIN`] of `E`'s is a
+//! rival ([`super::honest::Rival`]); this is how a per-shaft added mass that a COR level
+//! absorbed together with a COR map the library lacks is named again.
+//!
+//! Everything is linear least squares on signals already computed for the report: no fit is
+//! refitted. Its design worlds, seeds and rates are in `docs/rival-families.md`.
+
+use nalgebra::{DMatrix, DVector};
+
+use crate::club::ClubSpec;
+use crate::effects::Effect;
+use crate::fit::calibrate::noise_scales;
+use crate::fit::{EffectRequest, FitData, FitError, ParamEstimate};
+use crate::model::{DeliveryVar, Shot};
+
+use super::honest::{self, Rival};
+use super::noise_floor::{delivery_to_file_units, launch_errors_of};
+use super::select::RIVAL_MARGIN;
+use super::shared::signal_of;
+
+/// Share of a signal's sum of squares within the span of the location columns above which an
+/// effect's signal is itself impact-location structure (fixed before any world was run).
+pub const LOCATION_FORM_R2: f64 = 0.9;
+
+/// The check of one selected effect.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyCheck {
+    /// The selected effect (`name` or `name@group`).
+    pub label: String,
+    /// Held-out gain over the other selected effects alone.
+    pub own_gain: f64,
+    /// Held-out gain over the rival family (the other effects plus location structure).
+    pub gain_over_family: f64,
+    /// `k·ln n` of the effect.
+    pub penalty: f64,
+    /// Was location structure part of the family (false for a location form)?
+    pub location_in_family: bool,
+    /// For a location form: the held-out gain of location structure beyond it, on the
+    /// components its signal moves, with that structure's penalty (`ln n` a column).
+    pub form: Option<(f64, f64)>,
+}
+
+impl FamilyCheck {
+    /// A stand-in: it earns its penalty over the other effects, not over the family.
+    pub fn is_stand_in(&self) -> bool {
+        self.form.is_some_and(|(gain, penalty)| gain > penalty)
+            || (self.own_gain > self.penalty && self.gain_over_family <= self.penalty)
+    }
+
+    /// The failed check, as text.
+    pub fn text(&self) -> String {
+        if let Some((gain, penalty)) = self.form.filter(|(g, p)| g > p) {
+            return format!(
+                "impact-location structure gains {gain:.1} held out beyond its form (penalty \
+                 {penalty:.1}): the location structure in the data has another shape, and it \
+                 stands in for it"
+            );
+        }
+        format!(
+            "its held-out gain ({:.1}) is explained as well by impact-location structure and the \
+             other selected effects (gain left over them {:.1}, penalty {:.1}): a stand-in for \
+             structure another family absorbs",
+            self.own_gain, self.gain_over_family, self.penalty
+        )
+    }
+
+    /// The machine-readable form.
+    pub fn to_json(&self) -> serde_json::Value {
+        serde_json::json!({
+            "effect": self.label,
+            "own_gain": self.own_gain,
+            "gain_over_family": self.gain_over_family,
+            "penalty": self.penalty,
+            "location_in_family": self.location_in_family,
+            "form_gain": self.form.map(|f| f.0),
+            "form_penalty": self.form.map(|f| f.1),
+            "stand_in": self.is_stand_in(),
+        })
+    }
+}
+
+/// What [`check`] needs of the final model.
+pub(super) struct FinalModel<'a> {
+    /// The final club: the club file's effects, then the selected ones.
+    pub club: &'a ClubSpec,
+    /// How many of `club.effects` come from the club file (the rest are selected).
+    pub n_file_effects: usize,
+    /// The shots as the final model sees them.
+    pub data: &'a FitData,
+    /// The shots (for the measured impact location).
+    pub shots: &'a [Shot],
+    /// Final estimates.
+    pub estimates: &'a [ParamEstimate],
+    /// Fold of every shot.
+    pub fold_of: &'a [usize],
+    /// `ln n`.
+    pub penalty_per_param: f64,
+}
+
+/// Whitened 5n-vectors: row `5i + c` is shot `i`, component `c`.
+type Column = DVector<f64>;
+
+fn whiten(rows: &[[f64; 5]], sigma: &[f64; 5]) -> Column {
+    DVector::from_iterator(
+        rows.len() * 5,
+        rows.iter()
+            .flat_map(|r| (0..5).map(move |c| r[c] / sigma[c])),
+    )
+}
+
+/// The location columns: per component, `y, z, y², z², y·z` (cm) on that component's rows.
+fn location_columns(shots: &[Shot]) -> Vec<Column> {
+    let yz: Vec<(f64, f64)> = shots
+        .iter()
+        .map(|s| {
+            let d = delivery_to_file_units(&s.delivery);
+            (
+                d[DeliveryVar::ImpactY.index()] / 10.0,
+                d[DeliveryVar::ImpactZ.index()] / 10.0,
+            )
+        })
+        .collect();
+    let terms: [fn(f64, f64) -> f64; 5] =
+        [|y, _| y, |_, z| z, |y, _| y * y, |_, z| z * z, |y, z| y * z];
+    let mut out = Vec::with_capacity(25);
+    for c in 0..5 {
+        for term in terms {
+            let mut col = DVector::zeros(shots.len() * 5);
+            for (i, &(y, z)) in yz.iter().enumerate() {
+                col[5 * i + c] = term(y, z);
+            }
+            out.push(col);
+        }
+    }
+    out
+}
+
+/// Least squares of `t` on `cols`, held out fold by fold: the summed squared held-out residual
+/// (`Σ t²` without columns), and the coefficients fitted on all rows.
+fn cv_sse(cols: &[&Column], t: &Column, fold_of: &[usize]) -> (f64, DVector<f64>) {
+    let p = cols.len();
+    if p == 0 {
+        return (t.norm_squared(), DVector::zeros(0));
+    }
+    let rows = t.len();
+    let n_folds = fold_of.iter().max().map_or(1, |m| m + 1);
+    // Unit-norm columns, so one small ridge suits every column.
+    let norms: Vec<f64> = cols
+        .iter()
+        .map(|c| c.norm().max(f64::MIN_POSITIVE))
+        .collect();
+    let x = DMatrix::from_fn(rows, p, |r, j| cols[j][r] / norms[j]);
+    let mut a_f = vec![DMatrix::<f64>::zeros(p, p); n_folds];
+    let mut b_f = vec![DVector::<f64>::zeros(p); n_folds];
+    for r in 0..rows {
+        let f = fold_of[r / 5];
+        let xr = x.row(r).transpose();
+        a_f[f] += &xr * xr.transpose();
+        b_f[f] += &xr * t[r];
+    }
+    let a: DMatrix<f64> = a_f.iter().fold(DMatrix::zeros(p, p), |s, m| s + m);
+    let b: DVector<f64> = b_f.iter().fold(DVector::zeros(p), |s, v| s + v);
+    let solve = |a: DMatrix<f64>, b: DVector<f64>| -> DVector<f64> {
+        let ridge = 1e-9 * a.trace().max(f64::MIN_POSITIVE) / p as f64;
+        let a = a + DMatrix::identity(p, p) * ridge;
+        match a.clone().cholesky() {
+            Some(ch) => ch.solve(&b),
+            None => a
+                .svd(true, true)
+                .solve(&b, 1e-12)
+                .unwrap_or_else(|_| DVector::zeros(p)),
+        }
+    };
+    let betas: Vec<DVector<f64>> = (0..n_folds)
+        .map(|f| solve(&a - &a_f[f], &b - &b_f[f]))
+        .collect();
+    let sse = (0..rows)
+        .map(|r| (t[r] - (x.row(r) * &betas[fold_of[r / 5]])[0]).powi(2))
+        .sum();
+    let all = solve(a, b);
+    let coef = DVector::from_iterator(p, (0..p).map(|j| all[j] / norms[j]));
+    (sse, coef)
+}
+
+/// A constant per launch component (one column each).
+fn level_columns(n_shots: usize) -> Vec<Column> {
+    (0..5)
+        .map(|c| DVector::from_fn(n_shots * 5, |r, _| f64::from(u8::from(r % 5 == c))))
+        .collect()
+}
+
+/// Share of the variation of `s` about its per-component means that `cols` (location and
+/// level columns) explain, in sample: how much of what the signal changes from shot to shot is
+/// a function of where the ball was struck.
+fn varies_with_location(s: &Column, cols: &[&Column]) -> f64 {
+    let no_folds = vec![0; s.len() / 5];
+    let (_, coef) = cv_sse(cols, s, &no_folds);
+    let fitted = cols
+        .iter()
+        .zip(coef.iter())
+        .fold(DVector::zeros(s.len()), |acc, (c, &k)| acc + *c * k);
+    let mut means = [0.0; 5];
+    for (r, v) in s.iter().enumerate() {
+        means[r % 5] += v / (s.len() / 5) as f64;
+    }
+    let about_means: f64 = s
+        .iter()
+        .enumerate()
+        .map(|(r, v)| (v - means[r % 5]).powi(2))
+        .sum();
+    1.0 - (s - fitted).norm_squared() / about_means.max(f64::MIN_POSITIVE)
+}
+
+/// Share of a signal's sum of squares in one launch component from which the component counts
+/// as one the signal moves.
+const MOVED_SHARE: f64 = 0.1;
+
+/// The launch components `signals` move: each carrying at least [`MOVED_SHARE`] of some
+/// signal's sum of squares.
+fn moved_components(signals: &[&Column]) -> [bool; 5] {
+    let mut moved = [false; 5];
+    for s in signals {
+        let total = s.norm_squared().max(f64::MIN_POSITIVE);
+        for (c, m) in moved.iter_mut().enumerate() {
+            let own: f64 = s.iter().skip(c).step_by(5).map(|v| v * v).sum();
+            *m |= own / total >= MOVED_SHARE;
+        }
+    }
+    moved
+}
+
+/// Does `effect` (a selected club effect) belong to the selected label `label`?
+fn belongs(effect: &Effect, label: &str) -> bool {
+    let (name, group) = label.split_once('@').unwrap_or((label, ""));
+    effect.kind().name() == name
+        && match group {
+            "" => effect.group().is_none(),
+            "group" => effect.group().is_some(),
+            g => effect.group() == Some(g),
+        }
+}
+
+/// Does estimate `p` belong to the selected label `label` (`name`, `name@group`, `name@A`)?
+pub fn estimate_of(p: &ParamEstimate, label: &str) -> bool {
+    let (name, group) = label.split_once('@').unwrap_or((label, ""));
+    p.effect == name
+        && match group {
+            "" => p.group.is_none(),
+            "group" => p.group.is_some(),
+            g => p.group.as_deref() == Some(g),
+        }
+}
+
+/// The club of `m` without the selected effect `label`.
+fn club_without(m: &FinalModel, label: &str) -> Result<ClubSpec, FitError> {
+    let effects: Vec<Effect> = m
+        .club
+        .effects
+        .iter()
+        .enumerate()
+        .filter(|(i, e)| *i < m.n_file_effects || !belongs(e, label))
+        .map(|(_, e)| e.clone())
+        .collect();
+    m.club
+        .with_effects(effects)
+        .map_err(|source| FitError::ClubNotPhysical {
+            which: "rival family",
+            source,
+        })
+}
+
+/// One selected effect's check and, when location structure took a share of its gain, the
+/// kin that read plausibly beside it.
+pub(super) struct EffectCheck {
+    pub check: FamilyCheck,
+    pub rivals: Vec<Rival>,
+}
+
+/// The selected labels of `m` (in the order of the club's effects).
+fn selected_labels(m: &FinalModel) -> Vec<String> {
+    let mut labels: Vec<String> = Vec::new();
+    for e in &m.club.effects[m.n_file_effects..] {
+        let label = match e.group() {
+            Some(_)
+                if m.estimates
+                    .iter()
+                    .any(|p| p.effect == e.kind().name() && p.group.is_some()) =>
+            {
+                format!("{}@group", e.kind().name())
+            }
+            _ => e.kind().name().to_owned(),
+        };
+        if !labels.contains(&label) {
+            labels.push(label);
+        }
+    }
+    labels
+}
+
+/// The check of every selected effect of `m`; `kin(label)` gives the kin of a selected effect
+/// with their correlations.
+pub(super) fn check(
+    m: &FinalModel,
+    kin: &dyn Fn(&str) -> Vec<(EffectRequest, f64)>,
+) -> Result<Vec<EffectCheck>, FitError> {
+    if m.estimates.is_empty() {
+        return Ok(Vec::new());
+    }
+    let errors = launch_errors_of(m.club, m.data)?;
+    let sigma = noise_scales(&errors);
+    let signals: Vec<Option<Column>> = m
+        .estimates
+        .iter()
+        .map(|p| Ok(signal_of(m.club, m.data, p)?.map(|s| whiten(&s, &sigma))))
+        .collect::<Result<_, FitError>>()?;
+    let location = location_columns(m.shots);
+    let loc_refs: Vec<&Column> = location.iter().collect();
+    let levels = level_columns(m.shots.len());
+    let with_levels: Vec<&Column> = loc_refs.iter().copied().chain(&levels).collect();
+    let mut out = Vec::new();
+    for label in selected_labels(m) {
+        let (mine, others): (Vec<usize>, Vec<usize>) =
+            (0..m.estimates.len()).partition(|&i| estimate_of(&m.estimates[i], &label));
+        let j_e: Vec<&Column> = mine.iter().filter_map(|&i| signals[i].as_ref()).collect();
+        if j_e.is_empty() {
+            continue;
+        }
+        let j_o: Vec<&Column> = others.iter().filter_map(|&i| signals[i].as_ref()).collect();
+        let location_form = j_e
+            .iter()
+            .all(|s| varies_with_location(s, &with_levels) >= LOCATION_FORM_R2);
+        let t = whiten(
+            &launch_errors_of(&club_without(m, &label)?, m.data)?,
+            &sigma,
+        );
+        let gain = |base: &[&Column], extra: &[&Column]| {
+            let with: Vec<&Column> = base.iter().chain(extra).copied().collect();
+            cv_sse(base, &t, m.fold_of).0 - cv_sse(&with, &t, m.fold_of).0
+        };
+        let own_gain = gain(&j_o, &j_e);
+        let family: Vec<&Column> = if location_form {
+            j_o.clone()
+        } else {
+            j_o.iter().chain(&loc_refs).copied().collect()
+        };
+        let gain_over_family = if location_form {
+            own_gain
+        } else {
+            gain(&family, &j_e)
+        };
+        let penalty = mine.len() as f64 * m.penalty_per_param;
+        let form = location_form.then(|| {
+            let moved = moved_components(&j_e);
+            let beyond: Vec<&Column> = location
+                .iter()
+                .enumerate()
+                .filter(|(i, _)| moved[i / 5])
+                .map(|(_, c)| c)
+                .collect();
+            let base: Vec<&Column> = j_o.iter().chain(&j_e).copied().collect();
+            (
+                gain(&base, &beyond),
+                beyond.len() as f64 * m.penalty_per_param,
+            )
+        });
+        let check = FamilyCheck {
+            label: label.clone(),
+            own_gain,
+            gain_over_family,
+            penalty,
+            location_in_family: !location_form,
+            form,
+        };
+        let rivals = if !location_form && own_gain - gain_over_family > m.penalty_per_param {
+            let base_margin = gain_over_family - penalty;
+            kin(&label)
+                .iter()
+                .filter_map(|(req, r)| {
+                    kin_reading(m, &label, req, (&t, &sigma), &family)
+                        .ok()
+                        .flatten()
+                        .and_then(|(params, g)| {
+                            let margin = g - params.len() as f64 * m.penalty_per_param;
+                            let gap = base_margin - margin;
+                            (gap <= RIVAL_MARGIN).then(|| Rival {
+                                label: req.label(),
+                                plausible: params
+                                    .iter()
+                                    .all(|p| honest::is_plausible(p).unwrap_or(true)),
+                                params,
+                                margin_gap: gap,
+                                r: *r,
+                            })
+                        })
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        out.push(EffectCheck { check, rivals });
+    }
+    Ok(out)
+}
+
+/// Kin `req` of the selected `label`, read with the rival family beside it: its values (its
+/// defaults moved by the least-squares coefficients of its signals at the defaults) and its
+/// held-out gain over the family. `None` when it cannot be evaluated.
+fn kin_reading(
+    m: &FinalModel,
+    label: &str,
+    req: &EffectRequest,
+    (t, sigma): (&Column, &[f64; 5]),
+    family: &[&Column],
+) -> Result<Option<(Vec<ParamEstimate>, f64)>, FitError> {
+    let without = club_without(m, label)?;
+    let mut effects = without.effects.clone();
+    let free = req.expand(&m.data.groups)?;
+    for f in &free {
+        effects.push(Effect::with_defaults(f.kind, f.group.clone()));
+    }
+    let Ok(club) = without.with_effects(effects) else {
+        return Ok(None);
+    };
+    let mut params = Vec::new();
+    let mut cols = Vec::new();
+    for f in &free {
+        for s in f.kind.params() {
+            let p = ParamEstimate {
+                effect: f.kind.name(),
+                group: f.group.clone(),
+                param: s.key,
+                unit: s.unit,
+                value: s.default,
+                stderr: None,
+                at_bound: false,
+            };
+            let Some(sig) = signal_of(&club, m.data, &p)? else {
+                return Ok(None);
+            };
+            cols.push(whiten(&sig, sigma));
+            params.push(p);
+        }
+    }
+    let with: Vec<&Column> = family.iter().copied().chain(cols.iter()).collect();
+    let (sse_with, coef) = cv_sse(&with, t, m.fold_of);
+    let g = cv_sse(family, t, m.fold_of).0 - sse_with;
+    let k0 = family.len();
+    // The signal is d(model − measured)/dθ and `t` is model − measured without the effect:
+    // the coefficient that cancels `t` moves the parameter by minus itself.
+    for (j, p) in params.iter_mut().enumerate() {
+        p.value -= coef[k0 + j];
+    }
+    Ok(Some((params, g)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_distr::StandardNormal;
+
+    fn column(mut f: impl FnMut(usize) -> f64, rows: usize) -> Column {
+        DVector::from_fn(rows, |r, _| f(r))
+    }
+
+    /// A column that is the target's own structure gains about its sum of squares held out; a
+    /// column of pure noise gains nothing (slightly less than nothing, out of sample).
+    #[test]
+    fn held_out_gain_follows_structure_not_noise() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(43);
+        let shots = 400;
+        let rows = shots * 5;
+        let fold_of: Vec<usize> = (0..shots).map(|i| i % 5).collect();
+        let x = column(|r| ((r / 5) as f64 * 0.37).sin(), rows);
+        let noise = column(|_| rng.sample::<f64, _>(StandardNormal), rows);
+        let useless = column(|_| rng.sample::<f64, _>(StandardNormal), rows);
+        let t = &x * 0.5 + &noise;
+        let base = cv_sse(&[], &t, &fold_of).0;
+        let with_x = cv_sse(&[&x], &t, &fold_of).0;
+        let with_useless = cv_sse(&[&useless], &t, &fold_of).0;
+        let expected = 0.25 * x.norm_squared();
+        assert!(
+            (base - with_x - expected).abs() < 0.25 * expected,
+            "gain {} against {expected}",
+            base - with_x
+        );
+        assert!(
+            base - with_useless < 3.0,
+            "noise gained {}",
+            base - with_useless
+        );
+    }
+
+    /// A signal varying with the squared heel-toe location is location structure; one varying
+    /// with something else (here the shot's index, as club speed would) is not, whatever its
+    /// level.
+    #[test]
+    fn a_location_form_is_told_by_how_its_signal_varies() {
+        let shots: Vec<Shot> = (0..200)
+            .map(|i| {
+                let mut d = [105.0, 0.0, 0.0, 12.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+                d[DeliveryVar::ImpactY.index()] = ((i * 7) % 23) as f64 - 11.0;
+                d[DeliveryVar::ImpactZ.index()] = ((i * 5) % 31) as f64 - 15.0;
+                Shot {
+                    id: i.to_string(),
+                    group: "all".into(),
+                    golfer: None,
+                    delivery: crate::model::delivery_from_file_units(&d),
+                    measured: None,
+                }
+            })
+            .collect();
+        let loc = location_columns(&shots);
+        let levels = level_columns(shots.len());
+        let cols: Vec<&Column> = loc.iter().chain(&levels).collect();
+        let z2 = column(
+            |r| {
+                let d = delivery_to_file_units(&shots[r / 5].delivery);
+                if r % 5 == 0 {
+                    3.0 - 0.01 * d[DeliveryVar::ImpactZ.index()].powi(2)
+                } else {
+                    0.0
+                }
+            },
+            shots.len() * 5,
+        );
+        let speedlike = column(
+            |r| {
+                if r % 5 == 0 {
+                    3.0 + ((r / 5) as f64 * 0.61).cos()
+                } else {
+                    0.0
+                }
+            },
+            shots.len() * 5,
+        );
+        assert!(varies_with_location(&z2, &cols) > 0.999);
+        assert!(varies_with_location(&speedlike, &cols) < LOCATION_FORM_R2);
+    }
+}
