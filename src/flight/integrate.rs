@@ -56,10 +56,42 @@ pub fn fly_into(
     out: &mut [Result<Flight, FlightError>],
 ) {
     assert_eq!(launches.len(), out.len(), "one result per launch");
-    launches
-        .par_chunks(PER_TASK)
-        .zip(out.par_chunks_mut(PER_TASK))
-        .for_each(|(l, o)| fly_serial(cfg, l, o));
+    in_hang_order(launches, out, |l, o| {
+        l.par_chunks(PER_TASK)
+            .zip(o.par_chunks_mut(PER_TASK))
+            .for_each(|(l, o)| fly_serial(cfg, l, o))
+    });
+}
+
+/// `fly` applied to the launches sorted by their vertical launch speed (ties in input order), its
+/// results put back in input order into `out`.
+///
+/// A batch flies until its last lane lands, and a step in which any lane of a vector may touch
+/// the ground is re-integrated in substeps for the whole vector: launches that stay in the air
+/// about as long as each other, batched together, land in the same few steps. On 200,000 random
+/// drives (150–180 mph, 8–14°) `smash flight` took 0.55–0.58 s of CPU for 0.63–0.69 s in input
+/// order (3 runs each on a loaded machine, 28 Nov 2026), with the same bytes out. Each lane's
+/// result is the same bits in any batch (the module docs), so only the order of work changes.
+fn in_hang_order(
+    launches: &[FlightLaunch],
+    out: &mut [Result<Flight, FlightError>],
+    fly: impl FnOnce(&[FlightLaunch], &mut [Result<Flight, FlightError>]),
+) {
+    if launches.len() <= PER_TASK {
+        return fly(launches, out);
+    }
+    let key: Vec<f64> = launches
+        .iter()
+        .map(|l| l.ball_speed_m_s * l.launch_angle_rad.sin())
+        .collect();
+    let mut order: Vec<usize> = (0..launches.len()).collect();
+    order.sort_by(|&a, &b| key[a].total_cmp(&key[b]).then(a.cmp(&b)));
+    let sorted: Vec<FlightLaunch> = order.iter().map(|&i| launches[i]).collect();
+    let mut flown = out.to_vec();
+    fly(&sorted, &mut flown);
+    for (r, &i) in flown.into_iter().zip(&order) {
+        out[i] = r;
+    }
 }
 
 /// [`fly_into`] on the calling thread only.
@@ -96,10 +128,11 @@ pub fn fly_with<C: CoefficientModel>(
         launches.len()
     ];
     let wind = cfg.air.has_wind();
-    launches
-        .par_chunks(PER_TASK)
-        .zip(out.par_chunks_mut(PER_TASK))
-        .for_each(|(l, o)| dispatch(cfg, model, wind, l, o));
+    in_hang_order(launches, &mut out, |l, o| {
+        l.par_chunks(PER_TASK)
+            .zip(o.par_chunks_mut(PER_TASK))
+            .for_each(|(l, o)| dispatch(cfg, model, wind, l, o))
+    });
     out
 }
 

@@ -58,6 +58,9 @@ fn flights_shorter_than_one_step_land_after_their_apex() {
     assert!(f.carry_m > 0.15 && close, "{f:?} {g:?}");
 }
 
+/// The results, in input order, are each launch's own whatever the batch: 37 launches (one
+/// task, in input order) and 300 in a scrambled order of hang time with a bad launch among them
+/// (flown in hang order, [`in_hang_order`], and put back), by `fly` and by `fly_with`.
 #[test]
 fn batching_and_threads_do_not_change_results() {
     let cfg = FlightConfig::default();
@@ -76,9 +79,47 @@ fn batching_and_threads_do_not_change_results() {
     for (k, l) in ls.iter().enumerate() {
         assert_eq!(all[k], fly_one(&cfg, l), "launch {k}");
     }
+    let mut many: Vec<FlightLaunch> = (0..300)
+        .map(|k| {
+            let (a, b) = ((k * 37) % 101, (k * 53) % 97);
+            FlightLaunch::from_file_units(
+                60.0 + a as f64,
+                2.0 + 0.4 * b as f64,
+                -3.0 + 0.02 * k as f64,
+                1500.0 + 30.0 * b as f64,
+                -600.0 + 4.0 * k as f64,
+            )
+        })
+        .collect();
+    many[150].launch_angle_rad = f64::NAN;
+    let flown = fly(&cfg, &many);
+    let with = cfg.aero.visit(FlyWith {
+        cfg: &cfg,
+        launches: &many,
+    });
+    assert!(flown[150].is_err());
+    for (k, l) in many.iter().enumerate() {
+        // Debug text: the shortest digits that give back the same bits, and NaN equal to NaN.
+        let own = format!("{:?}", fly_one(&cfg, l));
+        assert_eq!(format!("{:?}", flown[k]), own, "launch {k}");
+        assert_eq!(format!("{:?}", with[k]), own, "launch {k}");
+    }
     let mut serial = vec![Ok(fly_one(&cfg, &ls[0]).unwrap()); ls.len()];
     fly_serial(&cfg, &ls, &mut serial);
     assert_eq!(all, serial);
+}
+
+/// [`fly_with`] under the configuration's own model.
+struct FlyWith<'a> {
+    cfg: &'a FlightConfig,
+    launches: &'a [FlightLaunch],
+}
+
+impl ModelVisitor for FlyWith<'_> {
+    type Output = Vec<Result<Flight, FlightError>>;
+    fn visit<C: CoefficientModel>(self, model: &C) -> Self::Output {
+        fly_with(self.cfg, model, self.launches)
+    }
 }
 
 /// Every lane type this machine runs (portable, AVX2, AVX-512) flies the same bits, with
