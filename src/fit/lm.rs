@@ -304,6 +304,37 @@ impl LevenbergMarquardt {
         problem.jacobian(theta)
     }
 
+    /// The Jacobian an accepted step's point `trial` goes on with: the point's own (`None`: the
+    /// state's, kept). `chord_done`: the kept Jacobian's steps converged; `small`: the step
+    /// changed `χ²` by less than `ftol`; `keep`: kept steps are left.
+    fn accepted_jacobian<O>(
+        &mut self,
+        problem: &mut Problem<O>,
+        trial: &DVector<f64>,
+        chord_done: bool,
+        small: bool,
+        keep: bool,
+    ) -> Result<Option<DMatrix<f64>>, ArgminError>
+    where
+        O: Jacobian<Param = DVector<f64>, Jacobian = DMatrix<f64>>,
+    {
+        if chord_done {
+            return Ok(Some(self.own_jacobian(problem, trial)?));
+        }
+        if (small && !self.final_jacobian) || keep {
+            self.keep_start_jacobian = self.keep_start_jacobian.saturating_sub(1);
+            self.kept_moved = keep;
+            return Ok(None);
+        }
+        // The point's own: the kept Jacobian (if any) is given up, or, refreshed, kept in its
+        // turn.
+        self.kept_moved = false;
+        if self.refresh {
+            self.keep_start_jacobian = KEPT_JACOBIAN_STEPS;
+        }
+        Ok(Some(problem.jacobian(trial)?))
+    }
+
     /// The largest `|step_j|` relative to its parameter's range.
     fn step_of_range(&self, step: &DVector<f64>) -> f64 {
         step.iter()
@@ -506,21 +537,8 @@ where
                     // A small step with a kept Jacobian that is no longer the point's: the
                     // chord converged, and the fit goes on from its point's own Jacobian.
                     let chord_done = small && chord_only;
-                    let j_trial = if chord_done {
-                        Some(self.own_jacobian(problem, &trial)?)
-                    } else if (small && !self.final_jacobian) || keep {
-                        self.keep_start_jacobian = self.keep_start_jacobian.saturating_sub(1);
-                        self.kept_moved = keep;
-                        None
-                    } else {
-                        // The point's own: the kept Jacobian (if any) is given up, or, refreshed,
-                        // kept in its turn.
-                        self.kept_moved = false;
-                        if self.refresh {
-                            self.keep_start_jacobian = KEPT_JACOBIAN_STEPS;
-                        }
-                        Some(problem.jacobian(&trial)?)
-                    };
+                    let j_trial =
+                        self.accepted_jacobian(problem, &trial, chord_done, small, keep)?;
                     self.lambda *= (1.0 - (2.0 * rho - 1.0).powi(3)).max(1.0 / 3.0);
                     self.nu = 2.0;
                     accepted = true;
