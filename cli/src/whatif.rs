@@ -317,11 +317,13 @@ fn table_text(w: &WhatIf) -> String {
 fn rows(w: &WhatIf, change: &HeadChange) -> Vec<YardRow> {
     vec![
         YardRow {
+            variant_id: None,
             label: "base".into(),
             design: "base".into(),
             head: w.base,
         },
         YardRow {
+            variant_id: None,
             label: "what-if".into(),
             design: change.describe().join("; "),
             head: w.changed,
