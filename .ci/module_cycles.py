@@ -6,10 +6,12 @@ back: that keeps the layers of the library (and of the command line) in one dire
 room can be changed or tested without the ones above it.
 
 Checked for each crate root given (default: the library `src/` and the command line
-`cli/src/`), at two granularities:
-
-- top-level modules (`data`, `synth`, ...: `src/data/**` is one node), and
-- the submodules of each top-level module (`study::metrics`, `study::spec`, ...).
+`cli/src/`), at every depth: among the top-level modules (`data`, `synth`, ...: `src/data/**` is
+one node), among the children of each top-level module (`study::metrics`, `study::spec`, ...),
+among the children of each of those (`data::import::rows`, `data::import::table`, ...), and so
+on down to the deepest file. At each depth a module's subtree is one node and only siblings
+(children of one parent) are compared: a path between cousins is a path between their
+ancestors, checked a level up.
 
 A dependency is any path through `crate::`, `super::` or `self::` in code (comments and string
 literals are ignored): `use` trees and paths written inline. A path through a re-export
@@ -21,12 +23,14 @@ are not part of the library's layers, and a test may build its fixture with a la
 code it tests (a synthetic world for a fit, say).
 
 Prints every cycle found (one per line) and exits 1 if there is any, else prints a summary and
-exits 0.
+exits 0. `--self-test` checks the checker on small crates written to a temporary directory (a
+cycle three levels deep is found; a parent and its children using each other is not one).
 """
 
 import os
 import re
 import sys
+import tempfile
 
 from rust_source import code_only
 
@@ -183,6 +187,10 @@ def check(root):
                     target += segs
                 reexports[tuple(here) + (name,)] = target
 
+    # Every module and every module above one (a file's ancestors), as path tuples.
+    prefixes = {m[:k] for m in modules for k in range(1, len(m) + 1)}
+    depth = max((len(m) for m in modules), default=0)
+
     def resolve(path):
         for _ in range(8):
             for k in range(len(path), 0, -1):
@@ -195,25 +203,24 @@ def check(root):
         return path
 
     def node(path, level):
-        """The node a module path belongs to at `level` (1 or 2), or None."""
+        """The module at depth `level` (1 = a top-level module) that `path` lies in, or None
+        when the path is shorter or leads to no module that deep (an item of a parent)."""
         path = resolve(list(path))
-        if not path or not any(m[:1] == (path[0],) for m in modules):
+        if len(path) < level or tuple(path[:level]) not in prefixes:
             return None
-        if level == 1:
-            return path[0]
-        if len(path) >= 2 and any(m[:2] == (path[0], path[1]) for m in modules):
-            return f"{path[0]}::{path[1]}"
-        return None
+        return "::".join(path[:level])
 
     problems = []
-    for level in (1, 2):
+    for level in range(1, depth + 1):
         edges, refs = {}, {}
         for f in sorted(files):
             for here, path in paths_in(sources[f], module_of(root, f)):
                 a, b = node(here, level), node(path, level)
                 if a is None or b is None or a == b:
                     continue
-                if level == 2 and a.split("::")[0] != b.split("::")[0]:
+                # Siblings only: the children of one module, each with its subtree as one node
+                # (a path to a cousin is a path between their ancestors, a level up).
+                if a.rsplit("::", 1)[:-1] != b.rsplit("::", 1)[:-1]:
                     continue
                 edges.setdefault(a, set()).add(b)
                 refs.setdefault((a, b), os.path.relpath(f))
@@ -239,7 +246,52 @@ def check(root):
     return problems
 
 
+def self_test():
+    """The checker on small crates: a cycle at depth 3 is found, parent <-> child is allowed."""
+    crates = {
+        "deep cycle": (
+            {
+                "lib.rs": "pub mod a;",
+                "a/mod.rs": "pub mod b; pub struct Shared;",
+                "a/b/mod.rs": "mod x; mod y; mod z;",
+                "a/b/x.rs": "use super::y::Y; pub struct X;",
+                "a/b/y.rs": "pub struct Y; fn f() { let _ = super::z::Z; }",
+                "a/b/z.rs": "pub struct Z; use crate::a::b::x::X;",
+            },
+            ["a::b::x, a::b::y, a::b::z"],
+        ),
+        "parent and children": (
+            {
+                "lib.rs": "pub mod a;",
+                "a/mod.rs": "mod x; mod y; pub use self::x::X; pub struct Shared;",
+                "a/x.rs": "use super::Shared; use super::y::Y; pub struct X;",
+                "a/y.rs": "pub struct Y; /* use super::x::X; */ const S: &str = \"super::x::X\";",
+            },
+            [],
+        ),
+    }
+    failures = 0
+    for name, (files, want) in crates.items():
+        with tempfile.TemporaryDirectory() as root:
+            for rel, text in files.items():
+                os.makedirs(os.path.dirname(os.path.join(root, rel)), exist_ok=True)
+                with open(os.path.join(root, rel), "w") as f:
+                    f.write(text)
+            got = [
+                p.split("modules in a cycle: ", 1)[1]
+                for p in check(root)
+                if "modules in a cycle: " in p
+            ]
+        if got != want:
+            print(f"self-test {name}: found {got}, expected {want}")
+            failures += 1
+    print("self-test:", "failed" if failures else "passed")
+    return 1 if failures else 0
+
+
 def main():
+    if sys.argv[1:] == ["--self-test"]:
+        return self_test()
     if len(sys.argv) == 1:
         os.chdir(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
     roots = sys.argv[1:] or [r for r in ("src", "cli/src") if os.path.isdir(r)]

@@ -10,6 +10,10 @@
 //!   units and bounds.
 //! - [`club`]: a club as users describe it (nominal + effects) → a validated model per group.
 //! - [`club_match`]: do the shots belong to the club file (names, delivered loft, speed)?
+//! - [`conventions`]: where and how a launch monitor defines the delivery, and its exact
+//!   conversion to the model's convention with the club's own face geometry.
+//! - [`measurement`]: measurement error in the delivered inputs (regression calibration of
+//!   noisy impact locations and delivery variables).
 //! - [`model`]: the domain types every room above the physics shares: a shot and the delivery
 //!   variables (column, unit, range, typical instrument noise). No I/O.
 //! - [`data`]: club TOML, shots CSV, predictions CSV, noise files, launch-monitor import; the one
@@ -23,12 +27,23 @@
 //! - [`fit`]: residual problem, bounded Levenberg–Marquardt through argmin, covariance,
 //!   calibration reports.
 //! - [`diagnose`]: which effect is missing: grouped cross-validation and forward selection.
+//! - [`infer`]: `smash infer-club`: the head's effective properties estimated from the shots,
+//!   with honest uncertainty.
 //! - [`flight`]: ball flight from launch to landing (aerodynamics, atmosphere, batched
 //!   integrator, bounce and roll) and its validation data.
 //! - [`sweep`]: the face-map kernel: many impacts of one model and swing, fast.
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
 //! - [`report`]: output rendering (SVG heatmaps, CSV matrices, text tables).
+//!
+//! Underneath every room, the floors any of them may use (they use none of the rooms):
+//!
+//! - [`units`]: conversions between the file units and the SI units used inside.
+//! - [`limits`]: the physical range of every input quantity and the caps on one command's work.
+//! - [`inputs`]: the files this process has read, so that no output is written over one.
+//! - [`line_index`]: line numbers of byte offsets, whatever a file's line ends.
+//! - [`suggest`]: "did you mean" for a name typed wrong.
+//! - [`cancel`]: a cancellation token long work checks between its fits.
 //!
 //! The `smash` command line is a separate package of the workspace (`cli/`), a thin layer over
 //! this library; the library itself has no command-line dependencies.

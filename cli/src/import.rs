@@ -54,16 +54,20 @@ pub fn run(args: ImportArgs) -> anyhow::Result<()> {
     write_atomic(&args.out, &imported.csv)?;
     let n = imported.shots;
     let with_delivery = table.as_ref().map_or(0, |t| t.shots.len());
-    eprintln!(
-        "import: {n} shot{} ({with_delivery} with a complete delivery{}) from {} -> {}",
-        if n == 1 { "" } else { "s" },
-        if groups > 0 {
-            format!(", {groups} group{}", if groups == 1 { "" } else { "s" })
-        } else {
-            String::new()
-        },
-        args.input.display(),
-        args.out.display()
+    // One sentence, wrapped to fit a terminal as the reports' prose is.
+    eprint!(
+        "{}",
+        smash::report::text::wrap_long(&format!(
+            "import: {n} shot{} ({with_delivery} with a complete delivery{}) from {} -> {}\n",
+            if n == 1 { "" } else { "s" },
+            if groups > 0 {
+                format!(", {groups} group{}", if groups == 1 { "" } else { "s" })
+            } else {
+                String::new()
+            },
+            args.input.display(),
+            args.out.display()
+        ))
     );
     Ok(())
 }

@@ -59,22 +59,26 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
         files.push((path, text.as_bytes()));
     }
     write_files_atomic(&files)?;
-    eprintln!(
-        "synth: {} ({} × {} × {}), seed {}, {} swing(s) redrawn, \
-         {} hidden effect(s){} -> {}",
-        super::counted(run.shots.len(), "shot"),
-        super::counted(cfg.groups.len(), "group"),
-        super::counted(cfg.golfers, "golfer"),
-        super::counted(cfg.swings_per_golfer, "swing"),
-        cfg.seed,
-        run.redrawn,
-        cfg.hidden.len(),
-        if cfg.world.is_active() {
-            " + world-only physics"
-        } else {
-            ""
-        },
-        args.out.display()
+    // One sentence, wrapped to fit a terminal as the reports' prose is.
+    eprint!(
+        "{}",
+        smash::report::text::wrap_long(&format!(
+            "synth: {} ({} × {} × {}), seed {}, {} swing(s) redrawn, \
+             {} hidden effect(s){} -> {}\n",
+            super::counted(run.shots.len(), "shot"),
+            super::counted(cfg.groups.len(), "group"),
+            super::counted(cfg.golfers, "golfer"),
+            super::counted(cfg.swings_per_golfer, "swing"),
+            cfg.seed,
+            run.redrawn,
+            cfg.hidden.len(),
+            if cfg.world.is_active() {
+                " + world-only physics"
+            } else {
+                ""
+            },
+            args.out.display()
+        ))
     );
     Ok(())
 }

@@ -8,6 +8,7 @@ use clap::Args;
 
 use smash::data::club_file::read_club;
 use smash::report::html::esc;
+use smash::report::text::wrap_long;
 use smash::study::distribution::{Distribution, Method, SwingSpec};
 use smash::study::whatif::{head_text, what_if, HeadChange, MassMove, WhatIf};
 use smash::study::yards_variants::{
@@ -317,11 +318,13 @@ fn table_text(w: &WhatIf) -> String {
 fn rows(w: &WhatIf, change: &HeadChange) -> Vec<YardRow> {
     vec![
         YardRow {
+            variant_id: None,
             label: "base".into(),
             design: "base".into(),
             head: w.base,
         },
         YardRow {
+            variant_id: None,
             label: "what-if".into(),
             design: change.describe().join("; "),
             head: w.changed,
@@ -398,11 +401,13 @@ pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
         let html = report_html(&club.name, &change, &setting_text, &w);
         smash::data::write_atomic(report, html.as_bytes())?;
     }
-    let mut text = format!(
+    // The change and the setting are sentences: wrapped, as the other reports' prose is, to
+    // fit a terminal (the HTML report has them on one line each).
+    let mut text = wrap_long(&format!(
         "what if: {} ({}, nominal head)\n{setting_text}\n",
         change.describe().join("; "),
         club.name
-    );
+    ));
     text.push_str(&head_text(&w));
     text.push_str(&table_text(&w));
     for (flag, path) in [("csv", &args.out), ("report", &args.report)] {

@@ -266,6 +266,16 @@ fn design_variants_are_judged_in_yards_as_separate_heads_are() {
     let rows = variant_rows(&out);
     let labels: Vec<&str> = rows.iter().map(|r| r["label"].as_str()).collect();
     assert_eq!(labels, ["base", "variant 0", "variant 1", "variant 2"]);
+    // Keyed as the study's variants.csv is: a variant's row joins its row there on
+    // `variant_id`; the base (no variant) has none.
+    let ids: Vec<&str> = rows.iter().map(|r| r["variant_id"].as_str()).collect();
+    assert_eq!(ids, ["", "0", "1", "2"]);
+    let study_ids: Vec<String> = csv::Reader::from_path(out.join("variants.csv"))
+        .unwrap()
+        .records()
+        .map(|r| r.unwrap()[0].to_owned())
+        .collect();
+    assert_eq!(study_ids, ["0", "1", "2"]);
     assert_eq!(rows[1]["design"], "com_dz_mm = -4");
     let keys = [
         "mean_carry_yd",

@@ -13,6 +13,10 @@
 //! - a block preceded by `<!-- docs-run: skip: REASON -->` is not run (the reason is required).
 //!
 //! Files other than these are not read. A failing command names its file, line and output.
+//!
+//! Every documented command's default text fits [`MAX_COLUMNS`]: each line a `smash` command
+//! prints (stdout and stderr), unless the script asks for more (`--wide`), for JSON, or pipes
+//! or redirects what it prints (issue 42).
 
 mod cli_support;
 
@@ -20,6 +24,70 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use cli_support::{repo, SMASH};
+use unicode_width::UnicodeWidthStr;
+
+/// The widest line a command's default text may print, in display columns.
+const MAX_COLUMNS: usize = 120;
+
+/// Whether `script`'s output is commands' default text: every command of it (continuation
+/// lines joined, comments and blank lines left out) a `smash` command whose output is not
+/// piped, redirected, JSON or widened.
+fn is_default_text(script: &str) -> bool {
+    let joined = script.replace("\\\n", " ");
+    let commands: Vec<&str> = joined
+        .lines()
+        .map(|l| l.split(" #").next().unwrap_or("").trim())
+        .filter(|l| !l.is_empty() && !l.starts_with('#'))
+        .collect();
+    !commands.is_empty()
+        && commands.iter().all(|c| {
+            c.starts_with("smash ")
+                && !["|", ">", "--wide", "--json", "&&", ";", "$("]
+                    .iter()
+                    .any(|s| c.contains(s))
+        })
+}
+
+/// Documented commands still printing wider lines (issue 42, to do), by a word of the script,
+/// with why: their lines are left out of the check.
+const KNOWN_WIDE_COMMANDS: [(&str, &str); 2] = [
+    (
+        "smash effects",
+        "the effect table's descriptions are one line each: they need wrapping in a column",
+    ),
+    (
+        "smash infer-club",
+        "its report (src/infer/) is being reworked for issue 40: wrapped there",
+    ),
+];
+
+/// Lines still printed whole however wide (issue 42, to do), by how they start, with why.
+const KNOWN_WIDE_LINES: [(&str, &str); 2] = [
+    (
+        "import (",
+        "an export's notes, one line each (tests match their text whole)",
+    ),
+    (
+        "shots: ",
+        "a shots file's notes, one line each (tests match their text whole)",
+    ),
+];
+
+/// Whether `script` is one of [`KNOWN_WIDE_COMMANDS`].
+fn known_wide(script: &str) -> bool {
+    KNOWN_WIDE_COMMANDS.iter().any(|(w, _)| script.contains(w))
+}
+
+/// The lines of `output` wider than [`MAX_COLUMNS`] (but [`KNOWN_WIDE_LINES`]), each with its
+/// width.
+fn too_wide(output: &str) -> Vec<String> {
+    output
+        .lines()
+        .filter(|l| l.width() > MAX_COLUMNS)
+        .filter(|l| !KNOWN_WIDE_LINES.iter().any(|(p, _)| l.starts_with(p)))
+        .map(|l| format!("({} columns) {l}", l.width()))
+        .collect()
+}
 
 /// One command (or script) of the documentation.
 #[derive(Debug)]
@@ -221,6 +289,7 @@ fn documented_commands_run_as_written() {
         std::env::var("PATH").unwrap_or_default()
     );
     let mut ran = 0;
+    let mut wide = Vec::new();
     for file in doc_files(&root) {
         let rel = file.strip_prefix(&root).unwrap().display().to_string();
         let text = std::fs::read_to_string(&file).unwrap();
@@ -251,11 +320,23 @@ fn documented_commands_run_as_written() {
                     c.at, c.script
                 );
             }
+            if is_default_text(&c.script) && !known_wide(&c.script) {
+                wide.extend(
+                    too_wide(&output)
+                        .into_iter()
+                        .map(|l| format!("{}: {l}", c.at)),
+                );
+            }
             eprintln!("{}: {:.1} s", c.at, started.elapsed().as_secs_f64());
             ran += 1;
         }
     }
     assert!(ran > 10, "only {ran} documented commands found");
+    assert!(
+        wide.is_empty(),
+        "documented commands print lines wider than {MAX_COLUMNS} columns:\n{}",
+        wide.join("\n")
+    );
 }
 
 #[test]
@@ -280,6 +361,30 @@ fn the_runner_reads_blocks_markers_and_outputs() {
     assert!(missing_line(&strict, "a\nc\n").is_none());
     assert!(line_matches("x = 1 …", "x = 1 and more"));
     assert!(!line_matches("x = 2 …", "x = 1 and more"));
+}
+
+#[test]
+fn default_text_is_a_lone_command_without_wide_or_json() {
+    assert!(is_default_text(
+        "smash diagnose --club c.toml --shots s.csv"
+    ));
+    for s in [
+        "smash diagnose --wide",
+        "smash diagnose --json",
+        "smash run s.toml | head",
+        "smash flight > f.txt",
+        "ls\nsmash x",
+        "cat README.md",
+    ] {
+        assert!(!is_default_text(s), "{s}");
+    }
+    assert!(is_default_text(
+        "# two\nsmash a \\\n  --b  # the first\n\nsmash c  # a comment > no redirect"
+    ));
+    assert_eq!(too_wide(&format!("{}\nshort\n", "±".repeat(121))).len(), 1);
+    assert!(too_wide(&"σ".repeat(120)).is_empty());
+    assert!(too_wide(&format!("shots: {}", "x".repeat(120))).is_empty());
+    assert!(known_wide("smash effects") && !known_wide("smash diagnose --club c.toml"));
 }
 
 #[test]

@@ -1,6 +1,7 @@
-//! The default text output of compare, calibrate, diagnose, flight and run fits 120 columns
-//! (their renderers aim at 100) on the shipped inputs, on stdout and stderr alike, and `--wide`
-//! still prints the full tables: a column or line only `--wide` shows is there.
+//! The default text output of compare, calibrate, diagnose, flight, run, whatif and synth fits
+//! 120 columns (their renderers aim at 100) on the shipped inputs, on stdout and stderr alike,
+//! and `--wide` still prints the full tables: a column or line only `--wide` shows is there.
+//! Every documented command's output is checked the same way by `docs_run.rs`.
 
 mod cli_support;
 
@@ -51,7 +52,7 @@ fn fits(args: &[&str]) -> String {
 /// The paper's world (600 shots), written into `dir`.
 fn paper_world(dir: &Path) -> String {
     let shots = dir.join("paper_world.csv");
-    run(&[
+    fits(&[
         "synth",
         "--config",
         "configs/synth/paper_world.toml",
@@ -177,4 +178,24 @@ fn run_fits_and_widens() {
             s(&out),
         ]);
     }
+}
+
+#[test]
+fn whatif_fits() {
+    // The setting (golfer, mishits, quadrature) is one sentence, wrapped.
+    let text = fits(&[
+        "whatif",
+        "--club",
+        CLUB,
+        "--speed",
+        "95",
+        "--loft",
+        "13",
+        "--move-mass",
+        "5g:-70,-10,0:-80,-10,-10",
+    ]);
+    assert!(
+        text.contains("golfer: 95 mph") && text.contains("\n  dispersion ellipse\n"),
+        "{text}"
+    );
 }

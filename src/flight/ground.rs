@@ -20,6 +20,7 @@
 //! slope are not modelled.
 
 use super::G_M_S2;
+use crate::limits::fmt_value;
 
 /// Default turf coefficient of restitution (dimensionless), see the module documentation.
 pub const DEFAULT_RESTITUTION: f64 = 0.20;
@@ -47,25 +48,38 @@ impl Default for Ground {
     }
 }
 
+/// A ground parameter outside its range (the value given).
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum GroundError {
+    /// The turf's coefficient of restitution is not within [0, 1).
+    #[error("ground restitution = {}: must be within [0, 1)", fmt_value(*.0))]
+    Restitution(f64),
+    /// The run-out deceleration is not within [0.1, 50] m/s².
+    #[error(
+        "ground roll_decel_m_s2 = {}: must be within [0.1, 50] m/s² (the fastest greens roll \
+         out at about 0.4)",
+        fmt_value(*roll_decel_m_s2)
+    )]
+    RollDecel {
+        /// The deceleration given, m/s².
+        roll_decel_m_s2: f64,
+    },
+}
+
 impl Ground {
     /// Check the parameters.
-    pub fn check(&self) -> Result<(), String> {
+    pub fn check(&self) -> Result<(), GroundError> {
         if !(self.restitution >= 0.0 && self.restitution < 1.0) {
-            return Err(format!(
-                "ground restitution = {}: must be within [0, 1)",
-                crate::limits::fmt_value(self.restitution)
-            ));
+            return Err(GroundError::Restitution(self.restitution));
         }
         // The lower end: the USGA Stimpmeter releases a ball at about 1.83 m/s, and on the
         // fastest greens (Stimp 14 ft, 4.27 m) it rolls out at v²/2d ≈ 0.39 m/s²; no turf is a
         // quarter as slow. Below that the run-out grows without bound (1e-300 m/s² once gave a
         // 304-digit total).
         if !(MIN_ROLL_DECEL_M_S2..=50.0).contains(&self.roll_decel_m_s2) {
-            return Err(format!(
-                "ground roll_decel_m_s2 = {}: must be within [0.1, 50] m/s² (the fastest \
-                 greens roll out at about 0.4)",
-                crate::limits::fmt_value(self.roll_decel_m_s2)
-            ));
+            return Err(GroundError::RollDecel {
+                roll_decel_m_s2: self.roll_decel_m_s2,
+            });
         }
         Ok(())
     }
@@ -100,11 +114,26 @@ mod tests {
         // Enough backspin stops it dead.
         assert_eq!(g.run_m(10.0, 10.0, 5000.0, 0.02), 0.0);
         assert!(g.check().is_ok());
-        assert!(Ground {
+        let e = Ground {
             restitution: 1.0,
             ..g
         }
         .check()
-        .is_err());
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "ground restitution = 1: must be within [0, 1)"
+        );
+        let e = Ground {
+            roll_decel_m_s2: 0.01,
+            ..g
+        }
+        .check()
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "ground roll_decel_m_s2 = 0.01: must be within [0.1, 50] m/s² (the fastest greens \
+             roll out at about 0.4)"
+        );
     }
 }

@@ -20,8 +20,14 @@ pub const RED_C: RGBColor = RGBColor(200, 30, 40);
 /// Plausible ranges.
 pub const GREEN_C: RGBColor = RGBColor(60, 160, 80);
 
-fn err<E: std::fmt::Display>(e: E) -> String {
-    format!("drawing a chart: {e}")
+/// A chart plotters could not draw (its SVG backend writes into a string, so a refused
+/// coordinate or text rather than an I/O failure).
+#[derive(Debug, thiserror::Error)]
+#[error("drawing a chart: {0}")]
+pub struct ChartError(String);
+
+fn err<E: std::fmt::Display>(e: E) -> ChartError {
+    ChartError(e.to_string())
 }
 
 /// A drawing area over an SVG string.
@@ -40,7 +46,7 @@ fn build_chart<'a, 'b>(
     (x_area, y_area): (u32, u32),
     x: std::ops::Range<f64>,
     y: std::ops::Range<f64>,
-) -> Result<Chart<'a, 'b>, String> {
+) -> Result<Chart<'a, 'b>, ChartError> {
     ChartBuilder::on(root)
         .caption(title, ("sans-serif", 17))
         .margin(12)
@@ -55,7 +61,7 @@ fn draw_category_mesh<'a, 'b: 'a>(
     chart: &mut Chart<'a, 'b>,
     y_label: &str,
     font_px: u32,
-) -> Result<(), String> {
+) -> Result<(), ChartError> {
     let y_tick = tick_for(chart.y_range());
     chart
         .configure_mesh()
@@ -75,7 +81,7 @@ fn draw_value_mesh<'a, 'b: 'a>(
     chart: &mut Chart<'a, 'b>,
     x_label: &str,
     y_label: &str,
-) -> Result<(), String> {
+) -> Result<(), ChartError> {
     let (x_tick, y_tick) = (tick_for(chart.x_range()), tick_for(chart.y_range()));
     chart
         .configure_mesh()
@@ -94,7 +100,7 @@ fn draw_legend<'a, 'b: 'a>(
     chart: &mut Chart<'a, 'b>,
     position: SeriesLabelPosition,
     font_px: u32,
-) -> Result<(), String> {
+) -> Result<(), ChartError> {
     chart
         .configure_series_labels()
         .position(position)
@@ -113,7 +119,7 @@ fn draw_row_labels<'l>(
     labels: impl Iterator<Item = &'l str>,
     x: f64,
     n: usize,
-) -> Result<(), String> {
+) -> Result<(), ChartError> {
     for (i, l) in labels.enumerate() {
         let (px, py) = chart.backend_coord(&(x, (n - 1 - i) as f64 + 0.5));
         root.draw(&Text::new(
@@ -226,7 +232,7 @@ pub fn grouped_bars_svg(
     y_label: &str,
     categories: &[String],
     series: &[BarSeries],
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let n = categories.len().max(1);
     let all = series.iter().flat_map(|s| {
         s.values.iter().flatten().flat_map(|b| {
@@ -343,7 +349,7 @@ pub fn scatter_trend_svg(
     points: &[(f64, f64)],
     trend: Option<&Trend>,
     bin_means: &[(f64, f64)],
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let pts: Vec<(f64, f64)> = points
         .iter()
         .copied()
@@ -429,7 +435,7 @@ pub struct Estimate {
 
 /// Estimates of parameters sharing one unit: plausible ranges as green bands, estimates as
 /// points with their intervals.
-pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<String, String> {
+pub fn estimates_svg(title: &str, unit: &str, rows: &[Estimate]) -> Result<String, ChartError> {
     let n = rows.len().max(1);
     let (x0, x1) = range(
         rows.iter().flat_map(|r| {
@@ -513,7 +519,7 @@ pub fn bars_with_line_svg(
     labels: &[String],
     values: &[f64],
     line: Option<(&[f64], &str)>,
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let n = labels.len().max(1);
     let (lo, hi) = range(
         values

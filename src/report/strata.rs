@@ -21,8 +21,10 @@ pub(crate) fn value_text(v: Option<(f64, f64)>) -> String {
 }
 
 /// The strata table (one block of rows per family, its p-values last) and the provisional
-/// values with the check each failed; empty when nothing was checked.
-pub fn text(d: &Diagnosis) -> String {
+/// values with the check each failed; empty when nothing was checked. The parameters' columns
+/// are split into tables of at most [`crate::report::text::WIDTH`] columns (family, stratum and
+/// n repeated in each) unless `wide`, which prints one table as wide as it needs.
+pub fn text(d: &Diagnosis, wide: bool) -> String {
     let Some(c) = &d.strata else {
         return String::new();
     };
@@ -33,8 +35,33 @@ pub fn text(d: &Diagnosis) -> String {
         c.alpha_each,
         crate::diagnose::strata::STRATA_ALPHA
     );
+    let fits = |t: &String| {
+        t.lines()
+            .all(|l| l.chars().count() <= crate::report::text::WIDTH)
+    };
+    // Blocks of parameters whose tables fit (at least one parameter each).
+    let mut blocks: Vec<Vec<usize>> = Vec::new();
+    for j in 0..c.params.len() {
+        match blocks.last_mut() {
+            Some(b) if wide || fits(&table(c, &[b.as_slice(), &[j]].concat())) => b.push(j),
+            _ => blocks.push(vec![j]),
+        }
+    }
+    let tables: Vec<String> = blocks.iter().map(|b| table(c, b)).collect();
+    s.push_str(&tables.join("\n"));
+    for p in &d.estimates {
+        if let Some(why) = d.provisional(p) {
+            let line = format!("  provisional, not a finding: {why}");
+            s.push_str(&crate::report::wrap::wrap(&line, 99, 2));
+        }
+    }
+    s
+}
+
+/// The strata table of the parameters `cols` (indices into the check's parameters).
+fn table(c: &StrataCheck, cols: &[usize]) -> String {
     let mut header = vec!["family".to_owned(), "stratum".into(), "n".into()];
-    header.extend(c.params.iter().cloned());
+    header.extend(cols.iter().map(|&j| c.params[j].clone()));
     let mut t = TextTable::new(header);
     for f in &c.families {
         for (i, st) in f.strata.iter().enumerate() {
@@ -47,15 +74,15 @@ pub fn text(d: &Diagnosis) -> String {
                 st.label.clone(),
                 st.n.to_string(),
             ];
-            row.extend(st.values.iter().map(|v| value_text(*v)));
+            row.extend(cols.iter().map(|&j| value_text(st.values[j])));
             t.row(row);
         }
         if f.checks.iter().all(Option::is_none) {
             continue;
         }
         let mut row = vec![String::new(), "p (one value?)".into(), String::new()];
-        row.extend(f.checks.iter().map(|k| {
-            k.as_ref().map_or("-".into(), |k| {
+        row.extend(cols.iter().map(|&j| {
+            f.checks[j].as_ref().map_or("-".into(), |k| {
                 let p = if k.p_value < 1e-15 {
                     "< 1e-15".to_owned()
                 } else {
@@ -66,14 +93,7 @@ pub fn text(d: &Diagnosis) -> String {
         }));
         t.row(row);
     }
-    s.push_str(&t.render());
-    for p in &d.estimates {
-        if let Some(why) = d.provisional(p) {
-            let line = format!("  provisional, not a finding: {why}");
-            s.push_str(&crate::report::wrap::wrap(&line, 99, 2));
-        }
-    }
-    s
+    t.render()
 }
 
 /// The strata check as JSON: per family its strata (label, n, per parameter value and

@@ -10,7 +10,7 @@
 //! | `yards/metrics.csv` | base (and optimum) design: mean and spread of carry and offline, dispersion-ellipse area and its confidence |
 //! | `yards/constraints.csv` | every constraint at the base (and optimum): value, limit, margin, holds |
 //! | `yards/optimise.csv` | goal, evaluations, rejected designs, mass move, active bounds (or why it did not run) |
-//! | `yards/variants.csv` | every head against the base: each `[design]` variant, the `[yards.optimise]` optimum and the `[optimise]` optimum, with the changes of mean carry, carry spread, ellipse area, offline, ball speed and spin and their quadrature uncertainty ([`super::yards_variants`]) |
+//! | `yards/variants.csv` | every head against the base, keyed by `variant_id` (the ids of `variants.csv`; empty for the base and the optima): each `[design]` variant, the `[yards.optimise]` optimum and the `[optimise]` optimum, with the changes of mean carry, carry spread, ellipse area, offline, ball speed and spin and their quadrature uncertainty ([`super::yards_variants`]) |
 //!
 //! The impact model is the study's base club (nominal parameters; the group's effects are not
 //! applied to the yard part). Pure: the CLI writes the files.
@@ -136,14 +136,15 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
             .with(DesignVar::MassDx, o.move_mm[0])
             .with(DesignVar::MassDy, o.move_mm[1])
             .with(DesignVar::MassDz, o.move_mm[2]);
-        heads.push(("optimum [yards.optimise]".into(), d, Some(*mass)));
+        heads.push((None, "optimum [yards.optimise]".into(), d, Some(*mass)));
     }
     let rows = heads
         .into_par_iter()
-        .map(|(label, d, mass)| {
+        .map(|(variant_id, label, d, mass)| {
             let p = d.apply(nominal, mass.as_ref()).map_err(|e| e.to_string())?;
             let head = head_yards(&p, &setting).map_err(|e| format!("[yards] {label}: {e}"))?;
             Ok(YardRow {
+                variant_id,
                 label,
                 design: d.describe(),
                 head,
@@ -161,22 +162,23 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
     })
 }
 
-/// The heads the table compares: the base, each `[design]` variant that is not the base, and
-/// the `[optimise]` optimum (label, design, the discretionary mass it moves).
-fn design_heads(
-    study: &Study,
-    study_optimum: Option<&Design>,
-) -> Vec<(String, Design, Option<DiscretionaryMass>)> {
+/// One head of the yards table: its id in `variants.csv` (a `[design]` variant's only), label,
+/// design and the discretionary mass it moves.
+type DesignHead = (Option<usize>, String, Design, Option<DiscretionaryMass>);
+
+/// The heads the table compares: the base, each `[design]` variant (with its id in
+/// `variants.csv`), and the `[optimise]` optimum.
+fn design_heads(study: &Study, study_optimum: Option<&Design>) -> Vec<DesignHead> {
     let mass = study.design.discretionary_mass;
-    let mut heads = vec![("base".to_owned(), Design::default(), None)];
+    let mut heads = vec![(None, "base".to_owned(), Design::default(), None)];
     let variants = study.design.variants();
     if variants.len() > 1 || variants.first().is_some_and(|d| *d != Design::default()) {
         for (i, d) in variants.into_iter().enumerate() {
-            heads.push((format!("variant {i}"), d, mass));
+            heads.push((Some(i), format!("variant {i}"), d, mass));
         }
     }
     if let Some(d) = study_optimum {
-        heads.push(("optimum [optimise]".into(), *d, mass));
+        heads.push((None, "optimum [optimise]".into(), *d, mass));
     }
     heads
 }

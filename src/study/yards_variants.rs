@@ -64,6 +64,9 @@ pub fn head_yards(p: &ModelParams, s: &YardSetting<'_>) -> Result<HeadYards, Str
 /// One row of the comparison: a head and what it is.
 #[derive(Debug, Clone, PartialEq)]
 pub struct YardRow {
+    /// The design variant's id in the study's `variants.csv` (and `maps/v<id>_…`), for a row
+    /// that is one of the `[design]` variants; `None` for the base, an optimum or a what-if.
+    pub variant_id: Option<usize>,
     /// Short name: `base`, `variant 3`, `optimum ([yards.optimise])`, `what-if`.
     pub label: String,
     /// The design's values (`key = value, …`), or `base`.
@@ -146,18 +149,21 @@ pub fn delta(q: &Quantity, base: &HeadYards, head: &HeadYards) -> (f64, Option<f
     (d, unc)
 }
 
-/// `yards/variants.csv`: one row per head (the base first), each quantity, its change from the
-/// base and the change's quadrature uncertainty (empty where there is none), the ellipse
-/// area's change in per cent, and the share of the distribution's weight whose balls never
-/// left the ground (`grounded_pct`, counted with 0 yd carry).
+/// `yards/variants.csv`: one row per head (the base first), keyed by `variant_id` (the id of
+/// the study's `variants.csv`, empty for the base, an optimum or a what-if, which are no
+/// variant), each quantity, its change from the base and the change's quadrature uncertainty
+/// (empty where there is none), the ellipse area's change in per cent, and the share of the
+/// distribution's weight whose balls never left the ground (`grounded_pct`, counted with 0 yd
+/// carry).
 pub fn rows_csv(base: &HeadYards, rows: &[YardRow]) -> Vec<u8> {
-    let mut t = String::from("row,label,design");
+    let mut t = String::from("variant_id,label,design");
     for q in &QUANTITIES {
         let _ = write!(t, ",{c},d_{c},d_{c}_unc", c = q.column);
     }
     t.push_str(",d_ellipse_area_pct,confidence,grounded_pct\n");
-    for (i, r) in rows.iter().enumerate() {
-        let _ = write!(t, "{i},{},\"{}\"", r.label, r.design.replace('"', "'"));
+    for r in rows {
+        let id = r.variant_id.map_or(String::new(), |i| i.to_string());
+        let _ = write!(t, "{id},{},\"{}\"", r.label, r.design.replace('"', "'"));
         for q in &QUANTITIES {
             let (d, unc) = delta(q, base, &r.head);
             let _ = write!(
@@ -347,11 +353,13 @@ mod tests {
             &base,
             &[
                 YardRow {
+                    variant_id: None,
                     label: "base".into(),
                     design: "base".into(),
                     head: base,
                 },
                 YardRow {
+                    variant_id: Some(1),
                     label: "variant 1".into(),
                     design: "com_dz_mm = 4".into(),
                     head: none,
@@ -361,11 +369,12 @@ mod tests {
         .unwrap();
         let lines: Vec<&str> = csv.lines().collect();
         assert_eq!(lines.len(), 3);
-        assert!(lines[0]
-            .starts_with("row,label,design,mean_carry_yd,d_mean_carry_yd,d_mean_carry_yd_unc,"));
+        assert!(lines[0].starts_with(
+            "variant_id,label,design,mean_carry_yd,d_mean_carry_yd,d_mean_carry_yd_unc,"
+        ));
         // The base row: no change, no uncertainty of it either way (its companion exists: 0).
         assert!(
-            lines[1].starts_with("0,base,\"base\",200,0,0,"),
+            lines[1].starts_with(",base,\"base\",200,0,0,"),
             "{}",
             lines[1]
         );

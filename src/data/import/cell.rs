@@ -8,6 +8,9 @@ use super::units::Unit;
 
 pub(super) use crate::data::shots::list_lines;
 
+/// A row of the export: its 1-based file line and its cells.
+pub(super) type Row = (usize, Vec<String>);
+
 /// The directions a column's cells may carry, as `direction = "…"` names them: the words that
 /// mean positive and the words that mean negative (compared ignoring case).
 pub(super) fn direction_words(
@@ -193,9 +196,47 @@ pub(super) fn parse_cell(
     }
 }
 
+/// Column names compared without case, spacing or a trailing unit in brackets.
+fn normalise(name: &str) -> String {
+    name.split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+        .to_lowercase()
+}
+
+/// Split `Ball Speed (mph)` / `Carry[yd]` into the name and the bracketed text.
+pub(super) fn split_header(h: &str) -> (String, Option<String>) {
+    let t = h.trim();
+    for (open, close) in [('(', ')'), ('[', ']')] {
+        if t.ends_with(close) {
+            if let Some(i) = t.rfind(open) {
+                let inner = &t[i + 1..t.len() - 1];
+                if Unit::parse(inner).is_some() {
+                    return (normalise(&t[..i]), Some(inner.trim().to_owned()));
+                }
+            }
+        }
+    }
+    (normalise(t), None)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn headers_split_units() {
+        assert_eq!(
+            split_header("Ball Speed (mph)"),
+            ("ball speed".into(), Some("mph".into()))
+        );
+        assert_eq!(
+            split_header("Carry[yd]"),
+            ("carry".into(), Some("yd".into()))
+        );
+        assert_eq!(split_header("Dyn.  Loft"), ("dyn. loft".into(), None));
+        assert_eq!(split_header("Club (name)"), ("club (name)".into(), None));
+    }
 
     fn deg() -> Unit {
         Unit::parse("deg").unwrap()

@@ -6,7 +6,8 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use super::table::{split_header, Table};
+use super::cell::split_header;
+use super::table::Table;
 use super::target::Target;
 use super::units::Unit;
 use super::{ColumnSpec, ImportOptions, Mapping, UnknownColumns};

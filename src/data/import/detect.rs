@@ -6,8 +6,9 @@
 use std::collections::HashSet;
 use std::path::Path;
 
+use super::cell::split_header;
 use super::columns::find_column;
-use super::table::{read_table, split_header};
+use super::table::read_table;
 use super::target::Target;
 use super::{parse_mapping, Mapping, PRESETS};
 use crate::data::DataError;

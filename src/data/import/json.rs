@@ -10,7 +10,7 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use super::table::Row;
+use super::cell::Row;
 use crate::data::DataError;
 
 /// Whether `text` is JSON rather than CSV: its first non-blank character opens an object or
@@ -130,7 +130,7 @@ fn rows_in(
             let own = flatten(v);
             let named = own
                 .iter()
-                .filter(|(k, _)| known(&super::table::split_header(k).0))
+                .filter(|(k, _)| known(&super::cell::split_header(k).0))
                 .count();
             let mut cells = inherited.to_vec();
             for (k, val) in own {

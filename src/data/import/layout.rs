@@ -7,14 +7,11 @@ use std::path::Path;
 
 use super::columns::Resolved;
 use super::table::Table;
-use super::target::{numeric, Target};
+use super::target::{numeric, Target, LAUNCH};
 use super::{ExportSpec, ImportOptions, Mapping, OffsetSide};
 use crate::data::DataError;
 use crate::model::convention::DeliveryConvention;
 use crate::model::DeliveryVar;
-
-/// The measured-launch columns written only when the whole launch is measured.
-pub(super) const LAUNCH: [&str; 3] = ["ball_speed_mph", "launch_angle_deg", "azimuth_deg"];
 
 /// The shots file's layout.
 pub(super) struct Layout<'r, 'a> {

@@ -4,7 +4,7 @@
 //! launch does not need, a value `smash flight` would refuse. Each is read as no value, so that
 //! a shot keeps what was measured and nothing the import writes sinks a later command.
 
-use super::layout::LAUNCH;
+use super::target::LAUNCH;
 
 /// Whether a (trimmed) cell means "not measured": empty, `-`, `--`, `N/A`, or one of the
 /// column's or the export's `missing` values (compared as numbers, else as text).

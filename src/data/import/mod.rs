@@ -34,11 +34,12 @@ use std::path::Path;
 
 use serde::Deserialize;
 
+use self::cell::split_header;
 use self::columns::resolve_columns;
 pub use self::detect::{detect, Detected};
 use self::layout::Layout;
 use self::rows::write_shots;
-use self::table::{read_table, split_header};
+use self::table::read_table;
 use self::target::Target;
 use self::units::Unit;
 use super::shots::{parse_shots_with, ReadOptions, ShotTable};

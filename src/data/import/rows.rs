@@ -13,16 +13,16 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use super::cell::{parse_cell, parse_number};
+use super::cell::{parse_cell, parse_number, split_header};
 use super::checks::SpinCheck;
 use super::condition::Condition;
-use super::layout::{Layout, LAUNCH};
+use super::layout::Layout;
 use super::missing::{
     club_zeros_not_measured, flight_range, launch_target, not_measured, sentinel,
 };
 use super::summary::{summarise, Tally};
-use super::table::{is_unit_row, split_header, Table};
-use super::target::Target;
+use super::table::{is_unit_row, Table};
+use super::target::{Target, LAUNCH};
 use super::units::Unit;
 use super::{ExportSpec, SkipRule};
 use crate::data::{fmt_f64, DataError};

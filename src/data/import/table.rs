@@ -5,12 +5,10 @@
 
 use std::path::Path;
 
+use super::cell::{split_header, Row};
 use super::text::decode;
 use super::units::Unit;
 use crate::data::DataError;
-
-/// A row of the export: its 1-based file line and its cells.
-pub(super) type Row = (usize, Vec<String>);
 
 /// An export read into cells.
 pub(super) struct Table {
@@ -374,47 +372,4 @@ pub(super) fn is_unit_row(cells: &[String]) -> bool {
 fn take_unit_row(rows: &mut Vec<Row>) -> Option<Row> {
     let at = (0..rows.len().min(2)).find(|&i| is_unit_row(&rows[i].1))?;
     Some(rows.remove(at))
-}
-
-/// Column names compared without case, spacing or a trailing unit in brackets.
-fn normalise(name: &str) -> String {
-    name.split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
-        .to_lowercase()
-}
-
-/// Split `Ball Speed (mph)` / `Carry[yd]` into the name and the bracketed text.
-pub(super) fn split_header(h: &str) -> (String, Option<String>) {
-    let t = h.trim();
-    for (open, close) in [('(', ')'), ('[', ']')] {
-        if t.ends_with(close) {
-            if let Some(i) = t.rfind(open) {
-                let inner = &t[i + 1..t.len() - 1];
-                if Unit::parse(inner).is_some() {
-                    return (normalise(&t[..i]), Some(inner.trim().to_owned()));
-                }
-            }
-        }
-    }
-    (normalise(t), None)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn headers_split_units() {
-        assert_eq!(
-            split_header("Ball Speed (mph)"),
-            ("ball speed".into(), Some("mph".into()))
-        );
-        assert_eq!(
-            split_header("Carry[yd]"),
-            ("carry".into(), Some("yd".into()))
-        );
-        assert_eq!(split_header("Dyn.  Loft"), ("dyn. loft".into(), None));
-        assert_eq!(split_header("Club (name)"), ("club (name)".into(), None));
-    }
 }

@@ -6,6 +6,9 @@ use crate::limits::{self, PhysicalRange};
 use crate::model::DeliveryVar;
 use crate::physics::LaunchComponent;
 
+/// The measured-launch columns written only when the whole launch is measured.
+pub(super) const LAUNCH: [&str; 3] = ["ball_speed_mph", "launch_angle_deg", "azimuth_deg"];
+
 /// What a mapped column feeds.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Target {

@@ -4,7 +4,7 @@
 
 use plotters::prelude::*;
 
-use super::{build_chart, draw_value_mesh, err, range, BLUE_C, SIZE};
+use super::{build_chart, draw_value_mesh, err, range, ChartError, BLUE_C, SIZE};
 
 /// `points` (iteration, value) as a line with markers, titled, with both axes labelled.
 pub fn path_svg(
@@ -12,7 +12,7 @@ pub fn path_svg(
     x_label: &str,
     y_label: &str,
     points: &[(f64, f64)],
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let pts: Vec<(f64, f64)> = points
         .iter()
         .copied()

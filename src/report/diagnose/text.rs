@@ -76,7 +76,7 @@ pub fn render(r: &DiagnoseReport, layout: &Layout) -> String {
     }
     s.push_str(&wrap_long(&summary_text(d)));
     s.push_str(&next_command(d, layout));
-    s.push_str(&crate::report::strata::text(d));
+    s.push_str(&crate::report::strata::text(d, layout.wide));
     s.push_str(&likelihood_text(d));
     s.push_str(&floor_text(d, floor, layout.wide));
     s.push('\n');
@@ -409,10 +409,10 @@ fn measurement_model_line(d: &Diagnosis) -> String {
 
 /// The noise-floor table and the conclusion.
 fn floor_text(d: &Diagnosis, floor: &NoiseFloor, wide: bool) -> String {
-    let mut s = format!(
+    let mut s = wrap_long(&format!(
         "\nNoise floor ({} instrument noise; spread of model − measured if the model were right):\n",
         floor.instrument.name
-    );
+    ));
     if floor.assumed {
         s.push_str("(that noise is ASSUMED: no --noise or --instrument was given)\n");
     }

@@ -10,6 +10,7 @@ use crate::diagnose::honest;
 use crate::diagnose::strata::StrataCheck;
 use crate::diagnose::Diagnosis;
 use crate::fit::ParamEstimate;
+use crate::report::charts::ChartError;
 use crate::report::diagnose::DiagnoseReport;
 
 /// A table of the estimates `params` (a stand-in marked as one) and their charts, one per
@@ -17,7 +18,7 @@ use crate::report::diagnose::DiagnoseReport;
 pub(super) fn estimates_html(
     params: &[ParamEstimate],
     what: &str,
-) -> Result<(String, Vec<Figure>), String> {
+) -> Result<(String, Vec<Figure>), ChartError> {
     use crate::report::charts::{estimates_svg, Estimate};
     let mut table = String::from(
         "<table class=\"params\"><tr><th class=\"l\">parameter</th><th>value</th><th>SE</th><th>unit</th><th>plausible</th></tr>",
@@ -85,7 +86,7 @@ pub(super) fn estimates_html(
 /// The page of `smash diagnose --report`: per step, the cross-validated gain of every
 /// candidate against its penalty; the errors before and after the selected effects; the final
 /// estimates with their plausible ranges; the strata check.
-pub fn diagnose_page(r: &DiagnoseReport, title: &str) -> Result<String, String> {
+pub fn diagnose_page(r: &DiagnoseReport, title: &str) -> Result<String, ChartError> {
     let d = &r.diagnosis;
     let mut steps = Vec::new();
     for (i, s) in d.steps.iter().enumerate() {

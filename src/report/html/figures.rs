@@ -7,7 +7,8 @@ use super::{esc, Figure, ShotResiduals};
 use crate::compare::{sig3, CompareReport};
 use crate::physics::LaunchComponent;
 use crate::report::charts::{
-    fit_line, grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, Trend, BLUE_C, ORANGE_C,
+    fit_line, grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, ChartError, Trend, BLUE_C,
+    ORANGE_C,
 };
 use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
 use crate::stats::error_table::ErrorTable;
@@ -73,7 +74,7 @@ pub(super) fn table2_html(report: &CompareReport) -> String {
 
 /// Bars of mean error ± SE per group (the shots' SD as a band) for each component, one chart per component, with one
 /// or two series (before / after).
-pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figure>, String> {
+pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figure>, ChartError> {
     let groups: Vec<String> = tables
         .first()
         .map(|(_, t)| t.groups.iter().map(|g| g.group.clone()).collect())
@@ -122,7 +123,7 @@ pub(super) fn table2_figures(tables: &[(&str, &ErrorTable)]) -> Result<Vec<Figur
 pub(super) fn trend_figures(
     report: &CompareReport,
     res: &ShotResiduals,
-) -> Result<Vec<Figure>, String> {
+) -> Result<Vec<Figure>, ChartError> {
     let mut out = Vec::new();
     for (name, unit, xs) in &res.variables {
         let Some(best) = report

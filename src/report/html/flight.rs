@@ -3,13 +3,15 @@
 
 use super::{esc, Figure, Page, Section};
 use crate::data::flight_summary::{FlightSummary, SUMMARY_QUANTITIES};
-use crate::report::charts::{grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, BLUE_C};
+use crate::report::charts::{
+    grouped_bars_svg, scatter_trend_svg, Bar, BarSeries, ChartError, BLUE_C,
+};
 use crate::report::flight::FlightReport;
 
 /// The `--report` page: the carry, side, apex and land-angle errors per club (mean ± its
 /// standard error, the shots' SD as a band) and every shot's carry error against its measured
 /// carry, under the model and conditions flown.
-pub fn flight_page(r: &FlightReport) -> Result<String, String> {
+pub fn flight_page(r: &FlightReport) -> Result<String, ChartError> {
     let summary = &r.errors;
     let categories: Vec<String> = summary.rows.iter().map(|r| r.group.clone()).collect();
     let mut figures = Vec::new();

@@ -3,13 +3,14 @@
 use super::figures::{face_figures, findings_html, table2_figures, table2_html, trend_figures};
 use super::{Page, Section, ShotResiduals};
 use crate::compare::CompareReport;
+use crate::report::charts::ChartError;
 
 /// The page of `smash compare --report`.
 pub fn compare_page(
     report: &CompareReport,
     residuals: &ShotResiduals,
     title: &str,
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let before = crate::stats::error_table::ErrorTable {
         groups: report
             .table2
@@ -70,7 +71,7 @@ pub fn calibrate_page(
     after: &CompareReport,
     residuals: &ShotResiduals,
     title: &str,
-) -> Result<String, String> {
+) -> Result<String, ChartError> {
     let cal = &r.calibration;
     let (table, est_figs) = super::diagnose::estimates_html(&cal.params, "Fitted parameters")?;
     let page = Page {

@@ -8,7 +8,7 @@
 use std::fmt::Write as _;
 
 use super::{OutputMaps, StudyReport};
-use crate::report::charts::path_svg;
+use crate::report::charts::{path_svg, ChartError};
 use crate::report::heatmap::{
     colour_bar_svg, heatmap_svg, small_map_svg, Heatmap, Scale, SmallMap,
 };
@@ -73,7 +73,7 @@ fn vname(r: &StudyReport, id: usize) -> String {
 }
 
 /// The page.
-pub fn page(r: &StudyReport) -> Result<String, String> {
+pub fn page(r: &StudyReport) -> Result<String, ChartError> {
     let mut s = String::new();
     let title = format!("smash run: {}", r.name);
     let _ = write!(
@@ -486,7 +486,7 @@ fn metrics_tables(r: &StudyReport, ids: &[usize]) -> String {
 }
 
 /// The folded details: every metric, the sensitivities, the optimiser's path, the yard table.
-fn details_section(r: &StudyReport) -> Result<String, String> {
+fn details_section(r: &StudyReport) -> Result<String, ChartError> {
     let mut s = String::from("<section id=\"details\"><h2>Details</h2>\n");
     if r.variants.len() > 1 {
         let ids: Vec<usize> = (0..r.variants.len()).collect();

@@ -29,11 +29,16 @@ pub use scratch::DiskGrids;
 const ROWS_HEADER: &str =
     "variant,row,col,valid,ball_speed_m_s,launch_angle_rad,azimuth_rad,backspin_rad_s,sidespin_rad_s";
 
+/// A `--shard` value that is not `k/N` with `0 ≤ k < N` (the value as given).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "--shard '{0}': expected k/N with 0 ≤ k < N, e.g. 0/4 (k is 0-based, as $SLURM_ARRAY_TASK_ID)"
+)]
+pub struct ShardSpecError(pub String);
+
 /// Parse `k/N` (0-based `k < N`).
-pub fn parse_shard_spec(s: &str) -> Result<(usize, usize), String> {
-    let err = || {
-        format!("--shard '{s}': expected k/N with 0 ≤ k < N, e.g. 0/4 (k is 0-based, as $SLURM_ARRAY_TASK_ID)")
-    };
+pub fn parse_shard_spec(s: &str) -> Result<(usize, usize), ShardSpecError> {
+    let err = || ShardSpecError(s.to_owned());
     let (a, b) = s.split_once('/').ok_or_else(err)?;
     let k: usize = a.trim().parse().map_err(|_| err())?;
     let n: usize = b.trim().parse().map_err(|_| err())?;
