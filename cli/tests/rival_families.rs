@@ -21,26 +21,8 @@
 
 mod cli_support;
 
-use cli_support::{diagnose_json, repo, s, smash, stderr};
-use std::path::{Path, PathBuf};
-
-/// `smash synth --config CONFIG --out DIR/NAME_SEED.csv --seed SEED`.
-fn synth(dir: &Path, config: &Path, seed: u32) -> PathBuf {
-    let name = config.file_stem().unwrap().to_string_lossy();
-    let shots = dir.join(format!("{name}_{seed}.csv"));
-    let seed_arg = seed.to_string();
-    let o = smash(&[
-        "synth",
-        "--config",
-        s(config),
-        "--out",
-        s(&shots),
-        "--seed",
-        &seed_arg,
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    shots
-}
+use cli_support::{diagnose_json, repo, s, synth_config as synth};
+use std::path::Path;
 
 fn strings(v: &serde_json::Value) -> Vec<String> {
     v.as_array()

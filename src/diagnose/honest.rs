@@ -241,6 +241,20 @@ pub struct Rival {
     pub plausible: bool,
 }
 
+impl Rival {
+    /// A rival with its values `params`, its margin gap and correlation; plausible when every
+    /// value with a plausible range lies inside it.
+    pub(crate) fn new(label: String, params: Vec<ParamEstimate>, margin_gap: f64, r: f64) -> Self {
+        Self {
+            label,
+            plausible: params.iter().all(|p| is_plausible(p).unwrap_or(true)),
+            params,
+            margin_gap,
+            r,
+        }
+    }
+}
+
 fn value_text(p: &ParamEstimate) -> String {
     let v = if p.value != 0.0 && p.value.abs() < 1e-3 {
         format!("{:+.3e}", p.value)

@@ -45,7 +45,7 @@ use crate::fit::calibrate::noise_scales;
 use crate::fit::{EffectRequest, FitData, FitError, ParamEstimate};
 use crate::model::{DeliveryVar, Shot};
 
-use super::honest::{self, Rival};
+use super::honest::Rival;
 use super::noise_floor::{delivery_to_file_units, launch_errors_of};
 use super::select::RIVAL_MARGIN;
 use super::shared::signal_of;
@@ -414,15 +414,7 @@ pub(super) fn check(
                         .and_then(|(params, g)| {
                             let margin = g - params.len() as f64 * m.penalty_per_param;
                             let gap = base_margin - margin;
-                            (gap <= RIVAL_MARGIN).then(|| Rival {
-                                label: req.label(),
-                                plausible: params
-                                    .iter()
-                                    .all(|p| honest::is_plausible(p).unwrap_or(true)),
-                                params,
-                                margin_gap: gap,
-                                r: *r,
-                            })
+                            (gap <= RIVAL_MARGIN).then(|| Rival::new(req.label(), params, gap, *r))
                         })
                 })
                 .collect()

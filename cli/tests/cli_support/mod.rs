@@ -78,13 +78,19 @@ pub fn assert_kept(path: &Path, text: &str) {
 /// `smash synth --config configs/synth/WORLD.toml --out DIR/WORLD_SEED.csv --seed SEED`: the
 /// shots file, after checking the command succeeded.
 pub fn synth_world(dir: &Path, world: &str, seed: u32) -> PathBuf {
-    let shots = dir.join(format!("{world}_{seed}.csv"));
-    let config = repo(&format!("configs/synth/{world}.toml"));
+    synth_config(dir, &repo(&format!("configs/synth/{world}.toml")), seed)
+}
+
+/// `smash synth --config CONFIG --out DIR/NAME_SEED.csv --seed SEED` (`NAME` the config's file
+/// stem): the shots file, after checking the command succeeded.
+pub fn synth_config(dir: &Path, config: &Path, seed: u32) -> PathBuf {
+    let name = config.file_stem().unwrap().to_string_lossy();
+    let shots = dir.join(format!("{name}_{seed}.csv"));
     let seed_arg = seed.to_string();
     let o = smash(&[
         "synth",
         "--config",
-        s(&config),
+        s(config),
         "--out",
         s(&shots),
         "--seed",

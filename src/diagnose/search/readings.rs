@@ -58,15 +58,8 @@ impl Search<'_> {
                 .filter_map(|(c, r)| {
                     let (params, gap) =
                         evaluate::swap_score(&b, req, c, self.penalty_per_param, final_score)?;
-                    (gap <= select::RIVAL_MARGIN).then(|| honest::Rival {
-                        label: c.label(),
-                        plausible: params
-                            .iter()
-                            .all(|p| honest::is_plausible(p).unwrap_or(true)),
-                        params,
-                        margin_gap: gap,
-                        r: *r,
-                    })
+                    (gap <= select::RIVAL_MARGIN)
+                        .then(|| honest::Rival::new(c.label(), params, gap, *r))
                 })
                 .collect();
             if rivals.is_empty() {
