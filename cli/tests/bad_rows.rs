@@ -157,38 +157,27 @@ fn predict_leaves_bad_rows_out() {
     let clean = measured_shots(dir.path());
     let bad = with_bad_rows(dir.path(), &clean, &bad_shot_rows(&clean), "bad.csv");
     let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
-    let (ok, _, e) = run(&[
-        "predict",
-        "--club",
-        &club(),
-        "--shots",
-        s(&clean),
-        "--out",
-        s(&a),
-    ]);
+    let predict = |shots: &Path, out: &Path, extra: &[&str]| {
+        let club = club();
+        let mut args = vec![
+            "predict",
+            "--club",
+            &club,
+            "--shots",
+            s(shots),
+            "--out",
+            s(out),
+        ];
+        args.extend_from_slice(extra);
+        run(&args)
+    };
+    let (ok, _, e) = predict(&clean, &a, &[]);
     assert!(ok, "{e}");
-    let (ok, _, e) = run(&[
-        "predict",
-        "--club",
-        &club(),
-        "--shots",
-        s(&bad),
-        "--out",
-        s(&b),
-    ]);
+    let (ok, _, e) = predict(&bad, &b, &[]);
     assert!(ok, "{e}");
     assert_notes(&e, &bad);
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-    let (ok, _, e) = run(&[
-        "predict",
-        "--club",
-        &club(),
-        "--shots",
-        s(&bad),
-        "--out",
-        s(&b),
-        "--strict",
-    ]);
+    let (ok, _, e) = predict(&bad, &b, &["--strict"]);
     assert!(!ok && e.trim_end().lines().count() == 1, "{e}");
 }
 
