@@ -273,9 +273,9 @@ pub fn fit_quietly_chord_from(
     )
 }
 
-/// The relative change of `χ²` at which a fit with kept Jacobians ([`run_lm_point_near`],
-/// [`fit_quietly_chord_from`]: diagnose's candidates and cross-validation folds) stops, where
-/// the solver's default is 1e-10. Those fits are compared by differences of `χ²` against a
+/// The relative change of `χ²` at which the fits of [`run_lm_point_near`] and
+/// [`fit_quietly_chord_from`] stop (diagnose's candidates and cross-validation folds, whether or
+/// not a start evaluation lets them keep a Jacobian), where the solver's default is 1e-10. Those fits are compared by differences of `χ²` against a
 /// penalty of `ln n` a parameter (at least 4.6 for 100 shots); at 1e-8 a 2,200-shot season's
 /// `χ²` of about 16,000 is settled to 2e-4, and each chord refresh the tighter default asks for
 /// costs a Jacobian (on that season it was a tenth of diagnose's CPU time).
