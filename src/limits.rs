@@ -60,25 +60,69 @@ impl PhysicalRange {
         x.is_finite() && low_ok && x <= self.max
     }
 
-    /// `x`, or a message stating the value and the allowed range (no location: the caller
+    /// `x`, or an error stating the value and the allowed range (no location: the caller
     /// names the file, key or column).
-    pub fn check(&self, x: f64) -> Result<f64, String> {
+    pub fn check(&self, x: f64) -> Result<f64, LimitError> {
         if self.contains(x) {
             Ok(x)
         } else {
-            Err(self.refusal(x))
+            Err(LimitError::OutOfRange {
+                range: *self,
+                value: x,
+            })
         }
     }
 
     /// The message for a value outside the range.
     pub fn refusal(&self, x: f64) -> String {
-        format!(
-            "{} {} is outside the physical range {}",
-            self.quantity,
-            fmt_value(x),
-            self
-        )
+        LimitError::OutOfRange {
+            range: *self,
+            value: x,
+        }
+        .to_string()
     }
+}
+
+/// A value refused by a limit: the message states the value and what is allowed (no location:
+/// the caller names the file, key or column).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum LimitError {
+    /// Outside a [`PhysicalRange`].
+    #[error("{} {} is outside the physical range {range}", range.quantity, fmt_value(*value))]
+    OutOfRange {
+        /// The range.
+        range: PhysicalRange,
+        /// The value, in the range's unit.
+        value: f64,
+    },
+    /// A part of the head at or in front of the face plane ([`check_behind_face_mm`]).
+    #[error(
+        "{what} x = {} mm is at or in front of the face (x_F points out of the face, the face \
+         is at x = 0); it must be behind the face, in [-500, 0) mm",
+        fmt_value(*x_mm)
+    )]
+    NotBehindFace {
+        /// What is placed (`club centre of mass`, …).
+        what: String,
+        /// Its position along the face normal, mm.
+        x_mm: f64,
+    },
+    /// A part of the head that weighs nothing or as much as the head
+    /// ([`check_head_part_mass_g`]).
+    #[error(
+        "{what} {} g is not part of the head: it must be above 0 g and below the head mass, {} g \
+         (the rest of the head holds the face)",
+        fmt_value(*mass_g),
+        fmt_value(*head_g)
+    )]
+    NotPartOfHead {
+        /// What is placed (`discretionary mass`, …).
+        what: String,
+        /// Its mass, g.
+        mass_g: f64,
+        /// The head's mass, g, to the microgram.
+        head_g: f64,
+    },
 }
 
 impl fmt::Display for PhysicalRange {
@@ -209,21 +253,20 @@ pub const CLUB_COM_MM: PhysicalRange =
 /// (`docs/conventions.md`); the centre of mass of a real head lies inside it, behind the face
 /// (a driver's about 40 mm): at or in front of the face plane (`x ≥ 0`) it is not a clubhead.
 /// The far end is [`CLUB_COM_MM`]'s.
-pub fn check_club_com_x_mm(x_mm: f64) -> Result<f64, String> {
+pub fn check_club_com_x_mm(x_mm: f64) -> Result<f64, LimitError> {
     check_behind_face_mm("club centre of mass", x_mm)
 }
 
 /// [`check_club_com_x_mm`] for any part of the head (`what`: a discretionary mass, …): the
 /// head's mass lies behind its face.
-pub fn check_behind_face_mm(what: &str, x_mm: f64) -> Result<f64, String> {
+pub fn check_behind_face_mm(what: &str, x_mm: f64) -> Result<f64, LimitError> {
     if x_mm < 0.0 && CLUB_COM_MM.contains(x_mm) {
         Ok(x_mm)
     } else {
-        Err(format!(
-            "{what} x = {} mm is at or in front of the face (x_F points out of the face, the \
-             face is at x = 0); it must be behind the face, in [-500, 0) mm",
-            fmt_value(x_mm)
-        ))
+        Err(LimitError::NotBehindFace {
+            what: what.to_owned(),
+            x_mm,
+        })
     }
 }
 
@@ -239,17 +282,16 @@ pub const STATIC_LOFT_DEG: PhysicalRange = PhysicalRange::closed("static loft", 
 /// kilograms: it must weigh more than nothing and less than the whole head. Compared in the
 /// head's own unit, so that a 204 g part of a 204 g head (0.204 kg read back as
 /// 204.00000000000003 g) is refused, not let through by rounding.
-pub fn check_head_part_mass_g(what: &str, m_g: f64, head_kg: f64) -> Result<f64, String> {
+pub fn check_head_part_mass_g(what: &str, m_g: f64, head_kg: f64) -> Result<f64, LimitError> {
     if m_g.is_finite() && m_g > 0.0 && crate::units::g(m_g) < head_kg {
         Ok(m_g)
     } else {
-        Err(format!(
-            "{what} {} g is not part of the head: it must be above 0 g and below the head mass, \
-             {} g (the rest of the head holds the face)",
-            fmt_value(m_g),
+        Err(LimitError::NotPartOfHead {
+            what: what.to_owned(),
+            mass_g: m_g,
             // To the microgram: the head's 0.204 kg is shown as 204, not 204.00000000000003.
-            fmt_value((head_kg / crate::units::KG_PER_G * 1e6).round() / 1e6)
-        ))
+            head_g: (head_kg / crate::units::KG_PER_G * 1e6).round() / 1e6,
+        })
     }
 }
 
@@ -450,7 +492,7 @@ mod tests {
         assert!(CLUB_SPEED_MPH.check(0.0).is_err());
         assert!(CLUB_SPEED_MPH.check(1e-300).is_err());
         assert_eq!(CLUB_SPEED_MPH.check(100.0), Ok(100.0));
-        let m = CLUB_SPEED_MPH.check(1e155).unwrap_err();
+        let m = CLUB_SPEED_MPH.check(1e155).unwrap_err().to_string();
         assert!(m.contains("1e155") && m.contains("[1, 250] mph"), "{m}");
         assert!(DELIVERY_ANGLE_DEG.check(-90.0).is_ok());
     }

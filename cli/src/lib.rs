@@ -372,7 +372,9 @@ fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String
 /// limits.
 pub fn impact_noise_from_mm(sy: f64, sz: f64) -> Result<smash::measurement::ImpactNoise, String> {
     for v in [sy, sz] {
-        smash::limits::SIGMA_LOCATION_MM.check(v)?;
+        smash::limits::SIGMA_LOCATION_MM
+            .check(v)
+            .map_err(|e| e.to_string())?;
     }
     smash::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
 }

@@ -38,7 +38,7 @@ use crate::club::ClubSpec;
 #[cfg(test)]
 use crate::effects::EffectKind;
 use crate::effects::{Effect, EffectId};
-use crate::limits;
+use crate::limits::{self, LimitError};
 use crate::physics::impact::DRIVER_HOSEL_MM;
 use crate::physics::{validate_inertia, ModelParams};
 use crate::units::{deg, g, gcm2, mm};
@@ -291,13 +291,37 @@ fn parse_effect(
     Effect::new(kind, &values, group).map_err(|e| here(e.to_string()))
 }
 
+/// A head a club file would refuse ([`check_head`]): the club-file key and what is wrong.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{key}: {problem}")]
+pub struct HeadError {
+    /// The club-file key (`club.mass_g`, …).
+    pub key: &'static str,
+    /// What is wrong with its value.
+    pub problem: HeadProblem,
+}
+
+/// What is wrong with a head's value ([`HeadError`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum HeadProblem {
+    /// Outside its physical range.
+    #[error(transparent)]
+    Limit(#[from] LimitError),
+    /// An inertia tensor no body has (the problem as the inertia check states it).
+    #[error("{0}")]
+    Inertia(String),
+}
+
 /// Check a head made in code (a what-if's or a design variant's, from a club file's nominal
 /// head) against the limits a club file is read with ([`parse_club`]): mass, CoM (behind the
 /// face), every inertia entry and the tensor's physical validity, the face radii. `Err` names
 /// the club-file key, the value and the allowed range, so that a scaling or a move cannot make
 /// a head the club file itself would refuse.
-pub fn check_head(p: &ModelParams) -> Result<(), String> {
-    let at = |key: &str, m: String| format!("{key}: {m}");
+pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
+    let at = |key: &'static str, m: LimitError| HeadError {
+        key,
+        problem: HeadProblem::Limit(m),
+    };
     // In the file's units, the shortest decimal of each value (as a club file is written).
     let (in_g, in_mm) = (|v| file_value(v, g, 1e3), |v| file_value(v, mm, 1e3));
     limits::CLUB_MASS_G
@@ -315,8 +339,10 @@ pub fn check_head(p: &ModelParams) -> Result<(), String> {
             .check(file_value(*x, gcm2, 1e7))
             .map_err(|m| at("club.inertia_gcm2", m))?;
     }
-    validate_inertia(&p.club_inertia_kgm2, "club.inertia_gcm2")
-        .map_err(|e| at("club.inertia_gcm2", e.problem))?;
+    validate_inertia(&p.club_inertia_kgm2, "club.inertia_gcm2").map_err(|e| HeadError {
+        key: "club.inertia_gcm2",
+        problem: HeadProblem::Inertia(e.problem),
+    })?;
     for (key, r) in [("club.bulge_mm", p.bulge_m), ("club.roll_mm", p.roll_m)] {
         limits::FACE_RADIUS_MM
             .check(in_mm(r))

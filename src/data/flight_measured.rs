@@ -58,20 +58,40 @@ const fn yd_range(quantity: &'static str, min: f64, max: f64) -> PhysicalRange {
 
 /// A measured flight cell ([`FLIGHT_COLUMNS`]`[k]`): `None` when empty, the value when a number
 /// inside [`MEASURED_FLIGHT_RANGES`]`[k]`, else what was wrong and what is allowed.
-pub fn measured_flight_value(k: usize, cell: &str) -> Result<Option<f64>, String> {
+pub fn measured_flight_value(k: usize, cell: &str) -> Result<Option<f64>, MeasuredCellError> {
     if cell.is_empty() {
         return Ok(None);
     }
-    let range = &MEASURED_FLIGHT_RANGES[k];
+    let range = MEASURED_FLIGHT_RANGES[k];
     match crate::data::number::parse_f64(cell) {
-        Some(x) if x.is_finite() => range.check(x).map(Some),
-        _ => Err(format!(
-            "{} is not a finite number ({} must be a number within {}, or empty)",
-            crate::data::quote_cell(cell),
-            FLIGHT_COLUMNS[k],
-            range
-        )),
+        Some(x) if x.is_finite() => Ok(Some(range.check(x)?)),
+        _ => Err(MeasuredCellError::NotANumber {
+            cell: cell.to_owned(),
+            column: FLIGHT_COLUMNS[k],
+            range,
+        }),
     }
+}
+
+/// A measured flight cell that is not a measurement ([`measured_flight_value`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeasuredCellError {
+    /// A number outside the column's physical range.
+    #[error(transparent)]
+    Range(#[from] crate::limits::LimitError),
+    /// Not a finite number.
+    #[error(
+        "{} is not a finite number ({column} must be a number within {range}, or empty)",
+        crate::data::quote_cell(cell)
+    )]
+    NotANumber {
+        /// The cell as read.
+        cell: String,
+        /// Its column.
+        column: &'static str,
+        /// The column's physical range.
+        range: crate::limits::PhysicalRange,
+    },
 }
 
 /// Check every measured flight column the output compares with (`layout.measured`): the first
@@ -117,7 +137,7 @@ mod tests {
             (4, "91", "measured land angle 91 is outside the physical range [0, 90] deg"),
             (5, "-1e300", "measured total -1e300 is outside"),
         ] {
-            let e = measured_flight_value(k, cell).unwrap_err();
+            let e = measured_flight_value(k, cell).unwrap_err().to_string();
             assert!(e.contains(says), "{cell}: {e}");
             assert!(e.len() < 160, "short: {e}");
         }

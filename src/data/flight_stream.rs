@@ -459,7 +459,7 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
                 let (s, e) = cells[i];
                 let text = std::str::from_utf8(&bytes[s as usize..e as usize]).unwrap_or("");
                 if let Err(m) = measured_flight_value(k, text) {
-                    bad = Some(Bad::Measured(k, m));
+                    bad = Some(Bad::Measured(k, m.to_string()));
                     break;
                 }
             }

@@ -49,12 +49,12 @@ pub struct DataError {
 
 impl DataError {
     /// An error about a whole file.
-    pub fn file(path: &Path, message: impl Into<String>) -> Self {
+    pub fn file(path: &Path, message: impl std::fmt::Display) -> Self {
         Self {
             path: path.to_owned(),
             line: None,
             place: None,
-            message: message.into(),
+            message: message.to_string(),
         }
     }
 
@@ -63,13 +63,13 @@ impl DataError {
         path: &Path,
         line: Option<usize>,
         place: Option<String>,
-        message: impl Into<String>,
+        message: impl std::fmt::Display,
     ) -> Self {
         Self {
             path: path.to_owned(),
             line,
             place,
-            message: message.into(),
+            message: message.to_string(),
         }
     }
 }

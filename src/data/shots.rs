@@ -353,7 +353,7 @@ struct Row<'a> {
 }
 
 impl Row<'_> {
-    fn error(&self, column: &str, m: impl Into<String>) -> DataError {
+    fn error(&self, column: &str, m: impl std::fmt::Display) -> DataError {
         DataError::at(
             self.path,
             Some(self.line),

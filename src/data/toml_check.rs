@@ -41,12 +41,12 @@ impl<'a> TomlDoc<'a> {
     }
 
     /// An error about `key`, whose value starts at `span.start`.
-    pub fn err(&self, span: Range<usize>, key: &str, msg: impl Into<String>) -> DataError {
+    pub fn err(&self, span: Range<usize>, key: &str, msg: impl std::fmt::Display) -> DataError {
         toml_key_error(self.path, self.text, span.start, key, msg)
     }
 
     /// An error about `key` as a whole (a limit on several values together): no line.
-    pub fn whole(&self, key: &str, msg: impl Into<String>) -> DataError {
+    pub fn whole(&self, key: &str, msg: impl std::fmt::Display) -> DataError {
         DataError::at(self.path, None, Some(format!("key {key}")), msg)
     }
 
@@ -337,7 +337,7 @@ pub fn toml_key_error(
     text: &str,
     offset: usize,
     key: &str,
-    message: impl Into<String>,
+    message: impl std::fmt::Display,
 ) -> DataError {
     let (line, col) = line_col(text, offset);
     DataError::at(

@@ -39,6 +39,14 @@ pub enum FaceError {
         /// Roll radius, mm.
         roll_mm: f64,
     },
+    /// A face radius that is not a finite positive length ([`FaceGeometry::new`]).
+    #[error("{radius} must be a finite positive radius, got {value_m} m")]
+    Radius {
+        /// Which radius (`bulge`, `roll`).
+        radius: &'static str,
+        /// Its value, m.
+        value_m: f64,
+    },
 }
 
 /// [`ContactFrame`] on any number type ([`FaceGeometry::contact_on`]), components as arrays.
@@ -78,16 +86,11 @@ pub struct ContactFrame {
 
 impl FaceGeometry {
     /// A face with bulge radius `bulge_m` and roll radius `roll_m` (both m, finite, > 0).
-    pub fn new(bulge_m: f64, roll_m: f64) -> Result<Self, String> {
-        if !(bulge_m.is_finite() && bulge_m > 0.0) {
-            return Err(format!(
-                "bulge must be a finite positive radius, got {bulge_m} m"
-            ));
-        }
-        if !(roll_m.is_finite() && roll_m > 0.0) {
-            return Err(format!(
-                "roll must be a finite positive radius, got {roll_m} m"
-            ));
+    pub fn new(bulge_m: f64, roll_m: f64) -> Result<Self, FaceError> {
+        for (radius, value_m) in [("bulge", bulge_m), ("roll", roll_m)] {
+            if !(value_m.is_finite() && value_m > 0.0) {
+                return Err(FaceError::Radius { radius, value_m });
+            }
         }
         Ok(Self {
             bulge_m,

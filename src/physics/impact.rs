@@ -216,9 +216,9 @@ impl ImpactModel {
     pub fn new(params: ModelParams) -> Result<Self, ParamError> {
         params.validate()?;
         let p = &params;
-        let face = FaceGeometry::new(p.bulge_m, p.roll_m).map_err(|problem| ParamError {
+        let face = FaceGeometry::new(p.bulge_m, p.roll_m).map_err(|e| ParamError {
             quantity: "club face",
-            problem,
+            problem: e.to_string(),
         })?;
         let club_inv_inertia = p
             .club_inertia_kgm2

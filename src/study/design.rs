@@ -278,7 +278,7 @@ impl Design {
                 "the moved discretionary mass",
                 (md.at_m.x + delta.x) * 1e3,
             )
-            .map_err(err)?;
+            .map_err(|e| err(e.to_string()))?;
             let r0 = md.at_m - old_com;
             let r1 = r0 + delta;
             let shift = delta * (md.mass_kg / m);
@@ -291,7 +291,7 @@ impl Design {
             mm(self.get(DesignVar::ComDy)),
             mm(self.get(DesignVar::ComDz)),
         );
-        crate::limits::check_club_com_x_mm(p.club_com_m.x * 1e3).map_err(err)?;
+        crate::limits::check_club_com_x_mm(p.club_com_m.x * 1e3).map_err(|e| err(e.to_string()))?;
         let s = self.get(DesignVar::InertiaScale);
         if !(s > 0.0) {
             return Err(err(format!(
@@ -345,7 +345,7 @@ impl Design {
         validate_inertia(&p.club_inertia_kgm2, "club inertia tensor")
             .map_err(|e| err(e.to_string()))?;
         // Within the limits a club file is read with, as the base head is.
-        crate::data::club_file::check_head(&p).map_err(err)?;
+        crate::data::club_file::check_head(&p).map_err(|e| err(e.to_string()))?;
         Ok(p)
     }
 }

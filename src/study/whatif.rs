@@ -104,11 +104,8 @@ impl HeadChange {
         let mut d = Design::default();
         let mut mass = None;
         if let Some(m) = &self.mass_move {
-            crate::limits::check_head_part_mass_g(
-                "the moved mass",
-                m.mass_g,
-                nominal.club_mass_kg,
-            )?;
+            crate::limits::check_head_part_mass_g("the moved mass", m.mass_g, nominal.club_mass_kg)
+                .map_err(|e| e.to_string())?;
             mass = Some(DiscretionaryMass {
                 mass_kg: g(m.mass_g),
                 at_m: Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])),

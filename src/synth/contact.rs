@@ -301,10 +301,75 @@ pub fn hunt_crossley_cor(c: f64) -> f64 {
     0.0
 }
 
+/// Why a contact world cannot be built or cannot integrate an impact.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ContactError {
+    /// A target COR outside (0, 1].
+    #[error("the target COR must be in (0, 1], got {cor}")]
+    TargetCor {
+        /// The COR asked for.
+        cor: f64,
+    },
+    /// A COR no damping reaches.
+    #[error("no Hunt–Crossley damping gives a COR as low as {cor}")]
+    CorTooLow {
+        /// The COR asked for.
+        cor: f64,
+    },
+    /// Hidden effects whose physics the contact world makes itself.
+    #[error(
+        "the contact world makes its own restitution, friction and ball deformation: hidden \
+         effects tangential_restitution, friction, cor_speed, cor_power, cor_radial and \
+         ball_offset cannot be combined with it"
+    )]
+    RestitutionEffects,
+    /// User-defined effects, which the contact world does not evaluate.
+    #[error(
+        "the contact world integrates its own physics and does not evaluate user-defined \
+         effects: hide them in a momentum-model world (no [world] contact)"
+    )]
+    UserEffects,
+    /// A contact setting outside what it allows (the message says which and what).
+    #[error("{0}")]
+    Setting(&'static str),
+    /// The impact point is not on the face.
+    #[error(transparent)]
+    Face(#[from] crate::physics::FaceError),
+    /// The momentum model's refusal of the delivery.
+    #[error(transparent)]
+    Impact(#[from] crate::physics::ImpactError),
+    /// The collision matrix has no inverse.
+    #[error("the collision matrix is singular")]
+    SingularCollision,
+    /// The club does not approach the ball, before or after the grip.
+    #[error(
+        "the club does not approach the ball: normal approach {} m/s, after the grip {} m/s \
+         (both must exceed {} m/s)",
+        crate::limits::fmt_value(*u1n_m_s),
+        crate::limits::fmt_value(*after_grip_m_s),
+        crate::limits::fmt_value(crate::limits::MIN_NORMAL_APPROACH_M_S)
+    )]
+    NoGripApproach {
+        /// Normal approach speed, m/s.
+        u1n_m_s: f64,
+        /// Normal approach left once the grip stopped the slip, m/s.
+        after_grip_m_s: f64,
+    },
+    /// The integration gave a non-finite state.
+    #[error("the contact integration produced a non-finite result")]
+    NonFinite,
+    /// The ball stayed on the face.
+    #[error("the ball did not separate within {max_steps} steps (50 estimated contact times)")]
+    NoSeparation {
+        /// Steps integrated.
+        max_steps: usize,
+    },
+}
+
 /// The Hunt–Crossley `χ` (s/m) whose COR at normal speed `v_ref_m_s` is `cor` (in (0, 1]).
-pub fn hunt_crossley_chi(cor: f64, v_ref_m_s: f64) -> Result<f64, String> {
+pub fn hunt_crossley_chi(cor: f64, v_ref_m_s: f64) -> Result<f64, ContactError> {
     if !(cor > 0.0 && cor <= 1.0) {
-        return Err(format!("the target COR must be in (0, 1], got {cor}"));
+        return Err(ContactError::TargetCor { cor });
     }
     if cor >= 1.0 {
         return Ok(0.0);
@@ -314,9 +379,7 @@ pub fn hunt_crossley_chi(cor: f64, v_ref_m_s: f64) -> Result<f64, String> {
     while hunt_crossley_cor(hi) > cor {
         hi *= 2.0;
         if hi > 1e6 {
-            return Err(format!(
-                "no Hunt–Crossley damping gives a COR as low as {cor}"
-            ));
+            return Err(ContactError::CorTooLow { cor });
         }
     }
     for _ in 0..60 {
@@ -440,7 +503,7 @@ impl ContactWorld {
     /// Build the world for `model` (a group's club with its hidden effects). The contact laws
     /// replace the model's restitution laws, so a model with a tangential restitution, friction,
     /// `cor_speed`, `cor_radial` or a ball offset is refused rather than silently ignored.
-    pub fn new(model: &ImpactModel, params: ContactParams) -> Result<Self, String> {
+    pub fn new(model: &ImpactModel, params: ContactParams) -> Result<Self, ContactError> {
         let p = model.params();
         if p.tangential_restitution != 0.0
             || p.friction_mu.is_some()
@@ -452,33 +515,32 @@ impl ContactWorld {
             || p.ball_offset_y_m != 0.0
             || p.ball_offset_z_m != 0.0
         {
-            return Err(
-                "the contact world makes its own restitution, friction and ball \
-                        deformation: hidden effects tangential_restitution, friction, cor_speed, cor_power, \
-                        cor_radial and ball_offset cannot be combined with it"
-                    .into(),
-            );
+            return Err(ContactError::RestitutionEffects);
         }
         if !p.user.is_empty() {
-            return Err(
-                "the contact world integrates its own physics and does not evaluate \
-                 user-defined effects: hide them in a momentum-model world (no [world] contact)"
-                    .into(),
-            );
+            return Err(ContactError::UserEffects);
         }
         let pos = |v: f64| v.is_finite() && v > 0.0;
         if !pos(params.hertz_k_n_per_m1_5) {
-            return Err("hertz_k_n_per_m1_5 must be finite and > 0".into());
+            return Err(ContactError::Setting(
+                "hertz_k_n_per_m1_5 must be finite and > 0",
+            ));
         }
         if !pos(params.mu) || !pos(params.tangential_stiffness_ratio) {
-            return Err("mu and tangential_stiffness_ratio must be finite and > 0".into());
+            return Err(ContactError::Setting(
+                "mu and tangential_stiffness_ratio must be finite and > 0",
+            ));
         }
         if !(params.tangential_damping_ratio.is_finite() && params.tangential_damping_ratio >= 0.0)
         {
-            return Err("tangential_damping_ratio must be finite and ≥ 0".into());
+            return Err(ContactError::Setting(
+                "tangential_damping_ratio must be finite and ≥ 0",
+            ));
         }
         if params.steps_per_contact < 20 {
-            return Err("steps_per_contact must be at least 20".into());
+            return Err(ContactError::Setting(
+                "steps_per_contact must be at least 20",
+            ));
         }
         let cor = params.cor_ref.unwrap_or(p.cor);
         let chi_s_per_m = hunt_crossley_chi(cor, COR_SPEED_REFERENCE_M_S)?;
@@ -500,11 +562,10 @@ impl ContactWorld {
                 && t.damping_ratio >= 0.0
                 && t.hosel_mm.iter().flatten().all(|v| v.is_finite());
             if !ok {
-                return Err(
-                    "shaft_tip: mass_g and frequency_hz must be > 0, damping_ratio ≥ 0, \
-                            hosel_mm finite"
-                        .into(),
-                );
+                return Err(ContactError::Setting(
+                    "shaft_tip: mass_g and frequency_hz must be > 0, damping_ratio ≥ 0, hosel_mm \
+                     finite",
+                ));
             }
         }
         Ok(Self {
@@ -529,14 +590,10 @@ impl ContactWorld {
     /// The Newton COR (on `u1n`) with which the momentum model reproduces this world's impact of
     /// `d` in the rigid, gripping limit: `e_HC(χ·v*)·v*/u1n`, with `v*` the normal approach left
     /// once the grip has stopped the tangential slip (module docs, "The rigid limit").
-    pub fn rigid_limit_cor(&self, d: &Delivery) -> Result<f64, String> {
+    pub fn rigid_limit_cor(&self, d: &Delivery) -> Result<f64, ContactError> {
         let p = self.model.params();
         let r_fg = self.model.face_orientation(d).transpose();
-        let cf = self
-            .model
-            .face()
-            .contact(d.impact_y_m, d.impact_z_m)
-            .map_err(|e| e.to_string())?;
+        let cf = self.model.face().contact(d.impact_y_m, d.impact_z_m)?;
         let r_c = cf.point_m - p.club_com_m;
         let u1 = r_fg * d.club_velocity_m_s() + (r_fg * d.club_omega_rad_s).cross(&r_c);
         let n = cf.normal;
@@ -544,23 +601,20 @@ impl ContactWorld {
             .model
             .k_matrix(&r_c, &(-p.ball_radius_m * n))
             .try_inverse()
-            .ok_or("the collision matrix is singular")?;
+            .ok_or(ContactError::SingularCollision)?;
         let (u1n, v_star) = (u1.dot(&n), (kinv * u1).dot(&n) / n.dot(&(kinv * n)));
         let min = crate::limits::MIN_NORMAL_APPROACH_M_S;
         if !(u1n > min && v_star > min) {
-            return Err(format!(
-                "the club does not approach the ball: normal approach {} m/s, after the grip {} \
-                 m/s (both must exceed {} m/s)",
-                crate::limits::fmt_value(u1n),
-                crate::limits::fmt_value(v_star),
-                crate::limits::fmt_value(min)
-            ));
+            return Err(ContactError::NoGripApproach {
+                u1n_m_s: u1n,
+                after_grip_m_s: v_star,
+            });
         }
         Ok(self.cor_at(v_star) * v_star / u1n)
     }
 
     /// Integrate one impact from the delivery `d` (loft and face biases of the model applied).
-    pub fn impact(&self, d: &Delivery) -> Result<ContactOutcome, String> {
+    pub fn impact(&self, d: &Delivery) -> Result<ContactOutcome, ContactError> {
         let Start {
             c,
             mut s,
@@ -597,14 +651,12 @@ impl ContactWorld {
                 };
                 let finite = |v: &Vector3<f64>| v.iter().all(|x| x.is_finite());
                 if !(finite(&out.ball_velocity_m_s) && finite(&out.ball_spin_rad_s)) {
-                    return Err("the contact integration produced a non-finite result".into());
+                    return Err(ContactError::NonFinite);
                 }
                 return Ok(out);
             }
         }
-        Err(format!(
-            "the ball did not separate within {max_steps} steps (50 estimated contact times)"
-        ))
+        Err(ContactError::NoSeparation { max_steps })
     }
 
     /// One classic RK4 step of `dt`, then the quaternion renormalised; returns the normal
@@ -628,27 +680,24 @@ impl ContactWorld {
     }
 
     /// The initial state at first contact, the per-impact constants and the step.
-    fn start(&self, d: &Delivery) -> Result<Start, String> {
+    fn start(&self, d: &Delivery) -> Result<Start, ContactError> {
         let p = self.model.params();
         let r_gf = self.model.face_orientation(d);
         let r_fg = r_gf.transpose();
         let v_c = r_fg * d.club_velocity_m_s();
         let w_c = r_fg * d.club_omega_rad_s;
-        let cf = self
-            .model
-            .face()
-            .contact(d.impact_y_m, d.impact_z_m)
-            .map_err(|e| e.to_string())?;
+        let cf = self.model.face().contact(d.impact_y_m, d.impact_z_m)?;
         let n0 = cf.normal;
         let r_c = cf.point_m - p.club_com_m;
         let u1 = v_c + w_c.cross(&r_c);
         let u1n = u1.dot(&n0);
         // The momentum solve's threshold and words: the two worlds refuse the same deliveries.
         if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
-            return Err(crate::physics::ImpactError::NotApproaching {
-                normal_speed_m_s: u1n,
-            }
-            .to_string());
+            return Err(ContactError::Impact(
+                crate::physics::ImpactError::NotApproaching {
+                    normal_speed_m_s: u1n,
+                },
+            ));
         }
         let r_b0 = -p.ball_radius_m * n0;
         let kmat = self.model.k_matrix(&r_c, &r_b0);

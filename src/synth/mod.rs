@@ -155,6 +155,41 @@ pub enum SynthError {
     },
 }
 
+/// Why one draw of a swing is not played (the draw is made again; the last reason is reported
+/// when none is playable).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum Rejection {
+    /// The impact lies outside the world's face limits.
+    #[error("impact ({y_mm:.1}, {z_mm:.1}) mm is off the face limits")]
+    OffFaceLimits {
+        /// Vertical location, mm.
+        y_mm: f64,
+        /// Heel–toe location, mm.
+        z_mm: f64,
+    },
+    /// A club speed that is not positive (the clean one, or the measured one).
+    #[error("{}club speed ≤ 0", if *measured { "measured " } else { "" })]
+    ClubSpeed {
+        /// The measured speed (with its noise), not the clean one.
+        measured: bool,
+    },
+    /// The momentum model cannot solve the delivery.
+    #[error(transparent)]
+    Impact(#[from] ImpactError),
+    /// The world's physics make a head that is not physical for this shot.
+    #[error("world model: {0}")]
+    WorldModel(ParamError),
+    /// The contact world's integration failed.
+    #[error(transparent)]
+    Contact(#[from] contact::ContactError),
+    /// The measured delivery (with its noise) cannot be solved.
+    #[error("measured delivery: {0}")]
+    MeasuredDelivery(ImpactError),
+    /// A value that would not read back from the shots file.
+    #[error(transparent)]
+    Limit(#[from] crate::limits::LimitError),
+}
+
 fn normals<const N: usize>(rng: &mut ChaCha8Rng) -> [f64; N] {
     std::array::from_fn(|_| rng.sample::<f64, _>(StandardNormal))
 }
@@ -165,7 +200,7 @@ pub fn world_impact(
     model: &ImpactModel,
     world: &WorldPhysics,
     clean: &Delivery,
-) -> Result<(Launch, f64, f64), String> {
+) -> Result<(Launch, f64, f64), Rejection> {
     let mut d = *clean;
     if let Some(g) = world.loft_gain {
         d.dynamic_loft_rad *= 1.0 + g;
@@ -174,7 +209,7 @@ pub fn world_impact(
         let cw = ContactWorld::new(model, *c)?;
         return contact_impact(&cw, &d);
     }
-    let first = model.solve(&d).map_err(|e: ImpactError| e.to_string())?;
+    let first = model.solve(&d)?;
     if !world.is_active() {
         return Ok((
             first.launch(),
@@ -193,8 +228,8 @@ pub fn world_impact(
         p.ball_offset_y_m += mm(ky * dv);
         p.ball_offset_z_m += mm(kz * dv);
     }
-    let shot_model = ImpactModel::new(p).map_err(|e| format!("world model: {e}"))?;
-    let out = shot_model.solve(&d).map_err(|e| e.to_string())?;
+    let shot_model = ImpactModel::new(p).map_err(Rejection::WorldModel)?;
+    let out = shot_model.solve(&d)?;
     Ok((
         out.launch(),
         out.cor_effective,
@@ -203,7 +238,7 @@ pub fn world_impact(
 }
 
 /// One shot of a contact world (the loft gain already applied to `d`): launch, COR achieved, `u1n`.
-fn contact_impact(cw: &ContactWorld, d: &Delivery) -> Result<(Launch, f64, f64), String> {
+fn contact_impact(cw: &ContactWorld, d: &Delivery) -> Result<(Launch, f64, f64), Rejection> {
     let out = cw.impact(d)?;
     Ok((
         out.launch(),
@@ -284,10 +319,10 @@ fn group_models(cfg: &SynthConfig, base: &ClubSpec) -> Result<Vec<GroupModels>, 
             cfg.world
                 .contact
                 .map(|c| {
-                    ContactWorld::new(m, c).map_err(|problem| {
+                    ContactWorld::new(m, c).map_err(|e| {
                         world_error(&g.name)(ParamError {
                             quantity: "world.contact",
-                            problem,
+                            problem: e.to_string(),
                         })
                     })
                 })
@@ -343,7 +378,7 @@ fn play_shot(
                 return Err(SynthError::Unplayable {
                     shot_id: who.id.clone(),
                     attempts,
-                    last: why,
+                    last: why.to_string(),
                 })
             }
             Err(_) => {}
@@ -360,7 +395,7 @@ fn draw_swing(
     models: &GroupModels,
     who: &Swinger,
     rng: &mut ChaCha8Rng,
-) -> Result<SynthShot, String> {
+) -> Result<SynthShot, Rejection> {
     // Every draw takes all its random numbers first, so a rejection does not shift the stream.
     let z: [f64; N_DELIVERY] = normals(rng);
     let clean: [f64; N_DELIVERY] =
@@ -372,12 +407,13 @@ fn draw_swing(
         clean[DeliveryVar::ImpactZ.index()],
     );
     if impact_y.abs() > cfg.max_abs_impact_y_mm || impact_z.abs() > cfg.max_abs_impact_z_mm {
-        return Err(format!(
-            "impact ({impact_y:.1}, {impact_z:.1}) mm is off the face limits"
-        ));
+        return Err(Rejection::OffFaceLimits {
+            y_mm: impact_y,
+            z_mm: impact_z,
+        });
     }
     if !(clean[DeliveryVar::ClubSpeed.index()] > 0.0) {
-        return Err("club speed ≤ 0".into());
+        return Err(Rejection::ClubSpeed { measured: false });
     }
     let clean_si = Delivery {
         shaft_mass_g: Some(who.group.shaft_mass_g),
@@ -396,7 +432,7 @@ fn draw_swing(
     let measured: [f64; N_DELIVERY] =
         std::array::from_fn(|i| clean[i] + cfg.delivery_noise[i] * zd[i]);
     if !(measured[DeliveryVar::ClubSpeed.index()] > 0.0) {
-        return Err("measured club speed ≤ 0".into());
+        return Err(Rejection::ClubSpeed { measured: true });
     }
     models
         .base
@@ -404,7 +440,7 @@ fn draw_swing(
             shaft_mass_g: Some(who.group.shaft_mass_g),
             ..delivery_from_file_units(&measured)
         })
-        .map_err(|e| format!("measured delivery: {e}"))?;
+        .map_err(Rejection::MeasuredDelivery)?;
     let true_launch = PerComponent(truth.to_file_units());
     let launch = PerComponent::from_fn(|c| true_launch[c] + cfg.launch_noise[c] * zl[c.index()]);
     // What is written must read back: every value in its physical range.

@@ -295,7 +295,7 @@ impl RowAt<'_> {
     }
 
     /// An error at this row, in the column headed `header`.
-    fn error_in(&self, header: Option<&str>, message: impl Into<String>) -> DataError {
+    fn error_in(&self, header: Option<&str>, message: impl std::fmt::Display) -> DataError {
         DataError::at(
             self.path,
             Some(self.line),
@@ -432,7 +432,7 @@ impl RowAt<'_> {
                 values.push((target, r.spec.assume));
                 continue;
             }
-            let bad = |kind: &str, m: String| {
+            let bad = |kind: &str, m: &dyn std::fmt::Display| {
                 (
                     format!("column '{}' {kind}", r.header),
                     self.error_in(Some(&r.header), m),
@@ -443,18 +443,18 @@ impl RowAt<'_> {
                 Some(from) => {
                     let to = r.target.unit().expect("numeric");
                     let v = parse_cell(raw, from, r.spec.direction.as_deref(), self.decimal_comma)
-                        .map_err(|m| bad("is not a number", m))?;
+                        .map_err(|m| bad("is not a number", &m))?;
                     (from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1)), v)
                 }
                 None => {
                     let v = parse_number(raw, self.decimal_comma)
-                        .ok_or_else(|| bad("is not a number", not_a_number()))?;
+                        .ok_or_else(|| bad("is not a number", &not_a_number()))?;
                     (v, v)
                 }
             };
             if !v.is_finite() {
                 let m = format!("{} is not a finite number", crate::data::quote_cell(raw));
-                return Err(bad("is not a finite number", m));
+                return Err(bad("is not a finite number", &m));
             }
             if let Some(why) = sentinel(target, raw_v) {
                 blanked.push((
@@ -468,7 +468,7 @@ impl RowAt<'_> {
             if let Some(range) = range {
                 if let Err(m) = range.check(v) {
                     if self.strict || launch_target(target) {
-                        return Err(bad("is outside its physical range", m));
+                        return Err(bad("is outside its physical range", &m));
                     }
                     blanked.push((
                         format!("column '{}': outside its physical range", r.header),
