@@ -9,6 +9,44 @@ use std::collections::BTreeMap;
 use crate::effects::Effect;
 use crate::physics::{ImpactModel, ModelParams, ParamError};
 
+/// A group a club's effects do not make physical, or do not name.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GroupError {
+    /// The clubhead CoM of a group with its effects is not behind the face
+    /// ([`ClubSpec::check_com_behind_face`]).
+    #[error("with the effects of group '{}': {source}", group.escape_debug())]
+    ComNotBehindFace {
+        /// The group (`all`: the effects that name no group).
+        group: String,
+        /// Where the CoM is and where it must be.
+        source: crate::limits::LimitError,
+    },
+    /// A group no effect names ([`ClubSpec::check_group`]).
+    #[error("group '{}' is not a group of this club's effects; {}", group.escape_debug(), groups_allowed(groups))]
+    Unknown {
+        /// The group asked for.
+        group: String,
+        /// The groups the club's effects name.
+        groups: Vec<String>,
+    },
+}
+
+/// What a `--group` may name, for [`GroupError::Unknown`].
+fn groups_allowed(groups: &[String]) -> String {
+    if groups.is_empty() {
+        "it has no group effects, so only 'all' (the default) applies".to_owned()
+    } else {
+        format!(
+            "its groups are {}, or 'all' (the effects that name no group)",
+            groups
+                .iter()
+                .map(|g| format!("'{}'", g.escape_debug()))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
 /// Clubhead, ball and effects, SI units inside.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ClubSpec {
@@ -62,13 +100,17 @@ impl ClubSpec {
     /// `Ok` when the clubhead's centre of mass is behind the face for every group with its
     /// effects applied (`com_offset`, `hosel_mass`, … may move it): otherwise the group and
     /// the position ([`crate::limits::check_club_com_x_mm`]).
-    pub fn check_com_behind_face(&self) -> Result<(), String> {
+    pub fn check_com_behind_face(&self) -> Result<(), GroupError> {
         let mut groups = self.effect_groups();
         groups.push("all".to_owned());
         for g in groups {
             let x_mm = self.params_for_group(&g).club_com_m.x * 1e3;
-            crate::limits::check_club_com_x_mm(x_mm)
-                .map_err(|m| format!("with the effects of group '{}': {m}", g.escape_debug()))?;
+            crate::limits::check_club_com_x_mm(x_mm).map_err(|source| {
+                GroupError::ComNotBehindFace {
+                    group: g.clone(),
+                    source,
+                }
+            })?;
         }
         Ok(())
     }
@@ -89,27 +131,15 @@ impl ClubSpec {
     /// effects, or is `all` (the default: the effects that name no group); otherwise a message
     /// listing the groups the club has. A group no effect names would silently get the global
     /// effects only, which is never what a user who typed it meant.
-    pub fn check_group(&self, group: &str) -> Result<(), String> {
+    pub fn check_group(&self, group: &str) -> Result<(), GroupError> {
         let groups = self.effect_groups();
         if group == "all" || groups.iter().any(|g| g == group) {
             return Ok(());
         }
-        let have = if groups.is_empty() {
-            "it has no group effects, so only 'all' (the default) applies".to_owned()
-        } else {
-            format!(
-                "its groups are {}, or 'all' (the effects that name no group)",
-                groups
-                    .iter()
-                    .map(|g| format!("'{}'", g.escape_debug()))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            )
-        };
-        Err(format!(
-            "group '{}' is not a group of this club's effects; {have}",
-            group.escape_debug()
-        ))
+        Err(GroupError::Unknown {
+            group: group.to_owned(),
+            groups,
+        })
     }
 
     /// Model parameters for shots of `group`: nominal plus every effect that applies.

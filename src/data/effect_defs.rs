@@ -360,8 +360,49 @@ fn quote_expression(src: &str) -> String {
     }
 }
 
+/// A name an expression for a quantity may not read ([`resolve`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+enum NameError {
+    /// A contact variable in a quantity set before the ball meets the face.
+    #[error(
+        "{} may not use '{name}': mass and geometry are set before the ball meets the face, so \
+         they cannot depend on how fast it does; only cor, et and mu may read {}",
+        quantity.key(),
+        CONTACT_VARIABLES.map(|c| c.0).join(", ")
+    )]
+    ContactVariable {
+        /// The quantity the expression is for.
+        quantity: Quantity,
+        /// The name read.
+        name: String,
+    },
+    /// Another quantity's nominal value.
+    #[error(
+        "'{name}' is another quantity; the expression for {} may read its own nominal value \
+         ('{}') only",
+        quantity.key(),
+        quantity.key()
+    )]
+    OtherQuantity {
+        /// The quantity the expression is for.
+        quantity: Quantity,
+        /// The name read.
+        name: String,
+    },
+    /// A name that is nothing the expression may read.
+    #[error("unknown name '{name}'; {} may read: {}", quantity.key(), allowed.join(", "))]
+    Unknown {
+        /// The quantity the expression is for.
+        quantity: Quantity,
+        /// The name read.
+        name: String,
+        /// What it may read.
+        allowed: Vec<&'static str>,
+    },
+}
+
 /// The variable number of `name` in an expression for quantity `q` with parameters `specs`.
-fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, String> {
+fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, NameError> {
     if name == q.key() {
         return Ok(VAR_NOMINAL);
     }
@@ -375,20 +416,16 @@ fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, String> {
         if q.in_contact() {
             return Ok(*v);
         }
-        return Err(format!(
-            "{} may not use '{name}': mass and geometry are set before the ball meets the face, \
-             so they cannot depend on how fast it does; only cor, et and mu may read {}",
-            q.key(),
-            CONTACT_VARIABLES.map(|c| c.0).join(", ")
-        ));
+        return Err(NameError::ContactVariable {
+            quantity: q,
+            name: name.to_owned(),
+        });
     }
     if Quantity::from_key(name).is_some() {
-        return Err(format!(
-            "'{name}' is another quantity; the expression for {} may read its own nominal value \
-             ('{}') only",
-            q.key(),
-            q.key()
-        ));
+        return Err(NameError::OtherQuantity {
+            quantity: q,
+            name: name.to_owned(),
+        });
     }
     let mut allowed = vec![q.key()];
     allowed.extend(specs.iter().map(|s| s.key));
@@ -396,11 +433,11 @@ fn resolve(q: Quantity, specs: &[ParamSpec], name: &str) -> Result<u8, String> {
     if q.in_contact() {
         allowed.extend(CONTACT_VARIABLES.map(|c| c.0));
     }
-    Err(format!(
-        "unknown name '{name}'; {} may read: {}",
-        q.key(),
-        allowed.join(", ")
-    ))
+    Err(NameError::Unknown {
+        quantity: q,
+        name: name.to_owned(),
+        allowed,
+    })
 }
 
 /// A definition as its raw `[[define_effect]]` table.

@@ -58,7 +58,7 @@ fn term() -> &'static UserTermDef {
             "club_mass_g" => Ok(VAR_NOMINAL),
             "f" => Ok(VAR_PARAM0),
             "shaft_mass_g" => Ok(VAR_SHAFT_MASS),
-            other => Err(format!("unknown variable {other}")),
+            other => Err(crate::physics::expr::UnknownName(other.to_owned())),
         };
         UserTermDef {
             effect: NAME,

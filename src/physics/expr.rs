@@ -119,9 +119,9 @@ impl Program {
 
     /// Compile `text`; `resolve` maps a name to its variable number (< 64) or says why the name
     /// is not allowed here.
-    pub fn compile(
+    pub fn compile<E: std::fmt::Display>(
         text: &str,
-        resolve: &dyn Fn(&str) -> Result<u8, String>,
+        resolve: &dyn Fn(&str) -> Result<u8, E>,
     ) -> Result<Self, ExprError> {
         let n_chars = text.chars().count();
         if n_chars > MAX_CHARS {
@@ -299,7 +299,13 @@ const FUNCTIONS: [(&str, usize, Op); 6] = [
     ("max", 2, Op::Max),
 ];
 
-struct Parser<'a> {
+/// A name a fixed vocabulary does not have (a resolver for [`Program::compile`] whose names are
+/// the program's own, such as a library effect's law).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown name '{0}'")]
+pub struct UnknownName(pub String);
+
+struct Parser<'a, E> {
     tokens: &'a [Token],
     pos: usize,
     end_column: usize,
@@ -307,10 +313,10 @@ struct Parser<'a> {
     depth: usize,
     /// Current recursion depth of [`Parser::unary`], through which every nesting passes.
     nest: usize,
-    resolve: &'a dyn Fn(&str) -> Result<u8, String>,
+    resolve: &'a dyn Fn(&str) -> Result<u8, E>,
 }
 
-impl Parser<'_> {
+impl<E: std::fmt::Display> Parser<'_, E> {
     fn column(&self) -> usize {
         self.tokens
             .get(self.pos)
@@ -484,7 +490,10 @@ impl Parser<'_> {
                         message: format!("'{name}' is a function: write {name}(…)"),
                     });
                 }
-                let var = (self.resolve)(name).map_err(|message| ExprError { column, message })?;
+                let var = (self.resolve)(name).map_err(|e| ExprError {
+                    column,
+                    message: e.to_string(),
+                })?;
                 debug_assert!(var < 64);
                 self.out.reads |= 1 << var;
                 self.emit(Op::Var(var), column)
@@ -502,13 +511,13 @@ mod tests {
     use super::*;
     use crate::lanes::V;
 
-    fn vars(name: &str) -> Result<u8, String> {
+    fn vars(name: &str) -> Result<u8, UnknownName> {
         match name {
             "x" => Ok(0),
             "y" => Ok(1),
             "q" => Ok(2),
             "u1n_m_s" => Ok(3),
-            _ => Err(format!("unknown name '{name}'")),
+            _ => Err(UnknownName(name.to_owned())),
         }
     }
 

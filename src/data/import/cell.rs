@@ -107,6 +107,53 @@ fn split_number(s: &str) -> Option<(&str, &str, &str)> {
     Some((&s[..start], &s[start..end], &s[end..]))
 }
 
+/// Why a cell is not a value of its column ([`parse_cell`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum CellError {
+    /// No number, or words that are neither the column's unit nor a direction.
+    #[error("{} is not a number", crate::data::quote_cell(raw))]
+    NotANumber {
+        /// The cell as read.
+        raw: String,
+    },
+    /// A direction word in a column that takes none.
+    #[error("'{raw}': this column does not take L/R, U/D or I-O/O-I directions ('{word}')")]
+    NoDirections {
+        /// The cell as read.
+        raw: String,
+        /// The direction word.
+        word: String,
+    },
+    /// A direction word of another kind than the column's, or a second one.
+    #[error("'{raw}': '{word}' is not a direction of this column (it takes {} or {})", takes[0], takes[1])]
+    NotADirection {
+        /// The cell as read.
+        raw: String,
+        /// The word.
+        word: String,
+        /// The column's two directions.
+        takes: [&'static str; 2],
+    },
+    /// A unit other than the column's.
+    #[error("mixed units: '{raw}' is in {cell_unit} but the column is in {column_unit}")]
+    MixedUnits {
+        /// The cell as read.
+        raw: String,
+        /// The cell's unit.
+        cell_unit: &'static str,
+        /// The column's unit.
+        column_unit: &'static str,
+    },
+    /// A sign and a direction together.
+    #[error("'{raw}': both a sign and a direction ('{word}'); write one")]
+    SignAndDirection {
+        /// The cell as read.
+        raw: String,
+        /// The direction word.
+        word: String,
+    },
+}
+
 /// Parse one cell: a number, optionally with a direction word before or after it (when the
 /// column takes directions: `direction` is one of [`DIRECTIONS`]) and the column's own unit,
 /// in any order. Returns the value in the column's unit.
@@ -115,9 +162,11 @@ pub(super) fn parse_cell(
     unit: Unit,
     direction: Option<&str>,
     decimal_comma: bool,
-) -> Result<f64, String> {
+) -> Result<f64, CellError> {
     let s = raw.trim();
-    let not_a_number = || format!("{} is not a number", crate::data::quote_cell(raw));
+    let not_a_number = || CellError::NotANumber {
+        raw: raw.to_owned(),
+    };
     let (before, number, after) = split_number(s).ok_or_else(not_a_number)?;
     let v = parse_number(number, decimal_comma).ok_or_else(not_a_number)?;
     let mut words: Vec<String> = before
@@ -158,17 +207,19 @@ pub(super) fn parse_cell(
         // Every family of words, so that a misplaced one is named, not read as a unit.
         if is_side(&w) {
             let Some(words) = direction.and_then(direction_words) else {
-                return Err(format!(
-                    "'{raw}': this column does not take L/R, U/D or I-O/O-I directions ('{w}')"
-                ));
+                return Err(CellError::NoDirections {
+                    raw: raw.to_owned(),
+                    word: w,
+                });
             };
             let is_pos = words.0.contains(&upper.as_str());
             let is_neg = words.1.contains(&upper.as_str());
             if !(is_pos || is_neg) || letter.is_some() {
-                return Err(format!(
-                    "'{raw}': '{w}' is not a direction of this column (it takes {} or {})",
-                    words.0[0], words.1[0]
-                ));
+                return Err(CellError::NotADirection {
+                    raw: raw.to_owned(),
+                    word: w,
+                    takes: [words.0[0], words.1[0]],
+                });
             }
             letter = Some(is_pos);
             side_word = Some(w);
@@ -177,20 +228,21 @@ pub(super) fn parse_cell(
         match Unit::parse(&w) {
             Some(u) if u.name == unit.name => {}
             Some(u) => {
-                return Err(format!(
-                    "mixed units: '{raw}' is in {} but the column is in {}",
-                    u.name, unit.name
-                ))
+                return Err(CellError::MixedUnits {
+                    raw: raw.to_owned(),
+                    cell_unit: u.name,
+                    column_unit: unit.name,
+                })
             }
             None => return Err(not_a_number()),
         }
     }
     match letter {
         None => Ok(v),
-        Some(_) if number.starts_with(['-', '+']) => Err(format!(
-            "'{raw}': both a sign and a direction ('{}'); write one",
-            side_word.unwrap_or_default()
-        )),
+        Some(_) if number.starts_with(['-', '+']) => Err(CellError::SignAndDirection {
+            raw: raw.to_owned(),
+            word: side_word.unwrap_or_default(),
+        }),
         Some(true) => Ok(v),
         Some(false) => Ok(-v),
     }
@@ -242,7 +294,7 @@ mod tests {
         Unit::parse("deg").unwrap()
     }
 
-    fn p(raw: &str, d: Option<&str>) -> Result<f64, String> {
+    fn p(raw: &str, d: Option<&str>) -> Result<f64, CellError> {
         parse_cell(raw, deg(), d, false)
     }
 
@@ -261,7 +313,9 @@ mod tests {
         let f = Unit::parse("°F").unwrap();
         assert_eq!(parse_cell("77 °F", f, None, false), Ok(77.0));
         assert_eq!(parse_cell("77°F", f, None, false), Ok(77.0));
-        let e = parse_cell("245 km/h", mph, None, false).unwrap_err();
+        let e = parse_cell("245 km/h", mph, None, false)
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("mixed units"), "{e}");
         assert!(parse_cell("fast", mph, None, false).is_err());
     }
@@ -286,10 +340,13 @@ mod tests {
         assert_eq!(p("4.2 I-O", Some("I-O+")), Ok(4.2));
         assert_eq!(p("4.2° O-I", Some("I-O+")), Ok(-4.2));
         assert_eq!(p("O-I 4.2", Some("I-O+")), Ok(-4.2));
-        let e = p("3.1 U", Some("R+")).unwrap_err();
+        let e = p("3.1 U", Some("R+")).unwrap_err().to_string();
         assert!(e.contains("takes R or L"), "{e}");
         assert!(p("3 L R", Some("R+")).is_err());
-        assert!(p("3 U", None).unwrap_err().contains("does not take L/R"));
+        assert!(p("3 U", None)
+            .unwrap_err()
+            .to_string()
+            .contains("does not take L/R"));
     }
 
     #[test]

@@ -18,11 +18,78 @@ const VELOCITY: [&str; 3] = ["club_speed_mph", "attack_angle_deg", "club_path_de
 /// Values of `how`.
 const HOW: [(FaceAngleSource, &str); 2] = FaceAngleSource::ALL;
 
+/// A mapping's `at` or `how` that its target does not allow ([`check_column`],
+/// [`check_mapping`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum MappingError {
+    /// `at` on a target that is not a delivery angle or velocity.
+    #[error(
+        "target '{target}': `at` is for the delivery's angles and velocity ({}, {})",
+        ORIENTATION.join(", "),
+        VELOCITY.join(", ")
+    )]
+    AtNotForTarget {
+        /// The column's target.
+        target: String,
+    },
+    /// An `at` the target does not know.
+    #[error("target '{target}': at = '{at}' is not known (allowed: {allowed})")]
+    AtUnknown {
+        /// The column's target.
+        target: String,
+        /// The `at` given.
+        at: String,
+        /// The points allowed.
+        allowed: String,
+    },
+    /// A `how` that is not known.
+    #[error("target '{target}': how = '{how}' is not known (allowed: {})", names(&HOW))]
+    HowUnknown {
+        /// The column's target.
+        target: String,
+        /// The `how` given.
+        how: String,
+    },
+    /// `derived_from_launch` on another target than the face angle.
+    #[error(
+        "target '{target}': only face_angle_deg may be derived_from_launch (smash can stand in \
+         for a face angle, not for other derived values: leave such a column unmapped)"
+    )]
+    DerivedNotFace {
+        /// The column's target.
+        target: String,
+    },
+    /// `how` on a column that is not a delivery column.
+    #[error("target '{target}': `how` is for delivery columns")]
+    HowNotDelivery {
+        /// The column's target.
+        target: String,
+    },
+    /// Two columns of one orientation or velocity stating different points.
+    #[error(
+        "targets '{a}' (at = {at_a}) and '{b}' (at = {at_b}) must state the same point: they \
+         are one {kind}"
+    )]
+    PointsDiffer {
+        /// One target.
+        a: String,
+        /// Its point, or `(not stated)`.
+        at_a: String,
+        /// The other target.
+        b: String,
+        /// Its point, or `(not stated)`.
+        at_b: String,
+        /// `orientation` or `velocity`.
+        kind: &'static str,
+    },
+}
+
 /// One column's `at` and `how`: allowed for its target.
-pub(super) fn check_column(c: &ColumnSpec) -> Result<(), String> {
+pub(super) fn check_column(c: &ColumnSpec) -> Result<(), MappingError> {
     let t = c.target.as_str();
+    let target = || t.to_owned();
     if let Some(at) = &c.at {
-        let ok = if ORIENTATION.contains(&t) {
+        let known = if ORIENTATION.contains(&t) {
             parse_name(&FacePoint::ALL, at)
                 .is_some()
                 .then_some(())
@@ -33,38 +100,31 @@ pub(super) fn check_column(c: &ColumnSpec) -> Result<(), String> {
                 .then_some(())
                 .ok_or(names(&VelocityPoint::ALL))
         } else {
-            return Err(format!(
-                "target '{t}': `at` is for the delivery's angles and velocity ({}, {})",
-                ORIENTATION.join(", "),
-                VELOCITY.join(", ")
-            ));
+            return Err(MappingError::AtNotForTarget { target: target() });
         };
-        ok.map_err(|allowed| {
-            format!("target '{t}': at = '{at}' is not known (allowed: {allowed})")
+        known.map_err(|allowed| MappingError::AtUnknown {
+            target: target(),
+            at: at.clone(),
+            allowed,
         })?;
     }
     if let Some(how) = &c.how {
-        let v = parse_name(&HOW, how).ok_or_else(|| {
-            format!(
-                "target '{t}': how = '{how}' is not known (allowed: {})",
-                names(&HOW)
-            )
+        let v = parse_name(&HOW, how).ok_or_else(|| MappingError::HowUnknown {
+            target: target(),
+            how: how.clone(),
         })?;
         if v == FaceAngleSource::Launch && t != "face_angle_deg" {
-            return Err(format!(
-                "target '{t}': only face_angle_deg may be derived_from_launch (smash can stand \
-                 in for a face angle, not for other derived values: leave such a column unmapped)"
-            ));
+            return Err(MappingError::DerivedNotFace { target: target() });
         }
         if !ORIENTATION.contains(&t) && !VELOCITY.contains(&t) && !t.starts_with("impact_") {
-            return Err(format!("target '{t}': `how` is for delivery columns"));
+            return Err(MappingError::HowNotDelivery { target: target() });
         }
     }
     Ok(())
 }
 
 /// The columns of one orientation or velocity state one point.
-pub(super) fn check_mapping(m: &Mapping) -> Result<(), String> {
+pub(super) fn check_mapping(m: &Mapping) -> Result<(), MappingError> {
     for group in [&ORIENTATION[..], &VELOCITY[..]] {
         let stated: Vec<(&str, Option<&str>)> = m
             .column
@@ -78,17 +138,17 @@ pub(super) fn check_mapping(m: &Mapping) -> Result<(), String> {
             .find(|((_, x), (_, y))| x != y)
         {
             let show = |p: &Option<&str>| p.unwrap_or("(not stated)").to_owned();
-            return Err(format!(
-                "targets '{a}' (at = {}) and '{b}' (at = {}) must state the same point: they \
-                 are one {}",
-                show(pa),
-                show(pb),
-                if group.len() == 2 {
+            return Err(MappingError::PointsDiffer {
+                a: (*a).to_owned(),
+                at_a: show(pa),
+                b: (*b).to_owned(),
+                at_b: show(pb),
+                kind: if group.len() == 2 {
                     "orientation"
                 } else {
                     "velocity"
-                }
-            ));
+                },
+            });
         }
     }
     Ok(())

@@ -435,7 +435,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
                 )));
             }
         }
-        conventions::check_column(c).map_err(err)?;
+        conventions::check_column(c).map_err(|e| err(e.to_string()))?;
         if let Some(d) = &c.direction {
             if cell::direction_words(d).is_none() {
                 return Err(err(format!(
@@ -446,7 +446,7 @@ pub fn parse_mapping(path: &Path, text: &str) -> Result<Mapping, DataError> {
             }
         }
     }
-    conventions::check_mapping(&m).map_err(err)?;
+    conventions::check_mapping(&m).map_err(|e| err(e.to_string()))?;
     Ok(m)
 }
 
