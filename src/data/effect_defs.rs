@@ -115,7 +115,13 @@ pub fn register_definitions(
     Ok(out)
 }
 
-fn at(path: &Path, text: &str, offset: usize, key: &str, message: String) -> DataError {
+fn at(
+    path: &Path,
+    text: &str,
+    offset: usize,
+    key: &str,
+    message: impl std::fmt::Display,
+) -> DataError {
     TomlDoc::new(path, text).err(offset..offset, key, message)
 }
 

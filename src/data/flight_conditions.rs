@@ -94,9 +94,22 @@ pub fn columns_used(headers: &[String], user: UserConditions) -> Vec<(usize, &'s
         .collect()
 }
 
+/// A conditions cell that is not a finite number ([`shot_atmosphere`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{} is not a finite number", quote_cell(cell))]
+pub struct ConditionCellError {
+    /// The column.
+    pub column: String,
+    /// The cell as read.
+    pub cell: String,
+}
+
 /// The atmosphere of one shot: `base` with the file's conditions `cells` (column name, cell)
 /// put in; empty cells keep the base value. A stated pressure wins over a stated altitude.
-pub fn shot_atmosphere(base: &Atmosphere, cells: &[(&str, &str)]) -> Result<Atmosphere, String> {
+pub fn shot_atmosphere(
+    base: &Atmosphere,
+    cells: &[(&str, &str)],
+) -> Result<Atmosphere, ConditionCellError> {
     let mut atm = *base;
     let mut pressure_pa = None;
     for &(col, cell) in cells {
@@ -105,7 +118,10 @@ pub fn shot_atmosphere(base: &Atmosphere, cells: &[(&str, &str)]) -> Result<Atmo
         }
         let x = parse_f64(cell)
             .filter(|x| x.is_finite())
-            .ok_or_else(|| format!("{} is not a finite number", quote_cell(cell)))?;
+            .ok_or_else(|| ConditionCellError {
+                column: col.to_owned(),
+                cell: cell.to_owned(),
+            })?;
         match col {
             "altitude_m" => {
                 atm.elevation_m = Some(x);
@@ -253,13 +269,7 @@ fn shot_air(
     let at = |col: &str, msg: String| {
         DataError::at(input, Some(line), Some(format!("column '{col}'")), msg)
     };
-    let atm = shot_atmosphere(base, &cells).map_err(|m| {
-        let col = cells
-            .iter()
-            .find(|c| parse_f64(c.1).filter(|x| x.is_finite()).is_none() && !c.1.is_empty())
-            .map_or("", |c| c.0);
-        at(col, m)
-    })?;
+    let atm = shot_atmosphere(base, &cells).map_err(|e| at(&e.column, e.to_string()))?;
     atm.air().map_err(|e| {
         let col = match e.key {
             "temperature_c" => "air_temperature_c",
@@ -294,7 +304,11 @@ mod tests {
         let c = shot_atmosphere(&base, &[("relative_humidity_pct", "")]).unwrap();
         assert_eq!(c, base);
         let e = shot_atmosphere(&base, &[("air_temperature_c", "warm")]).unwrap_err();
-        assert!(e.contains("'warm' is not a finite number"), "{e}");
+        assert_eq!(e.column, "air_temperature_c");
+        assert!(
+            e.to_string().contains("'warm' is not a finite number"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -80,27 +80,47 @@ pub fn registered() -> Vec<&'static UserEffect> {
     REGISTRY.read().unwrap_or_else(|e| e.into_inner()).clone()
 }
 
+/// Why a user-defined effect cannot be registered ([`register`]).
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum RegisterError {
+    /// The name of a library effect.
+    #[error(
+        "'{name}' is the name of a library effect; a user-defined effect needs its own name (the \
+         library has: {})",
+        EffectKind::all_names()
+    )]
+    LibraryName {
+        /// The name.
+        name: &'static str,
+    },
+    /// A name registered before with another definition.
+    #[error(
+        "'{name}' is already defined differently (in {source_file}); user-defined effects need \
+         distinct names"
+    )]
+    DefinedDifferently {
+        /// The name.
+        name: &'static str,
+        /// Where the first definition came from.
+        source_file: String,
+    },
+}
+
 /// Register `def`: a new name is added; a name already registered with the same definition
 /// returns that one; a name of the library or registered with another definition is an error.
-pub fn register(def: UserEffect) -> Result<&'static UserEffect, String> {
+pub fn register(def: UserEffect) -> Result<&'static UserEffect, RegisterError> {
     if EffectKind::from_name(def.name).is_some() {
-        return Err(format!(
-            "'{}' is the name of a library effect; a user-defined effect needs its own name \
-             (the library has: {})",
-            def.name,
-            EffectKind::all_names()
-        ));
+        return Err(RegisterError::LibraryName { name: def.name });
     }
     let mut reg = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
     if let Some(old) = reg.iter().find(|u| u.name == def.name) {
         if **old == def {
             return Ok(old);
         }
-        return Err(format!(
-            "'{}' is already defined differently (in {}); user-defined effects need distinct \
-             names",
-            def.name, old.source
-        ));
+        return Err(RegisterError::DefinedDifferently {
+            name: def.name,
+            source_file: old.source.clone(),
+        });
     }
     let leaked: &'static UserEffect = Box::leak(Box::new(def));
     reg.push(leaked);

@@ -270,7 +270,7 @@ pub fn prior_sd_reported(j: usize, start: f64) -> f64 {
 /// The club with the head values of fit vector `theta`: the nominal fields set to the inferred
 /// CoM, moments, radii and COR; the start club's global COR-falloff and bias effects replaced by
 /// one each holding the total; its other effects kept as they were (the fit ran on top of them).
-pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec, String> {
+pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec, ClubError> {
     let mut p = start.nominal.clone();
     p.club_com_m.x += theta[0] * 1e-3;
     p.club_com_m.y += theta[1] * 1e-3;
@@ -295,10 +295,11 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
         .cloned()
         .collect();
     if radii_in_effect {
-        effects.push(
-            Effect::new(EffectKind::FaceCurvature, &[theta[5], theta[6]], None)
-                .map_err(|e| e.to_string())?,
-        );
+        effects.push(Effect::new(
+            EffectKind::FaceCurvature,
+            &[theta[5], theta[6]],
+            None,
+        )?);
     }
     for (j, kind) in [
         (8, EffectKind::CorRadial),
@@ -306,10 +307,21 @@ pub fn inferred_club(start: &ClubSpec, theta: &DVector<f64>) -> Result<ClubSpec,
         (10, EffectKind::FaceBias),
     ] {
         let v = s[j] + theta[j];
-        effects.push(Effect::new(kind, &[v], None).map_err(|e| e.to_string())?);
+        effects.push(Effect::new(kind, &[v], None)?);
     }
     let name = format!("{} (inferred by infer-club)", start.name);
-    ClubSpec::new(name, start.static_loft_rad, p, effects).map_err(|e| e.to_string())
+    Ok(ClubSpec::new(name, start.static_loft_rad, p, effects)?)
+}
+
+/// Why the inferred head is not a club ([`inferred_club`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ClubError {
+    /// An effect holding part of the head is outside its bounds.
+    #[error(transparent)]
+    Effect(#[from] crate::effects::EffectError),
+    /// The head's parameters are not physical.
+    #[error(transparent)]
+    Params(#[from] crate::physics::ParamError),
 }
 
 #[cfg(test)]

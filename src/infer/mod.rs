@@ -125,7 +125,7 @@ pub enum InferError {
     },
     /// The inferred head is not a club the model accepts.
     #[error("the inferred head is not a valid club: {0}")]
-    Club(String),
+    Club(head::ClubError),
 }
 
 impl Settings {
