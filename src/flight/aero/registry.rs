@@ -5,6 +5,20 @@ use std::path::Path;
 
 use super::{CoefficientModel, Coefficients, TableModel};
 
+/// An aerodynamic model name that is not one ([`AeroModel::from_name`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AeroNameError {
+    /// Neither a built-in model nor `table:PATH`.
+    #[error("unknown aerodynamic model '{name}' (allowed: {}, table:PATH)", MODEL_NAMES.join(", "))]
+    Unknown {
+        /// The name given.
+        name: String,
+    },
+    /// A table that cannot be read.
+    #[error(transparent)]
+    Table(#[from] super::table::TableError),
+}
+
 /// Something done with whichever coefficient model an [`AeroModel`] holds, with the model's
 /// concrete type (so an integrator is compiled once per model, with no dispatch in its loop).
 pub trait ModelVisitor {
@@ -39,7 +53,7 @@ macro_rules! aero_models {
 
         impl AeroModel {
             /// A built-in model by name, or `table:PATH` (a CSV file, see [`TableModel`]).
-            pub fn from_name(name: &str) -> Result<Self, String> {
+            pub fn from_name(name: &str) -> Result<Self, AeroNameError> {
                 match name {
                     $first_name => Ok(Self::$first),
                     $($name => Ok(Self::$model),)*
@@ -47,10 +61,9 @@ macro_rules! aero_models {
                         Some(p) => Ok(Self::Table(std::sync::Arc::new(TableModel::from_path(
                             Path::new(p),
                         )?))),
-                        None => Err(format!(
-                            "unknown aerodynamic model '{name}' (allowed: {}, table:PATH)",
-                            MODEL_NAMES.join(", ")
-                        )),
+                        None => Err(AeroNameError::Unknown {
+                            name: name.to_owned(),
+                        }),
                     },
                 }
             }

@@ -9,11 +9,114 @@ use crate::line_index::{csv_message, normalise_line_ends, LineIndex};
 
 /// A `csv` error as `source: line N: message` (the line from [`LineIndex`], the wording every
 /// CSV reader shares).
-fn csv_fault(source: &str, index: &LineIndex, e: &csv::Error) -> String {
-    match e.position() {
-        Some(p) => format!("{source}: line {}: {}", index.line_of(p), csv_message(e)),
-        None => format!("{source}: {}", csv_message(e)),
+fn csv_fault(source: &str, index: &LineIndex, e: &csv::Error) -> TableError {
+    TableError::Csv {
+        table: source.to_owned(),
+        line: e.position().map(|p| index.line_of(p)),
+        message: csv_message(e),
     }
+}
+
+/// Why a coefficient table cannot be read; every message names the table (its file), and the
+/// line and column where there is one.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TableError {
+    /// The file cannot be read.
+    #[error("{table}: cannot read the coefficient table: {message}")]
+    Read {
+        /// The table's file.
+        table: String,
+        /// The system's words.
+        message: String,
+    },
+    /// The file is not UTF-8 text.
+    #[error("{table}: line {line}: {message}")]
+    Text {
+        /// The table's file.
+        table: String,
+        /// The line.
+        line: usize,
+        /// What is wrong.
+        message: String,
+    },
+    /// Not CSV the reader can read.
+    #[error("{table}: {}{message}", line.map(|l| format!("line {l}: ")).unwrap_or_default())]
+    Csv {
+        /// The table.
+        table: String,
+        /// The line, when known.
+        line: Option<usize>,
+        /// The reader's words.
+        message: String,
+    },
+    /// A column the table format does not have.
+    #[error("{table}: unknown column '{column}' (allowed: spin_factor, reynolds, cd, cl, cm)")]
+    UnknownColumn {
+        /// The table.
+        table: String,
+        /// The header.
+        column: String,
+    },
+    /// A required column is missing.
+    #[error("{table}: missing column '{column}'")]
+    MissingColumn {
+        /// The table.
+        table: String,
+        /// The column.
+        column: &'static str,
+    },
+    /// A cell that is not a number.
+    #[error("{table}: line {line}, column {column}: '{cell}' is not a number")]
+    NotANumber {
+        /// The table.
+        table: String,
+        /// The line.
+        line: usize,
+        /// The column.
+        column: &'static str,
+        /// The cell as read.
+        cell: String,
+    },
+    /// A value outside the column's range.
+    #[error(
+        "{table}: line {line}, column {column}: {} is outside [{}, {}]",
+        fmt_value(*value),
+        fmt_value(*lo),
+        fmt_value(*hi)
+    )]
+    OutOfRange {
+        /// The table.
+        table: String,
+        /// The line.
+        line: usize,
+        /// The column.
+        column: &'static str,
+        /// The value.
+        value: f64,
+        /// Lowest allowed.
+        lo: f64,
+        /// Highest allowed.
+        hi: f64,
+    },
+    /// No rows.
+    #[error("{table}: the coefficient table has no rows")]
+    NoRows {
+        /// The table.
+        table: String,
+    },
+    /// A spin factor given twice (at one Reynolds number).
+    #[error(
+        "{table}: spin_factor {spin_factor} appears twice{}",
+        reynolds.map(|re| format!(" at reynolds {re}")).unwrap_or_default()
+    )]
+    Duplicate {
+        /// The table.
+        table: String,
+        /// The spin factor.
+        spin_factor: f64,
+        /// The Reynolds number, when the table has that column.
+        reynolds: Option<f64>,
+    },
 }
 
 /// One Reynolds-number slice of a table: spin factors ascending with their coefficients.
@@ -61,17 +164,24 @@ pub struct TableModel {
 
 impl TableModel {
     /// Read a table from a CSV file; errors name the file, line and column.
-    pub fn from_path(path: &Path) -> Result<Self, String> {
+    pub fn from_path(path: &Path) -> Result<Self, TableError> {
         crate::inputs::note_input(path);
-        let bytes = std::fs::read(path)
-            .map_err(|e| format!("{}: cannot read the coefficient table: {e}", path.display()))?;
-        let text = crate::line_index::utf8_text(bytes)
-            .map_err(|(line, m)| format!("{}: line {line}: {m}", path.display()))?;
+        let table = || path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|e| TableError::Read {
+            table: table(),
+            message: e.to_string(),
+        })?;
+        let text =
+            crate::line_index::utf8_text(bytes).map_err(|(line, message)| TableError::Text {
+                table: table(),
+                line,
+                message,
+            })?;
         Self::parse(&text, &path.display().to_string())
     }
 
     /// Parse a table from CSV text; `source` names it in errors.
-    pub fn parse(text: &str, source: &str) -> Result<Self, String> {
+    pub fn parse(text: &str, source: &str) -> Result<Self, TableError> {
         // Comments end only at `\n` in the csv crate: CR-only files are normalised (same lines).
         let text = &*normalise_line_ends(text);
         let mut rdr = csv::ReaderBuilder::new()
@@ -86,31 +196,41 @@ impl TableModel {
         let col = |name: &str| headers.iter().position(|h| h == name);
         for h in headers.iter() {
             if !["spin_factor", "reynolds", "cd", "cl", "cm"].contains(&h) {
-                return Err(format!(
-                    "{source}: unknown column '{h}' (allowed: spin_factor, reynolds, cd, cl, cm)"
-                ));
+                return Err(TableError::UnknownColumn {
+                    table: source.to_owned(),
+                    column: h.to_owned(),
+                });
             }
         }
-        let need =
-            |name: &str| col(name).ok_or_else(|| format!("{source}: missing column '{name}'"));
+        let need = |name: &'static str| {
+            col(name).ok_or_else(|| TableError::MissingColumn {
+                table: source.to_owned(),
+                column: name,
+            })
+        };
         let (is, icd, icl) = (need("spin_factor")?, need("cd")?, need("cl")?);
         let (icm, ire) = (col("cm"), col("reynolds"));
         let mut rows: Vec<(f64, f64, Coefficients)> = Vec::new();
         for rec in rdr.records() {
             let rec = rec.map_err(|e| csv_fault(source, &index, &e))?;
             let line = rec.position().map_or(0, |p| index.line_of(p));
-            let num = |i: usize, name: &str, lo: f64, hi: f64| -> Result<f64, String> {
+            let num = |i: usize, column: &'static str, lo: f64, hi: f64| {
                 let t = rec.get(i).unwrap_or("");
-                let v: f64 = t.parse().map_err(|_| {
-                    format!("{source}: line {line}, column {name}: '{t}' is not a number")
+                let v: f64 = t.parse().map_err(|_| TableError::NotANumber {
+                    table: source.to_owned(),
+                    line,
+                    column,
+                    cell: t.to_owned(),
                 })?;
                 if !(v >= lo && v <= hi) {
-                    return Err(format!(
-                        "{source}: line {line}, column {name}: {} is outside [{}, {}]",
-                        fmt_value(v),
-                        fmt_value(lo),
-                        fmt_value(hi)
-                    ));
+                    return Err(TableError::OutOfRange {
+                        table: source.to_owned(),
+                        line,
+                        column,
+                        value: v,
+                        lo,
+                        hi,
+                    });
                 }
                 Ok(v)
             };
@@ -130,7 +250,9 @@ impl TableModel {
             rows.push((re, s, c));
         }
         if rows.is_empty() {
-            return Err(format!("{source}: the coefficient table has no rows"));
+            return Err(TableError::NoRows {
+                table: source.to_owned(),
+            });
         }
         rows.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
         let mut slices: Vec<Slice> = Vec::new();
@@ -138,14 +260,11 @@ impl TableModel {
             match slices.last_mut() {
                 Some(sl) if sl.re == re => {
                     if sl.s.last() == Some(&s) {
-                        return Err(format!(
-                            "{source}: spin_factor {s} appears twice{}",
-                            if ire.is_some() {
-                                format!(" at reynolds {re}")
-                            } else {
-                                String::new()
-                            }
-                        ));
+                        return Err(TableError::Duplicate {
+                            table: source.to_owned(),
+                            spin_factor: s,
+                            reynolds: ire.is_some().then_some(re),
+                        });
                     }
                     sl.s.push(s);
                     sl.c.push(c);
@@ -244,13 +363,21 @@ mod tests {
 
     #[test]
     fn table_errors_name_line_and_column() {
-        let e = TableModel::parse("spin_factor,cd,cl\n0.1,0.2,x\n", "t.csv").unwrap_err();
+        let e = TableModel::parse("spin_factor,cd,cl\n0.1,0.2,x\n", "t.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("line 2") && e.contains("cl"), "{e}");
-        let e = TableModel::parse("spin_factor,cd\n0.1,0.2\n", "t.csv").unwrap_err();
+        let e = TableModel::parse("spin_factor,cd\n0.1,0.2\n", "t.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("missing column 'cl'"), "{e}");
-        let e = TableModel::parse("spin_factor,cd,cl,foo\n", "t.csv").unwrap_err();
+        let e = TableModel::parse("spin_factor,cd,cl,foo\n", "t.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("unknown column 'foo'"), "{e}");
-        let e = TableModel::parse("spin_factor,cd,cl\n0.1,-0.2,0\n", "t.csv").unwrap_err();
+        let e = TableModel::parse("spin_factor,cd,cl\n0.1,-0.2,0\n", "t.csv")
+            .unwrap_err()
+            .to_string();
         assert!(e.contains("outside"), "{e}");
         assert!(AeroModel::from_name("magic").is_err());
     }
