@@ -58,14 +58,14 @@ pub enum Term {
 
 impl Term {
     /// From its name: `drag`, `lift`, `spin_decay`.
-    pub fn from_name(name: &str) -> Result<Self, String> {
+    pub fn from_name(name: &str) -> Result<Self, CalibrationError> {
         match name {
             "drag" => Ok(Self::Drag),
             "lift" => Ok(Self::Lift),
             "spin_decay" => Ok(Self::SpinDecay),
-            _ => Err(format!(
-                "unknown flight term '{name}' (allowed: drag, lift, spin_decay)"
-            )),
+            _ => Err(CalibrationError::UnknownTerm {
+                name: name.to_owned(),
+            }),
         }
     }
     /// Its name.
@@ -207,6 +207,48 @@ impl Jacobian for Problem<'_> {
     }
 }
 
+/// Why flight terms cannot be calibrated ([`calibrate`], [`Term::from_name`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CalibrationError {
+    /// A name that is no term.
+    #[error("unknown flight term '{name}' (allowed: drag, lift, spin_decay)")]
+    UnknownTerm {
+        /// The name given.
+        name: String,
+    },
+    /// No term given.
+    #[error("no flight term to calibrate")]
+    NoTerm,
+    /// A term given twice.
+    #[error("a flight term is named twice")]
+    TermTwice,
+    /// Fewer measured values than terms.
+    #[error(
+        "{values} measured value(s) (carry, apex, land angle) for {terms} term(s): need more"
+    )]
+    TooFewValues {
+        /// Measured values.
+        values: usize,
+        /// Terms.
+        terms: usize,
+    },
+    /// The fit did not converge.
+    #[error("the flight calibration did not converge in 100 iterations")]
+    NotConverged,
+    /// The measured flights do not separate the terms.
+    #[error("the measured flights do not tell the terms apart (singular JᵀJ)")]
+    Singular,
+    /// A flight or the solver failed (its words).
+    #[error("{0}")]
+    Solver(String),
+}
+
+impl CalibrationError {
+    fn solver(e: impl std::fmt::Display) -> Self {
+        Self::Solver(e.to_string())
+    }
+}
+
 /// Fit the scales of `terms` to the measured flights `shots` flown with `cfg` (its model the
 /// one scaled). Errors: no term, a repeated term, fewer measured values than terms, a flight
 /// that fails, or a fit that does not converge.
@@ -214,36 +256,37 @@ pub fn calibrate(
     cfg: &FlightConfig,
     shots: &[MeasuredFlight],
     terms: &[Term],
-) -> Result<Calibration, String> {
+) -> Result<Calibration, CalibrationError> {
     if terms.is_empty() {
-        return Err("no flight term to calibrate".into());
+        return Err(CalibrationError::NoTerm);
     }
     if (1..terms.len()).any(|i| terms[..i].contains(&terms[i])) {
-        return Err("a flight term is named twice".into());
+        return Err(CalibrationError::TermTwice);
     }
     let problem = Problem { cfg, shots, terms };
     let p = terms.len();
     let ones = DVector::from_element(p, 1.0);
     let r0 = problem
         .residuals(ones.as_slice())
-        .map_err(|e| e.to_string())?;
+        .map_err(CalibrationError::solver)?;
     let m = r0.len();
     if m <= p {
-        return Err(format!(
-            "{m} measured value(s) (carry, apex, land angle) for {p} term(s): need more"
-        ));
+        return Err(CalibrationError::TooFewValues {
+            values: m,
+            terms: p,
+        });
     }
     let solver = LevenbergMarquardt::new(
         DVector::from_element(p, SCALE_BOUNDS.0),
         DVector::from_element(p, SCALE_BOUNDS.1),
     )
-    .map_err(|e| e.to_string())?;
+    .map_err(CalibrationError::solver)?;
     let result = Executor::new(problem.clone(), solver)
         .configure(|s: LmState| s.param(ones).max_iters(100))
         .run()
-        .map_err(|e| e.to_string())?;
+        .map_err(CalibrationError::solver)?;
     if result.solver().converged().is_none() {
-        return Err("the flight calibration did not converge in 100 iterations".into());
+        return Err(CalibrationError::NotConverged);
     }
     let state = result.state();
     let scale = state
@@ -252,13 +295,15 @@ pub fn calibrate(
         .clone();
     let r = problem
         .residuals(scale.as_slice())
-        .map_err(|e| e.to_string())?;
-    let j = problem.jacobian(&scale).map_err(|e| e.to_string())?;
+        .map_err(CalibrationError::solver)?;
+    let j = problem
+        .jacobian(&scale)
+        .map_err(CalibrationError::solver)?;
     let chi2 = r.norm_squared();
     let s2 = chi2 / (m - p) as f64;
     let cov = (j.transpose() * &j)
         .try_inverse()
-        .ok_or("the measured flights do not tell the terms apart (singular JᵀJ)")?
+        .ok_or(CalibrationError::Singular)?
         * s2;
     Ok(Calibration {
         terms: terms.to_vec(),
@@ -358,15 +403,16 @@ mod tests {
             },
             |_| 0.0,
         );
-        assert!(calibrate(&cfg, &shots, &[]).is_err());
+        assert_eq!(calibrate(&cfg, &shots, &[]), Err(CalibrationError::NoTerm));
         let twice = calibrate(&cfg, &shots, &[Term::Drag, Term::Drag]).unwrap_err();
-        assert!(twice.contains("twice"), "{twice}");
+        assert_eq!(twice, CalibrationError::TermTwice);
+        assert!(twice.to_string().contains("twice"), "{twice}");
         let few = calibrate(
             &cfg,
             &shots[..1],
             &[Term::Drag, Term::Lift, Term::SpinDecay],
         );
-        assert!(few.unwrap_err().contains("need more"));
+        assert!(few.unwrap_err().to_string().contains("need more"));
         assert!(Term::from_name("magnus").is_err());
         // The scaled model at 1 is the model.
         let one = Scaled {
