@@ -223,9 +223,7 @@ pub enum CalibrationError {
     #[error("a flight term is named twice")]
     TermTwice,
     /// Fewer measured values than terms.
-    #[error(
-        "{values} measured value(s) (carry, apex, land angle) for {terms} term(s): need more"
-    )]
+    #[error("{values} measured value(s) (carry, apex, land angle) for {terms} term(s): need more")]
     TooFewValues {
         /// Measured values.
         values: usize,
@@ -296,9 +294,7 @@ pub fn calibrate(
     let r = problem
         .residuals(scale.as_slice())
         .map_err(CalibrationError::solver)?;
-    let j = problem
-        .jacobian(&scale)
-        .map_err(CalibrationError::solver)?;
+    let j = problem.jacobian(&scale).map_err(CalibrationError::solver)?;
     let chi2 = r.norm_squared();
     let s2 = chi2 / (m - p) as f64;
     let cov = (j.transpose() * &j)

@@ -6,7 +6,7 @@
 use argmin::core::{Error as ArgminError, Executor, Jacobian, Operator, State};
 use nalgebra::{DMatrix, DVector};
 
-use super::Term;
+use super::{FlightDiagnoseError, Term};
 use crate::fit::lm::{LevenbergMarquardt, LmState};
 use crate::flight::aero::{CoefficientModel, Coefficients, Fmm2022Tour};
 use crate::flight::calibrate::{MeasuredFlight, SIGMA};
@@ -166,7 +166,7 @@ pub fn errors(
     layout: &Layout,
     p: &[f64],
     idx: &[usize],
-) -> Result<Vec<[Option<f64>; 3]>, String> {
+) -> Result<Vec<[Option<f64>; 3]>, FlightDiagnoseError> {
     let mut out = vec![[None; 3]; idx.len()];
     let groups: Vec<usize> = if layout.per_ball() {
         let mut g: Vec<usize> = idx.iter().map(|&i| data.ball[i]).collect();
@@ -185,7 +185,7 @@ pub fn errors(
             .fetch_add(launches.len(), std::sync::atomic::Ordering::Relaxed);
         let model = layout.model(&data.cfg.aero, p, g);
         for (&j, f) in pos.iter().zip(fly_with(data.cfg, &model, &launches)) {
-            let f = f.map_err(|e| e.to_string())?;
+            let f = f?;
             let s = &data.shots[idx[j]];
             out[j] = [
                 s.carry_m.map(|m| f.carry_m - m),
@@ -203,7 +203,7 @@ pub fn residuals(
     layout: &Layout,
     p: &[f64],
     idx: &[usize],
-) -> Result<DVector<f64>, String> {
+) -> Result<DVector<f64>, FlightDiagnoseError> {
     let e = errors(data, layout, p, idx)?;
     Ok(weighted(data, &e))
 }
@@ -253,7 +253,7 @@ pub fn jacobian(
     layout: &Layout,
     p: &[f64],
     idx: &[usize],
-) -> Result<DMatrix<f64>, String> {
+) -> Result<DMatrix<f64>, FlightDiagnoseError> {
     let e0 = errors(data, layout, p, idx)?;
     let r0 = weighted(data, &e0);
     // Each shot's first row in the residuals (its measured values, in order).
@@ -312,14 +312,14 @@ pub fn fit(
     layout: &Layout,
     idx: &[usize],
     start: &[f64],
-) -> Result<FitOut, String> {
+) -> Result<FitOut, FlightDiagnoseError> {
     let problem = Problem { data, layout, idx };
     let p0 = DVector::from_column_slice(start);
     let n = layout.n_params();
     if n == 0 {
         let chi2 = problem
             .apply(&p0)
-            .map_err(|e| e.to_string())?
+            .map_err(FlightDiagnoseError::solver)?
             .norm_squared();
         return Ok(FitOut {
             p: Vec::new(),
@@ -329,23 +329,26 @@ pub fn fit(
         });
     }
     let (lo, hi) = layout.bounds();
-    let solver = LevenbergMarquardt::new(lo, hi).map_err(|e| e.to_string())?;
+    let solver = LevenbergMarquardt::new(lo, hi).map_err(FlightDiagnoseError::solver)?;
     let result = Executor::new(problem.clone(), solver)
         .configure(|s: LmState| s.param(p0).max_iters(100))
         .run()
-        .map_err(|e| e.to_string())?;
+        .map_err(FlightDiagnoseError::solver)?;
     if result.solver().converged().is_none() {
-        return Err("the fit did not converge in 100 iterations".into());
+        return Err(FlightDiagnoseError::NotConverged);
     }
     let p = result
         .state()
         .get_best_param()
         .expect("the solver keeps its point")
         .clone();
-    let r = problem.apply(&p).map_err(|e| e.to_string())?;
+    let r = problem.apply(&p).map_err(FlightDiagnoseError::solver)?;
     let m = r.len();
     if m <= n {
-        return Err(format!("{m} measured value(s) for {n} parameter(s)"));
+        return Err(FlightDiagnoseError::TooFewValues {
+            values: m,
+            params: n,
+        });
     }
     let j = jacobian(data, layout, p.as_slice(), idx)?;
     let chi2 = r.norm_squared();

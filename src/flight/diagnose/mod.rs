@@ -176,19 +176,67 @@ pub struct FlightDiagnosis {
 /// Most steps (there are five candidates).
 const MAX_STEPS: usize = 5;
 
+/// Why a flight diagnosis cannot be made ([`diagnose`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum FlightDiagnoseError {
+    /// Fewer than three shots.
+    #[error("{n} shot(s): flight diagnosis needs at least 3")]
+    TooFewShots {
+        /// Shots given.
+        n: usize,
+    },
+    /// Ball types or sessions not one per shot.
+    #[error("{what} for {given} shots, not {n}")]
+    Lengths {
+        /// `ball types` or `sessions`.
+        what: &'static str,
+        /// How many were given.
+        given: usize,
+        /// Shots.
+        n: usize,
+    },
+    /// A flight that cannot be flown.
+    #[error(transparent)]
+    Flight(#[from] crate::flight::FlightError),
+    /// A fit that did not converge.
+    #[error("the fit did not converge in 100 iterations")]
+    NotConverged,
+    /// Fewer measured values than parameters.
+    #[error("{values} measured value(s) for {params} parameter(s)")]
+    TooFewValues {
+        /// Measured values.
+        values: usize,
+        /// Parameters.
+        params: usize,
+    },
+    /// The solver's words.
+    #[error("{0}")]
+    Solver(String),
+}
+
+impl FlightDiagnoseError {
+    fn solver(e: impl std::fmt::Display) -> Self {
+        Self::Solver(e.to_string())
+    }
+}
+
 /// Diagnose the flight model of `cfg` against measured flights (see the module documentation).
 /// Errors: no shots, lengths that do not match, or a flight that fails.
-pub fn diagnose(cfg: &FlightConfig, input: DiagnoseInput<'_>) -> Result<FlightDiagnosis, String> {
+pub fn diagnose(
+    cfg: &FlightConfig,
+    input: DiagnoseInput<'_>,
+) -> Result<FlightDiagnosis, FlightDiagnoseError> {
     let n = input.shots.len();
     if n < 3 {
-        return Err(format!("{n} shot(s): flight diagnosis needs at least 3"));
+        return Err(FlightDiagnoseError::TooFewShots { n });
     }
     for (what, v) in [("ball types", input.balls), ("sessions", input.sessions)] {
         if v.is_some_and(|v| v.len() != n) {
-            return Err(format!(
-                "{what} for {} shots, not {n}",
-                v.map_or(0, <[_]>::len)
-            ));
+            return Err(FlightDiagnoseError::Lengths {
+                what,
+                given: v.map_or(0, <[_]>::len),
+                n,
+            });
         }
     }
     let (balls, ball_index) = index_balls(input.balls, n);
@@ -323,7 +371,7 @@ fn cv_chi2(
     start: &[f64],
     fold: &[usize],
     k_folds: usize,
-) -> Result<f64, String> {
+) -> Result<f64, FlightDiagnoseError> {
     let mut total = 0.0;
     for f in 0..k_folds {
         let train: Vec<usize> = (0..fold.len()).filter(|&i| fold[i] != f).collect();
@@ -345,7 +393,7 @@ fn select_step(
     fold: &[usize],
     k_folds: usize,
     names: &[String],
-) -> Result<StepOut, String> {
+) -> Result<StepOut, FlightDiagnoseError> {
     let base_cv = cv_chi2(data, layout, params, fold, k_folds)?;
     let terms = offered(layout, names.len());
     let n = data.shots.len() as f64;
@@ -378,7 +426,7 @@ fn select_step(
                 gain: f64::NAN,
                 penalty,
                 identified: false,
-                failure: Some(e.clone()),
+                failure: Some(e.to_string()),
             },
         };
         fits.push(outcome.ok().map(|(f, _)| (l, f.p)));

@@ -200,8 +200,11 @@ fn too_few_shots_and_mismatched_lengths_are_refused() {
         folds: 5,
     };
     let few = diagnose(&cfg, input(&shots[..2], None)).unwrap_err();
-    assert!(few.contains("at least 3"), "{few}");
-    let bad = diagnose(&cfg, input(&shots, Some(&sessions[..5]))).unwrap_err();
+    assert_eq!(few, FlightDiagnoseError::TooFewShots { n: 2 });
+    assert!(few.to_string().contains("at least 3"), "{few}");
+    let bad = diagnose(&cfg, input(&shots, Some(&sessions[..5])))
+        .unwrap_err()
+        .to_string();
     assert!(bad.contains("sessions for 5 shots, not 12"), "{bad}");
     // The scaled model at its start is the model itself.
     let l = Layout {
