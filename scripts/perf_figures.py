@@ -156,7 +156,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", action="store_true")
     ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--dry-run", action="store_true", help="print the block, leave docs/performance.md")
+    ap.add_argument("--dry-run", action="store_true",
+                    help="print the block, leave docs/performance.md")
     a = ap.parse_args()
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "smash-cli"], cwd=ROOT, check=True)
     if a.bench:

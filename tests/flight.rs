@@ -82,9 +82,9 @@ fn assert_errors_within(
 
 /// Issue 11's targets for `fmm2022-tour` (the default before `fmm2022`, calibrated on the three
 /// TrackMan tables, this one among them: disclosed, with its leave-one-table-out errors, in
-/// docs/flight-models.md) in the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 % relative
-/// humidity, still air): median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle within 5°.
-/// Measured: 1.58 %, 2.73 % (driver, 3-wood, 7-iron), 2.77° (4-iron).
+/// docs/flight-models.md) in the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 %
+/// relative humidity, still air): median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle
+/// within 5°. Measured: 1.58 %, 2.73 % (driver, 3-wood, 7-iron), 2.77° (4-iron).
 #[test]
 fn trackman_pga_tour_meets_the_issue_targets() {
     let (carry, land, _) = trackman_errors(AeroModel::Fmm2022Tour, &PGA_TOUR);

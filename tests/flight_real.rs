@@ -201,8 +201,8 @@ const CLASSES: [&str; 4] = ["driver", "wood/hybrid", "iron", "wedge"];
 type Limit = (&'static str, f64, f64, f64, f64);
 
 /// `fmm2022`, the default since it was chosen on the fit part (26 Nov 2026), and its
-/// calibration: set that day from the figures then measured (docs/ball-flight.md, "Real shots") with a
-/// margin of about a tenth.
+/// calibration: set that day from the figures then measured (docs/ball-flight.md, "Real shots")
+/// with a margin of about a tenth.
 const FMM2022_LIMITS: [Limit; 4] = [
     ("driver", 5.0, 5.5, 5.0, 14.0),
     ("wood/hybrid", 2.9, 5.5, 3.3, 10.3),
@@ -264,8 +264,8 @@ fn the_default_is_the_best_model_on_the_fit_part() {
     );
 }
 
-/// Every model's held-out figures are printed (docs/ball-flight.md quotes them); the default and the
-/// model before it, each with its calibration fitted on the fit part, keep their limits, and
+/// Every model's held-out figures are printed (docs/ball-flight.md quotes them); the default and
+/// the model before it, each with its calibration fitted on the fit part, keep their limits, and
 /// the calibration lowers the held-out error of the model below the model's own.
 #[test]
 fn held_out_real_carry_per_club_class() {
