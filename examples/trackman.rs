@@ -1,4 +1,5 @@
-//! Fly TrackMan's PGA Tour averages and print the per-club errors (the README table).
+//! Fly TrackMan's PGA Tour averages and print the per-club errors (the table of
+//! docs/flight-models.md).
 //!
 //! `cargo run --release --example trackman -- [MODEL] [TEMPERATURE_C] [ELEVATION_M] [RH_PCT]`
 //! (defaults: fmm2022-tour, the model calibrated on these tables, and the default atmosphere).

@@ -24,9 +24,9 @@
 //! - no flag: `fmm2022-re`, the floorless family fitted to the 11 LPGA rows only, then flown
 //!   on the PGA tables.
 //! - `-- --floor`: the floored family fitted to the LPGA rows only, the refit examined for
-//!   issue 11 and not adopted (README, "Ball flight"); `-- --wide` widens the window grid
-//!   (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at the grid's
-//!   `RE_LOW` edge. These runs end with the fitted point's PGA rows, club by club.
+//!   issue 11 and not adopted (docs/flight-models.md, "Earlier attempts"); `-- --wide` widens
+//!   the window grid (`RE_LOW` up to 1.4·10⁵, `RE_HIGH` up to 2.4·10⁵), to check an optimum at
+//!   the grid's `RE_LOW` edge. These runs end with the fitted point's PGA rows, club by club.
 
 use rayon::prelude::*;
 use smash::flight::aero::Fmm2022ReFamily;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerate the figures of the README's performance summary from measurements on this machine.
+"""Regenerate the figures of docs/performance.md from measurements on this machine.
 
 What it does, in order:
 
@@ -12,7 +12,8 @@ What it does, in order:
    `smash diagnose` on the 600-shot paper world and on the 2,200-shot real-format season (with
    and without `added_mass`, so that `shaft_fraction` is selected), and a diagnose of the
    power-law COR world with `cor_power` against one with the user-defined `my_cor_power` (`tests/data/my_cor_power.toml`, offered `--without cor_power`);
-4. rewrites the block between `<!-- perf:begin -->` and `<!-- perf:end -->` in README.md.
+4. rewrites the block between `<!-- perf:begin -->` and `<!-- perf:end -->` in docs/performance.md
+   (the README links to that page).
 
 Each whole-process figure is the median of `--runs` runs (default 3), wall and CPU (user + sys)
 from `os.wait4`. Nothing is copied from an earlier run: a figure that could not be measured is
@@ -155,7 +156,8 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bench", action="store_true")
     ap.add_argument("--runs", type=int, default=3)
-    ap.add_argument("--dry-run", action="store_true", help="print the block, leave README.md")
+    ap.add_argument("--dry-run", action="store_true",
+                    help="print the block, leave docs/performance.md")
     a = ap.parse_args()
     subprocess.run(["cargo", "build", "--release", "-q", "-p", "smash-cli"], cwd=ROOT, check=True)
     if a.bench:
@@ -176,13 +178,13 @@ def main():
     if a.dry_run:
         print(text)
         return 0
-    readme = ROOT / "README.md"
-    s = readme.read_text()
+    page = ROOT / "docs" / "performance.md"
+    s = page.read_text()
     if BEGIN not in s or END not in s:
-        print(f"README.md has no {BEGIN} … {END} block", file=sys.stderr)
+        print(f"docs/performance.md has no {BEGIN} … {END} block", file=sys.stderr)
         return 1
     s = s[: s.index(BEGIN)] + text + s[s.index(END) + len(END):]
-    readme.write_text(s)
+    page.write_text(s)
     print(text)
     return 0
 

@@ -82,9 +82,9 @@ fn assert_errors_within(
 
 /// Issue 11's targets for `fmm2022-tour` (the default before `fmm2022`, calibrated on the three
 /// TrackMan tables, this one among them: disclosed, with its leave-one-table-out errors, in
-/// the README) in the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 % relative
-/// humidity, still air): median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle within 5°.
-/// Measured: 1.58 %, 2.73 % (driver, 3-wood, 7-iron), 2.77° (4-iron).
+/// docs/flight-models.md) in the default atmosphere (ISA sea level, 15 °C, 1013.25 hPa, 50 %
+/// relative humidity, still air): median |carry error| ≤ 2 %, worst ≤ 4 %, every land angle
+/// within 5°. Measured: 1.58 %, 2.73 % (driver, 3-wood, 7-iron), 2.77° (4-iron).
 #[test]
 fn trackman_pga_tour_meets_the_issue_targets() {
     let (carry, land, _) = trackman_errors(AeroModel::Fmm2022Tour, &PGA_TOUR);
@@ -110,7 +110,7 @@ fn trackman_pga_tour_2023_regression() {
 }
 
 /// `fmm2022-tour` on the 2023 LPGA Tour table (in its calibration): measured 1.62 % median,
-/// 3.70 % worst carry, 6.92° worst land angle (the 3-wood, see the README); bounds the
+/// 3.70 % worst carry, 6.92° worst land angle (the 3-wood, see docs/flight-models.md); bounds the
 /// measured values rounded up.
 #[test]
 fn trackman_lpga_tour_2023_regression() {
@@ -300,7 +300,7 @@ fn step_size_passes_the_tolerance_test() {
     // `nathan-lyu`'s drag has corners (a linear ramp between `Re` 5·10⁴ and 10⁵, a kink in
     // `C_L` at `S` = 0.3), which cost RK4 its order: measured 0.077 yd carry, 0.006° and 2.7 ms
     // in still air. It is held to 0.1 yd (the resolution to which launch monitors report
-    // carry, without the margin) and 5 ms, and the README says so.
+    // carry, without the margin) and 5 ms, and docs/flight-models.md says so.
     step_tolerance(AeroModel::NathanLyu, [0.1, 0.1, 0.02, 5e-3]);
 }
 

@@ -14,7 +14,7 @@
 //! 14.7 psi, 50 %), else in the default atmosphere.
 //!
 //! Limits per club class on the held-out shots are the figures measured when they were set
-//! (README, "Real shots") with a margin; they MAY ONLY TIGHTEN.
+//! (docs/ball-flight.md, "Real shots") with a margin; they MAY ONLY TIGHTEN.
 
 use std::path::Path;
 
@@ -201,8 +201,8 @@ const CLASSES: [&str; 4] = ["driver", "wood/hybrid", "iron", "wedge"];
 type Limit = (&'static str, f64, f64, f64, f64);
 
 /// `fmm2022`, the default since it was chosen on the fit part (26 Nov 2026), and its
-/// calibration: set that day from the figures then measured (README, "Real shots") with a
-/// margin of about a tenth.
+/// calibration: set that day from the figures then measured (docs/ball-flight.md, "Real shots")
+/// with a margin of about a tenth.
 const FMM2022_LIMITS: [Limit; 4] = [
     ("driver", 5.0, 5.5, 5.0, 14.0),
     ("wood/hybrid", 2.9, 5.5, 3.3, 10.3),
@@ -264,8 +264,8 @@ fn the_default_is_the_best_model_on_the_fit_part() {
     );
 }
 
-/// Every model's held-out figures are printed (the README quotes them); the default and the
-/// model before it, each with its calibration fitted on the fit part, keep their limits, and
+/// Every model's held-out figures are printed (docs/ball-flight.md quotes them); the default and
+/// the model before it, each with its calibration fitted on the fit part, keep their limits, and
 /// the calibration lowers the held-out error of the model below the model's own.
 #[test]
 fn held_out_real_carry_per_club_class() {
@@ -341,7 +341,7 @@ fn model_and_its_calibration(
 }
 
 /// The terms `smash flight --diagnose` selects on the fit session, flown on the held-out one:
-/// reported (README), and no worse than the default there.
+/// reported (docs/ball-flight.md), and no worse than the default there.
 #[test]
 fn terms_diagnosed_on_the_fit_session_on_held_out_shots() {
     use smash::flight::diagnose::{diagnose, DiagnoseInput};

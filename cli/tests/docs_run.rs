@@ -1,7 +1,8 @@
-//! The documentation runs as written: every shell command in README.md, configs/README.md and
-//! docs/*.md is run, in that order, in a copy of the repository's tracked files (what a fresh
-//! clone holds), with `smash` on the PATH pointing at the binary under test. The convention is
-//! in CONTRIBUTING.md ("Commands in the documentation"):
+//! The documentation runs as written: every shell command in README.md, configs/README.md,
+//! CONTRIBUTING.md and docs/*.md (alphabetically) is run, in that order, in a copy of the
+//! repository's tracked files (what a fresh clone holds), with `smash` on the PATH pointing at
+//! the binary under test. The convention is in CONTRIBUTING.md ("Commands in the
+//! documentation"):
 //!
 //! - a ```` ```sh ```` (or `bash`, `shell`) block is a script: it runs with `bash -e` and
 //!   must succeed;
@@ -14,16 +15,18 @@
 //!
 //! Files other than these are not read. A failing command names its file, line and output.
 //!
+//! That the guide holds together (its index, its links) is `docs_links.rs`'s test.
+//!
 //! Every documented command's default text fits [`MAX_COLUMNS`]: each line a `smash` command
 //! prints (stdout and stderr), unless the script asks for more (`--wide`), for JSON, or pipes
 //! or redirects what it prints (issue 42).
 
 mod cli_support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
-use cli_support::{repo, SMASH};
+use cli_support::{doc_files, repo, SMASH};
 use unicode_width::UnicodeWidthStr;
 
 /// The widest line a command's default text may print, in display columns.
@@ -98,19 +101,6 @@ struct DocCommand {
     script: String,
     /// Output lines it must print (empty for `sh` blocks).
     expect: Vec<String>,
-}
-
-/// The documentation files, in the order they are run.
-fn doc_files(root: &Path) -> Vec<PathBuf> {
-    let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "md"))
-        .collect();
-    docs.sort();
-    let mut files = vec![root.join("README.md"), root.join("configs/README.md")];
-    files.extend(docs);
-    files
 }
 
 const SKIP: &str = "<!-- docs-run: skip";

@@ -1,6 +1,7 @@
-//! The project file's layer (`smash.toml`, README "Project defaults"): what it states fills the
-//! flags left unset, a flag given wins, every value taken is named on stderr, paths are the
-//! file's, a nearer file or `SMASH_CONFIG` chooses, and a bad file is refused in one line.
+//! The project file's layer (`smash.toml`, docs/commands.md, "Project defaults"): what it
+//! states fills the flags left unset, a flag given wins, every value taken is named on stderr,
+//! paths are the file's, a nearer file or `SMASH_CONFIG` chooses, and a bad file is refused in
+//! one line.
 
 mod cli_support;
 

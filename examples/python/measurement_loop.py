@@ -1,7 +1,8 @@
 # %% [markdown]
 # # The measurement loop in Python
 #
-# The README's measurement loop (synth → compare → diagnose → calibrate → fly) in a notebook,
+# The README's measurement loop (docs/measurement-loop.md: synth → compare → diagnose →
+# calibrate → fly) in a notebook,
 # on the shipped paper world (`configs/synth/paper_world.toml`): a synthetic session of three
 # shafts whose hidden physics (added effective clubhead mass per shaft, a ball offset) we
 # pretend not to know. Cells are `# %%` blocks (VS Code, Jupyter with jupytext, Spyder); the

@@ -1,7 +1,7 @@
 //! TrackMan's tour averages, driver to pitching wedge (PGA Tour, 2023 PGA Tour, 2023 LPGA
 //! Tour): the data the aerodynamic model `fmm2022-tour` (the default before `fmm2022`) is
-//! calibrated on, all three tables, and validated on leave-one-table-out (README, "Ball
-//! flight"; `fmm2022-re` was fitted to the LPGA table only).
+//! calibrated on, all three tables, and validated on leave-one-table-out (docs/flight-models.md;
+//! `fmm2022-re` was fitted to the LPGA table only).
 //!
 //! Source: TrackMan's "Tour averages" table for the PGA Tour (the updated table of about 2014,
 //! published by TrackMan as an image on trackman.com and reproduced widely, e.g. Golf Monthly,

@@ -15,6 +15,24 @@ pub fn write(dir: &Path, name: &str, text: &str) -> PathBuf {
 /// The `smash` binary under test.
 pub const SMASH: &str = env!("CARGO_BIN_EXE_smash");
 
+/// The documentation files `docs_run.rs` runs, in the order it runs them: README.md,
+/// configs/README.md, CONTRIBUTING.md, then docs/*.md alphabetically.
+pub fn doc_files(root: &Path) -> Vec<PathBuf> {
+    let mut docs: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    docs.sort();
+    let mut files = vec![
+        root.join("README.md"),
+        root.join("configs/README.md"),
+        root.join("CONTRIBUTING.md"),
+    ];
+    files.extend(docs);
+    files
+}
+
 /// A path in the repository.
 pub fn repo(rel: &str) -> PathBuf {
     Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/..")).join(rel)

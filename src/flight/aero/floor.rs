@@ -3,7 +3,7 @@
 //!
 //! The model `fmm2022-tour` ([`super::Fmm2022Tour`]) holds its spin drag above it; in
 //! the family both it and `fmm2022-re` come from it is [`super::Fmm2022ReFamily::drag_floor`]
-//! (`cargo run --release --example trackman_refit -- --joint`; README, "Ball flight").
+//! (`cargo run --release --example trackman_refit -- --joint`; docs/flight-models.md).
 
 use super::NathanLyu;
 use crate::lanes::Lanes;
@@ -107,7 +107,8 @@ mod tests {
 
     #[test]
     fn the_family_holds_its_spin_drag_above_the_floor_then_adds_the_rise() {
-        // The floored LPGA fit (README, "Ball flight"): rise 0.11 below Re 8e4, gone at 1e5.
+        // The floored LPGA fit (docs/flight-models.md, "Earlier attempts"): rise 0.11 below
+        // Re 8e4, gone at 1e5.
         let floored = Fmm2022ReFamily {
             cd_low_re: 0.11,
             cd_per_s: -0.15,

@@ -249,7 +249,7 @@ impl CoefficientModel for Fmm2022 {
 /// A caveat found since: Bearman & Harvey's spinning-ball data show no Reynolds rise of `C_D`
 /// above `Re` ≈ 6·10⁴ once the spin factor is accounted for, and a drag slope in `S` close to
 /// `fmm2022`'s, so this window (reaching 1.5·10⁵) is an empirical correction fitted to
-/// TrackMan's descents rather than the measured crisis (README, "Ball flight", earlier attempts).
+/// TrackMan's descents rather than the measured crisis (docs/flight-models.md, "Earlier attempts").
 /// `fmm2022` has no Reynolds term, so its steep drag slope in spin factor (0.93 per unit `S`,
 /// where still-air measurements give about 0.15) stands in for it: high `S` and low speed come
 /// together late in flight. Here part of that slope is moved onto `Re`:
@@ -264,7 +264,7 @@ impl CoefficientModel for Fmm2022 {
 /// ([`super::trackman::LPGA_TOUR_2023`]; ball speeds 88–143 mph, so lower Reynolds numbers than
 /// the PGA rows), in the default atmosphere, minimising Σ (carry error %)² + (land-angle error
 /// °/2)² + (apex error yd/2)². The PGA Tour table is not used by the fit; it validates it
-/// (README, "Ball flight"). `examples/trackman_refit.rs` repeats the fit and
+/// (docs/flight-models.md). `examples/trackman_refit.rs` repeats the fit and
 /// `tests/flight.rs` checks these constants are a minimum of that objective.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Fmm2022Re;

@@ -2,7 +2,7 @@
 //! quadratics with the spin part of the drag held above the still-air drag of modern balls, a
 //! drag rise and a lift loss across the measured drag-crisis window, the five constants
 //! calibrated on all three TrackMan tour tables this project has (disclosed: the PGA Tour
-//! table it is validated on is one of them; README, "Ball flight").
+//! table it is validated on is one of them; docs/flight-models.md).
 
 use super::{crisis_rise_v, CoefficientModel, Coefficients, DragFloor, Fmm2022, Fmm2022ReFamily};
 use crate::lanes::Lanes;
@@ -30,7 +30,8 @@ use crate::lanes::Lanes;
 /// 263,466 candidates, the optimum inside the grid but for `RE_HIGH`, at the family's bound)
 /// to the 35 rows of TrackMan's PGA Tour, 2023 PGA Tour and 2023 LPGA Tour averages
 /// ([`crate::flight::trackman`]) in the default atmosphere, minimising Σ (carry error %)² +
-/// (land-angle error °/2)² + (apex error yd/2)². Leave-one-table-out errors are in the README.
+/// (land-angle error °/2)² + (apex error yd/2)². Leave-one-table-out errors are in
+/// docs/flight-models.md.
 /// `examples/trackman_refit.rs --joint` repeats the fit and its validation; `tests/flight.rs`
 /// checks these constants are a minimum of that objective.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
