@@ -121,7 +121,7 @@ def measure(runs, tmp):
     w, c = timed(base, ROOT, runs)
     rows.append(("`smash diagnose`, real-format season, 2,200 shots", w, c, "", "≤ 10 s"))
     w, c = timed(base + ["--without", "added_mass"], ROOT, runs)
-    rows.append(("the same `--without added_mass` (`shaft_fraction` selected)", w, c, "", "≤ 10 s"))
+    rows.append(("the same `--without added_mass` (`shaft_fraction` offered)", w, c, "", "≤ 10 s"))
     cor = tmp / "cor_power.csv"
     subprocess.run([s, "synth", "--config", "configs/synth/cor_power_world.toml", "--out", cor],
                    cwd=ROOT, check=True, capture_output=True)
