@@ -6,6 +6,13 @@ use std::fmt::Write;
 
 use crate::stdout;
 use smash::effects::{EffectId, EffectKind};
+use smash::report::wrap::wrap;
+
+/// The widest line of the table, in columns (the text reports' width, `cli/tests/docs_run.rs`).
+const TEXT_COLUMNS: usize = 120;
+/// Where the meaning starts: after the effect (24), parameter (11), default (7) and physical
+/// range (22) columns and their separators.
+const MEANING_COLUMN: usize = 24 + 1 + 11 + 1 + 7 + 1 + 22 + 2;
 
 /// Arguments of `smash effects`.
 #[derive(Debug, Args)]
@@ -60,15 +67,20 @@ pub fn run(args: EffectsArgs) -> anyhow::Result<()> {
     for k in all {
         for (i, p) in k.params().iter().enumerate() {
             let name = if i == 0 { k.name() } else { "" };
-            writeln!(
-                text,
-                "{:<24} {:<11} {:>7} {:>22}  {}",
-                name,
-                p.key,
-                p.default,
-                format!("[{}, {}] {}", p.lower, p.upper, p.unit),
-                p.doc
-            )?;
+            let range = format!("[{}, {}] {}", p.lower, p.upper, p.unit);
+            // The meaning wrapped in its own column, so that a line fits the report width.
+            let meaning = wrap(p.doc, TEXT_COLUMNS - MEANING_COLUMN, 0);
+            for (j, line) in meaning.lines().enumerate() {
+                if j == 0 {
+                    let (key, default) = (p.key, p.default);
+                    writeln!(
+                        text,
+                        "{name:<24} {key:<11} {default:>7} {range:>22}  {line}"
+                    )?;
+                } else {
+                    writeln!(text, "{:MEANING_COLUMN$}{line}", "")?;
+                }
+            }
         }
     }
     writeln!(text, "\nIn a club file: [[effect]] name = \"added_mass\", dm_g = 2.54, group = \"A\" (group optional).")?;
