@@ -51,13 +51,6 @@ fn is_default_text(script: &str) -> bool {
         })
 }
 
-/// Documented commands still printing wider lines (issue 42, to do), by a word of the script,
-/// with why: their lines are left out of the check.
-const KNOWN_WIDE_COMMANDS: [(&str, &str); 1] = [(
-    "smash infer-club",
-    "its report (src/infer/) is being reworked for issue 40: wrapped there",
-)];
-
 /// Lines still printed whole however wide (issue 42, to do), by how they start, with why.
 const KNOWN_WIDE_LINES: [(&str, &str); 2] = [
     (
@@ -69,11 +62,6 @@ const KNOWN_WIDE_LINES: [(&str, &str); 2] = [
         "a shots file's notes, one line each (tests match their text whole)",
     ),
 ];
-
-/// Whether `script` is one of [`KNOWN_WIDE_COMMANDS`].
-fn known_wide(script: &str) -> bool {
-    KNOWN_WIDE_COMMANDS.iter().any(|(w, _)| script.contains(w))
-}
 
 /// The lines of `output` wider than [`MAX_COLUMNS`] (but [`KNOWN_WIDE_LINES`]), each with its
 /// width.
@@ -304,7 +292,7 @@ fn documented_commands_run_as_written() {
                     c.at, c.script
                 );
             }
-            if is_default_text(&c.script) && !known_wide(&c.script) {
+            if is_default_text(&c.script) {
                 wide.extend(
                     too_wide(&output)
                         .into_iter()
@@ -368,7 +356,6 @@ fn default_text_is_a_lone_command_without_wide_or_json() {
     assert_eq!(too_wide(&format!("{}\nshort\n", "±".repeat(121))).len(), 1);
     assert!(too_wide(&"σ".repeat(120)).is_empty());
     assert!(too_wide(&format!("shots: {}", "x".repeat(120))).is_empty());
-    assert!(known_wide("smash infer-club --shots s.csv") && !known_wide("smash effects"));
 }
 
 #[test]

@@ -211,8 +211,8 @@ pub fn render(r: &Report) -> String {
         "infer-club: {} shots; impact spread {:.1} mm up, {:.1} mm heel-toe (SD)",
         r.n_shots, r.impact_spread_mm[0], r.impact_spread_mm[1]
     );
-    let _ = writeln!(s, "Prior: {}.", r.prior);
-    let _ = writeln!(s, "Rule: {}.", r.determined_rule);
+    prose(&mut s, &format!("Prior: {}.", r.prior), 2);
+    prose(&mut s, &format!("Rule: {}.", r.determined_rule), 2);
     let _ = writeln!(s, "\nBefore fitting (start head, instruments' noise):");
     render_ident(&mut s, &r.before);
     let _ = writeln!(
@@ -257,11 +257,27 @@ pub fn render(r: &Report) -> String {
 }
 
 fn render_ident(s: &mut String, id: &Identifiability) {
-    let _ = writeln!(s, "  determined: {}", list(&id.determined_params));
-    let _ = writeln!(s, "  not determined: {}", list(&id.undetermined_params));
+    prose(
+        s,
+        &format!("  determined: {}", list(&id.determined_params)),
+        2,
+    );
+    prose(
+        s,
+        &format!("  not determined: {}", list(&id.undetermined_params)),
+        2,
+    );
     for d in id.directions.iter().filter(|d| d.weak) {
-        let _ = writeln!(s, "  weak: {}", d.text);
+        prose(s, &format!("  weak: {}", d.text), 2);
     }
+}
+
+/// The widest line of the text report, in columns (the text reports' width).
+const TEXT_COLUMNS: usize = 120;
+
+/// `text` onto `s`, wrapped at [`TEXT_COLUMNS`] with continuation lines indented `indent` more.
+fn prose(s: &mut String, text: &str, indent: usize) {
+    s.push_str(&crate::report::wrap::wrap(text, TEXT_COLUMNS, indent));
 }
 
 fn list(v: &[String]) -> String {
@@ -275,13 +291,13 @@ fn list(v: &[String]) -> String {
 /// The plan as text.
 pub fn render_plan(r: &PlanReport) -> String {
     let mut s = String::new();
-    let _ = writeln!(
-        s,
+    let head = format!(
         "infer-club plan: the session's design ({} shots; impact spread {:.1} mm up, {:.1} mm \
          heel-toe) at the start head, planned for {} shots",
         r.n_session, r.impact_spread_mm[0], r.impact_spread_mm[1], r.n_planned
     );
-    let _ = writeln!(s, "Rule: {}.", r.determined_rule);
+    prose(&mut s, &head, 2);
+    prose(&mut s, &format!("Rule: {}.", r.determined_rule), 2);
     let _ = writeln!(
         s,
         "{:<22} {:>12} {:>10} {:>10} {:>10} {:>6} {:>12} {:>10} {:>12}",
@@ -316,7 +332,7 @@ pub fn render_plan(r: &PlanReport) -> String {
         );
     }
     for w in &r.weak_directions {
-        let _ = writeln!(s, "weak: {w}");
+        prose(&mut s, &format!("weak: {w}"), 2);
     }
     s
 }
