@@ -22,7 +22,8 @@ use nalgebra::Vector3;
 
 use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::distribution::SwingSpec;
-use super::yards_variants::{head_yards, HeadYards, YardSetting};
+use super::landing::Landing;
+use super::yards_variants::{head_landing, HeadYards, YardSetting};
 use crate::physics::{ImpactModel, ModelParams};
 use crate::units::{g, mm};
 
@@ -164,6 +165,10 @@ pub struct WhatIf {
     pub base: HeadYards,
     /// The changed head's yards.
     pub changed: HeadYards,
+    /// Where the base head's balls land (the distribution as given).
+    pub base_landing: Landing,
+    /// Where the changed head's balls land.
+    pub changed_landing: Landing,
 }
 
 /// Answer `change` against the base head `nominal` in the setting `s` (its swing is the base
@@ -178,8 +183,9 @@ pub fn what_if(
     crate::limits::DYNAMIC_LOFT_DEG
         .check(swing.dynamic_loft_deg)
         .map_err(|e| format!("the changed head's delivery (loft change): {e}"))?;
-    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
-    let changed = head_yards(
+    let (base, base_landing) =
+        head_landing(nominal, s).map_err(|e| format!("the base head: {e}"))?;
+    let (changed, changed_landing) = head_landing(
         &changed_params,
         &YardSetting {
             swing: &swing,
@@ -192,6 +198,8 @@ pub fn what_if(
         changed_params,
         base,
         changed,
+        base_landing,
+        changed_landing,
     })
 }
 
