@@ -181,11 +181,18 @@ fn draw_com(s: &mut String, f: &Frame, view: View, h: &HeadPoints) {
             .unwrap_or(1000.0);
         let end = (pa.0 + k * (pb.0 - pa.0), pa.1 + k * (pb.1 - pa.1));
         arrow(s, "com-shift-magnified", pa, end, CHANGED_COLOUR);
+        // The label beyond the arrow's tip, on the side it points to.
+        let (anchor, dx) = if end.0 < pa.0 {
+            ("end", -6.0)
+        } else {
+            ("start", 6.0)
+        };
+        let dy = if end.1 < pa.1 { -6.0 } else { 16.0 };
         let _ = writeln!(
             s,
-            r##"<text x="{:.2}" y="{:.2}" fill="{CHANGED_COLOUR}">shift ×{k} ({shift_mm:.2} mm)</text>"##,
-            end.0 + 6.0,
-            end.1 - 6.0
+            r##"<text x="{:.2}" y="{:.2}" text-anchor="{anchor}" fill="{CHANGED_COLOUR}">shift ×{k} ({shift_mm:.2} mm)</text>"##,
+            end.0 + dx,
+            end.1 + dy
         );
     }
     for (class, p, colour, r) in [
@@ -200,9 +207,9 @@ fn draw_com(s: &mut String, f: &Frame, view: View, h: &HeadPoints) {
     }
     let _ = writeln!(
         s,
-        r#"<text x="{:.2}" y="{:.2}" text-anchor="end">{}</text>"#,
-        pa.0 - 10.0,
-        pa.1 - 8.0,
+        r#"<text x="{:.2}" y="{:.2}" text-anchor="middle">{}</text>"#,
+        pa.0,
+        pa.1 - 13.0,
         esc("CoM")
     );
 }
