@@ -128,10 +128,10 @@ fn draw_face(s: &mut String, f: &Frame, view: View) {
     if view == View::Above {
         let _ = writeln!(
             s,
-            r##"<g class="face"><line x1="{}" y1="{cy:.2}" x2="{}" y2="{cy:.2}" stroke="#444" stroke-width="3"/><text x="{}" y="{:.2}" text-anchor="end" fill="#444">face (x = 0)</text></g>"##,
+            r##"<g class="face"><line x1="{}" y1="{cy:.2}" x2="{}" y2="{cy:.2}" stroke="#444" stroke-width="3"/><text x="{}" y="{:.2}" fill="#444">face (x = 0)</text></g>"##,
             f.left,
             f.left + f.plot_w,
-            f.left + f.plot_w - 4.0,
+            f.left + 4.0,
             cy - 6.0
         );
     }
