@@ -7,10 +7,11 @@ use std::path::PathBuf;
 use clap::Args;
 
 use smash::data::club_file::read_club;
-use smash::report::html::esc;
 use smash::report::text::wrap_long;
 use smash::study::distribution::{Distribution, Method, SwingSpec};
-use smash::study::whatif::{head_text, what_if, HeadChange, MassMove, WhatIf};
+use smash::study::whatif::{
+    carry_change_grid, carry_change_map, head_text, what_if, HeadChange, MassMove, WhatIf,
+};
 use smash::study::yards_variants::{
     decimals, delta, delta_text, rows_csv, YardRow, YardSetting, QUANTITIES,
 };
@@ -332,49 +333,6 @@ fn rows(w: &WhatIf, change: &HeadChange) -> Vec<YardRow> {
     ]
 }
 
-/// The one-page report: what was asked, the heads, the table.
-fn report_html(club: &str, change: &HeadChange, setting: &str, w: &WhatIf) -> String {
-    let mut h = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>smash whatif</title>\n\
-         <style>body{font-family:sans-serif;max-width:60em;margin:2em auto;line-height:1.4}\
-         table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:.25em .6em}\
-         td.n{text-align:right;font-variant-numeric:tabular-nums}</style></head><body>\n",
-    );
-    let _ = writeln!(
-        h,
-        "<h1>What if: {}</h1>",
-        esc(&change.describe().join("; "))
-    );
-    let _ = writeln!(
-        h,
-        "<p>Base club: {}.</p>\n<p>{}.</p>",
-        esc(club),
-        esc(setting)
-    );
-    h.push_str("<table><tr><th>quantity</th><th>base</th><th>changed</th><th>change ± quadrature error</th></tr>\n");
-    for q in &QUANTITIES {
-        let n = decimals(q);
-        let (d, u) = delta(q, &w.base, &w.changed);
-        let _ = writeln!(
-            h,
-            "<tr><td>{} ({})</td><td class=\"n\">{:.n$}</td><td class=\"n\">{:.n$}</td><td class=\"n\">{}</td></tr>",
-            esc(q.label),
-            esc(q.unit),
-            (q.get)(&w.base.metrics),
-            (q.get)(&w.changed.metrics),
-            esc(&delta_text(d, u, n))
-        );
-    }
-    h.push_str("</table>\n<h2>The heads</h2>\n<pre>");
-    h.push_str(&esc(&head_text(w)));
-    h.push_str(
-        "</pre>\n<p>Both heads fly the same swings and impacts; the quadrature error is the \
-         change's difference from the one computed with one node fewer per dimension.</p>\n\
-         </body></html>\n",
-    );
-    h
-}
-
 /// Run `smash whatif`.
 pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
     args.check()?;
@@ -398,7 +356,22 @@ pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
     }
     if let Some(report) = &args.report {
         smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
-        let html = report_html(&club.name, &change, &setting_text, &w);
+        let grid = carry_change_grid(args.centre_mm, args.mishit_mm, 21);
+        let map = carry_change_map(
+            &w.base_params,
+            &w.changed_params,
+            &change,
+            &swing,
+            &flight,
+            &grid,
+        );
+        let html = crate::whatif_page::report_html(
+            &club.name,
+            &change,
+            &setting_text,
+            &w,
+            map.as_ref().ok().map(|m| (m, args.centre_mm)),
+        );
         smash::data::write_atomic(report, html.as_bytes())?;
     }
     // The change and the setting are sentences: wrapped, as the other reports' prose is, to

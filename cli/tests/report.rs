@@ -46,6 +46,8 @@ struct Reports {
     sweep: PathBuf,
     /// `infer-club`'s page (the inferred COR's face map, the ellipses).
     infer: PathBuf,
+    /// `whatif`'s page (the landing patterns, the head from above and behind).
+    whatif: PathBuf,
 }
 
 fn reports() -> Reports {
@@ -125,6 +127,20 @@ fn reports() -> Reports {
         "--report",
         infer.to_str().unwrap(),
     ]));
+    let whatif = path("whatif.html");
+    ok(smash(&[
+        "whatif",
+        "--club",
+        CLUB,
+        "--speed",
+        "95",
+        "--face-sd",
+        "1.5",
+        "--move-mass",
+        "5g:-70,-10,0:-80,-10,-10",
+        "--report",
+        whatif.to_str().unwrap(),
+    ]));
     Reports {
         compare: (compare, serde_json::from_str(&cj).unwrap()),
         calibrate: (calibrate, serde_json::from_str(&kj).unwrap()),
@@ -132,6 +148,7 @@ fn reports() -> Reports {
         study,
         sweep,
         infer,
+        whatif,
         _dir: dir,
     }
 }
@@ -195,6 +212,11 @@ fn data_values(html: &str) -> Vec<(String, f64)> {
 #[test]
 fn pages_have_charts_and_the_json_numbers() {
     let r = reports();
+
+    let html = std::fs::read_to_string(&r.whatif).unwrap();
+    assert_self_contained(&html, "whatif");
+    let kinds = charts(&html);
+    assert_eq!(kinds, ["landing", "face", "head", "head"], "whatif");
 
     let html = std::fs::read_to_string(&r.compare.0).unwrap();
     assert_self_contained(&html, "compare");
@@ -435,6 +457,7 @@ fn pages_render_in_chromium() {
         ("study", &r.study, 1),
         ("study of 18 variants", &r.sweep, 4 * 35),
         ("infer-club", &r.infer, 1),
+        ("whatif", &r.whatif, 4),
     ] {
         let (png, console, dom) = render(&chrome, page, &dir.path().join(format!("{name}.png")));
         assert!(png.starts_with(b"\x89PNG"), "{name}: not a PNG");
@@ -456,7 +479,65 @@ fn pages_render_in_chromium() {
             svgs >= min_charts,
             "{name}: the browser's DOM has {svgs} SVG charts"
         );
+        if name == "whatif" {
+            assert_whatif_pictures(&dom);
+        }
     }
+}
+
+/// The numbers of attribute `name` on the elements whose tag starts with `start`.
+fn attr_values(html: &str, start: &str, name: &str) -> Vec<f64> {
+    html.match_indices(start)
+        .map(|(i, _)| {
+            let tag = &html[i..i + html[i..].find('>').unwrap()];
+            let key = format!(" {name}=\"");
+            let v =
+                &tag[tag.find(&key).unwrap_or_else(|| panic!("{tag}: no {name}")) + key.len()..];
+            v[..v.find('"').unwrap()].parse().unwrap()
+        })
+        .collect()
+}
+
+/// The whatif page as the browser laid it out: both landing patterns with their dots and
+/// ellipses (finite, positive radii) on axes in yards, and the head from above and from behind
+/// with the CoM and the moved mass before and after.
+fn assert_whatif_pictures(dom: &str) {
+    for head in ["base", "changed"] {
+        let group = format!("<g class=\"landing {head}\"");
+        let i = dom
+            .find(&group)
+            .unwrap_or_else(|| panic!("whatif: no {head} landings"));
+        let dots = dom[i..dom[i..].find("</g>").unwrap() + i]
+            .matches("<circle")
+            .count();
+        assert!(dots >= 25, "whatif: {dots} {head} landing points");
+        let ellipse = format!("<ellipse class=\"ellipse {head}\"");
+        assert_eq!(
+            dom.matches(&ellipse).count(),
+            1,
+            "whatif: the {head} ellipse"
+        );
+        for r in ["rx", "ry"] {
+            let v = attr_values(dom, &ellipse, r)[0];
+            assert!(
+                v.is_finite() && v > 0.0,
+                "whatif: the {head} ellipse's {r} is {v}"
+            );
+        }
+    }
+    assert!(
+        dom.contains("offline, yd") && dom.contains(">carry, yd<"),
+        "whatif: the landing plot's axes are not labelled in yards"
+    );
+    assert!(dom.contains("class=\"head-above\"") && dom.contains("class=\"head-behind\""));
+    for class in ["com before", "com after", "mass from", "mass to"] {
+        let n = dom.matches(&format!("<circle class=\"{class}\"")).count();
+        assert_eq!(n, 2, "whatif: {class} drawn {n} times (once a view)");
+    }
+    assert!(
+        dom.contains("data-kind=\"face\"") && dom.contains("Carry change over the face"),
+        "whatif: no face map of the carry change"
+    );
 }
 
 /// Width of the narrowest figure a page lays out, CSS px: the grid's smallest column (480 px,
@@ -530,6 +611,7 @@ fn labels_are_legible_in_the_narrowest_figure() {
         ("diagnose, default candidates", &page),
         ("study", &r.study),
         ("study of 18 variants", &r.sweep),
+        ("whatif", &r.whatif),
     ] {
         let html = std::fs::read_to_string(page).unwrap();
         let sizes = label_sizes(&html);

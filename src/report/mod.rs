@@ -14,6 +14,7 @@ pub mod likelihood;
 pub mod strata;
 pub mod tables;
 pub mod text;
+pub mod to_scale;
 pub mod wrap;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};

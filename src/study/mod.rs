@@ -17,13 +17,15 @@
 //! - [`yards`]: studies in yards (impact then ball flight): carry maps, robust carry and
 //!   dispersion over a distribution, head constraints (mass, Rules MOI limit, CoM box) and a
 //!   discretionary-mass optimiser for expected carry or dispersion; [`yards_variants`]: every
-//!   design variant (and each optimiser's result) in yards against the base.
+//!   design variant (and each optimiser's result) in yards against the base; [`landing`]: the
+//!   landing points of a distribution, their covariance and dispersion ellipse.
 //!
 //! Nothing here writes files or prints: the CLI does.
 
 pub mod design;
 pub mod distribution;
 pub mod evaluate;
+pub mod landing;
 pub mod metrics;
 pub mod optimise;
 pub mod output;

@@ -22,7 +22,8 @@ use nalgebra::Vector3;
 
 use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::distribution::SwingSpec;
-use super::yards_variants::{head_yards, HeadYards, YardSetting};
+use super::landing::Landing;
+use super::yards_variants::{head_landing, HeadYards, YardSetting};
 use crate::physics::{ImpactModel, ModelParams};
 use crate::units::{g, mm};
 
@@ -161,6 +162,10 @@ pub struct WhatIf {
     pub base: HeadYards,
     /// The changed head's yards.
     pub changed: HeadYards,
+    /// Where the base head's balls land (the distribution as given).
+    pub base_landing: Landing,
+    /// Where the changed head's balls land.
+    pub changed_landing: Landing,
 }
 
 /// Answer `change` against the base head `nominal` in the setting `s` (its swing is the base
@@ -175,8 +180,9 @@ pub fn what_if(
     crate::limits::DYNAMIC_LOFT_DEG
         .check(swing.dynamic_loft_deg)
         .map_err(|e| format!("the changed head's delivery (loft change): {e}"))?;
-    let base = head_yards(nominal, s).map_err(|e| format!("the base head: {e}"))?;
-    let changed = head_yards(
+    let (base, base_landing) =
+        head_landing(nominal, s).map_err(|e| format!("the base head: {e}"))?;
+    let (changed, changed_landing) = head_landing(
         &changed_params,
         &YardSetting {
             swing: &swing,
@@ -189,6 +195,67 @@ pub fn what_if(
         changed_params,
         base,
         changed,
+        base_landing,
+        changed_landing,
+    })
+}
+
+/// The carry change over the face at the golfer's central swing: each head's carry at each
+/// impact location of a grid, and the change (changed − base), yd.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CarryChangeMap {
+    /// Heights up the face, mm (ascending).
+    pub ys_mm: Vec<f64>,
+    /// Heel–toe locations, mm (ascending, + toward the toe).
+    pub zs_mm: Vec<f64>,
+    /// Changed carry − base carry, yd, row-major (`ys × zs`); `None` where either head's impact
+    /// is off the face or misses the ball.
+    pub d_carry_yd: Vec<Option<f64>>,
+}
+
+/// The impact locations of the carry-change map: the mishit pattern's centre ± 2.5 σ (at
+/// least ± 10 mm up and ± 20 mm across), `n` points a side.
+pub fn carry_change_grid(centre_mm: [f64; 2], sigma_mm: [f64; 2], n: usize) -> [Vec<f64>; 2] {
+    let n = n.max(2);
+    let side = |c: f64, s: f64, least: f64| -> Vec<f64> {
+        let h = (2.5 * s).max(least);
+        (0..n)
+            .map(|i| c - h + 2.0 * h * i as f64 / (n - 1) as f64)
+            .collect()
+    };
+    [
+        side(centre_mm[0], sigma_mm[0], 10.0),
+        side(centre_mm[1], sigma_mm[1], 20.0),
+    ]
+}
+
+/// The carry change from the head `base_params` to `changed_params` over the grid `ys_mm ×
+/// zs_mm` for the swing `swing` (the base head's; the changed head is delivered with
+/// [`HeadChange::swing`]).
+pub fn carry_change_map(
+    base_params: &ModelParams,
+    changed_params: &ModelParams,
+    change: &HeadChange,
+    swing: &SwingSpec,
+    flight: &crate::flight::FlightConfig,
+    [ys_mm, zs_mm]: &[Vec<f64>; 2],
+) -> Result<CarryChangeMap, String> {
+    let map = |p: &ModelParams, s: &SwingSpec| {
+        let model = ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+        super::yards::carry_map(&model, s, ys_mm, zs_mm, flight)
+    };
+    let base = map(base_params, swing)?;
+    let changed = map(changed_params, &change.swing(swing))?;
+    let d_carry_yd = base
+        .carry_yd
+        .iter()
+        .zip(&changed.carry_yd)
+        .map(|(b, c)| Some(c.as_ref()? - b.as_ref()?))
+        .collect();
+    Ok(CarryChangeMap {
+        ys_mm: ys_mm.clone(),
+        zs_mm: zs_mm.clone(),
+        d_carry_yd,
     })
 }
 
@@ -255,6 +322,38 @@ mod tests {
         // Nothing else changes.
         assert_eq!(q.bulge_m, p.bulge_m);
         assert!(HeadChange::default().is_empty() && !c.is_empty());
+    }
+
+    #[test]
+    fn the_carry_change_map_of_a_loft_change_and_its_grid() {
+        let [ys, zs] = carry_change_grid([0.0, 5.0], [4.0, 2.0], 5);
+        assert_eq!(ys, [-10.0, -5.0, 0.0, 5.0, 10.0]);
+        assert_eq!(zs, [-15.0, -5.0, 5.0, 15.0, 25.0]);
+        let p = ModelParams::paper_driver();
+        let swing = SwingSpec {
+            club_speed_mph: 95.0,
+            dynamic_loft_deg: 13.0,
+            attack_angle_deg: 0.0,
+            club_path_deg: 0.0,
+            face_angle_deg: 0.0,
+            lie_tilt_deg: 0.0,
+            club_omega_rad_s: [0.0; 3],
+        };
+        let flight = crate::flight::FlightConfig::default();
+        let none = HeadChange::default();
+        let m = carry_change_map(&p, &p, &none, &swing, &flight, &[ys.clone(), zs.clone()]);
+        let m = m.unwrap();
+        assert_eq!(m.d_carry_yd.len(), 25);
+        assert!(m.d_carry_yd.iter().all(|d| d == &Some(0.0)), "{m:?}");
+        // Two degrees more loft at 95 mph: the centre strike carries differently, and every
+        // change is finite.
+        let loft = HeadChange {
+            loft_change_deg: Some(2.0),
+            ..HeadChange::default()
+        };
+        let m = carry_change_map(&p, &p, &loft, &swing, &flight, &[ys, zs]).unwrap();
+        let centre = m.d_carry_yd[2 * 5 + 1].unwrap();
+        assert!(centre.abs() > 0.1 && centre.is_finite(), "{centre}");
     }
 
     #[test]

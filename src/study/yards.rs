@@ -4,8 +4,7 @@
 //! - [`carry_map`]: carry and offline over a grid of impact locations on the face;
 //! - [`yard_metrics`]: robust metrics over a distribution of swings and impact locations:
 //!   mean carry, carry spread, mean and spread of offline, and the area of the dispersion
-//!   ellipse of the landing points at a confidence level (bivariate normal: the ellipse
-//!   `dᵀΣ⁻¹d ≤ χ²₂(p)`, `χ²₂(p) = −2·ln(1 − p)`, area `π·χ²₂(p)·√det Σ`);
+//!   ellipse of the landing points at a confidence level ([`super::landing`]);
 //! - [`HeadConstraints`]: what a designer must respect, checked and reported (never clipped):
 //!   total head mass, the Rules of Golf moment-of-inertia limit for woods, a box for the CoM;
 //! - [`optimise_mass`]: move a discretionary mass to maximise expected carry or minimise the
@@ -20,6 +19,7 @@ use nalgebra::Vector3;
 
 use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::distribution::{Distribution, SwingSpec};
+use super::landing::Landing;
 use crate::flight::{fly, FlightConfig, FlightLaunch};
 use crate::physics::{ImpactModel, ModelParams};
 use crate::sweep::kernel::{face_map, FaceMapKernel, LaunchGrid};
@@ -163,6 +163,18 @@ pub fn yard_metrics(
     flight: &FlightConfig,
     confidence: f64,
 ) -> Result<YardMetrics, String> {
+    yard_landing(model, base, dist, flight, confidence).map(|(m, _)| m)
+}
+
+/// [`yard_metrics`] and the landing pattern they are computed from (its points, mean and
+/// covariance: what a picture of the pattern and its ellipse needs).
+pub fn yard_landing(
+    model: &ImpactModel,
+    base: &SwingSpec,
+    dist: &Distribution,
+    flight: &FlightConfig,
+    confidence: f64,
+) -> Result<(YardMetrics, Landing), String> {
     if !(confidence > 0.0 && confidence < 1.0) {
         return Err(format!("confidence {confidence}: must be within (0, 1)"));
     }
@@ -206,8 +218,7 @@ pub fn yard_metrics(
     let mean_sidespin_rpm = launch_mean(|l| l.sidespin_rad_s) / crate::units::RAD_S_PER_RPM;
     // Carry is the landing's signed coordinate along the target line (`Flight::carry_m`), so
     // the mean and spread of carry are those of the landing points' `x`.
-    let (mut sw, mut sx, mut sz) = (0.0, 0.0, 0.0);
-    let (mut grounded, mut grounded_w) = (0usize, 0.0);
+    let (mut sw, mut grounded, mut grounded_w) = (0.0, 0usize, 0.0);
     let mut pts = Vec::with_capacity(flights.len());
     for (f, &w) in flights.iter().zip(&weights) {
         let f = f.as_ref().map_err(|e| format!("flight: {e}"))?;
@@ -215,11 +226,8 @@ pub fn yard_metrics(
             grounded += 1;
             grounded_w += w;
         }
-        let (x, z) = (f.carry_yd(), f.offline_yd());
-        pts.push((x, z, w));
+        pts.push((f.carry_yd(), f.offline_yd(), w));
         sw += w;
-        sx += w * x;
-        sz += w * z;
     }
     let grounded_share = grounded_w / sw;
     if grounded == pts.len() || grounded_share > MAX_GROUNDED_SHARE {
@@ -234,22 +242,14 @@ pub fn yard_metrics(
             100.0 * MAX_GROUNDED_SHARE
         ));
     }
-    let (mx, mz) = (sx / sw, sz / sw);
-    let (mut vxx, mut vzz, mut vxz) = (0.0, 0.0, 0.0);
-    for &(x, z, w) in &pts {
-        vxx += w * (x - mx) * (x - mx);
-        vzz += w * (z - mz) * (z - mz);
-        vxz += w * (x - mx) * (z - mz);
-    }
-    let (vxx, vzz, vxz) = (vxx / sw, vzz / sw, vxz / sw);
-    let det = (vxx * vzz - vxz * vxz).max(0.0);
-    let k2 = -2.0 * (1.0 - confidence).ln();
-    Ok(YardMetrics {
-        mean_carry_yd: mx,
-        std_carry_yd: vxx.sqrt(),
-        mean_offline_yd: mz,
-        std_offline_yd: vzz.sqrt(),
-        ellipse_area_yd2: std::f64::consts::PI * k2 * det.sqrt(),
+    let landing = Landing::of(pts.iter().copied())
+        .ok_or_else(|| "the landing points are not finite".to_owned())?;
+    let metrics = YardMetrics {
+        mean_carry_yd: landing.mean_carry_yd,
+        std_carry_yd: landing.std_carry_yd(),
+        mean_offline_yd: landing.mean_offline_yd,
+        std_offline_yd: landing.std_offline_yd(),
+        ellipse_area_yd2: landing.ellipse_area_yd2(confidence),
         confidence,
         mean_ball_speed_mph,
         mean_backspin_rpm,
@@ -257,7 +257,8 @@ pub fn yard_metrics(
         impacts: pts.len(),
         grounded,
         grounded_share,
-    })
+    };
+    Ok((metrics, landing))
 }
 
 /// Constraints on a clubhead design.
