@@ -45,6 +45,29 @@ impl Hermite {
     /// ground) touches `level` at θ = 0, the launch itself: the search then starts at the
     /// step's highest point. A step that starts on the ground while not rising lands at θ = 0.
     pub(crate) fn first_down_to(&self, level: f64) -> Option<f64> {
+        if self.stays_above(level) {
+            return None;
+        }
+        self.search_down_to(level)
+    }
+
+    /// Whether the interpolant stays so far above `level` over [0, 1] that no evaluation of it
+    /// comes out below `level`, so that [`Hermite::search_down_to`] finds no crossing (most
+    /// substeps of a step re-integrated for a contact, cheaply). The cubic lies in the convex
+    /// hull of its Bézier control points `y0, y0 + m0/3, y1 − m1/3, y1`, so it is at least
+    /// their least; the margin, 1e-12 of the sum of the four coefficients' magnitudes, is
+    /// hundreds of times the rounding error of these values and of [`Hermite::at`] (a few ulp
+    /// of that sum). Any NaN or infinity makes the margin NaN or infinite: not above.
+    fn stays_above(&self, level: f64) -> bool {
+        let lowest = (self.y0.min(self.y1))
+            .min(self.y0 + self.m0 / 3.0)
+            .min(self.y1 - self.m1 / 3.0);
+        let margin = 1e-12 * (self.y0.abs() + self.y1.abs() + self.m0.abs() + self.m1.abs());
+        lowest - margin > level
+    }
+
+    /// [`Hermite::first_down_to`] without the shortcut of [`Hermite::stays_above`].
+    fn search_down_to(&self, level: f64) -> Option<f64> {
         let lo = if self.y0 <= level && self.m0 > 0.0 {
             self.argmax().0
         } else {
@@ -184,6 +207,42 @@ mod tests {
         };
         assert!((hm.max() - 4.0 / 3.0).abs() < 1e-8);
         assert!((hm.first_down_to(0.0).unwrap() - 1.0).abs() < 1e-6);
+    }
+
+    /// Where [`Hermite::stays_above`] takes the shortcut, the full search finds no crossing
+    /// either; over a grid of cubics crossing, grazing and clearing the level (and NaN).
+    #[test]
+    fn the_shortcut_is_taken_only_where_the_search_finds_nothing() {
+        let values = [
+            -1.0,
+            -1e-9,
+            0.0,
+            1e-13,
+            1e-9,
+            0.05,
+            0.3,
+            1.0,
+            30.0,
+            f64::NAN,
+        ];
+        let slopes = [-40.0, -3.0, -0.5, -1e-9, 0.0, 1e-9, 0.5, 3.0, 40.0];
+        let mut taken = 0;
+        for &y0 in &values {
+            for &y1 in &values {
+                for &m0 in &slopes {
+                    for &m1 in &slopes {
+                        let hm = Hermite { y0, y1, m0, m1 };
+                        for level in [0.0, -0.01, 0.2] {
+                            if hm.stays_above(level) {
+                                taken += 1;
+                                assert_eq!(hm.search_down_to(level), None, "{y0} {y1} {m0} {m1}");
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(taken > 1000, "{taken}");
     }
 
     /// A dip below the level inside the step is found although both ends are above it, and
