@@ -1,39 +1,137 @@
-//! Landing and apex of one lane in one step of the batched integrator (`super`): where the
-//! step's cubic Hermite interpolant first comes down to the ground, and the highest point
-//! before it.
+//! Landing and apex of the lanes of one group in one step of the batched integrator
+//! (`super`): where a step's (or substep's) cubic Hermite interpolant first comes down to the
+//! ground, and the highest point before it.
 
+use super::super::aero::CoefficientModel;
 use super::super::hermite::Hermite;
-use super::{Consts, Lanewise};
+use super::step::{rk4_one, St};
+use super::{Consts, Lanewise, REFINE};
 use crate::flight::{Flight, FlightConfig};
-use crate::lanes::Lanes;
+use crate::lanes::{Lanes, MAX_LANES};
 
-/// Lane `i`'s event in a step from time `t`, given as the lane states `states` at the ends of
-/// its substeps of length `h` (the step itself, or its re-integration in substeps): its
-/// landing if an interpolant comes down to the ground (`y = −tee height`) in a substep, the
-/// first such, and its apex `apex` (on entry the apex before the step) raised to the highest
-/// point before the landing, or over the whole step.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn land<L: Lanes>(
-    cfg: &FlightConfig,
-    k: &Consts,
-    states: &[Lanewise<L>],
-    h: f64,
-    i: usize,
-    axis: &[f64; 3],
-    apex: &mut f64,
-    t: f64,
-) -> Option<Flight> {
-    for (j, pair) in states.windows(2).enumerate() {
-        let t0 = t + j as f64 * h;
-        if let Some(f) = land_in(cfg, k, (&pair[0], &pair[1]), h, i, axis, apex, t0) {
-            return Some(f);
-        }
-    }
-    None
+#[cfg(test)]
+thread_local! {
+    /// Steps of a lane group re-integrated for a contact on this thread (a count the tests
+    /// bound).
+    pub(super) static REFINED: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
+    /// Contact-refinement substeps computed on this thread.
+    pub(super) static SUBSTEPS: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
 }
 
-/// [`land`] on one substep from `s` to `ns` starting at time `t`.
+/// The lanes of one group whose events a step searches: `contact[i]`, a lane that may touch
+/// the ground in the step (searched on the step re-integrated in [`REFINE`] substeps);
+/// `apex[i]`, a lane that only passes its apex (searched on the step itself).
+pub(super) struct Search {
+    pub(super) contact: [bool; MAX_LANES],
+    pub(super) apex: [bool; MAX_LANES],
+}
+
+/// The events of one lane group in the step from `s` to `ns` at time `t`: per searched lane
+/// (`search`) its landing, if it lands in the step, and its apex `top[i]` (on entry the apex
+/// before the step) raised to the highest point before the landing, or over the whole step.
+/// The apex lanes are searched on the step itself, the contact lanes by [`contacts`].
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn events<L: Lanes, C: CoefficientModel>(
+    cfg: &FlightConfig,
+    k: &Consts,
+    model: &C,
+    (axis, s, ns): (&[L; 3], &St<L>, &St<L>),
+    search: &Search,
+    top: &mut [f64; MAX_LANES],
+    t: f64,
+) -> [Option<Flight>; MAX_LANES] {
+    let ax = [axis[0].to_array(), axis[1].to_array(), axis[2].to_array()];
+    let mut landed = [None; MAX_LANES];
+    let (from, to) = (s.lanewise(), ns.lanewise());
+    let mut any_contact = false;
+    for i in 0..L::N {
+        if search.contact[i] {
+            any_contact = true;
+        } else if search.apex[i] {
+            let axis_i = [ax[0][i], ax[1][i], ax[2][i]];
+            landed[i] = land_in(cfg, k, (&from, &to), k.dt, i, &axis_i, &mut top[i], t);
+        }
+    }
+    if any_contact {
+        let found = contacts::<L, C>(
+            cfg,
+            k,
+            model,
+            (axis, s),
+            &search.contact,
+            top,
+            &[t; MAX_LANES],
+        );
+        for i in 0..L::N {
+            if search.contact[i] {
+                landed[i] = found[i];
+            }
+        }
+    }
+    landed
+}
+
+/// The landings of the lanes `contact` of the group at `s` (lane `i` at time `t[i]`), searched
+/// on the step re-integrated in [`REFINE`] substeps from `s`, each substep's interpolant in
+/// turn; and their apexes `top[i]` (on entry the apex before the step) raised to the highest
+/// point before the landing, or over the whole step. The lanes may come from different
+/// batches and steps: every lane's operations are its own, so its bits are the same.
+///
+/// The substeps are computed only as far as they are needed: once every contact lane has
+/// landed, the later substeps would change nothing (each lane's search stops at its landing),
+/// so they are not computed.
+#[inline(always)]
+pub(super) fn contacts<L: Lanes, C: CoefficientModel>(
+    cfg: &FlightConfig,
+    k: &Consts,
+    model: &C,
+    (axis, s): (&[L; 3], &St<L>),
+    contact: &[bool; MAX_LANES],
+    top: &mut [f64; MAX_LANES],
+    t: &[f64; MAX_LANES],
+) -> [Option<Flight>; MAX_LANES] {
+    #[cfg(test)]
+    REFINED.with(|n| n.set(n.get() + 1));
+    let ax = [axis[0].to_array(), axis[1].to_array(), axis[2].to_array()];
+    let mut landed = [None; MAX_LANES];
+    let mut pending = 0usize;
+    for i in 0..L::N {
+        pending += usize::from(contact[i]);
+    }
+    let fine = Consts {
+        dt: k.dt / REFINE as f64,
+        ..*k
+    };
+    let (mut cur, mut from) = (*s, s.lanewise());
+    for j in 0..REFINE {
+        if pending == 0 {
+            break;
+        }
+        cur = rk4_one::<L, C>(&fine, cfg, model, axis, &cur);
+        #[cfg(test)]
+        SUBSTEPS.with(|n| n.set(n.get() + 1));
+        let to = cur.lanewise();
+        for i in 0..L::N {
+            if !contact[i] || landed[i].is_some() {
+                continue;
+            }
+            let axis_i = [ax[0][i], ax[1][i], ax[2][i]];
+            let t0 = t[i] + j as f64 * fine.dt;
+            landed[i] = land_in(cfg, k, (&from, &to), fine.dt, i, &axis_i, &mut top[i], t0);
+            if landed[i].is_some() {
+                pending -= 1;
+            }
+        }
+        from = to;
+    }
+    landed
+}
+
+/// Lane `i`'s landing in the (sub)step of length `h` from `s` to `ns` starting at time `t`, if
+/// the step's interpolant comes down to the ground (`y = −tee height`) in it, and its apex
+/// `apex` (on entry the apex before the step) raised to the highest point before the landing,
+/// or over the whole step.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn land_in<L: Lanes>(
