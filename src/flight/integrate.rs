@@ -64,14 +64,25 @@ pub fn fly_into(
     });
 }
 
+/// [`fly_serial`] with the launches flown in hang order ([`in_hang_order`]), results in input
+/// order: the same results, with less time spent on lanes that have landed while their batch
+/// flies on, when the launches come in no particular order (a piece of a launch file).
+pub fn fly_serial_in_hang_order(
+    cfg: &FlightConfig,
+    launches: &[FlightLaunch],
+    out: &mut [Result<Flight, FlightError>],
+) {
+    in_hang_order(launches, out, |l, o| fly_serial(cfg, l, o))
+}
+
 /// `fly` applied to the launches sorted by their vertical launch speed (ties in input order), its
 /// results put back in input order into `out`.
 ///
-/// A batch flies until its last lane lands, and a step in which any lane of a vector may touch
-/// the ground is re-integrated in substeps for the whole vector: launches that stay in the air
-/// about as long as each other, batched together, land in the same few steps. On 200,000 random
-/// drives (150–180 mph, 8–14°) `smash flight` took 0.55–0.58 s of CPU for 0.63–0.69 s in input
-/// order (3 runs each on a loaded machine, 28 Nov 2026), with the same bytes out. Each lane's
+/// A batch flies until its last lane lands (or leaves for its contact search, [`defer`]):
+/// launches that stay in the air about as long as each other, batched together, leave in the
+/// same few steps. On 200,000 random drives (150–180 mph, 8–14°) `smash flight` took 0.55–0.58 s
+/// of CPU for 0.63–0.69 s in input order (3 runs each on a loaded machine, 28 Nov 2026, when
+/// each group's contacts were searched in their step), with the same bytes out. Each lane's
 /// result is the same bits in any batch (the module docs), so only the order of work changes.
 fn in_hang_order(
     launches: &[FlightLaunch],
