@@ -21,6 +21,8 @@ use crate::lanes::{Lanes, MAX_LANES};
 thread_local! {
     /// Whether contact searches are put off on this thread (the tests compare both ways).
     pub(super) static DEFER: std::cell::Cell<bool> = const { std::cell::Cell::new(true) };
+    /// Launches flown again on this thread after a put-off search found no landing.
+    pub(super) static REDONE: std::cell::Cell<u64> = const { std::cell::Cell::new(0) };
 }
 
 /// Whether contact searches are put off ([`DEFER`] in the tests).
@@ -132,7 +134,11 @@ impl Queue {
         for q in 0..n {
             match found[q] {
                 Some(f) => out[self.at[q]] = Ok(f),
-                None => self.redo.push(self.at[q]),
+                None => {
+                    #[cfg(test)]
+                    REDONE.with(|n| n.set(n.get() + 1));
+                    self.redo.push(self.at[q]);
+                }
             }
         }
         self.n = 0;
