@@ -337,7 +337,7 @@ mod tests {
         for shift in 0..4 {
             let at = |q: usize| cubics[(q + shift) % 4];
             let starts: Vec<Crossing> = (0..4).map(|q| at(q).crossing(0.0).unwrap()).collect();
-            let lane = |f: &dyn Fn(usize) -> f64| V::from_fn(|q| f(q));
+            let lane = |f: &dyn Fn(usize) -> f64| V::from_fn(f);
             let hm = [
                 lane(&|q| at(q).y0),
                 lane(&|q| at(q).y1),
