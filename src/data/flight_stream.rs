@@ -25,7 +25,7 @@ use crate::data::launch_read::{parse_launches, LaunchRead};
 use crate::data::left_out::{push_bad, refuse_when_unusable, LeftOut};
 use crate::data::number::{parse_f64, push_cell};
 use crate::data::{safe_write, write_atomic, DataError};
-use crate::flight::integrate::fly_serial;
+use crate::flight::integrate::fly_serial_in_hang_order;
 use crate::flight::{Flight, FlightConfig, FlightError, FlightLaunch};
 
 /// Bytes of input read per chunk (about 60,000 launches of a typical file): large enough that
@@ -473,7 +473,7 @@ fn fly_piece(plan: &Plan, cfg: &FlightConfig, bytes: &[u8]) -> Piece {
         launches.push(FlightLaunch::from_file_units(v[0], v[1], v[2], v[3], v[4]));
     }
     let mut results = vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); launches.len()];
-    fly_serial(cfg, &launches, &mut results);
+    fly_serial_in_hang_order(cfg, &launches, &mut results);
     for (r, res) in results.iter().enumerate() {
         if let Err(e) = res {
             piece.bad.push((rows[r], Bad::Flight(*e)));

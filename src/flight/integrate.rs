@@ -9,9 +9,10 @@
 //! step itself) and whether it may have touched the ground (it ends the step below the ground,
 //! or passes a trough). Such a step is re-integrated in [`REFINE`] substeps and the contact is
 //! the first root of a substep's interpolant at the ground (`y = −tee height`; safeguarded
-//! Newton), so the landing does not depend on the step. The step `dt` is fixed by a tolerance
-//! test against a 64× finer step (see `tests/flight.rs`); an independent adaptive
-//! Dormand–Prince integrator checks the whole.
+//! Newton), so the landing does not depend on the step. Such lanes leave their batch and their
+//! contact searches are done a vector at a time, whatever batch and step they come from
+//! ([`defer`]). The step `dt` is fixed by a tolerance test against a 64× finer step (see
+//! `tests/flight.rs`); an independent adaptive Dormand–Prince integrator checks the whole.
 //!
 //! Every lane runs the same sequence of operations whatever its batch, position, thread or
 //! instruction set (no fused multiply–add, no libm calls in the vector code; `ln` of the
@@ -63,14 +64,25 @@ pub fn fly_into(
     });
 }
 
+/// [`fly_serial`] with the launches flown in hang order ([`in_hang_order`]), results in input
+/// order: the same results, with less time spent on lanes that have landed while their batch
+/// flies on, when the launches come in no particular order (a piece of a launch file).
+pub fn fly_serial_in_hang_order(
+    cfg: &FlightConfig,
+    launches: &[FlightLaunch],
+    out: &mut [Result<Flight, FlightError>],
+) {
+    in_hang_order(launches, out, |l, o| fly_serial(cfg, l, o))
+}
+
 /// `fly` applied to the launches sorted by their vertical launch speed (ties in input order), its
 /// results put back in input order into `out`.
 ///
-/// A batch flies until its last lane lands, and a step in which any lane of a vector may touch
-/// the ground is re-integrated in substeps for the whole vector: launches that stay in the air
-/// about as long as each other, batched together, land in the same few steps. On 200,000 random
-/// drives (150–180 mph, 8–14°) `smash flight` took 0.55–0.58 s of CPU for 0.63–0.69 s in input
-/// order (3 runs each on a loaded machine, 28 Nov 2026), with the same bytes out. Each lane's
+/// A batch flies until its last lane lands (or leaves for its contact search, [`defer`]):
+/// launches that stay in the air about as long as each other, batched together, leave in the
+/// same few steps. On 200,000 random drives (150–180 mph, 8–14°) `smash flight` took 0.55–0.58 s
+/// of CPU for 0.63–0.69 s in input order (3 runs each on a loaded machine, 28 Nov 2026, when
+/// each group's contacts were searched in their step), with the same bytes out. Each lane's
 /// result is the same bits in any batch (the module docs), so only the order of work changes.
 fn in_hang_order(
     launches: &[FlightLaunch],
@@ -282,12 +294,10 @@ fn batches<L: Lanes, C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
     let (cfg, model, launches, out) = args;
     let b = G * L::N;
     let mut idx = [0usize; MAX_B];
-    // The contact refinement's substep states, one buffer a group, reused by every batch.
-    let mut fine: [Vec<Lanewise<L>>; G] = [
-        Vec::with_capacity(REFINE + 1),
-        Vec::with_capacity(REFINE + 1),
-    ];
     let mut next = 0;
+    // Contact searches put off (`defer`), and where the launches flown again start.
+    let mut queue = defer::Queue::new();
+    let mut redo = 0;
     loop {
         // The next `b` valid launches (fewer at the end); invalid ones get their error.
         let mut n = 0;
@@ -301,6 +311,17 @@ fn batches<L: Lanes, C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
             }
             next += 1;
         }
+        let put_off = n > 0 && defer::deferring();
+        if n == 0 {
+            // Every launch has flown: the searches still waiting, then the launches whose
+            // put-off search found no landing, each contact now searched in its step.
+            queue.search::<L, C>(cfg, k, model, out);
+            while n < b && redo < queue.redo.len() {
+                idx[n] = queue.redo[redo];
+                n += 1;
+                redo += 1;
+            }
+        }
         if n == 0 {
             break;
         }
@@ -308,7 +329,8 @@ fn batches<L: Lanes, C: CoefficientModel>(k: &Consts, args: Args<'_, C>) {
             idx[j] = idx[n - 1];
         }
         // One call site: `batch` is inlined once per instruction set and coefficient model.
-        batch::<L, C>(cfg, k, model, (launches, &idx[..b], n), out, &mut fine);
+        let run = (launches, &idx[..b], n);
+        batch::<L, C>(cfg, k, model, run, out, (put_off, &mut queue));
     }
 }
 
@@ -375,7 +397,9 @@ impl<L: Lanes> St<L> {
 }
 
 /// Integrate the launches `idx` (the first `n` are real, the rest padding copies). Lane `L` is
-/// lane `L % N` of group `L / N`. `fine` is scratch for the contact refinement.
+/// lane `L % N` of group `L / N`. With `put_off`, a lane that may touch the ground in a step
+/// leaves the batch and waits in `queue` for its contact search ([`defer`]); else the contact
+/// is searched in the step.
 #[inline(always)]
 fn batch<L: Lanes, C: CoefficientModel>(
     cfg: &FlightConfig,
@@ -383,7 +407,7 @@ fn batch<L: Lanes, C: CoefficientModel>(
     model: &C,
     (launches, idx, n): (&[FlightLaunch], &[usize], usize),
     out: &mut [Result<Flight, FlightError>],
-    fine: &mut [Vec<Lanewise<L>>; G],
+    (put_off, queue): (bool, &mut defer::Queue),
 ) {
     let (mut s, axis) = start::<L>(launches, idx);
     let zero = L::splat(0.0);
@@ -397,28 +421,27 @@ fn batch<L: Lanes, C: CoefficientModel>(
     while left > 0 && t < k.max_time {
         let ns = rk4::<L, C>(k, cfg, model, &axis, &s);
         for g in 0..G {
-            // This group's step re-integrated in substeps, made once when a lane needs it.
-            let mut refined = false;
-            let (axis_g, s_g) = (&axis[g], &s[g]);
-            let (s, ns) = (&s[g], &ns[g]);
             // The apex before this step (a lane that lands in it keeps only the part of the
             // step before its landing) and after it.
             let before = apex[g];
-            apex[g] = L::select(ns.p[1].gt(apex[g]), ns.p[1], apex[g]);
-            // Lanes that end the step below the ground, pass a trough (the interpolant may dip
-            // below the ground within the step) or pass the apex (done lanes included: the
-            // scalar code below skips them).
+            apex[g] = L::select(ns[g].p[1].gt(apex[g]), ns[g].p[1], apex[g]);
             // Lanes that end the step below the ground or pass a trough (the trajectory may
             // dip below the ground within the step: a contact to search for), or pass the apex
-            // (done lanes included: the scalar code below skips them).
+            // (done lanes included: they are left out below).
+            let (s, ns) = (&s[g], &ns[g]);
             let contact = ns.p[1].lt(ground) | (s.v[1].lt(zero) & !ns.v[1].lt(zero));
             let event = contact | (s.v[1].gt(zero) & !ns.v[1].gt(zero));
             if !event.any() {
                 continue;
             }
-            let pair = [s.lanewise(), ns.lanewise()];
-            let mut top = apex[g].to_array();
+            let mut top = [0.0; MAX_LANES];
+            top[..L::N].copy_from_slice(apex[g].to_array().as_ref());
             let before = before.to_array();
+            let mut search = land::Search {
+                contact: [false; MAX_LANES],
+                apex: [false; MAX_LANES],
+            };
+            let from = s.lanewise();
             let ax = [
                 axis[g][0].to_array(),
                 axis[g][1].to_array(),
@@ -428,25 +451,29 @@ fn batch<L: Lanes, C: CoefficientModel>(
                 if done[g][i] || !event.get(i) {
                     continue;
                 }
-                let axis = [ax[0][i], ax[1][i], ax[2][i]];
-                let mut lane_top = before[i];
-                // A contact is searched on the step re-integrated in REFINE substeps (made once
-                // a step for every lane that needs it), an apex on the step itself.
-                // (Plain code, no `get_or_insert_with`: a closure does not inherit the target
-                // feature of this function, so the lane operations of `substeps` inlined into one
-                // become out-of-line calls; `.ci/no_outlined_intrinsics.py` checks the binary.)
-                if contact.get(i) && !refined {
-                    substeps::<L, C>(k, cfg, model, axis_g, s_g, &mut fine[g]);
-                    refined = true;
-                }
-                let (states, hs): (&[Lanewise<L>], f64) = if contact.get(i) {
-                    (&fine[g], h / REFINE as f64)
+                top[i] = before[i];
+                if !contact.get(i) {
+                    search.apex[i] = true;
+                } else if !put_off {
+                    search.contact[i] = true;
                 } else {
-                    (&pair, h)
-                };
-                let landed = land::land::<L>(cfg, k, states, hs, i, &axis, &mut lane_top, t);
-                top[i] = lane_top;
-                let Some(f) = landed else {
+                    // The lane leaves the batch; its contact is searched with others'.
+                    done[g][i] = true;
+                    left -= 1;
+                    let lane = g * L::N + i;
+                    let axis_i = [ax[0][i], ax[1][i], ax[2][i]];
+                    if lane < n && queue.push::<L>(&from, axis_i, i, t, before[i], idx[lane]) {
+                        queue.search::<L, C>(cfg, k, model, out);
+                    }
+                }
+            }
+            // Plain code, no closure: a closure does not inherit the target feature of this
+            // function, so lane operations inlined into one become out-of-line calls
+            // (`.ci/no_outlined_intrinsics.py` checks the binary).
+            let landed =
+                land::events::<L, C>(cfg, k, model, (&axis[g], s, ns), &search, &mut top, t);
+            for i in 0..L::N {
+                let Some(f) = landed[i] else {
                     continue;
                 };
                 let lane = g * L::N + i;
@@ -456,7 +483,7 @@ fn batch<L: Lanes, C: CoefficientModel>(
                 done[g][i] = true;
                 left -= 1;
             }
-            apex[g] = L::load(top.as_ref());
+            apex[g] = L::load(&top);
         }
         s = ns;
         steps += 1;
@@ -477,34 +504,11 @@ fn batch<L: Lanes, C: CoefficientModel>(
 /// same place at any step (`tests/flight_step.rs`).
 const REFINE: usize = 8;
 
-/// The states of one lane group at the ends of [`REFINE`] substeps of the step from `s` (the
-/// start first), lane by lane, into `out`.
-#[inline(always)]
-fn substeps<L: Lanes, C: CoefficientModel>(
-    k: &Consts,
-    cfg: &FlightConfig,
-    model: &C,
-    axis: &[L; 3],
-    s: &St<L>,
-    out: &mut Vec<Lanewise<L>>,
-) {
-    let fine = Consts {
-        dt: k.dt / REFINE as f64,
-        ..*k
-    };
-    let mut cur = *s;
-    out.clear();
-    out.push(cur.lanewise());
-    for _ in 0..REFINE {
-        cur = rk4_one::<L, C>(&fine, cfg, model, axis, &cur);
-        out.push(cur.lanewise());
-    }
-}
-
+mod defer;
 mod land;
 mod step;
 
-use step::{rk4, rk4_one, St};
+use step::{rk4, St};
 
 #[cfg(test)]
 mod tests;

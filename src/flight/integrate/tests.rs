@@ -191,6 +191,140 @@ fn bits<C: CoefficientModel>(
         .collect()
 }
 
+/// 2,000 drives in no particular order (a low-discrepancy walk through 150–180 mph, 8–14°,
+/// 2000–3200 rpm, sidespin ±600 rpm, azimuth ±3°, as `benches/flight.rs` flies).
+fn random_drives(n: usize) -> Vec<FlightLaunch> {
+    let frac = |k: usize, a: f64| (k as f64 * a).fract();
+    (0..n)
+        .map(|k| {
+            FlightLaunch::from_file_units(
+                150.0 + 30.0 * frac(k, 0.618_033_988_7),
+                8.0 + 6.0 * frac(k, 0.754_877_666_2),
+                -3.0 + 6.0 * frac(k, 0.569_840_290_9),
+                2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
+                -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
+            )
+        })
+        .collect()
+}
+
+/// The flights of `ls` under `cfg` on the lanes of `level`, on this thread, with the contact
+/// searches put off or not ([`defer`]), and the contact refinement's counts: steps
+/// re-integrated, substeps computed.
+fn fly_counting(
+    level: SimdLevel,
+    cfg: &FlightConfig,
+    ls: &[FlightLaunch],
+    put_off: bool,
+) -> (Vec<Result<Flight, FlightError>>, u64, u64) {
+    land::REFINED.with(|n| n.set(0));
+    land::SUBSTEPS.with(|n| n.set(0));
+    defer::DEFER.with(|d| d.set(put_off));
+    let mut out = vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); ls.len()];
+    cfg.aero.visit(OnLevel {
+        level,
+        cfg,
+        launches: ls,
+        out: &mut out,
+    });
+    defer::DEFER.with(|d| d.set(true));
+    let refined = land::REFINED.with(|n| n.get());
+    (out, refined, land::SUBSTEPS.with(|n| n.get()))
+}
+
+/// [`dispatch_on`] under the configuration's own model.
+struct OnLevel<'a, 'o> {
+    level: SimdLevel,
+    cfg: &'a FlightConfig,
+    launches: &'a [FlightLaunch],
+    out: &'o mut [Result<Flight, FlightError>],
+}
+
+impl ModelVisitor for OnLevel<'_, '_> {
+    type Output = ();
+    fn visit<C: CoefficientModel>(self, model: &C) {
+        let wind = self.cfg.air.has_wind();
+        dispatch_on(self.level, self.cfg, model, wind, self.launches, self.out)
+    }
+}
+
+/// Contact searches put off and done a vector at a time give the same bits as searched in
+/// their steps, on 2,000 drives in no particular order, and take about one refinement for
+/// every `N` drives instead of about three for every group of `N` (each stopping once its
+/// lanes have landed).
+#[test]
+fn contact_searches_put_off_are_the_same_bits_in_fewer_refinements() {
+    let cfg = FlightConfig::default();
+    let ls = random_drives(2000);
+    for level in SimdLevel::ALL {
+        let (now, refined_now, substeps_now) = fly_counting(level, &cfg, &ls, false);
+        let (later, refined, substeps) = fly_counting(level, &cfg, &ls, true);
+        assert_eq!(format!("{later:?}"), format!("{now:?}"), "{level:?}");
+        let lanes = match level.or_supported() {
+            SimdLevel::Avx512 => 8,
+            _ => 4,
+        };
+        let vectors = (ls.len() as u64).div_ceil(lanes);
+        assert!(refined <= vectors + 1, "{level:?}: {refined} refinements");
+        assert!(
+            refined_now > 2 * vectors,
+            "{level:?}: {refined_now} refinements"
+        );
+        assert!(
+            substeps < refined * REFINE as u64,
+            "{level:?}: {substeps} substeps"
+        );
+        assert!(
+            2 * substeps < substeps_now,
+            "{level:?}: {substeps} {substeps_now} substeps"
+        );
+    }
+}
+
+/// Launches whose contact search finds no landing (a ball that dips from a tee and flies on,
+/// a trough that does not reach the ground) are flown again with each contact searched in its
+/// step: the same bits as never putting a search off, with wind, ground roll and every model.
+#[test]
+fn dips_that_fly_on_are_the_same_bits_when_put_off() {
+    let mut ls: Vec<FlightLaunch> = (0..40)
+        .map(|k| {
+            let k = k as f64;
+            FlightLaunch::from_file_units(60.0 + 3.0 * k, -1.5 + 0.1 * k, 0.0, 4000.0, 0.0)
+        })
+        .collect();
+    ls.extend(random_drives(50));
+    ls[7].ball_speed_m_s = f64::NAN;
+    defer::REDONE.with(|n| n.set(0));
+    for aero in crate::flight::aero::MODEL_NAMES {
+        let cfg = FlightConfig {
+            aero: crate::flight::AeroModel::from_name(aero).unwrap(),
+            tee_height_m: 0.04,
+            ground: Some(Default::default()),
+            ..FlightConfig::default()
+        };
+        let windy = FlightConfig {
+            air: Atmosphere {
+                wind_speed_m_s: 6.0,
+                wind_direction_deg: 200.0,
+                ..Atmosphere::default()
+            }
+            .air()
+            .unwrap(),
+            ..cfg.clone()
+        };
+        for cfg in [cfg, windy] {
+            for level in SimdLevel::ALL {
+                let (now, ..) = fly_counting(level, &cfg, &ls, false);
+                let (later, refined, _) = fly_counting(level, &cfg, &ls, true);
+                assert_eq!(format!("{later:?}"), format!("{now:?}"), "{aero} {level:?}");
+                assert!(refined > 0);
+            }
+        }
+    }
+    // Some searches found no landing, and those launches were flown again.
+    assert!(defer::REDONE.with(|n| n.get()) > 0);
+}
+
 #[test]
 fn slice_spin_curves_right_and_wind_pushes() {
     let cfg = FlightConfig::default();
