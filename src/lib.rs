@@ -44,6 +44,7 @@
 //! - [`line_index`]: line numbers of byte offsets, whatever a file's line ends.
 //! - [`suggest`]: "did you mean" for a name typed wrong.
 //! - [`cancel`]: a cancellation token long work checks between its fits.
+//! - [`wrap`]: word wrapping of long text lines at a report's width.
 //!
 //! The `smash` command line is a separate package of the workspace (`cli/`), a thin layer over
 //! this library; the library itself has no command-line dependencies.
@@ -107,6 +108,7 @@ pub mod suggest;
 pub mod sweep;
 pub mod synth;
 pub mod units;
+pub mod wrap;
 
 pub use club::ClubSpec;
 pub use effects::{Effect, EffectKind};

@@ -277,7 +277,7 @@ const TEXT_COLUMNS: usize = 120;
 
 /// `text` onto `s`, wrapped at [`TEXT_COLUMNS`] with continuation lines indented `indent` more.
 fn prose(s: &mut String, text: &str, indent: usize) {
-    s.push_str(&crate::report::wrap::wrap(text, TEXT_COLUMNS, indent));
+    s.push_str(&crate::wrap::wrap(text, TEXT_COLUMNS, indent));
 }
 
 fn list(v: &[String]) -> String {

@@ -15,7 +15,7 @@ pub mod strata;
 pub mod tables;
 pub mod text;
 pub mod to_scale;
-pub mod wrap;
+pub use crate::wrap;
 
 pub use heatmap::{heatmap_svg, matrix_csv, Heatmap, Scale};
 pub use tables::{error_table_text, error_tables_side_by_side, fmt_value, TextTable};

@@ -23,6 +23,7 @@ use nalgebra::Vector3;
 use super::design::{Design, DesignVar, DiscretionaryMass};
 use super::distribution::SwingSpec;
 use super::landing::Landing;
+use super::yards::YardsError;
 use super::yards_variants::{head_landing, HeadYards, YardSetting};
 use crate::physics::{ImpactModel, ModelParams};
 use crate::units::{g, mm};
@@ -101,12 +102,15 @@ impl HeadChange {
     }
 
     /// The changed head (errors name what is not physical).
-    pub fn apply(&self, nominal: &ModelParams) -> Result<ModelParams, String> {
+    pub fn apply(&self, nominal: &ModelParams) -> Result<ModelParams, WhatIfError> {
         let mut d = Design::default();
         let mut mass = None;
         if let Some(m) = &self.mass_move {
-            crate::limits::check_head_part_mass_g("the moved mass", m.mass_g, nominal.club_mass_kg)
-                .map_err(|e| e.to_string())?;
+            crate::limits::check_head_part_mass_g(
+                "the moved mass",
+                m.mass_g,
+                nominal.club_mass_kg,
+            )?;
             mass = Some(DiscretionaryMass {
                 mass_kg: g(m.mass_g),
                 at_m: Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])),
@@ -128,7 +132,7 @@ impl HeadChange {
         }
         let mut p = d
             .apply(nominal, mass.as_ref())
-            .map_err(|e| format!("the changed head: {}", e.problem))?;
+            .map_err(|e| WhatIfError::ChangedDesign(e.problem))?;
         if let Some(b) = self.bulge_mm {
             p.bulge_m = mm(b);
         }
@@ -137,8 +141,8 @@ impl HeadChange {
         }
         // The limits a club file is read with hold for the changed head too: a scaling or a
         // move may not make a head the club file itself would refuse (`--moi-scale 1e6`).
-        crate::data::club_file::check_head(&p).map_err(|e| format!("the changed head: {e}"))?;
-        ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+        crate::data::club_file::check_head(&p).map_err(WhatIfError::ChangedHead)?;
+        ImpactModel::new(p.clone())?;
         Ok(p)
     }
 
@@ -168,20 +172,45 @@ pub struct WhatIf {
     pub changed_landing: Landing,
 }
 
+/// Why a what-if cannot be answered ([`what_if`], [`HeadChange::apply`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum WhatIfError {
+    /// A moved mass that is not part of the head, or a value out of its range.
+    #[error(transparent)]
+    Limit(#[from] crate::limits::LimitError),
+    /// The change makes a design that is not physical.
+    #[error("the changed head: {0}")]
+    ChangedDesign(String),
+    /// The changed head is one a club file would refuse.
+    #[error("the changed head: {0}")]
+    ChangedHead(crate::data::club_file::HeadError),
+    /// The model refuses the changed head.
+    #[error(transparent)]
+    Model(#[from] crate::physics::ParamError),
+    /// The loft change takes the delivery out of its range.
+    #[error("the changed head's delivery (loft change): {0}")]
+    ChangedDelivery(crate::limits::LimitError),
+    /// The base head's yards.
+    #[error("the base head: {0}")]
+    BaseYards(YardsError),
+    /// The changed head's yards.
+    #[error("the changed head: {0}")]
+    ChangedYards(YardsError),
+}
+
 /// Answer `change` against the base head `nominal` in the setting `s` (its swing is the base
 /// head's; the changed head's follows from [`HeadChange::swing`]).
 pub fn what_if(
     nominal: &ModelParams,
     change: &HeadChange,
     s: &YardSetting<'_>,
-) -> Result<WhatIf, String> {
+) -> Result<WhatIf, WhatIfError> {
     let changed_params = change.apply(nominal)?;
     let swing = change.swing(s.swing);
     crate::limits::DYNAMIC_LOFT_DEG
         .check(swing.dynamic_loft_deg)
-        .map_err(|e| format!("the changed head's delivery (loft change): {e}"))?;
-    let (base, base_landing) =
-        head_landing(nominal, s).map_err(|e| format!("the base head: {e}"))?;
+        .map_err(WhatIfError::ChangedDelivery)?;
+    let (base, base_landing) = head_landing(nominal, s).map_err(WhatIfError::BaseYards)?;
     let (changed, changed_landing) = head_landing(
         &changed_params,
         &YardSetting {
@@ -189,7 +218,7 @@ pub fn what_if(
             ..*s
         },
     )
-    .map_err(|e| format!("the changed head: {e}"))?;
+    .map_err(WhatIfError::ChangedYards)?;
     Ok(WhatIf {
         base_params: nominal.clone(),
         changed_params,
@@ -239,9 +268,9 @@ pub fn carry_change_map(
     swing: &SwingSpec,
     flight: &crate::flight::FlightConfig,
     [ys_mm, zs_mm]: &[Vec<f64>; 2],
-) -> Result<CarryChangeMap, String> {
+) -> Result<CarryChangeMap, YardsError> {
     let map = |p: &ModelParams, s: &SwingSpec| {
-        let model = ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+        let model = ImpactModel::new(p.clone())?;
         super::yards::carry_map(&model, s, ys_mm, zs_mm, flight)
     };
     let base = map(base_params, swing)?;
@@ -368,7 +397,8 @@ mod tests {
             ..HeadChange::default()
         };
         let e = c.apply(&p).unwrap_err();
-        assert!(e.contains("below the head mass, 204 g"), "{e}");
+        assert!(matches!(e, WhatIfError::Limit(_)), "{e:?}");
+        assert!(e.to_string().contains("below the head mass, 204 g"), "{e}");
     }
 
     #[test]

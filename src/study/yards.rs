@@ -25,6 +25,9 @@ use crate::physics::{ImpactModel, ModelParams};
 use crate::sweep::kernel::{face_map, FaceMapKernel, LaunchGrid};
 use crate::units::mm;
 
+mod error;
+pub use error::YardsError;
+
 /// Rules of Golf limit on the moment of inertia of a wood's head about the vertical axis
 /// through its CoM, g·cm² (Equipment Rules, Part 2, 4.1d(i) "Moment of inertia"; USGA/R&A
 /// Procedure for Measuring the Moment of Inertia of Golf Clubheads).
@@ -67,7 +70,7 @@ pub fn carry_map(
     ys_mm: &[f64],
     zs_mm: &[f64],
     flight: &FlightConfig,
-) -> Result<CarryMap, String> {
+) -> Result<CarryMap, YardsError> {
     let ys: Vec<f64> = ys_mm.iter().map(|&y| mm(y)).collect();
     let zs: Vec<f64> = zs_mm.iter().map(|&z| mm(z)).collect();
     let grid = face_map(model, &swing.delivery(0.0, 0.0), &ys, &zs);
@@ -86,7 +89,7 @@ pub fn carry_map(
                 let f = flights
                     .next()
                     .expect("one flight per valid launch")
-                    .map_err(|e| format!("flight: {e}"))?;
+                    .map_err(YardsError::Flight)?;
                 carry.push(Some(f.carry_yd()));
                 off.push(Some(f.offline_yd()));
             }
@@ -162,7 +165,7 @@ pub fn yard_metrics(
     dist: &Distribution,
     flight: &FlightConfig,
     confidence: f64,
-) -> Result<YardMetrics, String> {
+) -> Result<YardMetrics, YardsError> {
     yard_landing(model, base, dist, flight, confidence).map(|(m, _)| m)
 }
 
@@ -174,9 +177,9 @@ pub fn yard_landing(
     dist: &Distribution,
     flight: &FlightConfig,
     confidence: f64,
-) -> Result<(YardMetrics, Landing), String> {
+) -> Result<(YardMetrics, Landing), YardsError> {
     if !(confidence > 0.0 && confidence < 1.0) {
-        return Err(format!("confidence {confidence}: must be within (0, 1)"));
+        return Err(YardsError::Confidence(confidence));
     }
     let mut launches = Vec::new();
     let mut weights = Vec::new();
@@ -199,9 +202,7 @@ pub fn yard_landing(
         }
     }
     if off_face > 0 {
-        return Err(format!(
-            "{off_face} impact(s) of the distribution are off the face or miss the ball"
-        ));
+        return Err(YardsError::OffFace(off_face));
     }
     let flights = fly(flight, &launches);
     let launch_mean = |f: fn(&FlightLaunch) -> f64| -> f64 {
@@ -221,7 +222,7 @@ pub fn yard_landing(
     let (mut sw, mut grounded, mut grounded_w) = (0.0, 0usize, 0.0);
     let mut pts = Vec::with_capacity(flights.len());
     for (f, &w) in flights.iter().zip(&weights) {
-        let f = f.as_ref().map_err(|e| format!("flight: {e}"))?;
+        let f = f.as_ref().map_err(|e| YardsError::Flight(*e))?;
         if f.flight_time_s <= 0.0 {
             grounded += 1;
             grounded_w += w;
@@ -231,19 +232,14 @@ pub fn yard_landing(
     }
     let grounded_share = grounded_w / sw;
     if grounded == pts.len() || grounded_share > MAX_GROUNDED_SHARE {
-        return Err(format!(
-            "{grounded} of {} impacts ({:.1} % of the distribution's weight) launch below \
-             horizontal from the ground and never fly (mean launch angle {:.1} deg); carry and \
-             dispersion are not reported when more than {:.0} % of the weight never flies: \
-             give the head and swing more loft, or more attack angle",
-            pts.len(),
-            100.0 * grounded_share,
-            launch_mean(|l| l.launch_angle_rad).to_degrees(),
-            100.0 * MAX_GROUNDED_SHARE
-        ));
+        return Err(YardsError::Grounded {
+            grounded,
+            impacts: pts.len(),
+            share: grounded_share,
+            mean_launch_deg: launch_mean(|l| l.launch_angle_rad).to_degrees(),
+        });
     }
-    let landing = Landing::of(pts.iter().copied())
-        .ok_or_else(|| "the landing points are not finite".to_owned())?;
+    let landing = Landing::of(pts.iter().copied()).ok_or(YardsError::NotFinite)?;
     let metrics = YardMetrics {
         mean_carry_yd: landing.mean_carry_yd,
         std_carry_yd: landing.std_carry_yd(),
@@ -416,19 +412,18 @@ pub struct MassProblem<'a> {
 }
 
 impl MassProblem<'_> {
-    fn params(&self, mv: &[f64]) -> Result<ModelParams, String> {
+    fn params(&self, mv: &[f64]) -> Result<ModelParams, YardsError> {
         let d = Design::default()
             .with(DesignVar::MassDx, mv[0])
             .with(DesignVar::MassDy, mv[1])
             .with(DesignVar::MassDz, mv[2]);
-        d.apply(self.nominal, Some(self.mass))
-            .map_err(|e| e.to_string())
+        Ok(d.apply(self.nominal, Some(self.mass))?)
     }
 
     /// Metrics and constraints of a mass move (mm).
-    pub fn evaluate(&self, mv: &[f64]) -> Result<(YardMetrics, Vec<ConstraintCheck>), String> {
+    pub fn evaluate(&self, mv: &[f64]) -> Result<(YardMetrics, Vec<ConstraintCheck>), YardsError> {
         let p = self.params(mv)?;
-        let model = ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+        let model = ImpactModel::new(p.clone())?;
         let m = yard_metrics(&model, self.base, self.dist, self.flight, self.confidence)?;
         Ok((m, check_constraints(&p, self.constraints)))
     }
@@ -470,13 +465,14 @@ impl CostFunction for Cost<'_, '_> {
 /// Move the discretionary mass within its bounds to reach the goal (Nelder–Mead from the base
 /// design; designs outside the bounds or breaking a constraint are rejected, never clipped).
 /// The base design must itself be feasible.
-pub fn optimise_mass(p: &MassProblem<'_>, max_iters: u64) -> Result<YardOptimum, String> {
+pub fn optimise_mass(p: &MassProblem<'_>, max_iters: u64) -> Result<YardOptimum, YardsError> {
     let (base, base_cons) = p.evaluate(&[0.0; 3])?;
     if let Some(c) = base_cons.iter().find(|c| !c.holds()) {
-        return Err(format!(
-            "the base design breaks a constraint: {} = {:.3} (limit {})",
-            c.name, c.value, c.limit
-        ));
+        return Err(YardsError::BaseBreaksConstraint {
+            name: c.name.clone(),
+            value: c.value,
+            limit: c.limit,
+        });
     }
     let span = |k: usize| 0.25 * (p.bounds_mm[k][1] - p.bounds_mm[k][0]);
     let start: Vec<f64> = (0..3)
@@ -500,11 +496,11 @@ pub fn optimise_mass(p: &MassProblem<'_>, max_iters: u64) -> Result<YardOptimum,
     };
     let solver = NelderMead::new(simplex)
         .with_sd_tolerance(1e-6)
-        .map_err(|e| e.to_string())?;
+        .map_err(YardsError::solver)?;
     let res = Executor::new(cost, solver)
         .configure(|s| s.max_iters(max_iters))
         .run()
-        .map_err(|e| e.to_string())?;
+        .map_err(YardsError::solver)?;
     let u = res
         .state()
         .get_best_param()

@@ -25,7 +25,7 @@ use super::output::{cell, Files};
 use super::spec::Study;
 use super::yards::{
     carry_map, check_constraints, optimise_mass, yard_metrics, CarryMap, ConstraintCheck,
-    MassProblem, YardGoal, YardMetrics, YardOptimum,
+    MassProblem, YardGoal, YardMetrics, YardOptimum, YardsError,
 };
 use super::yards_spec::YardsSpec;
 use super::yards_variants::{head_yards, rows_csv, HeadYards, YardRow, YardSetting};
@@ -54,44 +54,91 @@ pub struct YardsResult {
     /// Constraints at the base design.
     pub base_constraints: Vec<ConstraintCheck>,
     /// The optimisation, when asked for: its result, or why it could not run.
-    pub optimum: Option<Result<YardOptimum, String>>,
+    pub optimum: Option<Result<YardOptimum, YardsError>>,
+}
+
+/// Why the yard part of a study cannot run ([`run_yards`]).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum RunYardsError {
+    /// No `[yards]` table.
+    #[error("the study has no [yards] table")]
+    NoYards,
+    /// No `[distribution]`.
+    #[error("[yards] needs the study's [distribution]")]
+    NoDistribution,
+    /// The atmosphere is not air.
+    #[error(transparent)]
+    Atmosphere(#[from] crate::flight::AtmosphereError),
+    /// More map flights than [`MAX_MAP_FLIGHTS`].
+    #[error(
+        "the robust-metric maps of [yards] need {flights} flights (grid {}×{} × {points} \
+         distribution points), more than {MAX_MAP_FLIGHTS}: use a coarser [grid] or fewer \
+         distribution nodes",
+        grid[0],
+        grid[1]
+    )]
+    TooManyFlights {
+        /// Flights the maps need.
+        flights: usize,
+        /// Grid points up the face and heel–toe.
+        grid: [usize; 2],
+        /// Distribution points.
+        points: usize,
+    },
+    /// A head's yard metrics, named (`base design`, a variant's label).
+    #[error("[yards] {head}: {source}")]
+    Head {
+        /// Which head.
+        head: String,
+        /// Why.
+        source: YardsError,
+    },
+    /// Yard metrics or a model without a head to name.
+    #[error(transparent)]
+    Yards(#[from] YardsError),
+}
+
+impl RunYardsError {
+    fn of(head: &str, source: YardsError) -> Self {
+        Self::Head {
+            head: head.to_owned(),
+            source,
+        }
+    }
 }
 
 /// The flight configuration of a `[yards]` table.
-pub fn flight_config(y: &YardsSpec) -> Result<FlightConfig, String> {
+pub fn flight_config(y: &YardsSpec) -> Result<FlightConfig, crate::flight::AtmosphereError> {
     Ok(FlightConfig {
         aero: y.aero(),
-        air: y.atmosphere.air().map_err(|e| e.to_string())?,
+        air: y.atmosphere.air()?,
         ..FlightConfig::default()
     })
 }
 
 /// Run the yard part of `study` (which must have a `[yards]` table). `study_optimum`: the
 /// best design of the study's `[optimise]`, when it has one (its row joins the table).
-pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsResult, String> {
-    let y = study
-        .yards
-        .as_ref()
-        .ok_or("the study has no [yards] table")?;
+pub fn run_yards(
+    study: &Study,
+    study_optimum: Option<&Design>,
+) -> Result<YardsResult, RunYardsError> {
+    let y = study.yards.as_ref().ok_or(RunYardsError::NoYards)?;
     let dist = study
         .distribution
         .as_ref()
-        .ok_or("[yards] needs the study's [distribution]")?;
+        .ok_or(RunYardsError::NoDistribution)?;
     let flight = flight_config(y)?;
     let nominal = &study.club.nominal;
-    let model = ImpactModel::new(nominal.clone()).map_err(|e| e.to_string())?;
+    let model = ImpactModel::new(nominal.clone()).map_err(YardsError::from)?;
     let ys = study.grid.y_mm.values();
     let zs = study.grid.z_mm.values();
     let flights = ys.len() * zs.len() * dist.point_count();
     if flights > MAX_MAP_FLIGHTS {
-        return Err(format!(
-            "the robust-metric maps of [yards] need {flights} flights (grid {}×{} × {} \
-             distribution points), more than {MAX_MAP_FLIGHTS}: use a coarser [grid] or fewer \
-             distribution nodes",
-            ys.len(),
-            zs.len(),
-            dist.point_count()
-        ));
+        return Err(RunYardsError::TooManyFlights {
+            flights,
+            grid: [ys.len(), zs.len()],
+            points: dist.point_count(),
+        });
     }
     let map = carry_map(&model, &study.swing, &ys, &zs, &flight)?;
     let robust_map: Vec<Option<YardMetrics>> = (0..ys.len() * zs.len())
@@ -103,7 +150,7 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
         })
         .collect();
     let base = yard_metrics(&model, &study.swing, dist, &flight, y.confidence)
-        .map_err(|e| format!("[yards] base design: {e}"))?;
+        .map_err(|e| RunYardsError::of("base design", e))?;
     let base_constraints = check_constraints(nominal, &y.constraints);
     let optimum = match (&y.optimise, &y.mass) {
         (Some((goal, iters)), Some((mass, bounds))) => {
@@ -129,7 +176,7 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
         confidence: y.confidence,
     };
     let base_head =
-        head_yards(nominal, &setting).map_err(|e| format!("[yards] base design: {e}"))?;
+        head_yards(nominal, &setting).map_err(|e| RunYardsError::of("base design", e))?;
     let mut heads = design_heads(study, study_optimum);
     if let (Some(Ok(o)), Some((mass, _))) = (&optimum, &y.mass) {
         let d = Design::default()
@@ -141,8 +188,8 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
     let rows = heads
         .into_par_iter()
         .map(|(variant_id, label, d, mass)| {
-            let p = d.apply(nominal, mass.as_ref()).map_err(|e| e.to_string())?;
-            let head = head_yards(&p, &setting).map_err(|e| format!("[yards] {label}: {e}"))?;
+            let p = d.apply(nominal, mass.as_ref()).map_err(YardsError::from)?;
+            let head = head_yards(&p, &setting).map_err(|e| RunYardsError::of(&label, e))?;
             Ok(YardRow {
                 variant_id,
                 label,
@@ -150,7 +197,7 @@ pub fn run_yards(study: &Study, study_optimum: Option<&Design>) -> Result<YardsR
                 head,
             })
         })
-        .collect::<Result<Vec<_>, String>>()?;
+        .collect::<Result<Vec<_>, RunYardsError>>()?;
     Ok(YardsResult {
         base_head,
         rows,
@@ -368,7 +415,7 @@ fn optimise_csv(study: &Study, r: &YardsResult) -> Option<(PathBuf, Vec<u8>)> {
         let _ = writeln!(t, "max_iters,{iters}");
         match o {
             Err(e) => {
-                let _ = writeln!(t, "status,\"not run: {}\"", e.replace('"', "'"));
+                let _ = writeln!(t, "status,\"not run: {}\"", e.to_string().replace('"', "'"));
             }
             Ok(o) => {
                 let _ = writeln!(t, "status,done");

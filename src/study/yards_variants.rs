@@ -15,7 +15,7 @@ use std::fmt::Write as _;
 use super::distribution::{Distribution, Method, SwingSpec};
 use super::landing::Landing;
 use super::output::cell;
-use super::yards::{yard_landing, yard_metrics, YardMetrics};
+use super::yards::{yard_landing, yard_metrics, YardMetrics, YardsError};
 use crate::flight::FlightConfig;
 use crate::physics::{ImpactModel, ModelParams};
 
@@ -54,13 +54,16 @@ pub struct YardSetting<'a> {
 }
 
 /// The yard metrics of the head `p` (and of the companion rule).
-pub fn head_yards(p: &ModelParams, s: &YardSetting<'_>) -> Result<HeadYards, String> {
+pub fn head_yards(p: &ModelParams, s: &YardSetting<'_>) -> Result<HeadYards, YardsError> {
     head_landing(p, s).map(|(h, _)| h)
 }
 
 /// [`head_yards`] and the landing pattern of the distribution as given.
-pub fn head_landing(p: &ModelParams, s: &YardSetting<'_>) -> Result<(HeadYards, Landing), String> {
-    let model = ImpactModel::new(p.clone()).map_err(|e| e.to_string())?;
+pub fn head_landing(
+    p: &ModelParams,
+    s: &YardSetting<'_>,
+) -> Result<(HeadYards, Landing), YardsError> {
+    let model = ImpactModel::new(p.clone())?;
     let (metrics, landing) = yard_landing(&model, s.swing, s.dist, s.flight, s.confidence)?;
     let companion = companion(s.dist)
         .and_then(|d| yard_metrics(&model, s.swing, &d, s.flight, s.confidence).ok());

@@ -1,4 +1,6 @@
-//! Word wrapping of long report lines, so that text reports stay under 100 columns.
+//! Word wrapping of long report lines, so that text reports stay within their width (100 or
+//! 120 columns). Below the reports and the commands' own text (`infer`), so every layer may
+//! wrap.
 //! Lines are split at spaces only, and counted in characters (the reports' symbols, such as
 //! `±`, `σ` and `×`, are one column wide).
 
