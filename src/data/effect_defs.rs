@@ -7,6 +7,7 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 use toml::Spanned;
 
+use super::toml_check::toml_key_error;
 use super::{line_col, DataError, TomlDoc};
 use crate::effects::user::{register, Quantity, UserEffect, UserTermDef};
 use crate::effects::{EffectKind, ParamSpec, MAX_EFFECT_PARAMS};
@@ -93,7 +94,7 @@ pub fn register_definitions(
         let def = compile_definition(path, text, i, d)?;
         let name = def.name;
         if out.iter().any(|u| u.name == name) {
-            return Err(at(
+            return Err(toml_key_error(
                 path,
                 text,
                 d.get_ref().name.span().start,
@@ -102,7 +103,7 @@ pub fn register_definitions(
             ));
         }
         let u = register(def).map_err(|m| {
-            at(
+            toml_key_error(
                 path,
                 text,
                 d.get_ref().name.span().start,
@@ -113,16 +114,6 @@ pub fn register_definitions(
         out.push(u);
     }
     Ok(out)
-}
-
-fn at(
-    path: &Path,
-    text: &str,
-    offset: usize,
-    key: &str,
-    message: impl std::fmt::Display,
-) -> DataError {
-    TomlDoc::new(path, text).err(offset..offset, key, message)
 }
 
 fn is_identifier(s: &str) -> bool {
@@ -153,7 +144,7 @@ fn compile_definition(
     let raw = d.get_ref();
     let name = raw.name.get_ref().as_str();
     let err_at = |offset: usize, key: &str, m: String| {
-        at(path, text, offset, &format!("{table_key}.{key}"), m)
+        toml_key_error(path, text, offset, &format!("{table_key}.{key}"), m)
     };
     if !is_identifier(name) {
         return Err(err_at(
