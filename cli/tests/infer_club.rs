@@ -117,8 +117,10 @@ fn infers_a_head_writes_a_club_compare_reads_and_plans() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8(o.stdout).unwrap();
+    // The prose wraps at 120 columns: matched with its line breaks as spaces.
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
-        text.contains("planned for 300 shots") && text.contains("n for target"),
+        flat.contains("planned for 300 shots") && flat.contains("n for target"),
         "{text}"
     );
 }
