@@ -10,7 +10,8 @@ What it does, in order:
 3. times the whole-process commands a user runs, with the release binary `target/release/smash`
    (built first with `cargo build --release -p smash-cli`): `smash flight` on 200,000 drives,
    `smash diagnose` on the 600-shot paper world and on the 2,200-shot real-format season (with
-   and without `added_mass`, so that `shaft_fraction` is selected), and a diagnose of the
+   and without `added_mass`; without it `shaft_fraction` is offered, not selected: the export
+   has no shaft column), and a diagnose of the
    power-law COR world with `cor_power` against one with the user-defined `my_cor_power` (`tests/data/my_cor_power.toml`, offered `--without cor_power`);
 4. rewrites the block between `<!-- perf:begin -->` and `<!-- perf:end -->` in docs/performance.md
    (the README links to that page).
