@@ -7,39 +7,17 @@
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
 use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
 use smash::flight::integrate::fly_serial;
-use smash::flight::{fly, Flight, FlightConfig, FlightError, FlightLaunch};
-
-/// Deterministic spread of drives (a low-discrepancy walk through the ranges).
-pub fn drives(n: usize) -> Vec<FlightLaunch> {
-    let frac = |k: usize, a: f64| (k as f64 * a).fract();
-    (0..n)
-        .map(|k| {
-            FlightLaunch::from_file_units(
-                150.0 + 30.0 * frac(k, 0.618_033_988_7),
-                8.0 + 6.0 * frac(k, 0.754_877_666_2),
-                -3.0 + 6.0 * frac(k, 0.569_840_290_9),
-                2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
-                -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
-            )
-        })
-        .collect()
-}
+use smash::flight::workload::{drive_file_units, drives};
+use smash::flight::{fly, Flight, FlightConfig, FlightError};
 
 /// The drives of [`drives`] as a launch CSV, as `smash flight --shots` reads it.
 fn drives_csv(n: usize) -> String {
-    let frac = |k: usize, a: f64| (k as f64 * a).fract();
     let mut t = String::from(
         "shot_id,ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm\n",
     );
     for k in 0..n {
-        t.push_str(&format!(
-            "s{k},{:.2},{:.2},{:.2},{:.0},{:.0}\n",
-            150.0 + 30.0 * frac(k, 0.618_033_988_7),
-            8.0 + 6.0 * frac(k, 0.754_877_666_2),
-            -3.0 + 6.0 * frac(k, 0.569_840_290_9),
-            2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
-            -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
-        ));
+        let [v, a, az, back, side] = drive_file_units(k);
+        t.push_str(&format!("s{k},{v:.2},{a:.2},{az:.2},{back:.0},{side:.0}\n"));
     }
     t
 }

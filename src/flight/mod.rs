@@ -27,6 +27,7 @@ pub mod ground;
 mod hermite;
 pub mod integrate;
 pub mod trackman;
+pub mod workload;
 
 pub use aero::{AeroModel, CoefficientModel, Coefficients};
 pub use atmosphere::{Air, Atmosphere, AtmosphereError};

@@ -191,23 +191,6 @@ fn bits<C: CoefficientModel>(
         .collect()
 }
 
-/// 2,000 drives in no particular order (a low-discrepancy walk through 150–180 mph, 8–14°,
-/// 2000–3200 rpm, sidespin ±600 rpm, azimuth ±3°, as `benches/flight.rs` flies).
-fn random_drives(n: usize) -> Vec<FlightLaunch> {
-    let frac = |k: usize, a: f64| (k as f64 * a).fract();
-    (0..n)
-        .map(|k| {
-            FlightLaunch::from_file_units(
-                150.0 + 30.0 * frac(k, 0.618_033_988_7),
-                8.0 + 6.0 * frac(k, 0.754_877_666_2),
-                -3.0 + 6.0 * frac(k, 0.569_840_290_9),
-                2000.0 + 1200.0 * frac(k, 0.438_846_845_8),
-                -600.0 + 1200.0 * frac(k, 0.352_201_997_2),
-            )
-        })
-        .collect()
-}
-
 /// The flights of `ls` under `cfg` on the lanes of `level`, on this thread, with the contact
 /// searches put off or not ([`defer`]), and the contact refinement's counts: steps
 /// re-integrated, substeps computed.
@@ -255,7 +238,7 @@ impl ModelVisitor for OnLevel<'_, '_> {
 #[test]
 fn contact_searches_put_off_are_the_same_bits_in_fewer_refinements() {
     let cfg = FlightConfig::default();
-    let ls = random_drives(2000);
+    let ls = crate::flight::workload::drives(2000);
     for level in SimdLevel::ALL {
         let (now, refined_now, substeps_now) = fly_counting(level, &cfg, &ls, false);
         let (later, refined, substeps) = fly_counting(level, &cfg, &ls, true);
@@ -292,7 +275,7 @@ fn dips_that_fly_on_are_the_same_bits_when_put_off() {
             FlightLaunch::from_file_units(60.0 + 3.0 * k, -1.5 + 0.1 * k, 0.0, 4000.0, 0.0)
         })
         .collect();
-    ls.extend(random_drives(50));
+    ls.extend(crate::flight::workload::drives(50));
     ls[7].ball_speed_m_s = f64::NAN;
     defer::REDONE.with(|n| n.set(0));
     for aero in crate::flight::aero::MODEL_NAMES {
