@@ -1,6 +1,6 @@
 //! Calibration recovers hidden parameters from synthetic experiments (truth hidden from the fit).
 
-mod common;
+use crate::common;
 
 use common::{paper_club, paper_truth, shots, Experiment};
 use smash::data::club_file::{club_toml, parse_club};

@@ -1,6 +1,6 @@
 //! Diagnosis finds hidden effects, selects nothing in a null world, and says when it cannot tell.
 
-mod common;
+use crate::common;
 
 use common::{fx, paper_club, paper_truth, shots, truth, Experiment};
 use smash::diagnose::{diagnose, DiagnoseOptions, FoldBy};

@@ -21,7 +21,7 @@
 //! Seeds: world `engine` 1000–1019, `synth` 2000–2019, `quiet` 3000–3019, `located`
 //! 4000–4019 (`seed_of`), fixed before the first run and never changed to pass.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

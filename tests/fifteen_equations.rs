@@ -3,7 +3,7 @@
 //! friction: the 15 equations are the no-slip / tangential-restitution form). All 15 unknowns
 //! must agree to 1e-9 relative (of the vector's magnitude).
 
-mod common;
+use crate::common;
 
 use common::fifteen::{solve_fifteen, FifteenSolution};
 use nalgebra::Vector3;

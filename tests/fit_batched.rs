@@ -7,7 +7,7 @@
 //! a random order and a count that leaves a short last chunk, so a shot evaluated in another
 //! shot's lane shows as an error of the size of the shot-to-shot spread.
 
-mod common;
+use crate::common;
 
 use nalgebra::{DMatrix, DVector};
 use rand::{Rng, SeedableRng};

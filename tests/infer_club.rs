@@ -463,7 +463,7 @@ fn infer_club_recovers_varied_heads_with_honest_uncertainty() {
 /// switched off in part (`SMASH_HELDOUT_NOISE` = `all` (default), `location`, `delivery` or
 /// `none`; the fit's correction follows). Prints, per head and parameter, the z-scores'
 /// mean and SD and the estimates within 2 SE, the radii's z also on the curvature scale `1/R`.
-/// `cargo test -p smash --test infer_club -- --ignored --nocapture`; the figures are in
+/// `cargo test -p smash --test library infer_club:: -- --ignored --nocapture`; the figures are in
 /// docs/infer-club.md ("Validation").
 #[test]
 #[ignore = "diagnosis on held-out seeds: 160 fits a run, figures in docs/infer-club.md"]

@@ -16,9 +16,9 @@
 //!   comma-separated) shots, `FDR_SEEDS` seeds (default 4) from 7000 upward, fixed before the first
 //!   run; `FDR_DELIVERY=0` sets the delivery noise (club speed, loft, path, face, ...) to zero to
 //!   test the errors-in-variables diagnosis. Run with
-//!   `cargo test --release --test large_n_fdr -- --ignored --nocapture large_n_false_discoveries`.
+//!   `cargo test --release -p smash --test library large_n_fdr::large_n_false_discoveries -- --ignored --nocapture`.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

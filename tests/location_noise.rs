@@ -1,6 +1,6 @@
 //! Impact-location noise detected when present and not invented when absent, measured over
 //! seeds (bench-style: `#[ignore]`d, run with
-//! `cargo test --test location_noise -- --ignored --nocapture`; the rates are in
+//! `cargo test -p smash --test library location_noise:: -- --ignored --nocapture`; the rates are in
 //! docs/diagnose-selection.md). The always-run checks are in `tests/diagnose_fdr.rs`.
 //!
 //! Worlds: `configs/synth/null_world.toml` (nothing hidden; camera-class launch monitor and
@@ -10,7 +10,7 @@
 //! location figure of the instrument set to the world's, which the spread score does not
 //! use) and without it. Seeds 5000 + i, fixed before the first run.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 

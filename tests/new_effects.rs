@@ -5,7 +5,7 @@
 //! single-definition design: the face-map kernel agrees with the scalar solve to 1e-12 with
 //! every library effect switched on at once.
 
-mod common;
+use crate::common;
 
 use common::fifteen::{solve_fifteen, with_point_mass, FifteenSolution};
 use nalgebra::Vector3;

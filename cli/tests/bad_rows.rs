@@ -7,7 +7,7 @@
 //! `--strict` refuses the file in one line; a file most of whose rows are bad, or with none
 //! usable, is refused in one line.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

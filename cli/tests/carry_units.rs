@@ -4,7 +4,7 @@
 //! a user changed in the app, or a preset's default unit that does not hold) are flagged with
 //! one note naming the column, the ratio seen and the fix.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 

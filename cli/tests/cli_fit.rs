@@ -1,7 +1,6 @@
 //! `smash calibrate` and `smash diagnose` end to end: JSON shape, written club, bad input.
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

@@ -2,7 +2,7 @@
 //! atmosphere table, and one clear line (naming file, line and column or key) with a non-zero
 //! exit and no output file for every kind of bad input.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 

@@ -2,7 +2,7 @@
 //! drag hidden among premium balls (synthetic flights, no noise) is recovered per ball and per
 //! session, each part's shots flown with its own scaling; refusals name what is missing.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

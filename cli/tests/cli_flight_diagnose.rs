@@ -2,7 +2,7 @@
 //! a user would): the ranking's text and JSON, folds by session when the file has a date
 //! column and by shot otherwise, said in the output, and its refusals.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! flights (text, `--json`, `--report`), per-shot conditions from the file (user flags over
 //! them), the ball's start stated, and flights that do not depend on the time step.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 

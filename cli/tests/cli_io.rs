@@ -2,9 +2,8 @@
 //! user's files or the command's own inputs, outputs that appear together or not at all, and
 //! stale temporaries of killed runs.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};

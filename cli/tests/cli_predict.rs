@@ -1,7 +1,7 @@
 //! `smash predict` on real files: the one-shot table, and a clear one-line error with a non-zero
 //! exit and no output file for every kind of bad input.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -3,7 +3,7 @@
 //! writes its definition into the calibrated club, which `predict` and `run` then read alone;
 //! a value out of range at evaluation names the shot; an undefined effect is refused.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -1,7 +1,7 @@
 //! `smash run` on a study with a `[yards]` table: the yard maps, robust metrics, constraint
 //! report and the optimisation, and refusals of a bad `[yards]` table.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! club's session or a mixed-club file before anything is fitted, naming loft, and run under
 //! `--ignore-club-mismatch` with no findings.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

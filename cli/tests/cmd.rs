@@ -4,7 +4,7 @@
 //! and every file in `NAME.out/` byte for byte. `[..]` in a snapshot matches anything on that
 //! line: used only for run times.
 //!
-//! After an intended change of output: `TRYCMD=overwrite cargo test -p smash-cli --test cmd`,
+//! After an intended change of output: `TRYCMD=overwrite cargo test -p smash-cli --test cli cmd::`,
 //! then review the diff of `tests/cmd/` like code.
 
 #[test]

@@ -1,6 +1,6 @@
 //! `compare` on synthetic worlds whose truth is known, and the `smash compare` command.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 

@@ -11,7 +11,7 @@
 //!   says so (`face_angle_from = derived_from_launch`); read as measured (the old reading), it
 //!   does.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 use std::process::Output;

@@ -5,9 +5,8 @@
 //! must name the fault's own line (the `csv` crate's count is off after a blank line in CRLF
 //! files and puts every record of a CR-only file on line 1).
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 

@@ -6,7 +6,7 @@
 //! structure; in one twice as noisy, well above 1 and it must say structure or larger noise
 //! remains. Given the noise, the note is absent.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! diagnose output, text and JSON; the noise-floor verdict is in every diagnose report and says
 //! "noise" when only noise remains and names the structure when the model is wrong.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

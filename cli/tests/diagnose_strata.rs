@@ -6,7 +6,7 @@
 //! failed check named, not as a finding. The right law in the anisotropic-COR world holds in
 //! every stratum and stays a finding.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -9,7 +9,7 @@
 //! on that shared run. Rules of the selection shown on a compliant world run on 600-shot
 //! fixtures (`cli/tests/fixtures/`).
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;

@@ -4,7 +4,7 @@
 //! names a tracked file or folder, and its `#anchor` a heading of the page it points at; and
 //! every page the README links to is one the documentation test runs.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::collections::{HashMap, HashSet};
 use std::path::{Component, Path};

@@ -21,7 +21,7 @@
 //! prints (stdout and stderr), unless the script asks for more (`--wide`), for JSON, or pipes
 //! or redirects what it prints (issue 42).
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 use std::process::Command;

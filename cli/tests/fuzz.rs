@@ -10,7 +10,7 @@
 //!
 //! Seeded and bounded: the seeds are fixed, and the run stops after `SMASH_FUZZ_CASES` cases
 //! (default 20,000) or `SMASH_FUZZ_SECONDS` seconds (default 20), whichever comes first. For a
-//! long local run: `SMASH_FUZZ_SECONDS=300 SMASH_FUZZ_CASES=100000000 cargo test --test fuzz`.
+//! long local run: `SMASH_FUZZ_SECONDS=300 SMASH_FUZZ_CASES=100000000 cargo test -p smash-cli --test cli fuzz::`.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};

@@ -3,14 +3,13 @@
 //! anywhere in the first lines, measured flight columns out of range, and Excel serial dates
 //! as sessions of `flight --calibrate-by session` and `--diagnose`.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
 use cli_support::{repo, s, smash, stderr};
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 fn fixture(name: &str) -> String {
     std::fs::read_to_string(repo(&format!("cli/tests/fixtures/import/{name}"))).unwrap()

@@ -2,9 +2,8 @@
 //! not regular files, and values the checks let through. One function per theme, to keep the
 //! number of process launches (and CI time) small.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;

@@ -2,9 +2,8 @@
 //! objective weights that overflowed a study's objective, and shots that silently missed their
 //! club's per-group effects. One function per theme, to keep the process launches few.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::Path;
 

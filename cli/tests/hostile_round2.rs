@@ -3,9 +3,8 @@
 //! derived quantity instead of the culprit. Outputs written all or nothing are in
 //! `output_plan.rs`; signals in `signals.rs`.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::Path;
 

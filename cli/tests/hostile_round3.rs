@@ -2,9 +2,8 @@
 //! balls that never leave the ground, club files and what-if heads out of range, and messages
 //! that were too loud or gave no hint. One function per theme, to keep process launches few.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -2,7 +2,7 @@
 //! writers below, from the vendor's column names and conventions) imports to a shots file whose
 //! `compare` output equals the original experiment's; bad exports are refused with one line.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
@@ -11,8 +11,7 @@ use serde_json::Value;
 
 use cli_support::smash_in_repo as smash;
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 fn ok(out: &Output) -> String {
     assert!(

@@ -7,14 +7,11 @@
 //! raw file cell by cell (speeds, angles, spins, carry, side: units and signs), and
 //! `smash flight` (and `compare`, where the file gives a whole delivery) runs on the result.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
 use cli_support::{repo, s, smash, stderr};
-
-#[path = "../../tests/common/mod.rs"]
-mod common;
 
 fn fixture(name: &str) -> PathBuf {
     repo(&format!("cli/tests/fixtures/import/corpus/{name}"))

@@ -2,14 +2,13 @@
 //! layout described: no silent wrong number, and nothing the import writes sinks a later
 //! command.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
 use cli_support::{repo, s, smash, stderr};
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 fn fixture(name: &str) -> String {
     std::fs::read_to_string(repo(&format!("cli/tests/fixtures/import/{name}"))).unwrap()

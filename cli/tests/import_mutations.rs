@@ -14,7 +14,7 @@
 //! Deterministic: the seeds below are the first eight integers, fixed before the test was
 //! run, and a small generator of the file's own (SplitMix64) turns them into places.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::collections::HashMap;
 use std::path::Path;

@@ -6,15 +6,14 @@
 //! carry. Bad rows are counted, not fatal (`--strict` restores refusal); what a file gives twice
 //! is checked.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
 use cli_support::{repo, s, smash, stderr};
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 fn fixture(name: &str) -> PathBuf {
     repo(&format!("cli/tests/fixtures/import/{name}"))

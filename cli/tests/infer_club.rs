@@ -2,7 +2,7 @@
 //! with each value's SE and provenance in its comments, the text and plan outputs, and bad
 //! input refused in one line with a non-zero exit and nothing written.
 
-mod cli_support;
+use crate::cli_support;
 
 use cli_support::{club, s, smash, stderr, synth_world};
 

@@ -2,7 +2,7 @@
 //! prints is listed in the command's table there and every listed key is printed, and each
 //! object opens with `schema_version` (the documented version) and `command`.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::collections::BTreeSet;
 

@@ -14,9 +14,8 @@
 //! seeds select a delivery bias, each provisional: it differs between heel and toe, or high
 //! and low, strikes).
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use cli_support::{diagnose_json, repo, s, smash, stderr, synth_world};
 

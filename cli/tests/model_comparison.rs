@@ -6,7 +6,7 @@
 //! nominal model must score the same in every run: with the scales profiled and with the
 //! instrument's noise given. `diagnose` scores its nominal model on the same scale.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 

@@ -2,7 +2,7 @@
 //! files), a folder holding anything else is never overwritten, and merge refuses to write into
 //! one of its shards.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 

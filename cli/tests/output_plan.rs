@@ -4,9 +4,8 @@
 //! write-protected previous output folder is refused instead of hidden away, a failed merge names
 //! its output folder, and shards run with `--effect-defs` merge.
 
-mod cli_support;
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::cli_support;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -3,7 +3,7 @@
 //! paths are the file's, a nearer file or `SMASH_CONFIG` chooses, and a bad file is refused in
 //! one line.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 use std::process::{Command, Output};

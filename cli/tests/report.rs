@@ -3,7 +3,7 @@
 //! blank, no console errors). The browser test skips loudly when Chromium is absent outside CI
 //! and fails in CI (`CI=true`), where `.ci/run` installs it.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -19,7 +19,7 @@
 //! - The design worlds (`cli/tests/fixtures/rivals/`, seeds 301–310, `--instrument camera`
 //!   and without): `#[ignore]`d, about 100 diagnoses; the rates are in the doc.
 
-mod cli_support;
+use crate::cli_support;
 
 use cli_support::{diagnose_json, repo, s, synth_config as synth};
 use std::path::Path;
@@ -173,7 +173,7 @@ type DesignWorld = (&'static str, &'static [&'static [&'static str]], [usize; 2]
 
 /// The design worlds of `docs/rival-families.md`: at most one seed of ten with a false
 /// finding per world and setting, and every world's truth named at least as often as measured
-/// when written. `cargo test --release -p smash-cli --test rival_families -- --ignored`.
+/// when written. `cargo test --release -p smash-cli --test cli rival_families:: -- --ignored`.
 #[test]
 #[ignore = "about 100 diagnoses; run with --ignored"]
 fn design_worlds_over_ten_seeds() {

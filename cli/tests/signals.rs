@@ -2,7 +2,7 @@
 //! item 12: 24–550 MB for `run`, 53–106 MB for `flight` stayed until the next run into the same
 //! place) and no partial output; the process ends with the shell's status for the signal.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 use std::process::{Child, Command, Stdio};

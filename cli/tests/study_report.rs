@@ -4,7 +4,7 @@
 //! difference map of the base against itself, integer ids that match the legend, tables that
 //! fit, no note on measurements. The browser renders it in `report.rs`.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::collections::BTreeSet;
 use std::path::Path;

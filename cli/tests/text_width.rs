@@ -3,7 +3,7 @@
 //! and `--wide` still prints the full tables: a column or line only `--wide` shows is there.
 //! Every documented command's output is checked the same way by `docs_run.rs`.
 
-mod cli_support;
+use crate::cli_support;
 
 use std::path::Path;
 use std::process::{Command, Output};

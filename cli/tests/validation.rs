@@ -3,10 +3,9 @@
 //! Every refusal is one line on stderr naming the culprit (file and key or column, the value and
 //! the allowed range) with a non-zero exit, and writes nothing.
 
-mod cli_support;
+use crate::cli_support;
 
-#[path = "../../tests/common/mod.rs"]
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::Output;

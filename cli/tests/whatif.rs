@@ -3,7 +3,7 @@
 //! separate `[yards]` studies of heads computed here, independently, with the parallel-axis
 //! theorem (through the inertia about the CoF, not the CoM-centred update the library uses).
 
-mod cli_support;
+use crate::cli_support;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

@@ -30,7 +30,7 @@
 //! drifted from heel to toe; an effect failing a check in one parameter is now provisional in
 //! all of them, and no seed of ten reports a finding outside the world, as the issue asks.
 
-mod cli_support;
+use crate::cli_support;
 
 use cli_support::{diagnose_json, repo, s, smash, synth_world};
 
