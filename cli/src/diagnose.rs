@@ -141,7 +141,7 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let d = &report.diagnosis;
     let left_out = table.left_out_notes();
     for w in d.warnings.iter().filter(|w| !left_out.contains(w)) {
-        eprintln!("warning: {}", smash::data::escape(w));
+        crate::text::print_note("warning", &smash::data::escape(w));
     }
     let mut staging = plan.stage();
     if let Some(out) = &args.out_club {

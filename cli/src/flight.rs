@@ -472,7 +472,7 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     let secs = t0.elapsed().as_secs_f64();
     let warnings = flown.notes();
     for note in &warnings {
-        eprintln!("shots: {}", smash::data::escape(note));
+        crate::text::print_note("shots", &smash::data::escape(note));
     }
     let air = match &conditions {
         None => format!("air {:.4} kg/m³", cfg.air.density_kg_m3),

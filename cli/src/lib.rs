@@ -454,7 +454,7 @@ impl ShotsFormatArgs {
             .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
         let format = if format.eq_ignore_ascii_case("auto") {
             let d = detect(path, &bytes)?;
-            eprintln!("import: {}", d.note);
+            crate::text::print_note("import", &d.note);
             d.preset.to_owned()
         } else {
             preset_for(format, &bytes)
@@ -467,7 +467,7 @@ impl ShotsFormatArgs {
         };
         let imported = import(path, &bytes, &mapping, &opts)?;
         for note in &imported.notes {
-            eprintln!("import ({}): {note}", mapping.export.name);
+            crate::text::print_note(&format!("import ({})", mapping.export.name), note);
         }
         Ok(imported)
     }
@@ -492,7 +492,10 @@ pub fn to_model_convention(
             let l = table.left_out.last().expect("just pushed");
             let shown: Vec<String> = l.lines.iter().take(5).map(usize::to_string).collect();
             let more = if l.lines.len() > 5 { ", …" } else { "" };
-            eprintln!("shots: left out {n} of {total} shots: {}", l.reason);
+            crate::text::print_note(
+                "shots",
+                &format!("left out {n} of {total} shots: {}", l.reason),
+            );
             eprintln!(
                 "  line(s) {}{more}: a fit on them would fit the monitor's formula",
                 shown.join(", ")
@@ -530,7 +533,7 @@ pub fn to_model_convention(
 /// and their first lines.
 pub fn report_left_out(table: &smash::data::shots::ShotTable) {
     for note in table.left_out_notes() {
-        eprintln!("shots: {note}");
+        crate::text::print_note("shots", &note);
     }
 }
 

@@ -11,3 +11,11 @@ pub struct WideArgs {
     #[arg(long)]
     pub wide: bool,
 }
+
+/// One note of a command on stderr (what an import or a shots file left out, what it assumed):
+/// `prefix: note`, wrapped at [`WIDTH`] with its continuation lines indented two spaces, so that
+/// a note quoting a long cell still fits the terminal the reports fit. Tests that look for a
+/// note's text read stderr through `cli_support::unwrapped`.
+pub fn print_note(prefix: &str, note: &str) {
+    eprintln!("{}", wrap_long(&format!("{prefix}: {note}")));
+}

@@ -11,7 +11,7 @@ use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
-use cli_support::{club, measured_shots, repo, s, smash, stderr, write};
+use cli_support::{club, measured_shots, repo, s, smash, unwrapped as stderr, write};
 
 /// `clean` with bad rows inserted: `(file line at which it goes, row)`, in increasing line
 /// order. Returns the file's path.

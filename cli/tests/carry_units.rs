@@ -8,7 +8,7 @@ use crate::cli_support;
 
 use std::path::Path;
 
-use cli_support::{repo, s, smash, stderr, write};
+use cli_support::{repo, s, smash, unwrapped as stderr, write};
 
 /// `text` with the cells of `columns` (under the header, the first line naming them all)
 /// multiplied by 0.9144 (yards to metres), written to one decimal; other lines as they are.

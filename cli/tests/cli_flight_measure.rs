@@ -6,7 +6,7 @@ use crate::cli_support;
 
 use std::path::Path;
 
-use cli_support::{club, s, smash, stderr, write};
+use cli_support::{club, s, smash, unwrapped as stderr, write};
 
 /// Header and rows of a CSV file.
 fn table(path: &Path) -> (Vec<String>, Vec<Vec<String>>) {

@@ -51,25 +51,11 @@ fn is_default_text(script: &str) -> bool {
         })
 }
 
-/// Lines still printed whole however wide (issue 42, to do), by how they start, with why.
-const KNOWN_WIDE_LINES: [(&str, &str); 2] = [
-    (
-        "import (",
-        "an export's notes, one line each (tests match their text whole)",
-    ),
-    (
-        "shots: ",
-        "a shots file's notes, one line each (tests match their text whole)",
-    ),
-];
-
-/// The lines of `output` wider than [`MAX_COLUMNS`] (but [`KNOWN_WIDE_LINES`]), each with its
-/// width.
+/// The lines of `output` wider than [`MAX_COLUMNS`], each with its width.
 fn too_wide(output: &str) -> Vec<String> {
     output
         .lines()
         .filter(|l| l.width() > MAX_COLUMNS)
-        .filter(|l| !KNOWN_WIDE_LINES.iter().any(|(p, _)| l.starts_with(p)))
         .map(|l| format!("({} columns) {l}", l.width()))
         .collect()
 }
@@ -355,7 +341,7 @@ fn default_text_is_a_lone_command_without_wide_or_json() {
     ));
     assert_eq!(too_wide(&format!("{}\nshort\n", "±".repeat(121))).len(), 1);
     assert!(too_wide(&"σ".repeat(120)).is_empty());
-    assert!(too_wide(&format!("shots: {}", "x".repeat(120))).is_empty());
+    assert_eq!(too_wide(&format!("shots: {}", "x".repeat(120))).len(), 1);
 }
 
 #[test]

@@ -476,7 +476,7 @@ fn import_errors_name_the_exports_line_and_column() {
         // delivery cell is read as not measured, counted and named, and the shot keeps its
         // launch (for flight; compare leaves it out and says so).
         let o = import(text, &[]);
-        let err = String::from_utf8_lossy(&o.stderr);
+        let err = cli_support::unwrapped(&o);
         assert!(o.status.success(), "{err}");
         if want.contains("'Club Speed'") {
             assert!(

@@ -11,7 +11,7 @@ use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
-use cli_support::{repo, s, smash, stderr};
+use cli_support::{repo, s, smash, unwrapped as stderr};
 
 fn fixture(name: &str) -> PathBuf {
     repo(&format!("cli/tests/fixtures/import/corpus/{name}"))

@@ -6,7 +6,7 @@ use crate::cli_support;
 
 use std::path::{Path, PathBuf};
 
-use cli_support::{repo, s, smash, stderr};
+use cli_support::{repo, s, smash, unwrapped as stderr};
 
 use crate::common;
 

@@ -11,7 +11,7 @@ use crate::cli_support;
 use std::path::{Path, PathBuf};
 use std::process::Output;
 
-use cli_support::{repo, s, smash, stderr};
+use cli_support::{repo, s, smash, unwrapped as stderr};
 
 use crate::common;
 

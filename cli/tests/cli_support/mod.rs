@@ -64,6 +64,13 @@ pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
+/// `stderr(o)` with the notes' continuation lines joined back to their notes
+/// (`smash_cli::text::print_note` wraps a long note at the report width, its continuation lines
+/// indented two spaces): a test looks for a note's text whole, wherever the wrap fell.
+pub fn unwrapped(o: &Output) -> String {
+    stderr(o).replace("\n  ", " ")
+}
+
 /// A path as an argument.
 pub fn s(p: &Path) -> &str {
     p.to_str().unwrap()
