@@ -9,7 +9,8 @@
 //! - with `radar_face`, the face angle is not the world's but derived from the measured launch
 //!   direction and club path as some radar units do ([`radar_face_angle_deg`]);
 //! - each synth golfer is one day's session (`Date`: golfer `G01` on Monday 4 May 2026, each
-//!   next one a week later, shots a minute apart from 6:10 PM), one player (`Player A`); the
+//!   next one a week later, shots a minute apart from 6:10 PM), one player (`Player A`), the
+//!   club (`Club`) the world's group (`Driver` when it has none); the
 //!   columns a monitor derives or models (carry, apex, …) are left empty: the world has no
 //!   flight.
 
@@ -53,6 +54,11 @@ pub fn trackman_export(
         }
         let (back, side) = (f("backspin_rpm"), f("sidespin_rpm"));
         let golfer = &r[h.iter().position(|x| x == "golfer").expect("golfer")];
+        // The club under test: the world's group (a fitter names each shaft as a club).
+        let group = h
+            .iter()
+            .position(|x| x == "group")
+            .map_or("Driver", |i| &r[i]);
         let day = golfer[1..].parse::<usize>().expect("G01") - 1;
         if shots_of_day.len() <= day {
             shots_of_day.resize(day + 1, 0);
@@ -63,7 +69,7 @@ pub fn trackman_export(
             let v = match name {
                 "Date" => format!("{} {}", session_date(day), clock(minute)),
                 "Player" => "Player A".into(),
-                "Club" => "Driver".into(),
+                "Club" => group.to_owned(),
                 "Ball" => "Premium".into(),
                 "Club Speed" => f("club_speed_mph").to_string(),
                 "Attack Angle" => f("attack_angle_deg").to_string(),
