@@ -416,6 +416,7 @@ mod tests {
                     mean_p_value: 0.5,
                     structure: p_value < STRUCTURE_ALPHA / 10.0,
                     trend: None,
+                    shape: Default::default(),
                 })
                 .collect(),
             n_shots: 600,
