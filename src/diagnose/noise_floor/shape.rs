@@ -343,9 +343,13 @@ fn face_words(i: usize, j: usize, rows: usize, cols: usize) -> String {
     let col = match cols {
         2 => ["heel", "toe"].get(j),
         3 => ["heel", "centre", "toe"].get(j),
-        _ => ["heel", "heel side of centre", "toe side of centre", "toe"].get(j),
+        _ => ["heel", "centre-heel", "centre-toe", "toe"].get(j),
     };
-    format!("{} {}", row.unwrap_or(&"?"), col.unwrap_or(&"?"))
+    format!(
+        "the {} row, {} column",
+        row.unwrap_or(&"?"),
+        col.unwrap_or(&"?")
+    )
 }
 
 /// An error in the component's unit, signed, rpm to the unit and the rest to 0.01.
@@ -379,11 +383,11 @@ impl ShapeSearch {
             if found.term.is_face() {
                 let (c0, c1) = (map.col_edges[j], map.col_edges[j + 1]);
                 format!(
-                    "the {} of the face (y {r0:.1} to {r1:.1} mm, z {c0:.1} to {c1:.1} mm)",
+                    "in {} (y {r0:.1} to {r1:.1} mm, z {c0:.1} to {c1:.1} mm)",
                     face_words(i, j, nr, nc)
                 )
             } else {
-                format!("club speed {r0:.1} to {r1:.1} mph")
+                format!("at club speed {r0:.1} to {r1:.1} mph")
             }
         };
         let what = if found.term.is_face() {
@@ -392,7 +396,7 @@ impl ShapeSearch {
             "club-speed bins in the JSON"
         };
         Some(format!(
-            "{} error is {} at {} and {} at {} ({what})",
+            "{} error is {} {} and {} {} ({what})",
             c.column(),
             error_text(key(&hi), c),
             at(hi),

@@ -21,18 +21,26 @@ fn value(v: f64, c: LaunchComponent) -> String {
     }
 }
 
-/// The face-map test's F and p, in words (empty when it was not made).
+/// The face-map tests' F and p, in words (empty when none was made).
 fn test_words(c: &ComponentFloor) -> String {
-    c.shape
-        .tests
-        .iter()
-        .find(|t| t.term == ShapeTerm::FaceBins)
-        .map_or(String::new(), |t| {
-            format!(
-                "; bins differ: F({}, {}) = {:.2}, p = {:.1e}",
-                t.df.0, t.df.1, t.f, t.p_value
-            )
-        })
+    let words: Vec<String> = [
+        (ShapeTerm::FaceBins, "bins"),
+        (ShapeTerm::FaceQuadratic, "quadratic"),
+    ]
+    .into_iter()
+    .filter_map(|(term, name)| {
+        let t = c.shape.tests.iter().find(|t| t.term == term)?;
+        Some(format!(
+            "{name} F({}, {}) = {:.2}, p = {:.1e}",
+            t.df.0, t.df.1, t.f, t.p_value
+        ))
+    })
+    .collect();
+    if words.is_empty() {
+        String::new()
+    } else {
+        format!("; {}", words.join("; "))
+    }
 }
 
 /// An edge range `a to b`, 1 decimal.
