@@ -26,7 +26,9 @@
 //! (`z = Σ r_i / √Σ v_i`, two-sided), since a bias barely moves the spread. A component where
 //! either p-value is below `STRUCTURE_ALPHA / 10` ([`STRUCTURE_ALPHA`] = 1 % shared by the ten
 //! tests) carries **unexplained structure**; its standardised errors are then correlated with
-//! every delivery variable to say what the structure trends with.
+//! every delivery variable to say what the structure trends with, and searched for structure
+//! no straight line follows (a face map of impact location and club-speed bins, with
+//! quadratics: [`shape`]); the shape is named when its test beats every straight line.
 //!
 //! The verdict is only as good as the instrument noise given: too small a noise invents
 //! structure, too large a noise hides it. Defaults per instrument class are in
@@ -43,6 +45,9 @@ use crate::physics::{Delivery, LaunchComponent};
 use crate::stats::{self, tdist::student_t_cdf};
 
 use super::Diagnosis;
+
+pub mod shape;
+use self::shape::{ShapeSearch, TERMS_TRIED};
 
 /// Family-wise significance of "structure remains", shared by the five components.
 pub const STRUCTURE_ALPHA: f64 = 0.01;
@@ -139,6 +144,10 @@ pub struct ComponentFloor {
     /// The delivery variable the standardised errors correlate with most, with `r`, when that
     /// correlation is significant ([`TREND_ALPHA`] shared by the variables).
     pub trend: Option<(DeliveryVar, f64)>,
+    /// Structure no straight line follows: the face map and club-speed bins of what remains,
+    /// their tests, and the term named when one beats every straight line
+    /// ([`shape::ShapeSearch::found`]). Reporting only: nothing downstream reads it.
+    pub shape: ShapeSearch,
 }
 
 impl ComponentFloor {
@@ -151,12 +160,21 @@ impl ComponentFloor {
                 self.mean_in_sd, self.mean_p_value
             )
         } else if self.structure {
-            let trend = self.trend.map_or(String::new(), |(v, r)| {
-                format!("; trends with {}, r = {r:.2}", v.column())
-            });
+            let trend = match (self.shape.words(self.component), self.trend) {
+                (Some(words), _) => format!("; follows {}: {words}", self.shape_subject()),
+                (None, Some((v, r))) => format!("; trends with {}, r = {r:.2}", v.column()),
+                (None, None) => String::new(),
+            };
             format!(
                 "unexplained structure remains in {name} ({:.2}× the expected spread{trend})",
                 self.ratio
+            )
+        } else if let Some(words) = self.quiet_shape() {
+            format!(
+                "{name}: the spread is as the noise explains ({:.2}× the expected spread), but it \
+                 follows {}: {words}",
+                self.ratio,
+                self.shape_subject()
             )
         } else {
             format!(
@@ -164,6 +182,25 @@ impl ComponentFloor {
                 self.ratio
             )
         }
+    }
+
+    /// What the shape found follows, in words.
+    fn shape_subject(&self) -> &'static str {
+        match self.shape.found {
+            Some(t) if t.term.is_face() => "impact location (face map)",
+            _ => "club speed (not a straight line)",
+        }
+    }
+
+    /// The shape of a component without structure, in words, when its test is significant
+    /// over the five components too (`TREND_ALPHA / (5 · TERMS_TRIED)`): the spread test can
+    /// miss a shape the given noise overstates.
+    pub fn quiet_shape(&self) -> Option<String> {
+        let t = self.shape.found?;
+        let level = TREND_ALPHA / (5 * TERMS_TRIED) as f64;
+        (!self.structure && t.p_value < level)
+            .then(|| self.shape.words(self.component))
+            .flatten()
     }
 
     /// The machine-readable form.
@@ -179,6 +216,7 @@ impl ComponentFloor {
             "mean_p_value": self.mean_p_value,
             "structure": self.structure,
             "trend": self.trend.map(|(v, r)| json!({"variable": v.column(), "r": r})),
+            "shape": self.shape.to_json(self.component.unit()),
             "verdict": self.verdict(),
         })
     }
@@ -472,15 +510,17 @@ pub fn noise_floor_of(
             // The variable named is the one the errors correlate with most, and only when that
             // correlation is itself significant (1 % shared by the variables tried): a weak r of
             // a shape no straight line follows names nothing.
-            let trend = DeliveryVar::ALL
+            let best = DeliveryVar::ALL
                 .iter()
                 .filter_map(|&var| {
                     let x: Vec<f64> = deliveries.iter().map(|d| d[var.index()]).collect();
                     stats::pearson(&x, &z).map(|k| (var, k.r, k.p))
                 })
-                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))
+                .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()));
+            let trend = best
                 .filter(|&(_, _, p)| p < TREND_ALPHA / N_DELIVERY as f64)
                 .map(|(var, r, _)| (var, r));
+            let shape = shape::search(&deliveries, &r, &z, best.map_or(1.0, |b| b.2));
             ComponentFloor {
                 component: comp,
                 mean,
@@ -492,6 +532,7 @@ pub fn noise_floor_of(
                 mean_p_value,
                 structure,
                 trend,
+                shape,
             }
         })
         .collect();

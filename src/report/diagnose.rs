@@ -2,6 +2,7 @@
 //! JSON its `Serialize` (the schema: `docs/json.md`), its HTML page
 //! [`crate::report::html::diagnose_page`].
 
+pub mod face_map;
 pub mod text;
 
 use serde::{Serialize, Serializer};
@@ -190,7 +191,31 @@ fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
 /// What the diagnosis concludes about the structure left in the errors, and, when the
 /// instrument noise was assumed, what the verdict rests on ([`assumed_note`]).
 fn conclusion(d: &Diagnosis, floor: &NoiseFloor) -> String {
-    format!("{}{}", verdict(d, floor), assumed_note(floor))
+    format!(
+        "{}{}{}",
+        verdict(d, floor),
+        shape_note(floor),
+        assumed_note(floor)
+    )
+}
+
+/// The components whose spread the noise explains but whose errors follow a shape the noise
+/// floor's search found ([`ComponentFloor::quiet_shape`]), in one clause (empty when none).
+fn shape_note(floor: &NoiseFloor) -> String {
+    let quiet: Vec<&str> = floor
+        .components
+        .iter()
+        .filter(|c| c.quiet_shape().is_some())
+        .map(|c| c.component.column())
+        .collect();
+    if quiet.is_empty() {
+        return String::new();
+    }
+    format!(
+        "; but {} follow(s) a shape the spread test does not see (see the verdicts and face \
+         map): structure may remain that the spread alone does not show",
+        quiet.join(", ")
+    )
 }
 
 /// Without `--noise` or `--instrument`: the verdict rests on the assumed class's noise; the
@@ -416,6 +441,7 @@ mod tests {
                     mean_p_value: 0.5,
                     structure: p_value < STRUCTURE_ALPHA / 10.0,
                     trend: None,
+                    shape: Default::default(),
                 })
                 .collect(),
             n_shots: 600,

@@ -448,6 +448,13 @@ fn floor_text(d: &Diagnosis, floor: &NoiseFloor, wide: bool) -> String {
     }
     s.push_str(&t.render());
     s.push_str(&wrap_long(&verdicts));
+    for map in floor
+        .components
+        .iter()
+        .filter_map(super::face_map::face_map_text)
+    {
+        s.push_str(&map);
+    }
     s.push_str(&crate::report::wrap::wrap(
         &format!("Conclusion: {}", conclusion(d, floor)),
         99,

@@ -26,9 +26,12 @@ struct Frame {
 
 impl Frame {
     fn new(map: &Heatmap<'_>) -> Self {
+        Self::on_edges(edges(map.xs), edges(map.ys))
+    }
+
+    /// The frame of cells with edges `xe` and `ye` (ascending, one more than the cells).
+    fn on_edges(xe: Vec<f64>, ye: Vec<f64>) -> Self {
         let (left, top, plot_w) = (80.0, 50.0, 560.0);
-        let xe = edges(map.xs);
-        let ye = edges(map.ys);
         Frame {
             left,
             top,
@@ -63,7 +66,20 @@ impl Frame {
 /// The picture: title, cells, axes, marker, colour bar and, when some cells have no value,
 /// their legend.
 pub(super) fn draw_svg(map: &Heatmap<'_>) -> String {
-    let f = Frame::new(map);
+    draw_framed(map, &Frame::new(map))
+}
+
+/// The picture of `map` whose cells have the edges `xe` and `ye` (bins of unequal width, e.g.
+/// quantiles), instead of edges halfway between the cell centres.
+pub(super) fn draw_svg_on_edges(map: &Heatmap<'_>, xe: &[f64], ye: &[f64]) -> String {
+    assert!(
+        xe.len() == map.xs.len() + 1 && ye.len() == map.ys.len() + 1,
+        "a heatmap needs one edge more than cells on each axis"
+    );
+    draw_framed(map, &Frame::on_edges(xe.to_vec(), ye.to_vec()))
+}
+
+fn draw_framed(map: &Heatmap<'_>, f: &Frame) -> String {
     let width = f.bar_x + 110.0;
     let height = f.top + f.plot_h + 76.0;
     let (lo, hi) = limits(map);
@@ -79,10 +95,10 @@ pub(super) fn draw_svg(map: &Heatmap<'_>) -> String {
         f.left + f.plot_w / 2.0,
         esc(map.title)
     );
-    draw_cells(&mut s, map, &f, lo, hi);
-    draw_axes(&mut s, map, &f);
-    draw_marker(&mut s, map, &f);
-    draw_colour_bar(&mut s, map, &f, lo, hi);
+    draw_cells(&mut s, map, f, lo, hi);
+    draw_axes(&mut s, map, f);
+    draw_marker(&mut s, map, f);
+    draw_colour_bar(&mut s, map, f, lo, hi);
     if map.values.iter().any(|v| !v.is_finite()) {
         let _ = writeln!(
             s,

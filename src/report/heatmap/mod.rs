@@ -7,7 +7,7 @@
 mod draw;
 mod small;
 
-use self::draw::draw_svg;
+use self::draw::{draw_svg, draw_svg_on_edges};
 pub use self::small::{
     colour_bar_svg, scale_colour, shared_limits, small_map_svg, SmallMap, SMALL_WIDTH_PX,
 };
@@ -363,6 +363,14 @@ fn blocks_svg(map: &Heatmap<'_>, fy: usize, fx: usize, values: &[f64]) -> String
         values,
         ..*map
     })
+}
+
+/// SVG picture of a coarse map of bins with edges `x_edges` and `y_edges` (one more than the
+/// columns and rows; bins of unequal width, e.g. quantile bins, drawn as they are): as
+/// [`heatmap_svg`], without block means.
+pub fn binned_heatmap_svg(map: &Heatmap<'_>, x_edges: &[f64], y_edges: &[f64]) -> String {
+    map.check();
+    draw_svg_on_edges(map, x_edges, y_edges)
 }
 
 /// SVG picture of the map: cells, axes with ticks, a colour bar with the value label and unit,

@@ -151,6 +151,7 @@ pub fn diagnose_page(r: &DiagnoseReport, title: &str) -> Result<String, ChartErr
                 html: vec![table],
                 figures: est_figs,
             },
+            floor_section(r),
             Section {
                 heading: "Stability across strata".into(),
                 html: vec![strata_html(d)],
@@ -159,6 +160,40 @@ pub fn diagnose_page(r: &DiagnoseReport, title: &str) -> Result<String, ChartErr
         ],
     };
     Ok(page.render())
+}
+
+/// The noise floor's verdict per component and the face map of what remains in each
+/// component where structure remains or a shape over the face is found.
+fn floor_section(r: &DiagnoseReport) -> Section {
+    use crate::report::diagnose::face_map::face_map_svg;
+    let html = r
+        .floor
+        .components
+        .iter()
+        .map(|c| format!("<p>{}</p>", esc(&c.verdict())))
+        .collect();
+    let figures = r
+        .floor
+        .components
+        .iter()
+        .filter_map(|c| {
+            face_map_svg(c).map(|svg| Figure {
+                kind: "face",
+                caption: format!(
+                    "Face map of what remains in {}: the mean error (model − measured) of the \
+                     shots in each bin of impact location, bins by quantiles so each holds \
+                     about the same number of shots; white is no error (docs/noise-floor.md).",
+                    c.component.column()
+                ),
+                svg,
+            })
+        })
+        .collect();
+    Section {
+        heading: "Noise floor: what remains".into(),
+        html,
+        figures,
+    }
 }
 
 /// The conclusion, aliases and warnings of the diagnosis, as paragraphs.
