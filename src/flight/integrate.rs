@@ -112,19 +112,30 @@ pub fn fly_serial(
     launches: &[FlightLaunch],
     out: &mut [Result<Flight, FlightError>],
 ) {
-    struct Fly<'a, 'o> {
-        cfg: &'a FlightConfig,
-        launches: &'a [FlightLaunch],
-        out: &'o mut [Result<Flight, FlightError>],
+    cfg.aero.visit(FlyOn {
+        level: simd_level(),
+        cfg,
+        launches,
+        out,
+    })
+}
+
+/// The flights of `launches` into `out` on this thread, on the lanes of `level`, under the
+/// configuration's own coefficient model (what [`fly_serial`] runs at the machine's level and
+/// the tests at each level).
+struct FlyOn<'a, 'o> {
+    level: SimdLevel,
+    cfg: &'a FlightConfig,
+    launches: &'a [FlightLaunch],
+    out: &'o mut [Result<Flight, FlightError>],
+}
+
+impl ModelVisitor for FlyOn<'_, '_> {
+    type Output = ();
+    fn visit<C: CoefficientModel>(self, model: &C) {
+        let wind = self.cfg.air.has_wind();
+        dispatch_on(self.level, self.cfg, model, wind, self.launches, self.out)
     }
-    impl ModelVisitor for Fly<'_, '_> {
-        type Output = ();
-        fn visit<C: CoefficientModel>(self, model: &C) {
-            let wind = self.cfg.air.has_wind();
-            dispatch(self.cfg, model, wind, self.launches, self.out)
-        }
-    }
-    cfg.aero.visit(Fly { cfg, launches, out })
 }
 
 /// [`fly`] with any coefficient model (`cfg.aero` is ignored), e.g. a model being fitted.

@@ -204,7 +204,7 @@ fn fly_counting(
     land::SUBSTEPS.with(|n| n.set(0));
     defer::DEFER.with(|d| d.set(put_off));
     let mut out = vec![Err(FlightError::NeverLands { time_limit_s: 0.0 }); ls.len()];
-    cfg.aero.visit(OnLevel {
+    cfg.aero.visit(FlyOn {
         level,
         cfg,
         launches: ls,
@@ -213,22 +213,6 @@ fn fly_counting(
     defer::DEFER.with(|d| d.set(true));
     let refined = land::REFINED.with(|n| n.get());
     (out, refined, land::SUBSTEPS.with(|n| n.get()))
-}
-
-/// [`dispatch_on`] under the configuration's own model.
-struct OnLevel<'a, 'o> {
-    level: SimdLevel,
-    cfg: &'a FlightConfig,
-    launches: &'a [FlightLaunch],
-    out: &'o mut [Result<Flight, FlightError>],
-}
-
-impl ModelVisitor for OnLevel<'_, '_> {
-    type Output = ();
-    fn visit<C: CoefficientModel>(self, model: &C) {
-        let wind = self.cfg.air.has_wind();
-        dispatch_on(self.level, self.cfg, model, wind, self.launches, self.out)
-    }
 }
 
 /// Contact searches put off and done a vector at a time give the same bits as searched in
