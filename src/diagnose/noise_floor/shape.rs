@@ -70,6 +70,9 @@ impl ShapeTerm {
 /// variable and the non-linear terms; the Bonferroni divisor of [`super::TREND_ALPHA`].
 pub const TERMS_TRIED: usize = N_DELIVERY + ShapeTerm::ALL.len();
 
+/// The level each of the [`TERMS_TRIED`] terms is tested at (1 % family-wise).
+pub const ALPHA_EACH: f64 = super::TREND_ALPHA / TERMS_TRIED as f64;
+
 /// The F test of one term.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TermTest {
@@ -323,12 +326,11 @@ pub(super) fn search(
         out.tests
             .extend(polynomial(ShapeTerm::SpeedQuadratic, &[s, s2], z));
     }
-    let alpha_each = super::TREND_ALPHA / TERMS_TRIED as f64;
     out.found = out
         .tests
         .iter()
         .copied()
-        .filter(|t| t.p_value < alpha_each && t.p_value < linear_p)
+        .filter(|t| t.p_value < ALPHA_EACH && t.p_value < linear_p)
         .min_by(|a, b| a.p_value.total_cmp(&b.p_value));
     out
 }
@@ -352,12 +354,17 @@ fn face_words(i: usize, j: usize, rows: usize, cols: usize) -> String {
     )
 }
 
-/// An error in the component's unit, signed, rpm to the unit and the rest to 0.01.
-pub fn error_text(v: f64, c: LaunchComponent) -> String {
+/// An error of component `c`, signed, without its unit: rpm to the unit and the rest to 0.01.
+pub fn error_value(v: f64, c: LaunchComponent) -> String {
     match c {
-        LaunchComponent::Backspin | LaunchComponent::Sidespin => format!("{v:+.0} {}", c.unit()),
-        _ => format!("{v:+.2} {}", c.unit()),
+        LaunchComponent::Backspin | LaunchComponent::Sidespin => format!("{v:+.0}"),
+        _ => format!("{v:+.2}"),
     }
+}
+
+/// [`error_value`] with the component's unit.
+pub fn error_text(v: f64, c: LaunchComponent) -> String {
+    format!("{} {}", error_value(v, c), c.unit())
 }
 
 impl ShapeSearch {
@@ -417,7 +424,7 @@ impl ShapeSearch {
                 "df": [t.df.0, t.df.1],
                 "p_value": t.p_value,
             })).collect::<Vec<_>>(),
-            "alpha_each": super::TREND_ALPHA / TERMS_TRIED as f64,
+            "alpha_each": ALPHA_EACH,
             "found": self.found.map(|t| t.term.name()),
         })
     }

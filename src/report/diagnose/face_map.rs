@@ -1,7 +1,7 @@
 //! The face map of what remains in a launch component: the mean error of the shots binned by
 //! impact location ([`crate::diagnose::noise_floor::shape`]), as a text grid and a heatmap.
 
-use crate::diagnose::noise_floor::shape::{BinMap, ShapeTerm};
+use crate::diagnose::noise_floor::shape::{error_value, BinMap, ShapeTerm};
 use crate::diagnose::noise_floor::ComponentFloor;
 use crate::physics::LaunchComponent;
 use crate::report::heatmap::{binned_heatmap_svg, Heatmap, Scale};
@@ -11,14 +11,6 @@ use crate::report::TextTable;
 /// though its spread is as the noise explains?
 pub fn shown(c: &ComponentFloor) -> bool {
     c.shape.face_map.is_some() && (c.structure || c.quiet_shape().is_some())
-}
-
-/// A value in the component's unit, signed, without the unit.
-fn value(v: f64, c: LaunchComponent) -> String {
-    match c {
-        LaunchComponent::Backspin | LaunchComponent::Sidespin => format!("{v:+.0}"),
-        _ => format!("{v:+.2}"),
-    }
 }
 
 /// The face-map tests' F and p, in words (empty when none was made).
@@ -63,7 +55,7 @@ fn grid(map: &BinMap, c: LaunchComponent) -> String {
             if b.count == 0 {
                 "– (0)".to_owned()
             } else {
-                format!("{} ({})", value(b.mean_error, c), b.count)
+                format!("{} ({})", error_value(b.mean_error, c), b.count)
             }
         }));
         t.row(row);
@@ -83,7 +75,7 @@ pub fn face_map_text(c: &ComponentFloor) -> Option<String> {
     );
     Some(format!(
         "{}{}",
-        crate::report::wrap::wrap(&heading, 99, 2),
+        crate::report::wrap::wrap(&heading, crate::report::text::WIDTH, 2),
         grid(map, c.component)
     ))
 }
