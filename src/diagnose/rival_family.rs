@@ -38,6 +38,7 @@
 //! refitted. Its design worlds, seeds and rates are in `docs/rival-families.md`.
 
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 
 use crate::club::ClubSpec;
 use crate::effects::Effect;
@@ -181,14 +182,33 @@ fn cv_sse(cols: &[&Column], t: &Column, fold_of: &[usize]) -> (f64, DVector<f64>
         .iter()
         .map(|c| c.norm().max(f64::MIN_POSITIVE))
         .collect();
-    let x = DMatrix::from_fn(rows, p, |r, j| cols[j][r] / norms[j]);
+    // Row-major, a row's entries together. Most location and level columns are zero on four
+    // rows of five, and a zero entry adds nothing to a row's outer product: each row adds the
+    // products of its non-zero entries only (every sum still taken over the rows in order).
+    let norms = &norms;
+    let x: Vec<f64> = (0..rows)
+        .flat_map(|r| (0..p).map(move |j| cols[j][r] / norms[j]))
+        .collect();
     let mut a_f = vec![DMatrix::<f64>::zeros(p, p); n_folds];
     let mut b_f = vec![DVector::<f64>::zeros(p); n_folds];
+    let mut nz: Vec<(usize, f64)> = Vec::with_capacity(p);
     for r in 0..rows {
         let f = fold_of[r / 5];
-        let xr = x.row(r).transpose();
-        a_f[f] += &xr * xr.transpose();
-        b_f[f] += &xr * t[r];
+        nz.clear();
+        nz.extend(
+            x[r * p..(r + 1) * p]
+                .iter()
+                .enumerate()
+                .filter(|(_, v)| **v != 0.0)
+                .map(|(j, v)| (j, *v)),
+        );
+        let (a, b) = (&mut a_f[f], &mut b_f[f]);
+        for &(k, xk) in &nz {
+            for &(j, xj) in &nz {
+                a[(j, k)] += xj * xk;
+            }
+            b[k] += xk * t[r];
+        }
     }
     let a: DMatrix<f64> = a_f.iter().fold(DMatrix::zeros(p, p), |s, m| s + m);
     let b: DVector<f64> = b_f.iter().fold(DVector::zeros(p), |s, v| s + v);
@@ -207,7 +227,15 @@ fn cv_sse(cols: &[&Column], t: &Column, fold_of: &[usize]) -> (f64, DVector<f64>
         .map(|f| solve(&a - &a_f[f], &b - &b_f[f]))
         .collect();
     let sse = (0..rows)
-        .map(|r| (t[r] - (x.row(r) * &betas[fold_of[r / 5]])[0]).powi(2))
+        .map(|r| {
+            let beta = &betas[fold_of[r / 5]];
+            let fitted: f64 = x[r * p..(r + 1) * p]
+                .iter()
+                .zip(beta.iter())
+                .map(|(v, b)| v * b)
+                .sum();
+            (t[r] - fitted).powi(2)
+        })
         .sum();
     let all = solve(a, b);
     let coef = DVector::from_iterator(p, (0..p).map(|j| all[j] / norms[j]));
@@ -333,7 +361,7 @@ fn selected_labels(m: &FinalModel) -> Vec<String> {
 /// with their correlations.
 pub(super) fn check(
     m: &FinalModel,
-    kin: &dyn Fn(&str) -> Vec<(EffectRequest, f64)>,
+    kin: &(dyn Fn(&str) -> Vec<(EffectRequest, f64)> + Sync),
 ) -> Result<Vec<EffectCheck>, FitError> {
     if m.estimates.is_empty() {
         return Ok(Vec::new());
@@ -349,81 +377,115 @@ pub(super) fn check(
     let loc_refs: Vec<&Column> = location.iter().collect();
     let levels = level_columns(m.shots.len());
     let with_levels: Vec<&Column> = loc_refs.iter().copied().chain(&levels).collect();
-    let mut out = Vec::new();
-    for label in selected_labels(m) {
-        let (mine, others): (Vec<usize>, Vec<usize>) =
-            (0..m.estimates.len()).partition(|&i| estimate_of(&m.estimates[i], &label));
-        let j_e: Vec<&Column> = mine.iter().filter_map(|&i| signals[i].as_ref()).collect();
-        if j_e.is_empty() {
-            continue;
-        }
-        let j_o: Vec<&Column> = others.iter().filter_map(|&i| signals[i].as_ref()).collect();
-        let location_form = j_e
-            .iter()
-            .all(|s| varies_with_location(s, &with_levels) >= LOCATION_FORM_R2);
-        let t = whiten(
-            &launch_errors_of(&club_without(m, &label)?, m.data)?,
-            &sigma,
-        );
-        let gain = |base: &[&Column], extra: &[&Column]| {
-            let with: Vec<&Column> = base.iter().chain(extra).copied().collect();
-            cv_sse(base, &t, m.fold_of).0 - cv_sse(&with, &t, m.fold_of).0
-        };
-        let own_gain = gain(&j_o, &j_e);
-        let family: Vec<&Column> = if location_form {
-            j_o.clone()
-        } else {
-            j_o.iter().chain(&loc_refs).copied().collect()
-        };
-        let gain_over_family = if location_form {
-            own_gain
-        } else {
-            gain(&family, &j_e)
-        };
-        let penalty = mine.len() as f64 * m.penalty_per_param;
-        let form = location_form.then(|| {
-            let moved = moved_components(&j_e);
-            let beyond: Vec<&Column> = location
-                .iter()
-                .enumerate()
-                .filter(|(i, _)| moved[i / 5])
-                .map(|(_, c)| c)
-                .collect();
-            let base: Vec<&Column> = j_o.iter().chain(&j_e).copied().collect();
-            (
-                gain(&base, &beyond),
-                beyond.len() as f64 * m.penalty_per_param,
-            )
-        });
-        let check = FamilyCheck {
-            label: label.clone(),
-            own_gain,
-            gain_over_family,
-            penalty,
-            location_in_family: !location_form,
-            form,
-        };
-        let rivals = if !location_form && own_gain - gain_over_family > m.penalty_per_param {
-            let base_margin = gain_over_family - penalty;
-            kin(&label)
-                .iter()
-                .filter_map(|(req, r)| {
-                    kin_reading(m, &label, req, (&t, &sigma), &family)
-                        .ok()
-                        .flatten()
-                        .and_then(|(params, g)| {
-                            let margin = g - params.len() as f64 * m.penalty_per_param;
-                            let gap = base_margin - margin;
-                            (gap <= RIVAL_MARGIN).then(|| Rival::new(req.label(), params, gap, *r))
-                        })
-                })
-                .collect()
-        } else {
-            Vec::new()
-        };
-        out.push(EffectCheck { check, rivals });
+    // Each selected effect's check is independent of the others': checked side by side,
+    // collected in the selection's order.
+    let ctx = CheckContext {
+        signals: &signals,
+        sigma: &sigma,
+        location: &location,
+        with_levels: &with_levels,
+    };
+    let checks: Vec<Option<EffectCheck>> = selected_labels(m)
+        .into_par_iter()
+        .map(|label| check_one(m, kin, &ctx, label))
+        .collect::<Result<_, FitError>>()?;
+    Ok(checks.into_iter().flatten().collect())
+}
+
+/// What every selected effect's check reads: the estimates' whitened signals, the noise
+/// scales, the impact-location columns and those with a level per component.
+struct CheckContext<'c> {
+    signals: &'c [Option<Column>],
+    sigma: &'c [f64; 5],
+    location: &'c [Column],
+    with_levels: &'c [&'c Column],
+}
+
+/// The rival-family check of the selected effect `label` (`None` without a signal).
+fn check_one(
+    m: &FinalModel,
+    kin: &(dyn Fn(&str) -> Vec<(EffectRequest, f64)> + Sync),
+    ctx: &CheckContext,
+    label: String,
+) -> Result<Option<EffectCheck>, FitError> {
+    let CheckContext {
+        signals,
+        sigma,
+        location,
+        with_levels,
+    } = *ctx;
+    let loc_refs: Vec<&Column> = location.iter().collect();
+    let (mine, others): (Vec<usize>, Vec<usize>) =
+        (0..m.estimates.len()).partition(|&i| estimate_of(&m.estimates[i], &label));
+    let j_e: Vec<&Column> = mine.iter().filter_map(|&i| signals[i].as_ref()).collect();
+    if j_e.is_empty() {
+        return Ok(None);
     }
-    Ok(out)
+    let j_o: Vec<&Column> = others.iter().filter_map(|&i| signals[i].as_ref()).collect();
+    let location_form = j_e
+        .iter()
+        .all(|s| varies_with_location(s, with_levels) >= LOCATION_FORM_R2);
+    let t = whiten(
+        &launch_errors_of(&club_without(m, &label)?, m.data)?,
+        sigma,
+    );
+    let gain = |base: &[&Column], extra: &[&Column]| {
+        let with: Vec<&Column> = base.iter().chain(extra).copied().collect();
+        cv_sse(base, &t, m.fold_of).0 - cv_sse(&with, &t, m.fold_of).0
+    };
+    let own_gain = gain(&j_o, &j_e);
+    let family: Vec<&Column> = if location_form {
+        j_o.clone()
+    } else {
+        j_o.iter().chain(&loc_refs).copied().collect()
+    };
+    let gain_over_family = if location_form {
+        own_gain
+    } else {
+        gain(&family, &j_e)
+    };
+    let penalty = mine.len() as f64 * m.penalty_per_param;
+    let form = location_form.then(|| {
+        let moved = moved_components(&j_e);
+        let beyond: Vec<&Column> = location
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| moved[i / 5])
+            .map(|(_, c)| c)
+            .collect();
+        let base: Vec<&Column> = j_o.iter().chain(&j_e).copied().collect();
+        (
+            gain(&base, &beyond),
+            beyond.len() as f64 * m.penalty_per_param,
+        )
+    });
+    let check = FamilyCheck {
+        label: label.clone(),
+        own_gain,
+        gain_over_family,
+        penalty,
+        location_in_family: !location_form,
+        form,
+    };
+    let rivals = if !location_form && own_gain - gain_over_family > m.penalty_per_param {
+        let base_margin = gain_over_family - penalty;
+        kin(&label)
+            .iter()
+            .filter_map(|(req, r)| {
+                kin_reading(m, &label, req, (&t, sigma), &family)
+                    .ok()
+                    .flatten()
+                    .and_then(|(params, g)| {
+                        let margin = g - params.len() as f64 * m.penalty_per_param;
+                        let gap = base_margin - margin;
+                        (gap <= RIVAL_MARGIN).then(|| Rival::new(req.label(), params, gap, *r))
+                    })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Ok(Some(EffectCheck { check, rivals }))
 }
 
 /// Kin `req` of the selected `label`, read with the rival family beside it: its values (its

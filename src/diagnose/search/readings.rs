@@ -9,7 +9,7 @@ use super::super::{honest, select};
 use super::Search;
 use crate::club::ClubSpec;
 use crate::fit::calibrate::noise_scales;
-use crate::fit::{FitError, Weighting};
+use crate::fit::{EffectRequest, FitError, Weighting};
 
 impl Search<'_> {
     /// Each selected effect with the kin that, swapped in for it in the final model, fit the
@@ -51,16 +51,31 @@ impl Search<'_> {
             cancel: self.opts.cancel.as_ref(),
             spread: None,
         };
+        // Every selected effect's kin scored side by side (a selected effect has a few kin,
+        // too few to keep both cores busy one effect at a time), then read effect by effect.
+        let jobs: Vec<(usize, &EffectRequest, &(EffectRequest, f64))> = self
+            .kin_of
+            .iter()
+            .enumerate()
+            .flat_map(|(i, (_, req, kin))| kin.iter().map(move |k| (i, req, k)))
+            .collect();
+        let scored: Vec<(usize, Option<honest::Rival>)> = jobs
+            .par_iter()
+            .map(|&(i, req, (c, r))| {
+                let rival = evaluate::swap_score(&b, req, c, self.penalty_per_param, final_score)
+                    .and_then(|(params, gap)| {
+                        (gap <= select::RIVAL_MARGIN)
+                            .then(|| honest::Rival::new(c.label(), params, gap, *r))
+                    });
+                (i, rival)
+            })
+            .collect();
         let mut out = Vec::new();
-        for (label, req, kin) in &self.kin_of {
-            let rivals: Vec<honest::Rival> = kin
-                .par_iter()
-                .filter_map(|(c, r)| {
-                    let (params, gap) =
-                        evaluate::swap_score(&b, req, c, self.penalty_per_param, final_score)?;
-                    (gap <= select::RIVAL_MARGIN)
-                        .then(|| honest::Rival::new(c.label(), params, gap, *r))
-                })
+        for (i, (label, _, _)) in self.kin_of.iter().enumerate() {
+            let rivals: Vec<honest::Rival> = scored
+                .iter()
+                .filter(|(j, _)| *j == i)
+                .filter_map(|(_, r)| r.clone())
                 .collect();
             if rivals.is_empty() {
                 continue;
