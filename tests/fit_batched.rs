@@ -35,20 +35,32 @@ fn reference_residuals(pr: &FitProblem<'_>, theta: &[f64], inv_scale: &[f64; 5])
     out
 }
 
-/// The documented central difference, from reference residuals.
+/// The documented difference (forward, downwards where the step would leave the upper bound;
+/// central for the friction coefficient), from reference residuals.
 fn reference_jacobian(pr: &FitProblem<'_>, theta: &DVector<f64>, inv: &[f64; 5]) -> DMatrix<f64> {
-    let (lo, hi) = (pr.layout().lower(), pr.layout().upper());
+    let layout = pr.layout();
+    let (lo, hi) = (layout.lower(), layout.upper());
+    let friction: Vec<bool> = layout
+        .params()
+        .map(|(i, _)| layout.effects()[i].kind == EffectKind::Friction)
+        .collect();
     let mut jac = DMatrix::zeros(pr.rows(), pr.active().len());
     for (k, &j) in pr.active().iter().enumerate() {
         let h = FD_STEP_OF_RANGE * (hi[j] - lo[j]);
-        let (mut plus, mut minus) = (theta.clone(), theta.clone());
-        plus[j] = (theta[j] + h).min(hi[j]);
-        minus[j] = (theta[j] - h).max(lo[j]);
-        let span = plus[j] - minus[j];
-        let rp = reference_residuals(pr, plus.as_slice(), inv);
-        let rm = reference_residuals(pr, minus.as_slice(), inv);
+        let (mut a, mut b) = (theta.clone(), theta.clone());
+        if friction[j] {
+            a[j] = (theta[j] + h).min(hi[j]);
+            b[j] = (theta[j] - h).max(lo[j]);
+        } else if theta[j] + h <= hi[j] {
+            a[j] = theta[j] + h;
+        } else {
+            b[j] = theta[j] - h;
+        }
+        let span = a[j] - b[j];
+        let ra = reference_residuals(pr, a.as_slice(), inv);
+        let rb = reference_residuals(pr, b.as_slice(), inv);
         for r in 0..pr.rows() {
-            jac[(r, k)] = (rp[r] - rm[r]) / span;
+            jac[(r, k)] = (ra[r] - rb[r]) / span;
         }
     }
     jac

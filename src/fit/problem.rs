@@ -1,5 +1,5 @@
 //! The least-squares problem: shots and a club in, residuals of the model out, as an argmin
-//! [`Operator`] (residual vector) and [`Jacobian`] (central finite differences).
+//! [`Operator`] (residual vector) and [`Jacobian`] (forward finite differences).
 //!
 //! Residuals come in three forms ([`Weighting`]):
 //!
@@ -11,12 +11,19 @@
 //! - **Paper, angular** (`W = 0`): `r_i = ω_b,sim − ω_b,exp` restricted to the measured spin
 //!   axes `(ω_y, ω_z)` in G, rad/s (2 rows a shot; a launch monitor does not measure rifle spin).
 //!
-//! The Jacobian is by central differences, `∂r/∂θ_j ≈ (r(θ + h_j e_j) − r(θ − h_j e_j)) /
-//! (2 h_j)`, with `h_j = 1e-4 · (upper_j − lower_j)` (for example 0.03 g of added mass,
-//! 2 µm of ball offset, 3 mdeg of loft bias); at a bound the difference is taken one-sided
-//! inside the bounds. On the lanes all `2p` shifted models are solved in one pass over the
-//! shots, each site's inputs read once for all of them (`problem/jacobian.rs`; the same bits as
-//! two evaluations a column). The model for each group is built once per evaluation; the per-shot
+//! The Jacobian is by forward differences, `∂r/∂θ_j ≈ (r(θ + h_j e_j) − r(θ)) / h_j`, with
+//! `h_j = 1e-4 · (upper_j − lower_j)` (for example 0.03 g of added mass, 2 µm of ball offset,
+//! 3 mdeg of loft bias); where `θ_j + h_j` would leave the upper bound the step is taken
+//! downwards. The friction coefficient keeps central differences, `(r(θ + h_j e_j) −
+//! r(θ − h_j e_j)) / (2 h_j)` within the bounds: its χ² has a corner where shots change
+//! between sticking and slipping ([`difference_points`]). A forward difference's truncation
+//! error, `h_j/2 · ∂²r/∂θ_j²`, is a few parts in 10⁵ of a column for
+//! a parameter whose effect bends over its range, far inside what the data determine (a
+//! standard error moves in its fourth or fifth figure), and it costs `p + 1` models a site where central
+//! differences cost `2p`: at real scale the Jacobians are most of a diagnosis's work. On the
+//! lanes the model at `θ` and the `p` shifted models are solved in one pass over the shots,
+//! each site's inputs read once for all of them (`problem/jacobian.rs`; the same bits as two
+//! evaluations a column). The model for each group is built once per evaluation; the per-shot
 //! loop does not allocate. A column of a per-group parameter is evaluated on that group's
 //! shots only (the others' differences are exactly zero).
 //!
@@ -54,6 +61,7 @@ use crate::measurement::{expected_over, NODES_PER_SHOT};
 use crate::physics::{ImpactError, ImpactModel, Launch, LaunchComponent, ModelParams, ParamError};
 
 mod jacobian;
+pub(crate) use jacobian::difference_points;
 mod lanes;
 
 /// Relative finite-difference step: `h_j = FD_STEP_OF_RANGE · (upper_j − lower_j)`.
@@ -509,68 +517,6 @@ impl<'a> FitProblem<'a> {
         let mut out = DVector::zeros(self.rows());
         self.residuals_into(theta, out.as_mut_slice())?;
         Ok(out)
-    }
-
-    /// Central-difference Jacobian of the residuals with respect to the active parameters,
-    /// at full `theta`. Columns in the order of `active`.
-    pub fn jacobian_full(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
-        // All columns in one pass over the shots where the lanes can take them (the same bits).
-        match self.jacobian_on_lanes(theta.as_slice()) {
-            Some(jac) => Ok(jac),
-            None => self.jacobian_by_columns(theta),
-        }
-    }
-
-    /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
-    fn jacobian_by_columns(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
-        let m = self.rows();
-        let mut jac = DMatrix::zeros(m, self.active.len());
-        let column = |(k, col): (usize, &mut [f64])| self.jacobian_column(theta.as_slice(), k, col);
-        if self.parallel_jacobian {
-            jac.as_mut_slice()
-                .par_chunks_mut(m)
-                .enumerate()
-                .try_for_each(column)?;
-        } else {
-            jac.as_mut_slice()
-                .chunks_mut(m)
-                .enumerate()
-                .try_for_each(column)?;
-        }
-        Ok(jac)
-    }
-
-    /// The central difference's two points for parameter `j` at `theta`, `θ ± h e_j` (kept
-    /// within the bounds), and per group whether the parameter changes its model: the other
-    /// groups' residuals are the same at both points, so their rows stay 0 (what (r − r)/span
-    /// gives).
-    pub(super) fn shifted(&self, theta: &[f64], j: usize) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
-        let h = FD_STEP_OF_RANGE * (self.upper[j] - self.lower[j]);
-        let (mut plus, mut minus) = (theta.to_vec(), theta.to_vec());
-        plus[j] = (theta[j] + h).min(self.upper[j]);
-        minus[j] = (theta[j] - h).max(self.lower[j]);
-        let touched = self
-            .applies
-            .iter()
-            .map(|a| a.contains(&self.owner[j]))
-            .collect();
-        (plus, minus, touched)
-    }
-
-    /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
-    /// entry), from the residuals at `θ ± h e_j`.
-    fn jacobian_column(&self, theta: &[f64], k: usize, col: &mut [f64]) -> Result<(), EvalError> {
-        let j = self.active[k];
-        let (plus, minus, touched) = self.shifted(theta, j);
-        let span = plus[j] - minus[j];
-        let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
-        let mut r_minus = vec![0.0; col.len()];
-        self.residuals_of_groups(&plus, col, groups)?;
-        self.residuals_of_groups(&minus, &mut r_minus, groups)?;
-        for (c, rm) in col.iter_mut().zip(&r_minus) {
-            *c = (*c - rm) / span;
-        }
-        Ok(())
     }
 }
 

@@ -35,9 +35,14 @@ pub(super) fn start_evaluation(
     }
     // The shifted points of the base columns, as the Jacobian makes them.
     let (lo, hi) = (b.layout.lower(), b.layout.upper());
+    let kinds: Vec<_> = b
+        .layout
+        .params()
+        .map(|(i, _)| b.layout.effects()[i].kind == crate::effects::EffectKind::Friction)
+        .collect();
     for j in 0..kept {
-        let h = crate::fit::problem::FD_STEP_OF_RANGE * (hi[j] - lo[j]);
-        for v in [(b.theta[j] + h).min(hi[j]), (b.theta[j] - h).max(lo[j])] {
+        let (to, from) = crate::fit::problem::difference_points(kinds[j], b.theta[j], lo[j], hi[j]);
+        for v in [Some(to), from].into_iter().flatten() {
             let (mut t, mut tb) = (l.start.clone(), b.theta.clone());
             t[j] = v;
             tb[j] = v;

@@ -1,34 +1,122 @@
-//! The central-difference Jacobian on the lanes in one pass over the shots: for each vector of
-//! [`Lanes::N`](crate::lanes::Lanes::N) shots of one group, each evaluation site's inputs (the location nodes and the contact
-//! frames there, the delivery frames) are gathered once and solved by all `2p` shifted models
-//! (`θ ± h_j e_j`) before the next site is read. Each model's solution is the same operations on
+//! The Jacobian (`problem.rs`'s module docs say how it is differenced): the two points of a
+//! parameter's difference ([`difference_points`]), the Jacobian a column at a time from two
+//! evaluations, and the same on the lanes in one pass over the shots: for each vector of
+//! [`Lanes::N`](crate::lanes::Lanes::N) shots of one group, each evaluation site's inputs (the
+//! location nodes and the contact frames there, the delivery frames) are gathered once and
+//! solved by the model at `θ` and the `p` shifted models (`θ + h_j e_j`, or `θ − h_j e_j` at the
+//! upper bound) before the next site is read. Each model's solution is the same operations on
 //! the same inputs as its own evaluation ([`FitProblem::residuals_into`]), so every column is
-//! the same bits as from two separate evaluations; what is saved is reading, arranging and
-//! computing the inputs `2p − 1` times more per site.
+//! the same bits as from two separate evaluations; what is saved is solving the model at `θ`
+//! once for all columns, and reading, arranging and computing the inputs `p` times more per
+//! site.
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use super::lanes::{padded, FrameLanes, LanePrediction};
-use super::{FitProblem, SHOTS_PER_TASK};
+use super::{EvalError, FitProblem, FD_STEP_OF_RANGE, SHOTS_PER_TASK};
+use crate::effects::EffectKind;
 use crate::fit::data::SiteCache;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
 use crate::lanes::{Lanes, SimdLevel, V};
 use crate::physics::{FaceGeometry, ImpactModel};
 
-/// The two shifted models of one Jacobian column, per group it touches (`None` for the
-/// others), and the groups it touches.
+/// The most lanes of any lane type (AVX-512's eight).
+const MAX_LANES: usize = 8;
+
+/// The shifted models of one Jacobian column per group it touches (`None` for the others):
+/// the upper point's, and the lower point's (`None`: the model at `θ`), and the groups it
+/// touches.
 struct Column {
     plus: Vec<Option<ImpactModel>>,
-    minus: Vec<Option<ImpactModel>>,
-    /// `θ_j⁺ − θ_j⁻`.
+    minus: Option<Vec<Option<ImpactModel>>>,
+    /// The distance between the two points.
     span: f64,
     /// Per group: does the parameter change the group's model? (The other groups' rows are 0.)
     touched: Vec<bool>,
 }
 
 impl FitProblem<'_> {
+    /// Forward-difference Jacobian of the residuals with respect to the active parameters,
+    /// at full `theta` (module docs). Columns in the order of `active`.
+    pub fn jacobian_full(&self, theta: &DVector<f64>) -> Result<DMatrix<f64>, EvalError> {
+        // All columns in one pass over the shots where the lanes can take them (the same bits).
+        match self.jacobian_on_lanes(theta.as_slice()) {
+            Some(jac) => Ok(jac),
+            None => self.jacobian_by_columns(theta),
+        }
+    }
+
+    /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
+    pub(super) fn jacobian_by_columns(
+        &self,
+        theta: &DVector<f64>,
+    ) -> Result<DMatrix<f64>, EvalError> {
+        let m = self.rows();
+        let mut jac = DMatrix::zeros(m, self.active.len());
+        let column = |(k, col): (usize, &mut [f64])| self.jacobian_column(theta.as_slice(), k, col);
+        if self.parallel_jacobian {
+            jac.as_mut_slice()
+                .par_chunks_mut(m)
+                .enumerate()
+                .try_for_each(column)?;
+        } else {
+            jac.as_mut_slice()
+                .chunks_mut(m)
+                .enumerate()
+                .try_for_each(column)?;
+        }
+        Ok(jac)
+    }
+
+    /// The points of parameter `j`'s difference at `theta` ([`difference_points`]): the
+    /// shifted point, the lower one (`None`: `theta` itself), the span between them, and per
+    /// group whether the parameter changes its model: the other groups' residuals are the same
+    /// at both points, so their rows stay 0 (what (r − r)/span gives).
+    #[allow(clippy::type_complexity)]
+    pub(super) fn shifted(
+        &self,
+        theta: &[f64],
+        j: usize,
+    ) -> (Vec<f64>, Option<Vec<f64>>, f64, Vec<bool>) {
+        let central = self.layout.effects()[self.owner[j]].kind == EffectKind::Friction;
+        let (to, from) = difference_points(central, theta[j], self.lower[j], self.upper[j]);
+        let mut point = theta.to_vec();
+        point[j] = to;
+        let lower = from.map(|v| {
+            let mut p = theta.to_vec();
+            p[j] = v;
+            p
+        });
+        let touched = self
+            .applies
+            .iter()
+            .map(|a| a.contains(&self.owner[j]))
+            .collect();
+        (point, lower, to - from.unwrap_or(theta[j]), touched)
+    }
+
+    /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
+    /// entry), from the residuals at its difference's two points.
+    pub(super) fn jacobian_column(
+        &self,
+        theta: &[f64],
+        k: usize,
+        col: &mut [f64],
+    ) -> Result<(), EvalError> {
+        let j = self.active[k];
+        let (point, lower, span, touched) = self.shifted(theta, j);
+        let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
+        let mut r_from = vec![0.0; col.len()];
+        self.residuals_of_groups(&point, col, groups)?;
+        self.residuals_of_groups(lower.as_deref().unwrap_or(theta), &mut r_from, groups)?;
+        for (c, r0) in col.iter_mut().zip(&r_from) {
+            *c = (*c - r0) / span;
+        }
+        Ok(())
+    }
+
     /// [`FitProblem::jacobian_full`] in one pass (see the module docs), the columns whose shifted
     /// models have another face than the cache's (or user-defined loft or face terms) taken one
     /// at a time after it; or `None` when it cannot be done that way: no site cache, a shifted
@@ -57,18 +145,26 @@ impl FitProblem<'_> {
         // `face_curvature` parameter: the same bits either way, the residuals re-make the
         // contact frames on that face).
         let mut on_lanes = Vec::with_capacity(self.active.len());
+        // The model at `theta` is solved beside every column's.
+        if !base.iter().all(usable) {
+            return None;
+        }
         for &j in &self.active {
-            let (plus, minus, touched) = self.shifted(theta, j);
+            let (point, lower, span, touched) = self.shifted(theta, j);
+            let minus = match lower {
+                Some(l) => Some(self.models_of(&l, &touched).ok()?),
+                None => None,
+            };
             let column = Column {
-                span: plus[j] - minus[j],
-                plus: self.models_of(&plus, &touched).ok()?,
-                minus: self.models_of(&minus, &touched).ok()?,
+                span,
+                plus: self.models_of(&point, &touched).ok()?,
+                minus,
                 touched,
             };
             let lane = column
                 .plus
                 .iter()
-                .chain(&column.minus)
+                .chain(column.minus.iter().flatten())
                 .flatten()
                 .all(usable);
             on_lanes.push(lane);
@@ -98,7 +194,8 @@ impl FitProblem<'_> {
             }
         }
         let task = |(t, mut out): (usize, Vec<&mut [f64]>)| {
-            self.jacobian_block(&columns, (cache, face), t * SHOTS_PER_TASK, &mut out)
+            let at = (&base[..], &columns[..]);
+            self.jacobian_block(at, (cache, face), t * SHOTS_PER_TASK, &mut out)
         };
         // Split by size alone: below it the lane vectors of a task finish sooner than waking,
         // stealing and joining threads takes (a 600-shot, 5-parameter calibration: 2.01 ms
@@ -123,7 +220,7 @@ impl FitProblem<'_> {
     /// of the problem's [`SimdLevel`], as the residuals do (the same bits on every path).
     fn jacobian_block(
         &self,
-        columns: &[Column],
+        columns: (&[ImpactModel], &[Column]),
         cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
@@ -145,7 +242,7 @@ impl FitProblem<'_> {
     #[inline(never)]
     fn jacobian_block_portable(
         &self,
-        columns: &[Column],
+        columns: (&[ImpactModel], &[Column]),
         cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
@@ -162,7 +259,7 @@ impl FitProblem<'_> {
     #[target_feature(enable = "avx512f")]
     unsafe fn jacobian_block_avx512(
         &self,
-        columns: &[Column],
+        columns: (&[ImpactModel], &[Column]),
         cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
@@ -179,7 +276,7 @@ impl FitProblem<'_> {
     #[target_feature(enable = "avx2")]
     unsafe fn jacobian_block_avx2(
         &self,
-        columns: &[Column],
+        columns: (&[ImpactModel], &[Column]),
         cache: (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         out: &mut [&mut [f64]],
@@ -194,7 +291,7 @@ impl FitProblem<'_> {
     #[inline(always)]
     fn jacobian_block_impl<L: Lanes>(
         &self,
-        columns: &[Column],
+        (base, columns): (&[ImpactModel], &[Column]),
         (cache, face): (&SiteCache, Option<&FaceGeometry>),
         start: usize,
         block: &mut [&mut [f64]],
@@ -210,18 +307,33 @@ impl FitProblem<'_> {
         // Keys are distinct, so the unstable sort (which does not allocate) keeps file order
         // within a group.
         order.sort_unstable_by_key(|&i| (group_of[i], i));
-        let mut models: Vec<&ImpactModel> = Vec::with_capacity(2 * columns.len());
+        // Per group run: the model at `θ` first, then each touching column's upper point's
+        // model and, for a central difference, its lower point's; `at[q]` the positions of
+        // column `which[q]`'s two models (0: the model at `θ`).
+        let mut models: Vec<&ImpactModel> = Vec::with_capacity(1 + 2 * columns.len());
         let mut which = Vec::with_capacity(columns.len());
-        let mut frames: Vec<FrameLanes<L>> = Vec::with_capacity(2 * columns.len());
-        let mut outs = vec![LanePrediction::<L>::zero(); 2 * columns.len()];
+        let mut at = Vec::with_capacity(columns.len());
+        let mut frames: Vec<FrameLanes<L>> = Vec::with_capacity(1 + 2 * columns.len());
+        let mut outs = vec![LanePrediction::<L>::zero(); 1 + 2 * columns.len()];
+        let mut rows_of = vec![[[0.0; 5]; MAX_LANES]; 1 + 2 * columns.len()];
         for run in order.chunk_by(|&a, &b| group_of[a] == group_of[b]) {
             let g = group_of[run[0]];
             models.clear();
             which.clear();
+            at.clear();
+            models.push(&base[g]);
             for (k, c) in columns.iter().enumerate().filter(|(_, c)| c.touched[g]) {
                 which.push(k);
                 models.push(c.plus[g].as_ref()?);
-                models.push(c.minus[g].as_ref()?);
+                let upper = models.len() - 1;
+                let lower = match &c.minus {
+                    Some(m) => {
+                        models.push(m[g].as_ref()?);
+                        models.len() - 1
+                    }
+                    None => 0,
+                };
+                at.push((upper, lower));
             }
             if which.is_empty() {
                 continue;
@@ -235,21 +347,24 @@ impl FitProblem<'_> {
                     .map_or(&[][..], |r| &r[..r.len().min(n)]);
                 self.prefetch_shots(cache, next);
                 let idx = padded(shots);
-                let at = (cache, face);
-                if !self.predict_lanes_multi(&models, at, &idx[..n], &mut frames, outs) {
+                let sites = (cache, face);
+                if !self.predict_lanes_multi(&models, sites, &idx[..n], &mut frames, outs) {
                     return None;
                 }
-                for (q, &k) in which.iter().enumerate() {
-                    let (p, m) = (outs[2 * q].lanewise(), outs[2 * q + 1].lanewise());
+                // Every model's rows of the vector's shots, then each column's difference.
+                for (m, out) in outs.iter().enumerate() {
+                    let p = out.lanewise();
                     for (l, &i) in shots.iter().enumerate() {
-                        let (mut r_plus, mut r_minus) = ([0.0; 5], [0.0; 5]);
-                        let rp = &mut r_plus[..rows];
-                        self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), rp);
-                        let rm = &mut r_minus[..rows];
-                        self.write_rows(i, &m.launch(l), &m.ball(l, false), &m.ball(l, true), rm);
-                        let span = columns[k].span;
+                        let r = &mut rows_of[m][l][..rows];
+                        self.write_rows(i, &p.launch(l), &p.ball(l, false), &p.ball(l, true), r);
+                    }
+                }
+                for (&k, &(upper, lower)) in which.iter().zip(at.iter()) {
+                    let span = columns[k].span;
+                    for (l, &i) in shots.iter().enumerate() {
+                        let (a, b) = (&rows_of[upper][l][..rows], &rows_of[lower][l][..rows]);
                         let out = &mut block[k][(i - start) * rows..][..rows];
-                        for ((o, a), b) in out.iter_mut().zip(rp.iter()).zip(rm.iter()) {
+                        for ((o, a), b) in out.iter_mut().zip(a).zip(b) {
                             *o = (a - b) / span;
                         }
                     }
@@ -260,9 +375,60 @@ impl FitProblem<'_> {
     }
 }
 
+/// The two points of a parameter's difference at `value` within `[lower, upper]`, with
+/// `h = FD_STEP_OF_RANGE · (upper − lower)`: the shifted value and the one it is differenced
+/// from (`None`: `value` itself). A forward difference, `value + h` (or `value − h` where that
+/// would leave the upper bound, then differenced upwards from it); a central one,
+/// `value ± h` kept within the bounds (`central`), for the friction coefficient, whose χ² has a corner
+/// where shots change between sticking and slipping (a one-sided difference there is the slope
+/// of one side only, and the fits near it did not converge). Where neither step fits within
+/// the bounds (an unbounded range), the farther bound.
+pub(crate) fn difference_points(
+    central: bool,
+    value: f64,
+    lower: f64,
+    upper: f64,
+) -> (f64, Option<f64>) {
+    let h = FD_STEP_OF_RANGE * (upper - lower);
+    if central {
+        return ((value + h).min(upper), Some((value - h).max(lower)));
+    }
+    if value + h <= upper {
+        (value + h, None)
+    } else if value - h >= lower {
+        (value, Some(value - h))
+    } else if upper - value >= value - lower {
+        (upper, None)
+    } else {
+        (value, Some(lower))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::path::Path;
+
+    /// A forward difference inside the bounds, downwards at the upper bound, central (kept
+    /// within the bounds) for the friction coefficient, and the farther bound where the range
+    /// is too wide for a finite step.
+    #[test]
+    fn difference_points_follow_the_documented_rule() {
+        use super::difference_points;
+        let h = super::FD_STEP_OF_RANGE * 10.0;
+        assert_eq!(difference_points(false, 2.0, 0.0, 10.0), (2.0 + h, None));
+        assert_eq!(
+            difference_points(false, 10.0, 0.0, 10.0),
+            (10.0, Some(10.0 - h))
+        );
+        assert_eq!(
+            difference_points(true, 2.0, 0.0, 10.0),
+            (2.0 + h, Some(2.0 - h))
+        );
+        assert_eq!(difference_points(true, 0.0, 0.0, 10.0), (h, Some(0.0)));
+        let (to, from) = difference_points(false, 1.0, -f64::MAX, f64::MAX);
+        assert!(to.is_finite() && from.is_none_or(f64::is_finite));
+        assert_eq!((to, from), (f64::MAX, None));
+    }
 
     use nalgebra::DVector;
 
