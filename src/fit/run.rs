@@ -103,10 +103,7 @@ pub fn scan_nonsmooth_starts(problem: &FitProblem<'_>, start: &DVector<f64>) -> 
     let friction: Vec<usize> = layout
         .params()
         .enumerate()
-        .filter(|(j, (i, _))| {
-            layout.effects()[*i].kind == crate::effects::EffectKind::Friction
-                && problem.active().contains(j)
-        })
+        .filter(|(j, (i, _))| layout.effects()[*i].is_nonsmooth() && problem.active().contains(j))
         .map(|(j, _)| j)
         .collect();
     let chi2 = |t: &DVector<f64>| {

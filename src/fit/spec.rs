@@ -143,6 +143,14 @@ impl FreeEffect {
     pub fn applies_to(&self, group: &str) -> bool {
         self.group.as_deref().is_none_or(|g| g == group)
     }
+
+    /// Does χ² have corners in its parameters? The friction coefficient's has one where shots
+    /// change between sticking and slipping (and is flat where none slips): the fits scan it
+    /// before they start ([`crate::fit::run::scan_nonsmooth_starts`]) and difference it
+    /// centrally ([`crate::fit::problem::difference_points`]).
+    pub fn is_nonsmooth(&self) -> bool {
+        self.kind == crate::effects::EffectKind::Friction
+    }
 }
 
 /// The free effects and where each one's parameters sit in the fit vector `θ`

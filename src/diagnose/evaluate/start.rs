@@ -35,13 +35,14 @@ pub(super) fn start_evaluation(
     }
     // The shifted points of the base columns, as the Jacobian makes them.
     let (lo, hi) = (b.layout.lower(), b.layout.upper());
-    let kinds: Vec<_> = b
+    let central: Vec<bool> = b
         .layout
         .params()
-        .map(|(i, _)| b.layout.effects()[i].kind == crate::effects::EffectKind::Friction)
+        .map(|(i, _)| b.layout.effects()[i].is_nonsmooth())
         .collect();
     for j in 0..kept {
-        let (to, from) = crate::fit::problem::difference_points(kinds[j], b.theta[j], lo[j], hi[j]);
+        let (to, from) =
+            crate::fit::problem::difference_points(central[j], b.theta[j], lo[j], hi[j]);
         for v in [Some(to), from].into_iter().flatten() {
             let (mut t, mut tb) = (l.start.clone(), b.theta.clone());
             t[j] = v;

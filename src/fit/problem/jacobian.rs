@@ -15,7 +15,6 @@ use rayon::prelude::*;
 
 use super::lanes::{padded, FrameLanes, LanePrediction};
 use super::{EvalError, FitProblem, FD_STEP_OF_RANGE, SHOTS_PER_TASK};
-use crate::effects::EffectKind;
 use crate::fit::data::SiteCache;
 #[cfg(target_arch = "x86_64")]
 use crate::lanes::{F64x4, F64x8};
@@ -48,14 +47,18 @@ impl FitProblem<'_> {
         }
     }
 
-    /// [`FitProblem::jacobian_full`] one column at a time, each from two evaluations.
+    /// [`FitProblem::jacobian_full`] one column at a time, each from its shifted point's
+    /// evaluation and the one at `theta` (made once for every column) or at its lower point.
     pub(super) fn jacobian_by_columns(
         &self,
         theta: &DVector<f64>,
     ) -> Result<DMatrix<f64>, EvalError> {
         let m = self.rows();
         let mut jac = DMatrix::zeros(m, self.active.len());
-        let column = |(k, col): (usize, &mut [f64])| self.jacobian_column(theta.as_slice(), k, col);
+        let here = self.residuals_here(theta.as_slice(), 0..self.active.len())?;
+        let column = |(k, col): (usize, &mut [f64])| {
+            self.jacobian_column(theta.as_slice(), k, col, here.as_deref())
+        };
         if self.parallel_jacobian {
             jac.as_mut_slice()
                 .par_chunks_mut(m)
@@ -80,7 +83,7 @@ impl FitProblem<'_> {
         theta: &[f64],
         j: usize,
     ) -> (Vec<f64>, Option<Vec<f64>>, f64, Vec<bool>) {
-        let central = self.layout.effects()[self.owner[j]].kind == EffectKind::Friction;
+        let central = self.layout.effects()[self.owner[j]].is_nonsmooth();
         let (to, from) = difference_points(central, theta[j], self.lower[j], self.upper[j]);
         let mut point = theta.to_vec();
         point[j] = to;
@@ -97,22 +100,57 @@ impl FitProblem<'_> {
         (point, lower, to - from.unwrap_or(theta[j]), touched)
     }
 
+    /// The residuals at `theta` when any of the active columns `ks` is a one-sided difference
+    /// (which differences from `theta` itself): evaluated once for all of them, not once a
+    /// column. `None` when every one is central.
+    fn residuals_here(
+        &self,
+        theta: &[f64],
+        mut ks: impl Iterator<Item = usize>,
+    ) -> Result<Option<Vec<f64>>, EvalError> {
+        let one_sided =
+            |k: usize| !self.layout.effects()[self.owner[self.active[k]]].is_nonsmooth();
+        if !ks.any(one_sided) {
+            return Ok(None);
+        }
+        let mut here = vec![0.0; self.rows()];
+        self.residuals_into(theta, &mut here)?;
+        Ok(Some(here))
+    }
+
     /// Column `k` of the Jacobian (of active parameter `k`) at `theta` into `col` (zero on
-    /// entry), from the residuals at its difference's two points.
+    /// entry), from the residuals at its difference's two points; `here`, the residuals at
+    /// `theta` when they are already made ([`FitProblem::residuals_here`]). The rows of groups
+    /// the parameter does not touch stay 0.
     pub(super) fn jacobian_column(
         &self,
         theta: &[f64],
         k: usize,
         col: &mut [f64],
+        here: Option<&[f64]>,
     ) -> Result<(), EvalError> {
         let j = self.active[k];
         let (point, lower, span, touched) = self.shifted(theta, j);
         let groups = (!touched.iter().all(|&t| t)).then_some(touched.as_slice());
-        let mut r_from = vec![0.0; col.len()];
         self.residuals_of_groups(&point, col, groups)?;
-        self.residuals_of_groups(lower.as_deref().unwrap_or(theta), &mut r_from, groups)?;
-        for (c, r0) in col.iter_mut().zip(&r_from) {
-            *c = (*c - r0) / span;
+        let made;
+        let r_from = match (&lower, here) {
+            (None, Some(h)) => h,
+            _ => {
+                let mut r = vec![0.0; col.len()];
+                self.residuals_of_groups(lower.as_deref().unwrap_or(theta), &mut r, groups)?;
+                made = r;
+                &made[..]
+            }
+        };
+        let rows = self.weighting.rows_per_shot();
+        let shots = col.chunks_mut(rows).zip(r_from.chunks(rows));
+        for ((c, r0), &g) in shots.zip(&self.data.group_of) {
+            if touched[g] {
+                for (c, r0) in c.iter_mut().zip(r0) {
+                    *c = (*c - r0) / span;
+                }
+            }
         }
         Ok(())
     }
@@ -209,8 +247,11 @@ impl FitProblem<'_> {
         if !done {
             return None;
         }
+        let here = self
+            .residuals_here(theta, apart.iter().map(|(k, _)| *k))
+            .ok()?;
         for (k, col) in apart {
-            self.jacobian_column(theta, k, col).ok()?;
+            self.jacobian_column(theta, k, col, here.as_deref()).ok()?;
         }
         Some(jac)
     }
