@@ -17,10 +17,10 @@
 //! downwards. The friction coefficient keeps central differences, `(r(θ + h_j e_j) −
 //! r(θ − h_j e_j)) / (2 h_j)` within the bounds: its χ² has a corner where shots change
 //! between sticking and slipping ([`difference_points`]). A forward difference's truncation
-//! error, `h_j/2 · ∂²r/∂θ_j²`, is a few parts in 10⁵ of a column for
-//! a parameter whose effect bends over its range, far inside what the data determine (a
-//! standard error moves in its fourth or fifth figure), and it costs `p + 1` models a site where central
-//! differences cost `2p`: at real scale the Jacobians are most of a diagnosis's work. On the
+//! error, `h_j/2 · ∂²r/∂θ_j²`, is about 1e-4 of a column's largest entry for a parameter whose
+//! effect bends over its range, far inside what the data determine (a standard error moves in
+//! its fourth or fifth figure), and it costs `p + 1` models a site where central differences
+//! cost `2p`: at real scale the Jacobians are most of a diagnosis's work. On the
 //! lanes the model at `θ` and the `p` shifted models are solved in one pass over the shots,
 //! each site's inputs read once for all of them (`problem/jacobian.rs`; the same bits as two
 //! evaluations a column). The model for each group is built once per evaluation; the per-shot

@@ -419,8 +419,8 @@ impl FitProblem<'_> {
 /// The two points of a parameter's difference at `value` within `[lower, upper]`, with
 /// `h = FD_STEP_OF_RANGE · (upper − lower)`: the shifted value and the one it is differenced
 /// from (`None`: `value` itself). A forward difference, `value + h` (or `value − h` where that
-/// would leave the upper bound, then differenced upwards from it); a central one,
-/// `value ± h` kept within the bounds (`central`), for the friction coefficient, whose χ² has a corner
+/// would leave the upper bound, then differenced upwards from it); a central one, `value ± h`
+/// kept within the bounds (`central`), for the friction coefficient, whose χ² has a corner
 /// where shots change between sticking and slipping (a one-sided difference there is the slope
 /// of one side only, and the fits near it did not converge). Where neither step fits within
 /// the bounds (an unbounded range), the farther bound.
