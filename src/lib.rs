@@ -35,6 +35,9 @@
 //! - [`study`]: design studies: maps over design variants, summaries, sensitivities, optimiser,
 //!   shards.
 //! - [`report`]: output rendering (SVG heatmaps, CSV matrices, text tables).
+//! - [`app`]: the commands as library calls: per command a settings type (serde) and a `run`
+//!   from settings and inputs to the command's report, which the command line and the Python
+//!   package only fill and render.
 //!
 //! Underneath every room, the floors any of them may use (they use none of the rooms):
 //!
@@ -82,6 +85,7 @@
 // `!(x > 0.0)` is used on purpose: it rejects NaN along with the non-positive values.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+pub mod app;
 pub mod cancel;
 pub mod club;
 pub mod club_match;

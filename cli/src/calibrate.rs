@@ -3,16 +3,11 @@
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use anyhow::Context;
 use clap::{Args, ValueEnum};
 
+use smash::app::calibrate::CalibrateSettings;
 use smash::data::club_file::club_toml_checked;
-use smash::data::shots::ShotTable;
-use smash::fit::{
-    calibrate_scored, parse_effect_list, CalibrateOptions, FitError, Method, Progress,
-};
-use smash::report::calibrate::CalibrateReport;
-use smash::ClubSpec;
+use smash::fit::Method;
 
 use super::progress::IterationLine;
 
@@ -87,8 +82,29 @@ pub struct CalibrateArgs {
     pub noise: Option<PathBuf>,
 }
 
+impl CalibrateArgs {
+    /// The settings these arguments give.
+    pub fn settings(&self) -> CalibrateSettings {
+        CalibrateSettings {
+            shots: self.inputs.shots_format.settings(),
+            impact_noise_mm: self.inputs.measurement.impact_noise_mm,
+            effects: self.effects.clone(),
+            method: match self.method {
+                MethodArg::Lm => Method::Lm,
+                MethodArg::Paper => Method::Paper,
+            },
+            max_iters: self.max_iters,
+            delivery_noise: self.delivery_noise,
+            instrument: self.instrument,
+            noise: self.noise.clone(),
+            ignore_club_mismatch: self.inputs.club_check.ignore_club_mismatch,
+        }
+    }
+}
+
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
+    let settings = args.settings();
     let crate::measured::Loaded {
         plan,
         club,
@@ -103,7 +119,14 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
             .club_check
             .check(&args.inputs.club, &club, &args.inputs.shots, &table.shots)?;
     let line = Arc::new(IterationLine::new());
-    let report = compute(&args, &club, &table, mismatch, Some(line.clone()));
+    let report = smash::app::calibrate::run_prepared(
+        &settings,
+        &club,
+        &args.inputs.shots,
+        &table,
+        mismatch,
+        Some(line.clone()),
+    );
     line.finish();
     let report = report?;
     let cal = &report.calibration;
@@ -124,39 +147,18 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         staging.file(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
     }
     if let Some(path) = &args.inputs.report {
-        // The calibrated model under the fit's measurement model: at the expected true
-        // deliveries, averaged over the likely impact locations.
-        let mut expected = table.shots.clone();
-        if let Some(noise) = cal.delivery_noise {
-            let deliveries: Vec<_> = expected.iter().map(|s| s.delivery).collect();
-            let golfers: Vec<_> = expected.iter().map(|s| s.golfer.clone()).collect();
-            for (s, d) in expected
-                .iter_mut()
-                .zip(noise.calibrate(&deliveries, &golfers))
-            {
-                s.delivery = d;
-            }
-        }
-        let launches = smash::predict::expected_launches(
-            &cal.club,
-            &expected,
-            args.inputs.measurement.impact_noise_mm,
-        )
-        .with_context(|| args.inputs.shots.display().to_string())?;
-        let after = smash::compare::compare(
-            &table.shots,
-            &launches,
-            &smash::compare::CompareOptions::default(),
-        )?;
-        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
         let title = format!(
             "{} calibrated on {} ({} shots)",
             club.name,
             args.inputs.shots.display(),
             table.shots.len()
         );
-        let html = smash::report::html::calibrate_page(&report, &after, &residuals, &title)
-            .map_err(anyhow::Error::msg)?;
+        let html = smash::app::calibrate::report_page(
+            &report,
+            &table,
+            &settings,
+            (&args.inputs.shots, &title),
+        )?;
         staging.file(path, html.as_bytes())?;
     }
     staging.commit()?;
@@ -175,72 +177,4 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         ))?;
     }
     Ok(())
-}
-
-/// The report of the calibration of `table` with `club` under `args`' options (its `--club`
-/// and `--shots` only name them in messages), refused when any reported number is not finite;
-/// `club_mismatch`: why the shots are another club's, when the caller's club check let them
-/// through. `progress` sees the solver's iterations. What `run` reports.
-pub fn compute(
-    args: &CalibrateArgs,
-    club: &ClubSpec,
-    table: &ShotTable,
-    club_mismatch: Option<String>,
-    progress: Option<Arc<dyn Progress>>,
-) -> anyhow::Result<CalibrateReport> {
-    if !table.has_measurements() {
-        return Err(FitError::NoMeasurements).context(args.inputs.shots.display().to_string());
-    }
-    let requests = parse_effect_list(&args.effects)?;
-    let opts = CalibrateOptions {
-        method: match args.method {
-            MethodArg::Lm => Method::Lm,
-            MethodArg::Paper => Method::Paper,
-        },
-        max_iters: args.max_iters,
-        parallel: true,
-        impact_noise: args.inputs.measurement.impact_noise_mm,
-        delivery_noise: args.delivery_noise,
-    };
-    let given = super::likelihood::given_scales(
-        (args.noise.as_deref(), args.instrument),
-        club,
-        &table.shots,
-        args.inputs.measurement.impact_noise_mm,
-    )
-    .with_context(|| args.inputs.shots.display().to_string())?;
-    let cal = calibrate_scored(
-        club,
-        &table.shots,
-        &requests,
-        &opts,
-        given.as_ref(),
-        progress,
-    )
-    .with_context(|| args.inputs.shots.display().to_string())?;
-    // Nothing infinite or undefined is reported or written into a club file.
-    let mut numbers: Vec<(String, f64)> = vec![
-        ("chi2".into(), cal.chi2),
-        ("nominal chi2".into(), cal.chi2_before),
-        ("reduced chi2".into(), cal.reduced_chi2),
-        ("-2 ln L".into(), cal.likelihood.minus_2_ln_l),
-        (
-            "nominal -2 ln L".into(),
-            cal.likelihood_nominal.minus_2_ln_l,
-        ),
-    ];
-    numbers.extend(cal.params.iter().map(|p| (p.label(), p.value)));
-    if let Some((name, v)) = numbers.iter().find(|(_, v)| !v.is_finite()) {
-        anyhow::bail!(
-            "{}: the fit's {name} is {v}, not a number; the measurements do not fit this model \
-             (check the shots' measured launch values)",
-            args.inputs.shots.display()
-        );
-    }
-    Ok(CalibrateReport {
-        calibration: cal,
-        n_shots: table.shots.len(),
-        club_mismatch,
-        warnings: table.left_out_notes(),
-    })
 }

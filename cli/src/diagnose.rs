@@ -6,22 +6,16 @@
 
 use std::path::PathBuf;
 
-use anyhow::Context;
 use clap::Args;
 use indicatif::ProgressBar;
 
+use smash::app::diagnose::DiagnoseSettings;
+use smash::app::inputs::NamedClub;
 use smash::data::club_file::club_toml_checked;
-use smash::data::noise_file::read_noise_file;
-use smash::data::shots::ShotTable;
-use smash::diagnose::noise_floor::{noise_floor, InstrumentClass};
-use smash::diagnose::{
-    diagnose, DiagnoseOptions, DiagnoseProgress, DEFAULT_IMPACT_NOISE_CANDIDATES_MM,
-};
-use smash::fit::{parse_effect_list, FitError};
+use smash::diagnose::noise_floor::InstrumentClass;
+use smash::diagnose::DiagnoseProgress;
 use smash::report::diagnose::text::Layout;
-use smash::report::diagnose::DiagnoseReport;
 use smash::report::text::shell_word;
-use smash::ClubSpec;
 
 use super::progress::job_bar;
 
@@ -135,7 +129,17 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     let conventions = super::to_model_convention(&club, &mut table, args.inputs.json, true)?;
     super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
     let bar = Bar(job_bar(1, "fits"));
-    let result = compute(&args, &club, &table, Some(&bar));
+    let named = NamedClub {
+        spec: &club,
+        path: &args.inputs.club,
+    };
+    let result = smash::app::diagnose::run_prepared(
+        &args.settings(),
+        named,
+        (&args.inputs.shots, &table),
+        &mut smash::app::StderrNotes,
+        (Some(&bar), None),
+    );
     bar.0.finish_and_clear();
     let report = result?;
     let d = &report.diagnosis;
@@ -180,85 +184,23 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The diagnosis of `table` with `club` under `args`' options (its `--club` and `--shots` only
-/// name them in messages) and its noise floor; `progress` sees the fits. What `run` reports.
-pub fn compute(
-    args: &DiagnoseArgs,
-    club: &ClubSpec,
-    table: &ShotTable,
-    progress: Option<&dyn DiagnoseProgress>,
-) -> anyhow::Result<DiagnoseReport> {
-    compute_cancellable(args, club, table, progress, None)
-}
-
-/// [`compute`] stopping with [`FitError::Cancelled`] once `cancel` is cancelled (checked
-/// between fits): the Python package's Ctrl-C.
-pub fn compute_cancellable(
-    args: &DiagnoseArgs,
-    club: &ClubSpec,
-    table: &ShotTable,
-    progress: Option<&dyn DiagnoseProgress>,
-    cancel: Option<&smash::cancel::Cancel>,
-) -> anyhow::Result<DiagnoseReport> {
-    let mismatch =
-        args.inputs
-            .club_check
-            .check(&args.inputs.club, club, &args.inputs.shots, &table.shots)?;
-    let known_noise = match (&args.noise, args.instrument) {
-        (Some(p), _) => Some(read_noise_file(p)?),
-        (None, Some(c)) => Some(c.noise()),
-        (None, None) => None,
-    };
-    let assumed = known_noise.is_none();
-    let instrument = known_noise
-        .clone()
-        .unwrap_or_else(|| InstrumentClass::Camera.noise());
-    if !table.has_measurements() {
-        return Err(FitError::NoMeasurements).context(args.inputs.shots.display().to_string());
+impl DiagnoseArgs {
+    /// The settings these arguments give.
+    pub fn settings(&self) -> DiagnoseSettings {
+        DiagnoseSettings {
+            shots: self.inputs.shots_format.settings(),
+            impact_noise_mm: self.inputs.measurement.impact_noise_mm,
+            folds: self.folds,
+            max_steps: self.max_steps,
+            candidates: self.candidates.clone(),
+            without: self.without.clone(),
+            max_iters: self.max_iters,
+            exact_impact_locations: self.exact_impact_locations,
+            instrument: self.instrument,
+            noise: self.noise.clone(),
+            ignore_club_mismatch: self.inputs.club_check.ignore_club_mismatch,
+        }
     }
-    if args.folds < 2 {
-        anyhow::bail!("--folds must be at least 2, got {}", args.folds);
-    }
-    let candidates = match (&args.candidates, &args.without) {
-        (Some(list), _) => Some(parse_effect_list(list)?),
-        (None, Some(list)) => Some(
-            smash::diagnose::default_candidates_without(&table.shots, &parse_effect_list(list)?)
-                .context("--without")?,
-        ),
-        (None, None) => None,
-    };
-    let opts = DiagnoseOptions {
-        folds: args.folds,
-        max_steps: args.max_steps,
-        max_iters: args.max_iters,
-        candidates,
-        impact_noise: args.inputs.measurement.impact_noise_mm,
-        impact_noise_candidates_mm: if args.exact_impact_locations {
-            Vec::new()
-        } else {
-            DEFAULT_IMPACT_NOISE_CANDIDATES_MM.to_vec()
-        },
-        noise_floor: known_noise,
-        // Without golfers, whole sessions (dates), time blocks or clubs form the folds.
-        fold_keys: smash::data::sessions::fold_keys(table, args.folds)?,
-        cancel: cancel.cloned(),
-        ..DiagnoseOptions::default()
-    };
-    let mut d = diagnose(club, &table.shots, &opts, progress)
-        .with_context(|| args.inputs.shots.display().to_string())?;
-    if smash::cancel::cancelled(cancel) {
-        return Err(FitError::Cancelled.into());
-    }
-    d.club_mismatch = mismatch;
-    // The rows the shots reader left out (printed on stderr as it read them), in the report.
-    d.warnings.extend(table.left_out_notes());
-    let mut floor = noise_floor(&d, &table.shots, &instrument)?;
-    floor.assumed = assumed;
-    d.shared_signals = smash::diagnose::shared::shared_signals(&d, &table.shots, &floor)?;
-    Ok(DiagnoseReport {
-        diagnosis: d,
-        floor,
-    })
 }
 
 /// The layout of `args`' text report.

@@ -33,23 +33,17 @@ pub struct ImportArgs {
 
 /// Run `smash import`.
 pub fn run(args: ImportArgs) -> anyhow::Result<()> {
-    let format = args.format.format.as_deref().unwrap_or("auto");
-    if format == "shots" {
-        anyhow::bail!(
-            "--format shots: `shots` is the shots-file format itself, so there is nothing to \
-             convert; give the export's format: auto (the default: recognised from the header), \
-             a preset (trackman, foresight, …: smash import --help lists them) or a mapping \
-             file NAME.toml"
-        );
+    let settings = smash::app::import::ImportSettings {
+        shots: args.format.settings(),
+    };
+    if settings.shots.format.as_deref() != Some("shots") {
+        smash::data::safe_write::refuse_inputs(
+            &[("--out", &args.out, false)],
+            &[("IN.csv", &args.input)],
+        )?;
     }
-    smash::data::safe_write::refuse_inputs(
-        &[("--out", &args.out, false)],
-        &[("IN.csv", &args.input)],
-    )?;
-    let imported = args.format.import(&args.input, format)?;
-    // Shots without a complete delivery or with estimated values are written all the same
-    // (flight uses their launch); the rest must read back.
-    let table = imported.checked_read_back(&args.input, args.format.strict)?;
+    let smash::app::import::Converted { imported, table } =
+        smash::app::import::run(&settings, &args.input, &mut smash::app::StderrNotes)?;
     let groups = table.as_ref().map_or(0, |t| t.groups().len());
     write_atomic(&args.out, &imported.csv)?;
     let n = imported.shots;

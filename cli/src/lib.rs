@@ -5,7 +5,8 @@ use clap::{Parser, Subcommand};
 
 pub mod calibrate;
 pub mod compare;
-pub mod delivery_noise;
+/// `--delivery-noise SPEC` (the library's).
+pub use smash::app::delivery_noise;
 pub mod diagnose;
 pub mod effects;
 pub mod flight;
@@ -18,7 +19,6 @@ pub mod predict;
 pub mod progress;
 pub mod project;
 pub mod run;
-pub mod shots_hint;
 pub mod signals;
 pub mod stdout;
 pub mod study_output;
@@ -140,99 +140,10 @@ impl Command {
     }
 }
 
-/// A shot that cannot be predicted, located in its file: `FILE:LINE: columns …: shot 'ID': …`,
-/// the same form as the shots reader's own errors.
-pub fn locate_shot_error(
-    table: &smash::data::shots::ShotTable,
-    e: smash::predict::PredictError,
-) -> anyhow::Error {
-    use smash::physics::ImpactError;
-    use smash::predict::PredictError;
-    let PredictError::Shot {
-        shot_id,
-        row,
-        source,
-    } = e
-    else {
-        return anyhow::Error::new(e).context(table.path.display().to_string());
-    };
-    let line = row.checked_sub(1).and_then(|i| table.lines.get(i)).copied();
-    let place = match source {
-        ImpactError::OffFace(_) => Some("columns impact_y_mm, impact_z_mm".to_owned()),
-        ImpactError::NotApproaching { .. } => Some(
-            "columns club_speed_mph, attack_angle_deg, club_path_deg, dynamic_loft_deg, \
-             face_angle_deg, club_omega_*_rad_s"
-                .to_owned(),
-        ),
-        _ => None,
-    };
-    smash::data::DataError::at(
-        &table.path,
-        line,
-        place,
-        format!("shot '{shot_id}': {source}"),
-    )
-    .into()
-}
+pub use smash::app::predict::locate_shot_error;
 
-/// Stack of each worker thread, bytes. Rayon's default is the platform's 2 MiB; unoptimised
-/// (`cargo run`, dev profile), the face-map kernel's row function, whose SIMD variants are
-/// inlined into one frame for speed, needs about 2 MiB of stack by itself, and `smash run
-/// configs/studies/face_map.toml` overflowed it. The stack is reserved address space, touched
-/// only as deep as it is used.
-pub const WORKER_STACK_BYTES: usize = 16 << 20;
-
-/// The worker threads every command runs its parallel work on (installed as the global pool by
-/// the binary's `main`).
-pub fn thread_pool() -> rayon::ThreadPoolBuilder {
-    rayon::ThreadPoolBuilder::new()
-        .stack_size(WORKER_STACK_BYTES)
-        .thread_name(|i| format!("smash-worker-{i}"))
-}
-
-/// The message for shots whose group none of the club's per-group effects (`group = "A"`) names,
-/// or `None`. Such shots get the nominal club with only the effects that name no group: right
-/// for a new group measured with a club calibrated on others (so a warning, not a refusal), but
-/// easy to miss when a group was renamed or a file has no `group` column.
-pub fn groups_without_effects(
-    club_path: &std::path::Path,
-    club: &smash::club::ClubSpec,
-    shots: &[smash::model::Shot],
-) -> Option<String> {
-    let have = club.effect_groups();
-    if have.is_empty() {
-        return None;
-    }
-    let mut missing: Vec<&str> = shots
-        .iter()
-        .map(|s| s.group.as_str())
-        .filter(|g| !have.iter().any(|h| h == g))
-        .collect();
-    missing.sort_unstable();
-    missing.dedup();
-    if missing.is_empty() {
-        return None;
-    }
-    let quote = |v: &[&str]| {
-        v.iter()
-            .map(|g| format!("'{}'", g.escape_debug()))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    let have: Vec<&str> = have.iter().map(String::as_str).collect();
-    Some(format!(
-        "warning: {}: the club's per-group effects are for group(s) {}; shots of group(s) {} get \
-         none of them (the nominal club with the effects that name no group){}",
-        club_path.display(),
-        quote(&have),
-        quote(&missing),
-        if missing.contains(&"all") {
-            " ('all' is the group of shots in a file without a `group` column)"
-        } else {
-            ""
-        }
-    ))
-}
+pub use smash::app::inputs::{groups_without_effects, mismatch_comment};
+pub use smash::app::{error_chain, thread_pool, WORKER_STACK_BYTES};
 
 /// Print [`groups_without_effects`]' warning, if any, once on stderr.
 pub fn warn_groups_without_effects(
@@ -265,52 +176,17 @@ impl ClubCheckArgs {
         shots_path: &std::path::Path,
         shots: &[smash::model::Shot],
     ) -> anyhow::Result<Option<String>> {
-        let loft_deg = club.static_loft_rad.map(f64::to_degrees);
-        let check = smash::club_match::check(loft_deg, shots);
-        if check.is_match() {
-            return Ok(None);
-        }
-        let why = format!(
-            "{} does not match the club {}: {}",
-            shots_path.display(),
-            club_path.display(),
-            check.summary()
-        );
-        if !self.ignore_club_mismatch {
-            anyhow::bail!("{why} (--ignore-club-mismatch runs anyway and reports no findings)");
-        }
-        eprintln!(
-            "warning: {}; running under --ignore-club-mismatch: no findings are reported",
-            smash::data::escape(&why)
-        );
-        Ok(Some(check.summary()))
-    }
-}
-
-/// The comment line a written club file carries when the fit ran under
-/// `--ignore-club-mismatch` (`mismatch`: why the shots are not this club's), else nothing: the
-/// file itself then says that its values were fitted to another club's shots.
-pub fn mismatch_comment(mismatch: Option<&str>) -> String {
-    mismatch.map_or(String::new(), |why| {
-        format!(
-            "\nWARNING: fitted under --ignore-club-mismatch: the shots do not match this club \
-             ({}); the values describe those shots, not this club.",
-            smash::data::escape(why)
+        smash::app::inputs::club_check(
+            self.ignore_club_mismatch,
+            smash::app::inputs::NamedClub {
+                spec: club,
+                path: club_path,
+            },
+            shots_path,
+            shots,
+            &mut smash::app::StderrNotes,
         )
-    })
-}
-
-/// One line: the error and its causes, joined by `: `, with control characters from the input
-/// (ESC, CR, …) escaped so that they cannot act on the terminal.
-pub fn error_chain(e: &anyhow::Error) -> String {
-    let mut parts: Vec<String> = Vec::new();
-    for cause in e.chain() {
-        let s = cause.to_string();
-        if !parts.iter().any(|p| p.contains(&s)) {
-            parts.push(s);
-        }
     }
-    smash::data::escape(&parts.join(": ").replace('\n', " ")).into_owned()
 }
 
 #[cfg(test)]
@@ -321,19 +197,6 @@ mod tests {
     #[test]
     fn command_line_is_well_formed() {
         Cli::command().debug_assert();
-    }
-
-    /// A frame the size of the unoptimised face-map kernel's (about 2 MiB) and then some fits
-    /// on every worker: on rayon's default 2 MiB stacks this aborts the test binary.
-    #[test]
-    fn workers_have_room_for_the_unoptimised_kernel() {
-        fn deep(n: usize) -> u8 {
-            let buf = std::hint::black_box([n as u8; 3 << 20]);
-            buf[n % buf.len()]
-        }
-        let pool = thread_pool().num_threads(2).build().unwrap();
-        let got = pool.broadcast(|c| deep(c.index() + 7));
-        assert_eq!(got, [7, 8]);
     }
 }
 
@@ -366,19 +229,10 @@ fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String
         t.parse::<f64>()
             .map_err(|_| format!("'{t}' is not a number (mm)"))
     };
-    impact_noise_from_mm(num(y)?, num(z)?)
+    impact_noise_from_mm(num(y)?, num(z)?).map_err(|e| e.to_string())
 }
 
-/// An impact-location noise of `sy` (vertical) and `sz` (heel–toe) mm, refused outside its
-/// limits.
-pub fn impact_noise_from_mm(sy: f64, sz: f64) -> Result<smash::measurement::ImpactNoise, String> {
-    for v in [sy, sz] {
-        smash::limits::SIGMA_LOCATION_MM
-            .check(v)
-            .map_err(|e| e.to_string())?;
-    }
-    smash::measurement::ImpactNoise::from_mm(sy, sz).map_err(|e| e.to_string())
-}
+pub use smash::app::inputs::impact_noise_from_mm;
 
 /// How a shots argument is read: a shots file (default) or a launch-monitor export converted on
 /// the fly, exactly as `smash import` would.
@@ -417,29 +271,25 @@ pub struct ShotsFormatArgs {
 }
 
 impl ShotsFormatArgs {
-    /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) go to
-    /// stderr.
-    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<smash::data::shots::ShotTable> {
-        let opts = self.read_options();
-        let table = match self.format.as_deref() {
-            None | Some("shots") => smash::data::shots::read_shots_with(path, opts)?,
-            Some(format) => {
-                let imported = self
-                    .import(path, format)
-                    .map_err(|e| shots_hint::add(path, format, self.format_from.as_deref(), e))?;
-                imported.read_back_with(path, opts)?
-            }
-        };
-        report_left_out(&table);
-        Ok(table)
-    }
-
-    /// The shots reader's options these flags give.
-    pub fn read_options(&self) -> smash::data::shots::ReadOptions {
-        smash::data::shots::ReadOptions {
+    /// The settings these flags give.
+    pub fn settings(&self) -> smash::app::inputs::ShotsFormat {
+        smash::app::inputs::ShotsFormat {
+            format: self.format.clone(),
+            impact_offset_positive: self.impact_offset_positive.map(Into::into),
+            ignore_unknown_columns: self.ignore_unknown_columns,
             strict: self.strict,
             include_estimated: self.include_estimated,
+            format_from: self.format_from.clone(),
         }
+    }
+
+    /// Read `path` as shots in this format. Import notes (skipped rows, assumed units) and the
+    /// rows left out go to stderr.
+    pub fn read(&self, path: &std::path::Path) -> anyhow::Result<smash::data::shots::ShotTable> {
+        self.settings().read(
+            &smash::app::inputs::ShotsInput::File(path.to_owned()),
+            &mut smash::app::StderrNotes,
+        )
     }
 
     /// Convert the export at `path` with `format`, printing the notes.
@@ -448,93 +298,27 @@ impl ShotsFormatArgs {
         path: &std::path::Path,
         format: &str,
     ) -> anyhow::Result<smash::data::import::Imported> {
-        use smash::data::import::{detect, import, load_mapping, preset_for, ImportOptions};
-        smash::data::safe_write::note_input(path);
-        let bytes = std::fs::read(path)
-            .map_err(|e| smash::data::DataError::file(path, format!("cannot read: {e}")))?;
-        let format = if format.eq_ignore_ascii_case("auto") {
-            let d = detect(path, &bytes)?;
-            crate::text::print_note("import", &d.note);
-            d.preset.to_owned()
-        } else {
-            preset_for(format, &bytes)
-        };
-        let mapping = load_mapping(&format)?;
-        let opts = ImportOptions {
-            impact_offset_positive: self.impact_offset_positive.map(Into::into),
-            ignore_unknown_columns: self.ignore_unknown_columns,
-            strict: self.strict,
-        };
-        let imported = import(path, &bytes, &mapping, &opts)?;
-        for note in &imported.notes {
-            crate::text::print_note(&format!("import ({})", mapping.export.name), note);
-        }
-        Ok(imported)
+        self.settings()
+            .import(path, format, &mut smash::app::StderrNotes)
     }
 }
 
 /// Bring the shots of `table` to the model's own delivery convention with `club`
-/// ([`smash::conventions::to_model`]), in place and once: the table's conventions are the
-/// model's afterwards. With `to_stderr`, what was converted goes to stderr, one line each
-/// (commands whose report prints the summary pass `false`); the summary is returned. With
-/// `fit`, shots whose face angle the monitor derived from the launch are left out first and
-/// counted on stderr (`ShotTable::leave_out_derived`: `diagnose`, `calibrate`).
+/// ([`smash::app::inputs::to_model_convention`]); with `to_stderr`, what was converted goes to
+/// stderr, and with `fit`, shots whose face angle the monitor derived from the launch are left
+/// out first (counted on stderr).
 pub fn to_model_convention(
     club: &smash::club::ClubSpec,
     table: &mut smash::data::shots::ShotTable,
     to_stderr: bool,
     fit: bool,
 ) -> anyhow::Result<smash::conventions::ConventionSummary> {
-    if fit {
-        let total = table.shots.len();
-        let n = table.leave_out_derived();
-        if n > 0 {
-            let l = table.left_out.last().expect("just pushed");
-            let shown: Vec<String> = l.lines.iter().take(5).map(usize::to_string).collect();
-            let more = if l.lines.len() > 5 { ", …" } else { "" };
-            crate::text::print_note(
-                "shots",
-                &format!("left out {n} of {total} shots: {}", l.reason),
-            );
-            eprintln!(
-                "  line(s) {}{more}: a fit on them would fit the monitor's formula",
-                shown.join(", ")
-            );
-        }
-        if table.shots.is_empty() {
-            anyhow::bail!(
-                "{}: every shot's face angle is derived from the launch: there is no measured \
-                 face angle to fit with (`smash compare` reports such shots)",
-                table.path.display()
-            );
-        }
-    }
-    let (shots, summary) = smash::conventions::to_model(club, &table.shots, &table.conventions)
-        .map_err(|e| {
-            let line = table.lines.get(e.index).copied();
-            smash::data::DataError::at(
-                &table.path,
-                line,
-                None,
-                format!("shot '{}': {}", e.shot_id, e.source),
-            )
-        })?;
-    table.shots = shots;
-    table.conventions = vec![Default::default(); table.shots.len()];
-    if to_stderr {
-        for l in summary.lines() {
-            eprintln!("{l}");
-        }
-    }
-    Ok(summary)
-}
-
-/// One line on stderr per reason the shots reader left rows out: how many, of how many rows,
-/// and their first lines.
-pub fn report_left_out(table: &smash::data::shots::ShotTable) {
-    for note in table.left_out_notes() {
-        crate::text::print_note("shots", &note);
-    }
+    smash::app::inputs::to_model_convention(
+        club,
+        table,
+        (to_stderr, fit),
+        &mut smash::app::StderrNotes,
+    )
 }
 
 /// Which way a positive heel–toe impact offset points (the command-line face of

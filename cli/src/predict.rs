@@ -13,7 +13,6 @@ use smash::data::write_atomic;
 use smash::limits;
 use smash::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use smash::physics::LaunchComponent;
-use smash::predict::predict_table;
 use smash::{ClubSpec, ImpactOutcome, Launch};
 
 /// Arguments of `smash predict`.
@@ -221,19 +220,14 @@ pub fn predict_checked(
     shots_path: &std::path::Path,
     table: &smash::data::shots::ShotTable,
 ) -> anyhow::Result<Vec<ImpactOutcome>> {
-    let outcomes = predict_table(club, table).map_err(|e| super::locate_shot_error(table, e))?;
-    for (shot, o) in table.shots.iter().zip(&outcomes) {
-        if !(o.launch().is_finite() && o.smash_factor().is_finite()) {
-            bail!(
-                "{}: shot '{}': the impact has no finite launch; check its delivery and the \
-                 club {}",
-                shots_path.display(),
-                shot.id,
-                club_path.display()
-            );
-        }
-    }
-    Ok(outcomes)
+    smash::app::predict::predict_checked(
+        smash::app::inputs::NamedClub {
+            spec: club,
+            path: club_path,
+        },
+        shots_path,
+        table,
+    )
 }
 
 /// The one-shot form: check the delivery given by flags, solve its impact and print the launch

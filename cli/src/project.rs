@@ -102,7 +102,7 @@ pub fn read(path: &Path) -> anyhow::Result<Defaults> {
     }
     if let Some([y, z]) = d.impact_noise_mm {
         d.impact_noise =
-            Some(crate::impact_noise_from_mm(y, z).map_err(|e| bad("impact_noise_mm", e))?);
+            Some(crate::impact_noise_from_mm(y, z).map_err(|e| bad("impact_noise_mm", e.0))?);
     }
     // Every path the file names is relative to the file's folder, not to where the command
     // runs: `noise`, `effect_defs`, and `format` when it names a mapping file, not a preset.

@@ -2,13 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::Context;
 use clap::Args;
 
-use smash::data::club_file::read_club;
 use smash::data::write_files_atomic;
 use smash::synth::files::{synth_shots_csv, truth_toml};
-use smash::synth::{generate, read_config, SynthConfig, SynthRun};
 
 /// Arguments of `smash synth`.
 #[derive(Debug, Args)]
@@ -83,15 +80,4 @@ pub fn run(args: SynthArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The world the configuration file `config` describes, with its seed replaced by `seed` if
-/// given: the configuration and the generated shots (what `run` writes).
-pub fn generate_world(config: &Path, seed: Option<u64>) -> anyhow::Result<(SynthConfig, SynthRun)> {
-    let mut cfg = read_config(config)?;
-    if let Some(seed) = seed {
-        cfg.seed = seed;
-    }
-    let club =
-        read_club(&cfg.club).with_context(|| format!("base club of {}", config.display()))?;
-    let run = generate(&cfg, &club).with_context(|| config.display().to_string())?;
-    Ok((cfg, run))
-}
+pub use smash::app::synth::generate_world;

@@ -1,10 +1,11 @@
 """smash for Python: the golf clubhead-ball impact engine over pandas DataFrames.
 
 Every function returns exactly what the ``smash`` command line computes for the same inputs:
-the same library calls, the command's own option parser and checks, and the same one-line
-error messages (raised as :class:`SmashError`). Units are those of the shots file
-(``docs/conventions.md``): speeds in mph, angles in degrees, spin in rpm, impact locations in mm,
-distances in yards.
+both fill the same settings of the library's commands (``smash::app``) and call the same
+``run``, so the checks and the one-line error messages are the same (raised as
+:class:`SmashError`); the reports come back as Python objects, not as text to parse. Units are
+those of the shots file (``docs/conventions.md``): speeds in mph, angles in degrees, spin in
+rpm, impact locations in mm, distances in yards.
 
 A DataFrame goes to the library as CSV text (no file is written): floats are written with
 their shortest round-trip decimal and read back with pandas' round-trip parser, so no number
@@ -22,7 +23,6 @@ from __future__ import annotations
 
 import csv as _csv
 import io
-import json
 import os
 import tempfile
 import warnings
@@ -125,27 +125,19 @@ def _with_input_index(frame: pd.DataFrame, index: Optional[pd.Index], text: str,
     return frame
 
 
-def _flag(name: str) -> str:
-    return "--" + name.replace("_", "-")
-
-
-def _args(**options: Any) -> List[str]:
-    """Command-line arguments of keyword options: None is left out, True is a bare flag, False
-    is left out, a sequence is joined with commas."""
-    out: List[str] = []
+def _settings(**options: Any) -> Dict[str, Any]:
+    """A command's settings from keyword options: None is left out (the setting's default), a
+    path becomes its string, a tuple a list. The library checks every value and names the
+    setting it refuses."""
+    out: Dict[str, Any] = {}
     for name, value in options.items():
-        if value is None or value is False:
+        if value is None:
             continue
-        if value is True:
-            out.append(_flag(name))
-            continue
-        if isinstance(value, (list, tuple)):
-            value = ",".join(repr(v) if isinstance(v, float) else str(v) for v in value)
-        elif isinstance(value, float):
-            value = repr(value)
-        elif isinstance(value, os.PathLike):
+        if isinstance(value, os.PathLike):
             value = os.fspath(value)
-        out += [_flag(name), str(value)]
+        elif isinstance(value, tuple):
+            value = list(value)
+        out[name] = value
     return out
 
 
@@ -181,10 +173,10 @@ def _with_tables(report: Dict[str, Any]) -> Dict[str, Any]:
     return out
 
 
-def _format_args(
+def _format_settings(
     format: Optional[str], impact_offset_positive: Optional[str], ignore_unknown_columns: bool
-) -> List[str]:
-    return _args(
+) -> Dict[str, Any]:
+    return _settings(
         format=format,
         impact_offset_positive=impact_offset_positive,
         ignore_unknown_columns=ignore_unknown_columns,
@@ -266,7 +258,7 @@ def predict(
     table = _table(shots, "shots")
     csv, warns, lines = _native.predict(
         c,
-        _format_args(format, impact_offset_positive, ignore_unknown_columns),
+        _format_settings(format, impact_offset_positive, ignore_unknown_columns),
         **table,
     )
     _warn(warns)
@@ -320,7 +312,7 @@ def flight(
     ``pred_apex_yd`` (yd), ``pred_flight_time_s`` (s), ``pred_land_angle_deg`` (deg)
     [, ``pred_total_yd`` (yd)], and ``err_*`` where the table has measured flight columns.
     """
-    args = _args(
+    settings = _settings(
         launch=columns,
         aero=aero,
         spin_decay=spin_decay,
@@ -339,7 +331,7 @@ def flight(
         dt_s=dt_s,
         max_time_s=max_time_s,
     )
-    return _read_csv(_native.flight(args, **_table(launch, "launch")))
+    return _read_csv(_native.flight(settings, **_table(launch, "launch")))
 
 
 def compare(
@@ -365,16 +357,16 @@ def compare(
     Returns the ``--json`` report as a dict (with ``tables``, its lists of records and error
     tables as DataFrames) and its text report under ``"text"``.
     """
-    args = _args(
+    settings = _settings(
         alpha=alpha,
         bin_mm=bin_mm,
         min_bin_count=min_bin_count,
         impact_noise_mm=impact_noise_mm,
         ignore_club_mismatch=ignore_club_mismatch,
-    ) + _format_args(format, impact_offset_positive, ignore_unknown_columns)
-    report, text, warns = _native.compare(_club(club), args, **_table(shots, "shots"))
+        **_format_settings(format, impact_offset_positive, ignore_unknown_columns),
+    )
+    out, text, warns = _native.compare(_club(club), settings, **_table(shots, "shots"))
     _warn(warns)
-    out = json.loads(report)
     out = _with_tables(out) if tables else out
     out["text"] = text
     return out
@@ -409,24 +401,24 @@ def calibrate(
     """
     if not isinstance(effects, str):
         effects = ",".join(effects)
-    args = _args(
+    settings = _settings(
         effects=effects,
         ignore_club_mismatch=ignore_club_mismatch,
         method=method,
         max_iters=max_iters,
         impact_noise_mm=impact_noise_mm,
         delivery_noise=delivery_noise,
-    ) + _format_args(format, impact_offset_positive, ignore_unknown_columns)
+        **_format_settings(format, impact_offset_positive, ignore_unknown_columns),
+    )
     bar = _progress(progress, "calibrate")
     try:
-        report, calibrated, warns = _native.calibrate(
-            _club(club), args, progress=bar, **_table(shots, "shots")
+        out, calibrated, warns = _native.calibrate(
+            _club(club), settings, progress=bar, **_table(shots, "shots")
         )
     finally:
         if isinstance(bar, _Bar):
             bar.close()
     _warn(warns)
-    out = json.loads(report)
     out = _with_tables(out) if tables else out
     out["club"] = calibrated
     return out
@@ -468,7 +460,7 @@ def diagnose(
     """
     if candidates is not None and not isinstance(candidates, str):
         candidates = ",".join(candidates)
-    args = _args(
+    settings = _settings(
         noise=noise,
         ignore_club_mismatch=ignore_club_mismatch,
         instrument=instrument,
@@ -478,17 +470,17 @@ def diagnose(
         max_iters=max_iters,
         impact_noise_mm=impact_noise_mm,
         exact_impact_locations=exact_impact_locations,
-    ) + _format_args(format, impact_offset_positive, ignore_unknown_columns)
+        **_format_settings(format, impact_offset_positive, ignore_unknown_columns),
+    )
     bar = _progress(progress, "diagnose")
     try:
-        report, selected, warns = _native.diagnose(
-            _club(club), args, progress=bar, **_table(shots, "shots")
+        out, selected, warns = _native.diagnose(
+            _club(club), settings, progress=bar, **_table(shots, "shots")
         )
     finally:
         if isinstance(bar, _Bar):
             bar.close()
     _warn(warns)
-    out = json.loads(report)
     out = _with_tables(out) if tables else out
     out["club"] = selected
     return out
@@ -509,7 +501,7 @@ def read_export(
     import's notes (skipped rows, assumed units) are issued as :class:`SmashWarning`.
     """
     csv, notes = _native.read_export(
-        os.fspath(path), format, impact_offset_positive, ignore_unknown_columns
+        os.fspath(path), _format_settings(format, impact_offset_positive, ignore_unknown_columns)
     )
     _warn(notes)
     return _read_csv(csv)
@@ -552,7 +544,7 @@ def run_study(
 def _run_into(
     study: Union[str, "os.PathLike[str]"], out: Path, format: Optional[str]
 ) -> Dict[str, pd.DataFrame]:
-    _native.run_study(os.fspath(study), os.fspath(out), _args(format=format))
+    print(_native.run_study(os.fspath(study), os.fspath(out), format), end="")
     tables: Dict[str, pd.DataFrame] = {}
     for path in sorted(out.rglob("*.csv")):
         key = path.relative_to(out).with_suffix("").as_posix()

@@ -1,19 +1,21 @@
-//! The commands: each parses its options with the CLI's parser (so every option is checked and
-//! refused with the CLI's message), then runs what the CLI's command runs, with the GIL
-//! released, and returns what the command prints or writes.
+//! The commands: each fills its settings type from the keyword arguments' dict (an unknown
+//! value is refused with the setting's name), runs the library's command ([`smash::app`]) with
+//! the GIL released, and returns its report as Python objects.
 
 use std::path::PathBuf;
 use std::sync::Arc;
 
 use pyo3::prelude::*;
-use pyo3::types::PyBytes;
+use pyo3::types::{PyBytes, PyDict};
+use serde::de::DeserializeOwned;
+use serde::Serialize;
 
+use smash::app::inputs::NamedClub;
+use smash::app::{self, CollectedNotes};
 use smash::cancel::Cancel;
-use smash::data::shots::ShotTable;
-use smash_cli::Command;
 
 use crate::progress::PyProgress;
-use crate::{bytes, parse_cli, to_py, Club, Shots};
+use crate::{bytes, shots_input, to_py, Club, SmashError};
 
 /// Register the commands in the module.
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
@@ -28,103 +30,52 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     Ok(())
 }
 
-/// The command line `smash SUB --club CLUB --shots SHOTS EXTRA… ARGS…` (club and shots by their
-/// names: the files are not read again).
-fn argv(
-    sub: &str,
-    club: Option<&Club>,
-    shots: &Shots,
-    extra: &[&str],
-    args: Vec<String>,
-) -> Vec<String> {
-    let mut v = vec![sub.to_owned()];
-    if let Some(c) = club {
-        v.push("--club".into());
-        v.push(c.label.display().to_string());
+/// A command's settings from the keyword arguments' dict (`None`: the defaults).
+fn settings<T: DeserializeOwned + Default>(dict: Option<&Bound<'_, PyDict>>) -> PyResult<T> {
+    match dict {
+        None => Ok(T::default()),
+        Some(d) => pythonize::depythonize(d.as_any())
+            .map_err(|e| SmashError::new_err(format!("invalid setting: {e}"))),
     }
-    v.push("--shots".into());
-    v.push(shots.label().display().to_string());
-    v.extend(extra.iter().map(|s| (*s).to_owned()));
-    v.extend(args);
-    v
 }
 
-/// The shots table and the CLI's warning about groups without effects (if any).
-fn table_and_warnings(
-    club: &Club,
-    shots: &Shots,
-    format: &smash_cli::ShotsFormatArgs,
-    fit: bool,
-) -> anyhow::Result<(
-    ShotTable,
-    Vec<String>,
-    smash::conventions::ConventionSummary,
-)> {
-    let mut table = shots.read(format)?;
-    // Rows a DataFrame's reader left out (an empty or NaN delivery cell), which the CLI names
-    // on stderr: a warning each reason (a path's reader has printed them already).
-    let left_out: Vec<String> = match shots {
-        Shots::Csv { .. } => table
-            .left_out_notes()
-            .into_iter()
-            .map(|n| format!("shots: {n}"))
-            .collect(),
-        Shots::File(_) => Vec::new(),
-    };
-    // As the CLI: each shot in the model's own delivery convention, converted once (`fit`:
-    // shots whose face angle the monitor derived from the launch are left out).
-    let conventions = smash_cli::to_model_convention(&club.spec, &mut table, false, fit)?;
-    let warnings = left_out
-        .into_iter()
-        .chain(conventions.lines())
-        .chain(smash_cli::groups_without_effects(
-            &club.label,
-            &club.spec,
-            &table.shots,
-        ))
-        .collect();
-    Ok((table, warnings, conventions))
+/// A report as Python objects: its serde form (as its `--json` prints it: a number that is not
+/// finite is `None`), lists, dicts, numbers and strings.
+fn to_python<T: Serialize>(py: Python<'_>, report: &T) -> PyResult<Py<PyAny>> {
+    let value = serde_json::to_value(report).map_err(|e| to_py(e.into()))?;
+    pythonize::pythonize(py, &value)
+        .map(Bound::unbind)
+        .map_err(|e| SmashError::new_err(e.to_string()))
+}
+
+fn named(club: &Club) -> NamedClub<'_> {
+    NamedClub {
+        spec: &club.spec,
+        path: &club.label,
+    }
 }
 
 /// `smash predict --shots … --out …`: the predictions file's bytes, warnings, and the line of
 /// the input where each predicted shot's row starts (1-based, the header on line 1), so that
 /// the caller can give each prediction its input row's index when the reader left rows out.
 #[pyfunction]
-#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None))]
+#[pyo3(signature = (club, settings = None, shots_path = None, shots_csv = None, label = None))]
 fn predict(
     py: Python<'_>,
     club: PyRef<'_, Club>,
-    args: Vec<String>,
+    settings: Option<&Bound<'_, PyDict>>,
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
 ) -> PyResult<(Py<PyBytes>, Vec<String>, Vec<usize>)> {
-    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let input = shots_input(shots_path, shots_csv, label)?;
+    let s: app::predict::PredictSettings = self::settings(settings)?;
     let club: &Club = &club;
     let (csv, warnings, lines) = py
         .detach(|| -> anyhow::Result<_> {
-            let Command::Predict(a) = parse_cli(argv(
-                "predict",
-                Some(club),
-                &shots,
-                &["--out", "<memory>"],
-                args,
-            ))?
-            else {
-                unreachable!("parsed as predict")
-            };
-            let (table, warnings, _) = table_and_warnings(club, &shots, &a.shots_format, false)?;
-            let outcomes = smash_cli::predict::predict_checked(
-                &club.label,
-                &club.spec,
-                shots.label(),
-                &table,
-            )?;
-            Ok((
-                smash::data::predictions::predictions_csv(&table, &outcomes),
-                warnings,
-                table.lines.clone(),
-            ))
+            let mut notes = CollectedNotes::default();
+            let p = app::predict::run(&s, named(club), &input, &mut notes)?;
+            Ok((p.csv, notes.0, p.table.lines))
         })
         .map_err(to_py)?;
     Ok((bytes(py, &csv), warnings, lines))
@@ -132,179 +83,119 @@ fn predict(
 
 /// `smash flight --shots … --out …`: the flight file's bytes.
 #[pyfunction]
-#[pyo3(signature = (args, shots_path = None, shots_csv = None, label = None))]
+#[pyo3(signature = (settings = None, shots_path = None, shots_csv = None, label = None))]
 fn flight(
     py: Python<'_>,
-    args: Vec<String>,
+    settings: Option<&Bound<'_, PyDict>>,
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
 ) -> PyResult<Py<PyBytes>> {
-    use smash::data::flight_files::LaunchSource;
-    let shots = Shots::new(shots_path, shots_csv, label)?;
+    let input = shots_input(shots_path, shots_csv, label)?;
+    let s: app::flight::FlyTableSettings = self::settings(settings)?;
     let csv = py
-        .detach(|| -> anyhow::Result<Vec<u8>> {
-            let Command::Flight(a) =
-                parse_cli(argv("flight", None, &shots, &["--out", "<memory>"], args))?
-            else {
-                unreachable!("parsed as flight")
-            };
-            let cfg = a.flight.config()?;
-            let source = a.launch.as_deref().map(|s| match s {
-                "predicted" => LaunchSource::Predicted,
-                _ => LaunchSource::Measured,
-            });
-            let text;
-            let input: &[u8] = match &shots {
-                Shots::File(p) => {
-                    smash::data::safe_write::note_input(p);
-                    text = smash::data::read_text(p)?;
-                    text.as_bytes()
-                }
-                Shots::Csv { bytes, .. } => bytes,
-            };
-            let (csv, _) = smash::data::flight_stream::fly_csv_bytes(
-                shots.label(),
-                input,
-                &cfg,
-                smash::data::launch_read::LaunchRead {
-                    source,
-                    ..Default::default()
-                },
-            )?;
-            Ok(csv)
-        })
+        .detach(|| app::flight::fly_input(&s, &input))
         .map_err(to_py)?;
     Ok(bytes(py, &csv))
 }
 
-/// `smash compare --json`: the JSON report, the text report and warnings.
+/// `smash compare --json`: the report, the text report and warnings.
 #[pyfunction]
-#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None))]
+#[pyo3(signature = (club, settings = None, shots_path = None, shots_csv = None, label = None))]
 fn compare(
     py: Python<'_>,
     club: PyRef<'_, Club>,
-    args: Vec<String>,
+    settings: Option<&Bound<'_, PyDict>>,
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
-) -> PyResult<(String, String, Vec<String>)> {
-    let shots = Shots::new(shots_path, shots_csv, label)?;
+) -> PyResult<(Py<PyAny>, String, Vec<String>)> {
+    let input = shots_input(shots_path, shots_csv, label)?;
+    let s: app::compare::CompareSettings = self::settings(settings)?;
     let club: &Club = &club;
-    py.detach(|| -> anyhow::Result<_> {
-        let Command::Compare(a) =
-            parse_cli(argv("compare", Some(club), &shots, &["--json"], args))?
-        else {
-            unreachable!("parsed as compare")
-        };
-        smash_cli::compare::check_options(&a)?;
-        let (table, warnings, conventions) =
-            table_and_warnings(club, &shots, &a.inputs.shots_format, false)?;
-        let (mut report, _) = smash_cli::compare::compute(&a, &club.spec, &table)?;
-        if conventions.derived_face > 0 {
-            smash::conventions::drop_derived_findings(&mut report.findings);
-        }
-        let title = format!(
-            "{} vs {} ({})",
-            club.spec.name,
-            shots.label().display(),
-            smash_cli::counted(table.groups().len(), "group")
-        );
-        Ok((
-            smash::report::compare::compare_json(&report),
-            smash_cli::compare::text(&report, &title, false),
-            warnings,
-        ))
-    })
-    .map_err(to_py)
+    let (report, text, warnings) = py
+        .detach(|| -> anyhow::Result<_> {
+            let mut notes = CollectedNotes::default();
+            let (run, prepared) = app::compare::run(&s, named(club), &input, &mut notes)?;
+            let title = app::compare::title(
+                &club.spec.name,
+                input.label(),
+                prepared.table.groups().len(),
+            );
+            let text = app::compare::text(&run.report, &title, false);
+            Ok((run.report, text, notes.0))
+        })
+        .map_err(to_py)?;
+    Ok((to_python(py, &report)?, text, warnings))
 }
 
-/// `smash calibrate --json`: the JSON report, the calibrated club and warnings. `progress`
+/// `smash calibrate --json`: the report, the calibrated club and warnings. `progress`
 /// (optional) receives the solver's iterations.
 #[pyfunction]
-#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None, progress = None))]
+#[pyo3(signature = (club, settings = None, shots_path = None, shots_csv = None, label = None, progress = None))]
 fn calibrate(
     py: Python<'_>,
     club: PyRef<'_, Club>,
-    args: Vec<String>,
+    settings: Option<&Bound<'_, PyDict>>,
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(String, Club, Vec<String>)> {
-    let shots = Shots::new(shots_path, shots_csv, label)?;
+) -> PyResult<(Py<PyAny>, Club, Vec<String>)> {
+    let input = shots_input(shots_path, shots_csv, label)?;
+    let s: app::calibrate::CalibrateSettings = self::settings(settings)?;
     let club: &Club = &club;
     let progress = progress.map(|p| Arc::new(PyProgress(p, None)) as Arc<dyn smash::fit::Progress>);
-    let (json, spec, warnings) = py
+    let (report, warnings) = py
         .detach(|| -> anyhow::Result<_> {
-            let Command::Calibrate(a) =
-                parse_cli(argv("calibrate", Some(club), &shots, &["--json"], args))?
-            else {
-                unreachable!("parsed as calibrate")
-            };
-            let (table, warnings, _) =
-                table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
-            // As `smash calibrate`: shots of another club are refused (or, with the flag,
-            // reported with the mismatch) before anything is fitted.
-            let mismatch = a.inputs.club_check.check(
-                &a.inputs.club,
-                &club.spec,
-                &a.inputs.shots,
-                &table.shots,
-            )?;
-            let report = smash_cli::calibrate::compute(&a, &club.spec, &table, mismatch, progress)?;
-            let json = serde_json::to_string_pretty(&report)?;
-            Ok((json, report.calibration.club, warnings))
+            let mut notes = CollectedNotes::default();
+            let (report, _) = app::calibrate::run(&s, named(club), &input, &mut notes, progress)?;
+            Ok((report, notes.0))
         })
         .map_err(to_py)?;
     let calibrated = Club {
-        spec,
+        spec: report.calibration.club.clone(),
         label: club.label.clone(),
     };
-    Ok((json, calibrated, warnings))
+    Ok((to_python(py, &report)?, calibrated, warnings))
 }
 
-/// `smash diagnose --json`: the JSON report, the club with the selected effects (what
-/// `--out-club` writes) and warnings (the CLI's `warning:` lines). `progress` (optional)
-/// receives the steps and finished fits.
+/// `smash diagnose --json`: the report, the club with the selected effects (what `--out-club`
+/// writes) and warnings (the CLI's `warning:` lines). `progress` (optional) receives the steps
+/// and finished fits.
 #[pyfunction]
-#[pyo3(signature = (club, args, shots_path = None, shots_csv = None, label = None, progress = None))]
+#[pyo3(signature = (club, settings = None, shots_path = None, shots_csv = None, label = None, progress = None))]
 fn diagnose(
     py: Python<'_>,
     club: PyRef<'_, Club>,
-    args: Vec<String>,
+    settings: Option<&Bound<'_, PyDict>>,
     shots_path: Option<PathBuf>,
     shots_csv: Option<Vec<u8>>,
     label: Option<String>,
     progress: Option<Py<PyAny>>,
-) -> PyResult<(String, Club, Vec<String>)> {
-    let shots = Shots::new(shots_path, shots_csv, label)?;
+) -> PyResult<(Py<PyAny>, Club, Vec<String>)> {
+    let input = shots_input(shots_path, shots_csv, label)?;
+    let s: app::diagnose::DiagnoseSettings = self::settings(settings)?;
     let club: &Club = &club;
     // The signal poller of `interruptible` is this thread: woken after every job.
     let progress = progress.map(|p| PyProgress(p, Some(std::thread::current())));
     let cancel = Cancel::new();
-    let (json, spec, warnings) = interruptible(py, &cancel, || -> anyhow::Result<_> {
-        let Command::Diagnose(a) =
-            parse_cli(argv("diagnose", Some(club), &shots, &["--json"], args))?
-        else {
-            unreachable!("parsed as diagnose")
-        };
-        let (table, mut warnings, _) =
-            table_and_warnings(club, &shots, &a.inputs.shots_format, true)?;
+    let (report, warnings) = interruptible(py, &cancel, || -> anyhow::Result<_> {
+        let mut notes = CollectedNotes::default();
         let p = progress
             .as_ref()
             .map(|p| p as &dyn smash::diagnose::DiagnoseProgress);
-        let report =
-            smash_cli::diagnose::compute_cancellable(&a, &club.spec, &table, p, Some(&cancel))?;
+        let (report, _) =
+            app::diagnose::run(&s, named(club), &input, &mut notes, (p, Some(&cancel)))?;
+        let mut warnings = notes.0;
         warnings.extend(report.diagnosis.warnings.iter().cloned());
-        let json = serde_json::to_string_pretty(&report)?;
-        Ok((json, report.diagnosis.club, warnings))
+        Ok((report, warnings))
     })?;
     let selected = Club {
-        spec,
+        spec: report.diagnosis.club.clone(),
         label: club.label.clone(),
     };
-    Ok((json, selected, warnings))
+    Ok((to_python(py, &report)?, selected, warnings))
 }
 
 /// How often a command that can be interrupted looks for Python's signals: Ctrl-C takes
@@ -325,7 +216,7 @@ fn interruptible<T: Send>(
         std::thread::scope(|scope| {
             let worker = std::thread::Builder::new()
                 .name("smash-interruptible".into())
-                .stack_size(smash_cli::WORKER_STACK_BYTES)
+                .stack_size(app::WORKER_STACK_BYTES)
                 .spawn_scoped(scope, work)
                 .map_err(|e| to_py(e.into()))?;
             while !worker.is_finished() {
@@ -344,82 +235,73 @@ fn interruptible<T: Send>(
     })
 }
 
-/// `smash import`: the shots file's bytes converted from the export at `path` with `format`
-/// (a preset or a mapping file), and the import's notes (skipped rows, assumed units).
+/// `smash import`: the shots file's bytes converted from the export at `path` (settings: its
+/// `format`, a preset or a mapping file, and how to read it), and the import's notes (skipped
+/// rows, assumed units).
 #[pyfunction]
-#[pyo3(signature = (path, format, impact_offset_positive = None, ignore_unknown_columns = false))]
+#[pyo3(signature = (path, settings = None))]
 fn read_export(
     py: Python<'_>,
     path: PathBuf,
-    format: String,
-    impact_offset_positive: Option<String>,
-    ignore_unknown_columns: bool,
+    settings: Option<&Bound<'_, PyDict>>,
 ) -> PyResult<(Py<PyBytes>, Vec<String>)> {
+    let s: app::import::ImportSettings = self::settings(settings)?;
     let (csv, notes) = py
         .detach(|| -> anyhow::Result<_> {
-            let mut v = vec![
-                "import".to_owned(),
-                path.display().to_string(),
-                "--out".into(),
-                "<memory>".into(),
-                "--format".into(),
-                format,
-            ];
-            if let Some(side) = impact_offset_positive {
-                v.extend(["--impact-offset-positive".to_owned(), side]);
-            }
-            if ignore_unknown_columns {
-                v.push("--ignore-unknown-columns".into());
-            }
-            let Command::Import(a) = parse_cli(v)? else {
-                unreachable!("parsed as import")
-            };
-            let format = a.format.format.as_deref().unwrap_or_default();
-            if format == "shots" {
-                anyhow::bail!(
-                    "format 'shots': `shots` is the shots-file format itself, so there is \
-                     nothing to convert; give the export's format: a preset (trackman, \
-                     flightscope, foresight, uneekor, garmin-r10, rapsodo, skytrak, gspro) or a \
-                     mapping file NAME.toml"
-                );
-            }
-            let mapping = smash::data::import::load_mapping(format)?;
-            let bytes = std::fs::read(&a.input)
-                .map_err(|e| smash::data::DataError::file(&a.input, format!("cannot read: {e}")))?;
-            let opts = smash::data::import::ImportOptions {
-                impact_offset_positive: a.format.impact_offset_positive.map(Into::into),
-                ignore_unknown_columns: a.format.ignore_unknown_columns,
-                strict: a.format.strict,
-            };
-            let imported = smash::data::import::import(&a.input, &bytes, &mapping, &opts)?;
-            imported.checked_read_back(&a.input, a.format.strict)?;
-            let notes = imported
-                .notes
-                .iter()
-                .map(|n| format!("import ({}): {n}", mapping.export.name))
-                .collect::<Vec<_>>();
-            Ok((imported.csv, notes))
+            let mut notes = CollectedNotes::default();
+            let converted = app::import::run(&s, &path, &mut notes)?;
+            Ok((converted.imported.csv, notes.0))
         })
         .map_err(to_py)?;
     Ok((bytes(py, &csv), notes))
 }
 
-/// `smash run STUDY --out DIR ARGS…`: the study's files written to `out` (the Python half
-/// reads them back into DataFrames). The CLI's summary goes to the process's standard output.
+/// `smash run STUDY --out DIR`: the study's files written to `out` (the Python half reads them
+/// back into DataFrames); returns the summary the CLI prints on stdout (the yard part's summary
+/// and the closing line go to stderr, as the CLI's).
 #[pyfunction]
-fn run_study(py: Python<'_>, study: PathBuf, out: PathBuf, args: Vec<String>) -> PyResult<()> {
-    py.detach(|| -> anyhow::Result<()> {
-        let mut v = vec![
-            "run".to_owned(),
-            study.display().to_string(),
-            "--out".into(),
-            out.display().to_string(),
-        ];
-        v.extend(args);
-        let Command::Run(a) = parse_cli(v)? else {
-            unreachable!("parsed as run")
-        };
-        smash_cli::run::run(a)
+#[pyo3(signature = (study, out, format = None))]
+fn run_study(
+    py: Python<'_>,
+    study: PathBuf,
+    out: PathBuf,
+    format: Option<&Bound<'_, PyAny>>,
+) -> PyResult<String> {
+    let format = match format {
+        None => Default::default(),
+        Some(f) => pythonize::depythonize(f)
+            .map_err(|e| SmashError::new_err(format!("invalid setting: format: {e}")))?,
+    };
+    let settings = app::study::StudySettings {
+        study,
+        out: Some(out),
+        shard: None,
+        format,
+        report: None,
+    };
+    py.detach(|| -> anyhow::Result<String> {
+        match app::study::run(&settings, false, &app::study::Quiet)? {
+            app::study::StudyRun::Whole {
+                report,
+                dir,
+                n_files,
+                yards_summary,
+                timing,
+            } => {
+                if let Some(text) = yards_summary {
+                    eprint!("{text}");
+                }
+                let mut text =
+                    smash::study::report::text::summary(&report, false, smash::report::text::WIDTH);
+                text.push_str(&smash::report::text::wrap_long(&format!(
+                    "wrote {n_files} file(s) to {}\n",
+                    dir.display()
+                )));
+                eprint!("{timing}");
+                Ok(text)
+            }
+            app::study::StudyRun::Shard { lines } => Ok(lines),
+        }
     })
     .map_err(to_py)
 }
@@ -431,7 +313,7 @@ fn run_study(py: Python<'_>, study: PathBuf, out: PathBuf, args: Vec<String>) ->
 fn synth(py: Python<'_>, config: PathBuf, seed: Option<u64>) -> PyResult<(Py<PyBytes>, String)> {
     let (csv, truth) = py
         .detach(|| -> anyhow::Result<_> {
-            let (cfg, run) = smash_cli::synth::generate_world(&config, seed)?;
+            let (cfg, run) = app::synth::generate_world(&config, seed)?;
             let truth = smash::synth::files::truth_toml(&cfg, &run, &config.display().to_string());
             Ok((smash::synth::files::synth_shots_csv(&run), truth))
         })

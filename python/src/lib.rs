@@ -1,9 +1,10 @@
-//! `smash_golf._native`: the compiled half of the Python package. Every function here takes
-//! what the `smash` command line takes (a club, a shots table as a path or as CSV text, the
-//! command's own options as command-line arguments, parsed by the CLI's own parser) and
-//! returns what the command writes (predictions or flight CSV bytes, the `--json` report),
-//! computed by the same library calls. The Python half (`python/smash_golf/__init__.py`)
-//! turns DataFrames into CSV text and CSV bytes and JSON back into DataFrames and dicts.
+//! `smash_golf._native`: the compiled half of the Python package. Every function binds a
+//! command of the library's application layer ([`smash::app`]): its settings come from a dict
+//! of keyword arguments (deserialised into the command's settings type, so an option has one
+//! name and one check), the shots from a path or from CSV text, and it returns the command's
+//! report as Python objects (the report's serde form), with the predictions or flight tables as
+//! CSV bytes. The Python half (`python/smash_golf/__init__.py`) turns DataFrames into CSV text
+//! and those bytes back into DataFrames.
 //!
 //! Numbers survive the CSV round trip bit for bit: the library writes the shortest decimal
 //! that reads back to the same `f64`, and the Python half writes with `repr` and reads with
@@ -11,7 +12,7 @@
 //!
 //! Long work runs with the GIL released (`Python::detach`) on rayon's threads.
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
@@ -22,6 +23,7 @@ mod commands;
 mod progress;
 
 pub use club::Club;
+use smash::app::inputs::ShotsInput;
 
 pyo3::create_exception!(
     _native,
@@ -33,69 +35,25 @@ pyo3::create_exception!(
 
 /// An error as the command line prints it (without its `error: ` prefix).
 pub(crate) fn to_py(e: anyhow::Error) -> PyErr {
-    SmashError::new_err(smash_cli::error_chain(&e))
+    SmashError::new_err(smash::app::error_chain(&e))
 }
 
 /// Where a shots table comes from: a file (read exactly as the CLI reads `--shots`) or CSV text
 /// made from a DataFrame, named `label` in messages.
-pub(crate) enum Shots {
-    File(PathBuf),
-    Csv { label: PathBuf, bytes: Vec<u8> },
-}
-
-impl Shots {
-    fn new(path: Option<PathBuf>, csv: Option<Vec<u8>>, label: Option<String>) -> PyResult<Self> {
-        match (path, csv) {
-            (Some(p), None) => Ok(Self::File(p)),
-            (None, Some(bytes)) => Ok(Self::Csv {
-                label: PathBuf::from(label.unwrap_or_else(|| "<DataFrame>".to_owned())),
-                bytes,
-            }),
-            _ => Err(SmashError::new_err(
-                "give the shots either as a path or as CSV text, not both or neither",
-            )),
-        }
-    }
-
-    /// The name of the shots in messages and on the command line.
-    pub(crate) fn label(&self) -> &Path {
-        match self {
-            Self::File(p) => p,
-            Self::Csv { label, .. } => label,
-        }
-    }
-
-    /// The shot table, read as the CLI reads `--shots` with `format` (CSV text is a shots
-    /// file; an export must be a path).
-    pub(crate) fn read(
-        &self,
-        format: &smash_cli::ShotsFormatArgs,
-    ) -> anyhow::Result<smash::data::shots::ShotTable> {
-        match self {
-            Self::File(p) => format.read(p),
-            Self::Csv { label, bytes } => match format.format.as_deref() {
-                None | Some("shots") => Ok(smash::data::shots::parse_shots(label, &bytes[..])?),
-                Some(f) => anyhow::bail!(
-                    "format '{f}': a launch-monitor export is read from its file; give its path \
-                     (or convert it first with read_export)"
-                ),
-            },
-        }
-    }
-}
-
-/// Parse a command line of `smash` (`args` without the program name) with the CLI's parser;
-/// a usage error becomes its first line, as the CLI prints it.
-pub(crate) fn parse_cli(args: Vec<String>) -> anyhow::Result<smash_cli::Command> {
-    use clap::Parser;
-    let argv = std::iter::once("smash".to_owned()).chain(args);
-    match smash_cli::Cli::try_parse_from(argv) {
-        Ok(cli) => Ok(cli.command),
-        Err(e) => {
-            let text = e.to_string();
-            let first = text.lines().next().unwrap_or("invalid arguments");
-            anyhow::bail!("{}", first.trim_start_matches("error: ").to_owned())
-        }
+pub(crate) fn shots_input(
+    path: Option<PathBuf>,
+    csv: Option<Vec<u8>>,
+    label: Option<String>,
+) -> PyResult<ShotsInput> {
+    match (path, csv) {
+        (Some(p), None) => Ok(ShotsInput::File(p)),
+        (None, Some(bytes)) => Ok(ShotsInput::Csv {
+            label: PathBuf::from(label.unwrap_or_else(|| "<DataFrame>".to_owned())),
+            bytes,
+        }),
+        _ => Err(SmashError::new_err(
+            "give the shots either as a path or as CSV text, not both or neither",
+        )),
     }
 }
 
@@ -131,7 +89,7 @@ pub(crate) fn bytes(py: Python<'_>, b: &[u8]) -> Py<PyBytes> {
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // The CLI's worker threads (their stack holds the unoptimised face-map kernel); fails only
     // if a pool was already installed.
-    let _ = smash_cli::thread_pool().build_global();
+    let _ = smash::app::thread_pool().build_global();
     m.add("SmashError", m.py().get_type::<SmashError>())?;
     m.add_class::<Club>()?;
     m.add_function(wrap_pyfunction!(load_effect_defs, m)?)?;

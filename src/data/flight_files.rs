@@ -35,7 +35,8 @@ pub(crate) fn flight_value(f: &Flight, k: usize) -> Option<f64> {
 }
 
 /// Which launch columns to fly.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum LaunchSource {
     /// `ball_speed_mph`, `launch_angle_deg`, `azimuth_deg`, `backspin_rpm`, `sidespin_rpm`.
     Measured,

@@ -57,7 +57,8 @@ pub const STRUCTURE_ALPHA: f64 = 0.01;
 pub const TREND_ALPHA: f64 = 0.01;
 
 /// A class of instruments with documented default noise.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum InstrumentClass {
     /// A camera-based launch monitor (photometric ball and club data) with marker-based
     /// delivery capture: `smash synth`'s defaults.

@@ -43,9 +43,11 @@ pub const PAPER_MAX_ROUNDS: usize = 30;
 const MIN_NOISE_SCALE: f64 = 1e-12;
 
 /// Which procedure.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Method {
     /// Whitened Levenberg–Marquardt on the five launch components.
+    #[default]
     Lm,
     /// The paper's alternating `W = ∞` / `W = 0` stages.
     Paper,

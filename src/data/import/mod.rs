@@ -132,7 +132,7 @@ pub fn preset_for(format: &str, bytes: &[u8]) -> String {
 }
 
 /// Which way a positive heel–toe impact offset points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum OffsetSide {
     /// Positive offsets are toward the toe (the shots file's `impact_z_mm` sign).

@@ -82,7 +82,8 @@ fn id_width(n: usize) -> usize {
 }
 
 /// How the long table is written.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum TableFormat {
     /// `maps_long.csv`: text, for small studies and any tool.
     #[default]

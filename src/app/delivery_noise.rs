@@ -1,5 +1,5 @@
-//! `--delivery-noise SPEC`: the noise of the measured delivery variables other than the impact
-//! location, for regression calibration ([`smash::measurement::DeliveryNoise`]).
+//! The delivery-noise setting (`--delivery-noise SPEC`): the noise of the measured delivery variables other than the impact
+//! location, for regression calibration ([`crate::measurement::DeliveryNoise`]).
 //!
 //! A spec is a comma-separated list. Its first entry may name an instrument class whose
 //! documented delivery noise (`docs/noise-floor.md`) every variable takes, or a multiple of one
@@ -9,9 +9,9 @@
 //! The impact location's noise is `--impact-noise-mm`. [`spec`] writes a noise back as a list of
 //! `column=SD` entries, so the flags `smash diagnose` prints reproduce its selection.
 
-use smash::diagnose::noise_floor::InstrumentClass;
-use smash::measurement::DeliveryNoise;
-use smash::model::{DeliveryVar, N_DELIVERY};
+use crate::diagnose::noise_floor::InstrumentClass;
+use crate::measurement::DeliveryNoise;
+use crate::model::{DeliveryVar, N_DELIVERY};
 
 /// Largest 1σ accepted, file units (as in a noise file).
 const MAX_SD: f64 = 1e4;
@@ -19,7 +19,12 @@ const MAX_SD: f64 = 1e4;
 /// Largest multiple of an instrument class accepted.
 const MAX_MULTIPLE: f64 = 100.0;
 
-use smash::report::delivery_noise::settable;
+use crate::report::delivery_noise::settable;
+
+/// A `--delivery-noise` spec refused: what was wrong and what is allowed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{0}")]
+pub struct SpecError(pub String);
 
 fn columns() -> String {
     DeliveryVar::ALL
@@ -32,7 +37,7 @@ fn columns() -> String {
 
 /// `CLASS` or `KxCLASS` as the class's delivery noise times `K`; `None` when `item` is not of
 /// that form (it may then be a `column=SD` entry).
-fn class_multiple(item: &str) -> Option<Result<[f64; N_DELIVERY], String>> {
+fn class_multiple(item: &str) -> Option<Result<[f64; N_DELIVERY], SpecError>> {
     let class = InstrumentClass::ALL
         .into_iter()
         .find(|c| item.ends_with(c.name()))?;
@@ -41,16 +46,16 @@ fn class_multiple(item: &str) -> Option<Result<[f64; N_DELIVERY], String>> {
         1.0
     } else {
         let Some(num) = prefix.strip_suffix('x') else {
-            return Some(Err(format!(
+            return Some(Err(SpecError(format!(
                 "'{item}': a class multiple is written like 2xcamera"
-            )));
+            ))));
         };
         match num.trim().parse::<f64>() {
             Ok(k) if k.is_finite() && (0.0..=MAX_MULTIPLE).contains(&k) => k,
             _ => {
-                return Some(Err(format!(
+                return Some(Err(SpecError(format!(
                     "'{item}': the multiple must be a number within [0, {MAX_MULTIPLE}]"
-                )))
+                ))))
             }
         }
     };
@@ -65,55 +70,61 @@ fn class_multiple(item: &str) -> Option<Result<[f64; N_DELIVERY], String>> {
 }
 
 /// Parse a `--delivery-noise` spec (see the module docs).
-pub fn parse(s: &str) -> Result<DeliveryNoise, String> {
+pub fn parse(s: &str) -> Result<DeliveryNoise, SpecError> {
     let mut sd = [0.0; N_DELIVERY];
     let mut set = [false; N_DELIVERY];
     let items: Vec<&str> = s.split(',').map(str::trim).collect();
     for (k, item) in items.iter().enumerate() {
         if let Some(class) = class_multiple(item) {
             if k > 0 {
-                return Err(format!(
+                return Err(SpecError(format!(
                     "'{item}': an instrument class must come first, before column=SD entries"
-                ));
+                )));
             }
             sd = class?;
             continue;
         }
         let Some((key, value)) = item.split_once('=') else {
-            return Err(format!(
+            return Err(SpecError(format!(
                 "'{item}' is neither an instrument class ({}, or a multiple such as 2xcamera) \
                  nor a column=SD entry",
                 InstrumentClass::ALL.map(|c| c.name()).join(", ")
-            ));
+            )));
         };
         let key = key.trim();
-        let var = DeliveryVar::from_column(key)
-            .ok_or_else(|| format!("'{key}' is not a delivery column; allowed: {}", columns()))?;
+        let var = DeliveryVar::from_column(key).ok_or_else(|| {
+            SpecError(format!(
+                "'{key}' is not a delivery column; allowed: {}",
+                columns()
+            ))
+        })?;
         if !settable(var) {
-            return Err(format!(
+            return Err(SpecError(format!(
                 "'{key}': the impact location's noise is given with --impact-noise-mm"
-            ));
+            )));
         }
         let v: f64 = value
             .trim()
             .parse()
-            .map_err(|_| format!("{key}: '{}' is not a number", value.trim()))?;
+            .map_err(|_| SpecError(format!("{key}: '{}' is not a number", value.trim())))?;
         if !(v.is_finite() && (0.0..=MAX_SD).contains(&v)) {
-            return Err(format!(
+            return Err(SpecError(format!(
                 "{key} = {}: a standard deviation must be within [0, {MAX_SD}] {}",
-                smash::limits::fmt_value(v),
+                crate::limits::fmt_value(v),
                 var.unit()
-            ));
+            )));
         }
         if std::mem::replace(&mut set[var.index()], true) {
-            return Err(format!("'{key}' is given twice; give each column once"));
+            return Err(SpecError(format!(
+                "'{key}' is given twice; give each column once"
+            )));
         }
         sd[var.index()] = v;
     }
     Ok(DeliveryNoise::new(sd))
 }
 
-pub use smash::report::delivery_noise::spec;
+pub use crate::report::delivery_noise::spec;
 
 #[cfg(test)]
 mod tests {
@@ -169,7 +180,7 @@ mod tests {
             ("-2xcamera", "within [0, 100]"),
             ("2camera", "written like 2xcamera"),
         ] {
-            let e = parse(bad).unwrap_err();
+            let e = parse(bad).unwrap_err().to_string();
             assert!(e.contains(says), "{bad}: {e}");
             assert!(!e.contains('\n'), "{e}");
         }
