@@ -8,6 +8,7 @@ use clap::{Args, ValueEnum};
 use smash::app::calibrate::CalibrateSettings;
 use smash::data::club_file::club_toml_checked;
 use smash::fit::Method;
+use smash::report::render::{CalibrateContext, Render};
 
 use super::progress::IterationLine;
 
@@ -146,20 +147,29 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
         );
         staging.file(out, club_toml_checked(&cal.club, &comment, out)?.as_bytes())?;
     }
-    if let Some(path) = &args.inputs.report {
-        let title = format!(
-            "{} calibrated on {} ({} shots)",
-            club.name,
-            args.inputs.shots.display(),
-            table.shots.len()
-        );
-        let html = smash::app::calibrate::report_page(
-            &report,
-            &table,
-            &settings,
-            (&args.inputs.shots, &title),
-        )?;
-        staging.file(path, html.as_bytes())?;
+    let page = match &args.inputs.report {
+        Some(_) => {
+            let title = format!(
+                "{} calibrated on {} ({} shots)",
+                club.name,
+                args.inputs.shots.display(),
+                table.shots.len()
+            );
+            Some(smash::app::calibrate::page(
+                &report,
+                &table,
+                &settings,
+                (&args.inputs.shots, title),
+            )?)
+        }
+        None => None,
+    };
+    let cx = CalibrateContext {
+        wide: args.inputs.wide.wide,
+        page,
+    };
+    if let (Some(path), Some(html)) = (&args.inputs.report, report.html(&cx)) {
+        staging.file(path, html?.as_bytes())?;
     }
     staging.commit()?;
     if let Some(out) = &args.out_club {
@@ -168,13 +178,9 @@ pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.inputs.report {
         eprintln!("report -> {}", path.display());
     }
-    if args.inputs.json {
-        crate::stdout::println(serde_json::to_string_pretty(&report)?)?;
-    } else {
-        crate::stdout::print(smash::report::calibrate::text::render(
-            &report,
-            args.inputs.wide.wide,
-        ))?;
+    match report.json().filter(|_| args.inputs.json) {
+        Some(json) => crate::stdout::println(json)?,
+        None => crate::stdout::print(report.text(&cx))?,
     }
     Ok(())
 }

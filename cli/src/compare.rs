@@ -6,9 +6,8 @@ use clap::Args;
 
 use smash::app::compare::{title, CompareRun, CompareSettings};
 use smash::app::inputs::{NamedClub, Prepared};
-use smash::report::compare::{compare_files, compare_json};
-
-pub use smash::app::compare::text;
+use smash::report::compare::compare_files;
+use smash::report::render::{CompareContext, Render};
 
 /// Arguments of `smash compare`.
 #[derive(Debug, Args)]
@@ -96,24 +95,30 @@ pub fn run(args: CompareArgs) -> anyhow::Result<()> {
         &mut smash::app::StderrNotes,
     )?;
     let Prepared { table, conventions } = prepared;
-    let title = title(&club.name, &args.inputs.shots, table.groups().len());
-    let mut text = text(&report, &title, args.inputs.wide.wide);
+    let cx = CompareContext {
+        title: title(&club.name, &args.inputs.shots, table.groups().len()),
+        wide: args.inputs.wide.wide,
+        residuals: args
+            .inputs
+            .report
+            .as_ref()
+            .map(|_| smash::report::html::ShotResiduals::new(&table.shots, &launches)),
+    };
+    let mut text = report.text(&cx);
     if !conventions.is_native() {
         text = format!("{}{text}", conventions);
     }
     let files = args.out_dir.as_ref().map(|_| compare_files(&report, &text));
-    if args.inputs.json {
-        eprint!("{text}");
-        crate::stdout::println(compare_json(&report))?;
-    } else {
-        crate::stdout::print(&text)?;
+    match report.json().filter(|_| args.inputs.json) {
+        Some(json) => {
+            eprint!("{text}");
+            crate::stdout::println(json)?;
+        }
+        None => crate::stdout::print(&text)?,
     }
     let mut staging = plan.stage();
-    if let Some(path) = &args.inputs.report {
-        let residuals = smash::report::html::ShotResiduals::new(&table.shots, &launches);
-        let html = smash::report::html::compare_page(&report, &residuals, &title)
-            .map_err(anyhow::Error::msg)?;
-        staging.file(path, html.as_bytes())?;
+    if let (Some(path), Some(html)) = (&args.inputs.report, report.html(&cx)) {
+        staging.file(path, html?.as_bytes())?;
     }
     let n_files = files.as_ref().map_or(0, Vec::len);
     if let (Some(dir), Some(files)) = (&args.out_dir, files) {

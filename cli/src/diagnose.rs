@@ -15,6 +15,7 @@ use smash::data::club_file::club_toml_checked;
 use smash::diagnose::noise_floor::InstrumentClass;
 use smash::diagnose::DiagnoseProgress;
 use smash::report::diagnose::text::Layout;
+use smash::report::render::{DiagnoseContext, Render};
 use smash::report::text::shell_word;
 
 use super::progress::job_bar;
@@ -162,11 +163,12 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
         );
         staging.file(out, club_toml_checked(&d.club, &comment, out)?.as_bytes())?;
     }
-    if let Some(path) = &args.inputs.report {
-        let title = format!("{} on {}", club.name, args.inputs.shots.display());
-        let html =
-            smash::report::html::diagnose_page(&report, &title).map_err(anyhow::Error::msg)?;
-        staging.file(path, html.as_bytes())?;
+    let cx = DiagnoseContext {
+        layout: layout(&args),
+        title: format!("{} on {}", club.name, args.inputs.shots.display()),
+    };
+    if let (Some(path), Some(html)) = (&args.inputs.report, report.html(&cx)) {
+        staging.file(path, html?.as_bytes())?;
     }
     staging.commit()?;
     if let Some(out) = &args.out_club {
@@ -175,11 +177,9 @@ pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.inputs.report {
         eprintln!("report -> {}", path.display());
     }
-    if args.inputs.json {
-        crate::stdout::println(serde_json::to_string_pretty(&report)?)?;
-    } else {
-        let text = smash::report::diagnose::text::render(&report, &layout(&args));
-        crate::stdout::print(format!("{conventions}{text}"))?;
+    match report.json().filter(|_| args.inputs.json) {
+        Some(json) => crate::stdout::println(json)?,
+        None => crate::stdout::print(format!("{conventions}{}", report.text(&cx)))?,
     }
     Ok(())
 }

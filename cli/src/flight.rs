@@ -20,6 +20,7 @@ use smash::data::launch_read::LaunchRead;
 use smash::data::DataError;
 use smash::flight::{Atmosphere, FlightConfig};
 use smash::report::flight::FlightReport;
+use smash::report::render::Render;
 
 /// Flight options (model, atmosphere, ground, integration).
 #[derive(Debug, Clone, Args)]
@@ -369,14 +370,12 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     );
     let mut report = FlightReport::new(flown, summary, diagnosis);
     report.warnings = warnings;
-    if args.json {
-        crate::stdout::println(serde_json::to_string_pretty(&report)?)?;
-    } else {
-        eprint!("\n{}", report.text());
+    match report.json().filter(|_| args.json) {
+        Some(json) => crate::stdout::println(json)?,
+        None => eprint!("\n{}", Render::text(&report, &())),
     }
-    if let Some(path) = &args.report {
-        let html = smash::report::html::flight_page(&report)
-            .map_err(|e| anyhow::anyhow!("--report: {e}"))?;
+    if let (Some(path), Some(html)) = (&args.report, report.html(&())) {
+        let html = html.map_err(|e| anyhow::anyhow!("--report: {e}"))?;
         smash::data::write_atomic(path, html.as_bytes())?;
         eprintln!("report -> {}", path.display());
     }

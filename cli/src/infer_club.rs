@@ -2,6 +2,7 @@
 //! uncertainty. The library owns the work ([`smash::infer`]); here the arguments are parsed,
 //! the files read and the outputs printed or written.
 
+use smash::report::render::Render;
 use std::path::PathBuf;
 
 use anyhow::Context;
@@ -209,10 +210,9 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
             &targets,
         )
         .with_context(|| args.shots.display().to_string())?;
-        if args.json {
-            crate::stdout::println(serde_json::to_string_pretty(&r)?)?;
-        } else {
-            crate::stdout::print(infer::report::render_plan(&r))?;
+        match r.json().filter(|_| args.json) {
+            Some(json) => crate::stdout::println(json)?,
+            None => crate::stdout::print(r.text(&()))?,
         }
         return Ok(());
     }
@@ -225,9 +225,9 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
             club_toml_checked(&r.club, &club_comment(&args, &r), out)?.as_bytes(),
         )?;
     }
-    if let Some(path) = &args.report {
-        let title = format!("{} inferred from {}", club.name, args.shots.display());
-        staging.file(path, smash::report::html::infer_page(&r, &title).as_bytes())?;
+    let title = format!("{} inferred from {}", club.name, args.shots.display());
+    if let (Some(path), Some(html)) = (&args.report, r.html(&title)) {
+        staging.file(path, html?.as_bytes())?;
     }
     staging.commit()?;
     if let Some(out) = &args.out_club {
@@ -236,10 +236,9 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.report {
         eprintln!("report -> {}", path.display());
     }
-    if args.json {
-        crate::stdout::println(serde_json::to_string_pretty(&r)?)?;
-    } else {
-        crate::stdout::print(infer::report::render(&r))?;
+    match r.json().filter(|_| args.json) {
+        Some(json) => crate::stdout::println(json)?,
+        None => crate::stdout::print(r.text(&title))?,
     }
     Ok(())
 }

@@ -25,7 +25,6 @@ pub mod study_output;
 pub mod synth;
 pub mod text;
 pub mod whatif;
-pub mod whatif_page;
 
 /// Golf clubhead–ball impact engine: predict launch, compare with measurements, find the
 /// missing physics, calibrate, and run design studies.

@@ -1,6 +1,5 @@
 //! `smash predict`: launch conditions for a shots file or for one delivery.
 
-use std::fmt::Write;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context};
@@ -11,9 +10,10 @@ use smash::data::predictions::predictions_csv;
 use smash::data::shots::DEFAULT_GROUP;
 use smash::data::write_atomic;
 use smash::limits;
-use smash::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
-use smash::physics::LaunchComponent;
-use smash::{ClubSpec, ImpactOutcome, Launch};
+use smash::model::{delivery_from_file_units, DeliveryVar};
+use smash::report::predict::OneShotReport;
+use smash::report::render::Render;
+use smash::{ClubSpec, ImpactOutcome};
 
 /// Arguments of `smash predict`.
 #[derive(Debug, Args)]
@@ -272,77 +272,27 @@ fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
             args.club.display()
         );
     }
-    let mut text = launch_text(args, &club.name, &values, &outcome);
-    if args.flight {
-        text.push_str(&flight_text(args, &outcome.launch())?);
-    }
+    let flight = if args.flight {
+        let cfg = args.flight_options.config()?;
+        let f = smash::flight::fly_one(
+            &cfg,
+            &smash::flight::FlightLaunch::from_launch(&outcome.launch()),
+        )
+        .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
+        Some((f, cfg.start_text()))
+    } else {
+        None
+    };
+    let report = OneShotReport {
+        club: club.name.clone(),
+        group: args.group.clone(),
+        delivery: values,
+        outcome,
+        flight,
+    };
+    let text = report.text(&());
     crate::stdout::print(text)?;
     Ok(())
-}
-
-/// The one-shot table: club and group, the delivery, the launch components and smash factor.
-fn launch_text(
-    args: &PredictArgs,
-    club_name: &str,
-    values: &[f64; N_DELIVERY],
-    outcome: &ImpactOutcome,
-) -> String {
-    let value = |v: DeliveryVar| limits::fmt_value(values[v.index()]);
-    let launch = outcome.launch();
-    let mut text = format!("{club_name} (group {})\n", args.group);
-    // Writing to a String cannot fail.
-    let _ = writeln!(
-        text,
-        "delivery: {} mph, loft {} deg, attack {} deg, path {} deg, face {} deg, lie {} deg, impact ({} mm up, {} mm toe)",
-        value(DeliveryVar::ClubSpeed),
-        value(DeliveryVar::DynamicLoft),
-        value(DeliveryVar::AttackAngle),
-        value(DeliveryVar::ClubPath),
-        value(DeliveryVar::FaceAngle),
-        value(DeliveryVar::LieTilt),
-        value(DeliveryVar::ImpactY),
-        value(DeliveryVar::ImpactZ),
-    );
-    for c in LaunchComponent::ALL {
-        let _ = writeln!(
-            text,
-            "{:<14} {:>10.2} {}",
-            c.label(),
-            launch.get_file(c),
-            c.unit()
-        );
-    }
-    let _ = writeln!(
-        text,
-        "{:<14} {:>10.4}",
-        "Smash factor",
-        outcome.smash_factor()
-    );
-    text
-}
-
-/// The one-shot flight lines (`--flight`): carry, offline, apex, flight time, land angle and
-/// total when the ground model gives one.
-fn flight_text(args: &PredictArgs, launch: &Launch) -> anyhow::Result<String> {
-    let cfg = args.flight_options.config()?;
-    let f = smash::flight::fly_one(&cfg, &smash::flight::FlightLaunch::from_launch(launch))
-        .map_err(|e| anyhow::anyhow!("flight: {e}"))?;
-    let mut text = String::new();
-    let _ = writeln!(text, "{:<14} {:>13}", "Ball start", cfg.start_text());
-    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Carry", f.carry_yd());
-    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Offline", f.offline_yd());
-    let _ = writeln!(text, "{:<14} {:>10.1} yd", "Apex", f.apex_yd());
-    let _ = writeln!(text, "{:<14} {:>10.2} s", "Flight time", f.flight_time_s);
-    let _ = writeln!(
-        text,
-        "{:<14} {:>10.1} deg",
-        "Land angle",
-        f.land_angle_deg()
-    );
-    if let Some(t) = f.total_yd() {
-        let _ = writeln!(text, "{:<14} {:>10.1} yd", "Total", t);
-    }
-    Ok(text)
 }
 
 /// Fly the predicted launches and append the flight columns to the predictions CSV.

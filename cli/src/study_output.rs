@@ -4,8 +4,9 @@
 
 use std::path::Path;
 
+use smash::report::render::Render;
 use smash::study::output::TableFormat;
-use smash::study::report::StudyReport;
+use smash::study::report::{StudyContext, StudyReport};
 
 /// `--format` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -35,16 +36,14 @@ pub fn print_summary(
     wide: bool,
     json: bool,
 ) -> Result<(), crate::stdout::StdoutError> {
-    let mut text = smash::study::report::text::summary(report, wide, crate::text::WIDTH);
+    let mut text = report.text(&StudyContext { wide });
     text.push_str(&crate::text::wrap_long(&format!(
         "wrote {n_files} file(s) to {}\n",
         dir.display()
     )));
     if json {
         eprint!("{text}");
-        return crate::stdout::println(
-            serde_json::to_string_pretty(report).expect("a study report serializes"),
-        );
+        return crate::stdout::println(report.json().expect("a study report has JSON"));
     }
     crate::stdout::print(text)
 }

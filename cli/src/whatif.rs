@@ -7,14 +7,13 @@ use std::path::PathBuf;
 use clap::Args;
 
 use smash::data::club_file::read_club;
-use smash::report::text::wrap_long;
+use smash::report::render::Render;
 use smash::study::distribution::{Distribution, Method, SwingSpec};
+use smash::study::report::whatif::WhatIfReport;
 use smash::study::whatif::{
-    carry_change_grid, carry_change_map, head_text, what_if, HeadChange, MassMove, WhatIf,
+    carry_change_grid, carry_change_map, what_if, HeadChange, MassMove, WhatIf,
 };
-use smash::study::yards_variants::{
-    decimals, delta, delta_text, rows_csv, YardRow, YardSetting, QUANTITIES,
-};
+use smash::study::yards_variants::{rows_csv, YardRow, YardSetting};
 
 /// Arguments of `smash whatif`.
 #[derive(Debug, Args)]
@@ -282,40 +281,6 @@ impl WhatIfArgs {
     }
 }
 
-/// The comparison table: quantity, base, changed, change ± the quadrature's error estimate.
-fn table_text(w: &WhatIf) -> String {
-    let mut t = format!(
-        "{:<34} {:>10} {:>10} {:>20}\n",
-        "quantity", "base", "changed", "change ± quad. err"
-    );
-    for q in &QUANTITIES {
-        let n = decimals(q);
-        let (d, u) = delta(q, &w.base, &w.changed);
-        let _ = writeln!(
-            t,
-            "{:<34} {:>10.n$} {:>10.n$} {:>20}",
-            format!("{} ({})", q.label, q.unit),
-            (q.get)(&w.base.metrics),
-            (q.get)(&w.changed.metrics),
-            delta_text(d, u, n)
-        );
-    }
-    let a = w.base.metrics.ellipse_area_yd2;
-    if a > 0.0 {
-        let _ = writeln!(
-            t,
-            "dispersion-ellipse area change: {:+.2} %",
-            100.0 * (w.changed.metrics.ellipse_area_yd2 - a) / a
-        );
-    }
-    for (head, m) in [("base", &w.base.metrics), ("changed", &w.changed.metrics)] {
-        if let Some(note) = m.grounded_note() {
-            let _ = writeln!(t, "{head} head: {note}");
-        }
-    }
-    t
-}
-
 fn rows(w: &WhatIf, change: &HeadChange) -> Vec<YardRow> {
     vec![
         YardRow {
@@ -354,35 +319,35 @@ pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
         smash::data::safe_write::refuse_inputs(&[("--out", out, false)], &inputs)?;
         smash::data::write_atomic(out, &rows_csv(&w.base, &rows(&w, &change)))?;
     }
-    if let Some(report) = &args.report {
-        smash::data::safe_write::refuse_inputs(&[("--report", report, false)], &inputs)?;
+    if let Some(path) = &args.report {
+        smash::data::safe_write::refuse_inputs(&[("--report", path, false)], &inputs)?;
+    }
+    let map = args.report.as_ref().and_then(|_| {
         let grid = carry_change_grid(args.centre_mm, args.mishit_mm, 21);
-        let map = carry_change_map(
+        carry_change_map(
             &w.base_params,
             &w.changed_params,
             &change,
             &swing,
             &flight,
             &grid,
-        );
-        let html = crate::whatif_page::report_html(
-            &club.name,
-            &change,
-            &setting_text,
-            &w,
-            map.as_ref().ok().map(|m| (m, args.centre_mm)),
-        );
-        smash::data::write_atomic(report, html.as_bytes())?;
+        )
+        .ok()
+        .map(|m| (m, args.centre_mm))
+    });
+    let report = WhatIfReport {
+        club: club.name.clone(),
+        change,
+        setting: setting_text,
+        whatif: w,
+        map,
+    };
+    if let Some(path) = &args.report {
+        if let Some(html) = report.html(&()) {
+            smash::data::write_atomic(path, html?.as_bytes())?;
+        }
     }
-    // The change and the setting are sentences: wrapped, as the other reports' prose is, to
-    // fit a terminal (the HTML report has them on one line each).
-    let mut text = wrap_long(&format!(
-        "what if: {} ({}, nominal head)\n{setting_text}\n",
-        change.describe().join("; "),
-        club.name
-    ));
-    text.push_str(&head_text(&w));
-    text.push_str(&table_text(&w));
+    let mut text = report.text(&());
     for (flag, path) in [("csv", &args.out), ("report", &args.report)] {
         if let Some(p) = path {
             let _ = writeln!(text, "{flag} -> {}", p.display());

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBytes, PyDict, PyFloat, PyList};
 use serde::de::DeserializeOwned;
 use serde::Serialize;
 
@@ -39,13 +39,35 @@ fn settings<T: DeserializeOwned + Default>(dict: Option<&Bound<'_, PyDict>>) -> 
     }
 }
 
-/// A report as Python objects: its serde form (as its `--json` prints it: a number that is not
-/// finite is `None`), lists, dicts, numbers and strings.
+/// A report as Python objects: its serde form with the keys in the order its `--json` prints
+/// them, lists, dicts, numbers and strings; a number that is not finite is `None`, as in the
+/// JSON.
 fn to_python<T: Serialize>(py: Python<'_>, report: &T) -> PyResult<Py<PyAny>> {
-    let value = serde_json::to_value(report).map_err(|e| to_py(e.into()))?;
-    pythonize::pythonize(py, &value)
-        .map(Bound::unbind)
-        .map_err(|e| SmashError::new_err(e.to_string()))
+    let obj = pythonize::pythonize(py, report).map_err(|e| SmashError::new_err(e.to_string()))?;
+    Ok(finite_or_none(obj)?.unbind())
+}
+
+/// `obj` with every float that is not finite, at any depth of its dicts and lists, made `None`.
+fn finite_or_none(obj: Bound<'_, PyAny>) -> PyResult<Bound<'_, PyAny>> {
+    let py = obj.py();
+    if let Ok(f) = obj.cast::<PyFloat>() {
+        return Ok(if f.value().is_finite() {
+            obj
+        } else {
+            py.None().into_bound(py)
+        });
+    }
+    if let Ok(d) = obj.cast::<PyDict>() {
+        let items: Vec<_> = d.iter().collect();
+        for (k, v) in items {
+            d.set_item(k, finite_or_none(v)?)?;
+        }
+    } else if let Ok(l) = obj.cast::<PyList>() {
+        for i in 0..l.len() {
+            l.set_item(i, finite_or_none(l.get_item(i)?)?)?;
+        }
+    }
+    Ok(obj)
 }
 
 fn named(club: &Club) -> NamedClub<'_> {
@@ -126,6 +148,7 @@ fn compare(
             Ok((run.report, text, notes.0))
         })
         .map_err(to_py)?;
+    let report = smash::report::compare::versioned(&report);
     Ok((to_python(py, &report)?, text, warnings))
 }
 
@@ -291,8 +314,9 @@ fn run_study(
                 if let Some(text) = yards_summary {
                     eprint!("{text}");
                 }
-                let mut text =
-                    smash::study::report::text::summary(&report, false, smash::report::text::WIDTH);
+                use smash::report::render::Render;
+                let cx = smash::study::report::StudyContext { wide: false };
+                let mut text = report.text(&cx);
                 text.push_str(&smash::report::text::wrap_long(&format!(
                     "wrote {n_files} file(s) to {}\n",
                     dir.display()

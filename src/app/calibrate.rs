@@ -18,6 +18,7 @@ use crate::measurement::{DeliveryNoise, ImpactNoise};
 use crate::model::Shot;
 use crate::physics::LaunchComponent;
 use crate::report::calibrate::CalibrateReport;
+use crate::report::render::CalibratePage;
 use crate::ClubSpec;
 
 /// Settings of `calibrate`.
@@ -179,15 +180,15 @@ pub fn run_prepared(
     })
 }
 
-/// The HTML page of a calibration of `table` (named `shots_path`): the calibrated model under
-/// the fit's measurement model (at the expected true deliveries, averaged over the likely
-/// impact locations) compared with the shots.
-pub fn report_page(
+/// What the HTML page of a calibration of `table` (named `shots_path`) shows besides the
+/// report: the calibrated model under the fit's measurement model (at the expected true
+/// deliveries, averaged over the likely impact locations) compared with the shots.
+pub fn page(
     report: &CalibrateReport,
     table: &ShotTable,
     settings: &CalibrateSettings,
-    (shots_path, title): (&Path, &str),
-) -> anyhow::Result<String> {
+    (shots_path, title): (&Path, String),
+) -> anyhow::Result<CalibratePage> {
     let cal = &report.calibration;
     let mut expected = table.shots.clone();
     if let Some(noise) = cal.delivery_noise {
@@ -208,9 +209,11 @@ pub fn report_page(
         &launches,
         &crate::compare::CompareOptions::default(),
     )?;
-    let residuals = crate::report::html::ShotResiduals::new(&table.shots, &launches);
-    crate::report::html::calibrate_page(report, &after, &residuals, title)
-        .map_err(anyhow::Error::msg)
+    Ok(CalibratePage {
+        after,
+        residuals: crate::report::html::ShotResiduals::new(&table.shots, &launches),
+        title,
+    })
 }
 
 /// The scales the models are scored by when the instruments' noise is given (a noise file,

@@ -11,7 +11,6 @@ use crate::limits::fmt_value;
 use crate::measurement::ImpactNoise;
 use crate::physics::{Launch, LaunchComponent};
 use crate::predict::expected_launches;
-use crate::report::compare::compare_text;
 
 /// Smallest `alpha` accepted: a significance level far below any multiple-testing correction
 /// a comparison of a few components needs (and printed short in the report's header).
@@ -182,19 +181,4 @@ pub fn title(club_name: &str, shots_path: &std::path::Path, groups: usize) -> St
     )
 }
 
-/// The text report, headed by `NO FINDINGS` when the shots do not match the club; `wide`:
-/// Table 2 in one block however many groups.
-pub fn text(report: &CompareReport, title: &str, wide: bool) -> String {
-    use crate::report::text::wrap_long;
-    let title = wrap_long(title);
-    let text = compare_text(report, title.trim_end(), wide);
-    match &report.club_mismatch {
-        Some(why) => {
-            wrap_long(&format!(
-                "NO FINDINGS: the shots do not match the club ({why}); the tables below \
-                 describe errors of another club's shots, not of this head\n"
-            )) + &text
-        }
-        None => text,
-    }
-}
+pub use crate::report::compare::report_text as text;

@@ -273,8 +273,11 @@ fn run_whole(
         },
     );
     if let Some(path) = &settings.report {
-        let html = crate::study::report::html::page(&report).map_err(anyhow::Error::msg)?;
-        staging.file(path, html.as_bytes())?;
+        use crate::report::render::Render;
+        let cx = crate::study::report::StudyContext { wide };
+        if let Some(html) = report.html(&cx) {
+            staging.file(path, html?.as_bytes())?;
+        }
     }
     staging.commit()?;
     let timing = format!(

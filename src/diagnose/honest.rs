@@ -14,7 +14,6 @@
 //!   names them and the measurement that would separate them.
 
 use nalgebra::DMatrix;
-use serde_json::json;
 
 use crate::effects::{EffectKind, ParamSpec};
 use crate::fit::calibrate::STRONG_CORRELATION;
@@ -115,11 +114,6 @@ impl Alias {
         effect_of_label(&self.a) != effect_of_label(&self.b)
     }
 
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({"a": self.a, "b": self.b, "r": self.r, "separate_by": self.separate_by})
-    }
-
     /// One line of text.
     pub fn text(&self) -> String {
         format!(
@@ -207,11 +201,6 @@ pub struct ExplainedAlias {
 }
 
 impl ExplainedAlias {
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({"selected": self.selected, "instead_of": self.instead_of, "r": self.r})
-    }
-
     /// One line of text.
     pub fn text(&self) -> String {
         format!(
@@ -272,23 +261,6 @@ fn values_text(ps: &[ParamEstimate]) -> String {
     ps.iter().map(value_text).collect::<Vec<_>>().join(", ")
 }
 
-fn estimate_json(p: &ParamEstimate) -> serde_json::Value {
-    json!({"param": p.label(), "value": p.value, "unit": p.unit, "plausible": is_plausible(p)})
-}
-
-impl Rival {
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({
-            "effect": self.label,
-            "params": self.params.iter().map(estimate_json).collect::<Vec<_>>(),
-            "margin_gap": self.margin_gap,
-            "r": self.r,
-            "plausible": self.plausible,
-        })
-    }
-}
-
 /// A selected effect with the rivals of the step that selected it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Ambiguity {
@@ -312,17 +284,6 @@ impl Ambiguity {
         self.estimates
             .iter()
             .all(|p| is_plausible(p).unwrap_or(true))
-    }
-
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({
-            "selected": self.selected,
-            "values": self.estimates.iter().map(estimate_json).collect::<Vec<_>>(),
-            "ambiguous": self.is_ambiguous(),
-            "rivals": self.rivals.iter().map(Rival::to_json).collect::<Vec<_>>(),
-            "text": self.text(),
-        })
     }
 
     /// One line of text.
@@ -376,16 +337,6 @@ impl Ambiguity {
 pub fn plausible_range_text(p: &ParamEstimate) -> String {
     spec_of(p).map_or_else(String::new, |s| {
         format!("[{}, {}] {}", s.plausible.0, s.plausible.1, s.unit)
-    })
-}
-
-/// JSON fields for an estimate's plausibility: `plausible` (bool or null), `plausible_range`,
-/// and `stand_in` (what an implausible value behaves like, else null).
-pub fn plausibility_json(p: &ParamEstimate) -> serde_json::Value {
-    json!({
-        "plausible": is_plausible(p),
-        "plausible_range": spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
-        "stand_in": stand_in(p),
     })
 }
 
@@ -497,7 +448,7 @@ mod tests {
         let t = a.text();
         assert!(t.contains("added_mass") && t.contains("cor_level"), "{t}");
         assert!(t.contains("cannot tell these apart"), "{t}");
-        assert_eq!(a.to_json()["ambiguous"], true);
+        assert!(a.is_ambiguous());
         // An implausible rival leaves the selection a finding.
         a.rivals = vec![rival("cor_level", "cor_level", "dcor", 0.3)];
         assert!(!a.is_ambiguous());
@@ -579,18 +530,5 @@ impl Unresolved {
             self.penalty,
             self.growth
         )
-    }
-
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({
-            "effect": self.label,
-            "params": self.params.iter().map(estimate_json).collect::<Vec<_>>(),
-            "gain": self.gain,
-            "penalty": self.penalty,
-            "alike": self.alike.iter().map(|(l, r)| json!({"candidate": l, "r": r})).collect::<Vec<_>>(),
-            "shots_factor": self.growth,
-            "text": self.text(),
-        })
     }
 }

@@ -35,7 +35,6 @@
 //! [`InstrumentClass`] and `docs/noise-floor.md`.
 
 use rayon::prelude::*;
-use serde_json::json;
 
 use crate::club::ClubSpec;
 use crate::fit::{FitData, FitError, FitProblem, GivenScales, ParamLayout, Weighting};
@@ -203,24 +202,6 @@ impl ComponentFloor {
             .then(|| self.shape.words(self.component))
             .flatten()
     }
-
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({
-            "component": self.component.column(),
-            "mean": self.mean,
-            "mean_in_expected_sd": self.mean_in_sd,
-            "expected_sd": self.expected_sd,
-            "observed_sd": self.observed_sd,
-            "ratio": self.ratio,
-            "p_value": self.p_value,
-            "mean_p_value": self.mean_p_value,
-            "structure": self.structure,
-            "trend": self.trend.map(|(v, r)| json!({"variable": v.column(), "r": r})),
-            "shape": self.shape.to_json(self.component.unit()),
-            "verdict": self.verdict(),
-        })
-    }
 }
 
 /// The noise floor of a diagnosis.
@@ -284,26 +265,6 @@ impl NoiseFloor {
     /// Does structure remain in any component?
     pub fn structure_remains(&self) -> bool {
         self.components.iter().any(|c| c.structure)
-    }
-
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        json!({
-            "instrument": {
-                "name": self.instrument.name,
-                "launch_sd": LaunchComponent::ALL.iter().map(|c| (c.column().to_owned(), json!(self.instrument.launch_sd[c.index()]))).collect::<serde_json::Map<_, _>>(),
-                "delivery_sd": DeliveryVar::ALL.iter().map(|v| (v.column().to_owned(), json!(self.instrument.delivery_sd[v.index()]))).collect::<serde_json::Map<_, _>>(),
-            },
-            "assumed": self.assumed,
-            "band_half_width": self.band_half_width(),
-            "alpha": STRUCTURE_ALPHA,
-            "structure_remains": self.structure_remains(),
-            "components": self.components.iter().map(|c| {
-                let mut j = c.to_json();
-                j["spread_band"] = self.spread_band(c).name().into();
-                j
-            }).collect::<Vec<_>>(),
-        })
     }
 }
 

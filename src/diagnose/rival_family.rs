@@ -95,20 +95,6 @@ impl FamilyCheck {
             self.own_gain, self.gain_over_family, self.penalty
         )
     }
-
-    /// The machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        serde_json::json!({
-            "effect": self.label,
-            "own_gain": self.own_gain,
-            "gain_over_family": self.gain_over_family,
-            "penalty": self.penalty,
-            "location_in_family": self.location_in_family,
-            "form_gain": self.form.map(|f| f.0),
-            "form_penalty": self.form.map(|f| f.1),
-            "stand_in": self.is_stand_in(),
-        })
-    }
 }
 
 /// What [`check`] needs of the final model.

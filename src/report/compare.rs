@@ -237,21 +237,42 @@ pub const SCHEMA_VERSION: u32 = 1;
 
 /// The report as JSON: its own fields after `schema_version` and `command`.
 #[derive(serde::Serialize)]
-struct Versioned<'a> {
+pub struct Versioned<'a> {
     schema_version: u32,
     command: &'static str,
     #[serde(flatten)]
     report: &'a CompareReport,
 }
 
-/// The whole report as one JSON object (the schema: `docs/json.md`).
-pub fn compare_json(r: &CompareReport) -> String {
-    let v = Versioned {
+/// The text report, headed by `NO FINDINGS` when the shots do not match the club; `wide`:
+/// Table 2 in one block however many groups.
+pub fn report_text(report: &CompareReport, title: &str, wide: bool) -> String {
+    use crate::report::text::wrap_long;
+    let title = wrap_long(title);
+    let text = compare_text(report, title.trim_end(), wide);
+    match &report.club_mismatch {
+        Some(why) => {
+            wrap_long(&format!(
+                "NO FINDINGS: the shots do not match the club ({why}); the tables below \
+                 describe errors of another club's shots, not of this head\n"
+            )) + &text
+        }
+        None => text,
+    }
+}
+
+/// The serde form of `r` that its JSON prints (the schema: `docs/json.md`).
+pub fn versioned(r: &CompareReport) -> Versioned<'_> {
+    Versioned {
         schema_version: SCHEMA_VERSION,
         command: "compare",
         report: r,
-    };
-    serde_json::to_string_pretty(&v).expect("report serializes")
+    }
+}
+
+/// The whole report as one JSON object (the schema: `docs/json.md`).
+pub fn compare_json(r: &CompareReport) -> String {
+    serde_json::to_string_pretty(&versioned(r)).expect("report serializes")
 }
 
 /// Every output file of a comparison: (file name, bytes).

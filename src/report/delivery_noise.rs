@@ -36,18 +36,3 @@ pub fn describe(noise: &DeliveryNoise) -> String {
         .collect::<Vec<_>>()
         .join(", ")
 }
-
-/// The noise as JSON: `{column: sd}` for the noisy variables.
-pub fn to_json(noise: &DeliveryNoise) -> serde_json::Value {
-    DeliveryVar::ALL
-        .into_iter()
-        .filter(|&v| settable(v) && noise.sd[v.index()] > 0.0)
-        .map(|v| {
-            (
-                v.column().to_owned(),
-                serde_json::json!(noise.sd[v.index()]),
-            )
-        })
-        .collect::<serde_json::Map<_, _>>()
-        .into()
-}

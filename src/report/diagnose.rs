@@ -4,15 +4,16 @@
 
 pub mod face_map;
 pub mod text;
+mod view;
+
+use view::view;
 
 use serde::{Serialize, Serializer};
-use serde_json::json;
 
 use crate::diagnose::honest;
 use crate::diagnose::noise_floor::{ComponentFloor, NoiseFloor, SpreadBand, STRUCTURE_ALPHA};
 use crate::diagnose::Diagnosis;
 use crate::fit::ParamEstimate;
-use crate::physics::LaunchComponent;
 use crate::report::location_mm;
 
 /// The version of diagnose's JSON schema (`schema_version`); raised when a key changes meaning
@@ -31,7 +32,7 @@ pub struct DiagnoseReport {
 
 impl Serialize for DiagnoseReport {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        super::json::head_first(&to_json(&self.diagnosis, &self.floor), s)
+        super::json::canonical(&view(&self.diagnosis, &self.floor), s)
     }
 }
 
@@ -41,34 +42,6 @@ impl DiagnoseReport {
     pub fn conclusion(&self) -> String {
         conclusion(&self.diagnosis, &self.floor)
     }
-}
-
-fn estimates_json(ps: &[ParamEstimate]) -> Vec<serde_json::Value> {
-    estimates_json_with(ps, |_| None)
-}
-
-/// Estimates as JSON, each with its plausibility and (when `status` says) its status.
-fn estimates_json_with(
-    ps: &[ParamEstimate],
-    status: impl Fn(&ParamEstimate) -> Option<&'static str>,
-) -> Vec<serde_json::Value> {
-    ps.iter()
-        .map(|p| {
-            let mut v = json!({
-                "effect": p.effect, "param": p.param, "group": p.group,
-                "value": p.value, "stderr": p.stderr, "unit": p.unit,
-            });
-            if let (Some(o), serde_json::Value::Object(h)) =
-                (v.as_object_mut(), honest::plausibility_json(p))
-            {
-                o.extend(h);
-                if let Some(st) = status(p) {
-                    o.insert("status".into(), st.into());
-                }
-            }
-            v
-        })
-        .collect()
 }
 
 /// `finding`, `stand_in`, `absent` (on its no-effect bound), `unchanged` (not significantly
@@ -91,101 +64,6 @@ fn status(d: &Diagnosis, p: &ParamEstimate) -> &'static str {
     } else {
         "ambiguous"
     }
-}
-
-/// The machine-readable report (the JSON of [`DiagnoseReport`]).
-fn to_json(d: &Diagnosis, floor: &NoiseFloor) -> serde_json::Value {
-    let comp_map = |v: &[f64; 5]| -> serde_json::Value {
-        LaunchComponent::ALL
-            .iter()
-            .map(|c| (c.column().to_owned(), json!(v[c.index()])))
-            .collect::<serde_json::Map<_, _>>()
-            .into()
-    };
-    let steps: Vec<serde_json::Value> = d
-        .steps
-        .iter()
-        .enumerate()
-        .map(|(i, s)| {
-            json!({
-                "step": i + 1,
-                "base": s.base,
-                "noise_scales": comp_map(&s.noise_scales),
-                "base_cv_chi2": s.base_cv_chi2,
-                "selected": s.selected,
-                "swap": s.swap.as_ref().map(|w| json!({
-                    "out": w.out,
-                    "in": w.inn,
-                    "cv_chi2_before": w.cv_before,
-                    "cv_chi2_after": w.cv_after,
-                    "text": w.text(),
-                })),
-                "at_noise_floor": s.at_noise_floor,
-                "alias": s.alias.as_ref().map(|a| a.to_json()),
-                "rivals": s.rivals.iter().map(honest::Rival::to_json).collect::<Vec<_>>(),
-                "candidates": s.candidates.iter().map(|c| json!({
-                    "effect": c.label,
-                    "n_params": c.n_params,
-                    "cv_chi2": c.cv_chi2,
-                    "gain": c.gain,
-                    "score": if c.spread_gain.is_some() { "spread_likelihood" } else { "cv_chi2" },
-                    "penalty": c.penalty,
-                    "margin": c.margin(),
-                    "eligible": c.eligible(),
-                    "converged": c.converged,
-                    "unidentified": c.unidentified,
-                    "failure": c.failure,
-                    "rms_reduction": comp_map(&c.rms_reduction),
-                    "params": estimates_json(&c.params),
-                })).collect::<Vec<_>>(),
-                "after": s.after.to_json(),
-                "fit": crate::report::likelihood::score_json(&s.fit),
-            })
-        })
-        .collect();
-    json!({
-        "schema_version": SCHEMA_VERSION,
-        "command": "diagnose",
-        "selected": d.selected,
-        "impact_noise_mm": d.impact_noise.map(|n| json!({
-            "y": location_mm(n.sigma_y_m),
-            "z": location_mm(n.sigma_z_m),
-            "estimated": d.impact_noise_estimated,
-        })),
-        "delivery_noise": d.delivery_noise.filter(|n| n.is_active()).map(|n| json!({
-            "sd": crate::report::delivery_noise::to_json(&n),
-            "estimated": d.delivery_noise_estimated,
-        })),
-        "calibrate_flags": calibrate_flags(d),
-        "estimates": estimates_json_with(&d.estimates, |p| Some(status(d, p))),
-        "findings": d.estimates.iter().filter(|p| d.is_finding(p)).map(|p| p.label()).collect::<Vec<_>>(),
-        "provisional": d.estimates.iter().filter_map(|p| d.provisional(p).map(|why| json!({
-            "param": p.label(), "failed_check": why,
-        }))).collect::<Vec<_>>(),
-        "strata": d.strata.as_ref().map(crate::report::strata::to_json),
-        "ambiguous": d.ambiguities.iter().map(honest::Ambiguity::to_json).collect::<Vec<_>>(),
-        "unresolved": d.unresolved.as_ref().map(honest::Unresolved::to_json),
-        "rival_families": d.rival_families.iter()
-            .map(crate::diagnose::rival_family::FamilyCheck::to_json).collect::<Vec<_>>(),
-        "stand_ins": d.estimates.iter().filter_map(|p| honest::stand_in(p).map(|w| json!({
-            "param": p.label(), "value": p.value, "unit": p.unit,
-            "plausible_range": honest::plausible_range_text(p), "behaves_like": w,
-            "most_alike": d.alike(p).iter().map(|(l, r)| json!({"candidate": l, "r": r}))
-                .collect::<Vec<_>>(),
-        }))).collect::<Vec<_>>(),
-        "aliases": d.aliases.iter().map(honest::Alias::to_json).collect::<Vec<_>>(),
-        "likelihood": crate::report::likelihood::to_json("final", &d.final_fit, &d.nominal_fit),
-        "noise_floor": floor.to_json(),
-        "conclusion": conclusion(d, floor),
-        "steps": steps,
-        "folds": d.folds,
-        "fold_by": d.fold_by.name(),
-        "club_mismatch": d.club_mismatch,
-        "n_shots": d.n_shots,
-        "warnings": d.warnings,
-        "before": d.before.to_json(),
-        "after": d.after.to_json(),
-    })
 }
 
 /// What the diagnosis concludes about the structure left in the errors, and, when the
@@ -419,6 +297,7 @@ fn calibrate_flags(d: &Diagnosis) -> String {
 mod tests {
     use super::*;
     use crate::diagnose::noise_floor::InstrumentNoise;
+    use crate::physics::LaunchComponent;
 
     fn floor(assumed: bool, ratios_p: [(f64, f64); 5]) -> NoiseFloor {
         NoiseFloor {

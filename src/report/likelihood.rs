@@ -1,38 +1,9 @@
 //! How the models of `calibrate` and `diagnose` were scored, as text and JSON: the likelihood
 //! table, the scales and how they were set ([`crate::fit::likelihood`]).
 
-use serde_json::json;
-
 use crate::fit::{Likelihood, ScaleSource};
 use crate::physics::LaunchComponent;
 use crate::report::TextTable;
-
-/// A likelihood score's scale-free numbers: `k`, `−2 ln L`, AIC, BIC and the scales.
-pub fn score_json(l: &Likelihood) -> serde_json::Value {
-    json!({
-        "k": l.k,
-        "minus_2_ln_l": l.minus_2_ln_l,
-        "aic": l.aic(),
-        "bic": l.bic(),
-        "scales": LaunchComponent::ALL
-            .iter()
-            .map(|c| (c.column().to_owned(), json!(l.scales[c.index()])))
-            .collect::<serde_json::Map<_, _>>(),
-    })
-}
-
-/// How the models were scored (`scales`: `profiled` or `given`, `given_by`, `n_residuals`),
-/// with the scores of the `first` model (named `name`) and the nominal one.
-pub fn to_json(name: &str, first: &Likelihood, nominal: &Likelihood) -> serde_json::Value {
-    let mut j = json!({
-        "scales": first.source.kind(),
-        "given_by": first.source.name(),
-        "n_residuals": first.n_residuals,
-        "nominal": score_json(nominal),
-    });
-    j[name] = score_json(first);
-    j
-}
 
 /// `head` then per component `name value unit`, comma-separated, wrapped with `indent` and two
 /// spaces so that no line passes 99 columns; ends with a newline.

@@ -2,8 +2,6 @@
 //! which would-be findings are provisional because the parts disagree
 //! ([`crate::diagnose::strata`]).
 
-use serde_json::json;
-
 use crate::diagnose::strata::StrataCheck;
 use crate::diagnose::Diagnosis;
 use crate::report::TextTable;
@@ -94,42 +92,4 @@ fn table(c: &StrataCheck, cols: &[usize]) -> String {
         t.row(row);
     }
     t.render()
-}
-
-/// The strata check as JSON: per family its strata (label, n, per parameter value and
-/// standard error) and per parameter its test.
-pub fn to_json(c: &StrataCheck) -> serde_json::Value {
-    let per_param = |f: &dyn Fn(usize) -> serde_json::Value| -> serde_json::Value {
-        c.params
-            .iter()
-            .enumerate()
-            .map(|(j, l)| (l.clone(), f(j)))
-            .collect::<serde_json::Map<_, _>>()
-            .into()
-    };
-    let families: Vec<serde_json::Value> = c
-        .families
-        .iter()
-        .map(|f| {
-            json!({
-                "name": f.name,
-                "strata": f.strata.iter().map(|s| json!({
-                    "label": s.label,
-                    "n": s.n,
-                    "values": per_param(&|j| s.values[j].map_or(serde_json::Value::Null, |(v, se)| {
-                        json!({"value": v, "stderr": se})
-                    })),
-                })).collect::<Vec<_>>(),
-                "checks": per_param(&|j| f.checks[j].as_ref().map_or(serde_json::Value::Null, |k| {
-                    json!({"chi2": k.chi2, "dof": k.dof, "p_value": k.p_value, "stable": k.stable})
-                })),
-            })
-        })
-        .collect();
-    json!({
-        "alpha": crate::diagnose::strata::STRATA_ALPHA,
-        "alpha_each": c.alpha_each,
-        "params": c.params,
-        "families": families,
-    })
 }

@@ -5,8 +5,6 @@ use std::collections::BTreeMap;
 
 use serde::Serialize;
 
-use crate::physics::LaunchComponent;
-
 /// Mean and sample standard deviation of errors, in the component's file unit.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct MeanStd {
@@ -33,24 +31,6 @@ pub struct GroupErrors {
 pub struct ErrorTable {
     /// One row block per group.
     pub groups: Vec<GroupErrors>,
-}
-
-impl ErrorTable {
-    /// `{group: {component column: {"mean", "std"}}}`, the machine-readable form.
-    pub fn to_json(&self) -> serde_json::Value {
-        let mut out = serde_json::Map::new();
-        for g in &self.groups {
-            let mut comps = serde_json::Map::new();
-            for (c, ms) in LaunchComponent::ALL.iter().zip(&g.components) {
-                comps.insert(
-                    c.column().to_owned(),
-                    serde_json::json!({"mean": ms.mean, "std": ms.std}),
-                );
-            }
-            out.insert(g.group.clone(), serde_json::Value::Object(comps));
-        }
-        serde_json::Value::Object(out)
-    }
 }
 
 /// Table-2 statistics from per-shot errors (model − measured, file units) and each shot's group.
@@ -94,16 +74,11 @@ mod tests {
         assert_eq!(t.groups[1].n, 2);
         assert_eq!(t.groups[1].components[0].mean, 2.0);
         assert!((t.groups[1].components[0].std - 2f64.sqrt()).abs() < 1e-12);
-        let j = t.to_json();
-        assert_eq!(j["B"]["ball_speed_mph"]["mean"], 2.0);
     }
 
     #[test]
-    fn a_single_shot_group_has_no_spread_and_json_says_null() {
+    fn a_single_shot_group_has_no_spread() {
         let t = launch_error_table(&["A", "A", "B"], &[[1.0; 5], [3.0; 5], [2.0; 5]]);
         assert!(t.groups[1].components[0].std.is_nan());
-        let j = t.to_json();
-        assert!(j["B"]["ball_speed_mph"]["std"].is_null());
-        assert_eq!(j["B"]["ball_speed_mph"]["mean"], 2.0);
     }
 }

@@ -19,7 +19,6 @@
 //!   quadratic (`x, x²`, `F(2, n − 3)`).
 
 use nalgebra::{DMatrix, DVector};
-use serde_json::json;
 
 use crate::model::{DeliveryVar, N_DELIVERY};
 use crate::physics::LaunchComponent;
@@ -113,29 +112,6 @@ impl BinMap {
     pub fn n_cols(&self) -> usize {
         self.col_edges.len().saturating_sub(1).max(1)
     }
-
-    /// The machine-readable form, edges named with `unit`.
-    fn to_json(&self, row: &str, col: &str, unit: &str) -> serde_json::Value {
-        let nc = self.n_cols();
-        let mut j = json!({
-            format!("{row}_edges_{unit}"): self.row_edges,
-            "bins": self.bins.iter().enumerate().map(|(k, b)| json!({
-                "row": k / nc,
-                "col": k % nc,
-                "count": b.count,
-                "mean_error": finite(b.mean_error),
-                "z_mean": finite(b.z_mean),
-            })).collect::<Vec<_>>(),
-        });
-        if !self.col_edges.is_empty() {
-            j[format!("{col}_edges_{unit}")] = json!(self.col_edges);
-        }
-        j
-    }
-}
-
-fn finite(v: f64) -> Option<f64> {
-    v.is_finite().then_some(v)
 }
 
 /// The search of one component.
@@ -410,23 +386,6 @@ impl ShapeSearch {
             error_text(key(&lo), c),
             at(lo)
         ))
-    }
-
-    /// The machine-readable form (`unit`: the component's file unit).
-    pub fn to_json(&self, unit: &str) -> serde_json::Value {
-        json!({
-            "error_unit": unit,
-            "face_map": self.face_map.as_ref().map(|m| m.to_json("impact_y", "impact_z", "mm")),
-            "club_speed_bins": self.speed_bins.as_ref().map(|m| m.to_json("club_speed", "", "mph")),
-            "tests": self.tests.iter().map(|t| json!({
-                "term": t.term.name(),
-                "f": t.f,
-                "df": [t.df.0, t.df.1],
-                "p_value": t.p_value,
-            })).collect::<Vec<_>>(),
-            "alpha_each": ALPHA_EACH,
-            "found": self.found.map(|t| t.term.name()),
-        })
     }
 }
 

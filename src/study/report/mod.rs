@@ -9,7 +9,11 @@
 //! a study whose variants all change the club compares against variant 0 and says so.
 
 pub mod html;
+mod render;
 pub mod text;
+pub mod whatif;
+
+pub use render::StudyContext;
 
 use std::fmt::Write as _;
 

@@ -1,20 +1,103 @@
-//! `smash whatif --report`: the one-page HTML report. Pictures first (both landing patterns
-//! with their dispersion ellipses, the head from above and from behind with its CoM and the
-//! moved mass before and after), then the table and the heads in numbers. The pages' shared
-//! style; no scripts; the pictures are inline SVG.
+//! What `smash whatif` reports, as one value: [`WhatIfReport`], one design change answered in
+//! yards against the base head for a stated golfer and mishit pattern. Its text is a table of
+//! the quantities (base, changed, change ± the quadrature's error) and the heads in numbers;
+//! its page ([`crate::report::render::Render`]) draws both landing patterns with their
+//! dispersion ellipses, the head from above and from behind with its CoM and the moved mass
+//! before and after, and the carry change over the face, then the table and the heads in
+//! numbers. The pages' shared style; no scripts; the pictures are inline SVG.
 
 use std::fmt::Write as _;
 
-use smash::report::heatmap::{heatmap_svg, Heatmap, Scale};
-use smash::report::html::{esc, CSS};
-use smash::report::to_scale::{
+use crate::report::charts::ChartError;
+use crate::report::heatmap::{heatmap_svg, Heatmap, Scale};
+use crate::report::html::{esc, CSS};
+use crate::report::render::Render;
+use crate::report::text::wrap_long;
+use crate::report::to_scale::{
     head_view_svg, landing_svg, HeadPoints, MovedMass, Pattern, PatternEllipse, View, BASE_COLOUR,
     CHANGED_COLOUR,
 };
-use smash::study::landing::Landing;
-use smash::study::whatif::{head_text, CarryChangeMap, HeadChange, WhatIf};
-use smash::study::yards_variants::{decimals, delta, delta_text, QUANTITIES};
-use smash::units::M_PER_MM;
+use crate::study::landing::Landing;
+use crate::study::whatif::{head_text, CarryChangeMap, HeadChange, WhatIf};
+use crate::study::yards_variants::{decimals, delta, delta_text, QUANTITIES};
+use crate::units::M_PER_MM;
+
+/// What `smash whatif` reports.
+pub struct WhatIfReport {
+    /// The base club's name.
+    pub club: String,
+    /// The change asked about.
+    pub change: HeadChange,
+    /// The golfer and the mishit pattern, in words.
+    pub setting: String,
+    /// Both heads in yards.
+    pub whatif: WhatIf,
+    /// The carry change over the face and the mishit pattern's centre `[y, z]`, mm, when it
+    /// could be computed (the page leaves its figure out otherwise).
+    pub map: Option<(CarryChangeMap, [f64; 2])>,
+}
+
+impl Render for WhatIfReport {
+    type Context = ();
+
+    /// The change and the setting as sentences (wrapped, as the other reports' prose is, to fit
+    /// a terminal), the heads in numbers and the table.
+    fn text(&self, _: &()) -> String {
+        let mut text = wrap_long(&format!(
+            "what if: {} ({}, nominal head)\n{}\n",
+            self.change.describe().join("; "),
+            self.club,
+            self.setting
+        ));
+        text.push_str(&head_text(&self.whatif));
+        text.push_str(&table_text(&self.whatif));
+        text
+    }
+
+    fn html(&self, _: &()) -> Option<Result<String, ChartError>> {
+        Some(Ok(page(
+            &self.club,
+            &self.change,
+            &self.setting,
+            &self.whatif,
+            self.map.as_ref().map(|(m, c)| (m, *c)),
+        )))
+    }
+}
+
+/// The comparison table: quantity, base, changed, change ± the quadrature's error estimate.
+fn table_text(w: &WhatIf) -> String {
+    let mut t = format!(
+        "{:<34} {:>10} {:>10} {:>20}\n",
+        "quantity", "base", "changed", "change ± quad. err"
+    );
+    for q in &QUANTITIES {
+        let n = decimals(q);
+        let (d, u) = delta(q, &w.base, &w.changed);
+        let _ = writeln!(
+            t,
+            "{:<34} {:>10.n$} {:>10.n$} {:>20}",
+            format!("{} ({})", q.label, q.unit),
+            (q.get)(&w.base.metrics),
+            (q.get)(&w.changed.metrics),
+            delta_text(d, u, n)
+        );
+    }
+    let a = w.base.metrics.ellipse_area_yd2;
+    if a > 0.0 {
+        let _ = writeln!(
+            t,
+            "dispersion-ellipse area change: {:+.2} %",
+            100.0 * (w.changed.metrics.ellipse_area_yd2 - a) / a
+        );
+    }
+    for (head, m) in [("base", &w.base.metrics), ("changed", &w.changed.metrics)] {
+        if let Some(note) = m.grounded_note() {
+            let _ = writeln!(t, "{head} head: {note}");
+        }
+    }
+    t
+}
 
 /// A figure of the page: its kind (for tests), the SVG and its caption.
 fn figure(kind: &str, svg: &str, caption: &str) -> String {
@@ -148,7 +231,7 @@ fn table_html(w: &WhatIf) -> String {
 /// The one-page report: what was asked, the pictures, the table and the heads in numbers.
 /// `map` is the carry change over the face and the mishit pattern's centre `[y, z]`, mm (its
 /// figure is left out when it could not be computed).
-pub fn report_html(
+fn page(
     club: &str,
     change: &HeadChange,
     setting: &str,
