@@ -5,7 +5,7 @@
 //! decimals, spins in whole rpm), read, parsed, flown, formatted and written to a flight CSV.
 
 use criterion::{black_box, criterion_group, criterion_main, Criterion, Throughput};
-use smash::data::flight_stream::{fly_csv_file, CHUNK_BYTES};
+use smash::app::flight::stream::{fly_csv_file, CHUNK_BYTES};
 use smash::flight::integrate::fly_serial;
 use smash::flight::workload::{drive_file_units, drives};
 use smash::flight::{fly, Flight, FlightConfig, FlightError};

@@ -10,11 +10,11 @@ mod calibrate;
 mod diagnose;
 mod measured;
 
-use smash::data::flight_conditions::{
+use smash::app::flight::conditions::{
     columns_used, file_headers, fly_with_conditions, UserConditions,
 };
+use smash::app::flight::stream::{fly_csv_file, split_results, Flown, CHUNK_BYTES};
 use smash::data::flight_files::{flight_csv, flight_error_at, LaunchSource};
-use smash::data::flight_stream::{fly_csv_file, split_results, Flown, CHUNK_BYTES};
 use smash::data::flight_summary::summarise_file;
 use smash::data::launch_read::LaunchRead;
 use smash::data::DataError;

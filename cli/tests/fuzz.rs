@@ -305,7 +305,7 @@ fn fly_launch_file(b: &[u8]) -> Result<(), anyhow::Error> {
         table.source.prefix(),
         smash::flight::fly(&cfg, &table.launches),
     )?;
-    smash::data::flight_stream::fly_csv_file(&input, &out, &cfg, Default::default(), 64)?;
+    smash::app::flight::stream::fly_csv_file(&input, &out, &cfg, Default::default(), 64)?;
     // The columns the flight adds (after the input's, which are copied as given) are finite
     // numbers or empty.
     let mut r = csv::Reader::from_path(&out)?;

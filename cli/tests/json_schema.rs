@@ -137,6 +137,8 @@ fn every_json_report_is_documented_and_versioned() {
     ]);
     let run = check("run", &run, &["yards"]);
     assert!(run["optimiser"].is_object(), "optimise.toml optimises");
+    let effects = check("effects", &json_of(&["effects", "--json"]), &[]);
+    assert!(effects["effects"][0]["params"].is_array(), "{effects}");
 }
 
 #[test]

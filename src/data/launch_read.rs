@@ -1,7 +1,7 @@
 //! Reading a launch file for `smash flight`: the launch of every row, checked (a number in each
 //! launch cell, a launch the flight model takes, measured flight cells in their ranges), and the
 //! rows that fail left out and counted ([`crate::data::left_out`]) unless `--strict`. The
-//! streamed flight ([`crate::data::flight_stream`]) makes the same checks piece by piece.
+//! streamed flight ([`crate::app::flight::stream`]) makes the same checks piece by piece.
 
 use std::path::Path;
 

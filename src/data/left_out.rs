@@ -3,7 +3,7 @@
 //! note per kind of reason with its first file line and message, never a refusal of the other
 //! rows. The shots reader ([`crate::data::shots`]) and the launch reader
 //! ([`crate::data::flight_files`], and the streamed flight of
-//! [`crate::data::flight_stream`]) both keep their rows left out here, so `predict`,
+//! [`crate::app::flight::stream`]) both keep their rows left out here, so `predict`,
 //! `compare`, `calibrate`, `diagnose` and `flight` say the same thing the same way. Under
 //! `--strict` the readers refuse the file at the first such row instead.
 

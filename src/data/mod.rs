@@ -7,11 +7,9 @@
 pub mod club_file;
 pub mod datetime;
 pub mod effect_defs;
-pub mod flight_conditions;
 pub mod flight_files;
 pub mod flight_measured;
-mod flight_output;
-pub mod flight_stream;
+pub(crate) mod flight_output;
 pub mod flight_summary;
 pub mod import;
 pub mod launch_read;

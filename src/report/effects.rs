@@ -52,9 +52,15 @@ pub struct EffectsReport {
     pub effects: Vec<EffectView>,
 }
 
+/// The version of effects' JSON schema (`schema_version`); raised when a key changes meaning
+/// or goes away (a new key does not raise it).
+pub const SCHEMA_VERSION: u32 = 1;
+
 /// The JSON of [`EffectsReport`].
 #[derive(Serialize)]
 struct EffectsJson<'a> {
+    schema_version: u32,
+    command: &'static str,
     effects: &'a [EffectView],
 }
 
@@ -62,6 +68,8 @@ impl Serialize for EffectsReport {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         super::json::canonical(
             &EffectsJson {
+                schema_version: SCHEMA_VERSION,
+                command: "effects",
                 effects: &self.effects,
             },
             s,

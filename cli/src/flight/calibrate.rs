@@ -2,7 +2,7 @@
 //! drag, lift and spin decay fitted to the measured flights, for all shots or per ball or
 //! session, then the shots flown with them.
 
-use smash::data::flight_stream::Flown;
+use smash::app::flight::stream::Flown;
 use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};

@@ -1,6 +1,6 @@
 //! `smash flight --diagnose`: which aerodynamic term do the measured flights ask for?
 
-use smash::data::flight_stream::Flown;
+use smash::app::flight::stream::Flown;
 use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
 use smash::flight::FlightConfig;

@@ -7,8 +7,8 @@
 
 use std::path::Path;
 
+use crate::app::flight::stream::Flown;
 use crate::data::flight_files::flight_csv;
-use crate::data::flight_stream::Flown;
 use crate::data::launch_read::{read_launches, LaunchRead};
 use crate::data::number::parse_f64;
 use crate::data::{quote_cell, write_atomic, DataError};
@@ -185,7 +185,7 @@ pub fn fly_with_conditions(
         .into_iter()
         .map(|f| f.expect("every shot flown"))
         .collect();
-    let (flights, errs) = crate::data::flight_stream::split_results(
+    let (flights, errs) = crate::app::flight::stream::split_results(
         input,
         &table.lines,
         table.source.prefix(),

@@ -558,5 +558,5 @@ fn format_rows(
 }
 
 #[cfg(test)]
-#[path = "flight_stream_tests.rs"]
+#[path = "stream_tests.rs"]
 mod tests;

@@ -1,15 +1,20 @@
 //! `flight`: fly launch conditions to landing. The settings of the flight (aerodynamic model,
-//! atmosphere, ground, integration) are shared with `predict --flight`.
+//! atmosphere, ground, integration) are shared with `predict --flight`. The launch file is
+//! flown as a stream ([`stream`]: read, flown and written in chunks, bounded memory) or, when
+//! the file states the conditions of each shot, in each shot's own air ([`conditions`]).
+
+pub mod conditions;
+pub mod stream;
 
 use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::data::flight_conditions::UserConditions;
 use crate::data::flight_files::{read_atmosphere, LaunchSource};
 use crate::data::launch_read::LaunchRead;
 use crate::flight::{AeroModel, Atmosphere, FlightConfig, Ground, SpinDecay};
 use crate::limits::fmt_value;
+use conditions::UserConditions;
 
 /// The flight's settings: model, atmosphere, ground, integration. Unset values take the
 /// defaults their fields name (an atmosphere file sets them all, and a value given here
@@ -122,7 +127,7 @@ pub fn fly_table(
         );
     }
     let cfg = settings.flight.config()?;
-    let (csv, _) = crate::data::flight_stream::fly_csv_bytes(
+    let (csv, _) = stream::fly_csv_bytes(
         label,
         bytes,
         &cfg,
