@@ -6,7 +6,7 @@ use std::path::Path;
 
 use smash::report::render::Render;
 use smash::study::output::TableFormat;
-use smash::study::report::{StudyContext, StudyReport};
+use smash::study::report::StudyReport;
 
 /// `--format` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -36,11 +36,7 @@ pub fn print_summary(
     wide: bool,
     json: bool,
 ) -> Result<(), crate::stdout::StdoutError> {
-    let mut text = report.text(&StudyContext { wide });
-    text.push_str(&crate::text::wrap_long(&format!(
-        "wrote {n_files} file(s) to {}\n",
-        dir.display()
-    )));
+    let text = smash::app::study::summary_text(report, dir, n_files, wide);
     if json {
         eprint!("{text}");
         return crate::stdout::println(report.json().expect("a study report has JSON"));

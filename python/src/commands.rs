@@ -314,13 +314,7 @@ fn run_study(
                 if let Some(text) = yards_summary {
                     eprint!("{text}");
                 }
-                use smash::report::render::Render;
-                let cx = smash::study::report::StudyContext { wide: false };
-                let mut text = report.text(&cx);
-                text.push_str(&smash::report::text::wrap_long(&format!(
-                    "wrote {n_files} file(s) to {}\n",
-                    dir.display()
-                )));
+                let text = app::study::summary_text(&report, &dir, n_files, false);
                 eprint!("{timing}");
                 Ok(text)
             }

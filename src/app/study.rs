@@ -54,6 +54,18 @@ pub enum StudyRun {
     },
 }
 
+/// What a finished run (or a merge) says: the report's text summary, then where its `n_files`
+/// files went (`dir`); `wide`: one line per variant with every metric.
+pub fn summary_text(report: &StudyReport, dir: &Path, n_files: usize, wide: bool) -> String {
+    use crate::report::render::Render;
+    let mut text = report.text(&crate::study::report::StudyContext { wide });
+    text.push_str(&crate::report::text::wrap_long(&format!(
+        "wrote {n_files} file(s) to {}\n",
+        dir.display()
+    )));
+    text
+}
+
 /// The long work of a study, for a progress display: [`Progress::start`] once with the work
 /// items and impacts, [`Progress::item_done`] after each item, [`Progress::finish`] at the end.
 pub trait Progress: Sync {
