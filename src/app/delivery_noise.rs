@@ -1,5 +1,6 @@
-//! The delivery-noise setting (`--delivery-noise SPEC`): the noise of the measured delivery variables other than the impact
-//! location, for regression calibration ([`crate::measurement::DeliveryNoise`]).
+//! The delivery-noise setting (`--delivery-noise SPEC`): the noise of the measured delivery
+//! variables other than the impact location, for regression calibration
+//! ([`crate::measurement::DeliveryNoise`]).
 //!
 //! A spec is a comma-separated list. Its first entry may name an instrument class whose
 //! documented delivery noise (`docs/noise-floor.md`) every variable takes, or a multiple of one

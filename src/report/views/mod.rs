@@ -2,14 +2,14 @@
 //! `Serialize` values filled once from the domain (with their verdicts: plausibility, stand-in,
 //! ambiguity, spread band), which the JSON writes as they are. The schema: `docs/json.md`.
 //!
-//! A report's JSON is its view serialised with [`super::json::to_json_text`]'s canonical key
-//! order (`schema_version` and `command` first, then every object's keys in byte order), so a
-//! view declares its fields in the order that reads best.
+//! A report's JSON is its view serialised in the canonical key order of `report::json::canonical`
+//! (`schema_version` and `command` first, then every object's keys in byte order), so a view
+//! declares its fields in the order that reads best.
 //!
 //! Here the small shared parts (component maps, error tables, likelihoods, estimates with their
 //! plausibility); the readings of a diagnosis (aliases, rivals, ambiguities, the unresolved
-//! candidate, rival families) in [`readings`]; the strata check in [`strata`]; the noise floor
-//! and the shapes of the errors in [`noise_floor`].
+//! candidate, rival families) in `readings.rs`; the strata check in `strata.rs`; the noise floor
+//! and the shapes of the errors in `noise_floor.rs`. Their types are re-exported here.
 
 mod noise_floor;
 mod readings;
