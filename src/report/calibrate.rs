@@ -9,7 +9,8 @@ use serde::{Serialize, Serializer};
 use crate::diagnose::honest;
 use crate::fit::Calibration;
 use crate::report::views::{
-    components, delivery_noise, error_table, AliasView, ComponentMap, LikelihoodView, Plausibility,
+    components, delivery_noise, error_table, AliasView, ComponentMap, ErrorTableView, Estimate,
+    LikelihoodView,
 };
 use crate::stats::t_statistic;
 
@@ -41,16 +42,10 @@ impl Serialize for CalibrateReport {
 /// A fitted parameter with its standard error, t statistic and plausibility.
 #[derive(Debug, Clone, Serialize)]
 struct ParamView {
-    effect: &'static str,
-    param: &'static str,
-    group: Option<String>,
-    value: f64,
-    stderr: Option<f64>,
-    unit: &'static str,
+    #[serde(flatten)]
+    estimate: Estimate,
     t: Option<f64>,
     at_bound: bool,
-    #[serde(flatten)]
-    plausibility: Plausibility,
 }
 
 /// The correlation matrix of the estimates.
@@ -141,12 +136,6 @@ struct CalibrateView {
     warnings: Vec<String>,
 }
 
-/// `{group: {component: {mean, std}}}`.
-type ErrorTableView = std::collections::BTreeMap<
-    String,
-    std::collections::BTreeMap<&'static str, crate::report::views::MeanStd>,
->;
-
 /// The view of the report (the JSON of [`CalibrateReport`]).
 fn view(r: &CalibrateReport) -> CalibrateView {
     let cal = &r.calibration;
@@ -155,15 +144,9 @@ fn view(r: &CalibrateReport) -> CalibrateView {
         .params
         .iter()
         .map(|p| ParamView {
-            effect: p.effect,
-            param: p.param,
-            group: p.group.clone(),
-            value: p.value,
-            stderr: p.stderr,
-            unit: p.unit,
+            estimate: Estimate::of(p),
             t: p.stderr.map(|s| t_statistic(p.value, s)),
             at_bound: p.at_bound,
-            plausibility: Plausibility::of(p),
         })
         .collect();
     let correlation = cal.correlation.as_ref().map(|c| CorrelationView {

@@ -12,40 +12,22 @@ use crate::fit::ParamEstimate;
 use crate::report::location_mm;
 use crate::report::views::{
     alike, components, delivery_noise, error_table, AliasView, Alike, AmbiguityView, ComponentMap,
-    ExplainedAliasView, FamilyCheckView, LikelihoodView, NoiseFloorView, Plausibility, RivalView,
-    Score, StrataView, UnresolvedView,
+    ErrorTableView, Estimate, ExplainedAliasView, FamilyCheckView, LikelihoodView, NoiseFloorView,
+    RivalView, Score, StrataView, UnresolvedView,
 };
-
-/// `{group: {component: {mean, std}}}`.
-type ErrorTableView = std::collections::BTreeMap<
-    String,
-    std::collections::BTreeMap<&'static str, crate::report::views::MeanStd>,
->;
 
 /// An estimate with its plausibility and, in the final model, its status.
 #[derive(Debug, Clone, Serialize)]
 struct EstimateView {
-    effect: &'static str,
-    param: &'static str,
-    group: Option<String>,
-    value: f64,
-    stderr: Option<f64>,
-    unit: &'static str,
     #[serde(flatten)]
-    plausibility: Plausibility,
+    estimate: Estimate,
     #[serde(skip_serializing_if = "Option::is_none")]
     status: Option<&'static str>,
 }
 
 fn estimate(p: &ParamEstimate, status: Option<&'static str>) -> EstimateView {
     EstimateView {
-        effect: p.effect,
-        param: p.param,
-        group: p.group.clone(),
-        value: p.value,
-        stderr: p.stderr,
-        unit: p.unit,
-        plausibility: Plausibility::of(p),
+        estimate: Estimate::of(p),
         status,
     }
 }

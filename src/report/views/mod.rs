@@ -50,8 +50,11 @@ pub struct MeanStd {
     pub std: f64,
 }
 
-/// `{group: {component: {mean, std}}}`.
-pub fn error_table(t: &ErrorTable) -> BTreeMap<String, BTreeMap<&'static str, MeanStd>> {
+/// An error table in JSON: `{group: {component: {mean, std}}}`.
+pub type ErrorTableView = BTreeMap<String, BTreeMap<&'static str, MeanStd>>;
+
+/// `t` as `{group: {component: {mean, std}}}`.
+pub fn error_table(t: &ErrorTable) -> ErrorTableView {
     t.groups
         .iter()
         .map(|g| {
@@ -159,6 +162,42 @@ impl Plausibility {
             plausible: honest::is_plausible(p),
             plausible_range: honest::spec_of(p).map(|s| [s.plausible.0, s.plausible.1]),
             stand_in: honest::stand_in(p),
+        }
+    }
+}
+
+/// An estimate with its effect, group, value, standard error, unit and plausibility: what
+/// diagnose's and calibrate's JSON say of every fitted parameter (each adds its own keys).
+#[derive(Debug, Clone, Serialize)]
+pub struct Estimate {
+    /// The effect.
+    pub effect: &'static str,
+    /// The parameter's key.
+    pub param: &'static str,
+    /// The group, for a per-group effect.
+    pub group: Option<String>,
+    /// Value, in `unit`.
+    pub value: f64,
+    /// Standard error (`None`: not estimable).
+    pub stderr: Option<f64>,
+    /// Unit.
+    pub unit: &'static str,
+    /// Its plausibility.
+    #[serde(flatten)]
+    pub plausibility: Plausibility,
+}
+
+impl Estimate {
+    /// The view of `p`.
+    pub fn of(p: &ParamEstimate) -> Self {
+        Self {
+            effect: p.effect,
+            param: p.param,
+            group: p.group.clone(),
+            value: p.value,
+            stderr: p.stderr,
+            unit: p.unit,
+            plausibility: Plausibility::of(p),
         }
     }
 }
