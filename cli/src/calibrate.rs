@@ -6,6 +6,7 @@ use std::sync::Arc;
 use clap::{Args, ValueEnum};
 
 use smash::app::calibrate::CalibrateSettings;
+use smash::app::inputs::{prepare_table, NamedClub, Prepared};
 use smash::data::club_file::club_toml_checked;
 use smash::fit::Method;
 use smash::report::render::{CalibrateContext, Render};
@@ -106,15 +107,15 @@ impl CalibrateArgs {
 /// Run `smash calibrate`.
 pub fn run(args: CalibrateArgs) -> anyhow::Result<()> {
     let settings = args.settings();
-    let crate::measured::Loaded {
-        plan,
-        club,
-        mut table,
-    } = args
+    let crate::measured::Loaded { plan, club, table } = args
         .inputs
         .load_for_fit(args.noise.as_deref(), args.out_club.as_deref())?;
-    super::to_model_convention(&club, &mut table, true, true)?;
-    super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
+    let named = NamedClub {
+        spec: &club,
+        path: &args.inputs.club,
+    };
+    let Prepared { table, .. } =
+        prepare_table(named, table, (true, true), &mut smash::app::StderrNotes)?;
     let mismatch =
         args.inputs
             .club_check

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 
 use smash::app::compare::{title, CompareRun, CompareSettings};
-use smash::app::inputs::{NamedClub, Prepared};
+use smash::app::inputs::{prepare_table, NamedClub, Prepared};
 use smash::report::compare::compare_files;
 use smash::report::render::{CompareContext, Render};
 
@@ -71,22 +71,16 @@ impl CompareArgs {
 /// Run `smash compare`.
 pub fn run(args: CompareArgs) -> anyhow::Result<()> {
     let settings = args.settings();
-    let crate::measured::Loaded {
-        plan,
-        club,
-        mut table,
-    } = args.inputs.load(
+    let crate::measured::Loaded { plan, club, table } = args.inputs.load(
         &[],
         |p| p.folder("--out-dir", args.out_dir.as_deref()),
         || settings.check(),
     )?;
-    let conventions = super::to_model_convention(&club, &mut table, false, false)?;
-    super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
     let named = NamedClub {
         spec: &club,
         path: &args.inputs.club,
     };
-    let prepared = Prepared { table, conventions };
+    let prepared = prepare_table(named, table, (false, false), &mut smash::app::StderrNotes)?;
     let CompareRun { report, launches } = smash::app::compare::run_prepared(
         &settings,
         named,

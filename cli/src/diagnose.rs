@@ -10,7 +10,7 @@ use clap::Args;
 use indicatif::ProgressBar;
 
 use smash::app::diagnose::DiagnoseSettings;
-use smash::app::inputs::NamedClub;
+use smash::app::inputs::{prepare_table, NamedClub, Prepared};
 use smash::data::club_file::club_toml_checked;
 use smash::diagnose::noise_floor::InstrumentClass;
 use smash::diagnose::DiagnoseProgress;
@@ -120,20 +120,20 @@ impl DiagnoseProgress for Bar {
 
 /// Run `smash diagnose`.
 pub fn run(args: DiagnoseArgs) -> anyhow::Result<()> {
-    let crate::measured::Loaded {
-        plan,
-        club,
-        mut table,
-    } = args
+    let crate::measured::Loaded { plan, club, table } = args
         .inputs
         .load_for_fit(args.noise.as_deref(), args.out_club.as_deref())?;
-    let conventions = super::to_model_convention(&club, &mut table, args.inputs.json, true)?;
-    super::warn_groups_without_effects(&args.inputs.club, &club, &table.shots);
-    let bar = Bar(job_bar(1, "fits"));
     let named = NamedClub {
         spec: &club,
         path: &args.inputs.club,
     };
+    let Prepared { table, conventions } = prepare_table(
+        named,
+        table,
+        (args.inputs.json, true),
+        &mut smash::app::StderrNotes,
+    )?;
+    let bar = Bar(job_bar(1, "fits"));
     let result = smash::app::diagnose::run_prepared(
         &args.settings(),
         named,

@@ -190,7 +190,12 @@ pub fn run(args: InferClubArgs) -> anyhow::Result<()> {
     let club = read_club(&args.start)?;
     let mut table = args.shots_format.read(&args.shots)?;
     plan.check()?;
-    super::to_model_convention(&club, &mut table, true, true)?;
+    smash::app::inputs::to_model_convention(
+        &club,
+        &mut table,
+        (true, true),
+        &mut smash::app::StderrNotes,
+    )?;
     if !table.has_measurements() {
         return Err(smash::fit::FitError::NoMeasurements).context(args.shots.display().to_string());
     }

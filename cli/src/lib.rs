@@ -141,19 +141,8 @@ impl Command {
 
 pub use smash::app::predict::locate_shot_error;
 
-pub use smash::app::inputs::{groups_without_effects, mismatch_comment};
+pub use smash::app::inputs::mismatch_comment;
 pub use smash::app::{error_chain, thread_pool, WORKER_STACK_BYTES};
-
-/// Print [`groups_without_effects`]' warning, if any, once on stderr.
-pub fn warn_groups_without_effects(
-    club_path: &std::path::Path,
-    club: &smash::club::ClubSpec,
-    shots: &[smash::model::Shot],
-) {
-    if let Some(w) = groups_without_effects(club_path, club, shots) {
-        eprintln!("{}", smash::data::escape(&w));
-    }
-}
 
 /// The flag that runs `compare`, `calibrate` or `diagnose` on shots that do not match the club.
 #[derive(Debug, Clone, Copy, clap::Args)]
@@ -300,24 +289,6 @@ impl ShotsFormatArgs {
         self.settings()
             .import(path, format, &mut smash::app::StderrNotes)
     }
-}
-
-/// Bring the shots of `table` to the model's own delivery convention with `club`
-/// ([`smash::app::inputs::to_model_convention`]); with `to_stderr`, what was converted goes to
-/// stderr, and with `fit`, shots whose face angle the monitor derived from the launch are left
-/// out first (counted on stderr).
-pub fn to_model_convention(
-    club: &smash::club::ClubSpec,
-    table: &mut smash::data::shots::ShotTable,
-    to_stderr: bool,
-    fit: bool,
-) -> anyhow::Result<smash::conventions::ConventionSummary> {
-    smash::app::inputs::to_model_convention(
-        club,
-        table,
-        (to_stderr, fit),
-        &mut smash::app::StderrNotes,
-    )
 }
 
 /// Which way a positive heel–toe impact offset points (the command-line face of

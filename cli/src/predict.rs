@@ -191,12 +191,21 @@ fn predict_file(
         &[("--out", out, false)],
         &[("--shots", shots_path), ("--club", &args.club)],
     )?;
-    let mut table = args.shots_format.read(shots_path)?;
+    let table = args.shots_format.read(shots_path)?;
     // A mapping file (`--format NAME.toml`) is an input too, known once read: refuse an output
     // that would replace it before anything is said about the shots.
     smash::data::safe_write::check_output(out, false)?;
-    super::to_model_convention(club, &mut table, true, false)?;
-    super::warn_groups_without_effects(&args.club, club, &table.shots);
+    let named = smash::app::inputs::NamedClub {
+        spec: club,
+        path: &args.club,
+    };
+    let table = smash::app::inputs::prepare_table(
+        named,
+        table,
+        (true, false),
+        &mut smash::app::StderrNotes,
+    )?
+    .table;
     let outcomes = predict_checked(&args.club, club, shots_path, &table)?;
     let mut bytes = predictions_csv(&table, &outcomes);
     if args.flight {

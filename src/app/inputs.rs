@@ -300,7 +300,19 @@ pub fn prepare(
     (say, fit): (bool, bool),
     notes: &mut dyn Notes,
 ) -> anyhow::Result<Prepared> {
-    let mut table = format.read(input, notes)?;
+    let table = format.read(input, notes)?;
+    prepare_table(club, table, (say, fit), notes)
+}
+
+/// A table already read, brought to the model's convention and checked for groups without the
+/// club's per-group effects, as [`prepare`] does after reading (for a caller that checks its
+/// outputs between reading and converting).
+pub fn prepare_table(
+    club: NamedClub,
+    mut table: ShotTable,
+    (say, fit): (bool, bool),
+    notes: &mut dyn Notes,
+) -> anyhow::Result<Prepared> {
     let conventions = to_model_convention(club.spec, &mut table, (say, fit), notes)?;
     if let Some(w) = groups_without_effects(club.path, club.spec, &table.shots) {
         notes.line(&w);
