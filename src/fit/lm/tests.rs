@@ -273,6 +273,71 @@ fn chord_steps_taken_to_the_own_minimum_end_where_the_plain_fit_does() {
     assert_relative_eq!(far_own.cost, plain.cost, max_relative = 1e-9);
 }
 
+/// Broyden's update ([`LevenbergMarquardt::secant_update`]) makes the kept Jacobian map the
+/// step to the change of the residuals (the secant equation), leaves a direction orthogonal to
+/// the step in the ranges' metric as it was, and leaves a held (unmoved) parameter's column.
+#[test]
+fn the_secant_update_satisfies_the_secant_equation() {
+    let solver = bounded();
+    let (lo, hi): (DVector<f64>, DVector<f64>) = (
+        DVector::from_vec(vec![-10.0, 0.0]),
+        DVector::from_vec(vec![10.0, 5.0]),
+    );
+    let j = DMatrix::from_row_slice(3, 2, &[1.0, 2.0, -0.5, 0.25, 3.0, -1.0]);
+    let s = DVector::from_vec(vec![0.3, -0.1]);
+    let y = DVector::from_vec(vec![0.7, -0.2, 0.05]);
+    let updated = solver.secant_update(j.clone(), &s, &y);
+    assert_relative_eq!(&updated * &s, y, max_relative = 1e-12);
+    // Orthogonal to s in the metric W = diag(1/range²): W s · t = 0.
+    let w: Vec<f64> = (0..2).map(|k| 1.0 / (hi[k] - lo[k]).powi(2)).collect();
+    let t = DVector::from_vec(vec![s[1] * w[1], -s[0] * w[0]]);
+    assert_relative_eq!(&updated * &t, &j * &t, max_relative = 1e-12);
+    let held = DVector::from_vec(vec![0.3, 0.0]);
+    let updated = solver.secant_update(j.clone(), &held, &y);
+    assert_eq!(updated.column(1), j.column(1));
+    // A zero step changes nothing.
+    assert_eq!(solver.secant_update(j.clone(), &DVector::zeros(2), &y), j);
+}
+
+/// The secant update of the kept Jacobian in a fit taken to its own minimum: the same minimum
+/// to the solver's tolerances, from near and far starts, with no more Jacobians than the
+/// refreshed chord without it, and fewer from the far start.
+#[test]
+fn secant_updates_reach_the_same_minimum_with_fewer_jacobians() {
+    let inner = noisy_decay();
+    let run = |start: &DVector<f64>, secant: bool| {
+        let mut solver = given_start(bounded().without_final_jacobian(), &inner, start)
+            .with_kept_start_jacobian()
+            .to_own_minimum();
+        if !secant {
+            solver = solver.without_secant();
+        }
+        run_counted(inner.clone(), solver, start)
+    };
+    let far = DVector::from_vec(vec![1.0, 2.0]);
+    let plain = run_counted(inner.clone(), bounded(), &far);
+    for start in [far.clone(), &plain.p + DVector::from_vec(vec![0.02, -0.01])] {
+        let with = run(&start, true);
+        let without = run(&start, false);
+        assert!(with.why.is_some() && with.why != Some(Converged::KeptJacobian));
+        assert_relative_eq!(with.p, plain.p, max_relative = 1e-7);
+        assert_relative_eq!(with.cost, plain.cost, max_relative = 1e-9);
+        assert!(
+            with.jacobians <= without.jacobians,
+            "{} > {}",
+            with.jacobians,
+            without.jacobians
+        );
+    }
+    let (with, without) = (run(&far, true), run(&far, false));
+    assert!(
+        with.jacobians < without.jacobians,
+        "{} vs {}",
+        with.jacobians,
+        without.jacobians
+    );
+}
+
 /// `y ≈ a·t + b·t²` with `b ≥ 0` and data whose unconstrained optimum has `b < 0`.
 struct Coupled {
     t: Vec<f64>,
