@@ -80,6 +80,35 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
+/// The shaft-fitting season (`real_format::shaft_season`): 2,244 real-format drives with three
+/// shafts, on which `shaft_fraction` and nine other effects are selected (20 steps, swap rounds
+/// and a re-selection among them): the fixture issue 45 names. About half a minute a run on
+/// two cores, so ten samples (criterion's least) in flat sampling.
+fn bench_shaft(c: &mut Criterion) {
+    let club = worlds::paper_club();
+    let (shots, fold_keys) = real_format::shaft_season(&club, DiagnoseOptions::default().folds);
+    let opts = DiagnoseOptions {
+        fold_keys,
+        ..DiagnoseOptions::default()
+    };
+    let mut g = c.benchmark_group("diagnose shaft season");
+    g.sample_size(10);
+    g.sampling_mode(criterion::SamplingMode::Flat);
+    g.measurement_time(Duration::from_secs(300));
+    let d = diagnose(&club, &shots, &opts, None).expect("diagnose runs");
+    assert!(
+        d.selected.iter().any(|s| s == "shaft_fraction") && d.selected.len() >= 7,
+        "the bench's claim: shaft_fraction and six more selected, got {:?}",
+        d.selected
+    );
+    bench_one(
+        &mut g,
+        "2,244 shots, three shafts, default options",
+        (&club, &shots, &opts),
+    );
+    g.finish();
+}
+
 /// A user-defined law against its library twin: the power-law COR world
 /// (`configs/synth/cor_power_world.toml`) diagnosed with `cor_power`, and with `my_cor_power`
 /// (the same law as an expression, `tests/data/my_cor_power.toml`) offered in its place.
@@ -114,5 +143,5 @@ fn bench_user(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench, bench_user);
+criterion_group!(benches, bench, bench_user, bench_shaft);
 criterion_main!(benches);
