@@ -154,18 +154,26 @@ def timed_stdin(cmd, stdin_path, runs):
     return statistics.median(walls), statistics.median(cpus)
 
 
-def shaft_season(s, tmp):
-    """The shaft-fitting season as `docs/performance-history.md` makes it, shaft masses joined."""
-    world = tmp / "shaft_world.csv"
-    subprocess.run([s, "synth", "--config", "configs/synth/trackman_shaft_season_world.toml",
-                    "--out", world], cwd=ROOT, check=True, capture_output=True)
-    tm = tmp / "shaft_tm.csv"
+def real_format(s, tmp, config, name):
+    """A synthetic world written as a TrackMan export (with a radar's derived face angle) and
+    imported with the `trackman` preset: the world's shots and the imported shots file."""
+    world = tmp / f"{name}_world.csv"
+    subprocess.run([s, "synth", "--config", config, "--out", world], cwd=ROOT, check=True,
+                   capture_output=True)
+    tm = tmp / f"{name}_tm.csv"
     subprocess.run(["cargo", "run", "--release", "-q", "--example", "trackman_session", "--",
                     world, "cli/tests/fixtures/import/trackman_normalized.csv", CLUB, tm,
                     "--radar-face"], cwd=ROOT, check=True, capture_output=True)
-    imported = tmp / "shaft_imported.csv"
+    imported = tmp / f"{name}.csv"
     subprocess.run([s, "import", "--format", "trackman", tm, "--impact-offset-positive", "toe",
                     "--out", imported], cwd=ROOT, check=True, capture_output=True)
+    return world, imported
+
+
+def shaft_season(s, tmp):
+    """The shaft-fitting season as `docs/performance-history.md` makes it, shaft masses joined."""
+    world, imported = real_format(s, tmp, "configs/synth/trackman_shaft_season_world.toml",
+                                  "shaft_season")
     with open(world) as f:
         mass = {r["group"]: r["shaft_mass_g"] for r in csv.DictReader(f)}
     shots = tmp / "shaft_shots.csv"
@@ -202,16 +210,7 @@ def measure(runs, tmp, libgolf):
                    cwd=ROOT, check=True, capture_output=True)
     w, c = timed([s, "diagnose", "--club", CLUB, "--shots", paper], ROOT, runs)
     rows.append(("`smash diagnose`, paper world, 600 shots", w, c, "", "≤ 0.15 s"))
-    world = tmp / "season_world.csv"
-    subprocess.run([s, "synth", "--config", "configs/synth/trackman_real_scale_world.toml",
-                    "--out", world], cwd=ROOT, check=True, capture_output=True)
-    tm = tmp / "season_tm.csv"
-    subprocess.run(["cargo", "run", "--release", "-q", "--example", "trackman_session", "--",
-                    world, "cli/tests/fixtures/import/trackman_normalized.csv", CLUB, tm,
-                    "--radar-face"], cwd=ROOT, check=True, capture_output=True)
-    season = tmp / "season.csv"
-    subprocess.run([s, "import", "--format", "trackman", tm, "--impact-offset-positive", "toe",
-                    "--out", season], cwd=ROOT, check=True, capture_output=True)
+    _, season = real_format(s, tmp, "configs/synth/trackman_real_scale_world.toml", "season")
     base = [s, "diagnose", "--club", CLUB, "--shots", season]
     w, c = timed(base, ROOT, runs)
     rows.append(("`smash diagnose`, real-format season, 2,200 shots", w, c, "", "≤ 10 s"))
