@@ -36,7 +36,17 @@ class InterruptAtFirstFit:
             self.fits_after += 1
 
 
-def test_ctrl_c_stops_a_diagnose_at_once(paper_world):
+@pytest.fixture
+def sigint_raises():
+    """Python's own SIGINT handler for the test: a process started in the background by a
+    non-interactive shell inherits SIGINT ignored, and Python then installs no handler, so
+    the signal would do nothing (a CI runner that starts its jobs that way failed the test)."""
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, before)
+
+
+def test_ctrl_c_stops_a_diagnose_at_once(paper_world, sigint_raises):
     world = read_cli_csv(paper_world)
     r = InterruptAtFirstFit()
     with pytest.raises(KeyboardInterrupt):
