@@ -218,11 +218,12 @@ impl LevenbergMarquardt {
     /// Jacobian by Broyden's rank-one (secant) update, so that it maps the step to the change
     /// of the residuals the model gave; the chord steps then follow the fit's own curvature
     /// instead of heading for the kept Jacobian's solution, and fewer refreshes are needed (on
-    /// a 2,244-shot shaft-fitting season, 4.9 → 3.9 Jacobians a candidate fit). For a fit whose solution and covariance
-    /// are wanted, started from an evaluation mostly made already (a diagnose candidate started
-    /// from the step base's residuals and Jacobian): the chord steps replace the Jacobians of
-    /// every step but the last, and with [`LevenbergMarquardt::without_final_jacobian`] the
-    /// fit typically evaluates one Jacobian in all.
+    /// a 2,244-shot shaft-fitting season, 4.9 → 3.9 Jacobians a candidate fit). For a fit
+    /// whose solution and covariance are wanted, started from an evaluation mostly made already
+    /// (a diagnose candidate started from the step base's residuals and Jacobian): the chord
+    /// steps replace the Jacobians of every step but the last, and with
+    /// [`LevenbergMarquardt::without_final_jacobian`] the fit typically evaluates one Jacobian
+    /// in all.
     pub fn to_own_minimum(mut self) -> Self {
         self.own_minimum = true;
         self
@@ -515,18 +516,18 @@ where
         let kv = argmin::kv!("lambda" => self.lambda; "accepted" => accepted;);
         match new_state {
             Some((trial, r_trial, j_trial, cost_trial, small)) => {
-                if j_trial.is_none() {
-                    self.gram = Some(a);
-                }
                 let j_trial = match j_trial {
                     Some(own) => own,
                     // A kept Jacobian on its way to the fit's own minimum: corrected along
                     // the step just taken (its `JᵀJ` is then made anew).
                     None if self.own_minimum && self.secant => {
-                        self.gram = None;
                         self.secant_update(j, &(&trial - &theta), &(&r_trial - &r))
                     }
-                    None => j,
+                    // Kept as it is, with its `JᵀJ`.
+                    None => {
+                        self.gram = Some(a);
+                        j
+                    }
                 };
                 let state = keep(state, trial, r_trial, j_trial, cost_trial);
                 if small {
