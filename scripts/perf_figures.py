@@ -56,12 +56,14 @@ def cpu():
     return f"{model}, {os.cpu_count()} cores, {isa}"
 
 
-def run(cmd, cwd):
-    """Wall and CPU seconds of one run of `cmd` (which must succeed)."""
-    t0 = time.perf_counter()
-    p = subprocess.Popen(cmd, cwd=cwd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    _, status, usage = os.wait4(p.pid, 0)
-    wall = time.perf_counter() - t0
+def run(cmd, cwd, stdin_path=None):
+    """Wall and CPU seconds of one run of `cmd` (which must succeed), reading `stdin_path`."""
+    with open(stdin_path or os.devnull) as inp:
+        t0 = time.perf_counter()
+        p = subprocess.Popen(cmd, cwd=cwd, stdin=inp, stdout=subprocess.DEVNULL,
+                             stderr=subprocess.PIPE)
+        _, status, usage = os.wait4(p.pid, 0)
+        wall = time.perf_counter() - t0
     err = p.stderr.read().decode(errors="replace")
     p.stderr.close()
     if os.waitstatus_to_exitcode(status) != 0:
@@ -69,8 +71,8 @@ def run(cmd, cwd):
     return wall, usage.ru_utime + usage.ru_stime
 
 
-def timed(cmd, cwd, runs):
-    walls, cpus = zip(*(run(cmd, cwd) for _ in range(runs)))
+def timed(cmd, cwd, runs, stdin_path=None):
+    walls, cpus = zip(*(run(cmd, cwd, stdin_path) for _ in range(runs)))
     return statistics.median(walls), statistics.median(cpus)
 
 
@@ -139,21 +141,6 @@ def libgolf_input(drives_csv, out, n):
             g.write(f"{i},{f.readline()}")
 
 
-def timed_stdin(cmd, stdin_path, runs):
-    """Median wall and CPU seconds of `cmd` reading `stdin_path` (its output discarded)."""
-    walls, cpus = [], []
-    for _ in range(runs):
-        with open(stdin_path) as inp:
-            t0 = time.perf_counter()
-            p = subprocess.Popen(cmd, stdin=inp, stdout=subprocess.DEVNULL)
-            _, status, usage = os.wait4(p.pid, 0)
-            walls.append(time.perf_counter() - t0)
-        if os.waitstatus_to_exitcode(status) != 0:
-            raise RuntimeError(f"{cmd[0]} failed")
-        cpus.append(usage.ru_utime + usage.ru_stime)
-    return statistics.median(walls), statistics.median(cpus)
-
-
 def real_format(s, tmp, config, name):
     """A synthetic world written as a TrackMan export (with a radar's derived face angle) and
     imported with the `trackman` preset: the world's shots and the imported shots file."""
@@ -200,7 +187,7 @@ def measure(runs, tmp, libgolf):
         exe, commit = libgolf_runner(libgolf, tmp)
         lg_in = tmp / "libgolf_drives.csv"
         libgolf_input(flight_in, lg_in, LIBGOLF_DRIVES)
-        lw, lc = timed_stdin([str(exe)], lg_in, runs)
+        lw, lc = timed([str(exe)], ROOT, runs, lg_in)
         lrate = LIBGOLF_DRIVES / lw
         rows.append((f"libgolf's `sim_runner` ({commit}, g++ -O3), the first 20,000 of the same drives",
                      lw, lc, f"{lrate / 1e3:.1f} k drives/s; smash {rate / lrate:.0f}× its rate",
