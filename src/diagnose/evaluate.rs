@@ -3,7 +3,6 @@
 //! impact-location noise level (the base effects refitted with the locations treated as noisy).
 
 use nalgebra::{DMatrix, DVector};
-use rayon::prelude::*;
 
 use super::spread::SpreadModel;
 use super::{honest, CandidateResult, DiagnoseProgress};
@@ -11,16 +10,17 @@ use crate::club::ClubSpec;
 use crate::fit::calibrate::ParamEstimate;
 use crate::fit::covariance::covariance;
 use crate::fit::{
-    fit_quietly as fit, fit_quietly_chord_from, run_lm_point_near, EffectRequest, FitData,
-    FitError, FitProblem, FitRun, ParamLayout, Weighting,
+    fit_quietly as fit, fit_quietly_chord_from, EffectRequest, FitData, FitError, FitProblem,
+    FitRun, ParamLayout, Weighting,
 };
 use crate::measurement::ImpactNoise;
 use crate::stats;
 
 mod folds;
 mod start;
+#[cfg(test)]
 use folds::fold_rows;
-pub(super) use folds::{make_folds, Folds};
+pub(super) use folds::{cv_chi2, make_folds, Folds};
 use start::start_evaluation;
 
 /// Residuals and Jacobian of a fit on all shots at one point, whose rows a training fold
@@ -44,60 +44,6 @@ pub(super) fn all_shots_at(
         pr.residuals(theta.as_slice()).ok()?,
         pr.jacobian_full(theta).ok()?,
     ))
-}
-
-fn chi2_at(
-    club: &ClubSpec,
-    layout: &ParamLayout,
-    data: &FitData,
-    w: Weighting,
-    theta: &DVector<f64>,
-) -> Result<f64, FitError> {
-    let pr = FitProblem::new(club, layout.clone(), data, w);
-    Ok(pr.residuals(theta.as_slice())?.norm_squared())
-}
-
-/// Cross-validated χ²: fit on each training fold from `start`, sum held-out χ². `at` is the
-/// residuals and Jacobian on all shots (those the folds were made from) at `start`, when known:
-/// each fold's fit then starts from its rows of them and keeps that Jacobian for its steps
-/// ([`run_lm_point_near`]: `start`, the all-shots solution, is close to each fold's, so the
-/// chord steps reach it without the `2p` shifted evaluations a step; the cross-validated χ²
-/// agrees with the folds' own fits' to 1e-5 relative in the tests, 7e-7 measured, a few 0.01
-/// of χ² on the paper world, where a candidate's penalty is about 12).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn cv_chi2(
-    club: &ClubSpec,
-    layout: &ParamLayout,
-    folds: &Folds,
-    w: Weighting,
-    start: &DVector<f64>,
-    at: Option<AllShots>,
-    max_iters: u64,
-    progress: Option<&dyn DiagnoseProgress>,
-    cancel: Option<&crate::cancel::Cancel>,
-) -> Result<f64, FitError> {
-    let parts: Vec<Result<f64, FitError>> = (0..folds.train.len())
-        .into_par_iter()
-        .map(|f| {
-            if crate::cancel::cancelled(cancel) {
-                return Err(FitError::Cancelled);
-            }
-            let r = if layout.is_empty() {
-                chi2_at(club, layout, &folds.test[f], w, start)
-            } else {
-                // Only the fold's solution is needed: no Jacobian at it.
-                let pr = FitProblem::new(club, layout.clone(), &folds.train[f], w);
-                let rows = at.map(|a| fold_rows(a, &folds.train_idx[f], w.rows_per_shot()));
-                run_lm_point_near(pr, start, max_iters, rows)
-                    .and_then(|run| chi2_at(club, layout, &folds.test[f], w, &run.theta))
-            };
-            if let Some(p) = progress {
-                p.job_done();
-            }
-            r
-        })
-        .collect();
-    parts.into_iter().sum()
 }
 
 /// A candidate's layout: the base effects (minus a global effect it refines) plus its own,
@@ -216,6 +162,20 @@ pub(super) fn evaluate_effect(
     penalty_per_param: f64,
     multiplicity: f64,
 ) -> EffectFit {
+    let mut f = fit_effect(b, cand, penalty_per_param, multiplicity);
+    cross_validate(b, &mut f);
+    f
+}
+
+/// [`evaluate_effect`] up to its cross-validation: the candidate fitted on all shots, its
+/// estimates, identifiability and rms reductions; its cross-validated χ² and gain are NaN until
+/// [`cross_validate`] completes them (a fit that failed has its folds counted done here).
+pub(super) fn fit_effect(
+    b: &StepBase,
+    cand: &EffectRequest,
+    penalty_per_param: f64,
+    multiplicity: f64,
+) -> EffectFit {
     let n_folds = b.folds.train.len();
     if crate::cancel::cancelled(b.cancel) {
         let mut res = empty_result(cand.label(), 0, multiplicity);
@@ -272,9 +232,22 @@ pub(super) fn evaluate_effect(
         }
         Err(e) => res.failure = Some(e.to_string()),
     }
+    EffectFit {
+        result: res,
+        fit: Some((layout, run)),
+        explained,
+    }
+}
+
+/// Complete a fit of [`fit_effect`] with its cross-validated χ² and gain (nothing to do for a
+/// fit that failed): what [`evaluate_effect`] does after fitting.
+pub(super) fn cross_validate(b: &StepBase, f: &mut EffectFit) {
+    let Some((layout, run)) = &f.fit else {
+        return;
+    };
     match cv_chi2(
         b.club,
-        &layout,
+        layout,
         b.folds,
         b.w,
         &run.theta,
@@ -284,15 +257,10 @@ pub(super) fn evaluate_effect(
         b.cancel,
     ) {
         Ok(cv) => {
-            res.cv_chi2 = cv;
-            res.gain = b.cv - cv;
+            f.result.cv_chi2 = cv;
+            f.result.gain = b.cv - cv;
         }
-        Err(e) => res.failure = Some(e.to_string()),
-    }
-    EffectFit {
-        result: res,
-        fit: Some((layout, run)),
-        explained,
+        Err(e) => f.result.failure = Some(e.to_string()),
     }
 }
 
@@ -500,7 +468,7 @@ mod tests {
 
     /// A fold's fit given the rows of the all-shots fit's residuals and Jacobian is the same
     /// fit, bit for bit, as one that evaluates its own start; cross-validation, which keeps
-    /// those rows' Jacobian for the folds' steps ([`run_lm_point_near`]), gives the
+    /// those rows' Jacobian for the folds' steps ([`crate::fit::run_lm_point_near`]), gives the
     /// cross-validated χ² of the folds' own fits to 1e-5 relative (7e-7 measured: 0.001 of a
     /// χ² of 1541, where a candidate's penalty is about 12): with exact locations (one
     /// site a shot, serial evaluation) and with impact-location noise (nine sites a shot,
