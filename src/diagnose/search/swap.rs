@@ -25,6 +25,11 @@
 //! (converged, identifiable) is made and reported as a step. Measurement candidates (impact-
 //! and delivery-noise levels) stay as chosen. Ties keep candidate order, so the rounds are
 //! deterministic.
+//!
+//! **Folds.** Every option is fitted on all shots; its folds are fitted only where its result
+//! can matter: where it could be made, rank among the best singles a pair starts from, or be
+//! reported (a round that makes a change reports every option). [`screen`] says why the
+//! others cannot matter.
 
 use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
@@ -36,6 +41,9 @@ use crate::effects::EffectId;
 use crate::fit::calibrate::{noise_scales, STRONG_CORRELATION};
 use crate::fit::covariance;
 use crate::fit::{fit_quietly_chord_from, EffectRequest, FitError, ParamLayout, Weighting};
+use screen::could_exceed;
+
+mod screen;
 
 /// How many of a stand-in's best single replacements a pair exchange starts from: the pair
 /// completes one of them, so only the leading few need the second effect tried (the rest of
@@ -85,8 +93,16 @@ struct Option_ {
     ins: Vec<EffectRequest>,
     /// Parameters added net of those removed.
     k_net: f64,
+    /// Parameters of the effects added.
+    k_in: usize,
+    /// Rms per component of the model the last effect was fitted on (what the fit's
+    /// `rms_reduction` is relative to).
+    base_rms: [f64; 5],
     result: CandidateResult,
     fit: Option<EffectFit>,
+    /// Whether `result` holds the cross-validated χ² (a removal's always does; a replacement's
+    /// once [`screen`] has cross-validated it).
+    validated: bool,
 }
 
 /// What every option of a round is scored against: the current CV χ², noise scales and
@@ -343,25 +359,20 @@ impl Search<'_> {
         let at = evaluate::all_shots_at(self.club, &l2, &self.data, rb.w, &t2);
         let at = at.as_ref().map(|(r, j)| (r, j));
         let base = self.step_base((&l2, &t2, &errors), (f64::NAN, at), rb);
-        let f = evaluate::evaluate_effect(&base, b, self.penalty_per_param, 0.0);
-        let s = st.outs[0];
-        let k_net = st.k_net + f.result.n_params as f64 - k_e as f64;
-        let label = format!(
-            "{} + {} → {} + {}",
-            self.selected[s].label(),
-            self.selected[e].label(),
-            st.ins[0].label(),
-            b.label()
-        );
-        let k_in = st.result.n_params + f.result.n_params;
-        let result = self.rescore(&f, (label, k_in), (k_net, base.rms), rb);
-        Some(Option_ {
-            outs: vec![s, e],
+        // Fitted only: cross-validated where it can matter (`screen`).
+        let f = evaluate::fit_effect(&base, b, self.penalty_per_param, 0.0);
+        let mut o = Option_ {
+            outs: vec![st.outs[0], e],
             ins: vec![st.ins[0].clone(), b.clone()],
-            k_net,
-            result,
+            k_net: st.k_net + f.result.n_params as f64 - k_e as f64,
+            k_in: st.result.n_params + f.result.n_params,
+            base_rms: base.rms,
+            result: f.result.clone(),
             fit: Some(f),
-        })
+            validated: false,
+        };
+        o.result = self.score_option(&o, rb);
+        Some(o)
     }
 
     /// Removing the selected effects `outs` (model `r`), as an option of the round.
@@ -376,6 +387,8 @@ impl Search<'_> {
             outs,
             ins: Vec::new(),
             k_net: -(r.k_out as f64),
+            k_in: 0,
+            base_rms: rms,
             result: CandidateResult::removal(
                 &label,
                 (
@@ -387,6 +400,7 @@ impl Search<'_> {
                 &rms,
             ),
             fit: None,
+            validated: true,
         }
     }
 
@@ -428,40 +442,46 @@ impl Search<'_> {
         let jobs: Vec<(usize, &EffectRequest)> = (0..questioned.len())
             .flat_map(|r| unselected.iter().map(move |c| (r, *c)))
             .collect();
-        let singles: Vec<Option_> = jobs
+        // Fitted only: cross-validated where it can matter (`screen`).
+        let mut singles: Vec<Option_> = jobs
             .par_iter()
             .map(|&(r, c)| {
                 let red = &reduced[r];
                 let at = red.at.as_ref().map(|(r, j)| (r, j));
                 let base = self.step_base((&red.layout, &red.theta, &red.errors), (red.cv, at), rb);
-                let f = evaluate::evaluate_effect(&base, c, self.penalty_per_param, 0.0);
-                let o = questioned[r];
-                let label = format!("{} → {}", self.selected[o].label(), c.label());
-                let k_net = f.result.n_params as f64 - red.k_out as f64;
-                let mut result =
-                    self.rescore(&f, (label, f.result.n_params), (k_net, base.rms), rb);
-                // A stand-in against its plausible alias (`alias.rs`): the stand-in's model is
-                // charged one parameter for the physics its value stands for.
-                if let Some(r) = self.plausible_alias(o, c, &f, k_net) {
-                    result.label = format!("{} (plausible alias, r = {r:.2})", result.label);
-                    result.penalty = (k_net - 1.0) * self.penalty_per_param;
-                }
-                Option_ {
-                    outs: vec![o],
+                let f = evaluate::fit_effect(&base, c, self.penalty_per_param, 0.0);
+                let mut o = Option_ {
+                    outs: vec![questioned[r]],
                     ins: vec![c.clone()],
-                    k_net,
-                    result,
+                    k_net: f.result.n_params as f64 - red.k_out as f64,
+                    k_in: f.result.n_params,
+                    base_rms: base.rms,
+                    result: f.result.clone(),
                     fit: Some(f),
-                }
+                    validated: false,
+                };
+                o.result = self.score_option(&o, rb);
+                o
             })
             .collect();
-        let pairs = self.pair_options(&singles, questioned, &partners, rb);
+        // Any base of the round serves the cross-validations (only its club, folds, weighting
+        // and limits are read).
+        let red = &reduced[0];
+        let cv_base = self.step_base((&red.layout, &red.theta, &red.errors), (rb.cv, None), rb);
+        self.screen_singles(&mut singles, questioned, &cv_base, rb);
+        let mut pairs = self.pair_options(&singles, questioned, &partners, rb);
+        let due: Vec<usize> = (0..pairs.len())
+            .filter(|&i| could_exceed(&pairs[i], 0.0, rb))
+            .collect();
+        self.validate(&mut pairs, &due, &cv_base, rb);
         let removals: Vec<Option_> = outs
             .into_iter()
             .zip(&reduced)
             .map(|(o, r)| self.removal(o, r, rb))
             .collect();
-        Ok(removals.into_iter().chain(singles).chain(pairs).collect())
+        let mut options: Vec<Option_> = removals.into_iter().chain(singles).chain(pairs).collect();
+        self.validate_if_made(&mut options, &cv_base, rb);
+        Ok(options)
     }
 
     /// Make option `chosen`: the model, the selection and the kin bookkeeping.
