@@ -50,6 +50,20 @@ mod screen;
 /// the `m` pairs are still charged for in `2·ln m`).
 pub(in crate::diagnose) const PAIR_FIRST_CHOICES: usize = 3;
 
+/// The [`PAIR_FIRST_CHOICES`] best single replacements of the questioned effect `q` among
+/// `singles`: eligible and cross-validated, by margin (ties in order). The pair exchanges start
+/// from these, and [`screen`] cross-validates every single that could be among them.
+fn best_singles(singles: &[Option_], q: usize) -> Vec<&Option_> {
+    let mut own: Vec<&Option_> = singles
+        .iter()
+        .filter(|o| o.outs == [q] && !o.ins.is_empty() && o.result.eligible())
+        .filter(|o| o.result.cv_chi2.is_finite())
+        .collect();
+    own.sort_by(|x, y| y.result.margin().total_cmp(&x.result.margin()));
+    own.truncate(PAIR_FIRST_CHOICES);
+    own
+}
+
 /// `layout` at `theta` without the effects of `kind`: layout, values, parameters removed.
 fn without(
     layout: &ParamLayout,
@@ -319,19 +333,9 @@ impl Search<'_> {
         partners: &[(usize, Vec<EffectRequest>)],
         rb: RoundBase,
     ) -> Vec<Option_> {
-        let top = |q: usize| -> Vec<&Option_> {
-            let mut own: Vec<&Option_> = singles
-                .iter()
-                .filter(|o| o.outs == [q] && !o.ins.is_empty() && o.result.eligible())
-                .filter(|o| o.result.cv_chi2.is_finite())
-                .collect();
-            own.sort_by(|x, y| y.result.margin().total_cmp(&x.result.margin()));
-            own.truncate(PAIR_FIRST_CHOICES);
-            own
-        };
         let mut jobs: Vec<(&Option_, usize, EffectRequest)> = Vec::new();
         for &q in questioned {
-            for st in top(q) {
+            for st in best_singles(singles, q) {
                 for (e, kin) in partners.iter().filter(|(e, _)| *e != q) {
                     for b in kin.iter().filter(|b| b.kind() != st.ins[0].kind()) {
                         jobs.push((st, *e, b.clone()));

@@ -29,7 +29,7 @@
 use rayon::prelude::*;
 
 use super::super::Search;
-use super::{Option_, RoundBase, PAIR_FIRST_CHOICES};
+use super::{best_singles, Option_, RoundBase, PAIR_FIRST_CHOICES};
 use crate::diagnose::evaluate::{self, StepBase};
 use crate::diagnose::CandidateResult;
 
@@ -152,14 +152,8 @@ impl Search<'_> {
                 let mine: Vec<usize> = (0..singles.len())
                     .filter(|&i| singles[i].outs == [q])
                     .collect();
-                let mut margins: Vec<f64> = mine
-                    .iter()
-                    .map(|&i| &singles[i].result)
-                    .filter(|r| r.eligible() && r.cv_chi2.is_finite())
-                    .map(CandidateResult::margin)
-                    .collect();
-                margins.sort_by(|a, b| b.total_cmp(a));
-                if let Some(&last) = margins.get(PAIR_FIRST_CHOICES - 1) {
+                let best = best_singles(singles, q);
+                if let Some(last) = best.get(PAIR_FIRST_CHOICES - 1).map(|o| o.result.margin()) {
                     more.extend(
                         mine.into_iter()
                             .filter(|&i| could_exceed(&singles[i], last, rb)),
@@ -174,7 +168,7 @@ impl Search<'_> {
                         (false, false) => b.0.total_cmp(&a.0),
                         (x, y) => y.cmp(&x),
                     });
-                    let want = PAIR_FIRST_CHOICES - margins.len();
+                    let want = PAIR_FIRST_CHOICES - best.len();
                     more.extend(open.into_iter().take(want).map(|(_, i)| i));
                 }
             }
@@ -217,8 +211,8 @@ mod tests {
     use crate::app::diagnose::{run, DiagnoseSettings};
     use crate::app::inputs::{NamedClub, ShotsInput};
     use crate::app::CollectedNotes;
-    use crate::diagnose::OPT_IN_CANDIDATES;
-    use crate::effects::EffectKind;
+    use crate::diagnose::default_candidates;
+    use crate::effects::EffectId;
     use crate::fit::EffectRequest;
 
     /// `smash diagnose --club configs/clubs/paper_driver.toml` on the shots `smash synth` writes for
@@ -245,12 +239,12 @@ mod tests {
         };
         SCREEN.with(|s| s.set(screen));
         UNVALIDATED.with(|n| n.set(0));
-        let mut candidates: Vec<String> = EffectKind::ALL
-            .iter()
-            .filter(|k| !OPT_IN_CANDIDATES.contains(k))
-            .map(|&k| EffectRequest::Global(k.into()).label())
+        let shots: Vec<crate::model::Shot> = world.shots.iter().map(|s| s.to_shot()).collect();
+        let candidates: Vec<String> = default_candidates(&crate::fit::distinct_groups(&shots))
+            .into_iter()
+            .filter(|c| !matches!(c, EffectRequest::Global(EffectId::User(_))))
+            .map(|c| c.label())
             .collect();
-        candidates.extend(["added_mass@group".into(), "hosel_mass@group".into()]);
         let settings = DiagnoseSettings {
             candidates: Some(candidates.join(",")),
             ..DiagnoseSettings::default()
