@@ -770,3 +770,37 @@ face_deg = "face_deg + d_deg"
     assert!(!h.is_empty(), "no ball-speed finding");
     assert!(!named(&h, "cor_oblique"), "{h:?}");
 }
+
+// ---------------------------------------------------------------------------------------------
+// Offered or world-only: a synth world's hidden definitions are no candidates.
+
+#[test]
+fn a_synth_worlds_hidden_definition_is_never_offered_until_an_effects_file_defines_it() {
+    let path = repo("configs/synth/twisted_face_world.toml");
+    let cfg = smash::synth::read_config(&path).unwrap();
+    // The world hides `face_twist`, nameable once its file is read...
+    assert!(cfg.hidden.iter().any(|h| h.kind().name() == "face_twist"));
+    assert!(EffectId::from_name("face_twist").is_some());
+    // ...but a diagnosis or a comparison run after it in the same process is not offered it.
+    let labels = |groups: &[String]| -> Vec<String> {
+        smash::diagnose::default_candidates(groups)
+            .iter()
+            .map(|c| c.label())
+            .collect()
+    };
+    let groups = vec!["A".to_owned(), "B".to_owned()];
+    assert!(!labels(&groups).iter().any(|l| l == "face_twist"));
+    assert!(!smash::effects::user::offered()
+        .iter()
+        .any(|u| u.name == "face_twist"));
+    // The same definition read from an effects file is offered from then on.
+    let text = std::fs::read_to_string(&path).unwrap();
+    let start = text.find("[[define_effect]]").unwrap();
+    let end = text[start..]
+        .find("[[hidden]]")
+        .map_or(text.len(), |e| start + e);
+    let defs = parse_effect_defs(Path::new("twist_effects.toml"), &text[start..end])
+        .expect("the world's definition as an effects file");
+    assert_eq!(defs.len(), 1);
+    assert!(labels(&groups).iter().any(|l| l == "face_twist"));
+}

@@ -130,3 +130,14 @@ def test_compare_refuses_another_clubs_shots_as_the_cli(cli, tmp_path, world):
     assert got["findings"] == []
     assert "loft" in got["club_mismatch"]
     assert got["text"].startswith("NO FINDINGS: the shots do not match the club")
+
+
+def test_a_synth_worlds_hidden_definition_is_no_candidate_of_a_later_diagnose():
+    # The twisted-face world hides `face_twist`, defined in its own file: a diagnosis run after
+    # its synth in the same session ranks the library's effects only, as `smash diagnose` does.
+    shots, truth = sg.synth(ROOT / "configs" / "synth" / "twisted_face_world.toml", seed=1)
+    assert "face_twist" in truth
+    got = sg.diagnose(PAPER_DRIVER, shots, max_steps=1, tables=False, progress=False)
+    offered = {c["effect"] for s in got["steps"] for c in s["candidates"]}
+    assert "com_offset" in offered
+    assert "face_twist" not in offered

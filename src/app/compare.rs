@@ -150,12 +150,12 @@ pub fn run_prepared(
         min_bin_count: settings.min_bin_count,
         ..CompareOptions::default()
     };
-    // Hints at the user-defined effects (of the effects file and the club file), from their
-    // signatures measured on these shots.
+    // Hints at the user-defined effects (of the effects file and the club file, not a synth
+    // world's hidden ones), from their signatures measured on these shots.
     let user = crate::compare::UserHints::measure(
         club.spec,
         &table.shots,
-        &crate::effects::user::registered(),
+        &crate::effects::user::offered(),
     );
     let report = compare_with_hints(&table.shots, &launches, &options, &user)?;
     let mut report = match mismatch {

@@ -9,7 +9,7 @@ use toml::Spanned;
 
 use super::toml_check::toml_key_error;
 use super::{line_col, DataError, TomlDoc};
-use crate::effects::user::{register, Quantity, UserEffect, UserTermDef};
+use crate::effects::user::{register, Offer, Quantity, UserEffect, UserTermDef};
 use crate::effects::{EffectKind, ParamSpec, MAX_EFFECT_PARAMS};
 use crate::physics::expr::{ExprError, Program};
 use crate::physics::user_terms::{
@@ -80,14 +80,16 @@ pub fn parse_effect_defs(path: &Path, text: &str) -> Result<Vec<&'static UserEff
             "no [[define_effect]] table; an effects file defines at least one effect",
         ));
     }
-    register_definitions(path, text, &raw.define_effect)
+    register_definitions(path, text, &raw.define_effect, Offer::Candidate)
 }
 
-/// Compile, check and register `[[define_effect]]` tables read from `text` of `path`.
+/// Compile, check and register `[[define_effect]]` tables read from `text` of `path`, offered
+/// to model searches or world-only as `offer` says ([`Offer`]).
 pub fn register_definitions(
     path: &Path,
     text: &str,
     defs: &[Spanned<RawDefinition>],
+    offer: Offer,
 ) -> Result<Vec<&'static UserEffect>, DataError> {
     let mut out: Vec<&'static UserEffect> = Vec::with_capacity(defs.len());
     for (i, d) in defs.iter().enumerate() {
@@ -102,7 +104,7 @@ pub fn register_definitions(
                 format!("'{name}' is defined twice in this file; names must be distinct"),
             ));
         }
-        let u = register(def).map_err(|m| {
+        let u = register(def, offer).map_err(|m| {
             toml_key_error(
                 path,
                 text,

@@ -16,9 +16,9 @@ use crate::model::Shot;
 pub const OPT_IN_CANDIDATES: [EffectKind; 1] = [EffectKind::InertiaAxes];
 
 /// Every library effect as a global candidate (except [`OPT_IN_CANDIDATES`]), plus
-/// `added_mass@group` and `hosel_mass@group` with several groups, plus every registered user-defined effect
-/// (`crate::effects::user`: those of an effects file or club file the command read) as a
-/// global candidate beside them.
+/// `added_mass@group` and `hosel_mass@group` with several groups, plus every offered
+/// user-defined effect (`crate::effects::user::offered`: those of an effects file or club file
+/// read, not a synth world's hidden ones) as a global candidate beside them.
 pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
     let mut c: Vec<EffectRequest> = EffectKind::ALL
         .iter()
@@ -30,7 +30,7 @@ pub fn default_candidates(groups: &[String]) -> Vec<EffectRequest> {
         c.push(EffectRequest::PerGroup(EffectKind::HoselMass.into()));
     }
     c.extend(
-        crate::effects::user::registered()
+        crate::effects::user::offered()
             .into_iter()
             .map(|u| EffectRequest::Global(EffectId::User(u))),
     );

@@ -12,6 +12,14 @@
 //! file can name them like library effects. A name may not clash with the library; defining
 //! the same name twice is allowed only with the same definition (a calibrated club file that
 //! carries the definition read beside the definitions file it came from).
+//!
+//! **Offered or world-only.** A definition read from an effects file or a club file is
+//! [`Offer::Candidate`]: `diagnose` ranks it beside the library's effects and `compare` hints at
+//! it ([`offered`]). One read from a `synth` world's file is [`Offer::WorldOnly`]: physics the
+//! world hides, nameable by that world's `[[hidden]]` tables but never offered to a model
+//! search, so that a diagnosis run after a synth in the same process (the Python package, the
+//! tests) does not get the hidden truth among its candidates, as a separate `smash diagnose`
+//! never does. The same definition read later from an effects or club file becomes offered.
 
 use std::sync::RwLock;
 
@@ -63,7 +71,23 @@ impl UserEffect {
 // ---------------------------------------------------------------------------------------------
 // Registry
 
-static REGISTRY: RwLock<Vec<&'static UserEffect>> = RwLock::new(Vec::new());
+/// Whether a registered definition is offered to model searches (module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Offer {
+    /// From an effects file or a club file: a default candidate of `diagnose`, a hint of
+    /// `compare`.
+    Candidate,
+    /// From a synth world's file: the world's hidden physics, never offered.
+    WorldOnly,
+}
+
+/// A registered definition and whether it is offered ([`Offer`]).
+struct Entry {
+    effect: &'static UserEffect,
+    offered: bool,
+}
+
+static REGISTRY: RwLock<Vec<Entry>> = RwLock::new(Vec::new());
 
 /// The registered user-defined effect called `name`.
 pub fn lookup(name: &str) -> Option<&'static UserEffect> {
@@ -71,13 +95,31 @@ pub fn lookup(name: &str) -> Option<&'static UserEffect> {
         .read()
         .unwrap_or_else(|e| e.into_inner())
         .iter()
-        .copied()
+        .map(|e| e.effect)
         .find(|u| u.name == name)
 }
 
-/// Every registered user-defined effect, in registration order.
+/// Every registered user-defined effect, in registration order (offered or not: every one
+/// can be named).
 pub fn registered() -> Vec<&'static UserEffect> {
-    REGISTRY.read().unwrap_or_else(|e| e.into_inner()).clone()
+    REGISTRY
+        .read()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .map(|e| e.effect)
+        .collect()
+}
+
+/// The registered user-defined effects offered to model searches ([`Offer::Candidate`]), in
+/// registration order: `diagnose`'s default candidates and `compare`'s hints.
+pub fn offered() -> Vec<&'static UserEffect> {
+    REGISTRY
+        .read()
+        .unwrap_or_else(|e| e.into_inner())
+        .iter()
+        .filter(|e| e.offered)
+        .map(|e| e.effect)
+        .collect()
 }
 
 /// Why a user-defined effect cannot be registered ([`register`]).
@@ -106,23 +148,30 @@ pub enum RegisterError {
     },
 }
 
-/// Register `def`: a new name is added; a name already registered with the same definition
-/// returns that one; a name of the library or registered with another definition is an error.
-pub fn register(def: UserEffect) -> Result<&'static UserEffect, RegisterError> {
+/// Register `def` as `offer` says: a new name is added; a name already registered with the
+/// same definition returns that one (offered from now on if `offer` is
+/// [`Offer::Candidate`]); a name of the library or registered with another definition is an
+/// error.
+pub fn register(def: UserEffect, offer: Offer) -> Result<&'static UserEffect, RegisterError> {
     if EffectKind::from_name(def.name).is_some() {
         return Err(RegisterError::LibraryName { name: def.name });
     }
+    let offered = offer == Offer::Candidate;
     let mut reg = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
-    if let Some(old) = reg.iter().find(|u| u.name == def.name) {
-        if **old == def {
-            return Ok(old);
+    if let Some(old) = reg.iter_mut().find(|e| e.effect.name == def.name) {
+        if *old.effect == def {
+            old.offered |= offered;
+            return Ok(old.effect);
         }
         return Err(RegisterError::DefinedDifferently {
             name: def.name,
-            source_file: old.source.clone(),
+            source_file: old.effect.source.clone(),
         });
     }
     let leaked: &'static UserEffect = Box::leak(Box::new(def));
-    reg.push(leaked);
+    reg.push(Entry {
+        effect: leaked,
+        offered,
+    });
     Ok(leaked)
 }

@@ -171,8 +171,14 @@ pub fn parse_config(path: &Path, text: &str) -> Result<SynthConfig, DataError> {
     if let Some(n) = &raw.noise {
         parse_noise(&doc, n, &mut cfg)?;
     }
-    // User-defined effects first, so that [[hidden]] tables can name them.
-    crate::data::effect_defs::register_definitions(path, text, &raw.define_effect)?;
+    // User-defined effects first, so that [[hidden]] tables can name them: the world's hidden
+    // physics, never offered to a diagnosis that runs after in the same process.
+    crate::data::effect_defs::register_definitions(
+        path,
+        text,
+        &raw.define_effect,
+        crate::effects::user::Offer::WorldOnly,
+    )?;
     for (i, t) in raw.hidden.iter().enumerate() {
         cfg.hidden
             .push(parse_effect_table(path, text, "hidden", i, t)?);
