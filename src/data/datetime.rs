@@ -70,7 +70,14 @@ pub fn seconds_of_day(t: &str) -> Option<f64> {
     if parts.next().is_some() || !(0.0..24.0).contains(&h) || !(0.0..60.0).contains(&m) {
         return None;
     }
-    if !(0.0..61.0).contains(&s) || (pm.is_some() && !(1.0..=12.0).contains(&h)) {
+    // A 12-hour clock's hours are 1–12; a PM after a 24-hour clock's 13–23 (`13:00:28 PM`, a
+    // spreadsheet's re-save of a Garmin export) says nothing more and is read as it stands.
+    let hours = match pm {
+        Some(true) => 1.0..=23.0,
+        Some(false) => 1.0..=12.0,
+        None => 0.0..=23.0,
+    };
+    if !(0.0..61.0).contains(&s) || !hours.contains(&h) {
         return None;
     }
     let h = match pm {
@@ -205,6 +212,17 @@ mod tests {
             iso("5/1/26 7:03:21 PM", false).unwrap(),
             "2026-05-01 19:03:21"
         );
+        // A 24-hour clock with a redundant PM (a re-saved Garmin export); AM cannot follow 13.
+        assert_eq!(
+            iso("06/19/25 13:00:28 PM", false).unwrap(),
+            "2025-06-19 13:00:28"
+        );
+        assert_eq!(
+            iso("06/19/25 1:00:28 PM", false).unwrap(),
+            "2025-06-19 13:00:28"
+        );
+        assert!(iso("06/19/25 13:00:28 AM", false).is_none());
+        assert!(iso("06/19/25 0:10 PM", false).is_none());
         assert_eq!(
             iso("2024.01.29T14:02:11", false).unwrap(),
             "2024-01-29 14:02:11"
