@@ -43,6 +43,7 @@ mod import_corpus;
 mod import_hostile;
 mod import_mutations;
 mod import_real;
+mod import_unseen;
 mod infer_club;
 mod json_schema;
 mod library_forms;

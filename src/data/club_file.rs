@@ -35,6 +35,7 @@ use toml::Spanned;
 
 use super::{read_text, DataError, TomlDoc};
 use crate::club::ClubSpec;
+use crate::effects::user::Offer;
 #[cfg(test)]
 use crate::effects::EffectKind;
 use crate::effects::{Effect, EffectId};
@@ -90,12 +91,7 @@ pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
     let ctx = TomlDoc::new(path, text);
     let raw: RawFile = ctx.parse("a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
     // User-defined effects first, so that [[effect]] tables can name them.
-    super::effect_defs::register_definitions(
-        path,
-        text,
-        &raw.define_effect,
-        crate::effects::user::Offer::Candidate,
-    )?;
+    super::effect_defs::register_definitions(path, text, &raw.define_effect, Offer::Candidate)?;
     let c = &raw.club;
     let mass_g = ctx.ranged(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = ctx.each_ranged(&c.com_mm, "club.com_mm", limits::CLUB_COM_MM)?;

@@ -17,7 +17,12 @@
 //! - yards read as metres (read in m, median in [`YARDS_AS_METRES`], 1.06–1.13) is where that
 //!   Mevo+ file sits, so it is not evidence: the note says what it saw and recommends nothing.
 //!
-//! Never a refusal.
+//! Neither is a refusal. A median far below both bands is ([`FAR_SHORT`]): every launch speed
+//! of the file is then wrong, not only its distances. Speeds in km/h and distances in metres
+//! read as mph and yards (an app set to metric units, its file stating none: the Rapsodo
+//! MLM2PRO exports of github.com/dagla123456/GolfAI, 1,929 shots in 23 sessions, read
+//! 0.41–0.53, and 1.01–1.03 read in km/h and metres) give about 0.45; the refusal says what
+//! the same carries give read that way.
 
 use crate::flight::{FlightConfig, FlightLaunch};
 
@@ -43,6 +48,22 @@ pub(super) const METRES_AS_YARDS: (f64, f64) = (0.88, 0.95);
 /// yards reads 1.092, so a ratio here is reported without a recommendation.
 pub(super) const YARDS_AS_METRES: (f64, f64) = (1.06, 1.13);
 
+/// Below this median ratio the carries are refused as read ([`far_short`]): half-way in
+/// logarithm between metres read as yards (0.914, [`METRES_AS_YARDS`] from 0.88) and km/h and
+/// metres read as mph and yards (about 0.45), 30 % below the lowest correctly-united real file
+/// (0.996).
+pub(super) const FAR_SHORT: f64 = 0.7;
+
+/// Fewest shots the refusal at [`FAR_SHORT`] is taken over: a ratio that far off is no
+/// handful of mishits' doing (a note needs [`MIN_SHOTS`]).
+pub(super) const FAR_SHORT_MIN_SHOTS: usize = 5;
+
+/// km/h in a mph.
+const KMH_PER_MPH: f64 = 1.609_344;
+
+/// Yards in a metre (1 yd = 0.9144 m exactly).
+const YD_PER_M: f64 = 1.0 / 0.9144;
+
 /// One shot's launch and measured carry, shots-file units.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct CarryShot {
@@ -65,8 +86,13 @@ impl CarryShot {
 /// The median of measured over modelled carry of `shots` (usable ones, at most
 /// [`MAX_SHOTS`] spread evenly) and how many it is over; `None` below [`MIN_SHOTS`].
 pub(super) fn median_ratio(shots: &[CarryShot]) -> Option<(f64, usize)> {
+    median_ratio_of(shots, MIN_SHOTS)
+}
+
+/// [`median_ratio`] over at least `min_shots`.
+fn median_ratio_of(shots: &[CarryShot], min_shots: usize) -> Option<(f64, usize)> {
     let usable: Vec<&CarryShot> = shots.iter().filter(|s| s.usable()).collect();
-    if usable.len() < MIN_SHOTS {
+    if usable.len() < min_shots {
         return None;
     }
     let step = usable.len().div_ceil(MAX_SHOTS);
@@ -85,11 +111,57 @@ pub(super) fn median_ratio(shots: &[CarryShot]) -> Option<(f64, usize)> {
         })
         .filter(|r| r.is_finite())
         .collect();
-    if ratios.len() < MIN_SHOTS {
+    if ratios.len() < min_shots {
         return None;
     }
     ratios.sort_by(f64::total_cmp);
     Some((ratios[ratios.len() / 2], ratios.len()))
+}
+
+/// The refusal of a file whose carries (column `header`, read in `carry_unit`, with the ball
+/// speed read in `speed_unit`) have a median ratio below [`FAR_SHORT`] over at least
+/// [`FAR_SHORT_MIN_SHOTS`] shots; with the median the same shots give read as km/h and metres
+/// when they were read as mph and yards.
+pub(super) fn far_short(
+    shots: &[CarryShot],
+    header: &str,
+    carry_unit: &str,
+    speed_unit: &str,
+) -> Option<String> {
+    let (ratio, n) = median_ratio_of(shots, FAR_SHORT_MIN_SHOTS)?;
+    if ratio >= FAR_SHORT {
+        return None;
+    }
+    let mut why = format!(
+        "column '{header}' (read in {carry_unit}, the ball speed in {speed_unit}): the median of \
+         {n} carries is {ratio:.3} times the carry smash's flight model gives their launches, \
+         where correctly-united real files give 0.996-1.092 and no golf shot's units give below \
+         {FAR_SHORT}: the ball speed is read in too large a unit or the carry in too small a one"
+    );
+    if carry_unit == "yd" && speed_unit == "mph" {
+        let metric: Vec<CarryShot> = shots
+            .iter()
+            .map(|s| CarryShot {
+                ball_mph: s.ball_mph / KMH_PER_MPH,
+                carry_yd: s.carry_yd * YD_PER_M,
+                ..*s
+            })
+            .collect();
+        if let Some((m, k)) = median_ratio_of(&metric, FAR_SHORT_MIN_SHOTS) {
+            why.push_str(&format!(
+                "; read as km/h and metres the same file gives {m:.3} (over {k} shots){}",
+                if (0.9..=1.15).contains(&m) {
+                    ": it is in metric units (an app set to km/h and metres), which it does \
+                     not state; state them with unit = \"km/h\" for the speeds and unit = \"m\" \
+                     for the distances in a mapping file (--format NAME.toml, a copy of the \
+                     preset in configs/import/) and import again"
+                } else {
+                    ""
+                }
+            ));
+        }
+    }
+    Some(why)
 }
 
 /// The note for a file whose carries (column `header`, read in `unit`) have the median ratio

@@ -220,6 +220,22 @@ impl Redundancy {
         Ok(())
     }
 
+    /// Refuse an export whose carries (export column `header`, read in `carry_unit`; the ball
+    /// speed in `speed_unit`) are far shorter than the flight model gives their launches
+    /// ([`super::carry_units::far_short`]).
+    pub(super) fn refuse_far_short_carries(
+        &self,
+        path: &Path,
+        header: &str,
+        carry_unit: &str,
+        speed_unit: &str,
+    ) -> Result<(), DataError> {
+        match super::carry_units::far_short(&self.carries, header, carry_unit, speed_unit) {
+            Some(why) => Err(DataError::file(path, why)),
+            None => Ok(()),
+        }
+    }
+
     /// The note when the carries (export column `header`, read in `unit`) are systematically
     /// what metres read as yards, or yards read as metres, give ([`super::carry_units`]).
     pub(super) fn carry_units_note(&self, header: &str, unit: &str) -> Option<String> {

@@ -58,8 +58,10 @@ const CLUB_ANGLES: [&str; 4] = [
 ];
 
 /// Read a shot's club angles of exactly 0 as not measured when the club was not measured: its
-/// club speed is not measured, or every club angle it gives is exactly 0 (no swing has a
-/// square face, a square path and a level attack to the last decimal at once).
+/// club speed is not measured, or every club angle it gives a value for is exactly 0, two at
+/// least (no swing has a square face, a square path and a level attack to the last decimal at
+/// once). A column's own "not measured" value has been read as no value already (GSPro's `AoA`
+/// 0): its zero does not make the others' count as measured.
 pub(super) fn club_zeros_not_measured(
     values: &mut [(&str, Option<f64>)],
     blanked: &mut Vec<(String, String)>,
@@ -73,7 +75,8 @@ pub(super) fn club_zeros_not_measured(
         .iter()
         .filter_map(|t| given(values, t))
         .collect();
-    let all_zero = angles.len() >= 2 && angles.iter().all(|v| *v == Some(0.0));
+    let valued: Vec<f64> = angles.iter().flatten().copied().collect();
+    let all_zero = valued.len() >= 2 && valued.iter().all(|v| *v == 0.0);
     if !(speed_missing || all_zero) {
         return;
     }

@@ -45,6 +45,32 @@ const SUMMARY: [&str; 12] = [
     "consistency",
 ];
 
+/// Refuse the export when its carries are far shorter than its launches fly
+/// ([`super::carry_units::far_short`]), naming the units the carry and ball speed were read in.
+fn refuse_far_short_carries(
+    path: &Path,
+    layout: &Layout,
+    redundancy: &super::checks::Redundancy,
+) -> Result<(), DataError> {
+    let (Some(c), Some(b)) = (layout.column("carry_yd"), layout.column("ball_speed_mph")) else {
+        return Ok(());
+    };
+    let unit = |u: Option<Unit>| u.map_or("", |u| u.name);
+    redundancy.refuse_far_short_carries(path, &c.header, unit(c.unit), unit(b.unit))
+}
+
+/// Why a row holding a spreadsheet's error value is left out.
+const SPREADSHEET_ROW: &str = "a cell holds a spreadsheet's error value (a row a formula computed)";
+
+/// The error values a spreadsheet writes in a cell whose formula failed (Excel, LibreOffice,
+/// Google Sheets; compared as they are written, upper case): a row holding one was computed
+/// by a spreadsheet (an AVERAGE row under the shots, a lookup that failed), not exported by
+/// the monitor, and is left out and counted.
+const SPREADSHEET_ERRORS: [&str; 11] = [
+    "#DIV/0!", "#N/A", "#VALUE!", "#REF!", "#NAME?", "#NUM!", "#NULL!", "#SPILL!", "#CALC!",
+    "#ERROR!", "Err:502",
+];
+
 /// The group of shots whose club cell is empty.
 pub(super) const NO_CLUB: &str = "(no club)";
 
@@ -73,9 +99,7 @@ pub(super) fn write_shots(
     let mut w = csv::Writer::from_writer(Vec::new());
     w.write_record(layout.header()).expect("writing to memory");
     let mut tally = Tally::default();
-    let mut ids = HashSet::new();
-    let mut lines = Vec::new();
-    let mut complete = 0usize;
+    let (mut ids, mut lines, mut complete) = (HashSet::new(), Vec::new(), 0usize);
     let not_summary: Vec<usize> = ["golfer", "datetime", "ball_type", "shot_id"]
         .iter()
         .filter_map(|t| layout.column(t).map(|c| c.index))
@@ -111,6 +135,13 @@ pub(super) fn write_shots(
         };
         if let Some(label) = row.skipped_by(skip_rules, table, &not_summary) {
             tally.skip(label, *line);
+            continue;
+        }
+        if let Some(e) = row.spreadsheet_error(table) {
+            if strict {
+                return Err(e);
+            }
+            tally.leave_out(SPREADSHEET_ROW.into(), *line, &e);
             continue;
         }
         if let Some(flag) = row.flag(layout) {
@@ -152,6 +183,7 @@ pub(super) fn write_shots(
     }
     tally.redundancy.refuse_systematic(path, vendor)?;
     tally.redundancy.refuse_units(path, &layout.units_read())?;
+    refuse_far_short_carries(path, layout, &tally.redundancy)?;
     summarise(&tally, lines.len(), notes);
     notes.extend(layout.column("carry_yd").and_then(|c| {
         (tally.redundancy).carry_units_note(&c.header, c.unit.map_or("", |u| u.name))
@@ -247,6 +279,21 @@ impl RowAt<'_> {
     /// The cell at `i`, empty when the row is short.
     fn cell(&self, i: usize) -> &str {
         self.cells.get(i).map_or("", |c| c.trim())
+    }
+
+    /// The error, naming its column, when a cell of the row holds one of
+    /// [`SPREADSHEET_ERRORS`].
+    fn spreadsheet_error(&self, table: &Table) -> Option<DataError> {
+        let i = (0..self.cells.len()).find(|&i| SPREADSHEET_ERRORS.contains(&self.cell(i)))?;
+        let header = table.header.get(i).map(String::as_str);
+        Some(self.error_in(
+            header,
+            format!(
+                "'{}' is a spreadsheet's error value, not a measurement: the row was computed \
+                 by a formula (an average row?), not exported by the monitor",
+                self.cell(i)
+            ),
+        ))
     }
 
     /// The file line the row ends on: a quoted cell may run over line ends.
