@@ -151,3 +151,98 @@ fn garmins_club_face_is_read_as_derived_from_the_launch() {
         "{with_face:?}"
     );
 }
+
+#[test]
+fn a_norwegian_garmin_export_is_named_as_such_and_a_mapping_reads_its_units() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shots.csv");
+    let file = unseen("garmin_r50_norwegian.csv");
+    let o = smash(&["import", s(&file), "--out", s(&out)]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains(
+            "no preset knows any of this file's columns, and its header is not in English"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    // A mapping naming the Norwegian columns; the units row's `[km/t]`, `[opm]` and `[m]` are
+    // read as written.
+    let mapping = write(
+        dir.path(),
+        "garmin_no.toml",
+        r#"[export]
+name = "Garmin (Norwegian)"
+unknown_columns = "note"
+flight_modelled = true
+
+[[column]]
+target = "group"
+source = ["Type golfkølle"]
+
+[[column]]
+target = "ball_speed_mph"
+source = ["Ballhastighet"]
+
+[[column]]
+target = "launch_angle_deg"
+source = ["Slagvinkel"]
+
+[[column]]
+target = "azimuth_deg"
+source = ["Slagretning"]
+
+[[column]]
+target = "backspin_rpm"
+source = ["Underskru"]
+
+[[column]]
+target = "sidespin_rpm"
+source = ["Sideskru"]
+sign = -1
+
+[[column]]
+target = "carry_yd"
+source = ["Carry-distanse"]
+"#,
+    );
+    let o = smash(&[
+        "import",
+        "--format",
+        s(&mapping),
+        s(&file),
+        "--out",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let r = rows(&out);
+    assert_eq!(r.len(), 3);
+    let ball: f64 = r[0]["ball_speed_mph"].parse().unwrap();
+    assert!((ball - 128.3342 / 1.609_344).abs() < 1e-9, "{ball}");
+    let carry: f64 = r[2]["carry_yd"].parse().unwrap();
+    assert!((carry - 122.88 / 0.9144).abs() < 1e-9, "{carry}");
+    assert_eq!(r[1]["backspin_rpm"], "7588.903");
+}
+
+#[test]
+fn a_shots_file_given_to_import_is_named_as_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let shots = write(
+        dir.path(),
+        "shots.csv",
+        "shot_id,group,ball_speed_mph,launch_angle_deg,azimuth_deg,backspin_rpm,sidespin_rpm\n\
+         s1,A,150.2,12.1,0.5,2650,-120\n",
+    );
+    let o = smash(&[
+        "import",
+        s(&shots),
+        "--out",
+        s(&dir.path().join("again.csv")),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("this is a shots file already") && stderr(&o).contains("with --shots"),
+        "{}",
+        stderr(&o)
+    );
+}

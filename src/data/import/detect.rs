@@ -68,6 +68,39 @@ fn fit(path: &Path, bytes: &[u8], preset: &'static str, m: &Mapping) -> Option<F
     })
 }
 
+/// Why no preset reads a file, when it is plain: a shots file already (its header has the
+/// shots file's own launch columns), or an export whose header is in another language (no
+/// preset knows more than two of its columns, and it has letters outside ASCII).
+fn not_an_export(bytes: &[u8], fits: &[Fit]) -> Option<String> {
+    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
+    let header = text.lines().next().unwrap_or("");
+    let cells: Vec<&str> = header.split(',').map(str::trim).collect();
+    if ["ball_speed_mph", "launch_angle_deg"]
+        .iter()
+        .all(|c| cells.contains(c))
+    {
+        return Some(
+            "--format auto: this is a shots file already (its header has smash's own \
+             ball_speed_mph and launch_angle_deg): give it to predict, compare, flight or \
+             diagnose with --shots; import reads launch monitors' exports"
+                .into(),
+        );
+    }
+    let most = fits.iter().map(|f| f.known).max().unwrap_or(0);
+    (most <= 2 && !header.is_ascii()).then(|| {
+        let known = match most {
+            0 => "any".to_owned(),
+            n => format!("more than {n}"),
+        };
+        format!(
+            "--format auto: no preset knows {known} of this file's columns, and its header is \
+             not in English (an app set to another language?): the presets read the vendors' \
+             English headers; a mapping file NAME.toml names the columns in any language, with \
+             the units row's units as written (docs/import.md)"
+        )
+    })
+}
+
 /// The preset that reads the export at `path` (`bytes`): the candidate (every required column
 /// found) knowing most of the file's columns. Refuses a file no preset reads, naming the
 /// closest presets and what each misses.
@@ -85,6 +118,9 @@ pub fn detect(path: &Path, bytes: &[u8]) -> Result<Detected, DataError> {
         .first()
         .filter(|f| f.missing.is_empty() && f.mapped >= 3)
     else {
+        if let Some(why) = not_an_export(bytes, &fits) {
+            return Err(DataError::file(path, why));
+        }
         let closest: Vec<String> = fits
             .iter()
             .take(3)

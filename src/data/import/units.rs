@@ -199,7 +199,8 @@ impl Unit {
             .to_ascii_lowercase();
         let canonical = match t.as_str() {
             "mph" | "mi/h" => "mph",
-            "km/h" | "kmh" | "kph" | "kmph" => "km/h",
+            // `km/t`, `opm`, `sek`: the Norwegian spellings of a Garmin Golf app export.
+            "km/h" | "kmh" | "kph" | "kmph" | "km/t" => "km/h",
             "m/s" | "mps" => "m/s",
             "m" | "meter" | "meters" | "metre" | "metres" => "m",
             "yd" | "yds" | "yard" | "yards" => "yd",
@@ -209,8 +210,8 @@ impl Unit {
             "in" | "inch" | "inches" | "\"" => "in",
             // `(*)`: FlightScope's web export writes its degree sign as an asterisk.
             "deg" | "°" | "degree" | "degrees" | "º" | "*" => "deg",
-            "rpm" | "r/min" => "rpm",
-            "s" | "sec" | "secs" | "seconds" => "s",
+            "rpm" | "r/min" | "opm" => "rpm",
+            "s" | "sec" | "secs" | "seconds" | "sek" => "s",
             "°c" | "c" | "degc" | "deg c" | "celsius" | "℃" => "°C",
             "°f" | "f" | "degf" | "deg f" | "fahrenheit" | "℉" => "°F",
             "pa" => "Pa",
