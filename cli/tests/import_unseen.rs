@@ -45,9 +45,10 @@ fn a_metric_rapsodo_file_is_refused_with_its_metric_reading_and_imports_in_those
     let line = e.lines().find(|l| l.starts_with("error:")).unwrap();
     assert!(
         line.contains("column 'Carry Distance' (read in yd, the ball speed in mph)")
-            && line.contains("read as km/h and metres the same file gives 1.0")
-            && line.contains("it is in metric units")
-            && line.contains("unit = \"km/h\""),
+            && line.contains("; read as km/h and yd, 0.9")
+            && line.contains("; read as km/h and m, 1.0")
+            && line.contains("the values are in km/h and m; the file does not state its units")
+            && line.contains("unit = \"km/h\" for the speeds and unit = \"m\""),
         "{line}"
     );
     let ratio: f64 = line.split("carries is ").nth(1).unwrap()[..5]
@@ -160,9 +161,8 @@ fn a_norwegian_garmin_export_is_named_as_such_and_a_mapping_reads_its_units() {
     let o = smash(&["import", s(&file), "--out", s(&out)]);
     assert!(!o.status.success());
     assert!(
-        stderr(&o).contains(
-            "no preset knows any of this file's columns, and its header is not in English"
-        ),
+        stderr(&o).contains("no preset reads this file; the closest: ")
+            && stderr(&o).contains("; its header looks like another language's"),
         "{}",
         stderr(&o)
     );
@@ -241,7 +241,8 @@ fn a_shots_file_given_to_import_is_named_as_one() {
     ]);
     assert!(!o.status.success());
     assert!(
-        stderr(&o).contains("this is a shots file already") && stderr(&o).contains("with --shots"),
+        stderr(&o).contains("this is a shots file already")
+            && stderr(&o).contains("--format shots"),
         "{}",
         stderr(&o)
     );

@@ -61,8 +61,14 @@ pub fn seconds_of_day(t: &str) -> Option<f64> {
         },
     };
     let mut parts = clock.split(':');
-    let h: f64 = parts.next()?.parse().ok()?;
-    let m: f64 = parts.next()?.parse().ok()?;
+    // Hours and minutes are whole numbers (`7.5:00 PM` and `1e1:00` are no time of day).
+    let whole = |p: &str| -> Option<f64> {
+        (!p.is_empty() && p.len() <= 2 && p.bytes().all(|b| b.is_ascii_digit()))
+            .then(|| p.parse::<f64>().ok())
+            .flatten()
+    };
+    let h: f64 = whole(parts.next()?)?;
+    let m: f64 = whole(parts.next()?)?;
     let s: f64 = match parts.next() {
         Some(s) => s.parse().ok()?,
         None => 0.0,
@@ -223,6 +229,8 @@ mod tests {
         );
         assert!(iso("06/19/25 13:00:28 AM", false).is_none());
         assert!(iso("06/19/25 0:10 PM", false).is_none());
+        assert!(iso("06/19/25 7.5:00 PM", false).is_none());
+        assert!(iso("06/19/25 1e1:00 PM", false).is_none());
         assert_eq!(
             iso("2024.01.29T14:02:11", false).unwrap(),
             "2024-01-29 14:02:11"

@@ -17,13 +17,15 @@
 //! - yards read as metres (read in m, median in [`YARDS_AS_METRES`], 1.06–1.13) is where that
 //!   Mevo+ file sits, so it is not evidence: the note says what it saw and recommends nothing.
 //!
-//! Neither is a refusal. A median far below both bands is ([`FAR_SHORT`]): every launch speed
-//! of the file is then wrong, not only its distances. Speeds in km/h and distances in metres
-//! read as mph and yards (an app set to metric units, its file stating none: the Rapsodo
-//! MLM2PRO exports of github.com/dagla123456/GolfAI, 1,929 shots in 23 sessions, read
-//! 0.41–0.53, and 1.01–1.03 read in km/h and metres) give about 0.45; the refusal says what
-//! the same carries give read that way.
-
+//! Neither is a refusal. A median far below both bands ([`FAR_SHORT`]) is looked at again
+//! with the ball speed read in km/h (an app set to km/h whose file states no unit, or states
+//! mph over km/h values), with the carry as read and, when read in yards, in metres: when
+//! exactly one of those readings lands in [`UNIT_READING_BAND`], every launch speed of the file
+//! is wrong as read, and the file is refused naming that reading; when none does (limited-flight
+//! range balls, a headwind, a mapping's error the units cannot explain), a note says what was
+//! seen and the carries are kept. The Rapsodo MLM2PRO exports of github.com/dagla123456/GolfAI
+//! (1,929 shots in 23 sessions, km/h and metres in a file stating no unit) read 0.41–0.53 as mph
+//! and yards, 1.01–1.03 as km/h and metres and 0.92–0.94 as km/h and yards.
 use crate::flight::{FlightConfig, FlightLaunch};
 
 /// Fewest shots the median is taken over: a handful of mishits must not decide, and the
@@ -48,15 +50,22 @@ pub(super) const METRES_AS_YARDS: (f64, f64) = (0.88, 0.95);
 /// yards reads 1.092, so a ratio here is reported without a recommendation.
 pub(super) const YARDS_AS_METRES: (f64, f64) = (1.06, 1.13);
 
-/// Below this median ratio the carries are refused as read ([`far_short`]): half-way in
-/// logarithm between metres read as yards (0.914, [`METRES_AS_YARDS`] from 0.88) and km/h and
-/// metres read as mph and yards (about 0.45), 30 % below the lowest correctly-united real file
-/// (0.996).
+/// Below this median ratio the carries are looked at in other units ([`far_short`]): 30 %
+/// below the lowest correctly-united real file (0.996) and 23 % below metres read as yards
+/// (0.914), while km/h read as mph gives 0.41–0.61 (the sessions above; the same sessions'
+/// carries in yards).
 pub(super) const FAR_SHORT: f64 = 0.7;
 
-/// Fewest shots the refusal at [`FAR_SHORT`] is taken over: a ratio that far off is no
-/// handful of mishits' doing (a note needs [`MIN_SHOTS`]).
+/// Fewest shots the check at [`FAR_SHORT`] is taken over: a ratio that far off is no handful
+/// of mishits' doing (a note on metres needs [`MIN_SHOTS`]).
 pub(super) const FAR_SHORT_MIN_SHOTS: usize = 5;
+
+/// Where another reading of the units must land to be named as the file's: the correctly-united
+/// real files' medians, 0.996–1.034, widened by 5 % below and 2.5 % above, so that it holds
+/// neither metres read as yards (0.914) nor yards read as metres (1.094; a Mevo+ session reads
+/// 1.092 correctly united, which is why a reading there cannot be told from a monitor whose
+/// carries run long).
+pub(super) const UNIT_READING_BAND: (f64, f64) = (0.95, 1.06);
 
 /// km/h in a mph.
 const KMH_PER_MPH: f64 = 1.609_344;
@@ -118,50 +127,103 @@ fn median_ratio_of(shots: &[CarryShot], min_shots: usize) -> Option<(f64, usize)
     Some((ratios[ratios.len() / 2], ratios.len()))
 }
 
-/// The refusal of a file whose carries (column `header`, read in `carry_unit`, with the ball
-/// speed read in `speed_unit`) have a median ratio below [`FAR_SHORT`] over at least
-/// [`FAR_SHORT_MIN_SHOTS`] shots; with the median the same shots give read as km/h and metres
-/// when they were read as mph and yards.
-pub(super) fn far_short(
-    shots: &[CarryShot],
-    header: &str,
-    carry_unit: &str,
-    speed_unit: &str,
-) -> Option<String> {
+/// How the carry and ball-speed columns were read: header, units, and whether each unit was
+/// assumed (a preset's default, the file stating none) or stated (units row, header, mapping).
+pub(super) struct AsRead<'a> {
+    pub header: &'a str,
+    pub carry_unit: &'a str,
+    pub carry_assumed: bool,
+    pub speed_unit: &'a str,
+    pub speed_assumed: bool,
+}
+
+/// What [`far_short`] makes of carries far shorter than their launches fly.
+#[derive(Debug, PartialEq)]
+pub(super) enum FarShort {
+    /// One reading of the units explains it: the file is refused, naming it.
+    Refuse(String),
+    /// No reading explains it: a note, the carries kept as read.
+    Note(String),
+}
+
+/// Carries whose median ratio is below [`FAR_SHORT`] over at least [`FAR_SHORT_MIN_SHOTS`]
+/// shots, read again with the ball speed in km/h (module docs); `None` above it or on fewer.
+pub(super) fn far_short(shots: &[CarryShot], read: &AsRead) -> Option<FarShort> {
     let (ratio, n) = median_ratio_of(shots, FAR_SHORT_MIN_SHOTS)?;
     if ratio >= FAR_SHORT {
         return None;
     }
-    let mut why = format!(
+    let AsRead {
+        header,
+        carry_unit,
+        speed_unit,
+        ..
+    } = *read;
+    let seen = format!(
         "column '{header}' (read in {carry_unit}, the ball speed in {speed_unit}): the median of \
          {n} carries is {ratio:.3} times the carry smash's flight model gives their launches, \
-         where correctly-united real files give 0.996-1.092 and no golf shot's units give below \
-         {FAR_SHORT}: the ball speed is read in too large a unit or the carry in too small a one"
+         where correctly-united real files give 0.996-1.092"
     );
-    if carry_unit == "yd" && speed_unit == "mph" {
-        let metric: Vec<CarryShot> = shots
-            .iter()
-            .map(|s| CarryShot {
-                ball_mph: s.ball_mph / KMH_PER_MPH,
-                carry_yd: s.carry_yd * YD_PER_M,
-                ..*s
-            })
-            .collect();
-        if let Some((m, k)) = median_ratio_of(&metric, FAR_SHORT_MIN_SHOTS) {
-            why.push_str(&format!(
-                "; read as km/h and metres the same file gives {m:.3} (over {k} shots){}",
-                if (0.9..=1.15).contains(&m) {
-                    ": it is in metric units (an app set to km/h and metres), which it does \
-                     not state; state them with unit = \"km/h\" for the speeds and unit = \"m\" \
-                     for the distances in a mapping file (--format NAME.toml, a copy of the \
-                     preset in configs/import/) and import again"
-                } else {
-                    ""
-                }
-            ));
+    // km/h written where mph is read, the carry as read or (read in yards) in metres.
+    let mut readings: Vec<(String, &str, f64, f64)> = Vec::new();
+    if speed_unit == "mph" {
+        let as_read = format!("km/h and {carry_unit}");
+        readings.push((as_read, carry_unit, KMH_PER_MPH, 1.0));
+        if carry_unit == "yd" {
+            readings.push(("km/h and m".to_owned(), "m", KMH_PER_MPH, YD_PER_M));
         }
     }
-    Some(why)
+    let scored: Vec<(String, &str, f64)> = readings
+        .into_iter()
+        .filter_map(|(label, carry, speed_factor, carry_factor)| {
+            let again: Vec<CarryShot> = shots
+                .iter()
+                .map(|s| CarryShot {
+                    ball_mph: s.ball_mph / speed_factor,
+                    carry_yd: s.carry_yd * carry_factor,
+                    ..*s
+                })
+                .collect();
+            let (r, _) = median_ratio_of(&again, FAR_SHORT_MIN_SHOTS)?;
+            Some((label, carry, r))
+        })
+        .collect();
+    let listed: String = scored
+        .iter()
+        .map(|(label, _, r)| format!("; read as {label}, {r:.3}"))
+        .collect();
+    let (lo, hi) = UNIT_READING_BAND;
+    let fits: Vec<&(String, &str, f64)> = scored
+        .iter()
+        .filter(|(_, _, r)| (lo..=hi).contains(r))
+        .collect();
+    let [(label, carry, _)] = fits.as_slice() else {
+        return Some(FarShort::Note(format!(
+            "{seen}{listed}: no reading of the units brings them to {lo}-{hi}, so they are kept \
+             as read; check the export (limited-flight range balls, a strong headwind and a \
+             mapping's wrong column all give short carries)"
+        )));
+    };
+    let fix = if read.speed_assumed && (read.carry_assumed || *carry == carry_unit) {
+        format!(
+            "the file does not state its units and the preset's were assumed: state the file's \
+             with unit = \"km/h\" for the speeds{} in a mapping file (--format NAME.toml, a copy \
+             of the preset in configs/import/) and import again",
+            if *carry == carry_unit {
+                String::new()
+            } else {
+                format!(" and unit = \"{carry}\" for the distances")
+            }
+        )
+    } else {
+        format!(
+            "the file states {speed_unit} and {carry_unit}, which its values contradict: correct \
+             the units in its units row or header and import again"
+        )
+    };
+    Some(FarShort::Refuse(format!(
+        "{seen}{listed}: the values are in {label}; {fix}"
+    )))
 }
 
 /// The note for a file whose carries (column `header`, read in `unit`) have the median ratio
@@ -241,5 +303,87 @@ mod tests {
         assert_eq!(n, 30);
         assert!((r - 0.9144).abs() < 1e-9, "{r}");
         assert_eq!(median_ratio(&shots[..MIN_SHOTS - 1]), None);
+    }
+
+    /// Shots whose carries are the model's for their launches, then written as an export in
+    /// km/h (speed times `speed`) with carries times `carry`.
+    fn written(n: usize, speed: f64, carry: f64) -> Vec<CarryShot> {
+        let launches: Vec<(f64, f64, f64)> = (0..n)
+            .map(|k| {
+                (
+                    95.0 + 4.0 * k as f64,
+                    12.0 + 0.7 * k as f64,
+                    6500.0 - 150.0 * k as f64,
+                )
+            })
+            .collect();
+        let flown = crate::flight::fly(
+            &FlightConfig::default(),
+            &launches
+                .iter()
+                .map(|&(b, l, s)| FlightLaunch::from_file_units(b, l, 0.0, s, 0.0))
+                .collect::<Vec<_>>(),
+        );
+        launches
+            .iter()
+            .zip(flown)
+            .map(|(&(b, l, s), f)| CarryShot {
+                ball_mph: b * speed,
+                launch_deg: l,
+                backspin_rpm: s,
+                carry_yd: f.unwrap().carry_yd() * carry,
+            })
+            .collect()
+    }
+
+    fn read(carry_assumed: bool, speed_assumed: bool) -> AsRead<'static> {
+        AsRead {
+            header: "Carry",
+            carry_unit: "yd",
+            carry_assumed,
+            speed_unit: "mph",
+            speed_assumed,
+        }
+    }
+
+    #[test]
+    fn far_short_carries_name_the_one_reading_that_explains_them() {
+        // km/h and metres written, mph and yards assumed: refused, naming km/h and m.
+        let metric = written(12, KMH_PER_MPH, 0.9144);
+        let Some(FarShort::Refuse(why)) = far_short(&metric, &read(true, true)) else {
+            panic!("metric file not refused");
+        };
+        assert!(
+            why.contains("; read as km/h and m, 1.000")
+                && why.contains("the values are in km/h and m")
+                && why.contains("unit = \"km/h\" for the speeds and unit = \"m\""),
+            "{why}"
+        );
+        // km/h and yards: refused naming km/h with the carry as read, and no metres.
+        let kmh_yd = written(12, KMH_PER_MPH, 1.0);
+        let Some(FarShort::Refuse(why)) = far_short(&kmh_yd, &read(true, true)) else {
+            panic!("km/h file not refused");
+        };
+        assert!(
+            why.contains("the values are in km/h and yd") && !why.contains("unit = \"m\""),
+            "{why}"
+        );
+        // Units stated by the file: the fix is the file's units, not a mapping.
+        let Some(FarShort::Refuse(why)) = far_short(&metric, &read(false, false)) else {
+            panic!("stated metric file not refused");
+        };
+        assert!(why.contains("the file states mph and yd, which its values contradict"));
+        // Short carries no unit explains (range balls): a note, kept.
+        let short = written(12, 1.0, 0.66);
+        assert!(matches!(
+            far_short(&short, &read(true, true)),
+            Some(FarShort::Note(_))
+        ));
+        // Too few shots, or a ratio above the bound: nothing.
+        assert_eq!(
+            far_short(&metric[..FAR_SHORT_MIN_SHOTS - 1], &read(true, true)),
+            None
+        );
+        assert_eq!(far_short(&written(12, 1.0, 0.72), &read(true, true)), None);
     }
 }

@@ -220,19 +220,19 @@ impl Redundancy {
         Ok(())
     }
 
-    /// Refuse an export whose carries (export column `header`, read in `carry_unit`; the ball
-    /// speed in `speed_unit`) are far shorter than the flight model gives their launches
+    /// Refuse an export whose carries are far shorter than their launches fly when a reading
+    /// of its units explains it, else the note saying what was seen
     /// ([`super::carry_units::far_short`]).
-    pub(super) fn refuse_far_short_carries(
+    pub(super) fn far_short_carries(
         &self,
         path: &Path,
-        header: &str,
-        carry_unit: &str,
-        speed_unit: &str,
-    ) -> Result<(), DataError> {
-        match super::carry_units::far_short(&self.carries, header, carry_unit, speed_unit) {
-            Some(why) => Err(DataError::file(path, why)),
-            None => Ok(()),
+        read: &super::carry_units::AsRead,
+    ) -> Result<Option<String>, DataError> {
+        use super::carry_units::FarShort;
+        match super::carry_units::far_short(&self.carries, read) {
+            Some(FarShort::Refuse(why)) => Err(DataError::file(path, why)),
+            Some(FarShort::Note(note)) => Ok(Some(note)),
+            None => Ok(None),
         }
     }
 

@@ -28,6 +28,8 @@ pub(super) struct Resolved<'a> {
     pub header: String,
     /// The unit its cells are in (numeric targets only).
     pub unit: Option<Unit>,
+    /// Whether that unit was assumed (a preset's default unit; the file and mapping state none).
+    pub unit_assumed: bool,
 }
 
 /// Find every mapped column in `table` and its unit. Refuses a file missing a required column,
@@ -60,6 +62,7 @@ pub(super) fn resolve_columns<'a>(
                     index: ABSENT,
                     header: format!("{} (absent)", spec.source[0]),
                     unit: target.unit(),
+                    unit_assumed: false,
                 });
             }
             continue;
@@ -73,15 +76,15 @@ pub(super) fn resolve_columns<'a>(
             ));
         }
         used[index] = true;
-        let unit = match target.unit() {
-            None => None,
+        let (unit, unit_assumed) = match target.unit() {
+            None => (None, false),
             Some(to) => {
                 let col = ColumnAt { table, spec, index };
                 let (unit, was_assumed) = col.unit(path, to, vendor)?;
                 if was_assumed {
                     assumed.push(format!("{} in {}", table.header[index], unit.name));
                 }
-                Some(unit)
+                (Some(unit), was_assumed)
             }
         };
         resolved.push(Resolved {
@@ -90,6 +93,7 @@ pub(super) fn resolve_columns<'a>(
             index,
             header: table.header[index].clone(),
             unit,
+            unit_assumed,
         });
     }
     if !missing.is_empty() {

@@ -68,37 +68,62 @@ fn fit(path: &Path, bytes: &[u8], preset: &'static str, m: &Mapping) -> Option<F
     })
 }
 
-/// Why no preset reads a file, when it is plain: a shots file already (its header has the
-/// shots file's own launch columns), or an export whose header is in another language (no
-/// preset knows more than two of its columns, and it has letters outside ASCII).
-fn not_an_export(bytes: &[u8], fits: &[Fit]) -> Option<String> {
-    let text = String::from_utf8_lossy(&bytes[..bytes.len().min(4096)]);
-    let header = text.lines().next().unwrap_or("");
-    let cells: Vec<&str> = header.split(',').map(str::trim).collect();
-    if ["ball_speed_mph", "launch_angle_deg"]
+/// The header cells of a text export's first line (byte-order mark dropped, split at the
+/// separator that gives most cells, quotes trimmed); `None` for JSON or a first line that is
+/// not UTF-8 (UTF-16, a spreadsheet's binary file).
+fn first_line_cells(bytes: &[u8]) -> Option<Vec<String>> {
+    let bytes = bytes.strip_prefix(b"\xEF\xBB\xBF").unwrap_or(bytes);
+    let end = bytes
         .iter()
-        .all(|c| cells.contains(c))
-    {
-        return Some(
-            "--format auto: this is a shots file already (its header has smash's own \
-             ball_speed_mph and launch_angle_deg): give it to predict, compare, flight or \
-             diagnose with --shots; import reads launch monitors' exports"
-                .into(),
-        );
+        .position(|&b| b == b'\n')
+        .unwrap_or(bytes.len());
+    let line = std::str::from_utf8(&bytes[..end])
+        .ok()?
+        .trim_end_matches('\r');
+    if line.trim_start().starts_with(['{', '[']) {
+        return None;
     }
+    let sep = [',', ';', '\t']
+        .into_iter()
+        .max_by_key(|&c| line.matches(c).count())?;
+    Some(
+        line.split(sep)
+            .map(|c| c.trim().trim_matches('"').to_owned())
+            .collect(),
+    )
+}
+
+/// Why no preset reads a file, when it is plain: a shots file already (its header has the
+/// shots file's own launch columns): the whole message.
+fn a_shots_file(bytes: &[u8]) -> Option<String> {
+    let cells = first_line_cells(bytes)?;
+    ["ball_speed_mph", "launch_angle_deg"]
+        .iter()
+        .all(|c| cells.iter().any(|h| h == c))
+        .then(|| {
+            "--format auto: this is a shots file already (its header has smash's own \
+             ball_speed_mph and launch_angle_deg): read it as one (--format shots, the default \
+             of every command but import); --format auto and import read launch monitors' \
+             exports"
+                .into()
+        })
+}
+
+/// A hint for a file no preset reads whose header is in another language: at least five
+/// header cells, two of them with letters outside ASCII (`Køllehast.`), and no preset knowing
+/// more than two of its columns.
+fn another_language(bytes: &[u8], fits: &[Fit]) -> Option<&'static str> {
+    let cells = first_line_cells(bytes)?;
+    let foreign = cells
+        .iter()
+        .filter(|c| c.chars().any(|ch| ch.is_alphabetic() && !ch.is_ascii()))
+        .count();
     let most = fits.iter().map(|f| f.known).max().unwrap_or(0);
-    (most <= 2 && !header.is_ascii()).then(|| {
-        let known = match most {
-            0 => "any".to_owned(),
-            n => format!("more than {n}"),
-        };
-        format!(
-            "--format auto: no preset knows {known} of this file's columns, and its header is \
-             not in English (an app set to another language?): the presets read the vendors' \
-             English headers; a mapping file NAME.toml names the columns in any language, with \
-             the units row's units as written (docs/import.md)"
-        )
-    })
+    (cells.len() >= 5 && foreign >= 2 && most <= 2).then_some(
+        "; its header looks like another language's (an app set to another language?): the \
+         presets read the vendors' English headers, and a mapping file names the columns as \
+         the file writes them",
+    )
 }
 
 /// The preset that reads the export at `path` (`bytes`): the candidate (every required column
@@ -118,7 +143,7 @@ pub fn detect(path: &Path, bytes: &[u8]) -> Result<Detected, DataError> {
         .first()
         .filter(|f| f.missing.is_empty() && f.mapped >= 3)
     else {
-        if let Some(why) = not_an_export(bytes, &fits) {
+        if let Some(why) = a_shots_file(bytes) {
             return Err(DataError::file(path, why));
         }
         let closest: Vec<String> = fits
@@ -129,9 +154,10 @@ pub fn detect(path: &Path, bytes: &[u8]) -> Result<Detected, DataError> {
         return Err(DataError::file(
             path,
             format!(
-                "--format auto: no preset reads this file; the closest: {}; give --format \
+                "--format auto: no preset reads this file; the closest: {}{}; give --format \
                  PRESET or a mapping file NAME.toml (docs/import.md)",
-                closest.join(", ")
+                closest.join(", "),
+                another_language(bytes, &fits).unwrap_or("")
             ),
         ));
     };

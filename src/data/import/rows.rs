@@ -45,31 +45,57 @@ const SUMMARY: [&str; 12] = [
     "consistency",
 ];
 
-/// Refuse the export when its carries are far shorter than its launches fly
-/// ([`super::carry_units::far_short`]), naming the units the carry and ball speed were read in.
-fn refuse_far_short_carries(
+/// Refuse the export when its carries are far shorter than its launches fly and a reading of
+/// its units explains it; else the note, when they are ([`super::carry_units::far_short`]).
+fn far_short_carries(
     path: &Path,
     layout: &Layout,
     redundancy: &super::checks::Redundancy,
-) -> Result<(), DataError> {
+) -> Result<Option<String>, DataError> {
     let (Some(c), Some(b)) = (layout.column("carry_yd"), layout.column("ball_speed_mph")) else {
-        return Ok(());
+        return Ok(None);
     };
     let unit = |u: Option<Unit>| u.map_or("", |u| u.name);
-    redundancy.refuse_far_short_carries(path, &c.header, unit(c.unit), unit(b.unit))
+    let read = super::carry_units::AsRead {
+        header: &c.header,
+        carry_unit: unit(c.unit),
+        carry_assumed: c.unit_assumed,
+        speed_unit: unit(b.unit),
+        speed_assumed: b.unit_assumed,
+    };
+    redundancy.far_short_carries(path, &read)
 }
 
 /// Why a row holding a spreadsheet's error value is left out.
 const SPREADSHEET_ROW: &str = "a cell holds a spreadsheet's error value (a row a formula computed)";
 
-/// The error values a spreadsheet writes in a cell whose formula failed (Excel, LibreOffice,
-/// Google Sheets; compared as they are written, upper case): a row holding one was computed
-/// by a spreadsheet (an AVERAGE row under the shots, a lookup that failed), not exported by
-/// the monitor, and is left out and counted.
-const SPREADSHEET_ERRORS: [&str; 11] = [
-    "#DIV/0!", "#N/A", "#VALUE!", "#REF!", "#NAME?", "#NUM!", "#NULL!", "#SPILL!", "#CALC!",
-    "#ERROR!", "Err:502",
-];
+/// Whether a cell holds the error value a spreadsheet writes where a formula failed: Excel's
+/// and Google Sheets' `#DIV/0!`, `#VALUE!`, `#NAME?`, `#SPILL!`, … (a `#`, letters, digits or `/`,
+/// then `!` or `?`), `#N/A` and its translations (`#NV`, `#N/D`, `#I/T`), `#GETTING_DATA`, and
+/// LibreOffice's `Err:5xx` codes. A row holding one in a column the import reads was computed
+/// by a spreadsheet (an AVERAGE row under the shots, a lookup that failed), not exported by the
+/// monitor, and is left out and counted.
+fn is_spreadsheet_error(cell: &str) -> bool {
+    if ["#N/A", "#NV", "#N/D", "#I/T", "#GETTING_DATA"].contains(&cell) {
+        return true;
+    }
+    if let Some(code) = cell.strip_prefix("Err:") {
+        return code.len() == 3
+            && code.starts_with('5')
+            && code.bytes().all(|b| b.is_ascii_digit());
+    }
+    let Some(body) = cell
+        .strip_prefix('#')
+        .and_then(|c| c.strip_suffix('!').or_else(|| c.strip_suffix('?')))
+    else {
+        return false;
+    };
+    (2..=12).contains(&body.chars().count())
+        && body.chars().any(char::is_alphabetic)
+        && body
+            .chars()
+            .all(|c| c.is_alphanumeric() || c == '/' || c == '_')
+}
 
 /// The group of shots whose club cell is empty.
 pub(super) const NO_CLUB: &str = "(no club)";
@@ -137,7 +163,7 @@ pub(super) fn write_shots(
             tally.skip(label, *line);
             continue;
         }
-        if let Some(e) = row.spreadsheet_error(table) {
+        if let Some(e) = row.spreadsheet_error(table, layout) {
             if strict {
                 return Err(e);
             }
@@ -183,8 +209,9 @@ pub(super) fn write_shots(
     }
     tally.redundancy.refuse_systematic(path, vendor)?;
     tally.redundancy.refuse_units(path, &layout.units_read())?;
-    refuse_far_short_carries(path, layout, &tally.redundancy)?;
+    let far_short = far_short_carries(path, layout, &tally.redundancy)?;
     summarise(&tally, lines.len(), notes);
+    notes.extend(far_short);
     notes.extend(layout.column("carry_yd").and_then(|c| {
         (tally.redundancy).carry_units_note(&c.header, c.unit.map_or("", |u| u.name))
     }));
@@ -281,10 +308,16 @@ impl RowAt<'_> {
         self.cells.get(i).map_or("", |c| c.trim())
     }
 
-    /// The error, naming its column, when a cell of the row holds one of
-    /// [`SPREADSHEET_ERRORS`].
-    fn spreadsheet_error(&self, table: &Table) -> Option<DataError> {
-        let i = (0..self.cells.len()).find(|&i| SPREADSHEET_ERRORS.contains(&self.cell(i)))?;
+    /// The error, naming its column, when a cell the import reads ([`Layout::resolved`])
+    /// holds a spreadsheet's error value ([`is_spreadsheet_error`]); one in a column it does
+    /// not read leaves the shot as it is.
+    fn spreadsheet_error(&self, table: &Table, layout: &Layout) -> Option<DataError> {
+        let i = layout
+            .resolved
+            .iter()
+            .map(|r| r.index)
+            .filter(|&i| i != super::columns::ABSENT)
+            .find(|&i| is_spreadsheet_error(self.cell(i)))?;
         let header = table.header.get(i).map(String::as_str);
         Some(self.error_in(
             header,
@@ -792,4 +825,37 @@ impl RowAt<'_> {
 /// radars track the first few yards only).
 pub(super) fn modelled(tracked_yd: f64, carry_yd: f64) -> bool {
     tracked_yd < 0.9 * carry_yd
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn spreadsheet_error_values_and_not() {
+        for e in [
+            "#DIV/0!",
+            "#N/A",
+            "#VALUE!",
+            "#NAME?",
+            "#SPILL!",
+            "#GETTING_DATA",
+            "#NV",
+        ] {
+            assert!(super::is_spreadsheet_error(e), "{e}");
+        }
+        for e in [
+            "#WERT!",
+            "#VALEUR!",
+            "#VERDI!",
+            "#BLOCKED!",
+            "Err:502",
+            "Err:522",
+        ] {
+            assert!(super::is_spreadsheet_error(e), "{e}");
+        }
+        for v in [
+            "#1", "#12!", "# !", "Err:42", "Err:5021", "Driver", "5.4 L", "N/A", "#",
+        ] {
+            assert!(!super::is_spreadsheet_error(v), "{v}");
+        }
+    }
 }
