@@ -793,6 +793,15 @@ fn a_synth_worlds_hidden_definition_is_never_offered_until_an_effects_file_defin
     assert!(!smash::effects::user::offered()
         .iter()
         .any(|u| u.name == "face_twist"));
+    // A club carrying it, written and read back (the check before a club file is written),
+    // does not offer it either.
+    let twist = EffectId::from_name("face_twist").unwrap();
+    let values: Vec<f64> = twist.params().iter().map(|p| p.default).collect();
+    let club = common::paper_club()
+        .with_effects(vec![Effect::new(twist, &values, None).unwrap()])
+        .unwrap();
+    smash::data::club_file::club_toml_checked(&club, "test", Path::new("twisted.toml")).unwrap();
+    assert!(!labels(&groups).iter().any(|l| l == "face_twist"));
     // The same definition read from an effects file is offered from then on.
     let text = std::fs::read_to_string(&path).unwrap();
     let start = text.find("[[define_effect]]").unwrap();

@@ -7,7 +7,8 @@ use std::path::{Path, PathBuf};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use smash::data::club_file::{club_toml, parse_club, read_club};
+use smash::data::club_file::{club_toml, parse_club, parse_club_as, read_club};
+use smash::effects::user::Offer;
 use smash::effects::EffectId;
 use smash::ClubSpec;
 
@@ -30,11 +31,16 @@ impl Club {
         })
     }
 
-    /// This club's file text with `extra` appended, read back as a new club.
+    /// This club's file text with `extra` appended, read back as a new club (its user-defined
+    /// effects offered to model searches as they were: [`Offer::Reread`]).
     fn variant(&self, extra: &str) -> PyResult<Self> {
         let mut text = club_toml(&self.spec, "");
         text.push_str(extra);
-        Self::parse(&self.label, &text)
+        let spec = parse_club_as(&self.label, &text, Offer::Reread).map_err(|e| to_py(e.into()))?;
+        Ok(Self {
+            spec,
+            label: self.label.clone(),
+        })
     }
 }
 

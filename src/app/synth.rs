@@ -4,7 +4,8 @@ use std::path::Path;
 
 use anyhow::Context;
 
-use crate::data::club_file::read_club;
+use crate::data::club_file::read_club_as;
+use crate::effects::user::Offer;
 use crate::synth::{generate, read_config, SynthConfig, SynthRun};
 
 /// The world of the configuration file `config` (its seed replaced by `seed` when given):
@@ -14,8 +15,8 @@ pub fn generate_world(config: &Path, seed: Option<u64>) -> anyhow::Result<(Synth
     if let Some(seed) = seed {
         cfg.seed = seed;
     }
-    let club =
-        read_club(&cfg.club).with_context(|| format!("base club of {}", config.display()))?;
+    let club = read_club_as(&cfg.club, Offer::WorldOnly)
+        .with_context(|| format!("base club of {}", config.display()))?;
     let run = generate(&cfg, &club).with_context(|| config.display().to_string())?;
     Ok((cfg, run))
 }

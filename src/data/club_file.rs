@@ -80,18 +80,31 @@ struct RawBall {
     inertia_gcm2: Spanned<f64>,
 }
 
-/// Read and validate a club file.
+/// Read and validate a club file (its user-defined effects offered to model searches).
 pub fn read_club(path: &Path) -> Result<ClubSpec, DataError> {
-    let text = read_text(path)?;
-    parse_club(path, &text)
+    read_club_as(path, Offer::Candidate)
 }
 
-/// Parse and validate club-file text (`path` is used in messages only).
+/// [`read_club`], its `[[define_effect]]` tables registered as `offer` says (a synth world's
+/// base club: [`Offer::WorldOnly`]).
+pub fn read_club_as(path: &Path, offer: Offer) -> Result<ClubSpec, DataError> {
+    let text = read_text(path)?;
+    parse_club_as(path, &text, offer)
+}
+
+/// Parse and validate club-file text (`path` is used in messages only; its user-defined
+/// effects offered to model searches).
 pub fn parse_club(path: &Path, text: &str) -> Result<ClubSpec, DataError> {
+    parse_club_as(path, text, Offer::Candidate)
+}
+
+/// [`parse_club`], its `[[define_effect]]` tables registered as `offer` says (a club's own text
+/// read back: [`Offer::Reread`]).
+pub fn parse_club_as(path: &Path, text: &str, offer: Offer) -> Result<ClubSpec, DataError> {
     let ctx = TomlDoc::new(path, text);
     let raw: RawFile = ctx.parse("a club file has [club] name, mass_g, com_mm, inertia_gcm2, cor, bulge_mm, roll_mm and optional loft_deg, hosel_mm; [ball] mass_g, radius_mm, inertia_gcm2; optional [[effect]] and [[define_effect]] tables")?;
     // User-defined effects first, so that [[effect]] tables can name them.
-    super::effect_defs::register_definitions(path, text, &raw.define_effect, Offer::Candidate)?;
+    super::effect_defs::register_definitions(path, text, &raw.define_effect, offer)?;
     let c = &raw.club;
     let mass_g = ctx.ranged(&c.mass_g, "club.mass_g", limits::CLUB_MASS_G)?;
     let com = ctx.each_ranged(&c.com_mm, "club.com_mm", limits::CLUB_COM_MM)?;
@@ -356,7 +369,7 @@ pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
 /// infinite, undefined or unphysical value reaches a club file.
 pub fn club_toml_checked(spec: &ClubSpec, comment: &str, path: &Path) -> Result<String, DataError> {
     let text = club_toml(spec, comment);
-    parse_club(path, &text).map_err(|e| {
+    parse_club_as(path, &text, Offer::Reread).map_err(|e| {
         DataError::file(
             path,
             format!("not written: the club would not read back ({})", e.message),

@@ -77,8 +77,12 @@ pub enum Offer {
     /// From an effects file or a club file: a default candidate of `diagnose`, a hint of
     /// `compare`.
     Candidate,
-    /// From a synth world's file: the world's hidden physics, never offered.
+    /// From a synth world's file (its config or base club): the world's hidden physics, never
+    /// offered.
     WorldOnly,
+    /// A club's own text read back (a written club checked, a club variant made): a definition
+    /// registered before keeps whether it is offered; one new to the registry is not offered.
+    Reread,
 }
 
 /// A registered definition and whether it is offered ([`Offer`]).
@@ -150,8 +154,8 @@ pub enum RegisterError {
 
 /// Register `def` as `offer` says: a new name is added; a name already registered with the
 /// same definition returns that one (offered from now on if `offer` is
-/// [`Offer::Candidate`]); a name of the library or registered with another definition is an
-/// error.
+/// [`Offer::Candidate`], else as it was); a name of the library or registered with another
+/// definition is an error.
 pub fn register(def: UserEffect, offer: Offer) -> Result<&'static UserEffect, RegisterError> {
     if EffectKind::from_name(def.name).is_some() {
         return Err(RegisterError::LibraryName { name: def.name });
