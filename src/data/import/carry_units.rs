@@ -273,47 +273,22 @@ mod tests {
 
     #[test]
     fn the_model_gives_a_ratio_near_one_for_its_own_carries_and_too_few_shots_give_none() {
-        let launches: Vec<(f64, f64, f64)> = (0..30)
-            .map(|k| {
-                (
-                    100.0 + 3.0 * k as f64,
-                    10.0 + 0.5 * k as f64,
-                    6000.0 - 100.0 * k as f64,
-                )
-            })
-            .collect();
-        let flown = crate::flight::fly(
-            &FlightConfig::default(),
-            &launches
-                .iter()
-                .map(|&(b, l, s)| FlightLaunch::from_file_units(b, l, 0.0, s, 0.0))
-                .collect::<Vec<_>>(),
-        );
-        let shots: Vec<CarryShot> = launches
-            .iter()
-            .zip(flown)
-            .map(|(&(b, l, s), f)| CarryShot {
-                ball_mph: b,
-                launch_deg: l,
-                backspin_rpm: s,
-                carry_yd: f.unwrap().carry_yd() * 0.9144,
-            })
-            .collect();
+        let shots = written(30, 1.0, 0.9144);
         let (r, n) = median_ratio(&shots).unwrap();
         assert_eq!(n, 30);
         assert!((r - 0.9144).abs() < 1e-9, "{r}");
         assert_eq!(median_ratio(&shots[..MIN_SHOTS - 1]), None);
     }
 
-    /// Shots whose carries are the model's for their launches, then written as an export in
-    /// km/h (speed times `speed`) with carries times `carry`.
+    /// `n` shots whose carries are the model's for their launches, then written with the ball
+    /// speed times `speed` (1.609344: in km/h) and the carry times `carry`.
     fn written(n: usize, speed: f64, carry: f64) -> Vec<CarryShot> {
         let launches: Vec<(f64, f64, f64)> = (0..n)
             .map(|k| {
                 (
-                    95.0 + 4.0 * k as f64,
-                    12.0 + 0.7 * k as f64,
-                    6500.0 - 150.0 * k as f64,
+                    100.0 + 3.0 * k as f64,
+                    10.0 + 0.5 * k as f64,
+                    6000.0 - 100.0 * k as f64,
                 )
             })
             .collect();
