@@ -77,8 +77,9 @@ pub enum Offer {
     /// From an effects file or a club file: a default candidate of `diagnose`, a hint of
     /// `compare`.
     Candidate,
-    /// From a synth world's file (its config or base club): the world's hidden physics, never
-    /// offered.
+    /// From a synth world's file (its config or base club): the world's hidden physics, not
+    /// offered by this reading (registered like [`Offer::Reread`]: one an effects or club file
+    /// offered stays offered).
     WorldOnly,
     /// A club's own text read back (a written club checked, a club variant made): a definition
     /// registered before keeps whether it is offered; one new to the registry is not offered.

@@ -50,7 +50,7 @@ pub(super) const METRES_AS_YARDS: (f64, f64) = (0.88, 0.95);
 /// yards reads 1.092, so a ratio here is reported without a recommendation.
 pub(super) const YARDS_AS_METRES: (f64, f64) = (1.06, 1.13);
 
-/// Below this median ratio the carries are looked at in other units ([`far_short`]): 30 %
+/// Below this median ratio the carries are looked at in other units ([`check`]): 30 %
 /// below the lowest correctly-united real file (0.996) and 23 % below metres read as yards
 /// (0.914), while km/h read as mph gives 0.41–0.61 (the sessions above; the same sessions'
 /// carries in yards).
@@ -93,13 +93,8 @@ impl CarryShot {
 }
 
 /// The median of measured over modelled carry of `shots` (usable ones, at most
-/// [`MAX_SHOTS`] spread evenly) and how many it is over; `None` below [`MIN_SHOTS`].
-pub(super) fn median_ratio(shots: &[CarryShot]) -> Option<(f64, usize)> {
-    median_ratio_of(shots, MIN_SHOTS)
-}
-
-/// [`median_ratio`] over at least `min_shots`.
-fn median_ratio_of(shots: &[CarryShot], min_shots: usize) -> Option<(f64, usize)> {
+/// [`MAX_SHOTS`] spread evenly) and how many it is over; `None` below `min_shots`.
+fn median_ratio(shots: &[CarryShot], min_shots: usize) -> Option<(f64, usize)> {
     let usable: Vec<&CarryShot> = shots.iter().filter(|s| s.usable()).collect();
     if usable.len() < min_shots {
         return None;
@@ -137,22 +132,34 @@ pub(super) struct AsRead<'a> {
     pub speed_assumed: bool,
 }
 
-/// What [`far_short`] makes of carries far shorter than their launches fly.
+/// What [`check`] makes of the carries' units.
 #[derive(Debug, PartialEq)]
-pub(super) enum FarShort {
-    /// One reading of the units explains it: the file is refused, naming it.
+pub(super) enum CarryUnits {
+    /// Far short, and one reading of the units explains it: the file is refused, naming it.
     Refuse(String),
-    /// No reading explains it: a note, the carries kept as read.
+    /// Far short with no reading explaining it (the carries kept as read), or in one of the
+    /// bands of metres read as yards or yards read as metres ([`note`]): a note.
     Note(String),
 }
 
-/// Carries whose median ratio is below [`FAR_SHORT`] over at least [`FAR_SHORT_MIN_SHOTS`]
-/// shots, read again with the ball speed in km/h (module docs); `None` above it or on fewer.
-pub(super) fn far_short(shots: &[CarryShot], read: &AsRead) -> Option<FarShort> {
-    let (ratio, n) = median_ratio_of(shots, FAR_SHORT_MIN_SHOTS)?;
-    if ratio >= FAR_SHORT {
-        return None;
+/// The carries' units checked against the flight model, the median ratio computed once
+/// (module docs): below [`FAR_SHORT`] over at least [`FAR_SHORT_MIN_SHOTS`] shots, read again
+/// with the ball speed in km/h ([`far_short`]); else, over at least [`MIN_SHOTS`], the note
+/// of a ratio in one of the two bands ([`note`]); `None` otherwise.
+pub(super) fn check(shots: &[CarryShot], read: &AsRead) -> Option<CarryUnits> {
+    let (ratio, n) = median_ratio(shots, FAR_SHORT_MIN_SHOTS)?;
+    if ratio < FAR_SHORT {
+        return Some(far_short(shots, read, ratio, n));
     }
+    // `n` counts the ratios, at most the usable shots: at least MIN_SHOTS of both, as the
+    // band notes need.
+    let note = note(read.header, read.carry_unit, ratio, n);
+    note.filter(|_| n >= MIN_SHOTS).map(CarryUnits::Note)
+}
+
+/// Carries whose median ratio `ratio` over `n` shots is below [`FAR_SHORT`], read again with
+/// the ball speed in km/h (module docs).
+fn far_short(shots: &[CarryShot], read: &AsRead, ratio: f64, n: usize) -> CarryUnits {
     let AsRead {
         header,
         carry_unit,
@@ -184,7 +191,7 @@ pub(super) fn far_short(shots: &[CarryShot], read: &AsRead) -> Option<FarShort> 
                     ..*s
                 })
                 .collect();
-            let (r, _) = median_ratio_of(&again, FAR_SHORT_MIN_SHOTS)?;
+            let (r, _) = median_ratio(&again, FAR_SHORT_MIN_SHOTS)?;
             Some((label, carry, r))
         })
         .collect();
@@ -198,11 +205,11 @@ pub(super) fn far_short(shots: &[CarryShot], read: &AsRead) -> Option<FarShort> 
         .filter(|(_, _, r)| (lo..=hi).contains(r))
         .collect();
     let [(label, carry, _)] = fits.as_slice() else {
-        return Some(FarShort::Note(format!(
+        return CarryUnits::Note(format!(
             "{seen}{listed}: no reading of the units brings them to {lo}-{hi}, so they are kept \
              as read; check the export (limited-flight range balls, a strong headwind and a \
              mapping's wrong column all give short carries)"
-        )));
+        ));
     };
     let fix = if read.speed_assumed && (read.carry_assumed || *carry == carry_unit) {
         format!(
@@ -221,9 +228,7 @@ pub(super) fn far_short(shots: &[CarryShot], read: &AsRead) -> Option<FarShort> 
              the units in its units row or header and import again"
         )
     };
-    Some(FarShort::Refuse(format!(
-        "{seen}{listed}: the values are in {label}; {fix}"
-    )))
+    CarryUnits::Refuse(format!("{seen}{listed}: the values are in {label}; {fix}"))
 }
 
 /// The note for a file whose carries (column `header`, read in `unit`) have the median ratio
@@ -274,10 +279,10 @@ mod tests {
     #[test]
     fn the_model_gives_a_ratio_near_one_for_its_own_carries_and_too_few_shots_give_none() {
         let shots = written(30, 1.0, 0.9144);
-        let (r, n) = median_ratio(&shots).unwrap();
+        let (r, n) = median_ratio(&shots, MIN_SHOTS).unwrap();
         assert_eq!(n, 30);
         assert!((r - 0.9144).abs() < 1e-9, "{r}");
-        assert_eq!(median_ratio(&shots[..MIN_SHOTS - 1]), None);
+        assert_eq!(median_ratio(&shots[..MIN_SHOTS - 1], MIN_SHOTS), None);
     }
 
     /// `n` shots whose carries are the model's for their launches, then written with the ball
@@ -325,7 +330,7 @@ mod tests {
     fn far_short_carries_name_the_one_reading_that_explains_them() {
         // km/h and metres written, mph and yards assumed: refused, naming km/h and m.
         let metric = written(12, KMH_PER_MPH, 0.9144);
-        let Some(FarShort::Refuse(why)) = far_short(&metric, &read(true, true)) else {
+        let Some(CarryUnits::Refuse(why)) = check(&metric, &read(true, true)) else {
             panic!("metric file not refused");
         };
         assert!(
@@ -336,7 +341,7 @@ mod tests {
         );
         // km/h and yards: refused naming km/h with the carry as read, and no metres.
         let kmh_yd = written(12, KMH_PER_MPH, 1.0);
-        let Some(FarShort::Refuse(why)) = far_short(&kmh_yd, &read(true, true)) else {
+        let Some(CarryUnits::Refuse(why)) = check(&kmh_yd, &read(true, true)) else {
             panic!("km/h file not refused");
         };
         assert!(
@@ -344,21 +349,21 @@ mod tests {
             "{why}"
         );
         // Units stated by the file: the fix is the file's units, not a mapping.
-        let Some(FarShort::Refuse(why)) = far_short(&metric, &read(false, false)) else {
+        let Some(CarryUnits::Refuse(why)) = check(&metric, &read(false, false)) else {
             panic!("stated metric file not refused");
         };
         assert!(why.contains("the file states mph and yd, which its values contradict"));
         // Short carries no unit explains (range balls): a note, kept.
         let short = written(12, 1.0, 0.66);
         assert!(matches!(
-            far_short(&short, &read(true, true)),
-            Some(FarShort::Note(_))
+            check(&short, &read(true, true)),
+            Some(CarryUnits::Note(_))
         ));
         // Too few shots, or a ratio above the bound: nothing.
         assert_eq!(
-            far_short(&metric[..FAR_SHORT_MIN_SHOTS - 1], &read(true, true)),
+            check(&metric[..FAR_SHORT_MIN_SHOTS - 1], &read(true, true)),
             None
         );
-        assert_eq!(far_short(&written(12, 1.0, 0.72), &read(true, true)), None);
+        assert_eq!(check(&written(12, 1.0, 0.72), &read(true, true)), None);
     }
 }

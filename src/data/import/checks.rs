@@ -220,27 +220,20 @@ impl Redundancy {
         Ok(())
     }
 
-    /// Refuse an export whose carries are far shorter than their launches fly when a reading
-    /// of its units explains it, else the note saying what was seen
-    /// ([`super::carry_units::far_short`]).
-    pub(super) fn far_short_carries(
+    /// The carries' units checked against the flight model ([`super::carry_units::check`]):
+    /// the refusal of carries far shorter than their launches fly when a reading of the units
+    /// explains it, else the note, if any.
+    pub(super) fn carry_units(
         &self,
         path: &Path,
         read: &super::carry_units::AsRead,
     ) -> Result<Option<String>, DataError> {
-        use super::carry_units::FarShort;
-        match super::carry_units::far_short(&self.carries, read) {
-            Some(FarShort::Refuse(why)) => Err(DataError::file(path, why)),
-            Some(FarShort::Note(note)) => Ok(Some(note)),
+        use super::carry_units::CarryUnits;
+        match super::carry_units::check(&self.carries, read) {
+            Some(CarryUnits::Refuse(why)) => Err(DataError::file(path, why)),
+            Some(CarryUnits::Note(note)) => Ok(Some(note)),
             None => Ok(None),
         }
-    }
-
-    /// The note when the carries (export column `header`, read in `unit`) are systematically
-    /// what metres read as yards, or yards read as metres, give ([`super::carry_units`]).
-    pub(super) fn carry_units_note(&self, header: &str, unit: &str) -> Option<String> {
-        let (ratio, n) = super::carry_units::median_ratio(&self.carries)?;
-        super::carry_units::note(header, unit, ratio, n)
     }
 
     /// The offline distances' verdict on the sign disagreements: settled only when at least

@@ -45,9 +45,10 @@ const SUMMARY: [&str; 12] = [
     "consistency",
 ];
 
-/// Refuse the export when its carries are far shorter than its launches fly and a reading of
-/// its units explains it; else the note, when they are ([`super::carry_units::far_short`]).
-fn far_short_carries(
+/// The carries' units checked against the flight model ([`super::carry_units::check`]): the
+/// refusal of carries far shorter than their launches fly when a reading of the units explains
+/// it, else the note, if any.
+fn carry_units(
     path: &Path,
     layout: &Layout,
     redundancy: &super::checks::Redundancy,
@@ -63,7 +64,7 @@ fn far_short_carries(
         speed_unit: unit(b.unit),
         speed_assumed: b.unit_assumed,
     };
-    redundancy.far_short_carries(path, &read)
+    redundancy.carry_units(path, &read)
 }
 
 /// Why a row holding a spreadsheet's error value is left out.
@@ -209,12 +210,9 @@ pub(super) fn write_shots(
     }
     tally.redundancy.refuse_systematic(path, vendor)?;
     tally.redundancy.refuse_units(path, &layout.units_read())?;
-    let far_short = far_short_carries(path, layout, &tally.redundancy)?;
+    let carry_note = carry_units(path, layout, &tally.redundancy)?;
     summarise(&tally, lines.len(), notes);
-    notes.extend(far_short);
-    notes.extend(layout.column("carry_yd").and_then(|c| {
-        (tally.redundancy).carry_units_note(&c.header, c.unit.map_or("", |u| u.name))
-    }));
+    notes.extend(carry_note);
     if lines.is_empty() {
         let why = tally
             .left_out
