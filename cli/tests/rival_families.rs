@@ -14,7 +14,9 @@
 //! - `paper_world`, seeds 1–20: the added mass (per shaft, `shaft_fraction` or an alias
 //!   carrying it) is named — selected, or ambiguous with a plausible rival — or stated as not
 //!   resolved with the candidates it cannot be told from, in 15 of 20 with the true noise
-//!   (9 named, 6 stated) and 15 of 20 without (13 named, 2 stated).
+//!   (9 named, 6 stated) and 15 of 20 without (13 named, 2 stated). No false finding in either
+//!   setting: without noise figures `hosel_mass` was one in seeds 15 and 17 until the level
+//!   check (a location form must gain over a face-wide level too) made it a stand-in.
 //! - `plateau_paper_world`, seeds 1–10, with the true noise: no false finding (10 of 10). The
 //!   ball-speed error the plateau leaves (high at the top and bottom of the face, low in the
 //!   middle) is within the given noise in size (spread ratio 0.86–0.94) but the noise floor's
@@ -168,9 +170,10 @@ fn paper_world_mass_named_or_stated() {
             "{args:?}: ball_offset named in {}",
             counts[1].0
         );
-        // Without noise figures `hosel_mass` is a finding in two seeds (15, 17), as before.
+        // Without noise figures `hosel_mass` was a finding in two seeds (15, 17) until the
+        // level check made it a stand-in for a face-wide level (measured 0 of 20 since).
         assert!(
-            false_seeds <= 2,
+            false_seeds == 0,
             "{args:?}: {false_seeds} seeds with a false finding"
         );
     }
@@ -245,12 +248,13 @@ type DesignWorld = (&'static str, &'static [&'static [&'static str]], [usize; 2]
 #[test]
 #[ignore = "about 100 diagnoses; run with --ignored"]
 fn design_worlds_over_ten_seeds() {
-    let worlds: [DesignWorld; 5] = [
+    let worlds: [DesignWorld; 6] = [
         ("spot_mass", &[&["cor_spot"], MASS], [9, 2]),
         ("fraction_offset", &[MASS, OFFSET], [10, 10]),
         ("mass_loft", &[MASS, &["loft_bias"]], [7, 10]),
         ("mass_loft_flex", &[MASS, &["loft_bias"]], [1, 10]),
         ("fraction_offset_speed", &[MASS, OFFSET], [10, 0]),
+        ("hosel_offset", &[&["hosel_mass"], OFFSET], [10, 10]),
     ];
     for (world, truth, named) in worlds {
         let config = repo(&format!("cli/tests/fixtures/rivals/{world}.toml"));

@@ -25,7 +25,12 @@
 //! `face_curvature`) cannot be told from `L` by construction; its family is the other selected
 //! effects only, and it is asked instead whether `L`, on the components its signal moves,
 //! gains beyond it (`ln n` a column): then the location structure in the data has another
-//! shape than its form, and it is a stand-in for that.
+//! shape than its form, and it is a stand-in for that. A location form is also asked for its
+//! gain over the other selected effects and a constant per launch component its signal moves
+//! (`over_level`): its average over the face is a level, which an added mass or a COR level
+//! makes as well, so when only its own gain beats `k·ln n` how it varies over the face is not
+//! seen, and it is a stand-in for a face-wide shift (`hosel_mass` taking the paper world's
+//! added mass).
 //!
 //! When the location family takes more than one parameter's worth of `E`'s gain
 //! (`own − over_family > ln n`), `E`'s kin (candidates whose fit changed the predictions like
@@ -70,6 +75,9 @@ pub struct FamilyCheck {
     /// For a location form: the held-out gain of location structure beyond it, on the
     /// components its signal moves, with that structure's penalty (`ln n` a column).
     pub form: Option<(f64, f64)>,
+    /// For a location form: its own held-out gain over the other selected effects and a
+    /// constant per launch component its signal moves (its penalty is [`FamilyCheck::penalty`]).
+    pub over_level: Option<f64>,
 }
 
 impl FamilyCheck {
@@ -77,6 +85,13 @@ impl FamilyCheck {
     pub fn is_stand_in(&self) -> bool {
         self.form.is_some_and(|(gain, penalty)| gain > penalty)
             || (self.own_gain > self.penalty && self.gain_over_family <= self.penalty)
+            || self.level_only()
+    }
+
+    /// A location form whose gain is a face-wide level's: it earns its penalty over the other
+    /// effects, not once a constant per component it moves is beside them.
+    fn level_only(&self) -> bool {
+        self.own_gain > self.penalty && self.over_level.is_some_and(|g| g <= self.penalty)
     }
 
     /// The failed check, as text.
@@ -86,6 +101,15 @@ impl FamilyCheck {
                 "impact-location structure gains {gain:.1} held out beyond its form (penalty \
                  {penalty:.1}): the location structure in the data has another shape, and it \
                  stands in for it"
+            );
+        }
+        if let Some(level) = self.over_level.filter(|_| self.level_only()) {
+            return format!(
+                "its held-out gain ({:.1}) is a face-wide level's: over the other selected \
+                 effects and a constant per launch component it moves it gains {level:.1} \
+                 (penalty {:.1}), so how it varies over the face is not seen; a stand-in for a \
+                 shift another effect (an added mass, a COR level) makes as well",
+                self.own_gain, self.penalty
             );
         }
         format!(
@@ -214,6 +238,7 @@ pub(super) fn check(
         signals: &signals,
         sigma: &sigma,
         location: &location,
+        levels: &levels,
         with_levels: &with_levels,
     };
     let checks: Vec<Option<EffectCheck>> = selected_labels(m)
@@ -224,11 +249,12 @@ pub(super) fn check(
 }
 
 /// What every selected effect's check reads: the estimates' whitened signals, the noise
-/// scales, the impact-location columns and those with a level per component.
+/// scales, the impact-location columns, a level per component, and the two together.
 struct CheckContext<'c> {
     signals: &'c [Option<Column>],
     sigma: &'c [f64; 5],
     location: &'c [Column],
+    levels: &'c [Column],
     with_levels: &'c [&'c Column],
 }
 
@@ -243,6 +269,7 @@ fn check_one(
         signals,
         sigma,
         location,
+        levels,
         with_levels,
     } = *ctx;
     let loc_refs: Vec<&Column> = location.iter().collect();
@@ -273,8 +300,22 @@ fn check_one(
         gain(&family, &j_e)
     };
     let penalty = mine.len() as f64 * m.penalty_per_param;
+    let moved = moved_components(&j_e);
+    let over_level = location_form.then(|| {
+        let base: Vec<&Column> = j_o
+            .iter()
+            .copied()
+            .chain(
+                levels
+                    .iter()
+                    .enumerate()
+                    .filter(|(c, _)| moved[*c])
+                    .map(|(_, l)| l),
+            )
+            .collect();
+        gain(&base, &j_e)
+    });
     let form = location_form.then(|| {
-        let moved = moved_components(&j_e);
         let beyond: Vec<&Column> = location
             .iter()
             .enumerate()
@@ -294,6 +335,7 @@ fn check_one(
         penalty,
         location_in_family: !location_form,
         form,
+        over_level,
     };
     let rivals = if !location_form && own_gain - gain_over_family > m.penalty_per_param {
         let base_margin = gain_over_family - penalty;
@@ -453,5 +495,55 @@ mod tests {
         );
         assert!(varies_with_location(&z2, &cols) > 0.999);
         assert!(varies_with_location(&speedlike, &cols) < LOCATION_FORM_R2);
+    }
+
+    /// The level check: a location form whose signal is mostly a face-wide level gains
+    /// nothing once a level is beside it when the target is a level (the paper world's added
+    /// mass read by `hosel_mass`), and keeps its gain when the target varies with the location
+    /// as its signal does.
+    #[test]
+    fn a_level_is_not_a_location_form_finding() {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(4301);
+        let shots = 600;
+        let rows = shots * 5;
+        let fold_of: Vec<usize> = (0..shots).map(|i| i % 10).collect();
+        let z: Vec<f64> = (0..shots)
+            .map(|_| rng.sample::<f64, _>(StandardNormal))
+            .collect();
+        let on_speed =
+            |f: &dyn Fn(usize) -> f64| column(|r| if r % 5 == 0 { f(r / 5) } else { 0.0 }, rows);
+        let level = &level_columns(shots)[0];
+        // The effect's signal: a level with a little variation over the face.
+        let signal = on_speed(&|i| 1.0 + 0.05 * z[i] * z[i]);
+        let noise = column(|_| rng.sample::<f64, _>(StandardNormal), rows);
+        let penalty = (shots as f64).ln();
+        let gains = |t: &Column| {
+            let none = cv_sse(&[], t, &fold_of).0 - cv_sse(&[&signal], t, &fold_of).0;
+            let over_level =
+                cv_sse(&[level], t, &fold_of).0 - cv_sse(&[level, &signal], t, &fold_of).0;
+            (none, over_level)
+        };
+        let (own, over_level) = gains(&(on_speed(&|_| 0.3) + &noise));
+        let check = |own_gain, over_level| FamilyCheck {
+            label: "hosel_mass".into(),
+            own_gain,
+            gain_over_family: own_gain,
+            penalty,
+            location_in_family: false,
+            form: Some((0.0, 5.0 * penalty)),
+            over_level: Some(over_level),
+        };
+        assert!(own > penalty && over_level <= penalty, "{own} {over_level}");
+        let level_only = check(own, over_level);
+        assert!(level_only.is_stand_in());
+        assert!(
+            level_only.text().contains("face-wide level"),
+            "{}",
+            level_only.text()
+        );
+        // The same signal where the target varies over the face as the signal does.
+        let (own, over_level) = gains(&(on_speed(&|i| 0.3 + 0.6 * z[i] * z[i]) + &noise));
+        assert!(over_level > penalty, "{own} {over_level}");
+        assert!(!check(own, over_level).is_stand_in());
     }
 }

@@ -159,6 +159,9 @@ pub struct FamilyCheckView {
     pub form_gain: Option<f64>,
     /// The form's penalty, when checked.
     pub form_penalty: Option<f64>,
+    /// For a location form: its own gain over the other selected effects and a constant per
+    /// launch component it moves (penalty `penalty`).
+    pub gain_over_level: Option<f64>,
     /// It is a stand-in for the family.
     pub stand_in: bool,
 }
@@ -174,6 +177,7 @@ impl FamilyCheckView {
             location_in_family: f.location_in_family,
             form_gain: f.form.map(|f| f.0),
             form_penalty: f.form.map(|f| f.1),
+            gain_over_level: f.over_level,
             stand_in: f.is_stand_in(),
         }
     }
