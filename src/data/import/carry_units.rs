@@ -13,7 +13,9 @@
 //!
 //! - metres read as yards (the carry column read in yd, median in [`METRES_AS_YARDS`],
 //!   0.88–0.95) is a band no real file reaches, 4.6 % below the lowest: a note names the
-//!   column, the ratio and the fix;
+//!   column, the ratio and the fix when the yards were assumed; when the file states yards
+//!   (a real Garmin R50 session of wedges stating `[Yards]` reads 0.949) it says what it saw
+//!   and recommends nothing;
 //! - yards read as metres (read in m, median in [`YARDS_AS_METRES`], 1.06–1.13) is where that
 //!   Mevo+ file sits, so it is not evidence: the note says what it saw and recommends nothing.
 //!
@@ -153,7 +155,7 @@ pub(super) fn check(shots: &[CarryShot], read: &AsRead) -> Option<CarryUnits> {
     }
     // `n` counts the ratios, at most the usable shots: at least MIN_SHOTS of both, as the
     // band notes need.
-    let note = note(read.header, read.carry_unit, ratio, n);
+    let note = note(read.header, read.carry_unit, ratio, n, read.carry_assumed);
     note.filter(|_| n >= MIN_SHOTS).map(CarryUnits::Note)
 }
 
@@ -233,13 +235,27 @@ fn far_short(shots: &[CarryShot], read: &AsRead, ratio: f64, n: usize) -> CarryU
 
 /// The note for a file whose carries (column `header`, read in `unit`) have the median ratio
 /// `ratio` over `n` shots, when it is in one of the two bands.
-pub(super) fn note(header: &str, unit: &str, ratio: f64, n: usize) -> Option<String> {
+pub(super) fn note(
+    header: &str,
+    unit: &str,
+    ratio: f64,
+    n: usize,
+    assumed: bool,
+) -> Option<String> {
     let within = |(lo, hi): (f64, f64)| (lo..=hi).contains(&ratio);
     let seen = format!(
         "column '{header}' (read in {unit}): the median of {n} carries is {ratio:.3} times the \
          carry smash's flight model gives their launches"
     );
-    if within(METRES_AS_YARDS) && unit == "yd" {
+    if within(METRES_AS_YARDS) && unit == "yd" && !assumed {
+        // The file states yards: taken at its word, since a session of wedges runs this short
+        // of the model too (a real Garmin R50 wedge session stating `[Yards]`: 0.949).
+        Some(format!(
+            "{seen}, where metres read as yards give 0.914; the file states yards, and a session \
+             of short clubs runs this short of the model too, so this does not settle it: if the \
+             carries are in metres, state [m] in the export's units row or header"
+        ))
+    } else if within(METRES_AS_YARDS) && unit == "yd" {
         Some(format!(
             "{seen}, where metres read as yards give 0.914 and correctly-united real files \
              0.996-1.092: the carries are in metres; state it in the export's units row ([m]) or \
@@ -264,16 +280,16 @@ mod tests {
 
     #[test]
     fn only_the_metres_band_recommends_a_unit() {
-        let firm = note("Carry", "yd", 0.92, 50).unwrap();
+        let firm = note("Carry", "yd", 0.92, 50, true).unwrap();
         assert!(firm.starts_with("column 'Carry' (read in yd): the median of 50 carries is 0.920"));
         assert!(firm.contains("the carries are in metres") && firm.contains("unit = \"m\""));
         // Read in metres, metres-like carries are right; read in yards, a Mevo+-like 1.09 too.
-        assert_eq!(note("Carry", "m", 0.92, 50), None);
-        assert_eq!(note("Carry", "yd", 1.09, 50), None);
-        assert_eq!(note("Carry", "yd", 0.996, 50), None);
-        let soft = note("Carry", "m", 1.094, 50).unwrap();
+        assert_eq!(note("Carry", "m", 0.92, 50, true), None);
+        assert_eq!(note("Carry", "yd", 1.09, 50, true), None);
+        assert_eq!(note("Carry", "yd", 0.996, 50, true), None);
+        let soft = note("Carry", "m", 1.094, 50, true).unwrap();
         assert!(soft.contains("does not settle it"), "{soft}");
-        assert_eq!(note("Carry", "m", 1.2, 50), None);
+        assert_eq!(note("Carry", "m", 1.2, 50, true), None);
     }
 
     #[test]
@@ -365,5 +381,23 @@ mod tests {
             None
         );
         assert_eq!(check(&written(12, 1.0, 0.72), &read(true, true)), None);
+    }
+
+    /// Metres read as yards: the fix when the yards were assumed; what was seen, and no fix,
+    /// when the file states them (a wedge session stating `[Yards]` reads 0.949).
+    #[test]
+    fn stated_yards_are_taken_at_their_word() {
+        let metres = written(MIN_SHOTS, 1.0, 0.9144);
+        assert!(matches!(
+            check(&metres, &read(true, true)),
+            Some(CarryUnits::Note(n)) if n.contains("the carries are in metres")
+        ));
+        let Some(CarryUnits::Note(n)) = check(&metres, &read(false, false)) else {
+            panic!("no note on stated yards");
+        };
+        assert!(
+            n.contains("the file states yards") && !n.contains("unit = \"m\""),
+            "{n}"
+        );
     }
 }
