@@ -190,7 +190,7 @@ fn corpus() -> Vec<(&'static str, &'static str, usize, Vec<Check>)> {
         (
             "fsx_session.session",
             "foresight-session",
-            4,
+            3,
             vec![
                 (
                     0,
@@ -208,7 +208,11 @@ fn corpus() -> Vec<(&'static str, &'static str, usize, Vec<Check>)> {
                     "offline_yd",
                     shot(2, "/FlightData/OfflineDistance_M") * YD_PER_M,
                 ),
-                (2, "club_path_deg", shot(3, "/ClubData/HorizontalPath_DEG")),
+                (
+                    2,
+                    "ball_speed_mph",
+                    shot(4, "/BallData/BallSpeed_MS") * MPH_PER_MS,
+                ),
             ],
         ),
         (
@@ -356,8 +360,11 @@ fn corpus_quirks_are_counted_and_dates_are_one_form() {
     let dir = tempfile::tempdir().unwrap();
     let (_, err) = import(dir.path(), &fixture("fsx_session.session"), "fsx", "fsx");
     assert!(err.contains("Enabled = 'false'"), "{err}");
+    // A misread shot, every spin 0: no spin measured, so no launch (left out and counted).
     assert!(
-        err.contains("column 'BallData.TotalSpin_RPM': 0, which vendors write"),
+        err.contains(
+            "left out 1 row(s): no measured launch (column 'BallData.BackSpin_RPM' not measured)"
+        ),
         "{err}"
     );
     let (h, rows) = read(&dir.path().join("fsx.csv"));

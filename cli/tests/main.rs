@@ -40,6 +40,7 @@ mod hostile_round2;
 mod hostile_round3;
 mod import;
 mod import_corpus;
+mod import_fsx_play;
 mod import_hostile;
 mod import_mutations;
 mod import_real;

@@ -4,6 +4,7 @@
 //! column takes directions, and optionally the column's own unit (`152 mph`, `11.7°`), in any
 //! order, case and spacing.
 
+use super::legend::Legend;
 use super::units::Unit;
 
 pub(super) use crate::data::shots::list_lines;
@@ -256,20 +257,38 @@ fn normalise(name: &str) -> String {
         .to_lowercase()
 }
 
-/// Split `Ball Speed (mph)` / `Carry[yd]` into the name and the bracketed text.
+/// Split `Ball Speed (mph)` / `Carry[yd]` into the name and the bracketed unit. A unit followed
+/// by a sign legend, `Push/Pull (deg L-/R+)`, gives the unit ([`header_legend`] gives the legend).
 pub(super) fn split_header(h: &str) -> (String, Option<String>) {
+    match bracketed(h) {
+        Some((name, unit, _)) => (normalise(name), Some(unit.to_owned())),
+        None => (normalise(h.trim()), None),
+    }
+}
+
+/// The sign legend after the unit in a header's brackets (`L-/R+` of `Push/Pull (deg L-/R+)`).
+pub(super) fn header_legend(h: &str) -> Option<Legend> {
+    bracketed(h).and_then(|(_, _, legend)| legend)
+}
+
+/// A header's name, the unit in its trailing brackets and the sign legend after that unit.
+fn bracketed(h: &str) -> Option<(&str, &str, Option<Legend>)> {
     let t = h.trim();
     for (open, close) in [('(', ')'), ('[', ']')] {
-        if t.ends_with(close) {
-            if let Some(i) = t.rfind(open) {
-                let inner = &t[i + 1..t.len() - 1];
-                if Unit::parse(inner).is_some() {
-                    return (normalise(&t[..i]), Some(inner.trim().to_owned()));
-                }
+        let Some(i) = t.ends_with(close).then(|| t.rfind(open)).flatten() else {
+            continue;
+        };
+        let inner = t[i + 1..t.len() - 1].trim();
+        if Unit::parse(inner).is_some() {
+            return Some((&t[..i], inner, None));
+        }
+        if let Some((unit, rest)) = inner.split_once(char::is_whitespace) {
+            if let (Some(_), Some(legend)) = (Unit::parse(unit), Legend::parse(rest)) {
+                return Some((&t[..i], unit, Some(legend)));
             }
         }
     }
-    (normalise(t), None)
+    None
 }
 
 #[cfg(test)]
@@ -287,6 +306,15 @@ mod tests {
             ("carry".into(), Some("yd".into()))
         );
         assert_eq!(split_header("Dyn.  Loft"), ("dyn. loft".into(), None));
+        assert_eq!(
+            split_header("Push/Pull (deg L-/R+)"),
+            ("push/pull".into(), Some("deg".into()))
+        );
+        assert_eq!(
+            header_legend("Face Impact Horizontal (mm toe-/heel+)").map(|l| l.text()),
+            Some("toe-/heel+".into())
+        );
+        assert_eq!(header_legend("Ball Speed (mph)"), None);
         assert_eq!(split_header("Club (name)"), ("club (name)".into(), None));
     }
 

@@ -6,11 +6,11 @@
 use std::collections::HashSet;
 use std::path::Path;
 
-use super::cell::split_header;
+use super::cell::{header_legend, split_header};
 use super::table::Table;
 use super::target::Target;
 use super::units::Unit;
-use super::{ColumnSpec, ImportOptions, Mapping, UnknownColumns};
+use super::{ColumnSpec, ImportOptions, Mapping, OffsetSide, UnknownColumns};
 use crate::data::DataError;
 
 /// The index of a column the file does not have (read as empty cells).
@@ -30,6 +30,10 @@ pub(super) struct Resolved<'a> {
     pub unit: Option<Unit>,
     /// Whether that unit was assumed (a preset's default unit; the file and mapping state none).
     pub unit_assumed: bool,
+    /// The factor the header's sign legend gives its signed numbers (1 without a legend).
+    pub legend_sign: i8,
+    /// The side of a positive heel–toe offset, when the header's legend names it.
+    pub legend_offset: Option<OffsetSide>,
 }
 
 /// Find every mapped column in `table` and its unit. Refuses a file missing a required column,
@@ -63,6 +67,8 @@ pub(super) fn resolve_columns<'a>(
                     header: format!("{} (absent)", spec.source[0]),
                     unit: target.unit(),
                     unit_assumed: false,
+                    legend_sign: 1,
+                    legend_offset: None,
                 });
             }
             continue;
@@ -87,6 +93,7 @@ pub(super) fn resolve_columns<'a>(
                 (Some(unit), was_assumed)
             }
         };
+        let (legend_sign, legend_offset) = legend_of(path, table, spec, index)?;
         resolved.push(Resolved {
             spec,
             target,
@@ -94,6 +101,8 @@ pub(super) fn resolve_columns<'a>(
             header: table.header[index].clone(),
             unit,
             unit_assumed,
+            legend_sign,
+            legend_offset,
         });
     }
     if !missing.is_empty() {
@@ -190,16 +199,58 @@ pub(super) fn find_column(
             .filter(|&i| want_unit.is_none() || table.headers[i].1.is_some())
             .collect();
         let has_unit = |i: &&usize| table.headers[**i].1.is_some();
-        let preferred = if target.unit().is_some() {
-            candidates.iter().find(has_unit)
+        // A target without a unit (a club's name, a date) never takes a column with one: with
+        // FlightScope's `club` column gone, `Club (mph)` is not the club.
+        let found = if target.unit().is_some() {
+            candidates.iter().find(has_unit).or(candidates.first())
         } else {
             candidates.iter().find(|i| !has_unit(i))
         };
-        if let Some(&i) = preferred.or(candidates.first()) {
+        if let Some(&i) = found {
             return Some(i);
         }
     }
     None
+}
+
+/// What the sign legend of column `index`'s header (`Push/Pull (deg L-/R+)`) says: the factor
+/// its signed numbers take to follow the mapping's `direction`, and the side of a positive
+/// heel–toe offset. A legend naming sides the column does not have refuses the file; a legend
+/// on a column without a direction (`Lie (deg toe down-/toe up+)`) is documentation only.
+fn legend_of(
+    path: &Path,
+    table: &Table,
+    spec: &ColumnSpec,
+    index: usize,
+) -> Result<(i8, Option<OffsetSide>), DataError> {
+    let header = &table.header[index];
+    let Some(legend) = header_legend(header) else {
+        return Ok((1, None));
+    };
+    let refuse = |allowed: &str| {
+        DataError::at(
+            path,
+            Some(table.header_line),
+            Some(format!("column '{header}'")),
+            format!(
+                "its sign legend '{}' does not name the sides of {} ({allowed}); a mapping \
+                 file can read the column with its own `direction`",
+                legend.text(),
+                spec.target
+            ),
+        )
+    };
+    if let Some(dir) = spec.direction.as_deref() {
+        let sign = legend
+            .sign_for(dir)
+            .ok_or_else(|| refuse("left/right, in-out/out-in, open/closed or low/high"))?;
+        return Ok((sign, None));
+    }
+    if spec.target == "impact_offset_mm" {
+        let side = legend.offset_side().ok_or_else(|| refuse("toe/heel"))?;
+        return Ok((1, Some(side)));
+    }
+    Ok((1, None))
 }
 
 /// Refuse an export whose header names one column twice (case, spacing and the spelling of a

@@ -63,9 +63,7 @@ impl<'r, 'a> Layout<'r, 'a> {
     ) -> Result<Self, DataError> {
         let header_line = table.header_line;
         let has = |name: &str| resolved.iter().any(|r| r.spec.target == name);
-        let offset_side = opts
-            .impact_offset_positive
-            .or(mapping.export.impact_offset_positive);
+        let offset_side = offset_side(path, header_line, resolved, opts, mapping)?;
         let launch_all = check_launch(path, header_line, &has)?;
         let delivery_all = check_delivery(
             path,
@@ -178,6 +176,46 @@ impl<'r, 'a> Layout<'r, 'a> {
         head.extend(&self.numeric);
         head.extend(&self.extra);
         head
+    }
+}
+
+/// The side a positive heel–toe offset points to: the user's `--impact-offset-positive`, the
+/// mapping's, or the header's sign legend (`Face Impact Horizontal (mm toe-/heel+)`); a side
+/// stated that the legend contradicts refuses the file.
+fn offset_side(
+    path: &Path,
+    header_line: usize,
+    resolved: &[Resolved],
+    opts: &ImportOptions,
+    mapping: &Mapping,
+) -> Result<Option<OffsetSide>, DataError> {
+    let stated = opts
+        .impact_offset_positive
+        .or(mapping.export.impact_offset_positive);
+    let Some((r, side)) = resolved
+        .iter()
+        .find_map(|r| r.legend_offset.map(|s| (r, s)))
+    else {
+        return Ok(stated);
+    };
+    match stated {
+        Some(s) if s != side => Err(DataError::at(
+            path,
+            Some(header_line),
+            Some(format!("column '{}'", r.header)),
+            format!(
+                "the header's sign legend says a positive offset points to the {}, but the \
+                 {} says the {}; drop the option or the mapping's impact_offset_positive",
+                side.word(),
+                if opts.impact_offset_positive.is_some() {
+                    "--impact-offset-positive option"
+                } else {
+                    "mapping"
+                },
+                s.word()
+            ),
+        )),
+        _ => Ok(Some(side)),
     }
 }
 

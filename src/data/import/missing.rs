@@ -92,6 +92,51 @@ pub(super) fn club_zeros_not_measured(
             blanked.push((why.to_owned(), format!("line {line}: {n} 0")));
         }
     }
+    // The same monitor writes the impact location and the lie of a club it did not measure
+    // as zeros too (FSX Play without club markers: every club cell 0): a strike at exactly
+    // (0, 0) whose club was not measured is not a measured location.
+    let located = |t: &str| given(values, t) == Some(Some(0.0));
+    let heel_toe = ["impact_offset_mm", "impact_z_mm"]
+        .into_iter()
+        .find(|t| given(values, t).is_some());
+    let zero_location = located("impact_y_mm") && heel_toe.is_some_and(located);
+    let unmeasured = |n: &str| {
+        (zero_location && (n == "impact_y_mm" || Some(n) == heel_toe)) || n == "dynamic_lie_deg"
+    };
+    for (n, v) in values.iter_mut() {
+        if unmeasured(n) && *v == Some(0.0) {
+            *v = None;
+            blanked.push((
+                "impact location or lie exactly 0 where the club was not measured".to_owned(),
+                format!("line {line}: {n} 0"),
+            ));
+        }
+    }
+}
+
+/// Read back and side spin that are both exactly 0 as not measured: a struck ball spins, and
+/// a monitor that lost the spin writes zeros in both (an FSX Play row whose `Total Spin` is
+/// `0 rpm`). The shot then has no spin: left out of what needs a launch, and counted.
+pub(super) fn spin_zeros_not_measured(
+    values: &mut [(&str, Option<f64>)],
+    blanked: &mut Vec<(String, String)>,
+    line: usize,
+) {
+    let zero = |values: &[(&str, Option<f64>)], t: &str| {
+        values.iter().any(|(n, v)| *n == t && *v == Some(0.0))
+    };
+    if !(zero(values, "backspin_rpm") && zero(values, "sidespin_rpm")) {
+        return;
+    }
+    for (n, v) in values.iter_mut() {
+        if matches!(*n, "backspin_rpm" | "sidespin_rpm") {
+            *v = None;
+            blanked.push((
+                "back and side spin both exactly 0 (the spin was not measured)".to_owned(),
+                format!("line {line}: {n} 0"),
+            ));
+        }
+    }
 }
 
 /// Whether `target` is part of the measured launch (a bad cell there leaves the row out).

@@ -21,6 +21,7 @@ mod conventions;
 mod detect;
 mod json;
 mod layout;
+mod legend;
 mod missing;
 mod rows;
 mod summary;

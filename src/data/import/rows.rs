@@ -19,6 +19,7 @@ use super::condition::Condition;
 use super::layout::Layout;
 use super::missing::{
     club_zeros_not_measured, flight_range, launch_target, not_measured, sentinel,
+    spin_zeros_not_measured,
 };
 use super::summary::{summarise, Tally};
 use super::table::{is_unit_row, Table};
@@ -522,7 +523,9 @@ impl RowAt<'_> {
                     let to = r.target.unit().expect("numeric");
                     let v = parse_cell(raw, from, r.spec.direction.as_deref(), self.decimal_comma)
                         .map_err(|m| bad("is not a number", &m))?;
-                    (from.convert(v, to) * f64::from(r.spec.sign.unwrap_or(1)), v)
+                    let sign = r.spec.sign.unwrap_or(1) * r.legend_sign;
+                    // `+ 0.0`: a 0 read with a sign of −1 is 0, never −0.
+                    (from.convert(v, to) * f64::from(sign) + 0.0, v)
                 }
                 None => {
                     let v = parse_number(raw, self.decimal_comma)
@@ -532,7 +535,17 @@ impl RowAt<'_> {
             };
             if !v.is_finite() {
                 let m = format!("{} is not a finite number", crate::data::quote_cell(raw));
-                return Err(bad("is not a finite number", &m));
+                // Where the launch does not need the column, the shot keeps its launch (a
+                // Garmin smash factor `inf` beside a club speed of 0, not measured).
+                if self.strict || launch_target(target) {
+                    return Err(bad("is not a finite number", &m));
+                }
+                blanked.push((
+                    format!("column '{}': not a finite number", r.header),
+                    format!("line {}: {m}", self.line),
+                ));
+                values.push((target, None));
+                continue;
             }
             if let Some(why) = sentinel(target, raw_v) {
                 blanked.push((
@@ -601,6 +614,7 @@ impl RowAt<'_> {
         let mut blanked = Vec::new();
         let mut values = self.values(layout, &mut blanked)?;
         club_zeros_not_measured(&mut values, &mut blanked, self.line);
+        spin_zeros_not_measured(&mut values, &mut blanked, self.line);
         let get = |name: &str| {
             values
                 .iter()
@@ -653,7 +667,8 @@ impl RowAt<'_> {
         let numeric_value = |c: &str| match c {
             "impact_z_mm" if layout.from_offset => {
                 get("impact_offset_mm").map(|o| match layout.offset_side {
-                    Some(super::OffsetSide::Heel) => -o,
+                    // `0.0 - o`, not `-o`: a centred strike is 0, never −0.
+                    Some(super::OffsetSide::Heel) => 0.0 - o,
                     _ => o,
                 })
             }
@@ -727,11 +742,23 @@ impl RowAt<'_> {
             _ => {
                 let c = missing.copied().unwrap_or(spin_cols[0]);
                 let header = layout.column(c).map_or(c, |r| r.header.as_str());
+                // A cell with a value read as not measured (a vendor's 0, a sentinel) is not
+                // an empty cell.
+                let raw = layout.column(c).map_or("", |r| self.cell(r.index).trim());
+                let (what, why) = if raw.is_empty() {
+                    ("empty".to_owned(), "empty cell".to_owned())
+                } else {
+                    let q = crate::data::quote_cell(raw);
+                    (
+                        "not measured".to_owned(),
+                        format!("{q} read as not measured"),
+                    )
+                };
                 let e = self.error_in(
                     Some(header),
-                    format!("empty cell; the measured launch needs {c}"),
+                    format!("{why}; the measured launch needs {c}"),
                 );
-                Err((format!("no measured launch (column '{header}' empty)"), e))
+                Err((format!("no measured launch (column '{header}' {what})"), e))
             }
         }
     }

@@ -11,6 +11,10 @@ use crate::data::DataError;
 
 const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
 
+/// A UTF-8 byte-order mark read as Windows-1252 (`ï»¿`) and written again as UTF-8: what a
+/// tool that does not know the mark leaves at the start of a re-saved export.
+const MANGLED_BOM: &[u8] = "\u{ef}\u{bb}\u{bf}".as_bytes();
+
 /// The export as text, and a note when some bytes were read as Windows-1252.
 pub(super) fn decode<'b>(
     path: &Path,
@@ -33,11 +37,23 @@ pub(super) fn decode<'b>(
         return Ok((Cow::Owned(text), Some(format!("{how}: read as such"))));
     }
     let mut body = bytes;
-    while let Some(rest) = body.strip_prefix(UTF8_BOM) {
-        body = rest;
+    let mut mangled = false;
+    loop {
+        if let Some(rest) = body.strip_prefix(UTF8_BOM) {
+            body = rest;
+        } else if let Some(rest) = body.strip_prefix(MANGLED_BOM) {
+            (body, mangled) = (rest, true);
+        } else {
+            break;
+        }
     }
+    let mangled_note = mangled.then(|| {
+        "the file starts with a byte-order mark saved twice ('ï»¿': read as Windows-1252 and \
+         saved again as UTF-8): dropped"
+            .to_owned()
+    });
     if let Ok(text) = std::str::from_utf8(body) {
-        return Ok((Cow::Borrowed(text), None));
+        return Ok((Cow::Borrowed(text), mangled_note));
     }
     let mut text = String::with_capacity(body.len() + 16);
     let mut converted = 0usize;
@@ -64,10 +80,13 @@ pub(super) fn decode<'b>(
         }
     }
     let (line, b, c) = first.expect("not UTF-8, so at least one byte was converted");
-    let note = format!(
+    let mut note = format!(
         "{converted} byte(s) are not UTF-8 and were read as Windows-1252 (the first on line \
          {line}: 0x{b:02X} = '{c}')"
     );
+    if let Some(m) = mangled_note {
+        note = format!("{m}; {note}");
+    }
     Ok((Cow::Owned(text), Some(note)))
 }
 
@@ -101,6 +120,10 @@ mod tests {
         let (t, n) = decode(p, b"\xEF\xBB\xBF\xEF\xBB\xBFsep=,\n").unwrap();
         assert_eq!(t, "sep=,\n");
         assert!(n.is_none());
+        // A mark read as Windows-1252 and saved again as UTF-8 (FSX Play sessions re-saved).
+        let (t, n) = decode(p, b"\xC3\xAF\xC2\xBB\xC2\xBFShot Number,Club\n").unwrap();
+        assert_eq!(t, "Shot Number,Club\n");
+        assert!(n.unwrap().contains("saved twice"));
         let (t, n) = decode(p, b"a,b\nSwing H (\xB0),\xE2\x80\xB3\n").unwrap();
         assert_eq!(t, "a,b\nSwing H (\u{b0}),\u{2033}\n");
         let n = n.unwrap();
