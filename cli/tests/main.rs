@@ -24,6 +24,7 @@ mod club_match;
 mod cmd;
 mod compare;
 mod conventions;
+mod cor_range;
 mod csv_errors;
 mod diagnose_assumed;
 mod diagnose_honest;

@@ -60,6 +60,17 @@ pub enum ImpactError {
         /// `u1·n`, m/s.
         normal_speed_m_s: f64,
     },
+    /// The restitution law gives a COR no collision has at this impact.
+    #[error(
+        "the club's restitution law gives a COR of {} at this impact, outside (0, 1]: its COR \
+         effects (cor_power, cor_speed, cor_radial, cor_spot, …) leave the range at this club \
+         speed or impact location; check their values",
+        crate::limits::fmt_value(*cor)
+    )]
+    CorOutOfRange {
+        /// The COR the law gives.
+        cor: f64,
+    },
     /// The solve produced a non-finite number (parameters at the edge of floating point).
     #[error("the impact solve produced a non-finite result; check the club's masses, inertia and face radii")]
     NonFinite,
@@ -394,6 +405,11 @@ impl ImpactModel {
         if !(u1n > crate::limits::MIN_NORMAL_APPROACH_M_S) {
             return Err(ImpactError::NotApproaching {
                 normal_speed_m_s: u1n,
+            });
+        }
+        if !s.cor_allowed {
+            return Err(ImpactError::CorOutOfRange {
+                cor: s.cor_effective,
             });
         }
         let (e, slipped) = (s.cor_effective, s.slipped);

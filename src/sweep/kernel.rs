@@ -379,8 +379,11 @@ impl FaceMapKernel {
         let e = laws.restitution.cor_with::<V, POWER>(a.u1n, row.y, z);
         let e_t = V::splat(laws.tangential.e_t);
         let mu = V::splat(laws.tangential.mu.unwrap_or(f64::INFINITY));
+        // A COR outside (0, 1] is no collision (`ImpactError::CorOutOfRange`): the cell is
+        // invalid, as the scalar solve refuses it.
         if !USER {
-            return (e, e_t, mu, a.valid);
+            let allowed = e.gt(V::splat(0.0)) & !e.gt(V::splat(1.0));
+            return (e, e_t, mu, a.valid & allowed);
         }
         use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
         let mut vars: [V; NV] = self.user_vars.map(V::splat);
@@ -392,7 +395,8 @@ impl FaceMapKernel {
         // the effect for them), by the scalar solve's own per-term decision.
         let mut valid = a.valid;
         let (e, e_t, mu) = laws.user.contact(&mut vars, [e, e_t, mu], &mut valid);
-        (e, e_t, mu, valid)
+        let allowed = e.gt(V::splat(0.0)) & !e.gt(V::splat(1.0));
+        (e, e_t, mu, valid & allowed)
     }
 
     /// The impulse on the ball and the ball's angular impulse `r_b × P`, in F, with the laws'

@@ -549,6 +549,7 @@ fn solve_lanes<L: Lanes>(
     ];
     let min_approach = L::splat(crate::limits::MIN_NORMAL_APPROACH_M_S);
     if (!s.normal_approach_speed_m_s.gt(min_approach)).any()
+        || (!s.cor_allowed).any()
         || !(finite(&s.ball_velocity_f_m_s)
             && finite(&s.ball_spin_f_rad_s)
             && finite(&club_dv)

@@ -66,6 +66,10 @@ pub struct ContactSolution<R: Real> {
     pub normal_approach_speed_m_s: R,
     /// Normal COR used.
     pub cor_effective: R,
+    /// Whether that COR is one a collision can have, in (0, 1]: a library law can leave it at
+    /// some deliveries (`cor_power` at a slow club speed, `cor_radial` far from the centre),
+    /// and such an impact cannot be computed.
+    pub cor_allowed: R::Mask,
     /// Impulse on the ball, N·s.
     pub impulse_n_s: Vec3<R>,
     /// Whether friction limited the tangential impulse.
@@ -191,7 +195,9 @@ impl ImpactModel {
             &impulse,
             &ball_angular_impulse,
         );
+        let cor_allowed = e.gt(R::splat(0.0)) & !e.gt(R::splat(1.0));
         ContactSolution {
+            cor_allowed,
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,
             normal_approach_speed_m_s: u1n,

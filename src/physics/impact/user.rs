@@ -86,6 +86,11 @@ impl ImpactModel {
                 .contact_checked(&mut vars, e, t.e_t, t.mu.unwrap_or(f64::INFINITY))?;
             return Err(ImpactError::NonFinite);
         }
+        if !sol.cor_allowed {
+            return Err(ImpactError::CorOutOfRange {
+                cor: sol.cor_effective,
+            });
+        }
         let impulse = Vector3::from(sol.impulse_n_s);
         let r_c = Vector3::from(sol.contact_from_club_com_m);
         FaceOutcome {
