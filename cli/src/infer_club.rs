@@ -60,7 +60,7 @@ pub struct InferClubArgs {
     pub plan_shots: Option<usize>,
 
     /// --plan: spread the impact locations about their mean to these SDs, mm (up, toe).
-    #[arg(long, value_name = "SY,SZ", requires = "plan", value_parser = parse_pair)]
+    #[arg(long, value_name = "SY,SZ", requires = "plan", value_parser = parse_pair, allow_hyphen_values = true)]
     pub impact_spread_mm: Option<(f64, f64)>,
 
     /// --plan: wanted standard errors, `key=SE` comma-separated in the club file's units

@@ -30,8 +30,10 @@ pub struct SynthArgs {
     #[arg(long, value_name = "TRUTH.toml")]
     pub truth: Option<PathBuf>,
 
-    /// Random seed (overrides the configuration's `seed`).
-    #[arg(long, value_name = "N", allow_negative_numbers = true)]
+    /// Random seed (overrides the configuration's `seed`): 0 to 2^63 − 1, the range a TOML
+    /// integer holds, so that the truth file records it and regenerates the same shots.
+    #[arg(long, value_name = "N", allow_negative_numbers = true,
+          value_parser = clap::value_parser!(u64).range(0..=i64::MAX as u64))]
     pub seed: Option<u64>,
 }
 

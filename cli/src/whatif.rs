@@ -36,7 +36,12 @@ pub struct WhatIfArgs {
     #[arg(long, value_name = "DX,DY,DZ", value_parser = parse_vec3, allow_hyphen_values = true, help_heading = "Design change")]
     pub com_shift_mm: Option<[f64; 3]>,
     /// Scale the inertia tensor about the CoM.
-    #[arg(long, value_name = "S", help_heading = "Design change")]
+    #[arg(
+        long,
+        value_name = "S",
+        allow_negative_numbers = true,
+        help_heading = "Design change"
+    )]
     pub moi_scale: Option<f64>,
     /// New bulge radius, mm.
     #[arg(long, value_name = "MM", help_heading = "Design change")]
@@ -97,6 +102,7 @@ pub struct WhatIfArgs {
         long,
         value_name = "MPH",
         default_value_t = 0.0,
+        allow_negative_numbers = true,
         help_heading = "Golfer"
     )]
     pub speed_sd: f64,

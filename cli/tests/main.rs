@@ -39,6 +39,7 @@ mod hostile_input;
 mod hostile_more;
 mod hostile_round2;
 mod hostile_round3;
+mod hostile_round4;
 mod import;
 mod import_corpus;
 mod import_fsx_play;

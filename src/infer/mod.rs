@@ -479,6 +479,12 @@ pub fn run_plan(
     targets: &[(String, f64)],
 ) -> Result<PlanReport, InferError> {
     settings.check()?;
+    if n == Some(0) {
+        return Err(InferError::Setting {
+            key: "plan_shots",
+            why: "0 shots: a plan needs at least 1".to_owned(),
+        });
+    }
     let mut wanted = vec![None; HEAD_PARAMS.len()];
     for (key, t) in targets {
         let Some(j) = HEAD_PARAMS.iter().position(|h| h.key == key) else {
@@ -497,6 +503,16 @@ pub fn run_plan(
             });
         }
         wanted[j] = Some(*t);
+    }
+    if let Some(sd) = impact_sd_mm.filter(|s| !s.iter().all(|v| v.is_finite() && *v > 0.0)) {
+        return Err(InferError::Setting {
+            key: "impact_spread_mm",
+            why: format!(
+                "'{},{}': an impact spread (σ up the face, toward the toe) must be finite and > 0 \
+                 mm on both axes",
+                sd[0], sd[1]
+            ),
+        });
     }
     let design = match impact_sd_mm {
         Some(s) => plan::with_impact_spread(shots, s),

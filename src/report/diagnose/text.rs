@@ -155,19 +155,28 @@ fn candidates_table(st: &Step, wide: bool) -> String {
     let mut t = TextTable::new(header);
     let mut below = String::new();
     for c in &st.candidates {
+        // A candidate whose fit failed has no gain (NaN in the report's types): a dash, never
+        // `NaN`, and no change of the errors.
+        let failed = !c.gain.is_finite();
+        let one = |v: f64| {
+            if v.is_finite() {
+                format!("{v:.1}")
+            } else {
+                "—".to_owned()
+            }
+        };
         let mut row = vec![
             c.label.clone(),
             c.n_params.to_string(),
-            format!("{:.1}", c.gain),
-            format!("{:.1}", c.penalty),
-            format!("{:.1}", c.margin()),
+            one(c.gain),
+            one(c.penalty),
+            one(c.margin()),
         ];
         let pct = if wide { "%" } else { "" };
-        row.extend(
-            c.rms_reduction
-                .iter()
-                .map(|r| format!("{:+.1}{pct}", -100.0 * r)),
-        );
+        row.extend(c.rms_reduction.iter().map(|r| match failed {
+            true => "—".to_owned(),
+            false => format!("{:+.1}{pct}", -100.0 * r),
+        }));
         let (tags, notes) = candidate_notes(st, c);
         if wide {
             row.push(fmt_params(&c.params));
