@@ -304,11 +304,16 @@ fn crlf_shots_files_report_the_right_line() {
         &err,
         &["shots.csv:3", "column 'impact_z_mm'", "'x' is not a number"],
     );
-    let short = format!("{SHOTS_HEADER}\r\ns1,A,100,0,0,12,0,0,0\r\ns2,A,100\r\n");
+    // Two short rows of three: more than half, so the file is refused naming the first (one
+    // would be left out and counted).
+    let short = format!("{SHOTS_HEADER}\r\ns1,A,100,0,0,12,0,0,0\r\ns2,A,100\r\ns3,A,100\r\n");
     let err = case.fails(&paper_club_text(), &short);
     assert_has(
         &err,
-        &["shots.csv:3: found a row with 3 field(s), but the header has 9 (one per column)"],
+        &[
+            "shots.csv:3: found a row with 3 field(s), but the header has 9 (one per column)",
+            "2 of 3 rows",
+        ],
     );
 }
 

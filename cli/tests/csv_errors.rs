@@ -76,6 +76,7 @@ fn the_shots_reader_names_the_line_of_a_short_row_or_a_bad_byte() {
             refused(
                 &[
                     "predict",
+                    "--strict",
                     "--club",
                     &club,
                     "--shots",

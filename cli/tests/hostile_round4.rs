@@ -127,3 +127,53 @@ fn negative_numbers_are_values_and_plans_need_shots() {
         );
     }
 }
+
+/// A shots-file row of the wrong width (an unquoted decimal comma, a cell lost) is one bad row:
+/// left out and counted by every command that reads shots, as import counts it; `--strict`
+/// refuses the file there.
+#[test]
+fn a_row_of_the_wrong_width_is_counted_not_fatal() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = club();
+    let shots = cli_support::synth_world(dir.path(), "paper_world", 2);
+    let text = std::fs::read_to_string(&shots).unwrap();
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let n = lines.len() - 1;
+    lines[5].push_str(",3");
+    let bent = write(dir.path(), "bent.csv", &(lines.join("\n") + "\n"));
+    let out = dir.path().join("pred.csv");
+    let o = smash(&[
+        "predict",
+        "--club",
+        &c,
+        "--shots",
+        s(&bent),
+        "--out",
+        s(&out),
+    ]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains(&format!("left out 1 of {n} rows: a row whose cells do not match the header's columns (line(s) 6"))
+            && e.contains("bent.csv:6: found a row with"),
+        "{e}"
+    );
+    let rows = std::fs::read_to_string(&out).unwrap().lines().count() - 1;
+    assert_eq!(rows, n - 1);
+    let o = smash(&[
+        "predict",
+        "--strict",
+        "--club",
+        &c,
+        "--shots",
+        s(&bent),
+        "--out",
+        s(&out),
+    ]);
+    assert!(!o.status.success());
+    assert!(
+        stderr(&o).contains("bent.csv:6: found a row with"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -39,6 +39,8 @@ fn kind(message: &str) -> &'static str {
         "an empty cell"
     } else if message.contains("has not landed") {
         "a launch that does not land within the time limit"
+    } else if message.starts_with("found a row with") {
+        "a row whose cells do not match the header's columns"
     } else if message.contains("must be") {
         "a launch value the flight model does not take"
     } else {

@@ -210,8 +210,11 @@ pub fn parse_shots_with<R: std::io::Read>(
         return Err(DataError::at(path, Some(1), None, u.refusal()));
     }
     let lines = LineIndex::new(&bytes);
+    // Flexible: a row of the wrong width is one bad row (left out and counted below), not the
+    // end of the file.
     let mut rdr = csv::ReaderBuilder::new()
         .has_headers(true)
+        .flexible(true)
         .trim(csv::Trim::All)
         .from_reader(bytes.as_slice());
     let csv_err = |e: csv::Error| csv_error_at(&lines, path, &e);
@@ -236,6 +239,23 @@ pub fn parse_shots_with<R: std::io::Read>(
     for (row_index, rec) in rdr.records().enumerate() {
         let rec = rec.map_err(csv_err)?;
         let line = rec.position().map_or(row_index + 2, |p| lines.line_of(p));
+        if rec.len() != table.headers.len() {
+            // Its cells cannot be told apart: an unquoted decimal comma, a cell lost.
+            let e = DataError::at(
+                path,
+                Some(line),
+                None,
+                crate::line_index::field_count_message(
+                    rec.len() as u64,
+                    table.headers.len() as u64,
+                ),
+            );
+            if opts.strict {
+                return Err(e);
+            }
+            super::left_out::push_bad(&mut table.left_out, line, e);
+            continue;
+        }
         let cells: Vec<String> = rec.iter().map(str::to_owned).collect();
         let row = Row {
             path,
