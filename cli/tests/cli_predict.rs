@@ -310,10 +310,7 @@ fn crlf_shots_files_report_the_right_line() {
     let err = case.fails(&paper_club_text(), &short);
     assert_has(
         &err,
-        &[
-            "shots.csv:3: found a row with 3 field(s), but the header has 9 (one per column)",
-            "2 of 3 rows",
-        ],
+        &["shots.csv:3: found a row with 3 field(s), but the header has 9 (one per column)"],
     );
 }
 

@@ -214,24 +214,46 @@ fn a_value_out_of_range_names_the_shot_and_an_undefined_effect_is_refused() {
          fast,110,0,0,12,0,0,0\nslow,90,0,0,12,0,0,0\n",
     )
     .unwrap();
-    let o = smash(&[
-        "predict",
-        "--club",
-        club.to_str().unwrap(),
-        "--effect-defs",
-        defs.to_str().unwrap(),
-        "--shots",
-        shots.to_str().unwrap(),
-        "--out",
-        dir.path().join("pred.csv").to_str().unwrap(),
-    ]);
+    // The shot the law has no value for is left out and counted, naming it, the effect and
+    // the expression (one bad row does not sink the others); --strict refuses the file there.
+    let pred = dir.path().join("pred.csv");
+    let run = |strict: bool| {
+        let mut args = vec![
+            "predict",
+            "--club",
+            club.to_str().unwrap(),
+            "--effect-defs",
+            defs.to_str().unwrap(),
+            "--shots",
+            shots.to_str().unwrap(),
+            "--out",
+            pred.to_str().unwrap(),
+        ];
+        if strict {
+            args.push("--strict");
+        }
+        smash(&args)
+    };
+    let o = run(false);
+    let err = String::from_utf8_lossy(&o.stderr).replace("\n  ", " ");
+    assert!(o.status.success(), "{err}");
+    assert!(
+        err.contains("left out 1 of 2 rows: a shot the club cannot solve")
+            && err.contains("slow")
+            && err.contains("e_nan")
+            && err.contains("ln(club_speed_mph - 100)"),
+        "{err}"
+    );
+    assert_eq!(std::fs::read_to_string(&pred).unwrap().lines().count(), 2);
+    std::fs::remove_file(&pred).unwrap();
+    let o = run(true);
     assert!(!o.status.success());
     let err = String::from_utf8_lossy(&o.stderr);
     assert!(
         err.contains("slow") && err.contains("e_nan") && err.contains("ln(club_speed_mph - 100)"),
         "{err}"
     );
-    assert!(!dir.path().join("pred.csv").exists());
+    assert!(!pred.exists());
     // A club file naming a user effect nobody defined.
     let o = smash(&[
         "predict",

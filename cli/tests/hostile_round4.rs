@@ -177,3 +177,44 @@ fn a_row_of_the_wrong_width_is_counted_not_fatal() {
         stderr(&o)
     );
 }
+
+/// A shot the club cannot solve at its own values (here a typo: loft 80°, attack −15°, the club
+/// does not approach the ball) is left out and counted by every command that reads shots, not
+/// the end of the file; `--strict` refuses the file there.
+#[test]
+fn a_shot_the_club_cannot_solve_is_counted_not_fatal() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = club();
+    let shots = cli_support::synth_world(dir.path(), "paper_world", 4);
+    let text = std::fs::read_to_string(&shots).unwrap();
+    let mut r = csv::Reader::from_reader(text.as_bytes());
+    let h = r.headers().unwrap().clone();
+    let col = |name: &str| h.iter().position(|c| c == name).unwrap();
+    let (loft, attack) = (col("dynamic_loft_deg"), col("attack_angle_deg"));
+    let mut lines: Vec<String> = text.lines().map(str::to_owned).collect();
+    let n = lines.len() - 1;
+    let mut cells: Vec<String> = lines[7].split(',').map(str::to_owned).collect();
+    (cells[loft], cells[attack]) = ("80".into(), "-15".into());
+    lines[7] = cells.join(",");
+    let bent = write(dir.path(), "typo.csv", &(lines.join("\n") + "\n"));
+    for command in ["predict", "compare"] {
+        let out = dir.path().join(format!("{command}.csv"));
+        let mut args = vec![command, "--club", &c, "--shots", s(&bent)];
+        if command == "predict" {
+            args.extend(["--out", s(&out)]);
+        }
+        let o = smash(&args);
+        let e = stderr(&o).replace("\n  ", " ");
+        assert!(o.status.success(), "{command}: {e}");
+        assert!(
+            e.contains(&format!(
+                "left out 1 of {n} rows: a shot the club cannot solve (line(s) 8"
+            )) && e.contains("does not approach the ball"),
+            "{command}: {e}"
+        );
+        args.push("--strict");
+        let o = smash(&args);
+        assert!(!o.status.success(), "{command} --strict");
+        assert!(stderr(&o).contains("typo.csv:8:"), "{}", stderr(&o));
+    }
+}

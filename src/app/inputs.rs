@@ -317,7 +317,70 @@ pub fn prepare_table(
     if let Some(w) = groups_without_effects(club.path, club.spec, &table.shots) {
         notes.line(&w);
     }
+    leave_out_unsolvable(club, &mut table, notes)?;
     Ok(Prepared { table, conventions })
+}
+
+/// Why [`leave_out_unsolvable`] leaves a shot out, before its column and kind.
+const UNSOLVABLE: &str = "a shot the club cannot solve";
+
+/// Leave out, and count like a bad row, the shots the club cannot solve at its own values: a
+/// location off this club's face, a delivery that does not approach the ball, a COR law that
+/// leaves (0, 1], a user-defined law with no allowed value there. One such row of a real
+/// export does not sink the others (the shots reader's rule); read with `--strict` the file is
+/// refused at the first, and it is refused when more than half are left out. A club whose
+/// model cannot be built is left to the command, which says why.
+fn leave_out_unsolvable(
+    club: NamedClub,
+    table: &mut ShotTable,
+    notes: &mut dyn Notes,
+) -> anyhow::Result<()> {
+    let Ok(models) = crate::predict::group_models(club.spec, &table.shots) else {
+        return Ok(());
+    };
+    let mut keep = vec![true; table.shots.len()];
+    let mut left: Vec<crate::data::shots::LeftOut> = Vec::new();
+    for (i, shot) in table.shots.iter().enumerate() {
+        let Some(model) = models.get(&shot.group) else {
+            continue;
+        };
+        let Err(source) = model.solve(&shot.delivery) else {
+            continue;
+        };
+        let e = super::predict::shot_error_at(table, i + 1, &shot.id, source);
+        if table.strict {
+            return Err(e.into());
+        }
+        keep[i] = false;
+        let line = table.lines[i];
+        match left.iter_mut().find(|l| l.reason == UNSOLVABLE) {
+            Some(l) => l.lines.push(line),
+            None => left.push(crate::data::shots::LeftOut {
+                reason: UNSOLVABLE.to_owned(),
+                lines: vec![line],
+                first: Some(e),
+            }),
+        }
+    }
+    if left.is_empty() {
+        return Ok(());
+    }
+    let kept = keep.iter().filter(|k| **k).count();
+    crate::data::left_out::retain_kept(&mut table.shots, &keep);
+    crate::data::left_out::retain_kept(&mut table.records, &keep);
+    crate::data::left_out::retain_kept(&mut table.lines, &keep);
+    crate::data::left_out::retain_kept(&mut table.conventions, &keep);
+    let total = kept
+        + table.left_out.iter().map(|l| l.lines.len()).sum::<usize>()
+        + left.iter().map(|l| l.lines.len()).sum::<usize>();
+    let said = crate::data::left_out::notes(&left, total);
+    table.left_out.extend(left);
+    // Refused (no row left, or more than half bad): the refusal's one line says it all.
+    crate::data::left_out::refuse_when_unusable(&table.path, &table.left_out, kept)?;
+    for note in said {
+        notes.note("shots", &note);
+    }
+    Ok(())
 }
 
 /// Compare the shots with the club ([`crate::club_match::check`]) before anything is fitted:

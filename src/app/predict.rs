@@ -83,7 +83,6 @@ pub fn predict_checked(
 /// A shot that cannot be predicted, located in its file: `FILE:LINE: columns …: shot 'ID': …`,
 /// the same form as the shots reader's own errors.
 pub fn locate_shot_error(table: &ShotTable, e: PredictError) -> anyhow::Error {
-    use crate::physics::ImpactError;
     let PredictError::Shot {
         shot_id,
         row,
@@ -92,6 +91,18 @@ pub fn locate_shot_error(table: &ShotTable, e: PredictError) -> anyhow::Error {
     else {
         return anyhow::Error::new(e).context(table.path.display().to_string());
     };
+    shot_error_at(table, row, &shot_id, source).into()
+}
+
+/// The error of shot `shot_id` (1-based `row` of `table`) that cannot be solved, at its file
+/// line with the columns that decide it.
+pub fn shot_error_at(
+    table: &ShotTable,
+    row: usize,
+    shot_id: &str,
+    source: crate::physics::ImpactError,
+) -> crate::data::DataError {
+    use crate::physics::ImpactError;
     let line = row.checked_sub(1).and_then(|i| table.lines.get(i)).copied();
     let place = match source {
         ImpactError::OffFace(_) => Some("columns impact_y_mm, impact_z_mm".to_owned()),
@@ -108,5 +119,4 @@ pub fn locate_shot_error(table: &ShotTable, e: PredictError) -> anyhow::Error {
         place,
         format!("shot '{shot_id}': {source}"),
     )
-    .into()
 }

@@ -193,6 +193,7 @@ mod tests {
             lines: (2..2 + cells.len()).collect(),
             left_out: Vec::new(),
             conventions: Vec::new(),
+            strict: false,
         }
     }
 

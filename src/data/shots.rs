@@ -82,6 +82,9 @@ pub struct ShotTable {
     /// `face_at`, `velocity_at` and `face_angle_from` columns, the model's own convention
     /// where absent. [`crate::conventions::to_model`] brings the shots to the model's.
     pub conventions: Vec<DeliveryConvention>,
+    /// Read with [`ReadOptions::strict`]: a shot a later step cannot use refuses the file
+    /// instead of being left out and counted.
+    pub strict: bool,
 }
 
 pub use super::left_out::{list_lines, LeftOut};
@@ -234,6 +237,7 @@ pub fn parse_shots_with<R: std::io::Read>(
         lines: Vec::new(),
         left_out: Vec::new(),
         conventions: Vec::new(),
+        strict: opts.strict,
     };
     let mut ids = HashSet::new();
     for (row_index, rec) in rdr.records().enumerate() {
