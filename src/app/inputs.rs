@@ -347,7 +347,7 @@ fn leave_out_unsolvable(
         let Err(source) = model.solve(&shot.delivery) else {
             continue;
         };
-        let e = super::predict::shot_error_at(table, i + 1, &shot.id, source);
+        let e = table.shot_error(i + 1, &shot.id, source);
         if table.strict {
             return Err(e.into());
         }

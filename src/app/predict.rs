@@ -91,32 +91,5 @@ pub fn locate_shot_error(table: &ShotTable, e: PredictError) -> anyhow::Error {
     else {
         return anyhow::Error::new(e).context(table.path.display().to_string());
     };
-    shot_error_at(table, row, &shot_id, source).into()
-}
-
-/// The error of shot `shot_id` (1-based `row` of `table`) that cannot be solved, at its file
-/// line with the columns that decide it.
-pub fn shot_error_at(
-    table: &ShotTable,
-    row: usize,
-    shot_id: &str,
-    source: crate::physics::ImpactError,
-) -> crate::data::DataError {
-    use crate::physics::ImpactError;
-    let line = row.checked_sub(1).and_then(|i| table.lines.get(i)).copied();
-    let place = match source {
-        ImpactError::OffFace(_) => Some("columns impact_y_mm, impact_z_mm".to_owned()),
-        ImpactError::NotApproaching { .. } => Some(
-            "columns club_speed_mph, attack_angle_deg, club_path_deg, dynamic_loft_deg, \
-             face_angle_deg, club_omega_*_rad_s"
-                .to_owned(),
-        ),
-        _ => None,
-    };
-    crate::data::DataError::at(
-        &table.path,
-        line,
-        place,
-        format!("shot '{shot_id}': {source}"),
-    )
+    table.shot_error(row, &shot_id, source).into()
 }

@@ -20,6 +20,7 @@ pub mod output_plan;
 pub mod predictions;
 pub mod safe_write;
 pub mod sessions;
+mod shot_error;
 pub mod shots;
 pub mod temporaries;
 pub mod toml_check;
