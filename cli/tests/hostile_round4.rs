@@ -218,3 +218,70 @@ fn a_shot_the_club_cannot_solve_is_counted_not_fatal() {
         assert!(stderr(&o).contains("typo.csv:8:"), "{}", stderr(&o));
     }
 }
+
+/// An empty cell of an optional column (`lie_tilt_deg`, `club_omega_*`, `shaft_mass_g`) is what
+/// an absent column gives (0; no shaft mass): the row is predicted as with those values, and a
+/// column left all empty (a spreadsheet's NaN written out) does not refuse the file.
+#[test]
+fn empty_optional_cells_take_their_defaults() {
+    let dir = tempfile::tempdir().unwrap();
+    let c = club();
+    let shots = cli_support::synth_world(dir.path(), "paper_world", 5);
+    let text = std::fs::read_to_string(&shots).unwrap();
+    let head: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+    let optional = |name: &str| name == "lie_tilt_deg" || name.starts_with("club_omega_");
+    let blank_at = |value: &str| -> String {
+        let mut out = String::new();
+        for (k, line) in text.lines().enumerate() {
+            let cells: Vec<String> = line
+                .split(',')
+                .zip(&head)
+                .map(|(cell, h)| match (k, *h) {
+                    (0, _) => cell.to_owned(),
+                    (_, "shaft_mass_g") => String::new(),
+                    (3, h) if optional(h) => value.to_owned(),
+                    _ => cell.to_owned(),
+                })
+                .collect();
+            out.push_str(&cells.join(","));
+            out.push('\n');
+        }
+        out
+    };
+    let predict = |name: &str, body: &str| {
+        let file = write(dir.path(), name, body);
+        let out = dir.path().join(format!("{name}.pred.csv"));
+        let o = smash(&[
+            "predict",
+            "--club",
+            &c,
+            "--shots",
+            s(&file),
+            "--out",
+            s(&out),
+        ]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        assert!(!stderr(&o).contains("left out"), "{name}: {}", stderr(&o));
+        let text = std::fs::read_to_string(&out).unwrap();
+        let h: Vec<String> = text
+            .lines()
+            .next()
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        let at = h.iter().position(|x| x == "pred_ball_speed_mph").unwrap();
+        let row: Vec<String> = text
+            .lines()
+            .nth(3)
+            .unwrap()
+            .split(',')
+            .map(str::to_owned)
+            .collect();
+        (text.lines().count(), row[at].clone())
+    };
+    let (n_blank, blank) = predict("blank.csv", &blank_at(""));
+    let (n_zero, zero) = predict("zero.csv", &blank_at("0"));
+    assert_eq!(n_blank, text.lines().count());
+    assert_eq!((n_blank, blank), (n_zero, zero));
+}

@@ -5,11 +5,11 @@
 //! | `shot_id` | text | yes | unique id |
 //! | `group` | text | no (`all`) | e.g. the shaft: parameters may be fitted per group |
 //! | `golfer` | text | no | groups cross-validation folds |
-//! | `shaft_mass_g` | g | no | relates added mass to shaft mass |
+//! | `shaft_mass_g` | g | no (an empty cell: none) | relates added mass to shaft mass |
 //! | `club_speed_mph` | mph | yes | clubhead CoM speed |
 //! | `attack_angle_deg`, `club_path_deg`, `dynamic_loft_deg`, `face_angle_deg` | deg | yes | |
-//! | `lie_tilt_deg` | deg | no (0) | |
-//! | `club_omega_{x,y,z}_rad_s` | rad/s | no (0) | clubhead angular velocity in G |
+//! | `lie_tilt_deg` | deg | no (0, an empty cell too) | |
+//! | `club_omega_{x,y,z}_rad_s` | rad/s | no (0, an empty cell too) | clubhead angular velocity in G |
 //! | `impact_y_mm`, `impact_z_mm` | mm | yes | impact location from CoF |
 //! | `ball_speed_mph`, `launch_angle_deg`, `azimuth_deg`, `backspin_rpm`, `sidespin_rpm` | | all or none | measured launch |
 //! | `face_at`, `velocity_at`, `face_angle_from` | text | no (the model's own) | the delivery's convention ([`crate::conventions`]) |
@@ -412,8 +412,11 @@ impl Row<'_> {
     /// impact-location hardware; under `strict` that is refused, naming the cell), or values
     /// the monitor estimated.
     fn left_out(&self, cols: &Columns, opts: ReadOptions) -> Result<Option<String>, DataError> {
+        // An empty optional cell (`lie_tilt_deg`, `club_omega_*`) takes its default, as an
+        // absent column does: only a required one leaves the row out.
         let empty: Vec<DeliveryVar> = DeliveryVar::ALL
             .into_iter()
+            .filter(|v| v.required())
             .filter(|v| cols.delivery[v.index()].is_some_and(|i| self.cells[i].is_empty()))
             .collect();
         if let Some(first) = empty.first() {
@@ -538,13 +541,19 @@ impl Row<'_> {
             .golfer
             .map(|i| self.cells[i].clone())
             .filter(|g| !g.is_empty());
+        // Empty optional cells are what an absent column gives: no shaft mass, a delivery
+        // variable's default (0).
         let shaft_mass_g = match cols.shaft {
+            Some(i) if self.cells[i].is_empty() => None,
             Some(i) => Some(self.ranged(i, limits::SHAFT_MASS_G)?),
             None => None,
         };
         let mut values = [0.0; N_DELIVERY];
         for v in DeliveryVar::ALL {
             if let Some(i) = cols.delivery[v.index()] {
+                if !v.required() && self.cells[i].is_empty() {
+                    continue;
+                }
                 values[v.index()] = self.ranged(i, v.range())?;
             }
         }
