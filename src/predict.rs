@@ -59,20 +59,32 @@ pub fn group_models(
 
 /// Predict every shot, in order. Fails on the first shot that cannot be computed.
 pub fn predict_shots(club: &ClubSpec, shots: &[Shot]) -> Result<Vec<ImpactOutcome>, PredictError> {
-    let models = group_models(club, shots)?;
-    shots
-        .iter()
+    solve_each(club, shots)?
+        .into_iter()
+        .zip(shots)
         .enumerate()
-        .map(|(i, s)| {
-            models[&s.group]
-                .solve(&s.delivery)
-                .map_err(|source| PredictError::Shot {
-                    shot_id: s.id.clone(),
-                    row: i + 1,
-                    source,
-                })
+        .map(|(i, (o, s))| {
+            o.map_err(|source| PredictError::Shot {
+                shot_id: s.id.clone(),
+                row: i + 1,
+                source,
+            })
         })
         .collect()
+}
+
+/// Every shot solved with its group's model, in order, each with its own result (a shot that
+/// cannot be solved does not stop the others); an error only when a group's model cannot be
+/// built.
+pub fn solve_each(
+    club: &ClubSpec,
+    shots: &[Shot],
+) -> Result<Vec<Result<ImpactOutcome, ImpactError>>, PredictError> {
+    let models = group_models(club, shots)?;
+    Ok(shots
+        .iter()
+        .map(|s| models[&s.group].solve(&s.delivery))
+        .collect())
 }
 
 /// Predict every shot of a table.

@@ -335,48 +335,29 @@ fn leave_out_unsolvable(
     table: &mut ShotTable,
     notes: &mut dyn Notes,
 ) -> anyhow::Result<()> {
-    let Ok(models) = crate::predict::group_models(club.spec, &table.shots) else {
+    let Ok(solved) = crate::predict::solve_each(club.spec, &table.shots) else {
         return Ok(());
     };
-    let mut keep = vec![true; table.shots.len()];
-    let mut left: Vec<crate::data::shots::LeftOut> = Vec::new();
-    for (i, shot) in table.shots.iter().enumerate() {
-        let Some(model) = models.get(&shot.group) else {
+    let keep: Vec<bool> = solved.iter().map(Result::is_ok).collect();
+    let mut left = Vec::new();
+    for (i, o) in solved.into_iter().enumerate() {
+        let Err(source) = o else {
             continue;
         };
-        let Err(source) = model.solve(&shot.delivery) else {
-            continue;
-        };
-        let e = table.shot_error(i + 1, &shot.id, source);
+        let e = table.shot_error(i + 1, &table.shots[i].id, source);
         if table.strict {
             return Err(e.into());
         }
-        keep[i] = false;
-        let line = table.lines[i];
-        match left.iter_mut().find(|l| l.reason == UNSOLVABLE) {
-            Some(l) => l.lines.push(line),
-            None => left.push(crate::data::shots::LeftOut {
-                reason: UNSOLVABLE.to_owned(),
-                lines: vec![line],
-                first: Some(e),
-            }),
-        }
+        crate::data::left_out::push(&mut left, table.lines[i], UNSOLVABLE.to_owned(), Some(e));
     }
     if left.is_empty() {
         return Ok(());
     }
-    let kept = keep.iter().filter(|k| **k).count();
-    crate::data::left_out::retain_kept(&mut table.shots, &keep);
-    crate::data::left_out::retain_kept(&mut table.records, &keep);
-    crate::data::left_out::retain_kept(&mut table.lines, &keep);
-    crate::data::left_out::retain_kept(&mut table.conventions, &keep);
-    let total = kept
-        + table.left_out.iter().map(|l| l.lines.len()).sum::<usize>()
-        + left.iter().map(|l| l.lines.len()).sum::<usize>();
-    let said = crate::data::left_out::notes(&left, total);
-    table.left_out.extend(left);
+    let before = table.left_out.len();
+    table.leave_out(&keep, left);
+    let said = crate::data::left_out::notes(&table.left_out[before..], table.rows_read());
     // Refused (no row left, or more than half bad): the refusal's one line says it all.
-    crate::data::left_out::refuse_when_unusable(&table.path, &table.left_out, kept)?;
+    crate::data::left_out::refuse_when_unusable(&table.path, &table.left_out, table.shots.len())?;
     for note in said {
         notes.note("shots", &note);
     }

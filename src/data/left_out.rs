@@ -62,24 +62,23 @@ pub fn push_bad(list: &mut Vec<LeftOut>, line: usize, e: DataError) {
         Some(place) => format!("{} in {place}", kind(&e.message)),
         None => kind(&e.message).to_owned(),
     };
-    match list.iter_mut().find(|l| l.reason == reason) {
-        Some(l) => l.lines.push(line),
-        None => list.push(LeftOut {
-            reason,
-            lines: vec![line],
-            first: Some(e),
-        }),
-    }
+    push(list, line, reason, Some(e));
 }
 
 /// Add a row at `line` left out for `reason` (nothing wrong in it: a choice of the reader).
 pub fn push_reason(list: &mut Vec<LeftOut>, line: usize, reason: String) {
+    push(list, line, reason, None);
+}
+
+/// Add the row at `line` to `list` under `reason`: to its entry when there is one, else to a
+/// new entry whose first row's message is `first`.
+pub fn push(list: &mut Vec<LeftOut>, line: usize, reason: String, first: Option<DataError>) {
     match list.iter_mut().find(|l| l.reason == reason) {
         Some(l) => l.lines.push(line),
         None => list.push(LeftOut {
             reason,
             lines: vec![line],
-            first: None,
+            first,
         }),
     }
 }

@@ -20,8 +20,8 @@ pub mod output_plan;
 pub mod predictions;
 pub mod safe_write;
 pub mod sessions;
-mod shot_error;
 pub mod shots;
+mod shots_left;
 pub mod temporaries;
 pub mod toml_check;
 

@@ -112,8 +112,7 @@ impl ShotTable {
     /// One note per reason rows were left out: how many of all the rows, why, and their first
     /// file lines (`left out 2 of 40 rows: no impact location (line(s) 5, 9; …)`).
     pub fn left_out_notes(&self) -> Vec<String> {
-        let total = self.shots.len() + self.left_out.iter().map(|l| l.lines.len()).sum::<usize>();
-        super::left_out::notes(&self.left_out, total)
+        super::left_out::notes(&self.left_out, self.rows_read())
     }
 
     /// Do the shots carry measured launch conditions?
@@ -151,16 +150,15 @@ impl ShotTable {
             return 0;
         }
         let keep: Vec<bool> = table.conventions.iter().map(|c| !derived(c)).collect();
-        crate::data::left_out::retain_kept(&mut table.shots, &keep);
-        crate::data::left_out::retain_kept(&mut table.records, &keep);
-        crate::data::left_out::retain_kept(&mut table.lines, &keep);
-        table.conventions.retain(|c| !derived(c));
         let n = lines.len();
-        table.left_out.push(LeftOut {
-            reason: DERIVED_LEFT_OUT.to_owned(),
-            lines,
-            first: None,
-        });
+        table.leave_out(
+            &keep,
+            vec![LeftOut {
+                reason: DERIVED_LEFT_OUT.to_owned(),
+                lines,
+                first: None,
+            }],
+        );
         n
     }
 }

@@ -36,7 +36,7 @@ use crate::lanes::each3;
 mod contact;
 mod shot;
 mod user;
-pub use contact::{ContactInputs, ContactSolution};
+pub use contact::{cor_allowed, ContactInputs, ContactSolution};
 pub use shot::ShotConsts;
 pub use user::{pre_solve_base, ShotModel};
 

@@ -53,6 +53,7 @@ mod located;
 use super::fastmath::atan2_v;
 pub use crate::lanes::{simd_level, SimdLevel};
 use crate::lanes::{M, V, W};
+use crate::physics::impact::cor_allowed;
 use crate::physics::laws::{LawWithCor, LawWithUser, Laws};
 use crate::physics::{Delivery, ImpactModel, ModelParams};
 pub use eval::{face_map, face_map_into};
@@ -382,8 +383,7 @@ impl FaceMapKernel {
         // A COR outside (0, 1] is no collision (`ImpactError::CorOutOfRange`): the cell is
         // invalid, as the scalar solve refuses it.
         if !USER {
-            let allowed = e.gt(V::splat(0.0)) & !e.gt(V::splat(1.0));
-            return (e, e_t, mu, a.valid & allowed);
+            return (e, e_t, mu, a.valid & cor_allowed(e));
         }
         use crate::physics::user_terms::{NV, VAR_IMPACT_Y, VAR_IMPACT_Z, VAR_U1N, VAR_UT};
         let mut vars: [V; NV] = self.user_vars.map(V::splat);
@@ -395,8 +395,7 @@ impl FaceMapKernel {
         // the effect for them), by the scalar solve's own per-term decision.
         let mut valid = a.valid;
         let (e, e_t, mu) = laws.user.contact(&mut vars, [e, e_t, mu], &mut valid);
-        let allowed = e.gt(V::splat(0.0)) & !e.gt(V::splat(1.0));
-        (e, e_t, mu, valid & allowed)
+        (e, e_t, mu, valid & cor_allowed(e))
     }
 
     /// The impulse on the ball and the ball's angular impulse `r_b × P`, in F, with the laws'

@@ -54,6 +54,14 @@ impl ContactInputs<f64> {
     }
 }
 
+/// Whether a COR `e` is one a collision can have, lane by lane: in (0, 1]. A library law can
+/// leave that range at some deliveries (`cor_power` at a slow club speed, `cor_radial` far from
+/// the centre); every path that solves an impact refuses it there.
+#[inline(always)]
+pub fn cor_allowed<R: Real>(e: R) -> R::Mask {
+    e.gt(R::splat(0.0)) & !e.gt(R::splat(1.0))
+}
+
 /// The contact mechanics of [`ImpactModel::solve_contact`], face frame `F`, SI units.
 #[derive(Debug, Clone, Copy)]
 pub struct ContactSolution<R: Real> {
@@ -66,9 +74,7 @@ pub struct ContactSolution<R: Real> {
     pub normal_approach_speed_m_s: R,
     /// Normal COR used.
     pub cor_effective: R,
-    /// Whether that COR is one a collision can have, in (0, 1]: a library law can leave it at
-    /// some deliveries (`cor_power` at a slow club speed, `cor_radial` far from the centre),
-    /// and such an impact cannot be computed.
+    /// Whether that COR is one a collision can have ([`cor_allowed`]).
     pub cor_allowed: R::Mask,
     /// Impulse on the ball, N·s.
     pub impulse_n_s: Vec3<R>,
@@ -195,9 +201,8 @@ impl ImpactModel {
             &impulse,
             &ball_angular_impulse,
         );
-        let cor_allowed = e.gt(R::splat(0.0)) & !e.gt(R::splat(1.0));
         ContactSolution {
-            cor_allowed,
+            cor_allowed: cor_allowed(e),
             contact_from_club_com_m: fi.r_c,
             contact_from_ball_com_m: fi.r_b,
             normal_approach_speed_m_s: u1n,

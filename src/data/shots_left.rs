@@ -1,6 +1,8 @@
-//! A shot the model cannot solve, located in its shots file like the reader's own errors.
+//! What a command leaves out of a shots table after reading it: the rows dropped from every
+//! parallel vector alike and counted, and a shot the model cannot solve, located in its shots
+//! file like the reader's own errors.
 
-use super::shots::ShotTable;
+use super::shots::{LeftOut, ShotTable};
 use super::DataError;
 
 impl ShotTable {
@@ -30,5 +32,20 @@ impl ShotTable {
             place,
             format!("shot '{shot_id}': {source}"),
         )
+    }
+
+    /// Keep the shots whose entry in `keep` is true (every parallel vector alike) and count
+    /// the others under `left` (their reasons and lines).
+    pub fn leave_out(&mut self, keep: &[bool], left: Vec<LeftOut>) {
+        super::left_out::retain_kept(&mut self.shots, keep);
+        super::left_out::retain_kept(&mut self.records, keep);
+        super::left_out::retain_kept(&mut self.lines, keep);
+        super::left_out::retain_kept(&mut self.conventions, keep);
+        self.left_out.extend(left);
+    }
+
+    /// Rows read: the shots kept and the rows left out.
+    pub fn rows_read(&self) -> usize {
+        self.shots.len() + self.left_out.iter().map(|l| l.lines.len()).sum::<usize>()
     }
 }
