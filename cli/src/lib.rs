@@ -228,8 +228,8 @@ pub use smash::app::inputs::impact_noise_from_mm;
 pub struct ShotsFormatArgs {
     /// Format of the shots input: `shots` (default; `auto` for `smash import`), `auto` (the
     /// layout recognised from the header or the JSON keys), a launch-monitor preset (trackman,
-    /// flightscope, foresight, foresight-session, uneekor, garmin-r10, rapsodo, skytrak, gspro)
-    /// or a mapping file NAME.toml (docs/import.md).
+    /// flightscope, foresight, foresight-session, uneekor, garmin-r10, rapsodo, skytrak,
+    /// awesome-golf, gspro) or a mapping file NAME.toml (docs/import.md).
     #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
     pub format: Option<String>,
 

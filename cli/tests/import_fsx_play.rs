@@ -11,27 +11,12 @@
 
 use crate::cli_support;
 
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-use cli_support::{repo, s, smash, unwrapped as stderr, write};
+use cli_support::{csv_rows as rows, repo, s, smash, unwrapped as stderr, write};
 
 fn fixture(name: &str) -> PathBuf {
     repo(&format!("cli/tests/fixtures/import/{name}"))
-}
-
-/// The output rows of a successful import, as header → cell maps.
-fn rows(path: &Path) -> Vec<HashMap<String, String>> {
-    let mut r = csv::Reader::from_path(path).unwrap();
-    let head: Vec<String> = r.headers().unwrap().iter().map(str::to_owned).collect();
-    r.records()
-        .map(|rec| {
-            head.iter()
-                .cloned()
-                .zip(rec.unwrap().iter().map(str::to_owned))
-                .collect()
-        })
-        .collect()
 }
 
 #[test]

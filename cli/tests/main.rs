@@ -47,6 +47,7 @@ mod import_hostile;
 mod import_mutations;
 mod import_real;
 mod import_unseen;
+mod import_unseen3;
 mod infer_club;
 mod json_schema;
 mod library_forms;

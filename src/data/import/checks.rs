@@ -71,6 +71,16 @@ impl SpinCheck {
 /// written to 0.01 (±0.005) and the speeds to 0.1 mph (±0.001 on the ratio).
 const SMASH_TOLERANCE: f64 = 0.01;
 
+/// [`SMASH_TOLERANCE`], or more for speeds written in whole mph (SkyTrak: `106` and `76`),
+/// whose ratio may be off by `0.5/club·(1 + ball/club)` by their rounding alone (0.016 at 76 mph),
+/// plus the factor's own ±0.005.
+fn smash_tolerance(ball: f64, club: f64) -> f64 {
+    if ball.fract() != 0.0 || club.fract() != 0.0 {
+        return SMASH_TOLERANCE;
+    }
+    SMASH_TOLERANCE.max(0.005 + 0.5 / club * (1.0 + ball / club))
+}
+
 /// The redundant values of the shots written.
 #[derive(Default)]
 pub(super) struct Redundancy {
@@ -136,7 +146,7 @@ impl Redundancy {
         }
         if let Some((factor, ball, club)) = smash {
             self.smash_checked += 1;
-            if club > 0.0 && (factor - ball / club).abs() > SMASH_TOLERANCE {
+            if club > 0.0 && (factor - ball / club).abs() > smash_tolerance(ball, club) {
                 self.smash_bad.push(line);
                 self.smash_first.get_or_insert(format!(
                     "line {line}: smash factor {factor} where ball speed / club speed = {:.3}",

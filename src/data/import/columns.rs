@@ -117,7 +117,10 @@ pub(super) fn resolve_columns<'a>(
             Some(table.header_line),
             None,
             format!(
-                "not a {vendor} export as expected: missing column(s) {}; the file has: {}",
+                "not a {vendor} export as expected: missing column(s) {}; the file has: {}; if \
+                 the monitor does not measure them (an original Mevo gives no launch \
+                 direction), a mapping file can give each an `assume` value (docs/import.md, \
+                 \"Mapping files\")",
                 missing.join(", "),
                 listed(&present, ", ")
             ),
@@ -184,8 +187,8 @@ const SHOWN_NAME_CHARS: usize = 48;
 /// (case and spacing ignored). A header may name a column twice when a unit tells the two apart
 /// (FlightScope writes `club` for the club's name and `Club (mph)` for its speed): a source
 /// written with a unit (`Club (mph)`) takes only a column with a unit, a text target prefers the
-/// column without one, and a numeric target the column with one. Columns already `used` are
-/// skipped.
+/// column without one, and a numeric target the column with one; a source's unit and the
+/// column's must measure the same kind of quantity. Columns already `used` are skipped.
 pub(super) fn find_column(
     table: &Table,
     source: &[String],
@@ -194,9 +197,19 @@ pub(super) fn find_column(
 ) -> Option<usize> {
     for name in source {
         let (want, want_unit) = split_header(name);
+        // A source written with a unit takes a column with a unit of the same kind (`SIDE
+        // (rpm)` is not SkyTrak's `SIDE` in degrees).
+        let kind = |u: &str| Unit::parse(u).map(|u| u.quantity);
+        let fits = |i: usize| match (&want_unit, &table.headers[i].1) {
+            (None, _) => true,
+            (Some(_), None) => false,
+            (Some(w), Some(u)) => match (kind(w), kind(u)) {
+                (Some(a), Some(b)) => a == b,
+                _ => true,
+            },
+        };
         let candidates: Vec<usize> = (0..table.headers.len())
-            .filter(|&i| !used[i] && table.headers[i].0 == want)
-            .filter(|&i| want_unit.is_none() || table.headers[i].1.is_some())
+            .filter(|&i| !used[i] && table.headers[i].0 == want && fits(i))
             .collect();
         let has_unit = |i: &&usize| table.headers[**i].1.is_some();
         // A target without a unit (a club's name, a date) never takes a column with one: with

@@ -47,7 +47,7 @@ use super::shots::{parse_shots_with, ReadOptions, ShotTable};
 use super::DataError;
 
 /// The presets: name and the mapping TOML built into the binary.
-pub const PRESETS: [(&str, &str); 12] = [
+pub const PRESETS: [(&str, &str); 13] = [
     (
         "trackman",
         include_str!("../../../configs/import/trackman.toml"),
@@ -92,6 +92,10 @@ pub const PRESETS: [(&str, &str); 12] = [
     (
         "flightscope-scrape",
         include_str!("../../../configs/import/flightscope-scrape.toml"),
+    ),
+    (
+        "awesome-golf",
+        include_str!("../../../configs/import/awesome-golf.toml"),
     ),
 ];
 
@@ -189,6 +193,10 @@ pub struct ExportSpec {
     /// shot is written with `flight_modelled = 1`.
     #[serde(default)]
     pub flight_modelled: bool,
+    /// Rows whose only text is in the first cell name (the club of) the rows under them
+    /// (SkyTrak): they are read as a column of this name, which a mapping can take.
+    #[serde(default)]
+    pub section_rows: Option<String>,
 }
 
 /// [`ExportSpec::unknown_columns`].
@@ -468,7 +476,16 @@ pub fn import(
         .map(|n| split_header(n).0)
         .collect();
     let known = |name: &str| names.contains(name);
-    let table = read_table(path, bytes, mapping.export.skip_lines, vendor, &known)?;
+    let mut table = read_table(path, bytes, mapping.export.skip_lines, vendor, &known)?;
+    if let Some(name) = &mapping.export.section_rows {
+        let found = table.sections_as_column(name);
+        if found > 0 {
+            table.notes.push(format!(
+                "{found} row(s) with text in the first cell only read as the '{name}' of the \
+                 rows under them"
+            ));
+        }
+    }
     let (resolved, column_notes) = resolve_columns(path, &table, mapping, opts)?;
     let mut notes = table.notes.clone();
     notes.extend(column_notes);
@@ -533,68 +550,4 @@ fn export_places(layout: &Layout) -> Vec<(&'static str, String)> {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// A mapping's conventions: each value allowed for its target, one point per quantity.
-    #[test]
-    fn conventions_are_checked() {
-        let map = |cols: &str| {
-            parse_mapping(
-                Path::new("m.toml"),
-                &format!("[export]\nname = \"M\"\n{cols}"),
-            )
-        };
-        let col = |t: &str, extra: &str| {
-            format!("[[column]]\ntarget = \"{t}\"\nsource = [\"{t}\"]\n{extra}\n")
-        };
-        let err = |cols: String| map(&cols).unwrap_err().to_string();
-        let e = err(col("dynamic_loft_deg", "at = \"geometric_centre\""));
-        assert!(e.contains("allowed: face_centre, contact_point"), "{e}");
-        let e = err(col("club_speed_mph", "at = \"contact_point\""));
-        assert!(
-            e.contains("allowed: com, geometric_centre, face_centre"),
-            "{e}"
-        );
-        let e = err(col("ball_speed_mph", "at = \"com\""));
-        assert!(e.contains("`at` is for the delivery"), "{e}");
-        let e = err(col("dynamic_loft_deg", "how = \"derived_from_launch\""));
-        assert!(
-            e.contains("only face_angle_deg may be derived_from_launch"),
-            "{e}"
-        );
-        let e = err(col("dynamic_loft_deg", "at = \"contact_point\"")
-            + &col("face_angle_deg", "at = \"face_centre\""));
-        assert!(e.contains("must state the same point"), "{e}");
-        let ok = col("dynamic_loft_deg", "at = \"contact_point\"")
-            + &col(
-                "face_angle_deg",
-                "at = \"contact_point\"\nhow = \"derived_from_launch\"",
-            );
-        assert!(map(&ok).is_ok());
-    }
-
-    #[test]
-    fn presets_parse() {
-        for (name, _) in PRESETS {
-            load_mapping(name).unwrap_or_else(|e| panic!("{name}: {e}"));
-        }
-        assert!(load_mapping("gcquad").is_ok());
-        // Every preset records, per delivery column, where and how the vendor defines it.
-        for (name, _) in PRESETS {
-            let m = load_mapping(name).unwrap();
-            for c in m.column.iter().filter(|c| {
-                crate::model::DeliveryVar::from_column(&c.target).is_some_and(|v| {
-                    !matches!(
-                        v,
-                        crate::model::DeliveryVar::ImpactY | crate::model::DeliveryVar::ImpactZ
-                    ) && v.required()
-                })
-            }) {
-                assert!(c.at.is_some() && c.how.is_some(), "{name}: {}", c.target);
-            }
-        }
-        let e = load_mapping("nosuch").unwrap_err().to_string();
-        assert!(e.contains("unknown format"), "{e}");
-    }
-}
+mod tests;

@@ -125,6 +125,7 @@ pub(super) fn read_table(
         ));
     }
     let unit_row = merge_unit_rows(path, found)?;
+    let headers = units_of_twins(headers, unit_row.as_ref());
     let cut_last = cut_in_quotes(body, &rows, last_start, delimiter);
     Ok(Table {
         header_line,
@@ -137,6 +138,71 @@ pub(super) fn read_table(
         cut_last,
         broken: Vec::new(),
     })
+}
+
+impl Table {
+    /// Rows whose only text is in their first cell, not a number (SkyTrak writes the club this
+    /// way, `PW` or `"9 IRON"`, above its shots), taken out and read as a column `name` of the
+    /// rows under them, added after the header's last column; a row above the first such row
+    /// gets an empty cell. A row with fewer cells than the header is left as it is (its cut is
+    /// found as any cut row's). Returns how many such rows name rows under them (notes at the
+    /// end of a file name none); with no such row, nothing changes.
+    pub(super) fn sections_as_column(&mut self, name: &str) -> usize {
+        let section = |cells: &[String]| match cells.split_first() {
+            Some((first, rest)) => {
+                !first.is_empty()
+                    && first.parse::<f64>().is_err()
+                    && rest.iter().all(|c| c.is_empty())
+            }
+            None => false,
+        };
+        let found = self.rows.iter().filter(|(_, c)| section(c)).count();
+        if found == 0 {
+            return 0;
+        }
+        let width = self.header.len();
+        let (mut current, mut fresh, mut named) = (String::new(), false, 0);
+        self.rows.retain_mut(|(_, cells)| {
+            if section(cells) {
+                current = cells[0].clone();
+                fresh = true;
+                return false;
+            }
+            if cells.len() >= width {
+                cells.insert(width, current.clone());
+            }
+            named += usize::from(std::mem::take(&mut fresh));
+            true
+        });
+        self.header.push(name.to_owned());
+        self.headers.push(split_header(name));
+        named
+    }
+}
+
+/// The header's names with the units row's unit given to each name the header writes twice
+/// without one: SkyTrak writes `SIDE` for its side spin and its side angle, told apart only by
+/// `RPM` and `DEG` in the units row under them. Other names keep their header unit (or none).
+fn units_of_twins(
+    mut headers: Vec<(String, Option<String>)>,
+    unit_row: Option<&Row>,
+) -> Vec<(String, Option<String>)> {
+    let Some((_, units)) = unit_row else {
+        return headers;
+    };
+    let twice: Vec<bool> = headers
+        .iter()
+        .map(|(n, u)| {
+            u.is_none() && !n.is_empty() && headers.iter().filter(|(m, _)| m == n).count() > 1
+        })
+        .collect();
+    for (i, (_, u)) in headers.iter_mut().enumerate() {
+        match units.get(i) {
+            Some(cell) if twice[i] && Unit::parse(cell).is_some() => *u = Some(cell.clone()),
+            _ => {}
+        }
+    }
+    headers
 }
 
 /// The units rows found (above the header, under it, under the first shot) as one: each
@@ -154,7 +220,9 @@ fn merge_unit_rows(path: &Path, found: Vec<Row>) -> Result<Option<Row>, DataErro
                 Some(other),
                 Some(format!("column {}", i + 1)),
                 format!(
-                    "a second units row: line {line} says '{}' and line {other} says '{}' for                      this column; which one holds is not clear: keep one units row, under the                      header",
+                    "a second units row: line {line} says '{}' and line {other} says '{}' for \
+                     this column; which one holds is not clear: keep one units row, under the \
+                     header",
                     cells[i], more[i]
                 ),
             ));
@@ -360,6 +428,12 @@ pub(super) fn is_unit_row(cells: &[String]) -> bool {
     };
     let units = non_empty.iter().filter(|c| unit(c)).count();
     if non_empty.iter().all(|c| is_unitish(c)) && units >= 1 {
+        return true;
+    }
+    // Units written without brackets among a few other words (SkyTrak: `#,L/R,MPH,DEG,RPM,…,
+    // SCORE`): no number, and units in at least half the cells, three at least.
+    let number = |c: &str| c.trim().parse::<f64>().is_ok();
+    if !non_empty.iter().any(|c| number(c)) && units >= 3 && 2 * units >= non_empty.len() {
         return true;
     }
     legend(first)
