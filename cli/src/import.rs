@@ -14,8 +14,8 @@ use smash::data::write_atomic;
                   --format auto (the default) recognises the layout from the header or JSON keys.\n\
                   Presets: trackman, flightscope (mevo), foresight (gc3, gcquad, fsx),\n\
                   foresight-session (FSX .session JSON), uneekor, garmin-r10 (garmin, r10),\n\
-                  rapsodo (mlm2pro), skytrak, awesome-golf, gspro. A mapping file (TOML)\n\
-                  describes any other export; see docs/import.md."
+                  rapsodo (mlm2pro), skytrak, awesome-golf, square-golf, gspro. A mapping\n\
+                  file (TOML) describes any other export; see docs/import.md."
 )]
 pub struct ImportArgs {
     /// The export (CSV).

@@ -229,7 +229,7 @@ pub struct ShotsFormatArgs {
     /// Format of the shots input: `shots` (default; `auto` for `smash import`), `auto` (the
     /// layout recognised from the header or the JSON keys), a launch-monitor preset (trackman,
     /// flightscope, foresight, foresight-session, uneekor, garmin-r10, rapsodo, skytrak,
-    /// awesome-golf, gspro) or a mapping file NAME.toml (docs/import.md).
+    /// awesome-golf, square-golf, gspro) or a mapping file NAME.toml (docs/import.md).
     #[arg(long, value_name = "FORMAT", help_heading = "Input format")]
     pub format: Option<String>,
 

@@ -7,7 +7,9 @@
 //!   its own above its shots, `AVG` rows, notes at the end;
 //! - Awesome Golf's export (read as SkyTrak before, its face, club and spin reading unused): a
 //!   face and dynamic loft made from the launch;
-//! - the original Mevo's export, whose refusal named a column the file has.
+//! - the original Mevo's export, whose refusal named a column the file has;
+//! - Square Golf's range export (read as Uneekor before): club speed in m/s beside a ball speed
+//!   in mph, `T708` for topspin.
 
 use crate::cli_support;
 
@@ -148,4 +150,34 @@ fn an_original_mevo_export_is_refused_naming_what_it_lacks_not_what_it_has() {
         s(&out),
     ]);
     assert!(stderr(&o).contains("`assume` value"), "{}", stderr(&o));
+}
+
+#[test]
+fn a_square_golf_export_reads_its_club_speed_in_m_s_and_its_topspin() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("shots.csv");
+    let o = smash(&["import", s(&unseen("square_golf.csv")), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("read as square-golf (22 of the file's 22 column(s) known to it)"),
+        "{e}"
+    );
+    assert!(e.contains("skipped 2 average row(s)"), "{e}");
+    assert!(e.contains("ClubSpeed in m/s"), "{e}");
+    let r = rows(&out);
+    assert_eq!(r.len(), 4, "{r:?}");
+    // Line 4: every club cell 0, the club not measured.
+    assert_eq!(r[0]["club_speed_mph"], "");
+    assert_eq!(r[0]["face_angle_deg"], "");
+    // 36.9 m/s.
+    let club: f64 = r[1]["club_speed_mph"].parse().unwrap();
+    assert!((club - 36.9 / 0.44704).abs() < 1e-9, "{club}");
+    assert_eq!(r[1]["face_angle_deg"], "-2.4");
+    assert_eq!(r[1]["club_path_deg"], "1.1");
+    // A topped ball: `T35` is 35 rpm of topspin.
+    assert_eq!(r[2]["backspin_rpm"], "-35");
+    assert_eq!(r[2]["sidespin_rpm"], "-654");
+    // Impact is not read: its vertical zero is not the face centre.
+    assert!(!r[1].contains_key("impact_y_mm"), "{:?}", r[1]);
 }

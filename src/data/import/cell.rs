@@ -23,6 +23,8 @@ pub(super) fn direction_words(
     const D: &[&str] = &["D", "DOWN", "DN"];
     const IO: &[&str] = &["I-O", "IN-OUT", "IN-TO-OUT", "I/O", "IO"];
     const OI: &[&str] = &["O-I", "OUT-IN", "OUT-TO-IN", "O/I", "OI"];
+    const B: &[&str] = &["B", "BACK", "BACKSPIN"];
+    const T: &[&str] = &["T", "TOP", "TOPSPIN"];
     Some(match direction {
         "R+" => (R, L),
         "L+" => (L, R),
@@ -30,12 +32,14 @@ pub(super) fn direction_words(
         "D+" => (D, U),
         "I-O+" => (IO, OI),
         "O-I+" => (OI, IO),
+        // Square Golf writes a topped ball's spin `T708`: topspin, negative backspin.
+        "B+" => (B, T),
         _ => return None,
     })
 }
 
 /// The `direction` values a mapping may give.
-pub(super) const DIRECTIONS: [&str; 6] = ["R+", "L+", "U+", "D+", "I-O+", "O-I+"];
+pub(super) const DIRECTIONS: [&str; 7] = ["R+", "L+", "U+", "D+", "I-O+", "O-I+", "B+"];
 
 /// Parse a number as an export writes it: `1,234.5` (thousands commas) or, in a file that
 /// writes decimal commas, `1.234,5` / `3.083` (thousands dots) and `3,5`. `None`: not a number.
@@ -178,7 +182,7 @@ pub(super) fn parse_cell(
     // `2.4°L`, `11.7°R`: a unit glued to a letter.
     let is_side = |w: &str| {
         let upper = w.to_ascii_uppercase();
-        ["R+", "U+", "I-O+"]
+        ["R+", "U+", "I-O+", "B+"]
             .iter()
             .filter_map(|d| direction_words(d))
             .any(|(p, n)| p.contains(&upper.as_str()) || n.contains(&upper.as_str()))
@@ -364,6 +368,9 @@ mod tests {
             assert_eq!(p(raw, Some("R+")), Ok(want), "{raw}");
         }
         assert_eq!(p("3.1 U", Some("U+")), Ok(3.1));
+        assert_eq!(p("T708", Some("B+")), Ok(-708.0));
+        assert_eq!(p("B 2650", Some("B+")), Ok(2650.0));
+        assert!(p("T708", Some("R+")).is_err());
         assert_eq!(p("D 3.1", Some("U+")), Ok(-3.1));
         assert_eq!(p("4.2 I-O", Some("I-O+")), Ok(4.2));
         assert_eq!(p("4.2° O-I", Some("I-O+")), Ok(-4.2));

@@ -47,7 +47,7 @@ use super::shots::{parse_shots_with, ReadOptions, ShotTable};
 use super::DataError;
 
 /// The presets: name and the mapping TOML built into the binary.
-pub const PRESETS: [(&str, &str); 13] = [
+pub const PRESETS: [(&str, &str); 14] = [
     (
         "trackman",
         include_str!("../../../configs/import/trackman.toml"),
@@ -96,6 +96,10 @@ pub const PRESETS: [(&str, &str); 13] = [
     (
         "awesome-golf",
         include_str!("../../../configs/import/awesome-golf.toml"),
+    ),
+    (
+        "square-golf",
+        include_str!("../../../configs/import/square-golf.toml"),
     ),
 ];
 
