@@ -209,7 +209,7 @@ fn predict_file(
     let outcomes = predict_checked(&args.club, club, shots_path, &table)?;
     let mut bytes = predictions_csv(&table, &outcomes);
     if args.flight {
-        bytes = add_flight(args, shots_path, &bytes, &outcomes)?;
+        bytes = add_flight(args, shots_path, &bytes, (&outcomes, &table.lines))?;
     }
     write_atomic(out, &bytes)?;
     eprintln!(
@@ -304,12 +304,15 @@ fn predict_one(args: &PredictArgs, club: &ClubSpec) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// Fly the predicted launches and append the flight columns to the predictions CSV.
+/// Fly the predicted launches and append the flight columns to the predictions CSV (`lines`:
+/// each outcome's line in the shots file). A predicted launch the flight model does not take
+/// (over its speed range, never landing) keeps its prediction with empty flight cells, counted
+/// in one note naming the first.
 fn add_flight(
     args: &PredictArgs,
     shots_path: &std::path::Path,
     predictions: &[u8],
-    outcomes: &[smash::physics::ImpactOutcome],
+    (outcomes, lines): (&[smash::physics::ImpactOutcome], &[usize]),
 ) -> anyhow::Result<Vec<u8>> {
     use smash::data::flight_files::{flight_csv, parse_raw_csv, OutputLayout};
     use smash::data::flight_measured::check_measured;
@@ -325,12 +328,31 @@ fn add_flight(
     )?;
     let layout = OutputLayout::new(&shots_raw.headers, cfg.ground.is_some());
     check_measured(shots_path, &layout, &shots_raw.records, &shots_raw.lines)?;
-    let flights = crate::flight::collect(
-        shots_path,
-        &shots_raw.lines,
-        "pred_",
-        smash::flight::fly(&cfg, &launches),
-    )?;
+    let mut unflown: Vec<usize> = Vec::new();
+    let mut first = None;
+    let flights: Vec<Option<smash::flight::Flight>> = smash::flight::fly(&cfg, &launches)
+        .into_iter()
+        .zip(lines)
+        .map(|(r, &line)| {
+            r.map_err(|e| {
+                unflown.push(line);
+                first.get_or_insert_with(|| format!("line {line}: {e}"));
+            })
+            .ok()
+        })
+        .collect();
+    if let Some(first) = first {
+        eprintln!(
+            "{}",
+            smash::report::text::wrap_long(&format!(
+                "predict: {} of {} predicted launch(es) could not be flown, their flight columns \
+                 left empty (line(s) {}; the first, {first})",
+                unflown.len(),
+                flights.len(),
+                smash::data::shots::list_lines(&unflown)
+            ))
+        );
+    }
     Ok(flight_csv(
         &raw.headers,
         &raw.records,

@@ -40,6 +40,7 @@ mod hostile_more;
 mod hostile_round2;
 mod hostile_round3;
 mod hostile_round4;
+mod hostile_round5;
 mod import;
 mod import_corpus;
 mod import_fsx_play;

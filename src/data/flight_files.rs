@@ -374,10 +374,10 @@ impl OutputLayout {
 
 /// CSV bytes: input columns (earlier flight outputs dropped), the `pred_` flight columns and
 /// `err_` columns where measured flight columns exist. `with_total`: add `total_yd`.
-pub fn flight_csv(
+pub fn flight_csv<F: FlightRow>(
     headers: &[String],
     records: &[csv::StringRecord],
-    flights: &[Flight],
+    flights: &[F],
     with_total: bool,
 ) -> Vec<u8> {
     assert_eq!(records.len(), flights.len(), "one flight per record");
@@ -394,13 +394,14 @@ pub fn flight_csv(
             let mut w = csv::Writer::from_writer(Vec::with_capacity(recs.len() * 96));
             let mut num = Vec::with_capacity(32);
             for (rec, f) in recs.iter().zip(fs) {
+                let f = f.flight();
                 for &i in keep {
                     w.write_field(rec.get(i).unwrap_or(""))
                         .expect("writing to memory");
                 }
                 for &k in outs {
                     num.clear();
-                    if let Some(v) = flight_value(f, k) {
+                    if let Some(v) = f.and_then(|f| flight_value(f, k)) {
                         push_cell(&mut num, v);
                     }
                     w.write_field(&num).expect("writing to memory");
@@ -408,7 +409,7 @@ pub fn flight_csv(
                 for &(k, i) in measured {
                     let m = rec.get(i).and_then(parse_f64);
                     num.clear();
-                    if let (Some(p), Some(m)) = (flight_value(f, k), m) {
+                    if let (Some(p), Some(m)) = (f.and_then(|f| flight_value(f, k)), m) {
                         if m.is_finite() {
                             push_cell(&mut num, p - m);
                         }
@@ -425,6 +426,25 @@ pub fn flight_csv(
         out.extend_from_slice(&p);
     }
     out
+}
+
+/// A row's flight for [`flight_csv`]: a [`Flight`], or an `Option` of one whose `None` writes the
+/// row with empty flight cells (a predicted launch the flight model does not take).
+pub trait FlightRow: Sync {
+    /// The flight, if the row has one.
+    fn flight(&self) -> Option<&Flight>;
+}
+
+impl FlightRow for Flight {
+    fn flight(&self) -> Option<&Flight> {
+        Some(self)
+    }
+}
+
+impl FlightRow for Option<Flight> {
+    fn flight(&self) -> Option<&Flight> {
+        self.as_ref()
+    }
 }
 
 /// Read the `[atmosphere]` table of a TOML file (other tables are ignored, so a study file can

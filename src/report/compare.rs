@@ -131,7 +131,7 @@ pub fn table2_csv(r: &CompareReport) -> Vec<u8> {
             let _ = writeln!(
                 s,
                 "{},{},{},{},{},{},{},{},{},{}",
-                b.group,
+                csv_cell(&b.group),
                 e.component,
                 e.unit,
                 m.n,
@@ -145,6 +145,17 @@ pub fn table2_csv(r: &CompareReport) -> Vec<u8> {
         }
     }
     s.into_bytes()
+}
+
+/// A text cell (a group name) for a CSV row: quoted, its quotes doubled, when it holds a comma,
+/// a quote, a line break, or spaces at either end (which a reader that trims cells would lose).
+fn csv_cell(text: &str) -> std::borrow::Cow<'_, str> {
+    let needs = text.contains([',', '"', '\n', '\r']) || text.trim() != text;
+    if needs {
+        format!("\"{}\"", text.replace('"', "\"\"")).into()
+    } else {
+        text.into()
+    }
 }
 
 /// `face_residuals.csv`, long form: one row per non-empty face bin and component;

@@ -91,6 +91,8 @@ pub(super) struct Redundancy {
     smash_checked: usize,
     smash_bad: Vec<usize>,
     smash_first: Option<String>,
+    /// Ball speed / club speed over the smash factor of each disagreeing shot.
+    smash_ratio: Vec<f64>,
     /// Of the shots whose spins disagree in sign and that curved clearly (more than 2 yd): how
     /// many, and how many curved the way the side spin (as read) or the spin axis says.
     curved: usize,
@@ -148,6 +150,7 @@ impl Redundancy {
             self.smash_checked += 1;
             if club > 0.0 && (factor - ball / club).abs() > smash_tolerance(ball, club) {
                 self.smash_bad.push(line);
+                self.smash_ratio.push(ball / club / factor);
                 self.smash_first.get_or_insert(format!(
                     "line {line}: smash factor {factor} where ball speed / club speed = {:.3}",
                     ball / club
@@ -305,6 +308,37 @@ impl Redundancy {
             ));
         }
         Ok(())
+    }
+
+    /// Refuse a file whose smash factor disagrees with ball speed / club speed on most of at
+    /// least three shots, by more than 10 % on the median such shot, as the spin checks refuse
+    /// theirs: a speed (or the factor) is read in the wrong unit (km/h as mph is 38 % off, m/s
+    /// 55 %) or from the wrong column, and every club speed written would be wrong. A smaller
+    /// disagreement is a vendor's definition (FlightScope's Mevo+ factor is 1 % above its
+    /// speeds' ratio on most shots), noted, not refused.
+    pub(super) fn refuse_smash(&self, path: &Path, vendor: &str) -> Result<(), DataError> {
+        let bad = self.smash_bad.len();
+        if self.smash_checked < 3 || 2 * bad <= self.smash_checked {
+            return Ok(());
+        }
+        let mut r = self.smash_ratio.clone();
+        r.sort_by(f64::total_cmp);
+        let median = r[r.len() / 2];
+        if (median - 1.0).abs() <= 0.1 {
+            return Ok(());
+        }
+        Err(DataError::file(
+            path,
+            format!(
+                "the smash factor disagrees with ball speed / club speed on {bad} of {} {vendor} \
+                 shots ({}); on the median such shot the speeds' ratio is {median:.3} times the \
+                 factor (0.621 if a club speed in km/h is read as mph, 0.447 for m/s; 1.609 or \
+                 2.237 the other way round): a speed is read in the wrong unit or from the wrong \
+                 column; state its unit in the units row or in a mapping file",
+                self.smash_checked,
+                self.smash_first.as_deref().unwrap_or_default()
+            ),
+        ))
     }
 
     /// Notes on disagreements that did not refuse the file.

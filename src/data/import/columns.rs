@@ -283,12 +283,23 @@ fn refuse_duplicate_headers(path: &Path, table: &Table) -> Result<(), DataError>
                 path,
                 Some(table.header_line),
                 Some(format!("column '{}'", table.header[j])),
-                format!(
-                    "the header has this column twice (columns {} and {}); each column may \
-                     appear once: remove or rename one",
-                    i + 1,
-                    j + 1
-                ),
+                if u.is_none() {
+                    format!(
+                        "the header has this column twice (columns {} and {}) and nothing tells \
+                         the two apart: give each its unit, in a units row under the header (as \
+                         SkyTrak's `RPM` and `DEG` under its two `SIDE` columns) or in its name \
+                         (`SIDE (rpm)`), or remove or rename one",
+                        i + 1,
+                        j + 1
+                    )
+                } else {
+                    format!(
+                        "the header has this column twice in the same unit (columns {} and {}); \
+                         each column may appear once: remove or rename one",
+                        i + 1,
+                        j + 1
+                    )
+                },
             ));
         }
     }

@@ -10,7 +10,9 @@ use super::target::LAUNCH;
 /// column's or the export's `missing` values (compared as numbers, else as text).
 pub(super) fn not_measured(raw: &str, column: &[String], export: &[String]) -> bool {
     let num = crate::data::number::parse_f64;
+    // `NaN`: what pandas writes for a missing value (a TrackMan export passed through it).
     matches!(raw, "" | "-" | "--" | "—" | "N/A" | "n/a" | "NA")
+        || raw.eq_ignore_ascii_case("nan")
         || column
             .iter()
             .chain(export)
@@ -39,7 +41,9 @@ const ZERO_IS_MISSING: [&str; 8] = [
 /// give or take a few), or a 0 in a column of [`ZERO_IS_MISSING`].
 pub(super) fn sentinel(target: &str, v: f64) -> Option<&'static str> {
     const TWO_24: f64 = 16_777_216.0;
-    if v == f64::from(i32::MIN) || v == f64::from(i32::MAX) || (v.abs() - TWO_24).abs() <= 16.0 {
+    // At or beyond the 32-bit limits: TrackMan's −2147483648, also seen scaled by a unit
+    // conversion (−21474836480); no quantity an export holds comes near 2·10⁹.
+    if v.abs() >= f64::from(i32::MAX) || (v.abs() - TWO_24).abs() <= 16.0 {
         return Some("a vendor's sentinel for not measured (−2147483648, 2147483647, 16777215, …)");
     }
     if v == 0.0 && ZERO_IS_MISSING.contains(&target) {

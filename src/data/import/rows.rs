@@ -209,8 +209,10 @@ pub(super) fn write_shots(
             }
         }
     }
+    super::summary::refuse_mostly_bad(path, vendor, &tally, lines.len())?;
     tally.redundancy.refuse_systematic(path, vendor)?;
     tally.redundancy.refuse_units(path, &layout.units_read())?;
+    tally.redundancy.refuse_smash(path, vendor)?;
     let carry_note = carry_units(path, layout, &tally.redundancy)?;
     summarise(&tally, lines.len(), notes);
     notes.extend(carry_note);
@@ -443,13 +445,14 @@ impl RowAt<'_> {
     fn too_long(&self, table: &Table) -> Result<(), Bad> {
         let n = table.header.len();
         if self.cells.len() > n && self.cells[n..].iter().any(|c| !c.trim().is_empty()) {
+            let n = n - table.added;
             let reason = "more cells than the header has columns".to_owned();
             let e = self.error_in(
                 None,
                 format!(
                     "{} cells where the header has {n} columns: a separator inside an unquoted \
                      cell (a decimal comma?) has shifted the cells, so none of them is trusted",
-                    self.cells.len()
+                    self.cells.len() - table.added
                 ),
             );
             return Err((reason, e));
@@ -462,19 +465,21 @@ impl RowAt<'_> {
     /// `162.4`).
     fn too_short(&self, table: &Table, layout: &Layout) -> Result<(), Bad> {
         let n = self.cells.len();
-        if n >= table.header.len() {
+        // The file's own columns (not those added after them, which a cut row lacks too).
+        let width = table.header.len() - table.added;
+        if n >= width {
             return Ok(());
         }
         // A mapped column missing, or the last cell there is mapped: it may be cut itself.
-        let cut =
-            |r: &&super::columns::Resolved| r.index + 1 >= n && r.index != super::columns::ABSENT;
+        let cut = |r: &&super::columns::Resolved| {
+            r.index + 1 >= n && r.index < width && r.index != super::columns::ABSENT
+        };
         if let Some(r) = layout.resolved.iter().find(cut) {
             let e = self.error_in(
                 Some(&r.header),
                 format!(
-                    "{n} cells where the header has {} columns: the row is cut short (a truncated \
-                     file?), so its last cell is not trusted either",
-                    table.header.len()
+                    "{n} cells where the header has {width} columns: the row is cut short (a \
+                     truncated file?), so its last cell is not trusted either"
                 ),
             );
             return Err(("fewer cells than the header has columns".to_owned(), e));

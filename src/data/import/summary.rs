@@ -70,6 +70,33 @@ impl Tally {
     }
 }
 
+/// Refuse an export more than half of whose rows hold values that cannot be used, as every
+/// reader of shots and launches refuses such a file
+/// ([`crate::data::left_out::refuse_when_unusable`]): it is read wrongly (another layout, unit or
+/// separator), and the shots written would be the few rows that happen to parse. A file with no
+/// shot at all is refused by its own message.
+pub(super) fn refuse_mostly_bad(
+    path: &std::path::Path,
+    vendor: &str,
+    t: &Tally,
+    written: usize,
+) -> Result<(), DataError> {
+    let bad: usize = t.left_out.iter().map(|l| l.lines.len()).sum();
+    let total = written + bad;
+    match t.left_out.first() {
+        Some(first) if written > 0 && 2 * bad > total => Err(DataError::file(
+            path,
+            format!(
+                "{bad} of {total} rows of the {vendor} export hold values that cannot be used, \
+                 more than half: the file is likely read wrongly, so none of it is used (the \
+                 first, {}; fix the file or read it with the right --format)",
+                first.first
+            ),
+        )),
+        _ => Ok(()),
+    }
+}
+
 /// The import's summary, one note per kind of row.
 pub(super) fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
     for (label, lines) in &t.summary {

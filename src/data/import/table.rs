@@ -32,6 +32,9 @@ pub(super) struct Table {
     /// Lines that could not be read as a row at all (JSON Lines that are not JSON), each with
     /// why: bad rows, left out and counted.
     pub broken: Vec<(usize, DataError)>,
+    /// Columns added after the header's own ([`Table::sections_as_column`]): not the file's,
+    /// so a row's width is checked against the header's own columns.
+    pub added: usize,
 }
 
 /// How many rows the header may be preceded by (title lines, a date, a place): an export whose
@@ -64,6 +67,7 @@ pub(super) fn read_table(
             notes,
             cut_last: None,
             broken: json.broken,
+            added: 0,
         });
     }
     let (body, offset_lines, sep) = strip_preamble(path, &text, skip_lines)?;
@@ -137,6 +141,7 @@ pub(super) fn read_table(
         notes,
         cut_last,
         broken: Vec::new(),
+        added: 0,
     })
 }
 
@@ -145,7 +150,7 @@ impl Table {
     /// way, `PW` or `"9 IRON"`, above its shots), taken out and read as a column `name` of the
     /// rows under them, added after the header's last column; a row above the first such row
     /// gets an empty cell. A row with fewer cells than the header is left as it is (its cut is
-    /// found as any cut row's). Returns how many such rows name rows under them (notes at the
+    /// found as any cut row's). A file with a column of that name keeps its own. Returns how many such rows name rows under them (notes at the
     /// end of a file name none); with no such row, nothing changes.
     pub(super) fn sections_as_column(&mut self, name: &str) -> usize {
         let section = |cells: &[String]| match cells.split_first() {
@@ -157,7 +162,9 @@ impl Table {
             None => false,
         };
         let found = self.rows.iter().filter(|(_, c)| section(c)).count();
-        if found == 0 {
+        // A file with a column of that name names its clubs itself.
+        let own = split_header(name).0;
+        if found == 0 || self.headers.iter().any(|(h, _)| *h == own) {
             return 0;
         }
         let width = self.header.len();
@@ -176,6 +183,7 @@ impl Table {
         });
         self.header.push(name.to_owned());
         self.headers.push(split_header(name));
+        self.added += 1;
         named
     }
 }
