@@ -317,8 +317,21 @@ pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
         confidence: args.confidence,
     };
     let change = args.change();
-    let w = what_if(&club.nominal, &change, &setting)
-        .map_err(|e| anyhow::anyhow!("{}: {e}", args.club.display()))?;
+    let w = what_if(&club.nominal, &change, &setting).map_err(|e| {
+        use smash::study::whatif::WhatIfError as E;
+        use smash::study::yards::YardsError as Y;
+        match &e {
+            // A launch the flight model does not take comes from the swing the flags give, not
+            // from the club file.
+            E::BaseYards(Y::Flight(_)) | E::ChangedYards(Y::Flight(_)) => anyhow::anyhow!(
+                "the swing of --speed {} mph, --loft {} deg: {e}; give a slower or more lofted \
+                 swing",
+                args.speed,
+                args.loft
+            ),
+            _ => anyhow::anyhow!("{}: {e}", args.club.display()),
+        }
+    })?;
     let inputs = [("--club", args.club.as_path())];
     let setting_text = args.setting_text();
     if let Some(out) = &args.out {

@@ -235,3 +235,111 @@ fn nan_cells_and_scaled_sentinels_are_not_measured() {
     assert_eq!(r[0]["carry_yd"], "");
     assert_eq!(r[1]["apex_yd"], "");
 }
+
+#[test]
+fn a_semicolon_export_with_title_lines_without_separators_is_read() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo("cli/tests/fixtures/import/unseen/skytrak_legacy.csv"))
+        .unwrap();
+    // Title lines as a spreadsheet saves them in a semicolon locale: no separator left.
+    let semi: Vec<String> = text
+        .lines()
+        .map(|l| {
+            if l.starts_with("PRACTICE") || l.starts_with("PLAYER") {
+                l.trim_end_matches(',').to_owned()
+            } else {
+                l.replace(',', ";")
+            }
+        })
+        .collect();
+    let file = write(dir.path(), "semi.csv", &(semi.join("\n") + "\n"));
+    let out = dir.path().join("shots.csv");
+    let o = smash(&["import", s(&file), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("read as skytrak") && e.contains("separated by semicolons"),
+        "{e}"
+    );
+    assert_eq!(csv_rows(&out).len(), 5);
+}
+
+#[test]
+fn a_spin_axis_past_ninety_degrees_is_named_as_topspin() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repo("cli/tests/fixtures/import/unseen/awesome_golf.csv")).unwrap();
+    let file = write(
+        dir.path(),
+        "axis.csv",
+        &text.replace(",2780,4.6,", ",2780,95,"),
+    );
+    let out = dir.path().join("shots.csv");
+    let o = smash(&["import", s(&file), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("1 of 4 shot(s) have topspin, back spin below 0 (line(s) 3)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn flight_on_a_raw_export_says_to_import_it_first() {
+    let o = smash(&[
+        "flight",
+        "--shots",
+        s(&repo("cli/tests/fixtures/import/trackman_older.csv")),
+        "--out",
+        s(&tempfile::tempdir().unwrap().path().join("f.csv")),
+    ]);
+    let e = stderr(&o);
+    assert!(!o.status.success());
+    assert!(e.contains("smash import EXPORT.csv --out shots.csv"), "{e}");
+}
+
+#[test]
+fn whatif_blames_the_swing_not_the_club_for_a_launch_too_fast_to_fly() {
+    let o = smash(&[
+        "whatif",
+        "--club",
+        &club(),
+        "--speed",
+        "260",
+        "--moi-scale",
+        "1.1",
+    ]);
+    let e = stderr(&o);
+    assert!(!o.status.success());
+    assert!(e.starts_with("error: the swing of --speed 260 mph"), "{e}");
+    assert!(!e.contains("paper_driver.toml"), "{e}");
+}
+
+#[test]
+fn a_gspro_file_with_a_date_column_keeps_its_sessions() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(repo("cli/tests/fixtures/import/gspro.csv")).unwrap();
+    let dated: Vec<String> = text
+        .lines()
+        .enumerate()
+        .map(|(i, l)| {
+            if i == 0 {
+                format!("{l},Date")
+            } else {
+                format!("{l},4/12/2025 11:{:02}", 40 + i % 10)
+            }
+        })
+        .collect();
+    let file = write(dir.path(), "dated.csv", &(dated.join("\n") + "\n"));
+    let out = dir.path().join("shots.csv");
+    let o = smash(&["import", "--format", "gspro", s(&file), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(!e.contains("Date"), "{e}");
+    let r = csv_rows(&out);
+    assert!(
+        r[0]["datetime"].starts_with("2025-04-12 11:4"),
+        "{:?}",
+        r[0]
+    );
+}

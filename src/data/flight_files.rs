@@ -247,11 +247,23 @@ pub fn launch_columns(
         let full = format!("{p}{n}");
         idx[k] = col(&full);
         if idx[k].is_none() && k != 2 && k != 4 {
+            // No shots-file launch column at all: most likely a monitor's export as written.
+            let export = !headers.iter().any(|h| {
+                LAUNCH_COLUMNS
+                    .iter()
+                    .any(|n| h == n || h.strip_prefix("pred_") == Some(n))
+            });
             return Err(DataError::file(
                 path,
                 format!(
                     "missing column '{full}' (a launch file needs {p}ball_speed_mph, {p}launch_angle_deg, \
-                     {p}backspin_rpm, and optionally {p}azimuth_deg and {p}sidespin_rpm)"
+                     {p}backspin_rpm, and optionally {p}azimuth_deg and {p}sidespin_rpm){}",
+                    if export {
+                        "; a launch monitor's export is converted first: smash import EXPORT.csv \
+                         --out shots.csv (docs/import.md)"
+                    } else {
+                        ""
+                    }
                 ),
             ));
         }

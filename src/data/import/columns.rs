@@ -294,7 +294,7 @@ fn refuse_duplicate_headers(path: &Path, table: &Table) -> Result<(), DataError>
                     )
                 } else {
                     format!(
-                        "the header has this column twice in the same unit (columns {} and {}); \
+                        "the header has this column twice (columns {} and {}), in the same unit; \
                          each column may appear once: remove or rename one",
                         i + 1,
                         j + 1

@@ -111,6 +111,21 @@ pub(super) struct Shots {
     pub complete: usize,
 }
 
+/// Refuse an export the rows show to be read wrongly: most rows unusable, or the values it
+/// gives twice disagreeing on most shots (spin, units, smash factor).
+fn refuse_read_wrongly(
+    path: &Path,
+    vendor: &str,
+    layout: &Layout,
+    tally: &Tally,
+    written: usize,
+) -> Result<(), DataError> {
+    super::summary::refuse_mostly_bad(path, vendor, tally, written)?;
+    tally.redundancy.refuse_systematic(path, vendor)?;
+    tally.redundancy.refuse_units(path, &layout.units_read())?;
+    tally.redundancy.refuse_smash(path, vendor)
+}
+
 /// Write the shots of `table` laid out by `layout`; the summary goes to `notes`. Under
 /// `strict` the first bad or incomplete row refuses the file. Refuses a file with no usable
 /// rows, and one whose redundant values disagree on most shots (a mapping reading a column
@@ -194,6 +209,9 @@ pub(super) fn write_shots(
                 }
                 tally.redundancy.add(*line, &shot.spin, shot.smash);
                 let [b, c, l, carry, back] = shot.physics;
+                if back.is_some_and(|v| v < 0.0) {
+                    tally.topspin.push(*line);
+                }
                 tally.redundancy.add_physics(b, c, l, carry, back);
                 w.write_record(&shot.record).expect("writing to memory");
                 lines.push(*line);
@@ -209,10 +227,7 @@ pub(super) fn write_shots(
             }
         }
     }
-    super::summary::refuse_mostly_bad(path, vendor, &tally, lines.len())?;
-    tally.redundancy.refuse_systematic(path, vendor)?;
-    tally.redundancy.refuse_units(path, &layout.units_read())?;
-    tally.redundancy.refuse_smash(path, vendor)?;
+    refuse_read_wrongly(path, vendor, layout, &tally, lines.len())?;
     let carry_note = carry_units(path, layout, &tally.redundancy)?;
     summarise(&tally, lines.len(), notes);
     notes.extend(carry_note);

@@ -24,6 +24,8 @@ pub(super) struct Tally {
     pub lacking: Vec<(&'static str, Vec<usize>)>,
     pub flags: Vec<(&'static str, Vec<usize>)>,
     pub redundancy: Redundancy,
+    /// Lines of shots written with back spin below 0 (topspin).
+    pub topspin: Vec<usize>,
 }
 
 impl Tally {
@@ -157,6 +159,15 @@ pub(super) fn summarise(t: &Tally, written: usize, notes: &mut Vec<String>) {
             "{} of {written} shot(s) have {what} (line(s) {}); {then}",
             lines.len(),
             list_lines(lines)
+        ));
+    }
+    if !t.topspin.is_empty() {
+        notes.push(format!(
+            "{} of {written} shot(s) have topspin, back spin below 0 (line(s) {}): a topped \
+             ball; if the export's spin axis runs past ±90° by another convention, or its back \
+             spin has the other sign, they are read wrongly",
+            t.topspin.len(),
+            list_lines(&t.topspin)
         ));
     }
     t.redundancy.notes(notes);

@@ -299,12 +299,19 @@ fn is_decimal_comma(cell: &str) -> bool {
         && frac.bytes().all(|b| b.is_ascii_digit())
 }
 
-/// The separator of a file without a `sep=` line: semicolons or tabs when its first line has
-/// more of them than commas (a European spreadsheet writes `;` and decimal commas), else commas.
+/// The separator of a file without a `sep=` line: semicolons or tabs when its first line that
+/// has any separator at all has more of them than commas (a European spreadsheet writes `;`
+/// and decimal commas; title lines without a separator, `PRACTICE: 3/14/2026 6:05 PM`, say
+/// nothing), else commas.
 fn sniff_delimiter(body: &str) -> u8 {
-    let first = next_line(body.trim_start_matches(['\n', '\r'])).0;
-    let count = |c: char| first.matches(c).count();
-    let (commas, semis, tabs) = (count(','), count(';'), count('\t'));
+    let count = |line: &str, c: char| line.matches(c).count();
+    let first = body
+        .split(['\n', '\r'])
+        .filter(|l| !l.is_empty())
+        .take(HEADER_SEARCH_ROWS)
+        .find(|l| l.contains([',', ';', '\t']))
+        .unwrap_or("");
+    let (commas, semis, tabs) = (count(first, ','), count(first, ';'), count(first, '\t'));
     if semis > commas && semis >= tabs {
         b';'
     } else if tabs > commas {
