@@ -343,3 +343,26 @@ fn a_gspro_file_with_a_date_column_keeps_its_sessions() {
         r[0]
     );
 }
+
+#[test]
+fn a_spin_reading_the_preset_does_not_know_is_not_taken_as_measured() {
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(repo("cli/tests/fixtures/import/unseen/awesome_golf.csv")).unwrap();
+    let file = write(
+        dir.path(),
+        "reading.csv",
+        &text.replacen(",Actual,", ",Est.,", 1),
+    );
+    let out = dir.path().join("shots.csv");
+    let o = smash(&["import", s(&file), "--out", s(&out)]);
+    let e = stderr(&o);
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("2 of 4 shot(s) have spin the monitor estimated"),
+        "{e}"
+    );
+    let r = csv_rows(&out);
+    assert_eq!(r[0]["spin_estimated"], "1");
+    assert_eq!(r[1]["spin_estimated"], "0");
+}

@@ -258,6 +258,11 @@ pub struct ColumnSpec {
     /// the values instead of measuring them (case ignored; any other value means measured).
     #[serde(default)]
     pub estimated: Vec<String>,
+    /// For `spin_estimated` and `club_estimated`: when given, the only cell values that mean
+    /// measured; any other non-empty value (`Est.`, `N/A`, a reading the mapping does not know)
+    /// is read as estimated, not trusted as a measurement.
+    #[serde(default)]
+    pub measured: Vec<String>,
     /// Cell values that mean "not measured" in this column, compared as numbers (GSPro writes
     /// 0 for a dynamic loft or impact location its monitor does not measure).
     #[serde(default)]

@@ -850,7 +850,9 @@ impl RowAt<'_> {
             "spin_estimated" | "club_estimated" => {
                 let c = layout.column(column).expect("laid out when mapped");
                 let v = self.cell(c.index);
-                flag(c.spec.estimated.iter().any(|e| e.eq_ignore_ascii_case(v)))
+                let listed = |l: &[String]| l.iter().any(|e| e.eq_ignore_ascii_case(v));
+                let unknown = !c.spec.measured.is_empty() && !v.is_empty();
+                flag(listed(&c.spec.estimated) || (unknown && !listed(&c.spec.measured)))
             }
             _ => {
                 if layout.all_modelled || condition.is_some_and(|k| k.normalized) {
