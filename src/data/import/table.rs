@@ -150,8 +150,9 @@ impl Table {
     /// way, `PW` or `"9 IRON"`, above its shots), taken out and read as a column `name` of the
     /// rows under them, added after the header's last column; a row above the first such row
     /// gets an empty cell. A row with fewer cells than the header is left as it is (its cut is
-    /// found as any cut row's). A file with a column of that name keeps its own. Returns how many such rows name rows under them (notes at the
-    /// end of a file name none); with no such row, nothing changes.
+    /// found as any cut row's). A file with a column of that name keeps its own. Returns how
+    /// many such rows name rows under them (notes at the end of a file name none); with no such
+    /// row, nothing changes.
     pub(super) fn sections_as_column(&mut self, name: &str) -> usize {
         let section = |cells: &[String]| match cells.split_first() {
             Some((first, rest)) => {
