@@ -54,7 +54,8 @@ pub struct CalibrateArgs {
         default_value_t = 100,
         value_name = "N",
         help_heading = "Solver",
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = crate::parse_iterations
     )]
     pub max_iters: u64,
 

@@ -75,7 +75,8 @@ pub struct DiagnoseArgs {
         default_value_t = 100,
         value_name = "N",
         help_heading = "Selection",
-        allow_negative_numbers = true
+        allow_negative_numbers = true,
+        value_parser = crate::parse_iterations
     )]
     pub max_iters: u64,
 

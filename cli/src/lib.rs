@@ -206,6 +206,17 @@ pub struct MeasurementArgs {
     pub impact_noise_mm: Option<smash::measurement::ImpactNoise>,
 }
 
+/// `--max-iters N`: a whole number of at least 1 (0 iterations fits nothing, and every fit
+/// would be reported as not converged).
+pub(crate) fn parse_iterations(s: &str) -> Result<u64, String> {
+    match s.trim().parse::<u64>() {
+        Ok(n) if n >= 1 => Ok(n),
+        _ => Err(format!(
+            "'{s}': the solver's iteration limit is a whole number of at least 1"
+        )),
+    }
+}
+
 fn parse_impact_noise(s: &str) -> Result<smash::measurement::ImpactNoise, String> {
     let parts: Vec<&str> = s.split(',').map(str::trim).collect();
     let [y, z] = parts.as_slice() else {

@@ -366,3 +366,24 @@ fn a_spin_reading_the_preset_does_not_know_is_not_taken_as_measured() {
     assert_eq!(r[0]["spin_estimated"], "1");
     assert_eq!(r[1]["spin_estimated"], "0");
 }
+
+#[test]
+fn zero_solver_iterations_are_refused_up_front() {
+    for cmd in ["diagnose", "calibrate"] {
+        let o = smash(&[
+            cmd,
+            "--club",
+            &club(),
+            "--shots",
+            "none.csv",
+            "--max-iters",
+            "0",
+        ]);
+        let e = stderr(&o);
+        assert!(!o.status.success());
+        assert!(
+            e.contains("'0': the solver's iteration limit is a whole number of at least 1"),
+            "{cmd}: {e}"
+        );
+    }
+}

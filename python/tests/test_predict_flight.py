@@ -155,3 +155,10 @@ def test_flight_errors_are_the_cli_lines(cli, tmp_path, paper_world):
     with pytest.raises(sg.SmashError) as e:
         sg.flight(df)
     assert str(e.value) == want.replace(str(bad), "<launch DataFrame>")
+
+
+def test_zero_solver_iterations_are_refused_by_the_library(paper_world):
+    with pytest.raises(sg.SmashError, match="--max-iters must be at least 1"):
+        sg.diagnose(PAPER_DRIVER, paper_world, max_iters=0)
+    with pytest.raises(sg.SmashError, match="--max-iters must be at least 1"):
+        sg.calibrate(PAPER_DRIVER, paper_world, "added_mass", max_iters=0)
