@@ -123,6 +123,12 @@ pub fn bad_rows(list: &[LeftOut]) -> usize {
         .sum()
 }
 
+/// Whether `bad` of `total` rows is more than half: the limit at which a file is taken to be
+/// read wrongly (every reader of shots and launches, and the import).
+pub fn mostly_bad(bad: usize, total: usize) -> bool {
+    2 * bad > total
+}
+
 /// Refuse the file in one line when no row is left to use (`kept` = 0), or when more than
 /// half of its rows (the `kept` and those in `list`) hold values that cannot be used: the limit at which the import's
 /// checks of values given twice refuse a file (`import::checks`, "disagreement on most
@@ -151,7 +157,7 @@ pub fn refuse_when_unusable(path: &Path, list: &[LeftOut], kept: usize) -> Resul
         };
         return Err(DataError::file(path, why));
     }
-    if let Some(e) = first.filter(|_| 2 * bad > total) {
+    if let Some(e) = first.filter(|_| mostly_bad(bad, total)) {
         return Err(DataError::file(
             path,
             format!(

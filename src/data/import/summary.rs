@@ -85,16 +85,20 @@ pub(super) fn refuse_mostly_bad(
 ) -> Result<(), DataError> {
     let bad: usize = t.left_out.iter().map(|l| l.lines.len()).sum();
     let total = written + bad;
-    match t.left_out.first() {
-        Some(first) if written > 0 && 2 * bad > total => Err(DataError::file(
-            path,
-            format!(
+    // The earliest bad row's message, whatever its reason.
+    let first = t.left_out.iter().min_by_key(|l| l.lines[0]);
+    match first {
+        Some(first) if written > 0 && crate::data::left_out::mostly_bad(bad, total) => {
+            Err(DataError::file(
+                path,
+                format!(
                 "{bad} of {total} rows of the {vendor} export hold values that cannot be used, \
                  more than half: the file is likely read wrongly, so none of it is used (the \
                  first, {}; fix the file or read it with the right --format)",
                 first.first
             ),
-        )),
+            ))
+        }
         _ => Ok(()),
     }
 }
