@@ -14,7 +14,8 @@
 //! - `paper_world`, seeds 1–20: the added mass (per shaft, `shaft_fraction` or an alias
 //!   carrying it) is named — selected, or ambiguous with a plausible rival — or stated as not
 //!   resolved with the candidates it cannot be told from, in 15 of 20 with the true noise
-//!   (9 named, 6 stated) and 15 of 20 without (13 named, 2 stated). No false finding in either
+//!   (9 named, 6 stated) and 18 of 20 without (16 named, 2 stated; 13 and 2 before the near
+//!   rivals of `docs/rival-families.md` named it beside `hosel_mass`). No false finding in either
 //!   setting: without noise figures `hosel_mass` was one in seeds 15 and 17 until the level
 //!   check (a location form must gain over a face-wide level too) made it a stand-in.
 //! - `plateau_paper_world`, seeds 1–10, with the true noise: no false finding (10 of 10). The
@@ -158,11 +159,13 @@ fn anisotropic_cor_world_over_twenty_seeds() {
 fn paper_world_mass_named_or_stated() {
     let world = repo("configs/synth/paper_world.toml");
     let noise = repo("configs/noise/paper_world.toml");
-    for args in [vec!["--noise", s(&noise)], vec![]] {
+    // Without noise figures the mass is named in 16 and stated in 2 since the near rivals
+    // (29 Nov 2026: `hosel_mass` in seeds 15, 17 and 20 has the added mass as its rival).
+    for (args, bound) in [(vec!["--noise", s(&noise)], 15), (vec![], 18)] {
         let (false_seeds, counts) = tally(&world, 1..=20, &args, &[MASS, OFFSET]);
         let (named, stated) = counts[0];
         assert!(
-            named + stated >= 15,
+            named + stated >= bound,
             "{args:?}: mass named {named}, stated {stated}"
         );
         assert!(

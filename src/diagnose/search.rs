@@ -162,6 +162,10 @@ pub(super) struct Search<'a> {
     /// Each selected effect (label, request) with its kin at the step that selected it:
     /// candidates that changed the predictions alike, and the correlation.
     kin_of: Vec<Kin>,
+    /// Each selected effect (request) with the candidates that nearly matched it at the step
+    /// that selected it (a margin within [`select::RIVAL_MARGIN`], not kin): read only by the
+    /// final model's ambiguities, never by the search.
+    near_of: Vec<(EffectRequest, Vec<(EffectRequest, f64)>)>,
     penalty_per_param: f64,
     /// Fold of every shot (to make the folds again for a refined impact-noise level).
     fold_of: Vec<usize>,
@@ -239,6 +243,7 @@ impl<'a> Search<'a> {
             theta_base: DVector::zeros(0),
             selected: Vec::new(),
             kin_of: Vec::new(),
+            near_of: Vec::new(),
             fold_of: fold_of.to_vec(),
             reselected: false,
             checked_fit: None,
@@ -437,6 +442,13 @@ impl<'a> Search<'a> {
                     self.kin_of
                         .retain(|(_, req, _)| req.kind() != open[i].kind());
                     self.kin_of.push((label.clone(), open[i].clone(), kin));
+                    let near =
+                        select::near(&scored.results, &scored.explained, i, scored.n_effects)
+                            .into_iter()
+                            .map(|(j, r)| (open[j].clone(), r))
+                            .collect();
+                    self.near_of.retain(|(req, _)| req.kind() != open[i].kind());
+                    self.near_of.push((open[i].clone(), near));
                 }
                 (Some(label), after, fit)
             }

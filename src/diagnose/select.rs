@@ -138,6 +138,35 @@ pub(super) fn kin(
         .collect()
 }
 
+/// The unselected effect candidates (indices) that nearly matched the selected `winner` at
+/// this step without being its kin: eligible, a margin at most [`RIVAL_MARGIN`] below the
+/// winner's, and a prediction change correlated with the winner's at most
+/// [`STRONG_CORRELATION`] (with that correlation, 0 when it cannot be measured). Two effects
+/// whose fits differ in ways the shots do not resolve (a level of ball speed, and a mass at
+/// the hosel that changes it a little differently across the face) can change the predictions
+/// unlike each other and still fit the shots alike; whether they do is decided in the final
+/// model, by swapping one in for the other (`search/readings.rs`), as for kin.
+pub(super) fn near(
+    results: &[CandidateResult],
+    explained: &[Option<Vec<f64>>],
+    winner: usize,
+    n_effects: usize,
+) -> Vec<(usize, f64)> {
+    let w_margin = results[winner].margin();
+    let correlated = correlations_with(results, explained, winner, n_effects);
+    (0..n_effects)
+        .filter(|&i| i != winner && results[i].eligible())
+        .filter(|&i| results[i].margin() >= w_margin - RIVAL_MARGIN)
+        .filter_map(|i| {
+            let r = correlated
+                .iter()
+                .find(|(j, _)| *j == i)
+                .map_or(0.0, |&(_, r)| if r.is_finite() { r } else { 0.0 });
+            (r <= STRONG_CORRELATION).then_some((i, r))
+        })
+        .collect()
+}
+
 /// How many of the most alike candidates a step keeps ([`most_alike`]).
 pub const MOST_ALIKE: usize = 3;
 
@@ -207,5 +236,22 @@ mod tests {
             .map(|(i, _)| i)
             .collect();
         assert_eq!(k, [1, 3]);
+        // Near candidates are close in margin and not kin: the close but different one only
+        // (the close alike one is kin, the far one too far).
+        let n = near(&results, &explained, 0, results.len());
+        assert_eq!(n.len(), 1, "{n:?}");
+        assert_eq!(n[0].0, 2);
+        assert!(n[0].1 < STRONG_CORRELATION);
+    }
+
+    #[test]
+    fn near_candidates_without_a_measured_signal_count_as_unlike() {
+        let results = vec![cand("a", 100.0), cand("b", 92.0), cand("c", 50.0)];
+        let explained = vec![Some(vec![1.0, 2.0, 3.0]), None, None];
+        assert_eq!(near(&results, &explained, 0, results.len()), [(1, 0.0)]);
+        // An ineligible candidate is never near.
+        let mut failed = results.clone();
+        failed[1].converged = false;
+        assert!(near(&failed, &explained, 0, failed.len()).is_empty());
     }
 }

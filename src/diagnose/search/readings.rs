@@ -19,7 +19,21 @@ impl Search<'_> {
         &self,
         estimates: &[crate::fit::ParamEstimate],
     ) -> Result<Vec<honest::Ambiguity>, FitError> {
-        if self.kin_of.iter().all(|(_, _, k)| k.is_empty()) {
+        // Each selected effect's kin, and the candidates that nearly matched it at its step.
+        let tried: Vec<Vec<&(EffectRequest, f64)>> = self
+            .kin_of
+            .iter()
+            .map(|(_, req, kin)| {
+                let near = self
+                    .near_of
+                    .iter()
+                    .filter(|(r, _)| r == req)
+                    .flat_map(|(_, n)| n.iter())
+                    .filter(|(c, _)| !kin.iter().any(|(k, _)| k == c));
+                kin.iter().chain(near).collect()
+            })
+            .collect();
+        if tried.iter().all(Vec::is_empty) {
             return Ok(Vec::new());
         }
         let errors = self.errors_of(&self.base, self.theta_base.as_slice())?;
@@ -56,8 +70,9 @@ impl Search<'_> {
         let jobs: Vec<(usize, &EffectRequest, &(EffectRequest, f64))> = self
             .kin_of
             .iter()
+            .zip(&tried)
             .enumerate()
-            .flat_map(|(i, (_, req, kin))| kin.iter().map(move |k| (i, req, k)))
+            .flat_map(|(i, ((_, req, _), kin))| kin.iter().map(move |&k| (i, req, k)))
             .collect();
         let scored: Vec<(usize, Option<honest::Rival>)> = jobs
             .par_iter()
