@@ -139,25 +139,10 @@ pub fn parse_club_as(path: &Path, text: &str, offer: Offer) -> Result<ClubSpec, 
     };
     let bulge_mm = ctx.ranged(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
     let roll_mm = ctx.ranged(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
-    if bulge_mm < roll_mm {
-        return Err(ctx.err(
-            c.bulge_mm.span(),
-            "club.bulge_mm",
-            format!(
-                "{bulge_mm} mm is below roll_mm = {roll_mm} mm; the face is a torus whose \
-                 heel-toe radius (bulge) is at least its crown-sole radius (roll), as on every \
-                 wood"
-            ),
-        ));
+    if let Some(why) = bulge_below_roll(bulge_mm, roll_mm) {
+        return Err(ctx.err(c.bulge_mm.span(), "club.bulge_mm", why));
     }
-    let b = &raw.ball;
-    let ball_mass_g = ctx.ranged(&b.mass_g, "ball.mass_g", limits::BALL_MASS_G)?;
-    let ball_radius_mm = ctx.ranged(&b.radius_mm, "ball.radius_mm", limits::BALL_RADIUS_MM)?;
-    let ball_inertia = ctx.ranged(
-        &b.inertia_gcm2,
-        "ball.inertia_gcm2",
-        limits::BALL_INERTIA_GCM2,
-    )?;
+    let (ball_mass_g, ball_radius_mm, ball_inertia) = read_ball(&ctx, &raw.ball)?;
 
     let nominal = ModelParams {
         club_mass_kg: g(mass_g),
@@ -315,6 +300,47 @@ pub struct HeadError {
     pub problem: HeadProblem,
 }
 
+/// The `[ball]` table's mass (g), radius (mm) and inertia (g·cm²), each in its physical range,
+/// and an inertia no more than a thin shell of that mass and radius has.
+fn read_ball(ctx: &TomlDoc, b: &RawBall) -> Result<(f64, f64, f64), DataError> {
+    let mass_g = ctx.ranged(&b.mass_g, "ball.mass_g", limits::BALL_MASS_G)?;
+    let radius_mm = ctx.ranged(&b.radius_mm, "ball.radius_mm", limits::BALL_RADIUS_MM)?;
+    let inertia = ctx.ranged(
+        &b.inertia_gcm2,
+        "ball.inertia_gcm2",
+        limits::BALL_INERTIA_GCM2,
+    )?;
+    // No ball has more inertia about its centre than a thin shell of its mass and radius,
+    // (2/3)·m·r² (a solid ball has 2/5; a golf ball about 0.37-0.40).
+    let shell_gcm2 = 2.0 / 3.0 * mass_g * (radius_mm / 10.0).powi(2);
+    if inertia > shell_gcm2 {
+        return Err(ctx.err(
+            b.inertia_gcm2.span(),
+            "ball.inertia_gcm2",
+            format!(
+                "{} g·cm² is more than a ball of {} g and radius {} mm can have: at most {:.1} \
+                 g·cm², its whole mass at its surface ((2/3)·m·r²; a golf ball has about 80)",
+                crate::limits::fmt_value(inertia),
+                crate::limits::fmt_value(mass_g),
+                crate::limits::fmt_value(radius_mm),
+                shell_gcm2
+            ),
+        ));
+    }
+    Ok((mass_g, radius_mm, inertia))
+}
+
+/// Why a face with these radii is refused: a bulge (heel-toe radius) below the roll
+/// (crown-sole radius), which no wood has and the toroidal face does not describe.
+fn bulge_below_roll(bulge_mm: f64, roll_mm: f64) -> Option<String> {
+    (bulge_mm < roll_mm).then(|| {
+        format!(
+            "{bulge_mm} mm is below roll_mm = {roll_mm} mm; the face is a torus whose heel-toe \
+             radius (bulge) is at least its crown-sole radius (roll), as on every wood"
+        )
+    })
+}
+
 /// What is wrong with a head's value ([`HeadError`]).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum HeadProblem {
@@ -324,11 +350,15 @@ pub enum HeadProblem {
     /// An inertia tensor no body has (the problem as the inertia check states it).
     #[error("{0}")]
     Inertia(String),
+    /// Face radii the toroidal face does not describe (a bulge below the roll).
+    #[error("{0}")]
+    Face(String),
 }
 
 /// Check a head made in code (a what-if's or a design variant's, from a club file's nominal
 /// head) against the limits a club file is read with ([`parse_club`]): mass, CoM (behind the
-/// face), every inertia entry and the tensor's physical validity, the face radii. `Err` names
+/// face), every inertia entry and the tensor's physical validity, the face radii (a bulge at
+/// least the roll). `Err` names
 /// the club-file key, the value and the allowed range, so that a scaling or a move cannot make
 /// a head the club file itself would refuse.
 pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
@@ -362,7 +392,13 @@ pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
             .check(in_mm(r))
             .map_err(|m| at(key, m))?;
     }
-    Ok(())
+    match bulge_below_roll(in_mm(p.bulge_m), in_mm(p.roll_m)) {
+        Some(why) => Err(HeadError {
+            key: "club.bulge_mm",
+            problem: HeadProblem::Face(why),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// [`club_toml`], checked to read back as a valid club before it is written to `path`: no
@@ -505,6 +541,29 @@ mod tests {
             Ok(c) => assert!((c.nominal.club_mass_kg - 0.204).abs() < 1e-15),
             Err(e) => panic!("an integer mass should be accepted: {e}"),
         }
+    }
+
+    #[test]
+    fn a_ball_inertia_beyond_a_thin_shell_is_refused_at_its_key() {
+        let path = Path::new(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/configs/clubs/paper_driver.toml"
+        ));
+        let text = std::fs::read_to_string(path).unwrap();
+        // 45.9 g, 21.3 mm: a shell holds (2/3)·45.9·2.13² = 138.8 g·cm²; a solid ball 83.3.
+        let read = |v: &str| {
+            let t = text.replace("inertia_gcm2 = 83.63", &format!("inertia_gcm2 = {v}"));
+            parse_club(Path::new("ball.toml"), &t)
+        };
+        let e = read("5000").unwrap_err().to_string();
+        assert!(
+            e.contains("ball.inertia_gcm2")
+                && e.contains("5000 g·cm² is more than a ball of 45.9 g and radius 21.3 mm")
+                && e.contains("at most 138.8 g·cm²"),
+            "{e}"
+        );
+        assert!(read("138.8").is_ok());
+        assert!(read("138.9").is_err());
     }
 }
 
