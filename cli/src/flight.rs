@@ -301,6 +301,7 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let mut diagnosis = None;
+    let mut fit_notes = Vec::new();
     let (flown, conditions) = if let Some(flag) = fitting {
         if !from_file.is_empty() {
             anyhow::bail!(
@@ -310,17 +311,9 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
                 from_file.iter().map(|c| c.1).collect::<Vec<_>>().join(", ")
             );
         }
-        match &args.calibrate {
-            Some(terms) => (
-                calibrate::calibrate_and_fly(&args, &cfg, read, terms)?,
-                None,
-            ),
-            None => {
-                let (flown, d) = diagnose::diagnose_and_fly(&args, &cfg, read)?;
-                diagnosis = Some(d);
-                (flown, None)
-            }
-        }
+        let (flown, d, notes) = fit_and_fly(&args, &cfg, read)?;
+        (diagnosis, fit_notes) = (d, notes);
+        (flown, None)
     } else if from_file.is_empty() {
         let flown = fly_csv_file(&args.shots, &args.out, &cfg, read, CHUNK_BYTES)?;
         (flown, None)
@@ -368,8 +361,17 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         flown.shots,
         cfg.aero.name()
     );
+    let modelled = summary.modelled_note();
     let mut report = FlightReport::new(flown, summary, diagnosis);
     report.warnings = warnings;
+    // Printed before the fit's results; in the report too.
+    report.warnings.extend(fit_notes);
+    if let Some(note) = modelled {
+        if !args.json {
+            crate::text::print_note("flight", &note);
+        }
+        report.warnings.push(note);
+    }
     match report.json().filter(|_| args.json) {
         Some(json) => crate::stdout::println(json)?,
         None => eprint!("\n{}", Render::text(&report, &())),
@@ -380,6 +382,29 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         eprintln!("report -> {}", path.display());
     }
     Ok(())
+}
+
+/// `--calibrate` or `--diagnose`: the fit, the flights written, the diagnosis (`--diagnose`)
+/// and the notes on what was fitted to.
+fn fit_and_fly(
+    args: &FlightArgs,
+    cfg: &FlightConfig,
+    read: LaunchRead,
+) -> anyhow::Result<(
+    Flown,
+    Option<smash::flight::diagnose::FlightDiagnosis>,
+    Vec<String>,
+)> {
+    Ok(match &args.calibrate {
+        Some(terms) => {
+            let (flown, notes) = calibrate::calibrate_and_fly(args, cfg, read, terms)?;
+            (flown, None, notes)
+        }
+        None => {
+            let (flown, d, notes) = diagnose::diagnose_and_fly(args, cfg, read)?;
+            (flown, Some(d), notes)
+        }
+    })
 }
 
 /// The flights of every launch of `table` (`results`, in its order) written to `--out` with

@@ -136,3 +136,114 @@ fn calibrate_by_refusals() {
     assert!(!o.status.success());
     assert!(stderr(&o).contains("--calibrate"), "{}", stderr(&o));
 }
+
+/// The shots of [`shots`] with a `flight_modelled` column: the range balls' flights marked as
+/// the vendor's model (`range`), the premium balls' as `premium` (cells as written).
+fn flagged(dir: &Path, premium: &str, range: &str) -> PathBuf {
+    let text = std::fs::read_to_string(shots(dir, true)).unwrap();
+    let mut lines = text.lines();
+    let mut out = format!("{},flight_modelled\n", lines.next().unwrap());
+    for l in lines {
+        let flag = if l.starts_with("range") {
+            range
+        } else {
+            premium
+        };
+        out.push_str(&format!("{l},{flag}\n"));
+    }
+    let p = dir.join("flagged.csv");
+    std::fs::write(&p, out).unwrap();
+    p
+}
+
+/// The drag scaling of a single calibration line.
+fn drag(err: &str) -> f64 {
+    let x = err
+        .split("drag x")
+        .nth(1)
+        .unwrap_or_else(|| panic!("{err}"));
+    x.split_whitespace().next().unwrap().parse().unwrap()
+}
+
+#[test]
+fn the_vendors_modelled_flights_are_not_fitted_to_beside_tracked_ones() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.csv");
+    // Unflagged, the fit blends the premium balls' drag (1) with the range balls' (1.08).
+    let o = flight(
+        &flagged(dir.path(), "0", "0"),
+        &out,
+        &["--calibrate", "drag"],
+    );
+    let blended = drag(&stderr(&o));
+    assert!(blended > 1.02 && blended < 1.06, "{}", stderr(&o));
+    // The range balls' flights marked as the vendor's model: the fit takes the tracked ones.
+    let o = flight(
+        &flagged(dir.path(), "0", "1"),
+        &out,
+        &["--calibrate", "drag"],
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    assert!((drag(&err) - 1.0).abs() < 1e-3, "{err}");
+    assert!(
+        err.contains("left out of the fit 24 shot(s) whose carry, apex and landing are the")
+            && err.contains("fitted to the 24 other(s)")
+            && err.contains("on 72 measured value(s)"),
+        "{err}"
+    );
+    // Every shot modelled: fitted, and said to be a model matched to a model.
+    let o = flight(
+        &flagged(dir.path(), "1", "true"),
+        &out,
+        &["--calibrate", "drag"],
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let flat = err.split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        flat.contains("every shot fitted to (48) has the vendor's flight model")
+            && flat.contains("on 144 value(s) of the vendor's flight model (flight_modelled = 1)"),
+        "{err}"
+    );
+    // A flag that is neither 0 nor 1 leaves its row out of the fit, counted; so does
+    // --diagnose, and the JSON carries the notes.
+    let o = flight(
+        &flagged(dir.path(), "0", "2"),
+        &out,
+        &["--diagnose", "--json"],
+    );
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let warnings = json["warnings"].to_string();
+    assert!(
+        warnings
+            .contains("left out of the fit 24 shot(s) whose flight_modelled is neither 0 nor 1")
+            && warnings.contains("the first: '2'"),
+        "{warnings}"
+    );
+    assert_eq!(json["errors"]["modelled"], 0);
+}
+
+#[test]
+fn a_comparison_with_modelled_flights_says_two_models_are_compared() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("f.csv");
+    let o = flight(&flagged(dir.path(), "0", "1"), &out, &[]);
+    let flat = stderr(&o).split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        flat.contains("flight: 24 of the 48 shots compared have the vendor's flight model")
+            && flat.contains("two models are compared"),
+        "{flat}"
+    );
+    let o = flight(&flagged(dir.path(), "0", "1"), &out, &["--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(json["errors"]["modelled"], 24);
+    assert_eq!(json["errors"]["compared"], 48);
+    // Without modelled flights, no such note.
+    let o = flight(&flagged(dir.path(), "0", ""), &out, &[]);
+    assert!(
+        !stderr(&o).contains("vendor's flight model"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -114,6 +114,11 @@ pub struct FlightSummary {
     /// Every shot's (measured carry, carry error), yd, for charts.
     #[serde(skip)]
     pub carry_points: Vec<(f64, f64)>,
+    /// Shots compared whose "measured" flight is the vendor's flight model
+    /// (`flight_modelled = 1`): for them two models are compared, not a model and a flight.
+    pub modelled: usize,
+    /// Shots with any quantity compared.
+    pub compared: usize,
 }
 
 /// Summarise a flight output table (header and rows of cells). Rows whose `err_` or measured
@@ -139,6 +144,10 @@ struct Compact {
     /// Per row and quantity, the (error, measured) pair when both cells hold a finite number.
     values: Vec<Option<(f64, f64)>>,
     rows: usize,
+    /// The `flight_modelled` column, and the rows compared with it 1, and all rows compared.
+    modelled_col: Option<usize>,
+    modelled: usize,
+    compared: usize,
 }
 
 impl Compact {
@@ -160,6 +169,9 @@ impl Compact {
             members: Vec::new(),
             values: Vec::new(),
             rows: 0,
+            modelled_col: col("flight_modelled"),
+            modelled: 0,
+            compared: 0,
         })
     }
 
@@ -180,8 +192,18 @@ impl Compact {
                 self.members.push(vec![r]);
             }
         }
+        let mut any = false;
         for &(_, e, m) in &self.quantities {
-            self.values.push(value(e).zip(value(m)));
+            let v = value(e).zip(value(m));
+            any |= v.is_some();
+            self.values.push(v);
+        }
+        if any {
+            self.compared += 1;
+            let flag = self.modelled_col.and_then(&cell).map(str::trim);
+            if matches!(flag, Some(f) if f == "1" || f.eq_ignore_ascii_case("true")) {
+                self.modelled += 1;
+            }
         }
         self.rows += 1;
     }
@@ -231,6 +253,8 @@ impl Compact {
         FlightSummary {
             rows: out,
             carry_points,
+            modelled: self.modelled,
+            compared: self.compared,
         }
     }
 }
@@ -268,6 +292,18 @@ pub fn summarise_file(
 }
 
 impl FlightSummary {
+    /// What the "measured" flights of the comparison are, when some are the vendor's model.
+    pub fn modelled_note(&self) -> Option<String> {
+        (self.modelled > 0).then(|| {
+            format!(
+                "{} of the {} shots compared have the vendor's flight model for their measured \
+                 carry, apex and landing (flight_modelled = 1), not a tracked flight: for them \
+                 two models are compared",
+                self.modelled, self.compared
+            )
+        })
+    }
+
     /// The text table: one block per quantity, one line per club and `all`.
     pub fn text(&self) -> String {
         let mut t = String::new();

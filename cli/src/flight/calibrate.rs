@@ -7,24 +7,30 @@ use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};
 
-use super::measured::{ball_types, measured_flights, sessions};
+use super::measured::{ball_types, fit_flights, sessions};
 use super::FlightArgs;
 
 /// Fit the scalings of `names` to the file's measured flights (per part with
-/// `--calibrate-by`), report them on stderr, and write the flights of the calibrated model(s).
+/// `--calibrate-by`; the vendor's modelled flights beside tracked ones left out,
+/// [`fit_flights`]), report them on stderr, and write the flights of the calibrated model(s).
+/// Also the notes on what was fitted to (printed here).
 pub fn calibrate_and_fly(
     args: &FlightArgs,
     cfg: &FlightConfig,
     read: LaunchRead,
     names: &str,
-) -> anyhow::Result<Flown> {
+) -> anyhow::Result<(Flown, Vec<String>)> {
     let terms = names
         .split(',')
         .map(|n| Term::from_name(n.trim()))
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
     let table = read_launches(&args.shots, read)?;
-    let shots = measured_flights(&table);
+    let fit = fit_flights(&table);
+    for note in &fit.notes {
+        crate::text::print_note("flight", note);
+    }
+    let shots = fit.shots;
     let parts = match args.calibrate_by.as_deref() {
         None => vec![(None, (0..shots.len()).collect())],
         Some(by) => parts_by(by, &table, &args.shots)?,
@@ -40,7 +46,7 @@ pub fn calibrate_and_fly(
             calibrate(cfg, &part, &terms).map_err(|e| anyhow::anyhow!("--calibrate{what}: {e}"))?;
         eprintln!(
             "{}",
-            crate::text::wrap_long(&calibration_line(cfg, &what, &cal))
+            crate::text::wrap_long(&calibration_line(cfg, &what, &cal, fit.all_modelled))
         );
         let launches: Vec<_> = idx.iter().map(|&i| table.launches[i]).collect();
         let flown = smash::flight::integrate::fly_with(cfg, &cal.model(&cfg.aero), &launches);
@@ -52,12 +58,13 @@ pub fn calibrate_and_fly(
         .into_iter()
         .map(|r| r.expect("every shot is in one part"))
         .collect();
-    super::write_flown(args, cfg, table, results)
+    Ok((super::write_flown(args, cfg, table, results)?, fit.notes))
 }
 
 /// "calibrated fmm2022 for ball_type 'range' on 90 measured value(s): drag x1.0800 ± 0.0011
-/// (weighted RMS residual 3.210 -> 0.000)".
-fn calibration_line(cfg: &FlightConfig, what: &str, cal: &Calibration) -> String {
+/// (weighted RMS residual 3.210 -> 0.000)"; "value(s) of the vendor's flight model" when every
+/// one is (`modelled`).
+fn calibration_line(cfg: &FlightConfig, what: &str, cal: &Calibration, modelled: bool) -> String {
     let scales: Vec<String> = cal
         .terms
         .iter()
@@ -65,9 +72,14 @@ fn calibration_line(cfg: &FlightConfig, what: &str, cal: &Calibration) -> String
         .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
         .collect();
     format!(
-        "calibrated {}{what} on {} measured value(s): {} (weighted RMS residual {:.3} -> {:.3})",
+        "calibrated {}{what} on {} {}: {} (weighted RMS residual {:.3} -> {:.3})",
         cfg.aero.name(),
         cal.residuals,
+        if modelled {
+            "value(s) of the vendor's flight model (flight_modelled = 1)"
+        } else {
+            "measured value(s)"
+        },
         scales.join(", "),
         cal.rms_before,
         cal.rms_after

@@ -5,21 +5,27 @@ use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
 use smash::flight::FlightConfig;
 
-use super::measured::{ball_types, measured_flights, sessions};
+use super::measured::{ball_types, fit_flights, sessions};
 use super::FlightArgs;
 
 /// Cross-validation folds (fewer when there are fewer sessions).
 const FOLDS: usize = 5;
 
-/// Diagnose the model of `cfg` on the file's measured flights, print the ranking (stderr,
-/// unless `--json`), and write the flights with the selected terms.
+/// Diagnose the model of `cfg` on the file's measured flights (the vendor's modelled flights
+/// beside tracked ones left out, [`fit_flights`]), print the ranking (stderr, unless
+/// `--json`), and write the flights with the selected terms. Also the notes on what was
+/// diagnosed against (printed here).
 pub fn diagnose_and_fly(
     args: &FlightArgs,
     cfg: &FlightConfig,
     read: LaunchRead,
-) -> anyhow::Result<(Flown, FlightDiagnosis)> {
+) -> anyhow::Result<(Flown, FlightDiagnosis, Vec<String>)> {
     let table = read_launches(&args.shots, read)?;
-    let shots = measured_flights(&table);
+    let fit = fit_flights(&table);
+    for note in &fit.notes {
+        crate::text::print_note("flight", note);
+    }
+    let shots = fit.shots;
     if !shots
         .iter()
         .any(|s| s.carry_m.is_some() || s.apex_m.is_some() || s.land_angle_rad.is_some())
@@ -54,7 +60,7 @@ pub fn diagnose_and_fly(
         eprintln!("folds by {}{from}", d.folds_by);
     }
     let results = d.fly(cfg, &table.launches);
-    Ok((super::write_flown(args, cfg, table, results)?, d))
+    Ok((super::write_flown(args, cfg, table, results)?, d, fit.notes))
 }
 
 fn distinct(keys: &[String]) -> usize {

@@ -2,6 +2,7 @@
 //! `--diagnose` fit to.
 
 use smash::data::flight_files::LaunchTable;
+use smash::data::left_out::list_lines;
 use smash::data::number::parse_f64;
 use smash::flight::calibrate::MeasuredFlight;
 use smash::flight::M_PER_YD;
@@ -28,6 +29,106 @@ pub fn measured_flights(table: &LaunchTable) -> Vec<MeasuredFlight> {
             }
         })
         .collect()
+}
+
+/// The measured flights a fit may use ([`measured_flights`], with the left-out rows' values
+/// emptied, so that they are still flown but not fitted to), and what was done, in words.
+pub struct FitFlights {
+    pub shots: Vec<MeasuredFlight>,
+    /// One note per reason rows were left out of the fit, or the caveat of a file whose every
+    /// flight is the vendor's model.
+    pub notes: Vec<String>,
+    /// Every shot fitted to is the vendor's flight model (`flight_modelled = 1`).
+    pub all_modelled: bool,
+}
+
+/// A `flight_modelled` cell: `Some(true)` for 1 (or `true`), `Some(false)` for 0 (or `false`),
+/// `None` for an empty cell (not stated), `Err` for anything else.
+fn modelled_flag(cell: &str) -> Result<Option<bool>, ()> {
+    match cell.trim() {
+        "" => Ok(None),
+        "1" => Ok(Some(true)),
+        "0" => Ok(Some(false)),
+        t if t.eq_ignore_ascii_case("true") => Ok(Some(true)),
+        t if t.eq_ignore_ascii_case("false") => Ok(Some(false)),
+        _ => Err(()),
+    }
+}
+
+/// The measured flights of `table` to fit to. A carry, apex and landing the monitor's own
+/// flight model computed from the launch (`flight_modelled = 1`, as `smash import` marks an
+/// indoor session's) are not a flight: fitted to, they calibrate this model to the vendor's.
+/// With tracked shots beside them, those are left out of the fit; when every shot is
+/// modelled, the fit is made and `all_modelled` says what it is. A `flight_modelled` cell that
+/// is not 0 or 1 leaves its row out of the fit, counted.
+pub fn fit_flights(table: &LaunchTable) -> FitFlights {
+    let mut shots = measured_flights(table);
+    let measured = |s: &MeasuredFlight| {
+        s.carry_m.is_some() || s.apex_m.is_some() || s.land_angle_rad.is_some()
+    };
+    let Some(col) = table.headers.iter().position(|h| h == "flight_modelled") else {
+        return FitFlights {
+            shots,
+            notes: Vec::new(),
+            all_modelled: false,
+        };
+    };
+    let (mut modelled, mut bad, mut first_bad, mut tracked) = (Vec::new(), Vec::new(), None, 0);
+    for (i, rec) in table.records.iter().enumerate() {
+        if !measured(&shots[i]) {
+            continue;
+        }
+        let cell = rec.get(col).unwrap_or("");
+        match modelled_flag(cell) {
+            Ok(Some(true)) => modelled.push(i),
+            Ok(_) => tracked += 1,
+            Err(()) => {
+                first_bad.get_or_insert_with(|| cell.trim().to_string());
+                bad.push(i);
+            }
+        }
+    }
+    let lines =
+        |idx: &[usize]| list_lines(&idx.iter().map(|&i| table.lines[i]).collect::<Vec<_>>());
+    let mut notes = Vec::new();
+    let mut leave_out = bad.clone();
+    if let Some(cell) = first_bad {
+        notes.push(format!(
+            "left out of the fit {} shot(s) whose flight_modelled is neither 0 nor 1 (line(s) \
+             {}; the first: {})",
+            bad.len(),
+            lines(&bad),
+            smash::data::quote_cell(&cell)
+        ));
+    }
+    let all_modelled = !modelled.is_empty() && tracked == 0;
+    if !modelled.is_empty() && tracked > 0 {
+        notes.push(format!(
+            "left out of the fit {} shot(s) whose carry, apex and landing are the vendor's \
+             flight model (flight_modelled = 1; line(s) {}), not a tracked flight: fitted to \
+             the {tracked} other(s)",
+            modelled.len(),
+            lines(&modelled)
+        ));
+        leave_out.extend(&modelled);
+    } else if all_modelled {
+        notes.push(format!(
+            "every shot fitted to ({}) has the vendor's flight model for its carry, apex and \
+             landing (flight_modelled = 1), not a tracked flight: the fit matches this model to \
+             the vendor's, and its values say nothing of the ball in the air",
+            modelled.len()
+        ));
+    }
+    for i in leave_out {
+        shots[i].carry_m = None;
+        shots[i].apex_m = None;
+        shots[i].land_angle_rad = None;
+    }
+    FitFlights {
+        shots,
+        notes,
+        all_modelled,
+    }
 }
 
 /// Each shot's `ball_type` (an empty cell: `unstated`), when the file has the column.
