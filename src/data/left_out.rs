@@ -41,6 +41,8 @@ fn kind(message: &str) -> &'static str {
         "a launch that does not land within the time limit"
     } else if message.starts_with("found a row with") {
         "a row whose cells do not match the header's columns"
+    } else if message.contains("is used twice") {
+        "a shot id used before"
     } else if message.contains("must be") {
         "a launch value the flight model does not take"
     } else {
@@ -224,6 +226,11 @@ mod tests {
         );
         let e = refuse_when_unusable(p, &list, 0).unwrap_err().to_string();
         assert!(e.contains("no usable row"), "{e}");
+        // A repeated id is named as such, not as a launch value (its message says "must be").
+        assert_eq!(
+            kind("shot id 'A-1' is used twice; ids must be unique"),
+            "a shot id used before"
+        );
         assert_eq!(
             list_lines(&(1..=12).collect::<Vec<_>>()),
             "1, 2, 3, 4, 5, 6, 7, 8, 9, 10, …"
