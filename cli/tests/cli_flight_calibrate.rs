@@ -202,11 +202,54 @@ fn the_vendors_modelled_flights_are_not_fitted_to_beside_tracked_ones() {
     assert!(o.status.success(), "{err}");
     let flat = err.split_whitespace().collect::<Vec<_>>().join(" ");
     assert!(
-        flat.contains("every shot fitted to (48) has the vendor's flight model")
+        flat.contains("all 48 shot(s) fitted to have the vendor's flight model")
             && flat.contains("on 144 value(s) of the vendor's flight model (flight_modelled = 1)"),
         "{err}"
     );
-    // A flag that is neither 0 nor 1 leaves its row out of the fit, counted; so does
+    // Per ball, each part decides: the premium balls' tracked flights, the range balls' all
+    // modelled (fitted, with the caveat for that part).
+    let o = flight(
+        &flagged(dir.path(), "0", "1"),
+        &out,
+        &["--calibrate", "drag", "--calibrate-by", "ball"],
+    );
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let flat = err.split_whitespace().collect::<Vec<_>>().join(" ");
+    // The range part's calibration line wraps: read the scalings from the joined text.
+    let drag_for = |part: &str| drag(flat.split(&format!("for {part} on")).nth(1).unwrap());
+    let (p, r) = (
+        drag_for("ball_type 'premium'"),
+        drag_for("ball_type 'range'"),
+    );
+    assert!(
+        (p - 1.0).abs() < 1e-3 && (r - RANGE_DRAG).abs() < 1e-3,
+        "{err}"
+    );
+    assert!(
+        flat.contains("all 24 shot(s) fitted to for ball_type 'range' have the vendor's"),
+        "{err}"
+    );
+    // --diagnose works on the rows fitted to (their folds, penalty and count).
+    let o = flight(&flagged(dir.path(), "0", "1"), &out, &["--diagnose"]);
+    let err = stderr(&o);
+    assert!(
+        o.status.success() && err.contains("flight diagnose: 24 shots"),
+        "{err}"
+    );
+    // --strict refuses a flag that is not one, at its line.
+    let o = flight(
+        &flagged(dir.path(), "0", "yes"),
+        &out,
+        &["--calibrate", "drag", "--strict"],
+    );
+    let err = stderr(&o);
+    assert!(
+        !o.status.success()
+            && err.contains("flagged.csv:26: column 'flight_modelled': 'yes' is not a flag"),
+        "{err}"
+    );
+    // A flag that is not one leaves its row out of the fit, counted; so does
     // --diagnose, and the JSON carries the notes.
     let o = flight(
         &flagged(dir.path(), "0", "2"),
@@ -216,8 +259,7 @@ fn the_vendors_modelled_flights_are_not_fitted_to_beside_tracked_ones() {
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
     let warnings = json["warnings"].to_string();
     assert!(
-        warnings
-            .contains("left out of the fit 24 shot(s) whose flight_modelled is neither 0 nor 1")
+        warnings.contains("left out of the fit 24 shot(s) whose flight_modelled is not a flag")
             && warnings.contains("the first: '2'"),
         "{warnings}"
     );

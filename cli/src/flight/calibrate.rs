@@ -7,7 +7,7 @@ use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};
 
-use super::measured::{ball_types, fit_flights, sessions};
+use super::measured::{ball_types, fit_flights, measured_flights, sessions};
 use super::FlightArgs;
 
 /// Fit the scalings of `names` to the file's measured flights (per part with
@@ -26,22 +26,26 @@ pub fn calibrate_and_fly(
         .collect::<Result<Vec<_>, _>>()
         .map_err(|e| anyhow::anyhow!("--calibrate: {e}"))?;
     let table = read_launches(&args.shots, read)?;
-    let fit = fit_flights(&table);
-    for note in &fit.notes {
-        crate::text::print_note("flight", note);
-    }
-    let shots = fit.shots;
+    let shots = measured_flights(&table);
     let parts = match args.calibrate_by.as_deref() {
         None => vec![(None, (0..shots.len()).collect())],
         Some(by) => parts_by(by, &table, &args.shots)?,
     };
     let mut results: Vec<Option<Result<Flight, FlightError>>> =
         (0..shots.len()).map(|_| None).collect();
+    let mut notes = Vec::new();
     for (key, idx) in parts {
-        let part: Vec<MeasuredFlight> = idx.iter().map(|&i| shots[i]).collect();
         let what = key
             .as_deref()
             .map_or(String::new(), |k| format!(" for {k}"));
+        // Which of the part's flights are fitted to (the vendor's modelled ones beside tracked
+        // ones are not), decided part by part.
+        let fit = fit_flights(&table, &shots, &idx, (&what, &args.shots, args.strict))?;
+        for note in &fit.notes {
+            crate::text::print_note("flight", note);
+        }
+        notes.extend(fit.notes);
+        let part: Vec<MeasuredFlight> = fit.rows.iter().map(|&i| shots[i]).collect();
         let cal =
             calibrate(cfg, &part, &terms).map_err(|e| anyhow::anyhow!("--calibrate{what}: {e}"))?;
         eprintln!(
@@ -58,7 +62,7 @@ pub fn calibrate_and_fly(
         .into_iter()
         .map(|r| r.expect("every shot is in one part"))
         .collect();
-    Ok((super::write_flown(args, cfg, table, results)?, fit.notes))
+    Ok((super::write_flown(args, cfg, table, results)?, notes))
 }
 
 /// "calibrated fmm2022 for ball_type 'range' on 90 measured value(s): drag x1.0800 ± 0.0011

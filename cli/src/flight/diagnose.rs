@@ -5,7 +5,7 @@ use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::diagnose::{diagnose, DiagnoseInput, FlightDiagnosis};
 use smash::flight::FlightConfig;
 
-use super::measured::{ball_types, fit_flights, sessions};
+use super::measured::{ball_types, fit_flights, measured_flights, sessions};
 use super::FlightArgs;
 
 /// Cross-validation folds (fewer when there are fewer sessions).
@@ -21,23 +21,30 @@ pub fn diagnose_and_fly(
     read: LaunchRead,
 ) -> anyhow::Result<(Flown, FlightDiagnosis, Vec<String>)> {
     let table = read_launches(&args.shots, read)?;
-    let fit = fit_flights(&table);
+    let all = measured_flights(&table);
+    let every: Vec<usize> = (0..all.len()).collect();
+    // Only the rows fitted to are diagnosed on (folds, penalty and counts are theirs); every
+    // row is flown with the terms selected.
+    let fit = fit_flights(&table, &all, &every, ("", &args.shots, args.strict))?;
     for note in &fit.notes {
         crate::text::print_note("flight", note);
     }
-    let shots = fit.shots;
-    if !shots
-        .iter()
-        .any(|s| s.carry_m.is_some() || s.apex_m.is_some() || s.land_angle_rad.is_some())
-    {
+    if fit.rows.is_empty() {
         anyhow::bail!(
-            "--diagnose: {} has no measured carry_yd, apex_yd or land_angle_deg to diagnose \
-             the flight with",
-            args.shots.display()
+            "--diagnose: {} has no {}carry_yd, apex_yd or land_angle_deg to diagnose the flight \
+             with",
+            args.shots.display(),
+            if fit.notes.is_empty() {
+                "measured "
+            } else {
+                "usable (see the note above) "
+            }
         );
     }
-    let balls = ball_types(&table);
-    let sessions = sessions(&table);
+    let shots: Vec<_> = fit.rows.iter().map(|&i| all[i]).collect();
+    let pick = |v: Vec<String>| fit.rows.iter().map(|&i| v[i].clone()).collect::<Vec<_>>();
+    let balls = ball_types(&table).map(pick);
+    let sessions = sessions(&table).map(|(col, keys)| (col, pick(keys)));
     let d = diagnose(
         cfg,
         DiagnoseInput {

@@ -1,6 +1,8 @@
 //! The measured flights of a launch file, its ball types and sessions: what `--calibrate` and
 //! `--diagnose` fit to.
 
+use std::path::Path;
+
 use smash::data::flight_files::LaunchTable;
 use smash::data::left_out::list_lines;
 use smash::data::number::parse_f64;
@@ -31,14 +33,15 @@ pub fn measured_flights(table: &LaunchTable) -> Vec<MeasuredFlight> {
         .collect()
 }
 
-/// The measured flights a fit may use ([`measured_flights`], with the left-out rows' values
-/// emptied, so that they are still flown but not fitted to), and what was done, in words.
+/// The measured flights a fit may use: the rows (indices into the table) with a measured
+/// value to fit to, and what was left out, in words.
 pub struct FitFlights {
-    pub shots: Vec<MeasuredFlight>,
-    /// One note per reason rows were left out of the fit, or the caveat of a file whose every
+    /// The rows fitted to, in file order.
+    pub rows: Vec<usize>,
+    /// One note per reason rows were left out of the fit, or the caveat of rows whose every
     /// flight is the vendor's model.
     pub notes: Vec<String>,
-    /// Every shot fitted to is the vendor's flight model (`flight_modelled = 1`).
+    /// Every row fitted to is the vendor's flight model (`flight_modelled = 1`).
     pub all_modelled: bool,
 }
 
@@ -55,34 +58,52 @@ fn modelled_flag(cell: &str) -> Result<Option<bool>, ()> {
     }
 }
 
-/// The measured flights of `table` to fit to. A carry, apex and landing the monitor's own
-/// flight model computed from the launch (`flight_modelled = 1`, as `smash import` marks an
+/// Which of the rows `of` (of `table`, whose measured flights are `shots`; `what` names them in
+/// notes, e.g. " for ball_type 'range'") a fit may use. A carry, apex and landing the monitor's
+/// own flight model computed from the launch (`flight_modelled = 1`, as `smash import` marks an
 /// indoor session's) are not a flight: fitted to, they calibrate this model to the vendor's.
-/// With tracked shots beside them, those are left out of the fit; when every shot is
-/// modelled, the fit is made and `all_modelled` says what it is. A `flight_modelled` cell that
-/// is not 0 or 1 leaves its row out of the fit, counted.
-pub fn fit_flights(table: &LaunchTable) -> FitFlights {
-    let mut shots = measured_flights(table);
+/// Beside tracked rows (0 or empty) they are left out; when every row is modelled they are
+/// fitted and `all_modelled` says what the fit is. A `flight_modelled` cell that is not 0, 1,
+/// `true`, `false` or empty leaves its row out, counted (`strict`: refuses the file, naming
+/// its line). Rows without a measured value are not fitted to.
+pub fn fit_flights(
+    table: &LaunchTable,
+    shots: &[MeasuredFlight],
+    of: &[usize],
+    (what, path, strict): (&str, &Path, bool),
+) -> anyhow::Result<FitFlights> {
     let measured = |s: &MeasuredFlight| {
         s.carry_m.is_some() || s.apex_m.is_some() || s.land_angle_rad.is_some()
     };
+    let rows: Vec<usize> = of
+        .iter()
+        .copied()
+        .filter(|&i| measured(&shots[i]))
+        .collect();
     let Some(col) = table.headers.iter().position(|h| h == "flight_modelled") else {
-        return FitFlights {
-            shots,
+        return Ok(FitFlights {
+            rows,
             notes: Vec::new(),
             all_modelled: false,
-        };
+        });
     };
-    let (mut modelled, mut bad, mut first_bad, mut tracked) = (Vec::new(), Vec::new(), None, 0);
-    for (i, rec) in table.records.iter().enumerate() {
-        if !measured(&shots[i]) {
-            continue;
-        }
-        let cell = rec.get(col).unwrap_or("");
+    let (mut modelled, mut bad, mut tracked) = (Vec::new(), Vec::new(), Vec::new());
+    let mut first_bad = None;
+    for &i in &rows {
+        let cell = table.records[i].get(col).unwrap_or("");
         match modelled_flag(cell) {
             Ok(Some(true)) => modelled.push(i),
-            Ok(_) => tracked += 1,
+            Ok(_) => tracked.push(i),
             Err(()) => {
+                if strict {
+                    anyhow::bail!(
+                        "{}:{}: column 'flight_modelled': {} is not a flag: 0 (a tracked \
+                         flight), 1 (the vendor's flight model), true, false or empty",
+                        path.display(),
+                        table.lines[i],
+                        smash::data::quote_cell(cell.trim())
+                    );
+                }
                 first_bad.get_or_insert_with(|| cell.trim().to_string());
                 bad.push(i);
             }
@@ -91,44 +112,42 @@ pub fn fit_flights(table: &LaunchTable) -> FitFlights {
     let lines =
         |idx: &[usize]| list_lines(&idx.iter().map(|&i| table.lines[i]).collect::<Vec<_>>());
     let mut notes = Vec::new();
-    let mut leave_out = bad.clone();
     if let Some(cell) = first_bad {
         notes.push(format!(
-            "left out of the fit {} shot(s) whose flight_modelled is neither 0 nor 1 (line(s) \
-             {}; the first: {})",
+            "left out of the fit{what} {} shot(s) whose flight_modelled is not a flag (0, 1, \
+             true, false or empty; line(s) {}; the first: {})",
             bad.len(),
             lines(&bad),
             smash::data::quote_cell(&cell)
         ));
     }
-    let all_modelled = !modelled.is_empty() && tracked == 0;
-    if !modelled.is_empty() && tracked > 0 {
+    let all_modelled = !modelled.is_empty() && tracked.is_empty();
+    let rows = if all_modelled {
         notes.push(format!(
-            "left out of the fit {} shot(s) whose carry, apex and landing are the vendor's \
-             flight model (flight_modelled = 1; line(s) {}), not a tracked flight: fitted to \
-             the {tracked} other(s)",
-            modelled.len(),
-            lines(&modelled)
-        ));
-        leave_out.extend(&modelled);
-    } else if all_modelled {
-        notes.push(format!(
-            "every shot fitted to ({}) has the vendor's flight model for its carry, apex and \
-             landing (flight_modelled = 1), not a tracked flight: the fit matches this model to \
-             the vendor's, and its values say nothing of the ball in the air",
+            "all {} shot(s) fitted to{what} have the vendor's flight model for their carry, \
+             apex and landing (flight_modelled = 1), not a tracked flight: the fit matches this \
+             model to the vendor's, and its values say nothing of the ball in the air",
             modelled.len()
         ));
-    }
-    for i in leave_out {
-        shots[i].carry_m = None;
-        shots[i].apex_m = None;
-        shots[i].land_angle_rad = None;
-    }
-    FitFlights {
-        shots,
+        modelled
+    } else {
+        if !modelled.is_empty() {
+            notes.push(format!(
+                "left out of the fit{what} {} shot(s) whose carry, apex and landing are the \
+                 vendor's flight model (flight_modelled = 1; line(s) {}), not a tracked flight: \
+                 fitted to the {} other(s)",
+                modelled.len(),
+                lines(&modelled),
+                tracked.len()
+            ));
+        }
+        tracked
+    };
+    Ok(FitFlights {
+        rows,
         notes,
         all_modelled,
-    }
+    })
 }
 
 /// Each shot's `ball_type` (an empty cell: `unstated`), when the file has the column.
