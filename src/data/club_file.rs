@@ -318,16 +318,23 @@ fn read_ball(ctx: &TomlDoc, b: &RawBall) -> Result<(f64, f64, f64), DataError> {
             b.inertia_gcm2.span(),
             "ball.inertia_gcm2",
             format!(
-                "{} g·cm² is more than a ball of {} g and radius {} mm can have: at most {:.1} \
+                "{} g·cm² is more than a ball of {} g and radius {} mm can have: at most {} \
                  g·cm², its whole mass at its surface ((2/3)·m·r²; a golf ball has about 80)",
                 crate::limits::fmt_value(inertia),
                 crate::limits::fmt_value(mass_g),
                 crate::limits::fmt_value(radius_mm),
-                shell_gcm2
+                crate::limits::fmt_value(floor_to_digits(shell_gcm2, 4))
             ),
         ));
     }
     Ok((mass_g, radius_mm, inertia))
+}
+
+/// `v` (> 0) rounded down to `digits` significant digits: a bound printed that way is one a
+/// value may take (138.829 prints as 138.8, not 138.83, which is refused).
+fn floor_to_digits(v: f64, digits: i32) -> f64 {
+    let scale = 10f64.powi(digits - 1 - v.log10().floor() as i32);
+    (v * scale).floor() / scale
 }
 
 /// Why a face with these radii is refused: a bulge (heel-toe radius) below the roll
@@ -350,15 +357,11 @@ pub enum HeadProblem {
     /// An inertia tensor no body has (the problem as the inertia check states it).
     #[error("{0}")]
     Inertia(String),
-    /// Face radii the toroidal face does not describe (a bulge below the roll).
-    #[error("{0}")]
-    Face(String),
 }
 
 /// Check a head made in code (a what-if's or a design variant's, from a club file's nominal
 /// head) against the limits a club file is read with ([`parse_club`]): mass, CoM (behind the
-/// face), every inertia entry and the tensor's physical validity, the face radii (a bulge at
-/// least the roll). `Err` names
+/// face), every inertia entry and the tensor's physical validity, the face radii. `Err` names
 /// the club-file key, the value and the allowed range, so that a scaling or a move cannot make
 /// a head the club file itself would refuse.
 pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
@@ -392,13 +395,7 @@ pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
             .check(in_mm(r))
             .map_err(|m| at(key, m))?;
     }
-    match bulge_below_roll(in_mm(p.bulge_m), in_mm(p.roll_m)) {
-        Some(why) => Err(HeadError {
-            key: "club.bulge_mm",
-            problem: HeadProblem::Face(why),
-        }),
-        None => Ok(()),
-    }
+    Ok(())
 }
 
 /// [`club_toml`], checked to read back as a valid club before it is written to `path`: no
