@@ -28,9 +28,10 @@ fn table2_block(r: &CompareReport, groups: &[usize]) -> String {
     let last = r.table2.len() - 1;
     let _ = write!(s, "{:<14}{:<5}", "Component", "unit");
     for &g in groups {
+        let w = mean_width(&r.table2[g].group);
         let _ = write!(
             s,
-            "{:>10}{:>8}",
+            "{:>w$}{:>8}",
             format!("{} mean", r.table2[g].group),
             "STD"
         );
@@ -44,9 +45,10 @@ fn table2_block(r: &CompareReport, groups: &[usize]) -> String {
         for &g in groups {
             let e = &r.table2[g].components[c.index()];
             let mark = if e.significant { "*" } else { " " };
+            let w = mean_width(&r.table2[g].group) - 1;
             let _ = write!(
                 s,
-                "{:>9}{mark}{:>8}",
+                "{:>w$}{mark}{:>8}",
                 cell(e.summary.mean),
                 cell(e.summary.std)
             );
@@ -61,17 +63,34 @@ fn table2_block(r: &CompareReport, groups: &[usize]) -> String {
     s
 }
 
-/// The groups of Table 2 in blocks that fit [`TEXT_WIDTH`] (one block when `wide`).
+/// The width of a group's mean column: 10, or its heading (`NAME mean`) and a space before it
+/// when that is wider, so that a long group name does not run into the column before.
+fn mean_width(group: &str) -> usize {
+    (group.chars().count() + " mean".len() + 1).max(10)
+}
+
+/// The groups of Table 2 in blocks that fit [`TEXT_WIDTH`] (one block when `wide`): as many
+/// groups a block as their columns allow, at least one.
 fn table2_blocks(r: &CompareReport, wide: bool) -> Vec<Vec<usize>> {
     let n = r.table2.len();
+    if wide {
+        return vec![(0..n).collect()];
+    }
     // Component and unit, each group's mean and STD, `t(all)` with the last block.
-    let per_block = if wide {
-        n
-    } else {
-        ((TEXT_WIDTH - 19 - 9) / 18).max(1)
-    };
-    let all: Vec<usize> = (0..n).collect();
-    all.chunks(per_block).map(<[usize]>::to_vec).collect()
+    let mut blocks: Vec<Vec<usize>> = Vec::new();
+    let mut width = 0;
+    for g in 0..n {
+        let w = mean_width(&r.table2[g].group) + 8 + if g + 1 == n { 9 } else { 0 };
+        match blocks.last_mut() {
+            Some(b) if width + w <= TEXT_WIDTH => b.push(g),
+            _ => {
+                blocks.push(vec![g]);
+                width = 19;
+            }
+        }
+        width += w;
+    }
+    blocks
 }
 
 /// The printed diagnosis: Table 2 layout (in blocks of groups that fit [`TEXT_WIDTH`] unless
