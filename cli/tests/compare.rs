@@ -283,3 +283,40 @@ fn cli_compare_refuses_an_unwritable_out_dir_before_the_report() {
         );
     }
 }
+
+/// Long group names (shaft names, as a fitting session writes them) get columns of their
+/// width: each heading is apart from the column before, every value sits under its heading,
+/// and the lines stay within 100 columns.
+#[test]
+fn long_group_names_keep_their_columns_apart() {
+    let (mut s, p) = world("paper_world");
+    for shot in &mut s {
+        shot.group = match shot.group.as_str() {
+            "A" => "Stiff-X-68g-Ventus".into(),
+            "B" => "Regular-55g-Tensei".into(),
+            g => g.to_string(),
+        };
+    }
+    let r = compare(&s, &p, &CompareOptions::default()).unwrap();
+    let text = compare_text(&r, "long names", false);
+    let headers: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("Component"))
+        .collect();
+    assert!(headers.len() >= 2, "{text}");
+    for h in &headers {
+        assert!(!h.contains("STDR") && !h.contains("STDS"), "{h}");
+    }
+    for block in text.split("\n\n").filter(|b| b.contains("Component")) {
+        let lines: Vec<&str> = block
+            .lines()
+            .skip_while(|l| !l.starts_with("Component"))
+            .collect();
+        // Every row of a block ends where its heading does (right-aligned columns).
+        let width = lines[0].chars().count();
+        for l in &lines[1..6] {
+            assert_eq!(l.chars().count(), width, "{block}");
+        }
+        assert!(width <= 100, "{block}");
+    }
+}
