@@ -361,12 +361,12 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
         flown.shots,
         cfg.aero.name()
     );
-    let modelled = summary.modelled_note();
+    let modelled = summary.modelled_notes();
     let mut report = FlightReport::new(flown, summary, diagnosis);
     report.warnings = warnings;
     // Printed before the fit's results; in the report too.
     report.warnings.extend(fit_notes);
-    if let Some(note) = modelled {
+    for note in modelled {
         if !args.json {
             crate::text::print_note("flight", &note);
         }

@@ -288,4 +288,24 @@ fn a_comparison_with_modelled_flights_says_two_models_are_compared() {
         "{}",
         stderr(&o)
     );
+    // A cell that is not a flag is compared as tracked, and said so.
+    let o = flight(&flagged(dir.path(), "0", "2"), &out, &[]);
+    let flat = stderr(&o).split_whitespace().collect::<Vec<_>>().join(" ");
+    assert!(
+        flat.contains("24 of the 48 shots compared have a flight_modelled cell that is not a flag"),
+        "{flat}"
+    );
+    // The HTML page carries the caveat too.
+    let page = dir.path().join("r.html");
+    let o = flight(
+        &flagged(dir.path(), "0", "1"),
+        &out,
+        &["--report", s(&page)],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(
+        html.contains("two models are compared"),
+        "no caveat in the page"
+    );
 }

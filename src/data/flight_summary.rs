@@ -119,6 +119,10 @@ pub struct FlightSummary {
     pub modelled: usize,
     /// Shots with any quantity compared.
     pub compared: usize,
+    /// Shots compared whose `flight_modelled` cell is not a flag (0, 1, `true`, `false` or
+    /// empty): counted as tracked, and said so ([`FlightSummary::modelled_notes`]).
+    #[serde(skip)]
+    pub unflagged: usize,
 }
 
 /// Summarise a flight output table (header and rows of cells). Rows whose `err_` or measured
@@ -148,6 +152,7 @@ struct Compact {
     modelled_col: Option<usize>,
     modelled: usize,
     compared: usize,
+    unflagged: usize,
 }
 
 impl Compact {
@@ -172,6 +177,7 @@ impl Compact {
             modelled_col: col("flight_modelled"),
             modelled: 0,
             compared: 0,
+            unflagged: 0,
         })
     }
 
@@ -200,9 +206,11 @@ impl Compact {
         }
         if any {
             self.compared += 1;
-            let flag = self.modelled_col.and_then(&cell).map(str::trim);
-            if matches!(flag, Some(f) if f == "1" || f.eq_ignore_ascii_case("true")) {
-                self.modelled += 1;
+            match self.modelled_col.and_then(&cell).map(str::trim) {
+                Some(f) if f == "1" || f.eq_ignore_ascii_case("true") => self.modelled += 1,
+                Some(f) if f.is_empty() || f == "0" || f.eq_ignore_ascii_case("false") => {}
+                Some(_) => self.unflagged += 1,
+                None => {}
             }
         }
         self.rows += 1;
@@ -255,6 +263,7 @@ impl Compact {
             carry_points,
             modelled: self.modelled,
             compared: self.compared,
+            unflagged: self.unflagged,
         }
     }
 }
@@ -292,16 +301,26 @@ pub fn summarise_file(
 }
 
 impl FlightSummary {
-    /// What the "measured" flights of the comparison are, when some are the vendor's model.
-    pub fn modelled_note(&self) -> Option<String> {
-        (self.modelled > 0).then(|| {
-            format!(
+    /// What the "measured" flights of the comparison are, when some are the vendor's model,
+    /// and the shots whose `flight_modelled` cell could not be read.
+    pub fn modelled_notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        if self.modelled > 0 {
+            notes.push(format!(
                 "{} of the {} shots compared have the vendor's flight model for their measured \
                  carry, apex and landing (flight_modelled = 1), not a tracked flight: for them \
                  two models are compared",
                 self.modelled, self.compared
-            )
-        })
+            ));
+        }
+        if self.unflagged > 0 {
+            notes.push(format!(
+                "{} of the {} shots compared have a flight_modelled cell that is not a flag (0, \
+                 1, true, false or empty): compared as tracked flights",
+                self.unflagged, self.compared
+            ));
+        }
+        notes
     }
 
     /// The text table: one block per quantity, one line per club and `all`.

@@ -70,13 +70,19 @@ pub fn flight_page(r: &FlightReport) -> Result<String, ChartError> {
             svg,
         });
     }
-    let table = table_html(summary);
+    // What the run warned about (rows left out, modelled flights compared), before the table.
+    let mut html: Vec<String> = r
+        .warnings
+        .iter()
+        .map(|w| format!("<p><b>Note:</b> {}</p>", esc(w)))
+        .collect();
+    html.push(table_html(summary));
     Ok(Page {
         title: "Flight against measured flights".into(),
         subtitle: r.flown.clone(),
         sections: vec![Section {
             heading: "Flight against measured flights".into(),
-            html: vec![table],
+            html,
             figures,
         }],
     }
