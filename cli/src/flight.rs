@@ -302,6 +302,7 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     };
     let mut diagnosis = None;
     let mut fit_notes = Vec::new();
+    let mut calibration = Vec::new();
     let (flown, conditions) = if let Some(flag) = fitting {
         if !from_file.is_empty() {
             anyhow::bail!(
@@ -311,8 +312,8 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
                 from_file.iter().map(|c| c.1).collect::<Vec<_>>().join(", ")
             );
         }
-        let (flown, d, notes) = fit_and_fly(&args, &cfg, read)?;
-        (diagnosis, fit_notes) = (d, notes);
+        let (flown, d, notes, parts) = fit_and_fly(&args, &cfg, read)?;
+        (diagnosis, fit_notes, calibration) = (d, notes, parts);
         (flown, None)
     } else if from_file.is_empty() {
         let flown = fly_csv_file(&args.shots, &args.out, &cfg, read, CHUNK_BYTES)?;
@@ -363,6 +364,7 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     );
     let modelled = summary.modelled_notes();
     let mut report = FlightReport::new(flown, summary, diagnosis);
+    report.calibration = calibration;
     report.warnings = warnings;
     // Printed before the fit's results; in the report too.
     report.warnings.extend(fit_notes);
@@ -384,25 +386,25 @@ pub fn run(args: FlightArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// `--calibrate` or `--diagnose`: the fit, the flights written, the diagnosis (`--diagnose`)
-/// and the notes on what was fitted to.
-fn fit_and_fly(
-    args: &FlightArgs,
-    cfg: &FlightConfig,
-    read: LaunchRead,
-) -> anyhow::Result<(
+/// What `--calibrate` or `--diagnose` made: the flights written, the diagnosis
+/// (`--diagnose`), the notes on what was fitted to and the scalings (`--calibrate`).
+type Fitted = (
     Flown,
     Option<smash::flight::diagnose::FlightDiagnosis>,
     Vec<String>,
-)> {
+    Vec<smash::report::flight::CalibratedPart>,
+);
+
+/// `--calibrate` or `--diagnose`: the fit and the flights written ([`Fitted`]).
+fn fit_and_fly(args: &FlightArgs, cfg: &FlightConfig, read: LaunchRead) -> anyhow::Result<Fitted> {
     Ok(match &args.calibrate {
         Some(terms) => {
-            let (flown, notes) = calibrate::calibrate_and_fly(args, cfg, read, terms)?;
-            (flown, None, notes)
+            let (flown, notes, parts) = calibrate::calibrate_and_fly(args, cfg, read, terms)?;
+            (flown, None, notes, parts)
         }
         None => {
             let (flown, d, notes) = diagnose::diagnose_and_fly(args, cfg, read)?;
-            (flown, Some(d), notes)
+            (flown, Some(d), notes, Vec::new())
         }
     })
 }

@@ -295,6 +295,20 @@ fn a_comparison_with_modelled_flights_says_two_models_are_compared() {
         flat.contains("24 of the 48 shots compared have a flight_modelled cell that is not a flag"),
         "{flat}"
     );
+    // --json carries the scalings per part.
+    let o = flight(
+        &flagged(dir.path(), "0", "1"),
+        &out,
+        &["--calibrate", "drag", "--calibrate-by", "ball", "--json"],
+    );
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let parts = json["calibration"].as_array().unwrap();
+    assert_eq!(parts.len(), 2, "{json}");
+    assert_eq!(parts[1]["part"], "ball_type 'range'");
+    assert_eq!(parts[1]["modelled"], true);
+    assert_eq!(parts[0]["values"], 72);
+    let range = parts[1]["terms"][0]["scale"].as_f64().unwrap();
+    assert!((range - RANGE_DRAG).abs() < 1e-3, "{json}");
     // The HTML page carries the caveat too.
     let page = dir.path().join("r.html");
     let o = flight(

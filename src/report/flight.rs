@@ -26,8 +26,66 @@ pub struct FlightReport {
     pub errors: FlightSummary,
     /// The aerodynamic diagnosis (`--diagnose`), else `null`.
     pub diagnosis: Option<FlightDiagnosis>,
+    /// The scalings fitted (`--calibrate`), one entry per part (all shots, or each ball or
+    /// session with `--calibrate-by`); empty without `--calibrate`.
+    pub calibration: Vec<CalibratedPart>,
     /// What the run warned about: rows of the launch file left out, one note per reason.
     pub warnings: Vec<String>,
+}
+
+/// One part's calibration (`--calibrate`): the scalings with their standard errors.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CalibratedPart {
+    /// The part (`ball_type 'range'`, `date '2026-05-02'`), or `null` for all shots.
+    pub part: Option<String>,
+    /// Each term fitted: `term` (`drag`, `lift`, `spin_decay`), `scale`, `se`.
+    pub terms: Vec<CalibratedTerm>,
+    /// Measured values fitted to (carry, apex, land angle).
+    pub values: usize,
+    /// Every value fitted to is the vendor's flight model (`flight_modelled = 1`).
+    pub modelled: bool,
+    /// Root mean square of the weighted residuals before the fit (all scales 1).
+    pub rms_before: f64,
+    /// The same after it.
+    pub rms_after: f64,
+}
+
+/// One term's scaling.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CalibratedTerm {
+    /// `drag`, `lift` or `spin_decay`.
+    pub term: &'static str,
+    /// The scaling of the model's term (1: as the model has it).
+    pub scale: f64,
+    /// Its standard error.
+    pub se: f64,
+}
+
+impl CalibratedPart {
+    /// `cal`, fitted to `part`'s values (`modelled`: every one the vendor's model).
+    pub fn new(
+        part: Option<String>,
+        cal: &crate::flight::calibrate::Calibration,
+        modelled: bool,
+    ) -> Self {
+        Self {
+            part,
+            terms: cal
+                .terms
+                .iter()
+                .zip(cal.scale.iter().zip(&cal.se))
+                .map(|(t, (&scale, &se))| CalibratedTerm {
+                    term: t.name(),
+                    scale,
+                    se,
+                })
+                .collect(),
+            values: cal.residuals,
+            modelled,
+            rms_before: cal.rms_before,
+            rms_after: cal.rms_after,
+        }
+    }
 }
 
 impl FlightReport {
@@ -39,6 +97,7 @@ impl FlightReport {
             flown,
             errors,
             diagnosis,
+            calibration: Vec::new(),
             warnings: Vec::new(),
         }
     }

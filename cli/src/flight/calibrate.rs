@@ -6,6 +6,7 @@ use smash::app::flight::stream::Flown;
 use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};
+use smash::report::flight::CalibratedPart;
 
 use super::measured::{ball_types, fit_flights, measured_flights, sessions};
 use super::FlightArgs;
@@ -13,13 +14,13 @@ use super::FlightArgs;
 /// Fit the scalings of `names` to the file's measured flights (per part with
 /// `--calibrate-by`; the vendor's modelled flights beside tracked ones left out,
 /// [`fit_flights`]), report them on stderr, and write the flights of the calibrated model(s).
-/// Also the notes on what was fitted to (printed here).
+/// Also the notes on what was fitted to (printed here) and each part's scalings.
 pub fn calibrate_and_fly(
     args: &FlightArgs,
     cfg: &FlightConfig,
     read: LaunchRead,
     names: &str,
-) -> anyhow::Result<(Flown, Vec<String>)> {
+) -> anyhow::Result<(Flown, Vec<String>, Vec<CalibratedPart>)> {
     let terms = names
         .split(',')
         .map(|n| Term::from_name(n.trim()))
@@ -33,7 +34,7 @@ pub fn calibrate_and_fly(
     };
     let mut results: Vec<Option<Result<Flight, FlightError>>> =
         (0..shots.len()).map(|_| None).collect();
-    let mut notes = Vec::new();
+    let (mut notes, mut fitted) = (Vec::new(), Vec::new());
     for (key, idx) in parts {
         let what = key
             .as_deref()
@@ -52,6 +53,7 @@ pub fn calibrate_and_fly(
             "{}",
             crate::text::wrap_long(&calibration_line(cfg, &what, &cal, fit.all_modelled))
         );
+        fitted.push(CalibratedPart::new(key.clone(), &cal, fit.all_modelled));
         let launches: Vec<_> = idx.iter().map(|&i| table.launches[i]).collect();
         let flown = smash::flight::integrate::fly_with(cfg, &cal.model(&cfg.aero), &launches);
         for (&i, f) in idx.iter().zip(flown) {
@@ -62,7 +64,11 @@ pub fn calibrate_and_fly(
         .into_iter()
         .map(|r| r.expect("every shot is in one part"))
         .collect();
-    Ok((super::write_flown(args, cfg, table, results)?, notes))
+    Ok((
+        super::write_flown(args, cfg, table, results)?,
+        notes,
+        fitted,
+    ))
 }
 
 /// "calibrated fmm2022 for ball_type 'range' on 90 measured value(s): drag x1.0800 ± 0.0011
