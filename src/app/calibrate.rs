@@ -95,9 +95,7 @@ pub fn run(
     notes: &mut dyn Notes,
     progress: Option<Arc<dyn Progress>>,
 ) -> anyhow::Result<(CalibrateReport, ShotTable)> {
-    if settings.max_iters == 0 {
-        anyhow::bail!("--max-iters must be at least 1 (the solver's iteration limit), got 0");
-    }
+    inputs::check_max_iters(settings.max_iters)?;
     let prepared = inputs::prepare(club, input, &settings.shots, (true, true), notes)?;
     let mismatch = inputs::club_check(
         settings.ignore_club_mismatch,

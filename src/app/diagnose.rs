@@ -147,9 +147,7 @@ pub fn run_prepared(
     if settings.folds < 2 {
         anyhow::bail!("--folds must be at least 2, got {}", settings.folds);
     }
-    if settings.max_iters == 0 {
-        anyhow::bail!("--max-iters must be at least 1 (the solver's iteration limit), got 0");
-    }
+    inputs::check_max_iters(settings.max_iters)?;
     let candidates = match (&settings.candidates, &settings.without) {
         (Some(list), _) => Some(parse_effect_list(list)?),
         (None, Some(list)) => Some(

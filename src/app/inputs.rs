@@ -290,6 +290,15 @@ pub struct Prepared {
     pub conventions: crate::conventions::ConventionSummary,
 }
 
+/// Refuse an iteration limit of 0 (`--max-iters`): no fit would take a step, and every one
+/// would be reported as not converged.
+pub fn check_max_iters(max_iters: u64) -> anyhow::Result<()> {
+    if max_iters == 0 {
+        bail!("--max-iters must be at least 1 (the solver's iteration limit), got 0");
+    }
+    Ok(())
+}
+
 /// Read `input` in `format`, bring it to the model's convention (`say`: the conversion lines
 /// to `notes`; `fit`: derived face angles left out) and warn about groups without the club's
 /// per-group effects: what every command that compares the club with shots does first.

@@ -139,8 +139,16 @@ pub fn parse_club_as(path: &Path, text: &str, offer: Offer) -> Result<ClubSpec, 
     };
     let bulge_mm = ctx.ranged(&c.bulge_mm, "club.bulge_mm", limits::FACE_RADIUS_MM)?;
     let roll_mm = ctx.ranged(&c.roll_mm, "club.roll_mm", limits::FACE_RADIUS_MM)?;
-    if let Some(why) = bulge_below_roll(bulge_mm, roll_mm) {
-        return Err(ctx.err(c.bulge_mm.span(), "club.bulge_mm", why));
+    if bulge_mm < roll_mm {
+        return Err(ctx.err(
+            c.bulge_mm.span(),
+            "club.bulge_mm",
+            format!(
+                "{bulge_mm} mm is below roll_mm = {roll_mm} mm; the face is a torus whose \
+                 heel-toe radius (bulge) is at least its crown-sole radius (roll), as on every \
+                 wood"
+            ),
+        ));
     }
     let (ball_mass_g, ball_radius_mm, ball_inertia) = read_ball(&ctx, &raw.ball)?;
 
@@ -335,17 +343,6 @@ fn read_ball(ctx: &TomlDoc, b: &RawBall) -> Result<(f64, f64, f64), DataError> {
 fn floor_to_digits(v: f64, digits: i32) -> f64 {
     let scale = 10f64.powi(digits - 1 - v.log10().floor() as i32);
     (v * scale).floor() / scale
-}
-
-/// Why a face with these radii is refused: a bulge (heel-toe radius) below the roll
-/// (crown-sole radius), which no wood has and the toroidal face does not describe.
-fn bulge_below_roll(bulge_mm: f64, roll_mm: f64) -> Option<String> {
-    (bulge_mm < roll_mm).then(|| {
-        format!(
-            "{bulge_mm} mm is below roll_mm = {roll_mm} mm; the face is a torus whose heel-toe \
-             radius (bulge) is at least its crown-sole radius (roll), as on every wood"
-        )
-    })
 }
 
 /// What is wrong with a head's value ([`HeadError`]).

@@ -56,6 +56,21 @@ const fn yd_range(quantity: &'static str, min: f64, max: f64) -> PhysicalRange {
     }
 }
 
+/// A `flight_modelled` cell: `Some(true)` for 1 (or `true`: the carry, apex and landing are
+/// the vendor's flight model), `Some(false)` for 0 (or `false`: a tracked flight), `None` for
+/// an empty cell (not stated), `Err` for anything else. Surrounding spaces are ignored.
+#[allow(clippy::result_unit_err)]
+pub fn modelled_flag(cell: &str) -> Result<Option<bool>, ()> {
+    match cell.trim() {
+        "" => Ok(None),
+        "1" => Ok(Some(true)),
+        "0" => Ok(Some(false)),
+        t if t.eq_ignore_ascii_case("true") => Ok(Some(true)),
+        t if t.eq_ignore_ascii_case("false") => Ok(Some(false)),
+        _ => Err(()),
+    }
+}
+
 /// A measured flight cell ([`FLIGHT_COLUMNS`]`[k]`): `None` when empty, the value when a number
 /// inside [`MEASURED_FLIGHT_RANGES`]`[k]`, else what was wrong and what is allowed.
 pub fn measured_flight_value(k: usize, cell: &str) -> Result<Option<f64>, MeasuredCellError> {

@@ -10,6 +10,8 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
+use crate::data::flight_measured::modelled_flag;
+
 /// The compared quantities: (flight column, label, unit).
 pub const SUMMARY_QUANTITIES: [(&str, &str, &str); 4] = [
     ("carry_yd", "carry", "yd"),
@@ -206,11 +208,10 @@ impl Compact {
         }
         if any {
             self.compared += 1;
-            match self.modelled_col.and_then(&cell).map(str::trim) {
-                Some(f) if f == "1" || f.eq_ignore_ascii_case("true") => self.modelled += 1,
-                Some(f) if f.is_empty() || f == "0" || f.eq_ignore_ascii_case("false") => {}
-                Some(_) => self.unflagged += 1,
-                None => {}
+            match self.modelled_col.and_then(&cell).map(modelled_flag) {
+                Some(Ok(Some(true))) => self.modelled += 1,
+                Some(Err(())) => self.unflagged += 1,
+                _ => {}
             }
         }
         self.rows += 1;

@@ -4,6 +4,7 @@
 use std::path::Path;
 
 use smash::data::flight_files::LaunchTable;
+use smash::data::flight_measured::modelled_flag;
 use smash::data::left_out::list_lines;
 use smash::data::number::parse_f64;
 use smash::flight::calibrate::MeasuredFlight;
@@ -45,19 +46,6 @@ pub struct FitFlights {
     pub all_modelled: bool,
 }
 
-/// A `flight_modelled` cell: `Some(true)` for 1 (or `true`), `Some(false)` for 0 (or `false`),
-/// `None` for an empty cell (not stated), `Err` for anything else.
-fn modelled_flag(cell: &str) -> Result<Option<bool>, ()> {
-    match cell.trim() {
-        "" => Ok(None),
-        "1" => Ok(Some(true)),
-        "0" => Ok(Some(false)),
-        t if t.eq_ignore_ascii_case("true") => Ok(Some(true)),
-        t if t.eq_ignore_ascii_case("false") => Ok(Some(false)),
-        _ => Err(()),
-    }
-}
-
 /// Which of the rows `of` (of `table`, whose measured flights are `shots`; `what` names them in
 /// notes, e.g. " for ball_type 'range'") a fit may use. A carry, apex and landing the monitor's
 /// own flight model computed from the launch (`flight_modelled = 1`, as `smash import` marks an
@@ -88,7 +76,6 @@ pub fn fit_flights(
         });
     };
     let (mut modelled, mut bad, mut tracked) = (Vec::new(), Vec::new(), Vec::new());
-    let mut first_bad = None;
     for &i in &rows {
         let cell = table.records[i].get(col).unwrap_or("");
         match modelled_flag(cell) {
@@ -104,7 +91,6 @@ pub fn fit_flights(
                         smash::data::quote_cell(cell.trim())
                     );
                 }
-                first_bad.get_or_insert_with(|| cell.trim().to_string());
                 bad.push(i);
             }
         }
@@ -112,13 +98,14 @@ pub fn fit_flights(
     let lines =
         |idx: &[usize]| list_lines(&idx.iter().map(|&i| table.lines[i]).collect::<Vec<_>>());
     let mut notes = Vec::new();
-    if let Some(cell) = first_bad {
+    if let Some(&first) = bad.first() {
+        let cell = table.records[first].get(col).unwrap_or("").trim();
         notes.push(format!(
             "left out of the fit{what} {} shot(s) whose flight_modelled is not a flag (0, 1, \
              true, false or empty; line(s) {}; the first: {})",
             bad.len(),
             lines(&bad),
-            smash::data::quote_cell(&cell)
+            smash::data::quote_cell(cell)
         ));
     }
     let all_modelled = !modelled.is_empty() && tracked.is_empty();
