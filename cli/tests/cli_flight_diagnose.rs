@@ -126,10 +126,85 @@ fn diagnose_json_is_one_object() {
         steps.len(),
         selected.len() + usize::from(selected.len() < 5)
     );
+    // An estimate, or a value held at a bound of its term without a standard error (this
+    // session holds `spin_decay` at a third of the model's moment).
     for v in d["values"].as_array().unwrap() {
-        assert!(v["se"].as_f64().unwrap() > 0.0, "{v}");
+        let at_bound = v["at_bound"].as_bool().unwrap();
+        assert!(at_bound == v["se"].is_null(), "{v}");
+        assert!(at_bound || v["se"].as_f64().unwrap() > 0.0, "{v}");
     }
     assert!(j["errors"]["rows"].is_array(), "{j}");
+}
+
+/// A value the fit holds at a bound of its term is said to sit there, in the text and in the
+/// JSON (`at_bound`, no standard error), not printed as an estimate with a standard error; no
+/// output says `NaN`. The session with every other shot's flight blank: its first step holds
+/// `spin_decay` at a third of the model's moment.
+#[test]
+fn values_at_a_bound_are_said_to_be_there() {
+    let dir = tempfile::tempdir().unwrap();
+    let full = std::fs::read_to_string(shots(dir.path(), false)).unwrap();
+    let mut lines = full.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let blank: Vec<usize> = ["carry_yd", "apex_yd", "land_angle_deg"]
+        .iter()
+        .map(|c| header.iter().position(|h| h == c).unwrap())
+        .collect();
+    let mut text = format!("{}\n", header.join(","));
+    for (i, l) in lines.enumerate() {
+        let mut cells: Vec<&str> = l.split(',').collect();
+        if i % 2 == 1 {
+            for &c in &blank {
+                cells[c] = "";
+            }
+        }
+        text.push_str(&format!("{}\n", cells.join(",")));
+    }
+    let shots = cli_support::write(dir.path(), "half.csv", &text);
+    let out = dir.path().join("f.csv");
+    let run = |json: bool| {
+        let mut args = vec![
+            "flight",
+            "--shots",
+            s(&shots),
+            "--out",
+            s(&out),
+            "--diagnose",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let o = smash(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        o
+    };
+    let err = stderr(&run(false));
+    assert!(!err.contains("NaN") && !err.contains("inf"), "{err}");
+    assert!(
+        err.contains("spin_decay x0.3333 (at its lower bound)"),
+        "{err}"
+    );
+    let o = run(true);
+    let json = String::from_utf8(o.stdout).unwrap();
+    assert!(!json.contains("NaN"), "{json}");
+    let j: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let mut at_bound = 0;
+    for step in j["diagnosis"]["steps"].as_array().unwrap() {
+        for c in step["candidates"].as_array().unwrap() {
+            for v in c["values"].as_array().unwrap() {
+                let value = v["value"].as_f64().unwrap();
+                if v["at_bound"].as_bool().unwrap() {
+                    at_bound += 1;
+                    assert!(v["se"].is_null(), "{v}");
+                    let bounds = [1.0 / 3.0, 3.0, -0.15, 0.40];
+                    assert!(bounds.iter().any(|b| (value - b).abs() < 1e-5), "{v}");
+                } else {
+                    assert!(v["se"].as_f64().unwrap() > 0.0, "{v}");
+                }
+            }
+        }
+    }
+    assert!(at_bound > 0, "{json}");
 }
 
 /// Refusals: with --calibrate, and on a file that states conditions per shot.

@@ -135,7 +135,44 @@ impl Calibration {
 }
 
 /// Bounds of every scale: a third to three times the model's coefficient.
-const SCALE_BOUNDS: (f64, f64) = (1.0 / 3.0, 3.0);
+pub const SCALE_BOUNDS: (f64, f64) = (1.0 / 3.0, 3.0);
+
+/// Which bound of `(lo, hi)` an estimate sits on (`"lower"`, `"upper"`; within a millionth of
+/// the range): the fit stopped there, so the curvature's standard error does not describe it.
+pub fn bound_reached(value: f64, (lo, hi): (f64, f64)) -> Option<&'static str> {
+    let tol = 1e-6 * (hi - lo);
+    if value <= lo + tol {
+        Some("lower")
+    } else if value >= hi - tol {
+        Some("upper")
+    } else {
+        None
+    }
+}
+
+/// An estimate's uncertainty as printed after its value: `± 0.0041`, or why there is none,
+/// `(at its upper bound)` or `(not determined)` (`se` `None` or not finite).
+pub fn uncertainty_text(se: Option<f64>, bound: Option<&str>) -> String {
+    match (bound, se) {
+        (Some(b), _) => format!("(at its {b} bound)"),
+        (None, Some(se)) if se.is_finite() => format!("± {se:.4}"),
+        (None, _) => "(not determined)".to_string(),
+    }
+}
+
+/// Serialise a [`bound_reached`] as `true`/`false`, the JSON reports' `at_bound` (the text
+/// names which bound).
+pub fn serialize_at_bound<S: serde::Serializer>(
+    bound: &Option<&'static str>,
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    s.serialize_bool(bound.is_some())
+}
+
+/// A standard error to report: `None` at a bound ([`bound_reached`]) or when not finite.
+pub fn reported_se(se: f64, bound: Option<&str>) -> Option<f64> {
+    (bound.is_none() && se.is_finite()).then_some(se)
+}
 
 #[derive(Clone)]
 struct Problem<'a> {

@@ -5,6 +5,7 @@
 use serde::Serialize;
 
 use crate::data::flight_summary::FlightSummary;
+use crate::flight::calibrate::{bound_reached, reported_se, uncertainty_text, SCALE_BOUNDS};
 use crate::flight::diagnose::FlightDiagnosis;
 
 /// The version of flight's JSON schema (`schema_version`); raised when a key changes meaning
@@ -57,8 +58,25 @@ pub struct CalibratedTerm {
     pub term: &'static str,
     /// The scaling of the model's term (1: as the model has it).
     pub scale: f64,
-    /// Its standard error.
-    pub se: f64,
+    /// Its standard error; `null` when the scale sits at a bound (`at_bound`) or is not
+    /// determined.
+    pub se: Option<f64>,
+    /// The bound of the scales (a third and three times the model's coefficient) the fit
+    /// stopped at: `"lower"`, `"upper"` (in JSON `true`), else `None` (`false`).
+    #[serde(serialize_with = "crate::flight::calibrate::serialize_at_bound")]
+    pub at_bound: Option<&'static str>,
+}
+
+impl CalibratedTerm {
+    /// `drag x1.0800 ± 0.0011`, `spin_decay x3.0000 (at its upper bound)`.
+    pub fn text(&self) -> String {
+        format!(
+            "{} x{:.4} {}",
+            self.term,
+            self.scale,
+            uncertainty_text(self.se, self.at_bound)
+        )
+    }
 }
 
 impl CalibratedPart {
@@ -74,10 +92,14 @@ impl CalibratedPart {
                 .terms
                 .iter()
                 .zip(cal.scale.iter().zip(&cal.se))
-                .map(|(t, (&scale, &se))| CalibratedTerm {
-                    term: t.name(),
-                    scale,
-                    se,
+                .map(|(t, (&scale, &se))| {
+                    let at_bound = bound_reached(scale, SCALE_BOUNDS);
+                    CalibratedTerm {
+                        term: t.name(),
+                        scale,
+                        se: reported_se(se, at_bound),
+                        at_bound,
+                    }
                 })
                 .collect(),
             values: cal.residuals,

@@ -6,7 +6,7 @@ use smash::app::flight::stream::Flown;
 use smash::data::launch_read::{read_launches, LaunchRead};
 use smash::flight::calibrate::{calibrate, Calibration, MeasuredFlight, Term};
 use smash::flight::{Flight, FlightConfig, FlightError};
-use smash::report::flight::CalibratedPart;
+use smash::report::flight::{CalibratedPart, CalibratedTerm};
 
 use super::measured::{ball_types, fit_flights, measured_flights, sessions};
 use super::FlightArgs;
@@ -75,11 +75,10 @@ pub fn calibrate_and_fly(
 /// (weighted RMS residual 3.210 -> 0.000)"; "value(s) of the vendor's flight model" when every
 /// one is (`modelled`).
 fn calibration_line(cfg: &FlightConfig, what: &str, cal: &Calibration, modelled: bool) -> String {
-    let scales: Vec<String> = cal
+    let scales: Vec<String> = CalibratedPart::new(None, cal, modelled)
         .terms
         .iter()
-        .zip(cal.scale.iter().zip(&cal.se))
-        .map(|(t, (k, se))| format!("{} x{k:.4} ± {se:.4}", t.name()))
+        .map(CalibratedTerm::text)
         .collect();
     format!(
         "calibrated {}{what} on {} {}: {} (weighted RMS residual {:.3} -> {:.3})",

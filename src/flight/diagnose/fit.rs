@@ -87,7 +87,7 @@ impl Layout {
     /// Bounds: scales from a third to three times the model's coefficient; the crisis drag
     /// from −0.15 to +0.40 (about the 0.29 of the still-air crisis itself, Lyu et al. 2018,
     /// with room either way).
-    fn bounds(&self) -> (DVector<f64>, DVector<f64>) {
+    pub(super) fn bounds(&self) -> (DVector<f64>, DVector<f64>) {
         let (mut lo, mut hi) = (Vec::new(), Vec::new());
         for &t in &self.terms {
             let (l, h) = if t == Term::DragCrisis {

@@ -28,7 +28,7 @@ pub mod fit;
 
 use serde::Serialize;
 
-use crate::flight::calibrate::MeasuredFlight;
+use crate::flight::calibrate::{bound_reached, reported_se, MeasuredFlight};
 use crate::flight::{FlightConfig, M_PER_YD};
 use crate::stats::{grouped_folds, item_folds};
 use fit::{robust_sigma, Data, FitOut, Layout};
@@ -90,8 +90,13 @@ pub struct Value {
     pub name: String,
     /// Scale (or, for `drag_crisis`, `ΔC_D`).
     pub value: f64,
-    /// Standard error.
-    pub se: f64,
+    /// Standard error; `None` at a bound (`at_bound`) or when not determined.
+    pub se: Option<f64>,
+    /// The bound of the term (scales a third to three times the model's, the crisis drag
+    /// −0.15 to +0.40) the fit stopped at: `"lower"`, `"upper"` (in JSON `true`), else `None`
+    /// (`false`).
+    #[serde(serialize_with = "crate::flight::calibrate::serialize_at_bound")]
+    pub at_bound: Option<&'static str>,
 }
 
 /// One candidate at one step.
@@ -463,6 +468,7 @@ fn select_step(
 /// Each parameter of `layout` named, with its value and standard error.
 fn named_values(layout: &Layout, balls: &[String], f: &FitOut) -> Vec<Value> {
     let mut out = Vec::new();
+    let (lo, hi) = layout.bounds();
     let mut k = 0;
     for &t in &layout.terms {
         for b in 0..layout.term_params(t) {
@@ -470,10 +476,12 @@ fn named_values(layout: &Layout, balls: &[String], f: &FitOut) -> Vec<Value> {
                 Term::DragByBall => format!("drag@{}", balls.get(b).map_or("?", String::as_str)),
                 _ => t.name().to_string(),
             };
+            let at_bound = bound_reached(f.p[k], (lo[k], hi[k]));
             out.push(Value {
                 name,
                 value: f.p[k],
-                se: f.se[k],
+                se: reported_se(f.se[k], at_bound),
+                at_bound,
             });
             k += 1;
         }

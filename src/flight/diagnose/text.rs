@@ -3,14 +3,16 @@
 use std::fmt::Write as _;
 
 use super::{FlightDiagnosis, Value};
+use crate::flight::calibrate::uncertainty_text;
 
 /// A value as the report prints it: `drag x1.0612 ± 0.0041`, `drag_crisis ΔCd +0.0120 ±
-/// 0.0040`.
+/// 0.0040`, `spin_decay x3.0000 (at its upper bound)`.
 pub fn value_text(v: &Value) -> String {
+    let u = uncertainty_text(v.se, v.at_bound);
     if v.name == "drag_crisis" {
-        format!("{} ΔCd {:+.4} ± {:.4}", v.name, v.value, v.se)
+        format!("{} ΔCd {:+.4} {u}", v.name, v.value)
     } else {
-        format!("{} x{:.4} ± {:.4}", v.name, v.value, v.se)
+        format!("{} x{:.4} {u}", v.name, v.value)
     }
 }
 
@@ -84,7 +86,7 @@ pub(super) fn render(d: &FlightDiagnosis) -> String {
                         .iter()
                         .map(value_text)
                         .collect();
-                    if !c.identified {
+                    if !c.identified && !v.iter().any(|t| t.ends_with("(not determined)")) {
                         v.push("not determined".into());
                     }
                     v
