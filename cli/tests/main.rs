@@ -41,6 +41,7 @@ mod hostile_round2;
 mod hostile_round3;
 mod hostile_round4;
 mod hostile_round5;
+mod hostile_round6;
 mod import;
 mod import_corpus;
 mod import_fsx_play;

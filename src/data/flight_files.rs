@@ -8,7 +8,8 @@
 
 use std::path::Path;
 
-use crate::data::number::{parse_f64, push_cell};
+use crate::data::flight_measured::measured_value;
+use crate::data::number::push_cell;
 use crate::data::{csv_error_at, read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
 use crate::line_index::LineIndex;
@@ -235,6 +236,7 @@ pub fn launch_columns(
     source: Option<LaunchSource>,
 ) -> Result<(LaunchSource, [Option<usize>; 5]), DataError> {
     check_header(path, headers)?;
+    super::columns::check_known_case(path, headers)?;
     let col = |name: &str| headers.iter().position(|h| h == name);
     let source = source.unwrap_or(if col("ball_speed_mph").is_some() {
         LaunchSource::Measured
@@ -419,12 +421,10 @@ pub fn flight_csv<F: FlightRow>(
                     w.write_field(&num).expect("writing to memory");
                 }
                 for &(k, i) in measured {
-                    let m = rec.get(i).and_then(parse_f64);
+                    let m = rec.get(i).and_then(|c| measured_value(k, c));
                     num.clear();
                     if let (Some(p), Some(m)) = (f.and_then(|f| flight_value(f, k)), m) {
-                        if m.is_finite() {
-                            push_cell(&mut num, p - m);
-                        }
+                        push_cell(&mut num, p - m);
                     }
                     w.write_field(&num).expect("writing to memory");
                 }

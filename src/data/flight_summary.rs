@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::data::flight_measured::modelled_flag;
+use crate::data::flight_measured::{measured_value, modelled_flag, unmeasured_zero};
 
 /// The compared quantities: (flight column, label, unit).
 pub const SUMMARY_QUANTITIES: [(&str, &str, &str); 4] = [
@@ -19,6 +19,14 @@ pub const SUMMARY_QUANTITIES: [(&str, &str, &str); 4] = [
     ("apex_yd", "apex", "yd"),
     ("land_angle_deg", "land angle", "deg"),
 ];
+
+/// The index in [`crate::data::flight_files::FLIGHT_COLUMNS`] of summary quantity `q`.
+fn flight_column(q: usize) -> usize {
+    crate::data::flight_files::FLIGHT_COLUMNS
+        .iter()
+        .position(|c| *c == SUMMARY_QUANTITIES[q].0)
+        .expect("every summary quantity is a flight column")
+}
 
 /// Error statistics of one quantity over a set of shots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -125,6 +133,10 @@ pub struct FlightSummary {
     /// empty): counted as tracked, and said so ([`FlightSummary::modelled_notes`]).
     #[serde(skip)]
     pub unflagged: usize,
+    /// Per quantity, the shots whose measured cell is a 0 read as "not measured"
+    /// ([`crate::data::flight_measured::ZERO_IS_NOT_MEASURED`]): not compared, and said so.
+    #[serde(skip)]
+    pub zeros: Vec<(&'static str, usize)>,
 }
 
 /// Summarise a flight output table (header and rows of cells). Rows whose `err_` or measured
@@ -155,6 +167,8 @@ struct Compact {
     modelled: usize,
     compared: usize,
     unflagged: usize,
+    /// Per compared quantity, the rows whose measured cell is a 0 read as not measured.
+    zeros: Vec<usize>,
 }
 
 impl Compact {
@@ -171,6 +185,7 @@ impl Compact {
         }
         Some(Self {
             group: col("group"),
+            zeros: vec![0; quantities.len()],
             quantities,
             groups: Vec::new(),
             members: Vec::new(),
@@ -201,8 +216,13 @@ impl Compact {
             }
         }
         let mut any = false;
-        for &(_, e, m) in &self.quantities {
-            let v = value(e).zip(value(m));
+        for (j, &(q, e, m)) in self.quantities.iter().enumerate() {
+            let k = flight_column(q);
+            let measured = cell(m).and_then(|c| {
+                self.zeros[j] += usize::from(unmeasured_zero(k, c));
+                measured_value(k, c)
+            });
+            let v = value(e).zip(measured);
             any |= v.is_some();
             self.values.push(v);
         }
@@ -265,6 +285,13 @@ impl Compact {
             modelled: self.modelled,
             compared: self.compared,
             unflagged: self.unflagged,
+            zeros: self
+                .quantities
+                .iter()
+                .zip(&self.zeros)
+                .filter(|(_, &n)| n > 0)
+                .map(|(&(q, _, _), &n)| (SUMMARY_QUANTITIES[q].0, n))
+                .collect(),
         }
     }
 }
@@ -312,6 +339,12 @@ impl FlightSummary {
                  carry, apex and landing (flight_modelled = 1), not a tracked flight: for them \
                  two models are compared",
                 self.modelled, self.compared
+            ));
+        }
+        for (column, n) in &self.zeros {
+            notes.push(format!(
+                "{n} shot(s) have a {column} of 0, read as not measured (a monitor writes 0 for \
+                 a flight it did not track): not compared"
             ));
         }
         if self.unflagged > 0 {

@@ -5,6 +5,7 @@
 //! temporary file and a rename, so a failed run never leaves a half-written file behind.
 
 pub mod club_file;
+pub mod columns;
 pub mod datetime;
 pub mod effect_defs;
 pub mod flight_files;

@@ -322,6 +322,7 @@ impl Columns {
                 )));
             }
         }
+        super::columns::check_known_case(path, headers)?;
         let col = |name: &str| headers.iter().position(|h| h == name);
         let required = required_columns();
         let missing: Vec<&str> = required
@@ -437,10 +438,31 @@ impl Row<'_> {
                 },
             ));
         }
+        // A struck ball spins: back and side spin both exactly 0 is a monitor that lost the
+        // spin, as `smash import` reads it (`docs/import.md`, "Not measured").
+        if let Some(launch) = cols.launch {
+            let zero = |c: LaunchComponent| {
+                crate::data::number::parse_f64(self.cells[launch[c.index()]].trim()) == Some(0.0)
+            };
+            if zero(LaunchComponent::Backspin) && zero(LaunchComponent::Sidespin) {
+                let why = "back and side spin both 0 (a monitor that lost the spin writes zeros)";
+                if opts.strict {
+                    let i = launch[LaunchComponent::Backspin.index()];
+                    return Err(self.error(
+                        &self.headers[i],
+                        format!(
+                            "{why}; a measured spin is required (without --strict such a row is \
+                             left out and counted)"
+                        ),
+                    ));
+                }
+                return Ok(Some(why.into()));
+            }
+        }
         if !opts.include_estimated {
             for (i, what) in &cols.estimated {
                 let v = self.cells[*i].as_str();
-                if !matches!(v, "" | "0" | "1") {
+                let Ok(estimated) = crate::data::flight_measured::flag(v) else {
                     return Err(self.error(
                         &self.headers[*i],
                         format!(
@@ -448,8 +470,8 @@ impl Row<'_> {
                             super::quote_cell(v)
                         ),
                     ));
-                }
-                if v == "1" {
+                };
+                if estimated == Some(true) {
                     return Ok(Some(format!(
                         "{what} ({} = 1; --include-estimated uses them)",
                         self.headers[*i]

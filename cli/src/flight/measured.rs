@@ -4,9 +4,8 @@
 use std::path::Path;
 
 use smash::data::flight_files::LaunchTable;
-use smash::data::flight_measured::modelled_flag;
+use smash::data::flight_measured::{measured_value, modelled_flag};
 use smash::data::left_out::list_lines;
-use smash::data::number::parse_f64;
 use smash::flight::calibrate::MeasuredFlight;
 use smash::flight::M_PER_YD;
 
@@ -19,16 +18,16 @@ pub fn measured_flights(table: &LaunchTable) -> Vec<MeasuredFlight> {
         .iter()
         .zip(&table.launches)
         .map(|(rec, l)| {
-            let get = |i: Option<usize>| {
+            // A 0 carry, apex or landing is not measured (`measured_value`).
+            let get = |(i, k): (Option<usize>, usize)| {
                 i.and_then(|i| rec.get(i))
-                    .and_then(parse_f64)
-                    .filter(|x| x.is_finite())
+                    .and_then(|c| measured_value(k, c))
             };
             MeasuredFlight {
                 launch: *l,
-                carry_m: get(carry).map(|v| v * M_PER_YD),
-                apex_m: get(apex).map(|v| v * M_PER_YD),
-                land_angle_rad: get(land).map(f64::to_radians),
+                carry_m: get((carry, 0)).map(|v| v * M_PER_YD),
+                apex_m: get((apex, 2)).map(|v| v * M_PER_YD),
+                land_angle_rad: get((land, 4)).map(f64::to_radians),
             }
         })
         .collect()

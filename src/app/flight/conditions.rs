@@ -14,14 +14,7 @@ use crate::data::number::parse_f64;
 use crate::data::{quote_cell, write_atomic, DataError};
 use crate::flight::{Atmosphere, Flight, FlightConfig};
 
-/// The numeric condition columns a flight uses: altitude (m), air temperature (°C), air
-/// pressure (Pa, station), relative humidity (%).
-pub const CONDITION_COLUMNS: [&str; 4] = [
-    "altitude_m",
-    "air_temperature_c",
-    "air_pressure_pa",
-    "relative_humidity_pct",
-];
+pub use crate::data::columns::CONDITION_COLUMNS;
 
 /// Columns passed through without use in the flight: the ball (text) and the 0/1 flags.
 pub const PASSED_COLUMNS: [&str; 4] = [

@@ -19,7 +19,7 @@ use crate::data::flight_files::{
     flight_csv, flight_error_at, flight_value, launch_columns, split_at_line_ends, LaunchSource,
     OutputLayout, FLIGHT_COLUMNS, LAUNCH_COLUMNS,
 };
-use crate::data::flight_measured::measured_flight_value;
+use crate::data::flight_measured::{measured_flight_value, measured_value};
 use crate::data::flight_output::Temporary;
 use crate::data::launch_read::{parse_launches, LaunchRead};
 use crate::data::left_out::{push_bad, refuse_when_unusable, LeftOut};
@@ -545,11 +545,11 @@ fn format_rows(
         }
         for &(k, i) in &l.measured {
             sep(&mut out);
-            let m = std::str::from_utf8(cell(i)).ok().and_then(parse_f64);
+            let m = std::str::from_utf8(cell(i))
+                .ok()
+                .and_then(|c| measured_value(k, c));
             if let (Some(p), Some(m)) = (flight_value(f, k), m) {
-                if m.is_finite() {
-                    push_cell(&mut out, p - m);
-                }
+                push_cell(&mut out, p - m);
             }
         }
         out.push(b'\n');

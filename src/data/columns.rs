@@ -1,0 +1,118 @@
+//! The column names smash reads from a shots or launch file, and the check that a header does
+//! not spell one of them in another case.
+//!
+//! Columns are matched exactly, so `Carry_yd` or `Group` would be carried through as an unknown
+//! column without a word: the shots would lose their measured carry or their clubs, and the
+//! results would change with no sign why. A header that differs from a known column only in
+//! case (or in surrounding spaces) is refused, naming the column to write.
+
+use std::path::Path;
+
+use super::DataError;
+
+/// The numeric condition columns a flight uses: altitude (m), air temperature (°C), air
+/// pressure (Pa, station), relative humidity (%).
+pub const CONDITION_COLUMNS: [&str; 4] = [
+    "altitude_m",
+    "air_temperature_c",
+    "air_pressure_pa",
+    "relative_humidity_pct",
+];
+
+/// Every column a shots or launch file is read by, exactly as it must be written: the shots
+/// columns (`shot_id`, `group`, `golfer`, `shaft_mass_g`, the delivery and measured launch),
+/// the launch columns of a flight (measured and `pred_`), the measured flight columns and
+/// `flight_modelled`, `ball_type`, the estimated flags, the delivery convention and the
+/// conditions. (Session and date columns are matched in any case: `crate::data::sessions`.)
+pub fn known_columns() -> Vec<String> {
+    let mut out: Vec<String> = super::shots::required_columns()
+        .into_iter()
+        .chain(super::shots::optional_columns())
+        .map(str::to_string)
+        .collect();
+    for c in super::flight_files::LAUNCH_COLUMNS {
+        out.push(c.to_string());
+        out.push(format!("pred_{c}"));
+    }
+    out.extend(super::flight_files::FLIGHT_COLUMNS.map(str::to_string));
+    out.extend(super::shots::ESTIMATED_FLAGS.map(|(c, _)| c.to_string()));
+    out.extend(
+        [
+            "flight_modelled",
+            "ball_type",
+            crate::model::convention::FACE_AT_COLUMN,
+            crate::model::convention::VELOCITY_AT_COLUMN,
+            crate::model::convention::FACE_ANGLE_FROM_COLUMN,
+        ]
+        .map(str::to_string),
+    );
+    out.extend(CONDITION_COLUMNS.map(str::to_string));
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// Refuse a header that spells a known column ([`known_columns`]) in another case or with
+/// surrounding spaces, unless the file also has the column as written: one line naming the file,
+/// line 1, the column, and the name to write.
+pub fn check_known_case(path: &Path, headers: &[String]) -> Result<(), DataError> {
+    let known = known_columns();
+    for h in headers {
+        if known.iter().any(|k| k == h) {
+            continue;
+        }
+        let t = h.trim();
+        let Some(k) = known.iter().find(|k| k.eq_ignore_ascii_case(t)) else {
+            continue;
+        };
+        if headers.iter().any(|x| x == k) {
+            continue;
+        }
+        return Err(DataError::at(
+            path,
+            Some(1),
+            Some(format!("column '{}'", super::escape(h))),
+            format!(
+                "is smash's '{k}' written {}: column names are matched exactly, so it would be \
+                 carried through unread; rename it '{k}'",
+                if t == h {
+                    "in another case"
+                } else {
+                    "with spaces around it"
+                }
+            ),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check(headers: &[&str]) -> Result<(), String> {
+        let h: Vec<String> = headers.iter().map(|s| s.to_string()).collect();
+        check_known_case(Path::new("s.csv"), &h).map_err(|e| e.to_string())
+    }
+
+    #[test]
+    fn another_case_is_refused_and_named() {
+        let e = check(&["shot_id", "Carry_yd", "group"]).unwrap_err();
+        assert!(e.contains("s.csv:1"), "{e}");
+        assert!(e.contains("column 'Carry_yd'"), "{e}");
+        assert!(e.contains("rename it 'carry_yd'"), "{e}");
+        let e = check(&["Flight_Modelled"]).unwrap_err();
+        assert!(e.contains("'flight_modelled'"), "{e}");
+        let e = check(&["shot_id", " group"]).unwrap_err();
+        assert!(e.contains("with spaces around it"), "{e}");
+    }
+
+    #[test]
+    fn exact_unknown_and_both_spellings_pass() {
+        assert!(check(&["shot_id", "group", "carry_yd", "flight_modelled", "notes"]).is_ok());
+        assert!(check(&["Date", "Session", "Club Name"]).is_ok());
+        // Both spellings: the exact one is read, the other is the user's own column.
+        assert!(check(&["group", "Group"]).is_ok());
+        assert!(check(&["pred_carry_yd", "PRED_BALL_SPEED_MPH"]).is_err());
+    }
+}
