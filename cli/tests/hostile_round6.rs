@@ -181,3 +181,44 @@ fn a_flag_written_as_a_decimal_is_read() {
     );
     assert!(!e.contains("not a flag"), "{e}");
 }
+
+/// `infer-club` names a parameter held at a physical bound as such in its "determined" list
+/// (60 shots of the paper world hold `cor_radial` at 0): the data push it against the bound.
+#[test]
+fn infer_club_says_a_determined_parameter_sits_at_its_bound() {
+    let dir = tempfile::tempdir().unwrap();
+    let world = cli_support::synth_world(dir.path(), "paper_world", 1);
+    let text = std::fs::read_to_string(&world).unwrap();
+    let first: Vec<&str> = text.lines().take(61).collect();
+    let shots = write(dir.path(), "s60.csv", &(first.join("\n") + "\n"));
+    let out = dir.path().join("h.toml");
+    let o = smash(&[
+        "infer-club",
+        "--shots",
+        s(&shots),
+        "--start",
+        &club(),
+        "--out-club",
+        s(&out),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = String::from_utf8(o.stdout).unwrap();
+    let at_bound: Vec<&str> = e
+        .lines()
+        .filter(|l| l.ends_with("(at a physical bound)") && !l.starts_with(' '))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    assert!(!at_bound.is_empty(), "{e}");
+    let after = e.split("At the estimate:").nth(1).unwrap();
+    let determined = after
+        .split("not determined:")
+        .next()
+        .unwrap()
+        .replace('\n', " ");
+    for p in at_bound {
+        assert!(
+            !determined.contains(&format!("{p},")) && !determined.trim_end().ends_with(p),
+            "{p} listed as determined without its bound: {determined}"
+        );
+    }
+}

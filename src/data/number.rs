@@ -83,11 +83,12 @@ fn may_differ_from_display(v: f64, s: &[u8]) -> bool {
     exact_digits == last.saturating_sub(first) + 1
 }
 
-/// Append `v` to `out`; a non-finite value becomes nothing (an empty CSV cell).
+/// Append `v` to `out`; a non-finite value becomes nothing (an empty CSV cell), and −0 is
+/// written `0` (a sign on nothing reads as a tiny negative value).
 #[inline]
 pub fn push_cell(out: &mut Vec<u8>, v: f64) {
     if v.is_finite() {
-        push_f64(out, v);
+        push_f64(out, if v == 0.0 { 0.0 } else { v });
     }
 }
 

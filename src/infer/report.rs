@@ -214,7 +214,7 @@ pub fn render(r: &Report) -> String {
     prose(&mut s, &format!("Prior: {}.", r.prior), 2);
     prose(&mut s, &format!("Rule: {}.", r.determined_rule), 2);
     let _ = writeln!(s, "\nBefore fitting (start head, instruments' noise):");
-    render_ident(&mut s, &r.before);
+    render_ident(&mut s, &r.before, &[]);
     let _ = writeln!(
         s,
         "\nEstimates (posterior mode +- SE; prior share = 1 - Var_post/Var_data):"
@@ -247,7 +247,13 @@ pub fn render(r: &Report) -> String {
         );
     }
     let _ = writeln!(s, "\nAt the estimate:");
-    render_ident(&mut s, &r.after);
+    let bound: Vec<&str> = r
+        .params
+        .iter()
+        .filter(|p| p.at_bound)
+        .map(|p| p.name.as_str())
+        .collect();
+    render_ident(&mut s, &r.after, &bound);
     let _ = writeln!(
         s,
         "\nchi2: data {:.1} over {} rows, prior {:.2}; {} iterations, {}",
@@ -256,12 +262,21 @@ pub fn render(r: &Report) -> String {
     s
 }
 
-fn render_ident(s: &mut String, id: &Identifiability) {
-    prose(
-        s,
-        &format!("  determined: {}", list(&id.determined_params)),
-        2,
-    );
+/// The lists of `id`; a determined parameter the fit holds at a physical bound (`bound`) is
+/// named so: the data push it against the bound, and its SE does not describe it.
+fn render_ident(s: &mut String, id: &Identifiability, bound: &[&str]) {
+    let determined: Vec<String> = id
+        .determined_params
+        .iter()
+        .map(|k| {
+            if bound.contains(&k.as_str()) {
+                format!("{k} (at a physical bound)")
+            } else {
+                k.clone()
+            }
+        })
+        .collect();
+    prose(s, &format!("  determined: {}", list(&determined)), 2);
     prose(
         s,
         &format!("  not determined: {}", list(&id.undetermined_params)),

@@ -23,6 +23,23 @@ pub enum Axis {
     },
 }
 
+/// `v` as the decimal of at most nine significant figures it misses by rounding alone (within
+/// 12 significant figures), else `v`: `{ from = 0, to = 0.3, step = 0.1 }` gives 0.1 and 0.2,
+/// not 0.09999999999999999 and 0.19999999999999998, while a third stays a third.
+fn short_decimal(v: f64) -> f64 {
+    let Ok(r) = format!("{v:.11e}").parse::<f64>() else {
+        return v;
+    };
+    let text = format!("{r:e}");
+    let mantissa = text.split('e').next().unwrap_or("");
+    let digits = mantissa.chars().filter(char::is_ascii_digit).count();
+    if digits <= 9 {
+        r
+    } else {
+        v
+    }
+}
+
 impl Axis {
     /// The values.
     pub fn values(&self) -> Vec<f64> {
@@ -38,7 +55,7 @@ impl Axis {
                         if i + 1 == *count {
                             *to
                         } else {
-                            from + (to - from) * (i as f64 / n)
+                            short_decimal(from + (to - from) * (i as f64 / n))
                         }
                     })
                     .collect()
@@ -259,4 +276,36 @@ fn step_count(
         ));
     }
     Ok(n.round() as usize + 1)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn range_values_are_the_decimals_the_user_wrote() {
+        let a = Axis::Range {
+            from: 0.0,
+            to: 0.3,
+            count: 4,
+        };
+        assert_eq!(a.values(), [0.0, 0.1, 0.2, 0.3]);
+        let a = Axis::Range {
+            from: -20.0,
+            to: 20.0,
+            count: 401,
+        };
+        assert!(
+            a.values().iter().all(|v| format!("{v}").len() <= 5),
+            "{:?}",
+            a.values()
+        );
+        // Thirds stay thirds (no short decimal is near them).
+        let a = Axis::Range {
+            from: 0.0,
+            to: 1.0,
+            count: 4,
+        };
+        assert_eq!(a.values()[1], 1.0 / 3.0);
+    }
 }
