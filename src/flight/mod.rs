@@ -157,7 +157,9 @@ impl FlightConfig {
     /// Where the ball starts, for reports: "on the ground" or "teed N mm".
     pub fn start_text(&self) -> String {
         if self.tee_height_m > 0.0 {
-            format!("teed {:.0} mm", self.tee_height_m * 1e3)
+            // To 0.1 mm, as given (101.6 mm, not 102).
+            let mm = (self.tee_height_m * 1e4).round() / 10.0;
+            format!("teed {} mm", crate::data::fmt_f64(mm))
         } else {
             "on the ground".to_string()
         }

@@ -48,7 +48,8 @@ pub(super) fn parse_header(doc: &TomlDoc<'_>, h: &RawHeader) -> Result<Header, D
             h.name.span(),
             "study.name",
             format!(
-                "'{}' must be a non-empty folder name of letters, digits, '_', '-', '.'",
+                "'{}' must be a non-empty folder name of ASCII letters (a-z, A-Z), digits, '_', \
+                 '-' and '.', not starting with '.'",
                 crate::data::escape(&name)
             ),
         ));
