@@ -37,6 +37,7 @@ mod golden;
 mod hostile_import3;
 mod hostile_input;
 mod hostile_more;
+mod hostile_round15;
 mod hostile_round2;
 mod hostile_round3;
 mod hostile_round4;
