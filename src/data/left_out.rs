@@ -23,7 +23,14 @@ pub struct LeftOut {
     /// column, what was wrong, what is allowed). `None` for rows left out by choice (no impact
     /// location, estimated values), which hold nothing wrong.
     pub first: Option<DataError>,
+    /// Rows of flights cut off by the time limit the user gave (`--max-time-s` below the
+    /// default, [`crate::flight::cut_by_given_limit`]): nothing wrong in the file, so they
+    /// never count toward a refusal that blames it.
+    pub cut_by_limit: bool,
 }
+
+/// Why rows whose flight the user's `--max-time-s` cut off are left out.
+const CUT_BY_LIMIT: &str = "not landed within the --max-time-s given (raise it to fly them)";
 
 /// The kind of what is wrong with a cell, from the reader's message: the reasons a note
 /// groups rows by (with the column).
@@ -60,6 +67,9 @@ pub fn retain_kept<T>(items: &mut Vec<T>, keep: &[bool]) {
 /// Add the row at `line` that `e` says cannot be used to `list`, under the reason of its kind
 /// and column (`a cell that is not a number in column 'backspin_rpm'`).
 pub fn push_bad(list: &mut Vec<LeftOut>, line: usize, e: DataError) {
+    if crate::flight::cut_by_given_limit(&e.message) {
+        return push_entry(list, line, CUT_BY_LIMIT.to_owned(), Some(e), true);
+    }
     let reason = match &e.place {
         Some(place) => format!("{} in {place}", kind(&e.message)),
         None => kind(&e.message).to_owned(),
@@ -75,12 +85,23 @@ pub fn push_reason(list: &mut Vec<LeftOut>, line: usize, reason: String) {
 /// Add the row at `line` to `list` under `reason`: to its entry when there is one, else to a
 /// new entry whose first row's message is `first`.
 pub fn push(list: &mut Vec<LeftOut>, line: usize, reason: String, first: Option<DataError>) {
+    push_entry(list, line, reason, first, false);
+}
+
+fn push_entry(
+    list: &mut Vec<LeftOut>,
+    line: usize,
+    reason: String,
+    first: Option<DataError>,
+    cut_by_limit: bool,
+) {
     match list.iter_mut().find(|l| l.reason == reason) {
         Some(l) => l.lines.push(line),
         None => list.push(LeftOut {
             reason,
             lines: vec![line],
             first,
+            cut_by_limit,
         }),
     }
 }
@@ -117,10 +138,19 @@ pub fn notes(list: &[LeftOut], total: usize) -> Vec<String> {
         .collect()
 }
 
-/// Rows with values that cannot be used, among those left out.
+/// Rows with values that cannot be used, among those left out (not those of flights the
+/// user's `--max-time-s` cut off).
 pub fn bad_rows(list: &[LeftOut]) -> usize {
     list.iter()
-        .filter(|l| l.first.is_some())
+        .filter(|l| l.first.is_some() && !l.cut_by_limit)
+        .map(|l| l.lines.len())
+        .sum()
+}
+
+/// Rows of flights the user's `--max-time-s` cut off, among those left out.
+fn cut_rows(list: &[LeftOut]) -> usize {
+    list.iter()
+        .filter(|l| l.cut_by_limit)
         .map(|l| l.lines.len())
         .sum()
 }
@@ -137,13 +167,39 @@ pub fn mostly_bad(bad: usize, total: usize) -> bool {
 /// shots"), for the same reason: a file most of whose rows are wrong is read wrongly (another
 /// layout, unit or separator), and what is left would describe the few rows that happen to
 /// parse.
+///
+/// Flights cut off by the user's own `--max-time-s` are no sign of a file read wrongly: they
+/// count in neither refusal, and a run they leave without a row is refused naming the flag.
 pub fn refuse_when_unusable(path: &Path, list: &[LeftOut], kept: usize) -> Result<(), DataError> {
-    let total = kept + list.iter().map(|l| l.lines.len()).sum::<usize>();
+    let all = kept + list.iter().map(|l| l.lines.len()).sum::<usize>();
+    let cut = cut_rows(list);
+    let total = all - cut;
     let bad = bad_rows(list);
     let first = list
         .iter()
+        .filter(|l| !l.cut_by_limit)
         .filter_map(|l| l.first.as_ref())
         .min_by_key(|e| e.line);
+    if kept == 0 && cut > 0 {
+        let first_cut = list
+            .iter()
+            .filter(|l| l.cut_by_limit)
+            .filter_map(|l| l.first.as_ref())
+            .min_by_key(|e| e.line)
+            .expect("a cut flight has its message");
+        let others = if cut < all {
+            format!(", the other {} for other reasons", all - cut)
+        } else {
+            String::new()
+        };
+        return Err(DataError::file(
+            path,
+            format!(
+                "no shot left: {cut} of {all} rows have not landed within the --max-time-s \
+                 given{others} (the first, {first_cut}); raise --max-time-s"
+            ),
+        ));
+    }
     if kept == 0 {
         let why = match (first, list.first()) {
             (Some(e), _) => format!(

@@ -157,6 +157,7 @@ impl ShotTable {
                 reason: DERIVED_LEFT_OUT.to_owned(),
                 lines,
                 first: None,
+                cut_by_limit: false,
             }],
         );
         n

@@ -344,11 +344,37 @@ pub enum FlightError {
         allowed: &'static str,
     },
     /// The ball did not come down within the time limit.
-    #[error("the ball has not landed after {time_limit_s} s (time limit); check the launch and the wind")]
+    #[error("{}", never_lands(*time_limit_s))]
     NeverLands {
         /// The limit, s.
         time_limit_s: f64,
     },
+}
+
+/// What [`FlightError::NeverLands`] says. Below the default limit the flight was cut off by the
+/// limit the user gave (`--max-time-s`), which is no fault of the launch: the message says so
+/// and how to fly it ([`cut_by_given_limit`] tells such a message apart). At the default or
+/// above, longer than any golf flight (a 90° pop-up at 250 mph lands within 15 s), the launch
+/// or the wind is what to look at.
+fn never_lands(time_limit_s: f64) -> String {
+    let t = crate::limits::fmt_value(time_limit_s);
+    if time_limit_s < DEFAULT_MAX_TIME_S {
+        format!("{CUT_BY_GIVEN_LIMIT} {t} s: raise --max-time-s to fly it")
+    } else {
+        format!(
+            "the ball has not landed within {t} s (--max-time-s; no golf flight lasts that \
+             long): check the launch and the wind"
+        )
+    }
+}
+
+/// The start of the message of a flight cut off by a `--max-time-s` below the default.
+const CUT_BY_GIVEN_LIMIT: &str = "the ball has not landed within the --max-time-s given,";
+
+/// Whether `message` is that of a flight cut off by the limit the user gave (below the
+/// default): not a fault of the row it was read from.
+pub fn cut_by_given_limit(message: &str) -> bool {
+    message.contains(CUT_BY_GIVEN_LIMIT)
 }
 
 #[cfg(test)]
