@@ -106,3 +106,69 @@ fn flights_cut_off_by_the_users_max_time_are_not_blamed_on_the_file() {
         "{e}"
     );
 }
+
+/// A SkyTrak export's header and one shot row (`id` first).
+const SKYTRAK_HEAD: &str = "Shot,Club,Ball Speed,Launch Angle,Side Angle,Back Spin,Side Spin,\
+Total Spin,Spin Axis,Carry,Roll,Total,Offline,Descent Angle,Peak Height,Club Speed\n";
+
+fn skytrak_row(id: usize, ball_speed: &str, back: &str, side: &str) -> String {
+    format!(
+        "{id},7 Iron,{ball_speed},18.1,R1.0,{back},{side},5786,R0.7,169.4,6.0,175.4,R3.5,47.3,\
+         31.9,87.8\n"
+    )
+}
+
+#[test]
+fn rows_the_import_leaves_out_by_its_rules_are_no_sign_of_a_wrong_format() {
+    let dir = tempfile::tempdir().unwrap();
+    let import = |name: &str, rows: &[String]| {
+        let file = write(
+            dir.path(),
+            name,
+            &(SKYTRAK_HEAD.to_owned() + &rows.concat()),
+        );
+        let out = dir.path().join(format!("{name}.shots.csv"));
+        let o = smash(&["import", "--format", "skytrak", s(&file), "--out", s(&out)]);
+        (o.status.success(), stderr(&o), out)
+    };
+    let good = [
+        skytrak_row(1, "122.1", "5785", "R68"),
+        skytrak_row(2, "122.1", "5785", "R68"),
+    ];
+    // Two shots and three formula rows (an average row and its like).
+    let formula: Vec<String> = (3..=5)
+        .map(|i| skytrak_row(i, if i == 5 { "#N/A" } else { "#DIV/0!" }, "5983", "R457"))
+        .collect();
+    // Two shots and three rows whose monitor lost the spin.
+    let lost: Vec<String> = (3..=5).map(|i| skytrak_row(i, "122.1", "0", "0")).collect();
+    for (name, extra, why) in [
+        (
+            "div.csv",
+            &formula,
+            "a cell holds a spreadsheet's error value",
+        ),
+        ("spin0.csv", &lost, "back and side spin both exactly 0"),
+    ] {
+        let rows: Vec<String> = good.iter().chain(extra.iter()).cloned().collect();
+        let (ok, e, out) = import(name, &rows);
+        assert!(ok, "{name}: {e}");
+        assert!(
+            e.contains("left out 3 row(s)") && e.contains(why),
+            "{name}: {e}"
+        );
+        assert!(!e.contains("--format"), "{name}: {e}");
+        assert_eq!(cli_support::csv_rows(&out).len(), 2, "{name}");
+        // Only such rows: refused, saying what they were, not sending to another --format.
+        let (ok, e, out) = import(&format!("only_{name}"), extra);
+        assert!(!ok, "{name}: {e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{name}: {e}");
+        assert!(
+            e.contains(
+                "no shots: all 3 rows of the SkyTrak export are left out by the import's rules"
+            ) && e.contains(why),
+            "{name}: {e}"
+        );
+        assert!(!e.contains("--format"), "{name}: {e}");
+        assert!(!out.exists());
+    }
+}

@@ -363,7 +363,8 @@ fn corpus_quirks_are_counted_and_dates_are_one_form() {
     // A misread shot, every spin 0: no spin measured, so no launch (left out and counted).
     assert!(
         err.contains(
-            "left out 1 row(s): no measured launch (column 'BallData.BackSpin_RPM' not measured)"
+            "left out 1 row(s): no measured launch (back and side spin both exactly 0: the \
+             monitor lost the spin)"
         ),
         "{err}"
     );

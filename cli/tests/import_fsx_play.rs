@@ -31,8 +31,11 @@ fn an_fsx_play_session_imports_with_the_signs_its_header_states() {
         // The spin lost on line 4 (back, side and total 0): left out and counted.
         assert!(
             e.contains(
-                "left out 1 row(s): no measured launch (column 'Back Spin (rpm)' not measured)"
-            ) && e.contains("fsx_play.csv:4: column 'Back Spin (rpm)': '0' read as not measured"),
+                "left out 1 row(s): no measured launch (back and side spin both exactly 0: the \
+                 monitor lost the spin)"
+            ) && e.contains(
+                "fsx_play.csv:4: column 'Back Spin (rpm)': back and side spin are both exactly 0"
+            ),
             "{e}"
         );
         assert!(!e.contains("-0"), "{e}");

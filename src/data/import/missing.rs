@@ -118,6 +118,9 @@ pub(super) fn club_zeros_not_measured(
     }
 }
 
+/// Why back and side spin are read as not measured when both are exactly 0.
+pub(super) const SPIN_ZEROS: &str = "back and side spin both exactly 0 (the spin was not measured)";
+
 /// Read back and side spin that are both exactly 0 as not measured: a struck ball spins, and
 /// a monitor that lost the spin writes zeros in both (an FSX Play row whose `Total Spin` is
 /// `0 rpm`). The shot then has no spin: left out of what needs a launch, and counted.
@@ -135,10 +138,7 @@ pub(super) fn spin_zeros_not_measured(
     for (n, v) in values.iter_mut() {
         if matches!(*n, "backspin_rpm" | "sidespin_rpm") {
             *v = None;
-            blanked.push((
-                "back and side spin both exactly 0 (the spin was not measured)".to_owned(),
-                format!("line {line}: {n} 0"),
-            ));
+            blanked.push((SPIN_ZEROS.to_owned(), format!("line {line}: {n} 0")));
         }
     }
 }

@@ -71,6 +71,27 @@ fn carry_units(
 /// Why a row holding a spreadsheet's error value is left out.
 const SPREADSHEET_ROW: &str = "a cell holds a spreadsheet's error value (a row a formula computed)";
 
+/// The start of the reason a row with no measured launch is left out for (an empty cell, a
+/// value read as not measured: a vendor's sentinel or 0, lost spin).
+const NO_LAUNCH: &str = "no measured launch";
+
+/// The start of the reason a row with no delivery is left out for (in an export that does not
+/// measure the launch).
+const NO_DELIVERY: &str = "no delivery";
+
+/// Why a row whose back and side spin are both exactly 0 is left out: the monitor lost the
+/// spin (`docs/import.md`, "Not measured").
+const LOST_SPIN: &str =
+    "no measured launch (back and side spin both exactly 0: the monitor lost the spin)";
+
+/// Whether a row left out for `reason` was left out by a rule `docs/import.md` states as
+/// skipped and counted: a row a spreadsheet's formula computed, or one whose launch (or
+/// delivery) the monitor did not measure. Such rows are no sign that the file is read wrongly
+/// (unlike a cell that is not a number, a value outside its range, a row of the wrong width).
+fn left_out_by_rule(reason: &str) -> bool {
+    reason == SPREADSHEET_ROW || reason.starts_with(NO_LAUNCH) || reason.starts_with(NO_DELIVERY)
+}
+
 /// Whether a cell holds the error value a spreadsheet writes where a formula failed: Excel's
 /// and Google Sheets' `#DIV/0!`, `#VALUE!`, `#NAME?`, `#SPILL!`, … (a `#`, letters, digits or `/`,
 /// then `!` or `?`), `#N/A` and its translations (`#NV`, `#N/D`, `#I/T`), `#GETTING_DATA`, and
@@ -159,7 +180,7 @@ pub(super) fn write_shots(
         if strict {
             return Err(e.clone());
         }
-        tally.leave_out("not valid JSON (a line cut short?)".into(), *line, e);
+        tally.leave_out("not valid JSON (a line cut short?)".into(), *line, e, false);
     }
     for (line, cells) in &table.rows {
         if is_unit_row(cells) {
@@ -184,7 +205,7 @@ pub(super) fn write_shots(
             if strict {
                 return Err(e);
             }
-            tally.leave_out(SPREADSHEET_ROW.into(), *line, &e);
+            tally.leave_out(SPREADSHEET_ROW.into(), *line, &e, true);
             continue;
         }
         if let Some(flag) = row.flag(layout) {
@@ -221,8 +242,9 @@ pub(super) fn write_shots(
                     return Err(e);
                 }
                 // A row whose quoted cell ran over its line's end took the lines it ran into.
+                let by_rule = left_out_by_rule(&reason);
                 for l in *line..=row.last_line() {
-                    tally.leave_out(reason.clone(), l, &e);
+                    tally.leave_out(reason.clone(), l, &e, by_rule);
                 }
             }
         }
@@ -232,15 +254,7 @@ pub(super) fn write_shots(
     summarise(&tally, lines.len(), notes);
     notes.extend(carry_note);
     if lines.is_empty() {
-        let why = tally
-            .left_out
-            .first()
-            .map(|l| format!(" (the first left out: {})", l.first))
-            .unwrap_or_default();
-        return Err(DataError::file(
-            path,
-            format!("no shots: the {vendor} export has no usable rows{why}"),
-        ));
+        return Err(super::summary::no_shots(path, vendor, &tally));
     }
     Ok(Shots {
         csv: w.into_inner().expect("flushing memory"),
@@ -673,7 +687,8 @@ impl RowAt<'_> {
             (get("backspin_rpm"), get("sidespin_rpm"))
         };
         if layout.launch_all {
-            self.launch_complete(layout, &get, back.zip(side).is_some())?;
+            let lost_spin = blanked.iter().any(|(r, _)| r == super::missing::SPIN_ZEROS);
+            self.launch_complete(layout, &get, back.zip(side).is_some(), lost_spin)?;
         }
         let condition = layout
             .of(Target::Condition)
@@ -748,6 +763,7 @@ impl RowAt<'_> {
         layout: &Layout,
         get: &dyn Fn(&str) -> Option<f64>,
         spin: bool,
+        lost_spin: bool,
     ) -> Result<(), Bad> {
         let spin_cols: &[&str] = if layout.use_rate_axis {
             &["spin_rate_rpm", "spin_axis_deg"]
@@ -762,6 +778,14 @@ impl RowAt<'_> {
             _ => {
                 let c = missing.copied().unwrap_or(spin_cols[0]);
                 let header = layout.column(c).map_or(c, |r| r.header.as_str());
+                if lost_spin && !LAUNCH.contains(&c) {
+                    let e = self.error_in(
+                        Some(header),
+                        "back and side spin are both exactly 0, read as not measured (a struck \
+                         ball spins: the monitor lost the spin); the measured launch needs them",
+                    );
+                    return Err((LOST_SPIN.to_owned(), e));
+                }
                 // A cell with a value read as not measured (a vendor's 0, a sentinel) is not
                 // an empty cell.
                 let raw = layout.column(c).map_or("", |r| self.cell(r.index).trim());
@@ -778,7 +802,7 @@ impl RowAt<'_> {
                     Some(header),
                     format!("{why}; the measured launch needs {c}"),
                 );
-                Err((format!("no measured launch (column '{header}' {what})"), e))
+                Err((format!("{NO_LAUNCH} (column '{header}' {what})"), e))
             }
         }
     }
@@ -805,7 +829,7 @@ impl RowAt<'_> {
             format!("empty cell; a number is required for {c}"),
         );
         if !layout.launch_all {
-            return Err((format!("no delivery (column '{header}' empty)"), e));
+            return Err((format!("{NO_DELIVERY} (column '{header}' empty)"), e));
         }
         let what = if missing.iter().all(|c| c.starts_with("impact_")) {
             "impact location"

@@ -11,6 +11,10 @@ pub(super) struct LeftOut {
     pub reason: String,
     pub lines: Vec<usize>,
     pub first: String,
+    /// Left out by a rule `docs/import.md` states (a row a spreadsheet's formula computed, a
+    /// launch the monitor did not measure: lost spin, a vendor's "no value"), not for a value
+    /// that cannot be read: no sign that the file is read wrongly.
+    pub by_rule: bool,
 }
 
 /// What the rows of an export came to, for the summary.
@@ -56,17 +60,21 @@ impl Tally {
                 reason,
                 lines: vec![line],
                 first: first.to_owned(),
+                by_rule: true,
             }),
         }
     }
 
-    pub(super) fn leave_out(&mut self, reason: String, line: usize, e: &DataError) {
+    /// Leave the row at `line` out for `reason` (`by_rule`: a reason the import documents as
+    /// skipped and counted, [`LeftOut::by_rule`]).
+    pub(super) fn leave_out(&mut self, reason: String, line: usize, e: &DataError, by_rule: bool) {
         match self.left_out.iter_mut().find(|l| l.reason == reason) {
             Some(l) => l.lines.push(line),
             None => self.left_out.push(LeftOut {
                 reason,
                 lines: vec![line],
                 first: e.to_string(),
+                by_rule,
             }),
         }
     }
@@ -76,17 +84,20 @@ impl Tally {
 /// reader of shots and launches refuses such a file
 /// ([`crate::data::left_out::refuse_when_unusable`]): it is read wrongly (another layout, unit or
 /// separator), and the shots written would be the few rows that happen to parse. A file with no
-/// shot at all is refused by its own message.
+/// shot at all is refused by its own message ([`no_shots`]). Rows left out by a documented rule
+/// ([`LeftOut::by_rule`]: formula rows, lost spin) say nothing of how the file is read, so they
+/// count on neither side.
 pub(super) fn refuse_mostly_bad(
     path: &std::path::Path,
     vendor: &str,
     t: &Tally,
     written: usize,
 ) -> Result<(), DataError> {
-    let bad: usize = t.left_out.iter().map(|l| l.lines.len()).sum();
+    let unreadable = t.left_out.iter().filter(|l| !l.by_rule);
+    let bad: usize = unreadable.clone().map(|l| l.lines.len()).sum();
     let total = written + bad;
     // The earliest bad row's message, whatever its reason.
-    let first = t.left_out.iter().min_by_key(|l| l.lines[0]);
+    let first = unreadable.min_by_key(|l| l.lines[0]);
     match first {
         Some(first) if written > 0 && crate::data::left_out::mostly_bad(bad, total) => {
             Err(DataError::file(
@@ -101,6 +112,44 @@ pub(super) fn refuse_mostly_bad(
         }
         _ => Ok(()),
     }
+}
+
+/// The refusal of an export none of whose rows became a shot: what the rows left out were,
+/// by reason. Only when some of them hold values that cannot be read is the file likely read
+/// wrongly; rows left out by documented rules alone (formula rows, lost spin) are said to be
+/// such, without sending the user to another `--format`.
+pub(super) fn no_shots(path: &std::path::Path, vendor: &str, t: &Tally) -> DataError {
+    let Some(first) = t.left_out.iter().min_by_key(|l| l.lines[0]) else {
+        return DataError::file(
+            path,
+            format!("no shots: the {vendor} export has no usable rows"),
+        );
+    };
+    if t.left_out.iter().all(|l| l.by_rule) {
+        let n: usize = t.left_out.iter().map(|l| l.lines.len()).sum();
+        let kinds: Vec<String> = t
+            .left_out
+            .iter()
+            .map(|l| format!("{} {}", l.lines.len(), l.reason))
+            .collect();
+        return DataError::file(
+            path,
+            format!(
+                "no shots: all {n} rows of the {vendor} export are left out by the import's \
+                 rules for rows that are not shots or lack a measured launch ({}; the first, \
+                 {}); there is nothing to import",
+                kinds.join("; "),
+                first.first
+            ),
+        );
+    }
+    DataError::file(
+        path,
+        format!(
+            "no shots: the {vendor} export has no usable rows (the first left out: {})",
+            first.first
+        ),
+    )
 }
 
 /// The import's summary, one note per kind of row.
