@@ -304,6 +304,43 @@ pub const HOSEL_MM: PhysicalRange = PhysicalRange::closed("hosel position", "mm"
 pub const CLUB_INERTIA_GCM2: PhysicalRange =
     PhysicalRange::closed("club inertia entry", "g·cm²", -1e6, 1e6);
 
+/// The farthest any point of a clubhead lies from another, mm: the diagonal of the largest box
+/// the Rules of Golf let a head fill (Equipment Rules, Part 2, 4b): a putter's head at most 7 in
+/// (177.8 mm) heel to toe, less than that face to back, at most 2.5 in (63.5 mm) sole to top; a
+/// wood's at most 5 in (127 mm) and 2.8 in (71.12 mm), within the same box when its height is
+/// taken as 71.12 mm. √(177.8² + 177.8² + 71.12²) = 261.3 mm, rounded up. (Irons, which those
+/// rules do not bound, are about 80 mm heel to toe.) A point farther than this from the centre
+/// of face, which lies on the head, is outside any head.
+pub const HEAD_REACH_MM: f64 = 262.0;
+
+/// The density of the densest material, g/cm³: osmium, 22.59 (CRC Handbook of Chemistry and
+/// Physics, "Physical constants of inorganic compounds"); tungsten, the densest metal a head is
+/// weighted with, is 19.3.
+pub const DENSEST_G_CM3: f64 = 22.59;
+
+/// The least principal moment of inertia about its centre of mass a clubhead of `mass_g` grams
+/// can have, g·cm². About any axis, the moment `∫ r⊥² dm` of a body of mass `M` that spans at
+/// most a length `L` along the axis and is nowhere denser than `ρ` is least when each slice
+/// across the axis is a full disc of density `ρ` about it, and the slices hold equal masses:
+/// a rod of radius `R` with `M = ρ π R² L`, whose moment is `M R² / 2 = M² / (2 π ρ L)`. With
+/// `L` = [`HEAD_REACH_MM`] (26.2 cm) and `ρ` = [`DENSEST_G_CM3`] that is `M² / 3719` g·cm²:
+/// 11.2 g·cm² for a 204 g driver head, whose real moments are 2800–5700 g·cm² (a 1 g toy head:
+/// 0.00027). A tensor with a smaller principal moment is no head of that mass: its mass would
+/// have to sit closer to the axis than any matter can be packed.
+pub fn min_head_moment_gcm2(mass_g: f64) -> f64 {
+    mass_g * mass_g / (2.0 * std::f64::consts::PI * DENSEST_G_CM3 * HEAD_REACH_MM / 10.0)
+}
+
+/// `x` to 6 significant digits, or as many more as keep it outside `range` (for a refused value
+/// computed by the program, `2.8429999999999995e9` printed as `2.843e9`; never rounded back
+/// inside the range it was refused by).
+pub fn shown_outside(x: f64, range: &PhysicalRange) -> f64 {
+    (6..=17)
+        .filter_map(|d| format!("{:.*e}", d - 1, x).parse::<f64>().ok())
+        .find(|r| !range.contains(*r))
+        .unwrap_or(x)
+}
+
 /// Face bulge and roll radii, mm. Driver faces have 250–330 mm; a radius below the ball's 21 mm
 /// cannot meet a ball, and 10⁶ mm is a flat face for every purpose.
 pub const FACE_RADIUS_MM: PhysicalRange = PhysicalRange::closed("face radius", "mm", 20.0, 1e6);

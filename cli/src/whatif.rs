@@ -11,7 +11,7 @@ use smash::report::render::Render;
 use smash::study::distribution::{Distribution, Method, SwingSpec};
 use smash::study::report::whatif::WhatIfReport;
 use smash::study::whatif::{
-    carry_change_grid, carry_change_map, what_if, HeadChange, MassMove, WhatIf,
+    carry_change_grid, carry_change_map, what_if, ChangePart, HeadChange, MassMove, WhatIf,
 };
 use smash::study::yards_variants::{rows_csv, YardRow, YardSetting};
 
@@ -262,6 +262,35 @@ impl WhatIfArgs {
         Ok(())
     }
 
+    /// The flag that gave `part` of the change, with its value (`--bulge-mm 0`).
+    fn flag_value(&self, part: ChangePart) -> String {
+        let f = smash::limits::fmt_value;
+        let v3 = |v: [f64; 3]| format!("{},{},{}", f(v[0]), f(v[1]), f(v[2]));
+        let value = |x: Option<f64>| x.map(f).unwrap_or_default();
+        match part {
+            ChangePart::MassMove => self.move_mass.map_or("--move-mass".into(), |m| {
+                format!(
+                    "--move-mass {}g:{}:{}",
+                    f(m.mass_g),
+                    v3(m.from_mm),
+                    v3(m.to_mm)
+                )
+            }),
+            ChangePart::ComShift => {
+                format!(
+                    "--com-shift-mm {}",
+                    self.com_shift_mm.map(v3).unwrap_or_default()
+                )
+            }
+            ChangePart::MoiScale => format!("--moi-scale {}", value(self.moi_scale)),
+            ChangePart::Bulge => format!("--bulge-mm {}", value(self.bulge_mm)),
+            ChangePart::Roll => format!("--roll-mm {}", value(self.roll_mm)),
+            ChangePart::LoftChange => {
+                format!("--loft-change-deg {}", value(self.loft_change_deg))
+            }
+        }
+    }
+
     /// The golfer and mishit pattern in words.
     fn setting_text(&self) -> String {
         let d = self.distribution();
@@ -329,6 +358,10 @@ pub fn run(args: WhatIfArgs) -> anyhow::Result<()> {
                 args.speed,
                 args.loft
             ),
+            // A part of the change is the flag's value, not the club file's.
+            E::Part { part, problem } => {
+                anyhow::anyhow!("{}: {problem}", args.flag_value(*part))
+            }
             _ => anyhow::anyhow!("{}: {e}", args.club.display()),
         }
     })?;

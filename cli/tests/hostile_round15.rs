@@ -172,3 +172,120 @@ fn rows_the_import_leaves_out_by_its_rules_are_no_sign_of_a_wrong_format() {
         assert!(!out.exists());
     }
 }
+
+/// `smash whatif` on the paper driver with `change` (flag and value pairs): success and
+/// stderr.
+fn whatif(change: &[&str]) -> (bool, String) {
+    let club = cli_support::repo("configs/clubs/paper_driver.toml");
+    let mut args = vec!["whatif", "--club", s(&club), "--speed", "95"];
+    args.extend(change);
+    let o = smash(&args);
+    (o.status.success(), stderr(&o))
+}
+
+#[test]
+fn whatif_refusals_name_the_flag_that_gave_the_value() {
+    for (change, starts, says) in [
+        (
+            ["--bulge-mm", "0"],
+            "error: --bulge-mm 0: face radius 0 is outside the physical range [20, 1000000] mm",
+            "",
+        ),
+        (
+            ["--roll-mm", "1e9"],
+            "error: --roll-mm 1e9: face radius",
+            "",
+        ),
+        (
+            ["--loft-change-deg", "80"],
+            "error: --loft-change-deg 80: the changed head's dynamic loft 93 is outside",
+            "with a base dynamic loft of 13 deg the loft change must be within [-103, 77] deg",
+        ),
+    ] {
+        let (ok, e) = whatif(&change);
+        assert!(!ok, "{change:?}: {e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(e.starts_with(starts), "{change:?}: {e}");
+        assert!(e.contains(says), "{change:?}: {e}");
+        assert!(
+            !e.contains("paper_driver.toml") && !e.contains("club."),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_mass_moved_from_outside_the_head_is_named_as_such() {
+    for (mv, says) in [
+        // 50 g 208 mm behind the CoM: its own moment would exceed the head's.
+        (
+            "50g:-250,0,0:-80,0,0",
+            "the FROM point (-250, 0, 0) mm is 207.7 mm from the head's centre of mass",
+        ),
+        (
+            "5g:-700,-10,0:-80,-10,-10",
+            "the FROM point (-700, -10, 0) mm lies outside any clubhead",
+        ),
+        (
+            "5g:-70,-10,0:-70,0,600",
+            "the TO point (-70, 0, 600) mm lies outside any clubhead",
+        ),
+        (
+            "5g:10,0,0:-80,0,0",
+            "the FROM point (10, 0, 0) mm is at or in front of the face",
+        ),
+    ] {
+        let (ok, e) = whatif(&["--move-mass", mv]);
+        assert!(!ok, "{mv}: {e}");
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(e.starts_with(&format!("error: --move-mass {mv}: ")), "{e}");
+        assert!(e.contains(says), "{mv}: {e}");
+        assert!(!e.contains("positive definite"), "{mv}: {e}");
+    }
+}
+
+#[test]
+fn a_head_has_at_least_the_moment_its_mass_allows() {
+    let (ok, e) = whatif(&["--moi-scale", "1e-9"]);
+    assert!(!ok, "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.starts_with("error: --moi-scale 1e-9: the changed head's principal moment")
+            && e.contains("below the least a 204 g head can have, 11.2 g·cm²")
+            && e.contains("the scale must be within [0.00449, 176]"),
+        "{e}"
+    );
+    // A value computed by the program is stated to a sensible number of digits.
+    let (ok, e) = whatif(&["--moi-scale", "1e6"]);
+    assert!(!ok, "{e}");
+    assert!(e.contains("club inertia entry 2.843e9 is outside"), "{e}");
+    // A club file with such a tensor is refused at its key.
+    let dir = tempfile::tempdir().unwrap();
+    let text =
+        std::fs::read_to_string(cli_support::repo("configs/clubs/paper_driver.toml")).unwrap();
+    let at = text.find("inertia_gcm2").unwrap();
+    let end = at + text[at..].find('\n').unwrap();
+    let tiny = format!(
+        "{}inertia_gcm2 = [[0.001, 0, 0], [0, 0.001, 0], [0, 0, 0.001]]{}",
+        &text[..at],
+        &text[end..]
+    );
+    let club = write(dir.path(), "tiny.toml", &tiny);
+    let o = smash(&[
+        "predict",
+        "--club",
+        s(&club),
+        "--speed",
+        "100",
+        "--loft",
+        "12",
+    ]);
+    let e = stderr(&o);
+    assert!(!o.status.success(), "{e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("club.inertia_gcm2")
+            && e.contains("principal moment 0.001 g·cm² is below the least a 204 g head can have"),
+        "{e}"
+    );
+}

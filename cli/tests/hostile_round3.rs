@@ -288,20 +288,23 @@ fn club_files_and_changed_heads_are_checked() {
     common::assert_refused(
         &whatif(&["--moi-scale", "1e6"]),
         &[
-            "the changed head: club.inertia_gcm2",
-            "e9 is outside the physical range [-1000000, 1000000] g·cm²",
+            "--moi-scale 1000000: the changed head's club inertia entry 2.843e9",
+            "is outside the physical range [-1000000, 1000000] g·cm²",
         ],
     );
     common::assert_refused(
         &whatif(&["--loft-change-deg", "100"]),
         &[
-            "loft change",
+            "--loft-change-deg 100:",
             "dynamic loft 113 is outside the physical range [-90, 90] deg",
         ],
     );
     common::assert_refused(
         &whatif(&["--com-shift-mm", "0,600,0"]),
-        &["the changed head: club.com_mm", "[-500, 500] mm"],
+        &[
+            "--com-shift-mm 0,600,0: the changed head's club centre of mass",
+            "[-500, 500] mm",
+        ],
     );
     common::assert_refused(
         &whatif(&["--move-mass", "204g:-70,0,0:-80,0,0"]),

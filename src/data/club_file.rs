@@ -117,6 +117,8 @@ pub fn parse_club_as(path: &Path, text: &str, offer: Offer) -> Result<ClubSpec, 
     let inertia = Matrix3::from_fn(|i, j| gcm2(c.inertia_gcm2.get_ref()[i][j]));
     validate_inertia(&inertia, "club.inertia_gcm2")
         .map_err(|e| ctx.err(c.inertia_gcm2.span(), "club.inertia_gcm2", e.problem))?;
+    check_least_moment(&inertia, mass_g)
+        .map_err(|m| ctx.err(c.inertia_gcm2.span(), "club.inertia_gcm2", m))?;
     let cor = *c.cor.get_ref();
     if !(cor.is_finite() && cor > 0.0 && cor <= 1.0) {
         return Err(ctx.err(
@@ -338,6 +340,28 @@ fn read_ball(ctx: &TomlDoc, b: &RawBall) -> Result<(f64, f64, f64), DataError> {
     Ok((mass_g, radius_mm, inertia))
 }
 
+/// `Err` stating the least principal moment of `inertia` (kg·m², a valid tensor) when it is
+/// below the least a head of `mass_g` grams can have ([`limits::min_head_moment_gcm2`]).
+fn check_least_moment(inertia: &Matrix3<f64>, mass_g: f64) -> Result<(), String> {
+    let least = inertia.symmetric_eigenvalues().min() * 1e7;
+    let floor = limits::min_head_moment_gcm2(mass_g);
+    if least >= floor {
+        return Ok(());
+    }
+    // The bound rounded up, so that a moment at the printed bound is one a head may have.
+    let scale = 10f64.powi(3 - floor.log10().floor() as i32);
+    Err(format!(
+        "principal moment {} g·cm² is below the least a {} g head can have, {} g·cm² (its \
+         whole mass packed at the density of osmium, {} g/cm³, into a rod as long as the \
+         largest head, {} mm, about the rod's axis)",
+        limits::fmt_value(format!("{least:.3e}").parse().unwrap_or(least)),
+        limits::fmt_value(mass_g),
+        limits::fmt_value((floor * scale).ceil() / scale),
+        limits::fmt_value(limits::DENSEST_G_CM3),
+        limits::fmt_value(limits::HEAD_REACH_MM),
+    ))
+}
+
 /// `v` (> 0) rounded down to `digits` significant digits: a bound printed that way is one a
 /// value may take (138.829 prints as 138.8, not 138.83, which is refused).
 fn floor_to_digits(v: f64, digits: i32) -> f64 {
@@ -379,14 +403,22 @@ pub fn check_head(p: &ModelParams) -> Result<(), HeadError> {
     }
     limits::check_club_com_x_mm(com_mm.x).map_err(|m| at("club.com_mm", m))?;
     for x in p.club_inertia_kgm2.iter() {
-        limits::CLUB_INERTIA_GCM2
-            .check(file_value(*x, gcm2, 1e7))
-            .map_err(|m| at("club.inertia_gcm2", m))?;
+        let r = limits::CLUB_INERTIA_GCM2;
+        // A computed entry (a scaled tensor) is stated to 6 digits, not as 2.8429999999999995e9.
+        r.check(file_value(*x, gcm2, 1e7)).map_err(|_| {
+            at(
+                "club.inertia_gcm2",
+                r.check(limits::shown_outside(*x * 1e7, &r)).unwrap_err(),
+            )
+        })?;
     }
-    validate_inertia(&p.club_inertia_kgm2, "club.inertia_gcm2").map_err(|e| HeadError {
+    let inertia_problem = |problem| HeadError {
         key: "club.inertia_gcm2",
-        problem: HeadProblem::Inertia(e.problem),
-    })?;
+        problem: HeadProblem::Inertia(problem),
+    };
+    validate_inertia(&p.club_inertia_kgm2, "club.inertia_gcm2")
+        .map_err(|e| inertia_problem(e.problem))?;
+    check_least_moment(&p.club_inertia_kgm2, in_g(p.club_mass_kg)).map_err(inertia_problem)?;
     for (key, r) in [("club.bulge_mm", p.bulge_m), ("club.roll_mm", p.roll_m)] {
         limits::FACE_RADIUS_MM
             .check(in_mm(r))

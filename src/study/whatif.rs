@@ -101,16 +101,31 @@ impl HeadChange {
         out
     }
 
-    /// The changed head (errors name what is not physical).
+    /// The changed head (errors name what is not physical, and the part of the change that
+    /// made it so: [`WhatIfError::Part`]). Each part is checked as it is applied, so that a
+    /// refusal is about the part that was given, not about a club-file key.
     pub fn apply(&self, nominal: &ModelParams) -> Result<ModelParams, WhatIfError> {
+        let part = |part: ChangePart| move |problem: String| WhatIfError::Part { part, problem };
+        let head = |part: ChangePart| {
+            move |e: crate::data::club_file::HeadError| WhatIfError::Part {
+                part,
+                problem: format!("the changed head's {}", e.problem),
+            }
+        };
+        for (r, which) in [
+            (self.bulge_mm, ChangePart::Bulge),
+            (self.roll_mm, ChangePart::Roll),
+        ] {
+            if let Some(r) = r {
+                crate::limits::FACE_RADIUS_MM
+                    .check(r)
+                    .map_err(|e| part(which)(e.to_string()))?;
+            }
+        }
         let mut d = Design::default();
         let mut mass = None;
         if let Some(m) = &self.mass_move {
-            crate::limits::check_head_part_mass_g(
-                "the moved mass",
-                m.mass_g,
-                nominal.club_mass_kg,
-            )?;
+            check_mass_move(m, nominal).map_err(part(ChangePart::MassMove))?;
             mass = Some(DiscretionaryMass {
                 mass_kg: g(m.mass_g),
                 at_m: Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])),
@@ -127,12 +142,54 @@ impl HeadChange {
             d.set(DesignVar::ComDy, c[1]);
             d.set(DesignVar::ComDz, c[2]);
         }
+        // The CoM's place is the CoM shift's doing when one is given, else the mass move's.
+        let moved = if self.com_shift_mm.is_some() {
+            ChangePart::ComShift
+        } else {
+            ChangePart::MassMove
+        };
+        // The design's own check of the head states the club-file key first (`club.com_mm:
+        // …`): the key is replaced by the part of the change that moved it.
+        let mut p = d.apply(nominal, mass.as_ref()).map_err(|e| {
+            let by = if e.problem.starts_with("club.com_mm") {
+                moved
+            } else {
+                ChangePart::MassMove
+            };
+            let problem = match e.problem.split_once(": ") {
+                Some((key, rest)) if key.starts_with("club.") => rest,
+                _ => e.problem.as_str(),
+            };
+            part(by)(format!("the changed head's {problem}"))
+        })?;
+        crate::data::club_file::check_head(&p).map_err(|e| {
+            let by = if e.key == "club.com_mm" {
+                moved
+            } else {
+                ChangePart::MassMove
+            };
+            head(by)(e)
+        })?;
         if let Some(s) = self.moi_scale {
-            d.set(DesignVar::InertiaScale, s);
+            let allowed = moi_scale_range(&p);
+            if !(s.is_finite() && s > 0.0) {
+                return Err(part(ChangePart::MoiScale)(format!(
+                    "must be a positive number; for this head within [{}, {}]",
+                    crate::limits::fmt_value(allowed[0]),
+                    crate::limits::fmt_value(allowed[1])
+                )));
+            }
+            p.club_inertia_kgm2 *= s;
+            crate::data::club_file::check_head(&p).map_err(|e| WhatIfError::Part {
+                part: ChangePart::MoiScale,
+                problem: format!(
+                    "the changed head's {}; for this head the scale must be within [{}, {}]",
+                    e.problem,
+                    crate::limits::fmt_value(allowed[0]),
+                    crate::limits::fmt_value(allowed[1])
+                ),
+            })?;
         }
-        let mut p = d
-            .apply(nominal, mass.as_ref())
-            .map_err(|e| WhatIfError::ChangedDesign(e.problem))?;
         if let Some(b) = self.bulge_mm {
             p.bulge_m = mm(b);
         }
@@ -153,6 +210,124 @@ impl HeadChange {
             ..*base
         }
     }
+}
+
+/// The part of a [`HeadChange`] a refusal is about (the command line names its flag).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ChangePart {
+    /// [`HeadChange::mass_move`].
+    MassMove,
+    /// [`HeadChange::com_shift_mm`].
+    ComShift,
+    /// [`HeadChange::moi_scale`].
+    MoiScale,
+    /// [`HeadChange::bulge_mm`].
+    Bulge,
+    /// [`HeadChange::roll_mm`].
+    Roll,
+    /// [`HeadChange::loft_change_deg`].
+    LoftChange,
+}
+
+/// `Err` when a mass move is not one within the head `nominal`: a mass that is not part of it,
+/// a FROM or TO point in front of the face or farther from the centre of face than any head
+/// reaches ([`crate::limits::HEAD_REACH_MM`]), or a FROM point too far from the centre of mass
+/// for the mass it moves. That last: the head is the moved mass `m` at `A` and the rest, `M − m`,
+/// whose own inertia about its CoM is `I − k·J(A − C)` with `k = m·M/(M − m)` (the two-body
+/// parallel-axis sum, `J(r) = |r|²·1 − r·rᵀ`); a body's inertia is positive definite, so when
+/// that is not, `m` cannot sit at `A`: it alone would give the head more inertia than it has.
+/// (Where the mass goes cannot break this: the changed head is the same rest plus `m` at `B`.)
+fn check_mass_move(m: &MassMove, nominal: &ModelParams) -> Result<(), String> {
+    use crate::limits::{fmt_value as f, HEAD_REACH_MM};
+    crate::limits::check_head_part_mass_g("the moved mass", m.mass_g, nominal.club_mass_kg)
+        .map_err(|e| e.to_string())?;
+    for (which, at) in [("FROM", m.from_mm), ("TO", m.to_mm)] {
+        let reach = Vector3::from(at).norm();
+        if at[0] >= 0.0 {
+            return Err(format!(
+                "the {which} point {} mm is at or in front of the face (x = {} mm; the face is \
+                 at x = 0, the head behind it at x < 0)",
+                fmt3(at),
+                f(at[0])
+            ));
+        }
+        if !(reach <= HEAD_REACH_MM) {
+            return Err(format!(
+                "the {which} point {} mm lies outside any clubhead: {} mm from the centre of \
+                 face, where no head reaches farther than {} mm",
+                fmt3(at),
+                f(round_to(reach, 1)),
+                f(HEAD_REACH_MM)
+            ));
+        }
+    }
+    let big_m = nominal.club_mass_kg;
+    let k = g(m.mass_g) * big_m / (big_m - g(m.mass_g));
+    let com = nominal.club_com_m;
+    let d = Vector3::new(mm(m.from_mm[0]), mm(m.from_mm[1]), mm(m.from_mm[2])) - com;
+    let rest_valid = |t: f64| {
+        let r = d * t;
+        let j = nalgebra::Matrix3::identity() * r.norm_squared() - r * r.transpose();
+        (nominal.club_inertia_kgm2 - j * k)
+            .symmetric_eigenvalues()
+            .min()
+            > 0.0
+    };
+    if rest_valid(1.0) {
+        return Ok(());
+    }
+    // The farthest along that direction the mass may sit: bisection on the share of `d`.
+    let (mut lo, mut hi) = (0.0, 1.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if rest_valid(mid) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let c_mm = com.map(|x| x * 1e3);
+    Err(format!(
+        "the FROM point {} mm is {} mm from the head's centre of mass {} mm, too far for {} g \
+         of this {} g head: a part that heavy lies at most {} mm from it in that direction \
+         (farther, it alone would give the head more inertia than it has), so the point is \
+         outside the head",
+        fmt3(m.from_mm),
+        f(round_to(d.norm() * 1e3, 1)),
+        fmt3([
+            round_to(c_mm.x, 2),
+            round_to(c_mm.y, 2),
+            round_to(c_mm.z, 2)
+        ]),
+        f(m.mass_g),
+        f(round_to(big_m * 1e3, 3)),
+        f(round_to(lo * d.norm() * 1e3, 1))
+    ))
+}
+
+/// `x` rounded to `digits` decimals.
+fn round_to(x: f64, digits: i32) -> f64 {
+    let s = 10f64.powi(digits);
+    (x * s).round() / s
+}
+
+/// The `--moi-scale` range that keeps head `p` one a club file takes: from the least principal
+/// moment a head of its mass can have ([`crate::limits::min_head_moment_gcm2`]) to the largest
+/// inertia entry ([`crate::limits::CLUB_INERTIA_GCM2`]), each to 3 significant digits inward.
+fn moi_scale_range(p: &ModelParams) -> [f64; 2] {
+    let i = p.club_inertia_kgm2 * 1e7;
+    let least = i.symmetric_eigenvalues().min();
+    let low = crate::limits::min_head_moment_gcm2(p.club_mass_kg * 1e3) / least;
+    let high = crate::limits::CLUB_INERTIA_GCM2.max / i.amax();
+    let digits = |x: f64, up: bool| {
+        let s = 10f64.powi(2 - x.log10().floor() as i32);
+        if up {
+            (x * s).ceil() / s
+        } else {
+            (x * s).floor() / s
+        }
+    };
+    [digits(low, true), digits(high, false)]
 }
 
 /// The answer: both heads and their yard metrics.
@@ -178,18 +353,20 @@ pub enum WhatIfError {
     /// A moved mass that is not part of the head, or a value out of its range.
     #[error(transparent)]
     Limit(#[from] crate::limits::LimitError),
-    /// The change makes a design that is not physical.
-    #[error("the changed head: {0}")]
-    ChangedDesign(String),
+    /// One part of the change is not physical (or makes a head that is not).
+    #[error("{problem}")]
+    Part {
+        /// Which part.
+        part: ChangePart,
+        /// What is wrong, and what is allowed.
+        problem: String,
+    },
     /// The changed head is one a club file would refuse.
     #[error("the changed head: {0}")]
     ChangedHead(crate::data::club_file::HeadError),
     /// The model refuses the changed head.
     #[error(transparent)]
     Model(#[from] crate::physics::ParamError),
-    /// The loft change takes the delivery out of its range.
-    #[error("the changed head's delivery (loft change): {0}")]
-    ChangedDelivery(crate::limits::LimitError),
     /// The base head's yards.
     #[error("the base head: {0}")]
     BaseYards(YardsError),
@@ -207,9 +384,20 @@ pub fn what_if(
 ) -> Result<WhatIf, WhatIfError> {
     let changed_params = change.apply(nominal)?;
     let swing = change.swing(s.swing);
-    crate::limits::DYNAMIC_LOFT_DEG
-        .check(swing.dynamic_loft_deg)
-        .map_err(WhatIfError::ChangedDelivery)?;
+    if let Err(e) = crate::limits::DYNAMIC_LOFT_DEG.check(swing.dynamic_loft_deg) {
+        let r = crate::limits::DYNAMIC_LOFT_DEG;
+        let base = s.swing.dynamic_loft_deg;
+        return Err(WhatIfError::Part {
+            part: ChangePart::LoftChange,
+            problem: format!(
+                "the changed head's {e}: with a base dynamic loft of {} deg the loft change \
+                 must be within [{}, {}] deg",
+                crate::limits::fmt_value(base),
+                crate::limits::fmt_value(r.min - base),
+                crate::limits::fmt_value(r.max - base)
+            ),
+        });
+    }
     let (base, base_landing) = head_landing(nominal, s).map_err(WhatIfError::BaseYards)?;
     let (changed, changed_landing) = head_landing(
         &changed_params,
@@ -397,7 +585,16 @@ mod tests {
             ..HeadChange::default()
         };
         let e = c.apply(&p).unwrap_err();
-        assert!(matches!(e, WhatIfError::Limit(_)), "{e:?}");
+        assert!(
+            matches!(
+                e,
+                WhatIfError::Part {
+                    part: ChangePart::MassMove,
+                    ..
+                }
+            ),
+            "{e:?}"
+        );
         assert!(e.to_string().contains("below the head mass, 204 g"), "{e}");
     }
 
