@@ -9,6 +9,7 @@
 use std::path::Path;
 
 use super::DataError;
+use crate::model::DeliveryVar;
 
 /// The numeric condition columns a flight uses: altitude (m), air temperature (°C), air
 /// pressure (Pa, station), relative humidity (%).
@@ -19,23 +20,113 @@ pub const CONDITION_COLUMNS: [&str; 4] = [
     "relative_humidity_pct",
 ];
 
+/// The flight outputs (file names without prefix).
+pub const FLIGHT_COLUMNS: [&str; 6] = [
+    "carry_yd",
+    "offline_yd",
+    "apex_yd",
+    "flight_time_s",
+    "land_angle_deg",
+    "total_yd",
+];
+
+/// The launch columns (file names without prefix), in
+/// [`crate::flight::FlightLaunch::from_file_units`] order.
+pub const LAUNCH_COLUMNS: [&str; 5] = [
+    "ball_speed_mph",
+    "launch_angle_deg",
+    "azimuth_deg",
+    "backspin_rpm",
+    "sidespin_rpm",
+];
+
+/// The 0/1 columns that mark values a monitor estimated, with what they mark.
+pub const ESTIMATED_FLAGS: [(&str, &str); 2] = [
+    ("spin_estimated", "estimated spin"),
+    ("club_estimated", "estimated club data"),
+];
+
+/// Columns a shots file must have: `shot_id` and the required [`DeliveryVar`]s.
+pub fn required_columns() -> Vec<&'static str> {
+    std::iter::once("shot_id")
+        .chain(
+            DeliveryVar::ALL
+                .into_iter()
+                .filter(|v| v.required())
+                .map(DeliveryVar::column),
+        )
+        .collect()
+}
+
+/// Optional input columns the engine reads: `group`, `golfer`, `shaft_mass_g` and the
+/// optional [`DeliveryVar`]s.
+pub fn optional_columns() -> Vec<&'static str> {
+    ["group", "golfer", "shaft_mass_g"]
+        .into_iter()
+        .chain(
+            DeliveryVar::ALL
+                .into_iter()
+                .filter(|v| !v.required())
+                .map(DeliveryVar::column),
+        )
+        .collect()
+}
+
+/// Per measured flight column ([`FLIGHT_COLUMNS`]: carry, offline, apex, flight time, land
+/// angle, total), whether a value of exactly 0 means "not measured": a monitor writes 0 for a
+/// flight it did not track (TrackMan's carry, apex and landing; GSPro's carry), and a ball
+/// that flew has none of them 0, as `smash import` reads them (`docs/import.md`, "Not
+/// measured"). An offline of 0 is a straight shot.
+pub const ZERO_IS_NOT_MEASURED: [bool; 6] = [true, false, true, true, true, true];
+
+/// The measured value of flight column `k` in `cell` to compare with or fit to: a finite
+/// number, not a 0 that means "not measured" ([`ZERO_IS_NOT_MEASURED`]); else `None`.
+pub fn measured_value(k: usize, cell: &str) -> Option<f64> {
+    crate::data::number::parse_f64(cell.trim())
+        .filter(|x| x.is_finite())
+        .filter(|&x| !(x == 0.0 && ZERO_IS_NOT_MEASURED[k]))
+}
+
+/// Whether `cell` of flight column `k` is a 0 read as "not measured" ([`measured_value`]).
+pub fn unmeasured_zero(k: usize, cell: &str) -> bool {
+    ZERO_IS_NOT_MEASURED[k] && crate::data::number::parse_f64(cell.trim()) == Some(0.0)
+}
+
+/// A flag cell (`flight_modelled`, `club_estimated`, `spin_estimated`): `Some(true)` for 1,
+/// `Some(false)` for 0 (also written `1.0`/`0.0`, as pandas writes a 0/1 column with gaps, or
+/// `true`/`false` in any case), `None` for an empty cell, `Err` for anything else. Surrounding
+/// spaces are ignored.
+#[allow(clippy::result_unit_err)]
+pub fn flag(cell: &str) -> Result<Option<bool>, ()> {
+    match cell.trim() {
+        "" => Ok(None),
+        t if t.eq_ignore_ascii_case("true") => Ok(Some(true)),
+        t if t.eq_ignore_ascii_case("false") => Ok(Some(false)),
+        t => match t.parse::<f64>() {
+            Ok(v) if v == 1.0 && !t.contains(['e', 'E']) => Ok(Some(true)),
+            Ok(v) if v == 0.0 && !t.contains(['e', 'E']) => Ok(Some(false)),
+            _ => Err(()),
+        },
+    }
+}
+
 /// Every column a shots or launch file is read by, exactly as it must be written: the shots
 /// columns (`shot_id`, `group`, `golfer`, `shaft_mass_g`, the delivery and measured launch),
 /// the launch columns of a flight (measured and `pred_`), the measured flight columns and
 /// `flight_modelled`, `ball_type`, the estimated flags, the delivery convention and the
 /// conditions. (Session and date columns are matched in any case: `crate::data::sessions`.)
 pub fn known_columns() -> Vec<String> {
-    let mut out: Vec<String> = super::shots::required_columns()
+    let mut out: Vec<String> = required_columns()
         .into_iter()
-        .chain(super::shots::optional_columns())
+        .chain(optional_columns())
         .map(str::to_string)
         .collect();
-    for c in super::flight_files::LAUNCH_COLUMNS {
+    for c in LAUNCH_COLUMNS {
         out.push(c.to_string());
         out.push(format!("pred_{c}"));
     }
-    out.extend(super::flight_files::FLIGHT_COLUMNS.map(str::to_string));
-    out.extend(super::shots::ESTIMATED_FLAGS.map(|(c, _)| c.to_string()));
+    out.extend(FLIGHT_COLUMNS.map(str::to_string));
+    out.extend(ESTIMATED_FLAGS.map(|(c, _)| c.to_string()));
     out.extend(
         [
             "flight_modelled",

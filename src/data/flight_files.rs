@@ -8,21 +8,13 @@
 
 use std::path::Path;
 
-use crate::data::flight_measured::measured_value;
+use crate::data::columns::measured_value;
 use crate::data::number::push_cell;
 use crate::data::{csv_error_at, read_text, DataError};
 use crate::flight::{Atmosphere, Flight, FlightError, FlightLaunch};
 use crate::line_index::LineIndex;
 
-/// The flight outputs (file names without prefix).
-pub const FLIGHT_COLUMNS: [&str; 6] = [
-    "carry_yd",
-    "offline_yd",
-    "apex_yd",
-    "flight_time_s",
-    "land_angle_deg",
-    "total_yd",
-];
+pub use super::columns::{FLIGHT_COLUMNS, LAUNCH_COLUMNS};
 
 pub(crate) fn flight_value(f: &Flight, k: usize) -> Option<f64> {
     match k {
@@ -217,15 +209,6 @@ fn parse_raw_csv_serial(path: &Path, bytes: &[u8]) -> Result<RawCsv, DataError> 
         lines,
     })
 }
-
-/// The launch columns (file names without prefix), in [`FlightLaunch::from_file_units`] order.
-pub const LAUNCH_COLUMNS: [&str; 5] = [
-    "ball_speed_mph",
-    "launch_angle_deg",
-    "azimuth_deg",
-    "backspin_rpm",
-    "sidespin_rpm",
-];
 
 /// Which launch columns to fly and where they are: `source` picks them; `None` takes measured
 /// columns when `ball_speed_mph` is present, else predicted ones. `azimuth_deg` and

@@ -56,43 +56,7 @@ const fn yd_range(quantity: &'static str, min: f64, max: f64) -> PhysicalRange {
     }
 }
 
-/// Per measured flight column ([`FLIGHT_COLUMNS`]: carry, offline, apex, flight time, land
-/// angle, total), whether a value of exactly 0 means "not measured": a monitor writes 0 for a
-/// flight it did not track (TrackMan's carry, apex and landing; GSPro's carry), and a ball
-/// that flew has none of them 0, as `smash import` reads them (`docs/import.md`, "Not
-/// measured"). An offline of 0 is a straight shot.
-pub const ZERO_IS_NOT_MEASURED: [bool; 6] = [true, false, true, true, true, true];
-
-/// The measured value of flight column `k` in `cell` to compare with or fit to: a finite
-/// number, not a 0 that means "not measured" ([`ZERO_IS_NOT_MEASURED`]); else `None`.
-pub fn measured_value(k: usize, cell: &str) -> Option<f64> {
-    crate::data::number::parse_f64(cell.trim())
-        .filter(|x| x.is_finite())
-        .filter(|&x| !(x == 0.0 && ZERO_IS_NOT_MEASURED[k]))
-}
-
-/// Whether `cell` of flight column `k` is a 0 read as "not measured" ([`measured_value`]).
-pub fn unmeasured_zero(k: usize, cell: &str) -> bool {
-    ZERO_IS_NOT_MEASURED[k] && crate::data::number::parse_f64(cell.trim()) == Some(0.0)
-}
-
-/// A flag cell (`flight_modelled`, `club_estimated`, `spin_estimated`): `Some(true)` for 1,
-/// `Some(false)` for 0 (also written `1.0`/`0.0`, as pandas writes a 0/1 column with gaps, or
-/// `true`/`false` in any case), `None` for an empty cell, `Err` for anything else. Surrounding
-/// spaces are ignored.
-#[allow(clippy::result_unit_err)]
-pub fn flag(cell: &str) -> Result<Option<bool>, ()> {
-    match cell.trim() {
-        "" => Ok(None),
-        t if t.eq_ignore_ascii_case("true") => Ok(Some(true)),
-        t if t.eq_ignore_ascii_case("false") => Ok(Some(false)),
-        t => match t.parse::<f64>() {
-            Ok(v) if v == 1.0 && !t.contains(['e', 'E']) => Ok(Some(true)),
-            Ok(v) if v == 0.0 && !t.contains(['e', 'E']) => Ok(Some(false)),
-            _ => Err(()),
-        },
-    }
-}
+pub use super::columns::{flag, measured_value, unmeasured_zero, ZERO_IS_NOT_MEASURED};
 
 /// A `flight_modelled` cell: `Some(true)` for 1 (or `true`: the carry, apex and landing are
 /// the vendor's flight model), `Some(false)` for 0 (or `false`: a tracked flight), `None` for

@@ -19,6 +19,7 @@
 use std::collections::HashSet;
 use std::path::{Path, PathBuf};
 
+pub use super::columns::{optional_columns, required_columns, ESTIMATED_FLAGS};
 use super::{csv_error_at, DataError};
 use crate::limits::{self, PhysicalRange};
 use crate::line_index::LineIndex;
@@ -32,32 +33,6 @@ pub use crate::model::Shot;
 use crate::model::{delivery_from_file_units, DeliveryVar, N_DELIVERY};
 use crate::physics::{Delivery, Launch, LaunchComponent};
 use crate::units::{deg, mph, rpm};
-
-/// Columns a shots file must have: `shot_id` and the required [`DeliveryVar`]s.
-pub fn required_columns() -> Vec<&'static str> {
-    std::iter::once("shot_id")
-        .chain(
-            DeliveryVar::ALL
-                .into_iter()
-                .filter(|v| v.required())
-                .map(DeliveryVar::column),
-        )
-        .collect()
-}
-
-/// Optional input columns the engine reads: `group`, `golfer`, `shaft_mass_g` and the
-/// optional [`DeliveryVar`]s.
-pub fn optional_columns() -> Vec<&'static str> {
-    ["group", "golfer", "shaft_mass_g"]
-        .into_iter()
-        .chain(
-            DeliveryVar::ALL
-                .into_iter()
-                .filter(|v| !v.required())
-                .map(DeliveryVar::column),
-        )
-        .collect()
-}
 
 /// Group of shots without a `group` column.
 pub const DEFAULT_GROUP: &str = "all";
@@ -101,12 +76,6 @@ pub struct ReadOptions {
     /// `club_estimated = 1`); by default they are left out and counted.
     pub include_estimated: bool,
 }
-
-/// The 0/1 columns that mark values a monitor estimated, with what they mark.
-pub const ESTIMATED_FLAGS: [(&str, &str); 2] = [
-    ("spin_estimated", "estimated spin"),
-    ("club_estimated", "estimated club data"),
-];
 
 impl ShotTable {
     /// One note per reason rows were left out: how many of all the rows, why, and their first
@@ -463,7 +432,7 @@ impl Row<'_> {
         if !opts.include_estimated {
             for (i, what) in &cols.estimated {
                 let v = self.cells[*i].as_str();
-                let Ok(estimated) = crate::data::flight_measured::flag(v) else {
+                let Ok(estimated) = super::columns::flag(v) else {
                     return Err(self.error(
                         &self.headers[*i],
                         format!(

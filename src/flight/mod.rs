@@ -159,7 +159,7 @@ impl FlightConfig {
         if self.tee_height_m > 0.0 {
             // To 0.1 mm, as given (101.6 mm, not 102).
             let mm = (self.tee_height_m * 1e4).round() / 10.0;
-            format!("teed {} mm", crate::data::fmt_f64(mm))
+            format!("teed {mm} mm")
         } else {
             "on the ground".to_string()
         }
