@@ -73,6 +73,23 @@ pub fn is_unchanged(p: &ParamEstimate, n_params: usize) -> bool {
     }
 }
 
+/// Is an implausible value within two standard errors of its plausible range? Then the fit
+/// does not tell it from a plausible value (`added_mass@C.dm_g = −1.41 ± 1.58 g` against
+/// `[0, 20]`), and reading it as a stand-in for other physics claims more than the data show.
+/// `false` for a plausible value, one without a range or without a finite standard error.
+pub fn implausible_within_noise(p: &ParamEstimate) -> bool {
+    let (Some(false), Some(spec), Some(se)) = (is_plausible(p), spec_of(p), p.stderr) else {
+        return false;
+    };
+    let (lo, hi) = spec.plausible;
+    let gap = if p.value < lo {
+        lo - p.value
+    } else {
+        p.value - hi
+    };
+    se.is_finite() && gap <= 2.0 * se
+}
+
 /// Which physics an implausible value behaves like (`None` when the value is plausible or the
 /// parameter unknown). The reading is the effect's own (`STAND_IN` in its file): what else moves
 /// the same launch components the same way.
@@ -393,6 +410,23 @@ mod tests {
         assert_eq!(stand_in(&pos), None);
         assert_eq!(mark(&pos), "");
         assert!(!mark(&neg).is_empty());
+    }
+
+    /// −1.41 ± 1.58 g is not told from 0 g (the plausible range starts there); −5.2 ± 1.0 g
+    /// is, and a value without a standard error is judged by its value alone.
+    #[test]
+    fn an_implausible_value_within_two_se_of_its_range_is_noise() {
+        let mut near = est("added_mass", "dm_g", -1.41);
+        near.stderr = Some(1.58);
+        assert!(implausible_within_noise(&near));
+        let mut far = est("added_mass", "dm_g", -5.2);
+        far.stderr = Some(1.0);
+        assert!(!implausible_within_noise(&far));
+        far.stderr = None;
+        assert!(!implausible_within_noise(&far));
+        let mut inside = est("added_mass", "dm_g", 2.3);
+        inside.stderr = Some(10.0);
+        assert!(!implausible_within_noise(&inside));
     }
 
     #[test]

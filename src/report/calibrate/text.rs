@@ -97,7 +97,9 @@ fn parameter_table(cal: &Calibration, labels: &[String], unidentified: &[usize])
         if unidentified.contains(&j) {
             note.push("not identifiable");
         }
-        if honest::is_plausible(p) == Some(false) {
+        if honest::implausible_within_noise(p) {
+            note.push("outside the plausible range by less than 2 SE");
+        } else if honest::is_plausible(p) == Some(false) {
             note.push("IMPLAUSIBLE: a stand-in, not a finding");
         }
         t.row([
@@ -141,6 +143,19 @@ fn correlation_table(cal: &Calibration, labels: &[String]) -> String {
 fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> String {
     let mut s = String::new();
     for p in &cal.params {
+        if honest::implausible_within_noise(p) {
+            s.push_str(&format!(
+                "  within noise of its plausible range: {} = {:.4} ± {:.4} {} is outside {} by \
+                 less than 2 SE, so the fit does not tell it from a plausible value (no reading \
+                 as a stand-in)\n",
+                p.label(),
+                p.value,
+                p.stderr.unwrap_or(f64::NAN),
+                p.unit,
+                honest::plausible_range_text(p)
+            ));
+            continue;
+        }
         if let Some(w) = honest::stand_in(p) {
             s.push_str(&format!(
                 "  stand-in, not a finding: {} = {:.4} {} is outside its plausible range {}; it \
