@@ -202,6 +202,29 @@ fn fill(f: &mut impl Read, buf: &mut Vec<u8>, want: usize) -> std::io::Result<bo
     Ok(false)
 }
 
+/// The writer thread of [`stream`]: each chunk's parts appended to `w` and flushed to the
+/// disk, their buffers then emptied into `spare` for the next pieces.
+fn write_parts(
+    rx: &std::sync::mpsc::Receiver<Vec<Vec<u8>>>,
+    w: &mut std::fs::File,
+    spare: &Spare,
+) -> std::io::Result<()> {
+    for parts in rx {
+        for p in &parts {
+            w.write_all(p)?;
+        }
+        w.sync_data()?;
+        let mut pool = spare
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        for mut p in parts {
+            p.clear();
+            pool.push(p);
+        }
+    }
+    Ok(())
+}
+
 /// `Ok(None)`: not plain, nothing written (the caller takes the one-piece path).
 fn stream(
     input: &Path,
@@ -250,22 +273,7 @@ fn stream(
         let spare = &spare;
         // Each chunk's rows are written and then flushed to the disk here, while the next
         // chunk flies, so that the commit's `fsync` has only the last chunk left to wait for.
-        let writer = scope.spawn(move || -> std::io::Result<()> {
-            for parts in rx {
-                for p in &parts {
-                    w.write_all(p)?;
-                }
-                w.sync_data()?;
-                let mut pool = spare
-                    .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner);
-                for mut p in parts {
-                    p.clear();
-                    pool.push(p);
-                }
-            }
-            Ok(())
-        });
+        let writer = scope.spawn(move || write_parts(&rx, &mut w, spare));
         let run = (|| -> Result<Option<(usize, Vec<LeftOut>)>, DataError> {
             if tx.send(vec![plan.layout.header_line()]).is_err() {
                 return Ok(Some((0, Vec::new())));
