@@ -79,17 +79,24 @@ pub fn optional_columns() -> Vec<&'static str> {
 /// measured"). An offline of 0 is a straight shot.
 pub const ZERO_IS_NOT_MEASURED: [bool; 6] = [true, false, true, true, true, true];
 
+/// The index of flight column `name` in [`FLIGHT_COLUMNS`].
+pub fn flight_column(name: &str) -> Option<usize> {
+    FLIGHT_COLUMNS.iter().position(|c| *c == name)
+}
+
 /// The measured value of flight column `k` in `cell` to compare with or fit to: a finite
 /// number, not a 0 that means "not measured" ([`ZERO_IS_NOT_MEASURED`]); else `None`.
 pub fn measured_value(k: usize, cell: &str) -> Option<f64> {
-    crate::data::number::parse_f64(cell.trim())
-        .filter(|x| x.is_finite())
-        .filter(|&x| !(x == 0.0 && ZERO_IS_NOT_MEASURED[k]))
+    read_measured(k, cell).0
 }
 
-/// Whether `cell` of flight column `k` is a 0 read as "not measured" ([`measured_value`]).
-pub fn unmeasured_zero(k: usize, cell: &str) -> bool {
-    ZERO_IS_NOT_MEASURED[k] && crate::data::number::parse_f64(cell.trim()) == Some(0.0)
+/// [`measured_value`], and whether the cell was a 0 read as "not measured" (the cell parsed
+/// once, for a reader that counts such zeros).
+pub fn read_measured(k: usize, cell: &str) -> (Option<f64>, bool) {
+    match crate::data::number::parse_f64(cell.trim()).filter(|x| x.is_finite()) {
+        Some(x) if x == 0.0 && ZERO_IS_NOT_MEASURED[k] => (None, true),
+        v => (v, false),
+    }
 }
 
 /// A flag cell (`flight_modelled`, `club_estimated`, `spin_estimated`): `Some(true)` for 1,

@@ -56,15 +56,7 @@ const fn yd_range(quantity: &'static str, min: f64, max: f64) -> PhysicalRange {
     }
 }
 
-pub use super::columns::{flag, measured_value, unmeasured_zero, ZERO_IS_NOT_MEASURED};
-
-/// A `flight_modelled` cell: `Some(true)` for 1 (or `true`: the carry, apex and landing are
-/// the vendor's flight model), `Some(false)` for 0 (or `false`: a tracked flight), `None` for
-/// an empty cell (not stated), `Err` for anything else. Surrounding spaces are ignored.
-#[allow(clippy::result_unit_err)]
-pub fn modelled_flag(cell: &str) -> Result<Option<bool>, ()> {
-    flag(cell)
-}
+pub use super::columns::{flag, measured_value, read_measured, ZERO_IS_NOT_MEASURED};
 
 /// A measured flight cell ([`FLIGHT_COLUMNS`]`[k]`): `None` when empty, the value when a number
 /// inside [`MEASURED_FLIGHT_RANGES`]`[k]`, else what was wrong and what is allowed.

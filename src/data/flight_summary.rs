@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use crate::data::flight_measured::{measured_value, modelled_flag, unmeasured_zero};
+use crate::data::columns::{flag, flight_column, read_measured};
 
 /// The compared quantities: (flight column, label, unit).
 pub const SUMMARY_QUANTITIES: [(&str, &str, &str); 4] = [
@@ -19,14 +19,6 @@ pub const SUMMARY_QUANTITIES: [(&str, &str, &str); 4] = [
     ("apex_yd", "apex", "yd"),
     ("land_angle_deg", "land angle", "deg"),
 ];
-
-/// The index in [`crate::data::flight_files::FLIGHT_COLUMNS`] of summary quantity `q`.
-fn flight_column(q: usize) -> usize {
-    crate::data::flight_files::FLIGHT_COLUMNS
-        .iter()
-        .position(|c| *c == SUMMARY_QUANTITIES[q].0)
-        .expect("every summary quantity is a flight column")
-}
 
 /// Error statistics of one quantity over a set of shots.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -169,6 +161,8 @@ struct Compact {
     unflagged: usize,
     /// Per compared quantity, the rows whose measured cell is a 0 read as not measured.
     zeros: Vec<usize>,
+    /// Per compared quantity, its index in [`crate::data::columns::FLIGHT_COLUMNS`].
+    columns: Vec<usize>,
 }
 
 impl Compact {
@@ -186,6 +180,13 @@ impl Compact {
         Some(Self {
             group: col("group"),
             zeros: vec![0; quantities.len()],
+            columns: quantities
+                .iter()
+                .map(|&(q, _, _)| {
+                    flight_column(SUMMARY_QUANTITIES[q].0)
+                        .expect("every summary quantity is a flight column")
+                })
+                .collect(),
             quantities,
             groups: Vec::new(),
             members: Vec::new(),
@@ -216,11 +217,12 @@ impl Compact {
             }
         }
         let mut any = false;
-        for (j, &(q, e, m)) in self.quantities.iter().enumerate() {
-            let k = flight_column(q);
+        for (j, &(_, e, m)) in self.quantities.iter().enumerate() {
+            let k = self.columns[j];
             let measured = cell(m).and_then(|c| {
-                self.zeros[j] += usize::from(unmeasured_zero(k, c));
-                measured_value(k, c)
+                let (v, zero) = read_measured(k, c);
+                self.zeros[j] += usize::from(zero);
+                v
             });
             let v = value(e).zip(measured);
             any |= v.is_some();
@@ -228,7 +230,7 @@ impl Compact {
         }
         if any {
             self.compared += 1;
-            match self.modelled_col.and_then(&cell).map(modelled_flag) {
+            match self.modelled_col.and_then(&cell).map(flag) {
                 Some(Ok(Some(true))) => self.modelled += 1,
                 Some(Err(())) => self.unflagged += 1,
                 _ => {}

@@ -3,15 +3,19 @@
 
 use std::path::Path;
 
+use smash::data::columns::{flag, flight_column, measured_value};
 use smash::data::flight_files::LaunchTable;
-use smash::data::flight_measured::{measured_value, modelled_flag};
 use smash::data::left_out::list_lines;
 use smash::flight::calibrate::MeasuredFlight;
 use smash::flight::M_PER_YD;
 
 /// Each shot's launch and measured carry, apex and land angle (SI; empty cells `None`).
 pub fn measured_flights(table: &LaunchTable) -> Vec<MeasuredFlight> {
-    let col = |n: &str| table.headers.iter().position(|h| h == n);
+    // Each column's place in the file and its index among the flight columns.
+    let col = |n: &str| {
+        let k = flight_column(n).expect("a flight column");
+        (table.headers.iter().position(|h| h == n), k)
+    };
     let (carry, apex, land) = (col("carry_yd"), col("apex_yd"), col("land_angle_deg"));
     table
         .records
@@ -25,9 +29,9 @@ pub fn measured_flights(table: &LaunchTable) -> Vec<MeasuredFlight> {
             };
             MeasuredFlight {
                 launch: *l,
-                carry_m: get((carry, 0)).map(|v| v * M_PER_YD),
-                apex_m: get((apex, 2)).map(|v| v * M_PER_YD),
-                land_angle_rad: get((land, 4)).map(f64::to_radians),
+                carry_m: get(carry).map(|v| v * M_PER_YD),
+                apex_m: get(apex).map(|v| v * M_PER_YD),
+                land_angle_rad: get(land).map(f64::to_radians),
             }
         })
         .collect()
@@ -77,7 +81,7 @@ pub fn fit_flights(
     let (mut modelled, mut bad, mut tracked) = (Vec::new(), Vec::new(), Vec::new());
     for &i in &rows {
         let cell = table.records[i].get(col).unwrap_or("");
-        match modelled_flag(cell) {
+        match flag(cell) {
             Ok(Some(true)) => modelled.push(i),
             Ok(_) => tracked.push(i),
             Err(()) => {
