@@ -143,14 +143,13 @@ fn correlation_table(cal: &Calibration, labels: &[String]) -> String {
 fn warnings(cal: &Calibration, labels: &[String], unidentified: &[usize]) -> String {
     let mut s = String::new();
     for p in &cal.params {
-        if honest::implausible_within_noise(p) {
+        if let (true, Some(se)) = (honest::implausible_within_noise(p), p.stderr) {
             s.push_str(&format!(
-                "  within noise of its plausible range: {} = {:.4} ± {:.4} {} is outside {} by \
+                "  within noise of its plausible range: {} = {:.4} ± {se:.4} {} is outside {} by \
                  less than 2 SE, so the fit does not tell it from a plausible value (no reading \
                  as a stand-in)\n",
                 p.label(),
                 p.value,
-                p.stderr.unwrap_or(f64::NAN),
                 p.unit,
                 honest::plausible_range_text(p)
             ));
